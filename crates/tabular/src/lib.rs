@@ -1,0 +1,466 @@
+//! Numeric CSV tables whose every error says where: file, line and column.
+//!
+//! Both command lines of the workspace (`rbf` and `dtg-vib`) and the test-record
+//! format of `nav-sensors` read comma-separated files with a header row. This
+//! crate does that once: it keeps every cell as text, remembers the line each
+//! row came from, and parses a column into `f64` only when asked, so a bad cell
+//! is reported as `file:line:column` with the offending text.
+//!
+//! ```
+//! use tabular::Table;
+//!
+//! let csv = "t,az,split\n0.00,0.5,train\n0.02,-0.25,val\n";
+//! let table = Table::from_reader(csv.as_bytes(), "inline.csv").unwrap();
+//! assert_eq!(table.len(), 2);
+//! assert_eq!(table.numeric("az").unwrap(), vec![0.5, -0.25]);
+//! assert_eq!(table.text("split").unwrap(), vec!["train", "val"]);
+//!
+//! // A text cell in a numeric column names file, line and column.
+//! let bad = Table::from_reader("t,az\n0.0,oops\n".as_bytes(), "bad.csv").unwrap();
+//! let err = bad.numeric("az").unwrap_err();
+//! assert_eq!(err.to_string(), "bad.csv:2:2: column 'az': 'oops' is not a number");
+//! ```
+
+use std::fmt::Write as _;
+use std::io::{Read, Write};
+use std::path::Path;
+
+/// Everything that can go wrong reading or writing a table.
+///
+/// Line numbers are 1-based and count the header as line 1; column numbers are
+/// 1-based positions in the header.
+#[derive(Debug, thiserror::Error)]
+pub enum TableError {
+    /// The file could not be opened, read or written.
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The CSV itself is malformed (for example a row with a different number
+    /// of fields than the header).
+    #[error("{file}:{line}: {message}")]
+    Malformed {
+        file: String,
+        line: u64,
+        message: String,
+    },
+    /// The file has no header row.
+    #[error("{file}: empty file, expected a header row of column names")]
+    NoHeader { file: String },
+    /// Two header cells have the same name.
+    #[error("{file}:1:{column}: column name '{name}' appears twice")]
+    DuplicateColumn {
+        file: String,
+        column: usize,
+        name: String,
+    },
+    /// A column that was asked for is not in the header.
+    #[error("{file}: no column '{name}' (the header has: {})", available.join(", "))]
+    MissingColumn {
+        file: String,
+        name: String,
+        available: Vec<String>,
+    },
+    /// A cell of a numeric column does not parse as a number.
+    #[error("{file}:{line}:{column}: column '{name}': '{value}' is not a number")]
+    NotANumber {
+        file: String,
+        line: u64,
+        column: usize,
+        name: String,
+        value: String,
+    },
+    /// A cell parses as NaN or an infinity.
+    #[error("{file}:{line}:{column}: column '{name}': '{value}' is not finite")]
+    NotFinite {
+        file: String,
+        line: u64,
+        column: usize,
+        name: String,
+        value: String,
+    },
+    /// Columns handed to [`write_csv`] differ in length.
+    #[error("{path}: column '{name}' has {len} values, expected {expected}")]
+    RaggedColumns {
+        path: String,
+        name: String,
+        len: usize,
+        expected: usize,
+    },
+}
+
+/// A CSV table held as text, with the source line of every row.
+///
+/// ```
+/// let t = tabular::Table::from_reader("a,b\n1,2\n3,4\n".as_bytes(), "x.csv").unwrap();
+/// assert_eq!(t.header(), &["a".to_string(), "b".to_string()]);
+/// assert_eq!(t.numeric("b").unwrap(), vec![2.0, 4.0]);
+/// assert_eq!(t.line_of_row(1), 3);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Table {
+    file: String,
+    header: Vec<String>,
+    rows: Vec<csv::StringRecord>,
+    lines: Vec<u64>,
+}
+
+impl Table {
+    /// Reads a CSV file with a header row.
+    pub fn read(path: impl AsRef<Path>) -> Result<Self, TableError> {
+        let path = path.as_ref();
+        let file = std::fs::File::open(path).map_err(|source| TableError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::from_reader(std::io::BufReader::new(file), &path.display().to_string())
+    }
+
+    /// Reads CSV text from any reader; `file` names the source in errors.
+    pub fn from_reader<R: Read>(reader: R, file: &str) -> Result<Self, TableError> {
+        let mut rdr = csv::ReaderBuilder::new()
+            .has_headers(true)
+            .trim(csv::Trim::All)
+            .comment(Some(b'#'))
+            .from_reader(reader);
+        let malformed = |e: csv::Error| match e.kind() {
+            csv::ErrorKind::Io(_) => TableError::Io {
+                path: file.to_string(),
+                source: std::io::Error::other(e.to_string()),
+            },
+            _ => TableError::Malformed {
+                file: file.to_string(),
+                line: e.position().map_or(0, |p| p.line()),
+                message: describe_csv_error(&e),
+            },
+        };
+        let header: Vec<String> = rdr
+            .headers()
+            .map_err(malformed)?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        if header.is_empty() || header.iter().all(String::is_empty) {
+            return Err(TableError::NoHeader {
+                file: file.to_string(),
+            });
+        }
+        for (i, name) in header.iter().enumerate() {
+            if header[..i].contains(name) {
+                return Err(TableError::DuplicateColumn {
+                    file: file.to_string(),
+                    column: i + 1,
+                    name: name.clone(),
+                });
+            }
+        }
+        let mut rows = Vec::new();
+        let mut lines = Vec::new();
+        for rec in rdr.records() {
+            let rec = rec.map_err(malformed)?;
+            lines.push(rec.position().map_or(0, |p| p.line()));
+            rows.push(rec);
+        }
+        Ok(Self {
+            file: file.to_string(),
+            header,
+            rows,
+            lines,
+        })
+    }
+
+    /// The name the table was read from, as used in error messages.
+    pub fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// The column names, in file order.
+    pub fn header(&self) -> &[String] {
+        &self.header
+    }
+
+    /// Number of data rows (the header excluded).
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// True when the file has a header but no data rows.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// The 1-based file line of data row `row` (0-based).
+    #[track_caller]
+    pub fn line_of_row(&self, row: usize) -> u64 {
+        self.lines[row]
+    }
+
+    /// Whether a column of that name exists.
+    pub fn has_column(&self, name: &str) -> bool {
+        self.header.iter().any(|h| h == name)
+    }
+
+    /// The 0-based index of a column, or [`TableError::MissingColumn`].
+    pub fn column_index(&self, name: &str) -> Result<usize, TableError> {
+        self.header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| TableError::MissingColumn {
+                file: self.file.clone(),
+                name: name.to_string(),
+                available: self.header.clone(),
+            })
+    }
+
+    /// A column's cells as text.
+    pub fn text(&self, name: &str) -> Result<Vec<&str>, TableError> {
+        let j = self.column_index(name)?;
+        Ok(self.rows.iter().map(|r| r.get(j).unwrap_or("")).collect())
+    }
+
+    /// A column parsed as finite `f64`; the first bad cell is reported with
+    /// its file, line and column.
+    pub fn numeric(&self, name: &str) -> Result<Vec<f64>, TableError> {
+        let j = self.column_index(name)?;
+        self.rows
+            .iter()
+            .enumerate()
+            .map(|(i, r)| self.parse_cell(i, j, r.get(j).unwrap_or("")))
+            .collect()
+    }
+
+    /// Names of the columns whose every cell is a finite number, in file
+    /// order. An empty table counts every column as numeric.
+    pub fn numeric_columns(&self) -> Vec<String> {
+        (0..self.header.len())
+            .filter(|&j| {
+                self.rows.iter().all(|r| {
+                    r.get(j)
+                        .and_then(|c| c.parse::<f64>().ok())
+                        .is_some_and(f64::is_finite)
+                })
+            })
+            .map(|j| self.header[j].clone())
+            .collect()
+    }
+
+    fn parse_cell(&self, row: usize, col: usize, cell: &str) -> Result<f64, TableError> {
+        let located = |value: &str| {
+            (
+                self.file.clone(),
+                self.lines[row],
+                col + 1,
+                self.header[col].clone(),
+                value.to_string(),
+            )
+        };
+        match cell.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(_) => {
+                let (file, line, column, name, value) = located(cell);
+                Err(TableError::NotFinite {
+                    file,
+                    line,
+                    column,
+                    name,
+                    value,
+                })
+            }
+            Err(_) => {
+                let (file, line, column, name, value) = located(cell);
+                Err(TableError::NotANumber {
+                    file,
+                    line,
+                    column,
+                    name,
+                    value,
+                })
+            }
+        }
+    }
+}
+
+fn describe_csv_error(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => {
+            format!("row has {len} fields but the header has {expected_len}")
+        }
+        csv::ErrorKind::Utf8 { .. } => "invalid UTF-8 text".to_string(),
+        _ => e.to_string(),
+    }
+}
+
+/// Writes named numeric columns as CSV with a header row.
+///
+/// Numbers are written in Rust's shortest round-trip form, so reading the file
+/// back gives the identical `f64` values (and the same inputs give
+/// byte-identical files).
+///
+/// ```
+/// let dir = std::env::temp_dir().join("tabular-doc-write");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("out.csv");
+/// tabular::write_csv(&path, &["t", "y"], &[&[0.0, 0.02], &[0.1, 1.0 / 3.0]]).unwrap();
+/// let back = tabular::Table::read(&path).unwrap();
+/// assert_eq!(back.numeric("y").unwrap(), vec![0.1, 1.0 / 3.0]);
+/// ```
+pub fn write_csv(
+    path: impl AsRef<Path>,
+    names: &[&str],
+    columns: &[&[f64]],
+) -> Result<(), TableError> {
+    let path = path.as_ref();
+    let io = |source| TableError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let file = std::fs::File::create(path).map_err(io)?;
+    let mut out = std::io::BufWriter::new(file);
+    write_csv_to(&mut out, &path.display().to_string(), names, columns)?;
+    out.flush().map_err(io)
+}
+
+/// As [`write_csv`], into any writer; `name` labels errors.
+#[track_caller]
+pub fn write_csv_to<W: Write>(
+    out: &mut W,
+    name: &str,
+    names: &[&str],
+    columns: &[&[f64]],
+) -> Result<(), TableError> {
+    assert_eq!(names.len(), columns.len(), "one name per column");
+    let n = columns.first().map_or(0, |c| c.len());
+    for (nm, c) in names.iter().zip(columns) {
+        if c.len() != n {
+            return Err(TableError::RaggedColumns {
+                path: name.to_string(),
+                name: nm.to_string(),
+                len: c.len(),
+                expected: n,
+            });
+        }
+    }
+    let io = |source| TableError::Io {
+        path: name.to_string(),
+        source,
+    };
+    let mut line = names.join(",");
+    line.push('\n');
+    out.write_all(line.as_bytes()).map_err(io)?;
+    for i in 0..n {
+        line.clear();
+        for (j, c) in columns.iter().enumerate() {
+            if j > 0 {
+                line.push(',');
+            }
+            // `{}` on f64 is the shortest string that parses back to the same value.
+            let _ = write!(line, "{}", c[i]);
+        }
+        line.push('\n');
+        out.write_all(line.as_bytes()).map_err(io)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(text: &str) -> Table {
+        Table::from_reader(text.as_bytes(), "t.csv").unwrap()
+    }
+
+    #[test]
+    fn missing_column_lists_the_header() {
+        let err = table("a,b\n1,2\n").numeric("c").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.csv: no column 'c' (the header has: a, b)"
+        );
+    }
+
+    #[test]
+    fn nan_and_inf_are_rejected_with_location() {
+        let t = table("a,b\n1,2\n3,NaN\n4,inf\n");
+        let err = t.numeric("b").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.csv:3:2: column 'b': 'NaN' is not finite"
+        );
+    }
+
+    #[test]
+    fn ragged_row_is_malformed_with_line() {
+        let err = Table::from_reader("a,b\n1,2\n3\n".as_bytes(), "t.csv").unwrap_err();
+        match err {
+            TableError::Malformed { line, .. } => assert_eq!(line, 3),
+            other => panic!("unexpected {other}"),
+        }
+    }
+
+    #[test]
+    fn duplicate_header_is_rejected() {
+        let err = Table::from_reader("a,b,a\n1,2,3\n".as_bytes(), "t.csv").unwrap_err();
+        assert!(
+            matches!(err, TableError::DuplicateColumn { column: 3, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn empty_file_has_no_header() {
+        let err = Table::from_reader("".as_bytes(), "t.csv").unwrap_err();
+        assert!(matches!(err, TableError::NoHeader { .. }), "{err}");
+    }
+
+    #[test]
+    fn numeric_columns_skip_text() {
+        let t = table("a,s,b\n1,train,2\n3,val,x\n");
+        assert_eq!(t.numeric_columns(), vec!["a".to_string()]);
+    }
+
+    #[test]
+    fn comment_lines_keep_true_line_numbers() {
+        let t = table("a\n# note\n1\nz\n");
+        let err = t.numeric("a").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.csv:4:1: column 'a': 'z' is not a number"
+        );
+    }
+
+    #[test]
+    fn round_trip_is_exact_and_byte_stable() {
+        let x: Vec<f64> = (0..50)
+            .map(|i| (i as f64 * 0.37).sin() * 1e-7 + i as f64)
+            .collect();
+        let mut a = Vec::new();
+        write_csv_to(&mut a, "mem", &["x"], &[&x]).unwrap();
+        let back = Table::from_reader(a.as_slice(), "mem")
+            .unwrap()
+            .numeric("x")
+            .unwrap();
+        assert_eq!(back, x);
+        let mut b = Vec::new();
+        write_csv_to(&mut b, "mem", &["x"], &[&back]).unwrap();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn ragged_columns_are_an_error_not_a_panic() {
+        let mut sink = Vec::new();
+        let err = write_csv_to(&mut sink, "mem", &["a", "b"], &[&[1.0, 2.0], &[1.0]]).unwrap_err();
+        assert!(matches!(
+            err,
+            TableError::RaggedColumns {
+                len: 1,
+                expected: 2,
+                ..
+            }
+        ));
+    }
+}
