@@ -9,4 +9,7 @@
 //! - [`sim`]: scenarios and the shaker-test simulator;
 //! - [`record`], [`calibration`], [`truth`]: the files a test produces.
 
+pub mod accel;
+pub mod dtg;
 pub mod geometry;
+pub mod signal;
