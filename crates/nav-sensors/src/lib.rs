@@ -13,3 +13,4 @@ pub mod accel;
 pub mod dtg;
 pub mod geometry;
 pub mod signal;
+pub mod vibration;
