@@ -11,6 +11,9 @@
 
 pub mod accel;
 pub mod dtg;
+pub mod files;
 pub mod geometry;
 pub mod signal;
 pub mod vibration;
+
+pub use files::record;
