@@ -14,6 +14,7 @@ pub mod dtg;
 pub mod files;
 pub mod geometry;
 pub mod signal;
+pub mod sim;
 pub mod vibration;
 
-pub use files::record;
+pub use files::{calibration, record, truth};

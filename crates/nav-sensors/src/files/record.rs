@@ -404,7 +404,7 @@ fn check_time(
         });
     }
     for i in 1..t.len() {
-        if !(t[i] > t[i - 1]) {
+        if t[i].partial_cmp(&t[i - 1]) != Some(std::cmp::Ordering::Greater) {
             return Err(RecordError::NotIncreasing {
                 file: file.to_string(),
                 line: line(i),

@@ -283,8 +283,14 @@ impl VibrationConfig {
                     return Err(VibrationError::NotPositive { index, what, value });
                 }
             }
+            // A random table may end exactly at Nyquist (the NAVMAT table at
+            // 4 kHz): synthesis leaves the Nyquist bin empty. A sine must be below.
             let frequency_hz = d.max_frequency_hz();
-            if frequency_hz >= nyquist_hz {
+            let above = match d {
+                Drive::Random { .. } => frequency_hz > nyquist_hz,
+                _ => frequency_hz >= nyquist_hz,
+            };
+            if above {
                 return Err(VibrationError::AboveNyquist {
                     index,
                     frequency_hz,
