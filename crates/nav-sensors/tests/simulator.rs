@@ -141,6 +141,57 @@ fn non_commensurate_sine_rectifies_to_the_same_mean() {
     );
 }
 
+/// Angular vibration (fixture rocking driven by a 400-Hz sine) rectifies
+/// through the 2N term at twice the 200-Hz spin frequency and through
+/// anisoinertia, by the analytic means.
+#[test]
+fn angular_vibration_rectifies_through_2n_and_anisoinertia() {
+    use nav_sensors::vibration::{Rocking, STANDARD_GRAVITY_M_S2};
+    let (f, amp) = (400.0, 2.0); // Hz, g: 2N of the default 200-Hz spin
+    let (rx, ry) = (0.5, 0.3); // rad/s per m/s about x and y
+    let mut s = ideal(4.0);
+    s.vibration = sine_z(f, amp);
+    s.vibration.rocking = Rocking {
+        rad_s_per_m_s: [[0.0, 0.0, rx], [0.0, 0.0, ry], [0.0; 3]],
+    };
+    let (k2n, kai) = (2.0, 0.5);
+    // X: I = x, so ω_I is the rocking about x. X1: I = X1 = (0, h, −h),
+    // O = x, so ω_I·ω_O = h·ω_y·ω_x.
+    s.gyros.channels.insert(
+        Channel::X,
+        DtgCoefficients {
+            rect_2n_deg_h_per_deg_s2: k2n,
+            ..Default::default()
+        },
+    );
+    s.gyros.channels.insert(
+        Channel::X1,
+        DtgCoefficients {
+            ai_io_deg_h_per_deg_s2: kai,
+            ..Default::default()
+        },
+    );
+    let sim = simulate(&s).unwrap();
+    // Velocity amplitude A·g0/(2πf); rocking amplitudes in deg/s.
+    let v = amp * STANDARD_GRAVITY_M_S2 / (std::f64::consts::TAU * f);
+    let (wx, wy) = ((rx * v).to_degrees(), (ry * v).to_degrees());
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    // Skip the first 0.2 s: the 2N band-pass (Q = 10) settles in ~10 ms.
+    let tail = |c: Channel| mean(&sim.record.gyro(c)[10..]) - earth_on(c, &s);
+    let rect = tail(Channel::X);
+    let expect = k2n * wx * wx / 2.0;
+    assert!(
+        (rect - expect).abs() < 0.02 * expect,
+        "2N: {rect} vs {expect}"
+    );
+    let ai = tail(Channel::X1);
+    let expect = kai * h * wx * wy / 2.0;
+    assert!(
+        (ai - expect).abs() < 0.02 * expect,
+        "anisoinertia: {ai} vs {expect}"
+    );
+}
+
 /// K2 rectifies random vibration into a bias K2·σ² on the accelerometer.
 #[test]
 fn accelerometer_k2_rectifies_random_vibration_into_k2_sigma_squared() {

@@ -10,8 +10,9 @@ use std::path::Path;
 
 use tabular::{Table, TableError};
 
+use crate::dtg::{DtgInput, DtgTerm};
 pub use crate::geometry::Axis;
-use crate::geometry::{Channel, residues};
+use crate::geometry::{Channel, ChannelFrame, residues};
 
 /// Relative tolerance on the sample interval: every `t[i] − t[i−1]` must be
 /// within `1e-3·dt` of the median interval `dt`. That accepts timestamps
@@ -320,6 +321,70 @@ impl Record {
     #[track_caller]
     pub fn accel_sample(&self, i: usize) -> nalgebra::Vector3<f64> {
         nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i])
+    }
+
+    /// The accelerations resolved into a channel's frame: `[a_I, a_O, a_S]`
+    /// series, g (eq. 2 for every sample).
+    ///
+    /// ```
+    /// use nav_sensors::record::Record;
+    /// use nav_sensors::geometry::Channel;
+    /// let r = Record::new(vec![0.0, 0.02], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.0; 2], vec![0.0; 2], vec![1.0; 2]], vec![]).unwrap();
+    /// let [a_i, _, a_s] = r.frame_accel(Channel::X1);
+    /// let h = 0.5f64.sqrt();
+    /// assert!((a_i[0] + h).abs() < 1e-15 && (a_s[0] + h).abs() < 1e-15);
+    /// ```
+    pub fn frame_accel(&self, channel: Channel) -> [Vec<f64>; 3] {
+        let frame = ChannelFrame::of(channel);
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(self.len()));
+        for i in 0..self.len() {
+            let r = frame.resolve(&self.accel_sample(i));
+            out[0].push(r.i);
+            out[1].push(r.o);
+            out[2].push(r.s);
+        }
+        out
+    }
+
+    /// A DTG term's regressor at every sample for a channel (the effect
+    /// column of `term`, in deg/h per coefficient unit), from the record's
+    /// accelerations resolved into the channel's frame and a constant
+    /// reference rate in the cluster frame (deg/h; e.g. Earth rate, or zero).
+    /// `None` for `temp` and `rect_2n`, which the accelerations do not give
+    /// (use the `temp` column for the former).
+    ///
+    /// ```
+    /// use nav_sensors::record::Record;
+    /// use nav_sensors::geometry::Channel;
+    /// use nav_sensors::dtg::DtgTerm;
+    /// let r = Record::new(vec![0.0, 0.02], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.0; 2], vec![0.0; 2], vec![1.0, 3.0]], vec![]).unwrap();
+    /// let w = nalgebra::Vector3::zeros();
+    /// assert_eq!(r.term_regressor(Channel::Z, DtgTerm::GgII, &w).unwrap(), vec![1.0, 9.0]);
+    /// assert!(r.term_regressor(Channel::Z, DtgTerm::Temp, &w).is_none());
+    /// ```
+    pub fn term_regressor(
+        &self,
+        channel: Channel,
+        term: DtgTerm,
+        rate_cluster_deg_h: &nalgebra::Vector3<f64>,
+    ) -> Option<Vec<f64>> {
+        if matches!(term, DtgTerm::Temp | DtgTerm::Rect2N) {
+            return None;
+        }
+        let frame = ChannelFrame::of(channel);
+        Some(
+            (0..self.len())
+                .map(|i| {
+                    term.regressor(&DtgInput::resolved(
+                        &frame,
+                        rate_cluster_deg_h,
+                        &self.accel_sample(i),
+                    ))
+                })
+                .collect(),
+        )
     }
 
     /// The six parity residues K0..K5 (eq. 6) at every sample, deg/h.
