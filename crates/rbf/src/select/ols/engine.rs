@@ -1,7 +1,8 @@
 //! The forward-selection engine (see the module documentation for the numerics).
 
-use faer::{Mat, MatRef, Par};
-use rayon::prelude::*;
+use faer::linalg::matmul::matmul;
+use faer::prelude::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 use super::errors::OlsError;
 use super::options::{OlsOptions, OlsProgress};
@@ -18,8 +19,9 @@ const REFRESH: f64 = 1e-3;
 /// re-evaluated exactly before a pick is committed. The estimates' relative error is
 /// below ~10⁻¹⁰ (k·ε/REFRESH), so the true best is always among them.
 const TIE: f64 = 1e-8;
-/// Refreshed columns are computed in batches to bound the scratch memory.
-const REFRESH_BATCH: usize = 64;
+/// Refreshed columns are deflated in blocks (matrix products) of at most this many
+/// columns, or fewer so that a block stays below 2²¹ doubles (16 MB).
+const REFRESH_BATCH: usize = 256;
 
 /// Runs forward selection on borrowed candidate columns.
 ///
@@ -68,7 +70,7 @@ pub fn forward_select(
         });
     }
     run(
-        Store::borrowed(candidates),
+        Store::Borrowed(candidates),
         candidates.ncols(),
         forced,
         targets,
@@ -146,14 +148,15 @@ struct Cand {
     proj2: f64,
     /// Basis columns < `since` are already removed from the stored column.
     since: usize,
-    /// p_j = p̃_j + Σ_{i<since} coef[i] qᵢ.
+    /// p_j = p̃_j + Σ_{i<since} coef[i] qᵢ (`coef.len() == since`).
     coef: Vec<f64>,
     status: Status,
 }
 
-/// The growing orthonormal basis and the triangular factors.
+/// The growing orthonormal basis (n × capacity, `len` columns used) and the factors.
 struct Basis {
-    q: Vec<Vec<f64>>,
+    q: Mat<f64>,
+    len: usize,
     /// Column k of R: k + 1 entries.
     r: Vec<Vec<f64>>,
     /// gₖ = qₖᵀd per output.
@@ -162,20 +165,44 @@ struct Basis {
 }
 
 impl Basis {
-    fn len(&self) -> usize {
-        self.q.len()
+    fn cols(&self, from: usize) -> MatRef<'_, f64> {
+        self.q.as_ref().subcols(from, self.len - from)
     }
 
-    /// Modified Gram–Schmidt of `v` against basis columns `from..to`, twice
-    /// ("twice is enough"), adding the coefficients to `coef[i - from]`.
-    fn orthogonalise(&self, v: &mut [f64], from: usize, to: usize, coef: &mut [f64]) {
-        for _ in 0..2 {
-            for i in from..to {
-                let a = dot(&self.q[i], v);
-                axpy(-a, &self.q[i], v);
-                coef[i - from] += a;
-            }
+    /// Block classical Gram–Schmidt applied twice (CGS2, "twice is enough": Giraud,
+    /// Langou & Rozložník 2005) of the columns of `w` against basis columns `from..len`:
+    /// as accurate as modified Gram–Schmidt with re-orthogonalisation, and it runs as
+    /// matrix products. Returns the (len − from) × b coefficients removed.
+    fn project_out(&self, mut w: MatMut<'_, f64>, from: usize, par: Par) -> Mat<f64> {
+        let qs = self.cols(from);
+        let mut total = Mat::<f64>::zeros(qs.ncols(), w.ncols());
+        if qs.ncols() == 0 {
+            return total;
         }
+        for _ in 0..2 {
+            let c = qs.transpose() * w.rb();
+            matmul(w.rb_mut(), Accum::Add, qs, c.as_ref(), -1.0, par);
+            total += &c;
+        }
+        total
+    }
+
+    fn push(&mut self, q: &[f64], coefs: Vec<f64>, g: Vec<f64>, energy: f64) {
+        let n = self.q.nrows();
+        if self.len == self.q.ncols() {
+            let cap = (2 * self.len).max(8);
+            let mut grown = Mat::<f64>::zeros(n, cap);
+            grown
+                .as_mut()
+                .subcols_mut(0, self.len)
+                .copy_from(self.cols(0));
+            self.q = grown;
+        }
+        self.q.col_as_slice_mut(self.len).copy_from_slice(q);
+        self.len += 1;
+        self.r.push(coefs);
+        self.g.push(g);
+        self.energies.push(energy);
     }
 }
 
@@ -187,39 +214,11 @@ struct Exact {
     err: f64,
 }
 
-fn maybe_par_map<T: Sync, U: Send>(
-    items: &[T],
-    par: Par,
-    f: impl Fn(&T) -> U + Sync + Send,
-) -> Vec<U> {
-    if par.degree() > 1 && items.len() > 1 {
-        items.par_iter().map(f).collect()
-    } else {
-        items.iter().map(f).collect()
-    }
-}
-
-/// Dots of column `p` with every vector of `vs`, in row blocks that keep `p` in L1.
-#[inline]
-fn dots_into(p: &[f64], vs: &[&[f64]], out: &mut [f64]) {
-    const BLOCK: usize = 1024;
-    out.fill(0.0);
-    let n = p.len();
-    let mut start = 0;
-    while start < n {
-        let end = (start + BLOCK).min(n);
-        let pb = &p[start..end];
-        for (o, v) in out.iter_mut().zip(vs) {
-            *o += dot(pb, &v[start..end]);
-        }
-        start = end;
-    }
-}
-
 struct Engine<'s, 'o> {
     store: Store<'s>,
     basis: Basis,
-    resid: Vec<Vec<f64>>,
+    /// Residuals r_o = d_o minus their projections on the basis (n × q).
+    resid: Mat<f64>,
     cands: Vec<Cand>,
     /// p̃_jᵀr_o, m × q.
     cdot: Vec<f64>,
@@ -236,32 +235,35 @@ impl Engine<'_, '_> {
             .collect()
     }
 
-    /// One streaming pass over the live candidates: projections on basis columns
-    /// `from..to` (accumulated into the energy estimates) and on the residuals.
+    /// One streaming pass over the candidate matrix: its products with basis columns
+    /// `from..to` (accumulated into the energy estimates) and with the residuals, as one
+    /// faer product Pᵀ[q_from … q_to, r] (m × s).
     fn pass(&mut self, from: usize, to: usize) {
-        let live = self.live();
-        let q = self.q;
-        let nb = to - from;
-        let s = nb + q;
-        let mut out = vec![0.0; live.len() * s];
-        {
-            let vs: Vec<&[f64]> = self.basis.q[from..to]
-                .iter()
-                .map(Vec::as_slice)
-                .chain(self.resid.iter().map(Vec::as_slice))
-                .collect();
-            let store = &self.store;
-            let mut rows: Vec<&mut [f64]> = out.chunks_mut(s).collect();
-            for_each_chunk_mut(&mut rows, self.options.par, 8, |start, chunk| {
-                for (k, row) in chunk.iter_mut().enumerate() {
-                    dots_into(store.col(live[start + k]), &vs, row);
-                }
-            });
-        }
-        for (k, &j) in live.iter().enumerate() {
-            let row = &out[k * s..(k + 1) * s];
-            self.cands[j].proj2 += row[..nb].iter().map(|a| a * a).sum::<f64>();
-            self.cdot[j * q..(j + 1) * q].copy_from_slice(&row[nb..]);
+        let (q, nb) = (self.q, to - from);
+        let n = self.resid.nrows();
+        let mut v = Mat::<f64>::zeros(n, nb + q);
+        v.as_mut()
+            .subcols_mut(0, nb)
+            .copy_from(self.basis.q.as_ref().subcols(from, nb));
+        v.as_mut().subcols_mut(nb, q).copy_from(self.resid.as_ref());
+        let p = self.store.mat();
+        let mut out = Mat::<f64>::zeros(p.ncols(), nb + q);
+        matmul(
+            out.as_mut(),
+            Accum::Replace,
+            p.transpose(),
+            v.as_ref(),
+            1.0,
+            self.options.par,
+        );
+        for (j, c) in self.cands.iter_mut().enumerate() {
+            if c.status != Status::Live {
+                continue;
+            }
+            c.proj2 += (0..nb).map(|k| out[(j, k)].powi(2)).sum::<f64>();
+            for o in 0..q {
+                self.cdot[j * q + o] = out[(j, nb + o)];
+            }
         }
     }
 
@@ -269,9 +271,9 @@ impl Engine<'_, '_> {
     /// eligibility and the ERR estimates.
     fn settle(&mut self) {
         let live = self.live();
-        let nb = self.basis.len();
-        let q = self.q;
-        let need: Vec<usize> = live
+        let nb = self.basis.len;
+        let (n, q, par) = (self.resid.nrows(), self.q, self.options.par);
+        let mut need: Vec<usize> = live
             .iter()
             .copied()
             .filter(|&j| {
@@ -279,28 +281,30 @@ impl Engine<'_, '_> {
                 c.since < nb && c.base2 - c.proj2 <= REFRESH * c.base2
             })
             .collect();
-        for batch in need.chunks(REFRESH_BATCH) {
-            let results = {
-                let (store, basis, resid, cands) =
-                    (&self.store, &self.basis, &self.resid, &self.cands);
-                maybe_par_map(batch, self.options.par, |&j| {
-                    let since = cands[j].since;
-                    let mut w = store.col(j).to_vec();
-                    let mut ext = vec![0.0; nb - since];
-                    basis.orthogonalise(&mut w, since, nb, &mut ext);
-                    let norm2 = dot(&w, &w);
-                    let cd: Vec<f64> = resid.iter().map(|r| dot(&w, r)).collect();
-                    (w, ext, norm2, cd)
-                })
-            };
-            for (&j, (w, ext, norm2, cd)) in batch.iter().zip(results) {
-                self.store.replace(j, &w);
-                let c = &mut self.cands[j];
-                c.coef.extend_from_slice(&ext);
-                c.since = nb;
-                c.base2 = norm2;
-                c.proj2 = 0.0;
-                self.cdot[j * q..(j + 1) * q].copy_from_slice(&cd);
+        // Batches of similar `since` deflate against (almost) only the columns they need.
+        need.sort_by_key(|&j| self.cands[j].since);
+        let batch = REFRESH_BATCH.min((1usize << 21) / n.max(1)).max(1);
+        for chunk in need.chunks(batch) {
+            let from = self.cands[chunk[0]].since;
+            let p = self.store.mat();
+            let mut w = Mat::from_fn(n, chunk.len(), |i, k| p[(i, chunk[k])]);
+            let c = self.basis.project_out(w.as_mut(), from, par);
+            let cd = self.resid.transpose() * &w;
+            for (k, &j) in chunk.iter().enumerate() {
+                self.store.replace(j, w.col_as_slice(k));
+                let cand = &mut self.cands[j];
+                // Coefficients on columns before the candidate's own `since` are ~ε
+                // (those directions were already removed) and are added all the same.
+                cand.coef.resize(nb, 0.0);
+                for i in from..nb {
+                    cand.coef[i] += c[(i - from, k)];
+                }
+                cand.since = nb;
+                cand.base2 = w.col_as_slice(k).iter().map(|v| v * v).sum();
+                cand.proj2 = 0.0;
+                for o in 0..q {
+                    self.cdot[j * q + o] = cd[(o, k)];
+                }
             }
         }
         let (lam, ctol, d) = (
@@ -321,28 +325,35 @@ impl Engine<'_, '_> {
         }
     }
 
-    /// Explicit orthogonalisation of candidate `j` against the whole basis (twice).
-    fn exact(&self, j: usize) -> Exact {
-        let nb = self.basis.len();
-        let c = &self.cands[j];
-        let mut w = self.store.col(j).to_vec();
-        let mut coefs = vec![0.0; nb];
-        coefs[..c.coef.len()].copy_from_slice(&c.coef);
-        let mut add = vec![0.0; nb];
-        self.basis.orthogonalise(&mut w, 0, nb, &mut add);
-        for (a, b) in coefs.iter_mut().zip(&add) {
-            *a += b;
-        }
-        let norm2 = dot(&w, &w);
-        let num: f64 = self.resid.iter().map(|r| dot(&w, r).powi(2)).sum();
-        let err = num / ((norm2 + self.options.regularisation) * self.target_energy);
-        Exact {
-            j,
-            w,
-            coefs,
-            norm2,
-            err,
-        }
+    /// Explicit orthogonalisation of candidates `js` against the whole basis (CGS2).
+    fn exact(&self, js: &[usize]) -> Vec<Exact> {
+        let nb = self.basis.len;
+        let n = self.resid.nrows();
+        let p = self.store.mat();
+        let mut w = Mat::from_fn(n, js.len(), |i, k| p[(i, js[k])]);
+        let c = self.basis.project_out(w.as_mut(), 0, self.options.par);
+        let cd = self.resid.transpose() * &w;
+        js.iter()
+            .enumerate()
+            .map(|(k, &j)| {
+                let mut coefs = vec![0.0; nb];
+                coefs[..self.cands[j].coef.len()].copy_from_slice(&self.cands[j].coef);
+                for (i, v) in coefs.iter_mut().enumerate() {
+                    *v += c[(i, k)];
+                }
+                let w: Vec<f64> = w.col_as_slice(k).to_vec();
+                let norm2: f64 = w.iter().map(|v| v * v).sum();
+                let num: f64 = (0..self.q).map(|o| cd[(o, k)].powi(2)).sum();
+                let err = num / ((norm2 + self.options.regularisation) * self.target_energy);
+                Exact {
+                    j,
+                    w,
+                    coefs,
+                    norm2,
+                    err,
+                }
+            })
+            .collect()
     }
 
     /// The next pick: best estimate, confirmed on exact ERRs among near-ties.
@@ -361,9 +372,8 @@ impl Engine<'_, '_> {
                 .into_iter()
                 .filter(|&j| self.err[j] >= threshold)
                 .collect();
-            let exact = maybe_par_map(&contenders, self.options.par, |&j| self.exact(j));
             let mut chosen: Option<Exact> = None;
-            for e in exact {
+            for e in self.exact(&contenders) {
                 if !(e.norm2 > self.options.collinearity_tol * self.cands[e.j].orig2
                     && e.norm2 > 0.0)
                 {
@@ -391,17 +401,15 @@ impl Engine<'_, '_> {
         }
         coefs.push(norm);
         let mut gk = Vec::with_capacity(self.q);
-        for r in &mut self.resid {
+        for o in 0..self.q {
+            let r = self.resid.col_as_slice_mut(o);
             let g = dot(&w, r);
             axpy(-g, &w, r);
             gk.push(g);
         }
         let lam = self.options.regularisation;
         let explained: f64 = gk.iter().map(|g| g * g).sum();
-        self.basis.q.push(w);
-        self.basis.r.push(coefs);
-        self.basis.g.push(gk);
-        self.basis.energies.push(norm2);
+        self.basis.push(&w, coefs, gk, norm2);
         explained * (norm2 / (norm2 + lam)) / self.target_energy
     }
 }
@@ -454,10 +462,8 @@ fn run(
             col,
         });
     }
-    let resid: Vec<Vec<f64>> = (0..q)
-        .map(|o| (0..n).map(|i| targets[(i, o)]).collect())
-        .collect();
-    let target_energy: f64 = resid.iter().map(|r| dot(r, r)).sum();
+    let resid = targets.to_owned();
+    let target_energy: f64 = (0..q).map(|o| resid.col(o).squared_norm_l2()).sum();
     if target_energy == 0.0 {
         return Err(OlsError::ZeroTarget);
     }
@@ -465,7 +471,8 @@ fn run(
     let mut eng = Engine {
         store,
         basis: Basis {
-            q: Vec::new(),
+            q: Mat::zeros(n, 0),
+            len: 0,
             r: Vec::new(),
             g: Vec::new(),
             energies: Vec::new(),
@@ -482,11 +489,11 @@ fn run(
     // Forced columns, in order.
     let mut forced_errs = Vec::with_capacity(p);
     for k in 0..p {
-        let mut w: Vec<f64> = (0..n).map(|i| forced[(i, k)]).collect();
-        let orig2 = dot(&w, &w);
-        let nb = eng.basis.len();
-        let mut coefs = vec![0.0; nb];
-        eng.basis.orthogonalise(&mut w, 0, nb, &mut coefs);
+        let mut w = forced.subcols(k, 1).to_owned();
+        let orig2 = dot(w.col_as_slice(0), w.col_as_slice(0));
+        let c = eng.basis.project_out(w.as_mut(), 0, options.par);
+        let coefs: Vec<f64> = (0..c.nrows()).map(|i| c[(i, 0)]).collect();
+        let w = w.col_as_slice(0).to_vec();
         let norm2 = dot(&w, &w);
         if !(norm2 > options.collinearity_tol * orig2 && norm2 > 0.0) {
             return Err(OlsError::ForcedCollinear { column: k });
@@ -497,11 +504,10 @@ fn run(
     // Candidates: energies, then one pass against the forced basis and the residuals.
     let mut norms = vec![0.0; m];
     {
-        let store = &eng.store;
+        let p = eng.store.mat();
         for_each_chunk_mut(&mut norms, options.par, 64, |start, chunk| {
             for (k, v) in chunk.iter_mut().enumerate() {
-                let c = store.col(start + k);
-                *v = dot(c, c);
+                *v = p.col(start + k).squared_norm_l2();
             }
         });
     }
@@ -555,13 +561,13 @@ fn run(
             });
         }
         if picks.len() < max_picks && 1.0 - cum >= options.tol {
-            let nb = eng.basis.len();
+            let nb = eng.basis.len;
             eng.pass(nb - 1, nb);
             eng.settle();
         }
     };
 
-    let t = eng.basis.len();
+    let t = eng.basis.len;
     let r = Mat::from_fn(t, t, |i, k| if i <= k { eng.basis.r[k][i] } else { 0.0 });
     let g = Mat::from_fn(t, q, |i, o| eng.basis.g[i][o]);
     Ok(OlsPath {
