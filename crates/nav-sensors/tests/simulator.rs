@@ -423,3 +423,19 @@ fn invalid_scenarios_are_typed_errors() {
     }]);
     assert!(matches!(s.validate(), Err(ScenarioError::Vibration(_))));
 }
+
+/// The complete scenario example in docs/formats.md parses and runs.
+#[test]
+fn formats_doc_example_parses_and_simulates() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/formats.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let start = doc.find("```toml\n").expect("a toml block") + "```toml\n".len();
+    let end = start + doc[start..].find("\n```").unwrap();
+    let s = Scenario::from_toml(&doc[start..end], "formats.md").unwrap();
+    assert_eq!(s.vibration.drives.len(), 3);
+    assert_eq!(s.gyros.pulse_arcsec, Some(0.1));
+    let sim = simulate(&s).unwrap();
+    assert_eq!(sim.record.len(), 500);
+    assert_eq!(sim.truth.hidden.len(), 1);
+    assert_eq!(sim.calibration.gyro(Channel::Y1).gg_is_deg_h_g2, 0.0);
+}
