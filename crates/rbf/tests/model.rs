@@ -205,9 +205,9 @@ fn linear_regressors_are_recovered() {
             .fit_with_linear(x.as_ref(), z.as_ref(), yz.as_ref())
             .unwrap();
         assert_eq!(m.n_linear(), 2);
-        for k in 0..2 {
+        for (k, t) in theta.iter().enumerate() {
             assert!(
-                (m.linear_coefficients()[(k, 0)] - theta[k]).abs() < 1e-3,
+                (m.linear_coefficients()[(k, 0)] - t).abs() < 1e-3,
                 "{name}: θ = {:?}",
                 m.linear_coefficients()
             );
