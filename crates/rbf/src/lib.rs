@@ -81,6 +81,11 @@ pub use select::ols::{
 };
 pub use width::{WidthError, WidthRule};
 
+/// `docs/rbf.md`, compiled as documentation so that its examples run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/rbf.md")]
+pub struct RbfGuideDoctests;
+
 /// A small fitted model for the documentation examples: an OLS Gaussian network (≤ 8
 /// centres, β = 1) of sin on [0, 3].
 ///
