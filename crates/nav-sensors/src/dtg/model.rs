@@ -40,6 +40,14 @@ pub struct DtgInput {
 impl DtgInput {
     /// Resolves cluster-frame rate (deg/h) and specific force (g) into a
     /// channel's frame; temperature and 2N terms zero.
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgInput;
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let x = DtgInput::resolved(&ChannelFrame::of(Channel::X), &nalgebra::Vector3::new(15.0, 0.0, 0.0),
+    ///     &nalgebra::Vector3::new(0.0, 0.0, 1.0));
+    /// assert_eq!((x.rate_deg_h.i, x.specific_force_g.i), (15.0, 0.0));
+    /// ```
     pub fn resolved(
         frame: &crate::geometry::ChannelFrame,
         rate_deg_h: &nalgebra::Vector3<f64>,

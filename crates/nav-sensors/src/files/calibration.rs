@@ -13,6 +13,12 @@ use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
 
 /// Reading or writing a calibration file failed.
+///
+/// ```
+/// use nav_sensors::calibration::{Calibration, CalibrationFileError};
+/// let err = Calibration::from_json("{\"format_version\": 9, \"gyros\": {}, \"accels\": {}}", "c.json").unwrap_err();
+/// assert!(matches!(err, CalibrationFileError::Version { found: 9, .. }));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum CalibrationFileError {
     /// The file could not be read or written.
@@ -73,9 +79,19 @@ pub struct Calibration {
 
 impl Calibration {
     /// The format version written and read.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::calibration::Calibration::ideal().format_version,
+    ///     nav_sensors::calibration::Calibration::FORMAT_VERSION);
+    /// ```
     pub const FORMAT_VERSION: u32 = 1;
 
     /// A calibration of ideal sensors (compensation changes nothing).
+    ///
+    /// ```
+    /// let cal = nav_sensors::calibration::Calibration::ideal();
+    /// assert!(cal.gyros.is_empty() && cal.accels.is_empty());
+    /// ```
     pub fn ideal() -> Self {
         Self {
             format_version: Self::FORMAT_VERSION,
@@ -86,6 +102,16 @@ impl Calibration {
 
     /// One channel's coefficients, with the terms calibration never covers
     /// (`temp`, `rect_2n`) zeroed.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// use nav_sensors::dtg::DtgCoefficients;
+    /// use nav_sensors::geometry::Channel;
+    /// let mut cal = Calibration::ideal();
+    /// cal.gyros.insert(Channel::Y, DtgCoefficients { temp_deg_h_per_c: 0.1, bias_deg_h: 1.0, ..Default::default() });
+    /// let c = cal.gyro(Channel::Y);
+    /// assert_eq!((c.bias_deg_h, c.temp_deg_h_per_c), (1.0, 0.0));
+    /// ```
     pub fn gyro(&self, channel: Channel) -> DtgCoefficients {
         self.gyros
             .get(&channel)
@@ -95,11 +121,22 @@ impl Calibration {
     }
 
     /// One accelerometer's coefficients.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// assert_eq!(Calibration::ideal().accel(nav_sensors::geometry::Axis::Z).bias_ug, 0.0);
+    /// ```
     pub fn accel(&self, axis: Axis) -> AccelCoefficients {
         self.accels.get(&axis).copied().unwrap_or_default()
     }
 
     /// Parses calibration JSON; `path` labels errors.
+    ///
+    /// ```
+    /// let cal = nav_sensors::calibration::Calibration::from_json(
+    ///     r#"{"format_version": 1, "gyros": {"Z": {"bias_deg_h": 2.0}}, "accels": {}}"#, "c.json").unwrap();
+    /// assert_eq!(cal.gyro(nav_sensors::geometry::Channel::Z).bias_deg_h, 2.0);
+    /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, CalibrationFileError> {
         let cal: Self =
             serde_json::from_str(text).map_err(|source| CalibrationFileError::Json {
@@ -117,6 +154,14 @@ impl Calibration {
     }
 
     /// Reads a calibration JSON file.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-cal-load.json");
+    /// Calibration::ideal().save(&path).unwrap();
+    /// assert_eq!(Calibration::load(&path).unwrap(), Calibration::ideal());
+    /// assert!(Calibration::load("/no/such/file.json").is_err());
+    /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, CalibrationFileError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| CalibrationFileError::Io {
@@ -127,11 +172,22 @@ impl Calibration {
     }
 
     /// The calibration as pretty JSON (deterministic: maps are ordered).
+    ///
+    /// ```
+    /// let json = nav_sensors::calibration::Calibration::ideal().to_json();
+    /// assert!(json.contains("\"format_version\": 1"));
+    /// ```
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
     }
 
     /// Writes the calibration as a JSON file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-cal-save.json");
+    /// nav_sensors::calibration::Calibration::ideal().save(&path).unwrap();
+    /// assert!(path.exists());
+    /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
         let path = path.as_ref();
         std::fs::write(path, self.to_json()).map_err(|source| CalibrationFileError::Io {

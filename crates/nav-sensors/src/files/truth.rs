@@ -11,6 +11,14 @@ use crate::geometry::{Channel, Residue};
 use crate::sim::Scenario;
 
 /// A hidden effect with what it contributes to the record.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario};
+/// let sim = simulate(&Scenario { duration_s: 2.0, ..Scenario::triaxial_hidden() }).unwrap();
+/// let h = &sim.truth.hidden[0];
+/// assert_eq!((h.channel.name(), h.term.id()), ("Y1", "gg_IS"));
+/// assert!(h.rms_deg_h > 0.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct HiddenTruth {
     /// The channel.
@@ -34,6 +42,13 @@ pub struct HiddenTruth {
 /// Two candidate regressors of a channel that are nearly collinear on this
 /// record (|correlation| > 0.95 at the output rate): a diagnosis cannot tell
 /// them apart.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario};
+/// let sim = simulate(&Scenario { duration_s: 10.0, ..Scenario::default() }).unwrap();
+/// let x = &sim.truth.channels[&nav_sensors::geometry::Channel::X];
+/// assert!(x.collinear.iter().all(|p| p.correlation.abs() > 0.95));
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Collinear {
     /// First term.
@@ -45,6 +60,13 @@ pub struct Collinear {
 }
 
 /// Per-channel truth and error budget at the output rate.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario};
+/// let sim = simulate(&Scenario { duration_s: 2.0, ..Scenario::default() }).unwrap();
+/// let z = &sim.truth.channels[&nav_sensors::geometry::Channel::Z];
+/// assert!(z.noise_floor_deg_h >= 0.0 && z.noise_rms_deg_h > 0.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ChannelTruth {
     /// The true coefficients.
@@ -113,6 +135,11 @@ pub struct Truth {
 }
 
 /// Reading a truth file failed.
+///
+/// ```
+/// let err = nav_sensors::truth::Truth::from_json("{}", "t.json").unwrap_err();
+/// assert!(matches!(err, nav_sensors::truth::TruthFileError::Json { .. }));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum TruthFileError {
     /// The file could not be read or written.
@@ -137,14 +164,28 @@ pub enum TruthFileError {
 
 impl Truth {
     /// The format version written.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::truth::Truth::FORMAT_VERSION, 1);
+    /// ```
     pub const FORMAT_VERSION: u32 = 1;
 
     /// The truth as pretty JSON (deterministic).
+    ///
+    /// ```
+    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario {
+    ///     duration_s: 1.0, ..Default::default() }).unwrap();
+    /// assert!(sim.truth.to_json().contains("noise_floor_deg_h"));
+    /// ```
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
     }
 
     /// Parses truth JSON; `path` labels errors.
+    ///
+    /// ```
+    /// assert!(nav_sensors::truth::Truth::from_json("not json", "t.json").is_err());
+    /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
         serde_json::from_str(text).map_err(|source| TruthFileError::Json {
             path: path.to_string(),
@@ -153,6 +194,14 @@ impl Truth {
     }
 
     /// Reads a truth JSON file.
+    ///
+    /// ```
+    /// use nav_sensors::sim::{simulate, Scenario};
+    /// let dir = std::env::temp_dir().join("nav-sensors-doc-truth-load");
+    /// simulate(&Scenario { duration_s: 1.0, ..Default::default() }).unwrap().write_dir(&dir).unwrap();
+    /// let truth = nav_sensors::truth::Truth::load(dir.join("truth.json")).unwrap();
+    /// assert_eq!(truth.scenario.duration_s, 1.0);
+    /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| TruthFileError::Io {

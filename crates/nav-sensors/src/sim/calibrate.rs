@@ -16,7 +16,7 @@ use crate::geometry::{Axis, Channel};
 /// Draws the calibration for a scenario. Two normal draws are taken for
 /// every coefficient whether used or not, so the errors of one term do not
 /// depend on the others' settings.
-pub fn ground_calibration(s: &Scenario, rng: &mut impl Rng) -> Calibration {
+pub(crate) fn ground_calibration(s: &Scenario, rng: &mut impl Rng) -> Calibration {
     let e = &s.calibration_error;
     let mut normal = || -> (f64, f64) { (StandardNormal.sample(rng), StandardNormal.sample(rng)) };
     let mut gyros = BTreeMap::new();

@@ -6,6 +6,12 @@ use crate::files::record::RecordError;
 use crate::vibration::VibrationError;
 
 /// Everything that can stop a simulation or writing its files.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario, SimError};
+/// let err = simulate(&Scenario { output_rate_hz: 0.0, ..Scenario::default() }).unwrap_err();
+/// assert!(matches!(err, SimError::Scenario(_)));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
     /// The scenario is invalid.

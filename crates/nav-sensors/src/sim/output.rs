@@ -27,6 +27,11 @@ pub struct Components {
 
 impl Components {
     /// Empty components on a time base, s.
+    ///
+    /// ```
+    /// let c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);
+    /// assert!(c.names().is_empty());
+    /// ```
     pub fn new(t: Vec<f64>) -> Self {
         Self {
             t,
@@ -36,6 +41,12 @@ impl Components {
     }
 
     /// Adds a named series.
+    ///
+    /// ```
+    /// let mut c = nav_sensors::sim::Components::new(vec![0.02]);
+    /// c.push("Z_noise", vec![0.3]);
+    /// assert_eq!(c.names(), ["Z_noise"]);
+    /// ```
     #[track_caller]
     pub fn push(&mut self, name: &str, values: Vec<f64>) {
         assert_eq!(values.len(), self.t.len(), "one value per sample");
@@ -44,6 +55,11 @@ impl Components {
     }
 
     /// A series by name.
+    ///
+    /// ```
+    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// assert_eq!(sim.components.get("Z_floor").unwrap().len(), 50);
+    /// ```
     pub fn get(&self, name: &str) -> Option<&[f64]> {
         self.names
             .iter()
@@ -52,11 +68,25 @@ impl Components {
     }
 
     /// The series' names.
+    ///
+    /// ```
+    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// assert_eq!(sim.components.names()[0], "level_squared");
+    /// ```
     pub fn names(&self) -> &[String] {
         &self.names
     }
 
     /// Writes `t` and every series as CSV.
+    ///
+    /// ```
+    /// let mut c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);
+    /// c.push("X_noise", vec![0.1, -0.2]);
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-components.csv");
+    /// c.write_csv(&path).unwrap();
+    /// let t = tabular::Table::read(&path).unwrap();
+    /// assert_eq!(t.numeric("X_noise").unwrap(), vec![0.1, -0.2]);
+    /// ```
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<(), SimError> {
         let mut names: Vec<&str> = vec!["t"];
         names.extend(self.names.iter().map(String::as_str));
@@ -68,6 +98,13 @@ impl Components {
 }
 
 /// The result of [`crate::sim::simulate`].
+///
+/// ```
+/// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+/// assert_eq!(sim.record.len(), 50);
+/// assert_eq!(sim.truth.scenario.duration_s, 1.0);
+/// assert!(sim.calibration.gyros.contains_key(&nav_sensors::geometry::Channel::X));
+/// ```
 #[derive(Debug, Clone)]
 pub struct Simulation {
     /// The test record (what the instruments delivered).
@@ -82,6 +119,10 @@ pub struct Simulation {
 
 impl Simulation {
     /// File names written by [`Simulation::write_dir`].
+    ///
+    /// ```
+    /// assert!(nav_sensors::sim::Simulation::FILES.contains(&"truth.json"));
+    /// ```
     pub const FILES: [&'static str; 5] = [
         "record.csv",
         "calibration.json",

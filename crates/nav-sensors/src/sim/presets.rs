@@ -206,6 +206,12 @@ fn seg(duration_s: f64, level_db: Option<f64>, ramp_s: f64) -> Segment {
 /// Nyquist frequency of 50-Hz outputs, so the vibration itself is visible
 /// in the record, and slow against the 20-ms interval, so little of it
 /// rectifies within an interval.
+///
+/// ```
+/// let p = nav_sensors::sim::low_frequency_psd();
+/// assert!((p.grms() - 1.66).abs() < 0.01);
+/// assert_eq!(p.band_hz(), (3.0, 20.0));
+/// ```
 pub fn low_frequency_psd() -> PsdTable {
     PsdTable::new(vec![[3.0, 0.05], [5.0, 0.2], [15.0, 0.2], [20.0, 0.05]])
         .expect("valid built-in table")
@@ -219,6 +225,12 @@ impl Scenario {
     /// small calibration errors, no hidden effect. The vibration-induced drift
     /// (anisoelastic rectification) is 6–8 deg/h per channel at 0 dB against a
     /// 50-Hz noise floor of about 1 deg/h.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario::paper_z_random();
+    /// assert_eq!((s.duration_s, s.internal_rate_hz, s.output_rate_hz), (100.0, 4000.0, 50.0));
+    /// assert!(s.hidden.is_empty());
+    /// ```
     pub fn paper_z_random() -> Self {
         Self {
             name: "paper_z_random".into(),
@@ -262,6 +274,12 @@ impl Scenario {
     /// a_I, a_O, a_S and their products are not collinear; a 6 °C
     /// temperature ramp; no temperature sensitivity and no hidden effect.
     /// The control case: a diagnosis must suggest nothing.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario::triaxial_clean();
+    /// assert_eq!(s.vibration.drives.len(), 3);
+    /// assert!(s.hidden.is_empty());
+    /// ```
     pub fn triaxial_clean() -> Self {
         let mut channels = navigation_dtgs();
         for c in channels.values_mut() {
@@ -315,6 +333,12 @@ impl Scenario {
     /// sensitivity of 0.8 deg/h/°C on Z, both zeroed in the calibration.
     /// Both are about ten times what a real DTG shows, so that each
     /// contributes 3–5× the 50-Hz noise floor over 100 s.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario::triaxial_hidden();
+    /// let ids: Vec<String> = s.hidden.iter().map(|h| format!("{}/{}", h.channel, h.term)).collect();
+    /// assert_eq!(ids, ["Y1/gg_IS", "Z/temp"]);
+    /// ```
     pub fn triaxial_hidden() -> Self {
         let mut s = Self::triaxial_clean();
         s.name = "triaxial_hidden".into();
@@ -355,5 +379,11 @@ impl Scenario {
     }
 
     /// Names accepted by [`Scenario::builtin`].
+    ///
+    /// ```
+    /// for name in nav_sensors::sim::Scenario::BUILTIN {
+    ///     assert!(nav_sensors::sim::Scenario::builtin(name).is_some());
+    /// }
+    /// ```
     pub const BUILTIN: [&'static str; 3] = ["paper_z_random", "triaxial_clean", "triaxial_hidden"];
 }

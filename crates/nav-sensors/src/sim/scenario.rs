@@ -13,6 +13,12 @@ use crate::geometry::{Axis, Channel};
 use crate::vibration::{VibrationConfig, VibrationError};
 
 /// The three DTGs: shared dynamics and noise, coefficients per channel.
+///
+/// ```
+/// let g = &nav_sensors::sim::Scenario::default().gyros;
+/// assert_eq!(g.spin_hz, 200.0);
+/// assert_eq!(g.channels.len(), 6);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GyroSet {
@@ -31,6 +37,11 @@ pub struct GyroSet {
 }
 
 /// The accelerometer triad.
+///
+/// ```
+/// let a = &nav_sensors::sim::Scenario::default().accels;
+/// assert_eq!(a.servo.natural_hz, 800.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AccelSet {
@@ -48,6 +59,12 @@ pub struct AccelSet {
 /// Errors of the ground calibration handed to the user: each calibrated
 /// coefficient is `truth·(1 + relative·n₁) + absolute·n₂` with n₁, n₂
 /// independent standard normal draws (seeded). Values are 1σ.
+///
+/// ```
+/// let e: nav_sensors::sim::CalibrationError = toml::from_str("relative = 0.05").unwrap();
+/// assert_eq!(e.relative, 0.05);
+/// assert_eq!(e.bias_deg_h, nav_sensors::sim::CalibrationError::default().bias_deg_h);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct CalibrationError {
@@ -100,6 +117,10 @@ impl Default for CalibrationError {
 impl CalibrationError {
     /// No calibration error at all (the calibration equals the truth on
     /// every calibrated term).
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::sim::CalibrationError::none().relative, 0.0);
+    /// ```
     pub fn none() -> Self {
         Self {
             relative: 0.0,
@@ -117,6 +138,13 @@ impl CalibrationError {
     }
 
     /// The absolute 1σ for a DTG term (zero for terms calibration does not cover).
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgTerm;
+    /// let e = nav_sensors::sim::CalibrationError::default();
+    /// assert_eq!(e.absolute_for(DtgTerm::GgIS), e.gg_deg_h_g2);
+    /// assert_eq!(e.absolute_for(DtgTerm::Temp), 0.0);
+    /// ```
     pub fn absolute_for(&self, term: DtgTerm) -> f64 {
         match term {
             DtgTerm::Bias => self.bias_deg_h,
@@ -198,6 +226,12 @@ pub struct Scenario {
 }
 
 /// What is wrong with a scenario.
+///
+/// ```
+/// use nav_sensors::sim::{Scenario, ScenarioError};
+/// let err = Scenario::from_toml("seed = 1", "s.toml").unwrap_err();
+/// assert!(matches!(err, ScenarioError::Parse { .. }));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     /// The file could not be read or written.
@@ -259,6 +293,12 @@ impl Default for Scenario {
 
 impl Scenario {
     /// Parses a scenario from TOML text; `file` labels errors.
+    ///
+    /// ```
+    /// let text = nav_sensors::sim::Scenario::triaxial_clean().to_toml().unwrap();
+    /// let s = nav_sensors::sim::Scenario::from_toml(&text, "inline").unwrap();
+    /// assert_eq!(s.name, "triaxial_clean");
+    /// ```
     pub fn from_toml(text: &str, file: &str) -> Result<Self, ScenarioError> {
         toml::from_str(text).map_err(|e| ScenarioError::Parse {
             file: file.to_string(),
@@ -267,6 +307,12 @@ impl Scenario {
     }
 
     /// Reads a scenario TOML file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-scenario-load.toml");
+    /// nav_sensors::sim::Scenario::default().save(&path).unwrap();
+    /// assert_eq!(nav_sensors::sim::Scenario::load(&path).unwrap(), nav_sensors::sim::Scenario::default());
+    /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
@@ -277,11 +323,22 @@ impl Scenario {
     }
 
     /// The scenario as TOML text.
+    ///
+    /// ```
+    /// let text = nav_sensors::sim::Scenario::default().to_toml().unwrap();
+    /// assert!(text.contains("[gyros.channels.Z1]"));
+    /// ```
     pub fn to_toml(&self) -> Result<String, ScenarioError> {
         toml::to_string(self).map_err(|e| ScenarioError::Serialize(e.to_string()))
     }
 
     /// Writes the scenario as a TOML file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-scenario-save.toml");
+    /// nav_sensors::sim::Scenario::default().save(&path).unwrap();
+    /// assert!(std::fs::read_to_string(&path).unwrap().starts_with("name = "));
+    /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), ScenarioError> {
         let path = path.as_ref();
         std::fs::write(path, self.to_toml()?).map_err(|source| ScenarioError::Io {
@@ -291,16 +348,32 @@ impl Scenario {
     }
 
     /// Number of output samples, `round(duration·output rate)`.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario { duration_s: 2.0, ..Default::default() };
+    /// assert_eq!(s.output_samples(), 100);
+    /// ```
     pub fn output_samples(&self) -> usize {
         (self.duration_s * self.output_rate_hz).round() as usize
     }
 
     /// Internal samples per output interval.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::sim::Scenario::default().oversampling(), 80);
+    /// ```
     pub fn oversampling(&self) -> usize {
         (self.internal_rate_hz / self.output_rate_hz).round() as usize
     }
 
     /// The true coefficients of a channel (zero when not listed).
+    ///
+    /// ```
+    /// use nav_sensors::geometry::Channel;
+    /// let mut s = nav_sensors::sim::Scenario::default();
+    /// s.gyros.channels.remove(&Channel::X);
+    /// assert_eq!(s.gyro(Channel::X).bias_deg_h, 0.0);
+    /// ```
     pub fn gyro(&self, channel: Channel) -> DtgCoefficients {
         self.gyros
             .channels
@@ -310,11 +383,22 @@ impl Scenario {
     }
 
     /// The true coefficients of an accelerometer (zero when not listed).
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario::default();
+    /// assert_eq!(s.accel(nav_sensors::geometry::Axis::Z).bias_ug, 140.0);
+    /// ```
     pub fn accel(&self, axis: Axis) -> AccelCoefficients {
         self.accels.axes.get(&axis).copied().unwrap_or_default()
     }
 
     /// Checks every range the simulator relies on.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario { internal_rate_hz: 1000.0, ..Default::default() };
+    /// assert!(s.validate().is_err());
+    /// assert!(nav_sensors::sim::Scenario::default().validate().is_ok());
+    /// ```
     pub fn validate(&self) -> Result<(), ScenarioError> {
         let range = |field, value: f64, ok: bool, requirement| {
             if ok && value.is_finite() {

@@ -5,9 +5,19 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 /// Earth's sidereal rotation rate, deg/h (7.2921159e-5 rad/s).
+///
+/// ```
+/// assert!((nav_sensors::sim::EARTH_RATE_DEG_H - 7.2921159e-5f64.to_degrees() * 3600.0).abs() < 1e-5);
+/// ```
 pub const EARTH_RATE_DEG_H: f64 = 15.041_067;
 
 /// A local direction (east-north-up frame).
+///
+/// ```
+/// let d: nav_sensors::sim::Direction = toml::from_str::<toml::Table>("d = \"east\"").unwrap()["d"]
+///     .clone().try_into().unwrap();
+/// assert_eq!(d, nav_sensors::sim::Direction::East);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Direction {
@@ -69,6 +79,13 @@ impl Default for Orientation {
 impl Orientation {
     /// The cluster axes x, y, z as east-north-up vectors, or `None` when x
     /// and z are not perpendicular.
+    ///
+    /// ```
+    /// use nav_sensors::sim::{Direction, Orientation};
+    /// let [x, y, z] = Orientation { x: Direction::East, z: Direction::Up }.axes_enu().unwrap();
+    /// assert_eq!(y, Direction::North.enu());
+    /// assert_eq!(x.cross(&y), z);
+    /// ```
     pub fn axes_enu(&self) -> Option<[Vector3<f64>; 3]> {
         let x = self.x.enu();
         let z = self.z.enu();
@@ -109,6 +126,12 @@ impl Default for Site {
 
 impl Site {
     /// Earth rate resolved into the cluster frame, deg/h (`None` for an invalid orientation).
+    ///
+    /// ```
+    /// use nav_sensors::sim::{Direction, Orientation, Site};
+    /// let s = Site { latitude_deg: 90.0, orientation: Orientation { x: Direction::North, z: Direction::Down } };
+    /// assert!((s.earth_rate_cluster_deg_h().unwrap().z + 15.041067).abs() < 1e-9);
+    /// ```
     pub fn earth_rate_cluster_deg_h(&self) -> Option<Vector3<f64>> {
         let lat = self.latitude_deg.to_radians();
         let w = Vector3::new(0.0, lat.cos(), lat.sin()) * EARTH_RATE_DEG_H;
@@ -117,6 +140,12 @@ impl Site {
 
     /// The stationary unit's specific force in the cluster frame, g: the
     /// reaction to gravity, +1 g up. (The record's g is local gravity.)
+    ///
+    /// ```
+    /// use nav_sensors::sim::{Direction, Orientation, Site};
+    /// let s = Site { orientation: Orientation { x: Direction::Up, z: Direction::East }, ..Site::default() };
+    /// assert_eq!(s.gravity_cluster_g().unwrap(), nalgebra::Vector3::new(1.0, 0.0, 0.0));
+    /// ```
     pub fn gravity_cluster_g(&self) -> Option<Vector3<f64>> {
         self.resolve(&Vector3::new(0.0, 0.0, 1.0))
     }

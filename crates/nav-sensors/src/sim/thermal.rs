@@ -59,6 +59,13 @@ impl Thermal {
     /// interval's mean squared level gain and the interval `dt_s`. Exact
     /// exponential step with the forcing held over each interval, so any
     /// time constant is stable.
+    ///
+    /// ```
+    /// use nav_sensors::sim::Thermal;
+    /// let th = Thermal { ambient_ramp_c_per_s: 0.1, time_constant_s: 0.0, vibration_heating_c: 0.0, ..Thermal::default() };
+    /// let t = th.temperatures(&[0.0; 10], 1.0);
+    /// assert!((t[9] - (25.0 + 0.1 * 9.5)).abs() < 1e-12); // follows the ramp at the interval mid-point
+    /// ```
     pub fn temperatures(&self, level_squared: &[f64], dt_s: f64) -> Vec<f64> {
         let decay = if self.time_constant_s > 0.0 {
             (-dt_s / self.time_constant_s).exp()
