@@ -27,7 +27,7 @@ use crate::geometry::Axis;
 /// assert_eq!(d.axis(), nav_sensors::geometry::Axis::Z);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Drive {
     /// Random vibration with a PSD table, scaled by `gain_db`.
     Random {
