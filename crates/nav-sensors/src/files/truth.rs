@@ -87,7 +87,7 @@ pub struct ChannelTruth {
     /// Its expectation given the level, `Σ k_term · g(t)²`, rms about zero, deg/h.
     pub rectification_expected_rms_deg_h: f64,
     /// Per term, the expected unmodelled drift at full level (0 dB) `k_term`,
-    /// deg/h (terms with |k| < 1e-6 deg/h omitted).
+    /// deg/h (terms with |k| < 1e-4 deg/h omitted).
     pub rectification_at_full_level_deg_h: BTreeMap<DtgTerm, f64>,
     /// What compensation with the TRUE coefficients at the output rate
     /// leaves in all (noise, motion and unmodelled), rms about zero, deg/h.

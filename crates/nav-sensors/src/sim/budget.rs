@@ -146,7 +146,7 @@ pub(crate) fn budget(
             } else {
                 0.0
             };
-            if kk.abs() >= 1e-6 {
+            if kk.abs() >= 1e-4 {
                 at_full.insert(DtgTerm::ALL[k], kk);
             }
             for (e, g) in expected.iter_mut().zip(g2) {
