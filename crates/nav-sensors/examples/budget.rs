@@ -156,13 +156,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             corrected[c.index()] = (0..n).map(|i| y[i] - my - b * (feat[i] - mf)).collect();
         }
         let before = compensated.residues();
-        let mut after: [Vec<f64>; 6] = Default::default();
-        for i in 0..n {
-            let k = nav_sensors::geometry::residues(&std::array::from_fn(|c| corrected[c][i]));
-            for (r, v) in k.into_iter().enumerate() {
-                after[r].push(v);
-            }
-        }
+        let after = compensated.with_gyro(corrected).residues();
         let factors: Vec<String> = Residue::ALL
             .iter()
             .map(|r| {

@@ -217,7 +217,8 @@ impl Truth {
     /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario {
     ///     duration_s: 2.0, ..nav_sensors::sim::Scenario::default()
     /// }).unwrap();
-    /// assert!(sim.truth.noise_floor_deg_h(nav_sensors::geometry::Channel::Z) > 0.3);
+    /// // At least the 50-Hz angle random walk, 60·0.0007/√0.02 = 0.30 deg/h.
+    /// assert!(sim.truth.noise_floor_deg_h(nav_sensors::geometry::Channel::Z) > 0.2);
     /// ```
     pub fn noise_floor_deg_h(&self, channel: Channel) -> f64 {
         self.channels[&channel].noise_floor_deg_h
