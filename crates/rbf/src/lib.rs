@@ -81,7 +81,8 @@ pub use select::ols::{
 };
 pub use width::{WidthError, WidthRule};
 
-/// `docs/rbf.md`, compiled as documentation so that its examples run as doctests.
+/// `docs/rbf.md`, compiled as documentation so that its examples run as doctests
+/// (the examples are the file's own code blocks).
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/rbf.md")]
 pub struct RbfGuideDoctests;
