@@ -58,6 +58,8 @@ pub mod width;
 
 pub use faer;
 pub use faer::Par;
+/// `rbf::ols` (the path docs/architecture.md uses) is `rbf::select::ols`.
+pub use select::ols;
 
 pub use cv::{
     CvReport, Fold, FoldReport, Grid, GridPoint, GridReport, Sizes, Split, SplitError,
