@@ -254,9 +254,12 @@ fn split_column_chooses_training_and_validation_rows() {
         "--out",
         &model_path,
         "--json",
+        "--threads",
+        "1",
     ]);
     succeeds(&out);
     let v = json(&out);
+    assert_eq!(v["threads"], 1);
     assert_eq!(
         (v["n_train"].as_u64(), v["n_val"].as_u64()),
         (Some(75), Some(25))

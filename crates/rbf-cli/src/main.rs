@@ -17,6 +17,13 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return clap_error(e),
     };
+    if let Some(n) = cli.threads {
+        // Before any params are built: they capture faer's global parallelism.
+        rbf::faer::set_global_parallelism(match n {
+            0 | 1 => rbf::Par::Seq,
+            n => rbf::Par::rayon(n),
+        });
+    }
     let result = match cli.command {
         Command::Fit(a) => commands::fit::run(a),
         Command::Predict(a) => commands::predict::run(a),

@@ -115,6 +115,8 @@ impl FitProgress {
         if self.bar.is_hidden() {
             return;
         }
+        self.bar.set_length(p.total as u64);
+        self.bar.set_position(p.done as u64);
         if first_of_stage {
             let style = if p.stage == Stage::Selection {
                 ProgressStyle::with_template(
@@ -129,8 +131,6 @@ impl FitProgress {
             self.bar.set_message(stage_name(p.stage));
             self.bar.enable_steady_tick(Duration::from_millis(120));
         }
-        self.bar.set_length(p.total as u64);
-        self.bar.set_position(p.done as u64);
     }
 
     /// Clears the bar and returns the stage times up to now.

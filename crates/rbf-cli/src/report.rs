@@ -86,6 +86,8 @@ pub struct FitContext {
     pub times: StageTimes,
     /// Where the model was written.
     pub out: String,
+    /// Threads the fit ran on.
+    pub threads: usize,
 }
 
 /// The report of `rbf fit`.
@@ -243,6 +245,7 @@ impl FitReport {
             .collect();
         put("stage_seconds", Value::Object(stages));
         put("seconds_per_pick", json!(c.times.seconds_per_pick));
+        put("threads", json!(c.threads));
         put("ols", json!(self.ols));
         put("model", json!(c.out));
         Value::Object(m)

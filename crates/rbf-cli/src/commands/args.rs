@@ -12,6 +12,9 @@ use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// Threads for the numerical kernels (1: sequential) [default: every core].
+    #[arg(long, global = true, value_name = "N")]
+    pub threads: Option<usize>,
 }
 
 #[derive(Debug, Subcommand)]

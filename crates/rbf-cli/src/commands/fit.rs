@@ -79,6 +79,7 @@ pub fn run(a: FitArgs) -> Result<()> {
         val: val_scores,
         times,
         out: a.out.display().to_string(),
+        threads: params.parallelism().degree(),
     };
     let report = FitReport::new(&saved.model, ctx);
     if a.json {
