@@ -7,7 +7,7 @@
 #
 # Environment: PYTHON (a Python with bench/peer/requirements.txt; default python3),
 # REPS (repetitions per side, default 5), OUT (work directory, default /tmp/rbf-peer),
-# THREADS (the thread counts our side runs with, default "$(nproc) 1"), PY_THREADS
+# THREADS (the thread counts our side runs with, default "<cores> 1"), PY_THREADS
 # (if set, OpenBLAS and OpenMP threads of the Python side),
 # CARGO_TARGET_DIR (default ./target). The sides alternate repetition by repetition
 # so that a noisy neighbour on a shared machine hits both alike; medians are quoted.
@@ -18,7 +18,8 @@ root=$(cd "$here/../.." && pwd)
 PY=${PYTHON:-python3}
 REPS=${REPS:-5}
 OUT=${OUT:-/tmp/rbf-peer}
-THREADS=${THREADS:-"$(nproc) 1"}
+NCPU=$(getconf _NPROCESSORS_ONLN) # not nproc: it follows OMP_NUM_THREADS
+THREADS=${THREADS:-"$NCPU 1"}
 if [[ -n ${PY_THREADS:-} ]]; then
     export OPENBLAS_NUM_THREADS=$PY_THREADS OMP_NUM_THREADS=$PY_THREADS
 fi
@@ -31,10 +32,10 @@ RBF=$CARGO_TARGET_DIR/release/rbf
 BOUND=$CARGO_TARGET_DIR/release/examples/stream_bound
 
 machine() {
-    echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)," \
+    echo "machine: $NCPU cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)," \
         "$(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo); $(date -u '+%Y-%m-%d %H:%M UTC');" \
         "rbf $(git -C "$root" rev-parse --short HEAD); load $(cut -d' ' -f1-3 /proc/loadavg);" \
-        "our threads: $THREADS; Python threads: ${PY_THREADS:-default ($(nproc))}"
+        "our threads: $THREADS; Python threads: ${PY_THREADS:-default ($NCPU)}"
 }
 
 json_field() { "$PY" -c "import json,sys; print(json.loads(sys.stdin.readline())['$1'])"; }
@@ -68,25 +69,28 @@ peer() {
 
 large() {
     machine
-    echo "| N | candidates M | K | fit (s) | kernel matrix (s) | per pick (ms) | peak RSS (MiB) | val NMSE |"
-    echo "|---|---|---|---|---|---|---|---|"
+    echo "| N | candidates M | K | threads | fit (s) | kernel matrix (s) | per pick (ms) | peak RSS (MiB) | val NMSE |"
+    echo "|---|---|---|---|---|---|---|---|---|"
     for n in ${SIZES:-1000 2000 5000 10000 20000 50000}; do
         local data=$OUT/windows_$n.csv
         local beta
         beta=$("$PY" "$here/peer.py" gen --train "$n" --val 1000 --out "$data" | json_field beta)
-        /usr/bin/time -v -o "$OUT/time_$n.txt" "$RBF" fit --threads "${THREADS%% *}" --data "$data" --target y \
-            --split-column split --centers ols --candidates 5000 --max-centers 100 \
-            --width "$beta" --json --quiet --out "$OUT/model_$n.json" >"$OUT/large_$n.json"
-        local rss
-        rss=$(awk -F: '/Maximum resident set size/ {printf "%.0f", $2/1024}' "$OUT/time_$n.txt")
-        "$PY" - "$OUT/large_$n.json" "$rss" <<'EOF'
+        for t in $THREADS; do
+            /usr/bin/time -v -o "$OUT/time_$n.txt" "$RBF" fit --threads "$t" --data "$data" \
+                --target y --split-column split --centers ols --candidates 5000 \
+                --max-centers 100 --width "$beta" --json --quiet --out "$OUT/model_$n.json" \
+                >"$OUT/large_$n.json"
+            local rss
+            rss=$(awk -F: '/Maximum resident set size/ {printf "%.0f", $2/1024}' "$OUT/time_$n.txt")
+            "$PY" - "$OUT/large_$n.json" "$rss" <<'EOF'
 import json, sys
 r = json.load(open(sys.argv[1]))
 m = min(r["n_train"], r["candidates"])
 km = r["stage_seconds"].get("kernel_matrix", float("nan"))
-print(f"| {r['n_train']} | {m} | {r['n_centers']} | {r['fit_seconds']:.2f} | {km:.2f} | "
+print(f"| {r['n_train']} | {m} | {r['n_centers']} | {r['threads']} | {r['fit_seconds']:.2f} | {km:.2f} | "
       f"{r['seconds_per_pick'] * 1e3:.1f} | {sys.argv[2]} | {r['val_nmse']:.4f} |")
 EOF
+        done
     done
 }
 

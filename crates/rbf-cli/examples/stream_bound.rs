@@ -42,7 +42,10 @@ fn main() -> Result<()> {
     let x = data::take_rows(data::numeric_matrix(&table, &inputs)?.as_ref(), &rows.train);
     // RBF_THREADS=1 measures one core, as `rbf --threads 1` fits on one.
     if let Ok(t) = std::env::var("RBF_THREADS") {
-        let t: usize = t.parse().context("RBF_THREADS")?;
+        let t: usize = t.parse::<usize>().context("RBF_THREADS")?.max(1);
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build_global();
         rbf::faer::set_global_parallelism(if t <= 1 {
             rbf::Par::Seq
         } else {

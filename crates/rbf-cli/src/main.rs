@@ -18,10 +18,16 @@ fn main() -> ExitCode {
         Err(e) => return clap_error(e),
     };
     if let Some(n) = cli.threads {
-        // Before any params are built: they capture faer's global parallelism.
-        rbf::faer::set_global_parallelism(match n {
-            0 | 1 => rbf::Par::Seq,
-            n => rbf::Par::rayon(n),
+        // Before any params are built: they capture faer's global parallelism. The rayon
+        // pool bounds what runs outside faer too (linfa's k-means, the library's loops).
+        let n = n.max(1);
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
+        rbf::faer::set_global_parallelism(if n == 1 {
+            rbf::Par::Seq
+        } else {
+            rbf::Par::rayon(n)
         });
     }
     let result = match cli.command {
