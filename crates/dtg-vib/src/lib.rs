@@ -1,1 +1,4 @@
-//! placeholder
+//! dtg-vib: vibration-induced error identification and compensation for a
+//! skewed cluster of Dynamically Tuned Gyroscopes.
+
+pub mod signal;
