@@ -1,4 +1,5 @@
 //! dtg-vib: vibration-induced error identification and compensation for a
 //! skewed cluster of Dynamically Tuned Gyroscopes.
 
+pub mod residuals;
 pub mod signal;

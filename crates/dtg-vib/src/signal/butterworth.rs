@@ -35,8 +35,14 @@ impl Biquad {
         // Evaluate both polynomials in z⁻¹ = cos ω − i sin ω.
         let (c1, s1) = (omega.cos(), -omega.sin());
         let (c2, s2) = ((2.0 * omega).cos(), -(2.0 * omega).sin());
-        let num = (self.b[0] + self.b[1] * c1 + self.b[2] * c2, self.b[1] * s1 + self.b[2] * s2);
-        let den = (1.0 + self.a[0] * c1 + self.a[1] * c2, self.a[0] * s1 + self.a[1] * s2);
+        let num = (
+            self.b[0] + self.b[1] * c1 + self.b[2] * c2,
+            self.b[1] * s1 + self.b[2] * s2,
+        );
+        let den = (
+            1.0 + self.a[0] * c1 + self.a[1] * c2,
+            self.a[0] * s1 + self.a[1] * s2,
+        );
         let d2 = den.0 * den.0 + den.1 * den.1;
         (
             (num.0 * den.0 + num.1 * den.1) / d2,
@@ -71,16 +77,26 @@ impl LowPass {
     /// Designs an `order`-th Butterworth low-pass with −3 dB at `cutoff_hz`
     /// for data sampled at `sample_rate_hz`, by the bilinear transform with
     /// frequency pre-warping (so the cut-off lands exactly where asked).
-    pub fn butterworth(order: usize, cutoff_hz: f64, sample_rate_hz: f64) -> Result<Self, FilterError> {
+    pub fn butterworth(
+        order: usize,
+        cutoff_hz: f64,
+        sample_rate_hz: f64,
+    ) -> Result<Self, FilterError> {
         if order == 0 || order > MAX_ORDER {
-            return Err(FilterError::Order { order, max: MAX_ORDER });
+            return Err(FilterError::Order {
+                order,
+                max: MAX_ORDER,
+            });
         }
         if !(sample_rate_hz.is_finite() && sample_rate_hz > 0.0) {
             return Err(FilterError::SampleRate { sample_rate_hz });
         }
         let nyquist = sample_rate_hz / 2.0;
         if !(cutoff_hz.is_finite() && cutoff_hz > 0.0 && cutoff_hz < nyquist) {
-            return Err(FilterError::Cutoff { cutoff_hz, nyquist_hz: nyquist });
+            return Err(FilterError::Cutoff {
+                cutoff_hz,
+                nyquist_hz: nyquist,
+            });
         }
         let fs2 = 2.0 * sample_rate_hz;
         // Pre-warped analog cut-off (rad/s).
@@ -99,7 +115,10 @@ impl LowPass {
             let (zr, zi) = ((nr * dr + ni * di) / d2, (ni * dr - nr * di) / d2);
             let a = [-2.0 * zr, zr * zr + zi * zi];
             let g = (1.0 + a[0] + a[1]) / 4.0;
-            sections.push(Biquad { b: [g, 2.0 * g, g], a });
+            sections.push(Biquad {
+                b: [g, 2.0 * g, g],
+                a,
+            });
         }
         if order % 2 == 1 {
             // The real pole p = −wc.

@@ -46,7 +46,10 @@ impl LowPass {
         let pad = self.pad_len();
         let n = x.len();
         if n <= pad {
-            return Err(FilterError::TooShort { len: n, min: pad + 1 });
+            return Err(FilterError::TooShort {
+                len: n,
+                min: pad + 1,
+            });
         }
         if let Some(i) = x.iter().position(|v| !v.is_finite()) {
             return Err(FilterError::NotFinite { index: i });
