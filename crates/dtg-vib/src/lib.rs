@@ -3,3 +3,4 @@
 
 pub mod residuals;
 pub mod signal;
+pub mod window;
