@@ -1,0 +1,15 @@
+//! The DTG error model (IEEE Std 813 terms): coefficient table with stable
+//! term ids, forward model and inverse (compensation), noise parameters, and
+//! the 2N angular-vibration rectification detector.
+
+mod coefficients;
+mod model;
+mod noise;
+mod rect2n;
+mod term;
+
+pub use coefficients::DtgCoefficients;
+pub use model::DtgInput;
+pub use noise::DtgNoise;
+pub use rect2n::Rect2nDetector;
+pub use term::DtgTerm;
