@@ -1,1 +1,3 @@
-//! placeholder
+//! DTG vibration-error identification and compensation with RBF networks.
+
+pub mod report;
