@@ -61,6 +61,9 @@ mod series;
 mod style;
 mod xy;
 
+#[cfg(test)]
+mod tests;
+
 pub use bars::BarChart;
 pub use decimate::decimate_m4;
 pub use error::ReportError;
