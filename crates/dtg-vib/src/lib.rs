@@ -1,7 +1,8 @@
 //! dtg-vib: vibration-induced error identification and compensation for a
-//! skewed cluster of Dynamically Tuned Gyroscopes.
+//! skewed cluster of Dynamically Tuned Gyroscopes, with RBF networks.
 
 pub mod effects;
+pub mod report;
 pub mod residuals;
 pub mod signal;
 pub mod window;
