@@ -39,6 +39,11 @@ impl Default for ServoLoop {
 impl ServoLoop {
     /// The discrete filter at `sample_rate_hz`. Panics if the natural
     /// frequency is not below Nyquist (scenarios validate this first).
+    ///
+    /// ```
+    /// let f = nav_sensors::accel::ServoLoop::default().filter(4000.0);
+    /// let _ = f;
+    /// ```
     #[track_caller]
     pub fn filter(&self, sample_rate_hz: f64) -> Biquad {
         Biquad::low_pass(self.natural_hz, self.damping, sample_rate_hz)
@@ -62,6 +67,11 @@ pub struct AccelNoise {
 impl AccelNoise {
     /// Standard deviation of the noise averaged over `interval_s`, in g: a
     /// white single-sided density n gives `n/√(2T)`.
+    ///
+    /// ```
+    /// let n = nav_sensors::accel::AccelNoise { density_ug_per_rt_hz: 20.0 };
+    /// assert!((n.averaged_sigma_g(0.02) - 100e-6).abs() < 1e-12);
+    /// ```
     pub fn averaged_sigma_g(&self, interval_s: f64) -> f64 {
         1e-6 * self.density_ug_per_rt_hz / (2.0 * interval_s).sqrt()
     }

@@ -72,6 +72,14 @@ pub fn ipo_components(axis: Axis, f: &Vector3<f64>) -> (f64, f64, f64) {
 
 impl AccelCoefficients {
     /// Forward model: the output in g for a cluster-frame specific force in g.
+    ///
+    /// ```
+    /// use nav_sensors::accel::AccelCoefficients;
+    /// use nav_sensors::geometry::Axis;
+    /// let c = AccelCoefficients { scale_factor_ppm: 100.0, ..Default::default() };
+    /// let out = c.output_g(Axis::X, &nalgebra::Vector3::new(2.0, 0.0, 1.0));
+    /// assert!((out - 2.0002).abs() < 1e-12);
+    /// ```
     #[inline]
     pub fn output_g(&self, axis: Axis, f: &Vector3<f64>) -> f64 {
         let (ai, ap, ao) = ipo_components(axis, f);
@@ -92,6 +100,14 @@ impl AccelCoefficients {
     /// `measured_g`, knowing the cross-axis components of `f` (its input
     /// component is ignored). Newton's method from `measured_g`; the model's
     /// nonlinearity is ppm-sized, so three steps reach rounding level.
+    ///
+    /// ```
+    /// use nav_sensors::accel::AccelCoefficients;
+    /// use nav_sensors::geometry::Axis;
+    /// let c = AccelCoefficients { bias_ug: 100.0, k2_ug_per_g2: 50.0, ..Default::default() };
+    /// let f = nalgebra::Vector3::new(0.0, 0.0, 3.0);
+    /// assert!((c.compensate_g(Axis::Z, c.output_g(Axis::Z, &f), &f) - 3.0).abs() < 1e-12);
+    /// ```
     pub fn compensate_g(&self, axis: Axis, measured_g: f64, f: &Vector3<f64>) -> f64 {
         let (_, ap, ao) = ipo_components(axis, f);
         let target = measured_g / (1.0 + 1e-6 * self.scale_factor_ppm);

@@ -69,11 +69,24 @@ pub struct DtgCoefficients {
 
 impl DtgCoefficients {
     /// The coefficient of one term, in [`DtgTerm::unit`].
+    ///
+    /// ```
+    /// use nav_sensors::dtg::{DtgCoefficients, DtgTerm};
+    /// let c = DtgCoefficients { g_o_deg_h_g: -0.4, ..Default::default() };
+    /// assert_eq!(c.get(DtgTerm::GO), -0.4);
+    /// ```
     pub fn get(&self, term: DtgTerm) -> f64 {
         *self.field(term)
     }
 
     /// Sets the coefficient of one term.
+    ///
+    /// ```
+    /// use nav_sensors::dtg::{DtgCoefficients, DtgTerm};
+    /// let mut c = DtgCoefficients::default();
+    /// c.set(DtgTerm::AiIS, 0.02);
+    /// assert_eq!(c.ai_is_deg_h_per_deg_s2, 0.02);
+    /// ```
     pub fn set(&mut self, term: DtgTerm, value: f64) {
         *self.field_mut(term) = value;
     }

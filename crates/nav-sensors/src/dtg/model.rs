@@ -40,6 +40,14 @@ pub struct DtgInput {
 impl DtgInput {
     /// Resolves cluster-frame rate (deg/h) and specific force (g) into a
     /// channel's frame; temperature and 2N terms zero.
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgInput;
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let x = DtgInput::resolved(&ChannelFrame::of(Channel::X), &nalgebra::Vector3::new(15.0, 0.0, 0.0),
+    ///     &nalgebra::Vector3::new(0.0, 0.0, 1.0));
+    /// assert_eq!((x.rate_deg_h.i, x.specific_force_g.i), (15.0, 0.0));
+    /// ```
     pub fn resolved(
         frame: &crate::geometry::ChannelFrame,
         rate_deg_h: &nalgebra::Vector3<f64>,
@@ -87,8 +95,15 @@ impl DtgCoefficients {
         self.output_deg_h(x) - x.rate_deg_h.i
     }
 
+    /// The scale-factor nonlinearity's contribution for a rate ω_I, deg/h.
+    ///
+    /// ```
+    /// let c = nav_sensors::dtg::DtgCoefficients { scale_factor_nonlinearity_ppm_per_deg_s: 10.0, ..Default::default() };
+    /// // 10 ppm per deg/s at 100 deg/s: 1000 ppm of 360000 deg/h.
+    /// assert!((c.nonlinearity_deg_h(360_000.0) - 360.0).abs() < 1e-9);
+    /// ```
     #[inline]
-    fn nonlinearity_deg_h(&self, w_i_deg_h: f64) -> f64 {
+    pub fn nonlinearity_deg_h(&self, w_i_deg_h: f64) -> f64 {
         1e-6 * self.scale_factor_nonlinearity_ppm_per_deg_s * (w_i_deg_h / 3600.0).abs() * w_i_deg_h
     }
 

@@ -28,6 +28,11 @@ pub struct DtgNoise {
 impl DtgNoise {
     /// Standard deviation of the white (ARW) part of an output averaged over
     /// `interval_s`, deg/h.
+    ///
+    /// ```
+    /// let n = nav_sensors::dtg::DtgNoise { arw_deg_per_rt_h: 0.01, ..Default::default() };
+    /// assert!((n.white_sigma_deg_h(1.0) - 0.6).abs() < 1e-12);
+    /// ```
     pub fn white_sigma_deg_h(&self, interval_s: f64) -> f64 {
         60.0 * self.arw_deg_per_rt_h / interval_s.sqrt()
     }

@@ -39,6 +39,11 @@ pub struct Rect2nDetector {
 impl Rect2nDetector {
     /// A detector for a rotor spinning at `spin_hz`, resonance quality `q`,
     /// at `sample_rate_hz`. Panics when 2·spin is not below Nyquist.
+    ///
+    /// ```
+    /// let d = nav_sensors::dtg::Rect2nDetector::new(200.0, 10.0, 4000.0);
+    /// let _ = d;
+    /// ```
     #[track_caller]
     pub fn new(spin_hz: f64, q: f64, sample_rate_hz: f64) -> Self {
         Self {
@@ -48,6 +53,12 @@ impl Rect2nDetector {
 
     /// Takes the rate about I (deg/s) and returns the instantaneous regressor
     /// ω_bp² in (deg/s)²; its mean over an interval is the `rect_2n` regressor.
+    ///
+    /// ```
+    /// let mut d = nav_sensors::dtg::Rect2nDetector::new(200.0, 10.0, 4000.0);
+    /// assert_eq!(d.step(0.0), 0.0);
+    /// assert!(d.step(1.0) >= 0.0);
+    /// ```
     #[inline]
     pub fn step(&mut self, rate_about_i_deg_s: f64) -> f64 {
         let y = self.filter.step(rate_about_i_deg_s);

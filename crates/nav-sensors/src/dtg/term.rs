@@ -90,6 +90,10 @@ pub enum DtgTerm {
 
 impl DtgTerm {
     /// All terms, in the order of the coefficient table.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::dtg::DtgTerm::ALL.len(), 18);
+    /// ```
     pub const ALL: [DtgTerm; 18] = [
         DtgTerm::Bias,
         DtgTerm::ScaleFactor,
@@ -121,6 +125,10 @@ impl DtgTerm {
     }
 
     /// The stable string id.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::dtg::DtgTerm::MisalignmentO.id(), "misalignment_O");
+    /// ```
     pub fn id(self) -> &'static str {
         match self {
             DtgTerm::Bias => "bias",
@@ -175,6 +183,10 @@ impl DtgTerm {
     }
 
     /// The coefficient's unit.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::dtg::DtgTerm::AiIO.unit(), "deg/h/(deg/s)²");
+    /// ```
     pub fn unit(self) -> &'static str {
         match self {
             DtgTerm::Bias => "deg/h",
@@ -194,6 +206,11 @@ impl DtgTerm {
 
     /// Whether ground calibration determines this term. `temp` and `rect_2n`
     /// are modelled in the truth but never part of a calibration file.
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgTerm;
+    /// assert!(DtgTerm::GgIS.is_calibrated() && !DtgTerm::Rect2N.is_calibrated());
+    /// ```
     pub fn is_calibrated(self) -> bool {
         !matches!(self, DtgTerm::Temp | DtgTerm::Rect2N)
     }

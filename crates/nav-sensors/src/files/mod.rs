@@ -3,4 +3,6 @@
 //! Re-exported at the crate root as [`crate::record`], [`crate::calibration`]
 //! and [`crate::truth`].
 
+pub mod calibration;
 pub mod record;
+pub mod truth;

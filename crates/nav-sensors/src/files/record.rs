@@ -10,21 +10,36 @@ use std::path::Path;
 
 use tabular::{Table, TableError};
 
+use crate::dtg::{DtgInput, DtgTerm};
 pub use crate::geometry::Axis;
-use crate::geometry::{Channel, residues};
+use crate::geometry::{Channel, ChannelFrame, residues};
 
 /// Relative tolerance on the sample interval: every `t[i] − t[i−1]` must be
 /// within `1e-3·dt` of the median interval `dt`. That accepts timestamps
 /// rounded to 5 decimals at 50 Hz (≤ 1e-5 s error in a difference, 5e-4·dt)
 /// or stored in single precision over a 100-s test, and still rejects any
 /// dropped or repeated sample (a 100% deviation) or a 1% clock glitch.
+///
+/// ```
+/// assert!(nav_sensors::record::INTERVAL_TOLERANCE < 0.01);
+/// ```
 pub const INTERVAL_TOLERANCE: f64 = 1e-3;
 
 /// The nine sensor columns every record has, after `t`.
+///
+/// ```
+/// assert_eq!(nav_sensors::record::SENSOR_COLUMNS[8], "az");
+/// ```
 pub const SENSOR_COLUMNS: [&str; 9] = ["X", "X1", "Y", "Y1", "Z", "Z1", "ax", "ay", "az"];
 
 /// Everything that can be wrong with a record. File-based variants name the
 /// file, the 1-based line (the header is line 1) and the 1-based column.
+///
+/// ```
+/// use nav_sensors::record::{Record, RecordError};
+/// let err = Record::from_reader("t,X\n0,1\n".as_bytes(), "r.csv").unwrap_err();
+/// assert!(matches!(err, RecordError::MissingColumn { .. }));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
     /// Reading the CSV failed: I/O, malformed CSV, a text cell or a
@@ -137,6 +152,15 @@ impl Record {
     /// [`Channel::ALL`] order, accelerations in g along x, y, z, extra named
     /// columns). Checks lengths, at least two samples, strictly increasing
     /// time and a constant interval; errors name the file `"<memory>"`.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.len(), 3);
+    /// let bad = nav_sensors::record::Record::new(vec![0.0, 0.0], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.0; 2], vec![0.0; 2], vec![0.0; 2]], vec![]);
+    /// assert!(bad.is_err());
+    /// ```
     pub fn new(
         t: Vec<f64>,
         gyro: [Vec<f64>; 6],
@@ -178,11 +202,25 @@ impl Record {
     }
 
     /// Reads and validates a record CSV.
+    ///
+    /// ```
+    /// use nav_sensors::sim::{simulate, Scenario};
+    /// let dir = std::env::temp_dir().join("nav-sensors-doc-read-csv");
+    /// simulate(&Scenario { duration_s: 1.0, ..Default::default() }).unwrap().write_dir(&dir).unwrap();
+    /// let rec = nav_sensors::record::Record::read_csv(dir.join("record.csv")).unwrap();
+    /// assert_eq!(rec.len(), 50);
+    /// ```
     pub fn read_csv(path: impl AsRef<Path>) -> Result<Self, RecordError> {
         Self::from_table(&Table::read(path)?)
     }
 
     /// Reads and validates record CSV text; `name` labels errors.
+    ///
+    /// ```
+    /// let csv = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,0,0,0,0,0,0,0,0,1\n0.02,0,0,0,0,0,0,0,0,1\n";
+    /// let rec = nav_sensors::record::Record::from_reader(csv.as_bytes(), "mem.csv").unwrap();
+    /// assert!(rec.extra_names().is_empty());
+    /// ```
     pub fn from_reader<R: Read>(reader: R, name: &str) -> Result<Self, RecordError> {
         Self::from_table(&Table::from_reader(reader, name)?)
     }
@@ -236,6 +274,14 @@ impl Record {
 
     /// Writes the record as CSV (numbers in shortest round-trip form, so the
     /// same record always gives the same bytes).
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-record.csv");
+    /// rec.write_csv(&path).unwrap();
+    /// assert_eq!(nav_sensors::record::Record::read_csv(&path).unwrap(), rec);
+    /// ```
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<(), RecordError> {
         let (names, cols) = self.columns();
         tabular::write_csv(path, &names, &cols)?;
@@ -243,6 +289,14 @@ impl Record {
     }
 
     /// Writes the CSV to any writer; `name` labels errors.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let mut out = Vec::new();
+    /// rec.write_to(&mut out, "mem").unwrap();
+    /// assert!(out.starts_with(b"t,X,X1,Y,Y1,Z,Z1,ax,ay,az,temp\n"));
+    /// ```
     pub fn write_to<W: Write>(&self, out: &mut W, name: &str) -> Result<(), RecordError> {
         let (names, cols) = self.columns();
         tabular::write_csv_to(out, name, &names, &cols)?;
@@ -268,36 +322,79 @@ impl Record {
     }
 
     /// Number of samples.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.len(), 3);
+    /// ```
     pub fn len(&self) -> usize {
         self.t.len()
     }
 
     /// Always false for a valid record (at least two samples); kept for API symmetry.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert!(!rec.is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.t.is_empty()
     }
 
     /// Time, s.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.t()[0], 0.02);
+    /// ```
     pub fn t(&self) -> &[f64] {
         &self.t
     }
 
     /// Mean sample interval, s.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert!((rec.dt() - 0.02).abs() < 1e-15);
+    /// ```
     pub fn dt(&self) -> f64 {
         (self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64
     }
 
     /// One gyro channel's outputs, deg/h.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro(nav_sensors::geometry::Channel::X1), &[1.0, 1.0, 1.0]);
+    /// ```
     pub fn gyro(&self, channel: Channel) -> &[f64] {
         &self.gyro[channel.index()]
     }
 
     /// One accelerometer's outputs, g.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel(nav_sensors::record::Axis::Z), &[1.0, 1.0, 1.0]);
+    /// ```
     pub fn accel(&self, axis: Axis) -> &[f64] {
         &self.accel[axis.index()]
     }
 
     /// An extra column by name.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.extra("temp").unwrap()[1], 25.1);
+    /// assert!(rec.extra("pressure").is_none());
+    /// ```
     pub fn extra(&self, name: &str) -> Option<&[f64]> {
         self.extra
             .iter()
@@ -306,20 +403,102 @@ impl Record {
     }
 
     /// The extra columns' names, in file order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.extra_names(), vec!["temp"]);
+    /// ```
     pub fn extra_names(&self) -> Vec<&str> {
         self.extra.iter().map(|(n, _)| n.as_str()).collect()
     }
 
     /// The six gyro outputs at sample `i`, in [`Channel::ALL`] order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro_sample(0), [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
+    /// ```
     #[track_caller]
     pub fn gyro_sample(&self, i: usize) -> [f64; 6] {
         std::array::from_fn(|k| self.gyro[k][i])
     }
 
     /// The three accelerations at sample `i`, g.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel_sample(2), nalgebra::Vector3::new(0.0, 0.0, 1.0));
+    /// ```
     #[track_caller]
     pub fn accel_sample(&self, i: usize) -> nalgebra::Vector3<f64> {
         nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i])
+    }
+
+    /// The accelerations resolved into a channel's frame: `[a_I, a_O, a_S]`
+    /// series, g (eq. 2 for every sample).
+    ///
+    /// ```
+    /// use nav_sensors::record::Record;
+    /// use nav_sensors::geometry::Channel;
+    /// let r = Record::new(vec![0.0, 0.02], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.0; 2], vec![0.0; 2], vec![1.0; 2]], vec![]).unwrap();
+    /// let [a_i, _, a_s] = r.frame_accel(Channel::X1);
+    /// let h = 0.5f64.sqrt();
+    /// assert!((a_i[0] + h).abs() < 1e-15 && (a_s[0] + h).abs() < 1e-15);
+    /// ```
+    pub fn frame_accel(&self, channel: Channel) -> [Vec<f64>; 3] {
+        let frame = ChannelFrame::of(channel);
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(self.len()));
+        for i in 0..self.len() {
+            let r = frame.resolve(&self.accel_sample(i));
+            out[0].push(r.i);
+            out[1].push(r.o);
+            out[2].push(r.s);
+        }
+        out
+    }
+
+    /// A DTG term's regressor at every sample for a channel (the effect
+    /// column of `term`, in deg/h per coefficient unit), from the record's
+    /// accelerations resolved into the channel's frame and a constant
+    /// reference rate in the cluster frame (deg/h; e.g. Earth rate, or zero).
+    /// `None` for `temp` and `rect_2n`, which the accelerations do not give
+    /// (use the `temp` column for the former).
+    ///
+    /// ```
+    /// use nav_sensors::record::Record;
+    /// use nav_sensors::geometry::Channel;
+    /// use nav_sensors::dtg::DtgTerm;
+    /// let r = Record::new(vec![0.0, 0.02], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.0; 2], vec![0.0; 2], vec![1.0, 3.0]], vec![]).unwrap();
+    /// let w = nalgebra::Vector3::zeros();
+    /// assert_eq!(r.term_regressor(Channel::Z, DtgTerm::GgII, &w).unwrap(), vec![1.0, 9.0]);
+    /// assert!(r.term_regressor(Channel::Z, DtgTerm::Temp, &w).is_none());
+    /// ```
+    pub fn term_regressor(
+        &self,
+        channel: Channel,
+        term: DtgTerm,
+        rate_cluster_deg_h: &nalgebra::Vector3<f64>,
+    ) -> Option<Vec<f64>> {
+        if matches!(term, DtgTerm::Temp | DtgTerm::Rect2N) {
+            return None;
+        }
+        let frame = ChannelFrame::of(channel);
+        Some(
+            (0..self.len())
+                .map(|i| {
+                    term.regressor(&DtgInput::resolved(
+                        &frame,
+                        rate_cluster_deg_h,
+                        &self.accel_sample(i),
+                    ))
+                })
+                .collect(),
+        )
     }
 
     /// The six parity residues K0..K5 (eq. 6) at every sample, deg/h.
@@ -343,6 +522,13 @@ impl Record {
     }
 
     /// The samples in `range` (time values kept as they are).
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let tail = rec.slice(1..3);
+    /// assert_eq!((tail.len(), tail.t()[0]), (2, 0.04));
+    /// ```
     #[track_caller]
     pub fn slice(&self, range: Range<usize>) -> Record {
         assert!(
@@ -363,6 +549,13 @@ impl Record {
     }
 
     /// A copy with new gyro outputs (same time base and other columns).
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let zero = rec.with_gyro(std::array::from_fn(|_| vec![0.0; 3]));
+    /// assert_eq!(zero.gyro(nav_sensors::geometry::Channel::Z1), &[0.0; 3]);
+    /// ```
     #[track_caller]
     pub fn with_gyro(&self, gyro: [Vec<f64>; 6]) -> Record {
         assert!(
@@ -376,6 +569,13 @@ impl Record {
     }
 
     /// A copy with new accelerometer outputs.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let moved = rec.with_accel([vec![0.5; 3], vec![0.0; 3], vec![1.0; 3]]);
+    /// assert_eq!(moved.accel(nav_sensors::record::Axis::X)[0], 0.5);
+    /// ```
     #[track_caller]
     pub fn with_accel(&self, accel: [Vec<f64>; 3]) -> Record {
         assert!(
@@ -404,7 +604,7 @@ fn check_time(
         });
     }
     for i in 1..t.len() {
-        if !(t[i] > t[i - 1]) {
+        if t[i].partial_cmp(&t[i - 1]) != Some(std::cmp::Ordering::Greater) {
             return Err(RecordError::NotIncreasing {
                 file: file.to_string(),
                 line: line(i),

@@ -35,6 +35,10 @@ pub enum Channel {
 
 impl Channel {
     /// All channels in the record's column order (and the row order of eq. 4).
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Channel::ALL[4], nav_sensors::geometry::Channel::Z);
+    /// ```
     pub const ALL: [Channel; 6] = [
         Channel::X,
         Channel::X1,
@@ -154,9 +158,18 @@ pub enum Dtg {
 
 impl Dtg {
     /// The three DTGs.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Dtg::ALL.len(), 3);
+    /// ```
     pub const ALL: [Dtg; 3] = [Dtg::X, Dtg::Y, Dtg::Z];
 
     /// The principal channel and the skewed channel of this DTG.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, Dtg};
+    /// assert_eq!(Dtg::X.channels(), [Channel::X, Channel::X1]);
+    /// ```
     pub fn channels(self) -> [Channel; 2] {
         match self {
             Dtg::X => [Channel::X, Channel::X1],
@@ -206,9 +219,17 @@ pub enum Axis {
 
 impl Axis {
     /// The three axes in record column order.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Axis::ALL[2].column(), "az");
+    /// ```
     pub const ALL: [Axis; 3] = [Axis::X, Axis::Y, Axis::Z];
 
     /// Stable lower-case name.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Axis::Y.name(), "y");
+    /// ```
     pub fn name(self) -> &'static str {
         match self {
             Axis::X => "x",
@@ -218,6 +239,10 @@ impl Axis {
     }
 
     /// The record's column name for this accelerometer (`ax`, `ay`, `az`).
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Axis::X.column(), "ax");
+    /// ```
     pub fn column(self) -> &'static str {
         match self {
             Axis::X => "ax",
@@ -227,11 +252,19 @@ impl Axis {
     }
 
     /// Position 0..3.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Axis::Z.index(), 2);
+    /// ```
     pub fn index(self) -> usize {
         self as usize
     }
 
     /// The unit vector of this axis in the cluster frame.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Axis::Y.unit_vector(), nalgebra::Vector3::new(0.0, 1.0, 0.0));
+    /// ```
     pub fn unit_vector(self) -> nalgebra::Vector3<f64> {
         let mut v = nalgebra::Vector3::zeros();
         v[self.index()] = 1.0;

@@ -63,6 +63,11 @@ pub struct Fdi {
 
 impl Fdi {
     /// A test with a threshold on ‖p‖ (same unit as the outputs, e.g. deg/h).
+    ///
+    /// ```
+    /// let fdi = nav_sensors::geometry::Fdi::new(2.5);
+    /// assert_eq!(fdi.threshold(), 2.5);
+    /// ```
     #[track_caller]
     pub fn new(threshold: f64) -> Self {
         assert!(
@@ -80,12 +85,20 @@ impl Fdi {
 
     /// A threshold of `k_sigma`·σ for channel noise σ: with V orthonormal,
     /// ‖p‖²/σ² of healthy sensors is χ² with 3 degrees of freedom.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Fdi::for_noise(0.1, 5.0).threshold(), 0.5);
+    /// ```
     #[track_caller]
     pub fn for_noise(sigma: f64, k_sigma: f64) -> Self {
         Self::new(sigma * k_sigma)
     }
 
     /// The detection threshold on ‖p‖.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Fdi::new(1.0).threshold(), 1.0);
+    /// ```
     pub fn threshold(&self) -> f64 {
         self.threshold
     }
@@ -116,6 +129,11 @@ impl Fdi {
     }
 
     /// Tests one set of six outputs (in [`Channel::ALL`] order).
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Fdi, FdiDecision};
+    /// assert_eq!(Fdi::new(1.0).check(&[0.1; 6]), FdiDecision::Healthy);
+    /// ```
     pub fn check(&self, m: &[f64; 6]) -> FdiDecision {
         let p = self.v * SVector::<f64, 6>::from_column_slice(m);
         let statistic = p.norm();

@@ -120,6 +120,11 @@ pub struct Ios {
 
 impl Ios {
     /// The components as `[I, O, S]`.
+    ///
+    /// ```
+    /// let r = nav_sensors::geometry::Ios { i: 1.0, o: 2.0, s: 3.0 };
+    /// assert_eq!(r.as_array(), [1.0, 2.0, 3.0]);
+    /// ```
     pub fn as_array(&self) -> [f64; 3] {
         [self.i, self.o, self.s]
     }
@@ -127,6 +132,12 @@ impl Ios {
 
 impl ChannelFrame {
     /// The frame of one channel.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let f = ChannelFrame::of(Channel::Z1);
+    /// assert_eq!(f.other, nalgebra::Vector3::new(0.0, 0.0, 1.0));
+    /// ```
     pub fn of(channel: Channel) -> Self {
         Self {
             channel,
@@ -163,6 +174,12 @@ impl ChannelFrame {
 
     /// Resolves a cluster-frame vector (specific force in g, rate in any unit)
     /// into this channel's I, O, S components (eqs. 2–3).
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let r = ChannelFrame::of(Channel::Y).resolve(&nalgebra::Vector3::new(0.0, 2.0, 0.0));
+    /// assert_eq!(r.i, 2.0);
+    /// ```
     #[inline]
     pub fn resolve(&self, v: &Vector3<f64>) -> Ios {
         Ios {

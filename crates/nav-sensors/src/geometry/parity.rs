@@ -80,6 +80,13 @@ pub struct AxisMeasurements {
 }
 
 /// Eq. 5: three measurements per principal axis from the six channel outputs.
+///
+/// ```
+/// let a = nav_sensors::geometry::axis_measurements(&[1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+/// assert_eq!(a.x[0], 1.0);
+/// assert_eq!(a.y[2], 1.0); // y2 = X − √2·Z1
+/// assert_eq!(a.z[2], -1.0); // z2 = −X − √2·Y1
+/// ```
 pub fn axis_measurements(m: &[f64; 6]) -> AxisMeasurements {
     let [x, x1, y, y1, z, z1] = *m;
     AxisMeasurements {
@@ -112,6 +119,10 @@ pub enum Residue {
 
 impl Residue {
     /// All six, in order.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Residue::ALL[5].name(), "K5");
+    /// ```
     pub const ALL: [Residue; 6] = [
         Residue::K0,
         Residue::K1,
@@ -122,17 +133,33 @@ impl Residue {
     ];
 
     /// The stable name ("K0".."K5"), also a column name of residue files.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Residue::K2.name(), "K2");
+    /// ```
     pub fn name(self) -> &'static str {
         ["K0", "K1", "K2", "K3", "K4", "K5"][self as usize]
     }
 
     /// Position 0..6.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::geometry::Residue::K4.index(), 4);
+    /// ```
     pub fn index(self) -> usize {
         self as usize
     }
 
     /// The residue as a linear combination of the six channel outputs
     /// (coefficients in [`Channel::ALL`] order).
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, Residue};
+    /// // K3 = K1 − K0 = −Y − Z − √2·Y1 − √2·Z1
+    /// let c = Residue::K3.coefficients();
+    /// assert_eq!(c[Channel::X.index()], 0.0);
+    /// assert!((c[Channel::Z1.index()] + 2f64.sqrt()).abs() < 1e-12);
+    /// ```
     pub fn coefficients(self) -> [f64; 6] {
         // Each residue is linear: evaluate it on the unit outputs.
         std::array::from_fn(|j| {
@@ -143,6 +170,12 @@ impl Residue {
     }
 
     /// Whether a channel's error enters this residue.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, Residue};
+    /// let signature: Vec<bool> = Residue::ALL.iter().map(|r| r.involves(Channel::X1)).collect();
+    /// assert_eq!(signature, [false, false, true, false, true, true]);
+    /// ```
     pub fn involves(self, channel: Channel) -> bool {
         self.coefficients()[channel.index()].abs() > 1e-12
     }

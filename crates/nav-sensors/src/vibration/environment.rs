@@ -27,7 +27,7 @@ use crate::geometry::Axis;
 /// assert_eq!(d.axis(), nav_sensors::geometry::Axis::Z);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Drive {
     /// Random vibration with a PSD table, scaled by `gain_db`.
     Random {
@@ -75,6 +75,14 @@ pub enum Drive {
 
 impl Drive {
     /// The drive axis.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{Drive, PsdTable};
+    /// use nav_sensors::geometry::Axis;
+    /// let d = Drive::Random { axis: Axis::Y, psd: PsdTable::navmat_p9492(), gain_db: -3.0,
+    ///     transverse: [(Axis::X, 0.1)].into_iter().collect() };
+    /// assert_eq!(d.axis(), Axis::Y);
+    /// ```
     pub fn axis(&self) -> Axis {
         match self {
             Drive::Random { axis, .. } | Drive::Sine { axis, .. } | Drive::Sweep { axis, .. } => {
@@ -84,6 +92,14 @@ impl Drive {
     }
 
     /// The cross-axis fractions.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{Drive, PsdTable};
+    /// use nav_sensors::geometry::Axis;
+    /// let d = Drive::Random { axis: Axis::Y, psd: PsdTable::navmat_p9492(), gain_db: -3.0,
+    ///     transverse: [(Axis::X, 0.1)].into_iter().collect() };
+    /// assert_eq!(d.transverse()[&Axis::X], 0.1);
+    /// ```
     pub fn transverse(&self) -> &BTreeMap<Axis, f64> {
         match self {
             Drive::Random { transverse, .. }
@@ -113,6 +129,14 @@ impl Drive {
     }
 
     /// Highest frequency the drive excites, Hz.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{Drive, PsdTable};
+    /// use nav_sensors::geometry::Axis;
+    /// let d = Drive::Random { axis: Axis::Y, psd: PsdTable::navmat_p9492(), gain_db: -3.0,
+    ///     transverse: [(Axis::X, 0.1)].into_iter().collect() };
+    /// assert_eq!(d.max_frequency_hz(), 2000.0);
+    /// ```
     pub fn max_frequency_hz(&self) -> f64 {
         match self {
             Drive::Random { psd, .. } => psd.band_hz().1,
@@ -124,6 +148,17 @@ impl Drive {
     }
 
     /// The drive's scalar signal at full level: `n` samples at `fs`.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{Drive, PsdTable};
+    /// use nav_sensors::geometry::Axis;
+    /// let d = Drive::Random { axis: Axis::Y, psd: PsdTable::navmat_p9492(), gain_db: -3.0,
+    ///     transverse: [(Axis::X, 0.1)].into_iter().collect() };
+    /// use rand::SeedableRng;
+    /// let m = d.signal(4000, 4000.0, &mut rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1));
+    /// let rms = (m.accel_g.iter().map(|a| a * a).sum::<f64>() / 4000.0).sqrt();
+    /// assert!((rms / (PsdTable::navmat_p9492().grms() * 10f64.powf(-3.0 / 20.0)) - 1.0).abs() < 0.02);
+    /// ```
     pub fn signal(&self, n: usize, fs: f64, rng: &mut impl Rng) -> Motion {
         match self {
             Drive::Random { psd, gain_db, .. } => {
@@ -173,6 +208,11 @@ pub struct Rocking {
 
 impl Rocking {
     /// The rocking rate for a linear velocity, rad/s.
+    ///
+    /// ```
+    /// let r = nav_sensors::vibration::Rocking::default();
+    /// assert_eq!(r.rate_rad_s(&nalgebra::Vector3::new(1.0, 1.0, 1.0)), nalgebra::Vector3::zeros());
+    /// ```
     pub fn rate_rad_s(&self, v_m_s: &nalgebra::Vector3<f64>) -> nalgebra::Vector3<f64> {
         let r = &self.rad_s_per_m_s;
         nalgebra::Vector3::from_fn(|i, _| r[i][0] * v_m_s.x + r[i][1] * v_m_s.y + r[i][2] * v_m_s.z)
@@ -180,6 +220,13 @@ impl Rocking {
 }
 
 /// What is wrong with a vibration description.
+///
+/// ```
+/// use nav_sensors::vibration::{Drive, VibrationConfig, VibrationError};
+/// let v = VibrationConfig { drives: vec![Drive::Sine { axis: nav_sensors::geometry::Axis::Z,
+///     frequency_hz: -5.0, amplitude_g: 1.0, phase_deg: 0.0, transverse: Default::default() }], ..Default::default() };
+/// assert!(matches!(v.validate(4000.0), Err(VibrationError::NotPositive { what: "frequency_hz", .. })));
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum VibrationError {
     /// A drive excites frequencies at or above the Nyquist frequency of the internal rate.
@@ -242,6 +289,14 @@ pub struct VibrationConfig {
 }
 
 /// A generated vibration time history at the internal rate.
+///
+/// ```
+/// use rand::SeedableRng;
+/// let v = nav_sensors::sim::Scenario::default().vibration;
+/// let h = v.generate(4000, 4000.0, &mut rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(0)).unwrap();
+/// assert_eq!(h.accel_g[2].len(), 4000);
+/// assert_eq!(h.envelope[0], 0.0); // the default schedule starts with the shaker off
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct VibrationHistory {
     /// Linear vibration acceleration along x, y, z, g.
@@ -254,6 +309,11 @@ pub struct VibrationHistory {
 
 impl VibrationConfig {
     /// Checks the description against the internal rate.
+    ///
+    /// ```
+    /// assert!(nav_sensors::sim::Scenario::default().vibration.validate(4000.0).is_ok());
+    /// assert!(nav_sensors::sim::Scenario::default().vibration.validate(3000.0).is_err());
+    /// ```
     pub fn validate(&self, fs: f64) -> Result<(), VibrationError> {
         let nyquist_hz = 0.5 * fs;
         for (index, d) in self.drives.iter().enumerate() {
@@ -283,8 +343,14 @@ impl VibrationConfig {
                     return Err(VibrationError::NotPositive { index, what, value });
                 }
             }
+            // A random table may end exactly at Nyquist (the NAVMAT table at
+            // 4 kHz): synthesis leaves the Nyquist bin empty. A sine must be below.
             let frequency_hz = d.max_frequency_hz();
-            if frequency_hz >= nyquist_hz {
+            let above = match d {
+                Drive::Random { .. } => frequency_hz > nyquist_hz,
+                _ => frequency_hz >= nyquist_hz,
+            };
+            if above {
                 return Err(VibrationError::AboveNyquist {
                     index,
                     frequency_hz,
@@ -312,6 +378,15 @@ impl VibrationConfig {
     /// Generates `n` samples at `fs` Hz: every drive's signal (random drives
     /// draw from `rng` in drive order) along its direction, times the level
     /// envelope, and the rocking rate from the enveloped velocity.
+    ///
+    /// ```
+    /// use rand::SeedableRng;
+    /// use nav_sensors::vibration::{Drive, VibrationConfig};
+    /// let v = VibrationConfig { drives: vec![Drive::Sine { axis: nav_sensors::geometry::Axis::X,
+    ///     frequency_hz: 100.0, amplitude_g: 2.0, phase_deg: 90.0, transverse: Default::default() }], ..Default::default() };
+    /// let h = v.generate(40, 4000.0, &mut rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(0)).unwrap();
+    /// assert!((h.accel_g[0][0] - 2.0).abs() < 1e-12);
+    /// ```
     pub fn generate(
         &self,
         n: usize,

@@ -93,4 +93,21 @@ mod tests {
             "{err}"
         );
     }
+
+    /// The log sweep's instantaneous frequency goes from f0 to f1: count
+    /// zero crossings over the first and last 0.5 s.
+    #[test]
+    fn log_sweep_starts_at_f0_and_ends_at_f1() {
+        let fs = 4000.0;
+        let n = 80_000; // 20 s
+        let m = sweep(20.0, 200.0, 1.0, n, fs);
+        let crossings = |x: &[f64]| x.windows(2).filter(|w| w[0] * w[1] < 0.0).count() as f64;
+        let half = 2000; // 0.5 s
+        let f_start = crossings(&m.accel_g[..half]) / 2.0 / 0.5;
+        let f_end = crossings(&m.accel_g[n - half..]) / 2.0 / 0.5;
+        // Mean frequency over the first/last 0.5 s of a 20-s decade sweep:
+        // within 6% of the end points.
+        assert!((f_start / 20.0 - 1.0).abs() < 0.1, "{f_start}");
+        assert!((f_end / 200.0 - 1.0).abs() < 0.06, "{f_end}");
+    }
 }

@@ -3,6 +3,11 @@
 use serde::{Deserialize, Serialize};
 
 /// What is wrong with a PSD table.
+///
+/// ```
+/// let err = nav_sensors::vibration::PsdTable::new(vec![[100.0, 0.1], [50.0, 0.1]]).unwrap_err();
+/// assert!(err.to_string().contains("does not increase"));
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PsdError {
     /// Fewer than two breakpoints.
@@ -100,6 +105,11 @@ impl PsdTable {
     /// The NAVMAT P-9492 random-vibration screening profile: 20–80 Hz rising
     /// +3 dB/octave from 0.01 g²/Hz, 80–350 Hz flat at 0.04 g²/Hz, 350–2000 Hz
     /// falling −3 dB/octave to 0.007 g²/Hz; 6.06 g rms.
+    ///
+    /// ```
+    /// let p = nav_sensors::vibration::PsdTable::navmat_p9492();
+    /// assert_eq!(p.points().len(), 4);
+    /// ```
     pub fn navmat_p9492() -> Self {
         Self::new(vec![
             [20.0, 0.01],
@@ -111,11 +121,19 @@ impl PsdTable {
     }
 
     /// The breakpoints, `[Hz, g²/Hz]`.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::vibration::PsdTable::navmat_p9492().points()[1], [80.0, 0.04]);
+    /// ```
     pub fn points(&self) -> &[[f64; 2]] {
         &self.points
     }
 
     /// Lowest and highest frequency of the table, Hz.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::vibration::PsdTable::navmat_p9492().band_hz(), (20.0, 2000.0));
+    /// ```
     pub fn band_hz(&self) -> (f64, f64) {
         (self.points[0][0], self.points[self.points.len() - 1][0])
     }
@@ -134,6 +152,11 @@ impl PsdTable {
     }
 
     /// The density at `f_hz`, g²/Hz (log-log interpolation; zero outside the table).
+    ///
+    /// ```
+    /// let p = nav_sensors::vibration::PsdTable::navmat_p9492();
+    /// assert!((p.density(700.0) - 0.02).abs() < 1e-12); // −3 dB/octave from 350 Hz
+    /// ```
     pub fn density(&self, f_hz: f64) -> f64 {
         let (lo, hi) = self.band_hz();
         if !(f_hz >= lo && f_hz <= hi) {
@@ -151,6 +174,11 @@ impl PsdTable {
 
     /// The rms acceleration of the table, g: the exact integral of the
     /// piecewise power law, `√∫S df`.
+    ///
+    /// ```
+    /// let flat = nav_sensors::vibration::PsdTable::new(vec![[10.0, 0.01], [110.0, 0.01]]).unwrap();
+    /// assert!((flat.grms() - 1.0).abs() < 1e-12);
+    /// ```
     pub fn grms(&self) -> f64 {
         self.points
             .windows(2)

@@ -9,6 +9,13 @@ use serde::{Deserialize, Serialize};
 /// "shaker off". The segment starts with a ramp of `ramp_s` from the previous
 /// segment's level, linear in dB between two levels and linear in amplitude
 /// from or to "off" (dB has no value for off).
+///
+/// ```
+/// use nav_sensors::vibration::{LevelSchedule, Segment};
+/// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+/// assert_eq!(s.segments()[1].level_db, Some(-6.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Segment {
@@ -44,26 +51,59 @@ pub struct LevelSchedule {
 
 impl LevelSchedule {
     /// A schedule from its segments.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{LevelSchedule, Segment};
+    /// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+    ///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+    /// assert_eq!(s.segments().len(), 2);
+    /// ```
     pub fn new(segments: Vec<Segment>) -> Self {
         Self { segments }
     }
 
     /// Full level throughout.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::vibration::LevelSchedule::constant().gain(123.0), 1.0);
+    /// ```
     pub fn constant() -> Self {
         Self::default()
     }
 
     /// The segments.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{LevelSchedule, Segment};
+    /// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+    ///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+    /// assert!(s.segments()[0].level_db.is_none());
+    /// ```
     pub fn segments(&self) -> &[Segment] {
         &self.segments
     }
 
     /// Sum of the segment durations, s.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{LevelSchedule, Segment};
+    /// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+    ///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+    /// assert_eq!(s.total_duration_s(), 10.0);
+    /// ```
     pub fn total_duration_s(&self) -> f64 {
         self.segments.iter().map(|s| s.duration_s).sum()
     }
 
     /// Amplitude gain (0 for off, 1 at 0 dB) at time `t_s`.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{LevelSchedule, Segment};
+    /// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+    ///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+    /// assert_eq!(s.gain(1.0), 0.0);
+    /// assert!((s.gain(7.0) - 0.5012).abs() < 1e-4);
+    /// ```
     pub fn gain(&self, t_s: f64) -> f64 {
         if self.segments.is_empty() {
             return 1.0;
@@ -98,6 +138,15 @@ impl LevelSchedule {
     }
 
     /// The gain at every sample `k/fs`, `k < n`.
+    ///
+    /// ```
+    /// use nav_sensors::vibration::{LevelSchedule, Segment};
+    /// let s = LevelSchedule::new(vec![Segment { duration_s: 5.0, level_db: None, ramp_s: 0.0 },
+    ///     Segment { duration_s: 5.0, level_db: Some(-6.0), ramp_s: 0.0 }]);
+    /// let e = s.envelope(10, 1.0);
+    /// assert_eq!(e[4], 0.0);
+    /// assert!(e[5] > 0.5);
+    /// ```
     pub fn envelope(&self, n: usize, fs: f64) -> Vec<f64> {
         (0..n).map(|k| self.gain(k as f64 / fs)).collect()
     }

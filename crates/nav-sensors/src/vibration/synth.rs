@@ -6,9 +6,18 @@ use rustfft::{FftPlanner, num_complex::Complex};
 use super::psd::PsdTable;
 
 /// Standard gravity, m/s² per g.
+///
+/// ```
+/// assert_eq!(nav_sensors::vibration::STANDARD_GRAVITY_M_S2, 9.80665);
+/// ```
 pub const STANDARD_GRAVITY_M_S2: f64 = 9.80665;
 
 /// A synthesised vibration time history on one axis.
+///
+/// ```
+/// let m = nav_sensors::vibration::sine(10.0, 1.0, 0.0, 400, 4000.0);
+/// assert_eq!(m.accel_g.len(), m.velocity_m_s.len());
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Motion {
     /// Acceleration, g.

@@ -3,6 +3,12 @@
 use rustfft::{FftPlanner, num_complex::Complex};
 
 /// A single-sided power spectral density estimate.
+///
+/// ```
+/// let x: Vec<f64> = (0..4096).map(|n| (n as f64 * 0.3).sin()).collect();
+/// let s = nav_sensors::vibration::welch(&x, 1000.0, 256);
+/// assert_eq!(s.frequency_hz.len(), s.density.len());
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spectrum {
     /// Bin frequencies, Hz (0 to fs/2).
@@ -13,6 +19,11 @@ pub struct Spectrum {
 
 impl Spectrum {
     /// Bin spacing, Hz.
+    ///
+    /// ```
+    /// let s = nav_sensors::vibration::welch(&vec![0.0; 1024], 1000.0, 512);
+    /// assert!((s.resolution_hz() - 1000.0 / 512.0).abs() < 1e-12);
+    /// ```
     pub fn resolution_hz(&self) -> f64 {
         self.frequency_hz.get(1).copied().unwrap_or(0.0)
     }

@@ -1,0 +1,253 @@
+//! The ground calibration handed to the user (JSON), and compensation of a
+//! record with it.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+use super::record::Record;
+use crate::accel::{AccelCoefficients, compensate_triad};
+use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm};
+use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
+
+/// Reading or writing a calibration file failed.
+///
+/// ```
+/// use nav_sensors::calibration::{Calibration, CalibrationFileError};
+/// let err = Calibration::from_json("{\"format_version\": 9, \"gyros\": {}, \"accels\": {}}", "c.json").unwrap_err();
+/// assert!(matches!(err, CalibrationFileError::Version { found: 9, .. }));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum CalibrationFileError {
+    /// The file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The JSON does not describe a calibration (serde's message has line and column).
+    #[error("{path}: {source}")]
+    Json {
+        /// The file.
+        path: String,
+        /// The cause.
+        #[source]
+        source: serde_json::Error,
+    },
+    /// A format version this code does not read.
+    #[error("{path}: calibration format_version {found}, this version reads {supported}")]
+    Version {
+        /// The file.
+        path: String,
+        /// The version found.
+        found: u32,
+        /// The version supported.
+        supported: u32,
+    },
+}
+
+/// Ground-calibrated coefficients: per gyro channel the DTG terms that ground
+/// calibration determines (bias, scale factor, misalignment, g-sensitive,
+/// anisoelastic, anisoinertia — `temp` and `rect_2n` are always zero), per
+/// axis the accelerometer coefficients. Nothing about noise.
+///
+/// ```
+/// use nav_sensors::calibration::Calibration;
+/// use nav_sensors::dtg::DtgCoefficients;
+/// use nav_sensors::geometry::Channel;
+/// let mut cal = Calibration::ideal();
+/// cal.gyros.insert(Channel::Z, DtgCoefficients { bias_deg_h: 2.0, ..Default::default() });
+/// let json = cal.to_json();
+/// assert_eq!(Calibration::from_json(&json, "mem").unwrap(), cal);
+/// assert_eq!(cal.gyro(Channel::X).bias_deg_h, 0.0);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Calibration {
+    /// File format version ([`Calibration::FORMAT_VERSION`]).
+    pub format_version: u32,
+    /// DTG coefficients per channel (a missing channel: all zero).
+    pub gyros: BTreeMap<Channel, DtgCoefficients>,
+    /// Accelerometer coefficients per axis (a missing axis: all zero).
+    pub accels: BTreeMap<Axis, AccelCoefficients>,
+}
+
+impl Calibration {
+    /// The format version written and read.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::calibration::Calibration::ideal().format_version,
+    ///     nav_sensors::calibration::Calibration::FORMAT_VERSION);
+    /// ```
+    pub const FORMAT_VERSION: u32 = 1;
+
+    /// A calibration of ideal sensors (compensation changes nothing).
+    ///
+    /// ```
+    /// let cal = nav_sensors::calibration::Calibration::ideal();
+    /// assert!(cal.gyros.is_empty() && cal.accels.is_empty());
+    /// ```
+    pub fn ideal() -> Self {
+        Self {
+            format_version: Self::FORMAT_VERSION,
+            gyros: BTreeMap::new(),
+            accels: BTreeMap::new(),
+        }
+    }
+
+    /// One channel's coefficients, with the terms calibration never covers
+    /// (`temp`, `rect_2n`) zeroed.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// use nav_sensors::dtg::DtgCoefficients;
+    /// use nav_sensors::geometry::Channel;
+    /// let mut cal = Calibration::ideal();
+    /// cal.gyros.insert(Channel::Y, DtgCoefficients { temp_deg_h_per_c: 0.1, bias_deg_h: 1.0, ..Default::default() });
+    /// let c = cal.gyro(Channel::Y);
+    /// assert_eq!((c.bias_deg_h, c.temp_deg_h_per_c), (1.0, 0.0));
+    /// ```
+    pub fn gyro(&self, channel: Channel) -> DtgCoefficients {
+        self.gyros
+            .get(&channel)
+            .copied()
+            .unwrap_or_default()
+            .without(&[DtgTerm::Temp, DtgTerm::Rect2N])
+    }
+
+    /// One accelerometer's coefficients.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// assert_eq!(Calibration::ideal().accel(nav_sensors::geometry::Axis::Z).bias_ug, 0.0);
+    /// ```
+    pub fn accel(&self, axis: Axis) -> AccelCoefficients {
+        self.accels.get(&axis).copied().unwrap_or_default()
+    }
+
+    /// Parses calibration JSON; `path` labels errors.
+    ///
+    /// ```
+    /// let cal = nav_sensors::calibration::Calibration::from_json(
+    ///     r#"{"format_version": 1, "gyros": {"Z": {"bias_deg_h": 2.0}}, "accels": {}}"#, "c.json").unwrap();
+    /// assert_eq!(cal.gyro(nav_sensors::geometry::Channel::Z).bias_deg_h, 2.0);
+    /// ```
+    pub fn from_json(text: &str, path: &str) -> Result<Self, CalibrationFileError> {
+        let cal: Self =
+            serde_json::from_str(text).map_err(|source| CalibrationFileError::Json {
+                path: path.to_string(),
+                source,
+            })?;
+        if cal.format_version != Self::FORMAT_VERSION {
+            return Err(CalibrationFileError::Version {
+                path: path.to_string(),
+                found: cal.format_version,
+                supported: Self::FORMAT_VERSION,
+            });
+        }
+        Ok(cal)
+    }
+
+    /// Reads a calibration JSON file.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-cal-load.json");
+    /// Calibration::ideal().save(&path).unwrap();
+    /// assert_eq!(Calibration::load(&path).unwrap(), Calibration::ideal());
+    /// assert!(Calibration::load("/no/such/file.json").is_err());
+    /// ```
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, CalibrationFileError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| CalibrationFileError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::from_json(&text, &path.display().to_string())
+    }
+
+    /// The calibration as pretty JSON (deterministic: maps are ordered).
+    ///
+    /// ```
+    /// let json = nav_sensors::calibration::Calibration::ideal().to_json();
+    /// assert!(json.contains("\"format_version\": 1"));
+    /// ```
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
+    }
+
+    /// Writes the calibration as a JSON file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-cal-save.json");
+    /// nav_sensors::calibration::Calibration::ideal().save(&path).unwrap();
+    /// assert!(path.exists());
+    /// ```
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
+        let path = path.as_ref();
+        std::fs::write(path, self.to_json()).map_err(|source| CalibrationFileError::Io {
+            path: path.display().to_string(),
+            source,
+        })
+    }
+
+    /// Compensates a record with these coefficients, as a user can at the
+    /// 50-Hz output rate: first the accelerometers (static inverse, the
+    /// three axes jointly), then every gyro channel with the inverse DTG
+    /// model, using the compensated accelerations resolved into that
+    /// channel's (I, O, S) frame and the other-axis rates from the
+    /// least-squares rate of the six channels (two passes: raw, then
+    /// compensated). `temp` and `rect_2n` are not compensated (ground
+    /// calibration does not cover them). Extra columns pass through.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::Calibration;
+    /// use nav_sensors::dtg::DtgCoefficients;
+    /// use nav_sensors::geometry::{ideal_outputs, Channel};
+    /// use nav_sensors::record::Record;
+    /// let w = nalgebra::Vector3::new(14.9, 0.0, 2.2);
+    /// let mut m = ideal_outputs(&w);
+    /// m[Channel::Z.index()] += 1.5 + 0.8 * 1.0; // bias + g_I·(1 g)
+    /// let gyro = std::array::from_fn(|k| vec![m[k]; 3]);
+    /// let rec = Record::new(vec![0.02, 0.04, 0.06], gyro, [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![]).unwrap();
+    /// let mut cal = Calibration::ideal();
+    /// cal.gyros.insert(Channel::Z, DtgCoefficients { bias_deg_h: 1.5, g_i_deg_h_g: 0.8, ..Default::default() });
+    /// let out = cal.compensate(&rec);
+    /// assert!((out.gyro(Channel::Z)[0] - 2.2).abs() < 1e-12);
+    /// ```
+    pub fn compensate(&self, record: &Record) -> Record {
+        let n = record.len();
+        let accel_coefficients = Axis::ALL.map(|a| self.accel(a));
+        let mut accel: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
+        for i in 0..n {
+            let a = compensate_triad(&accel_coefficients, &record.accel_sample(i));
+            for k in 0..3 {
+                accel[k].push(a[k]);
+            }
+        }
+        let frames = ChannelFrame::all();
+        let gyro_coefficients = Channel::ALL.map(|c| self.gyro(c));
+        let mut gyro: [Vec<f64>; 6] =
+            std::array::from_fn(|k| record.gyro(Channel::ALL[k]).to_vec());
+        for _pass in 0..2 {
+            let mut next: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(n));
+            for i in 0..n {
+                let current: [f64; 6] = std::array::from_fn(|k| gyro[k][i]);
+                let rate = least_squares_rate(&current);
+                let f = Vector3::new(accel[0][i], accel[1][i], accel[2][i]);
+                for (k, frame) in frames.iter().enumerate() {
+                    let x = DtgInput::resolved(frame, &rate, &f);
+                    let measured = record.gyro(frame.channel)[i];
+                    next[k].push(gyro_coefficients[k].compensate_deg_h(measured, &x));
+                }
+            }
+            gyro = next;
+        }
+        record.with_gyro(gyro).with_accel(accel)
+    }
+}

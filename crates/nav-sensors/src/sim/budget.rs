@@ -1,0 +1,246 @@
+//! The error budget of a simulated record: what a model of the 50-Hz record
+//! can and cannot predict, per channel, and the noise floor.
+//!
+//! For every term k of channel c with true coefficient c_k, the record holds
+//! `c_k · mean(r_k)` over each interval (the high-rate truth), while a model
+//! of the record can at best form `c_k · r_k(x̄)`: the regressor evaluated on
+//! what the record shows — the interval's accelerations through an
+//! error-free accelerometer of the same bandwidth, Earth rate as the
+//! reference rate, the `temp` column. The difference
+//!
+//! ```text
+//! d_k[n] = c_k · (mean(r_k)[n] − r_k(x̄[n]))
+//! ```
+//!
+//! is the unmodelled part (for a g² term, `c_k` times the within-interval
+//! covariance of the vibration: the rectification). Its expectation given
+//! the vibration level is `k_k · g²[n]` (g the schedule's amplitude gain), with
+//! `k_k` fitted by least squares through the origin; a model that knows the
+//! level (from the accelerometer windows) can predict that much. The noise
+//! floor is the rms about the mean of
+//!
+//! ```text
+//! floor[n] = noise[n] + motion[n] + Σ_k (d_k[n] − k_k · g²[n])
+//! ```
+//!
+//! with `noise` the sensor noise (ARW, bias instability, quantisation) and
+//! `motion` the true angular motion (rocking) about I averaged per interval.
+
+use std::collections::BTreeMap;
+
+use super::engine::HighRate;
+use super::output::Components;
+use super::scenario::Scenario;
+use crate::calibration::Calibration;
+use crate::dtg::{DtgInput, DtgTerm};
+use crate::geometry::{ChannelFrame, Ios, Residue};
+use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
+
+const CANDIDATES: [DtgTerm; 9] = [
+    DtgTerm::GI,
+    DtgTerm::GO,
+    DtgTerm::GS,
+    DtgTerm::GgII,
+    DtgTerm::GgOO,
+    DtgTerm::GgSS,
+    DtgTerm::GgIO,
+    DtgTerm::GgIS,
+    DtgTerm::GgOS,
+];
+
+fn mean(x: &[f64]) -> f64 {
+    x.iter().sum::<f64>() / x.len() as f64
+}
+
+/// Root mean square about the mean.
+pub(crate) fn std_dev(x: &[f64]) -> f64 {
+    let m = mean(x);
+    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+/// Root mean square about zero.
+pub(crate) fn rms(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let (ma, mb) = (mean(a), mean(b));
+    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        sab += (x - ma) * (y - mb);
+        saa += (x - ma) * (x - ma);
+        sbb += (y - mb) * (y - mb);
+    }
+    if saa == 0.0 || sbb == 0.0 {
+        0.0
+    } else {
+        sab / (saa * sbb).sqrt()
+    }
+}
+
+/// Computes the truth file and the component series.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn budget(
+    s: &Scenario,
+    hr: &HighRate,
+    regressors: &[[[f64; 18]; 6]],
+    noise: &[[f64; 6]],
+    temp_meas: &[f64],
+    calibration: &Calibration,
+    t: &[f64],
+) -> (Truth, Components) {
+    let n_out = t.len();
+    let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
+    let gravity = s.site.gravity_cluster_g().expect("validated");
+    let g2 = &hr.level_squared;
+    let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
+    let mut components = Components::new(t.to_vec());
+    components.push("level_squared", g2.clone());
+    let mut channels = BTreeMap::new();
+    let mut hidden = Vec::new();
+    let mut floor_series: [Vec<f64>; 6] = Default::default();
+    let mut after_true: [Vec<f64>; 6] = Default::default();
+    for (ch, frame) in ChannelFrame::all().iter().enumerate() {
+        let channel = frame.channel;
+        let truth = s.gyro(channel);
+        let c = truth.to_array();
+        let cal = calibration.gyro(channel).to_array();
+        let hidden_here: Vec<DtgTerm> = s
+            .hidden
+            .iter()
+            .filter(|h| h.channel == channel)
+            .map(|h| h.term)
+            .collect();
+        let e: Ios = frame.resolve(&earth);
+        let mut d = vec![vec![0.0; n_out]; 18];
+        let mut pred_all = vec![[0.0; 18]; n_out];
+        let mut unmodelled = vec![0.0; n_out];
+        let mut motion = vec![0.0; n_out];
+        let mut cal_err = vec![0.0; n_out];
+        for n in 0..n_out {
+            let a = hr.accel_ideal_g[n];
+            let x = DtgInput {
+                rate_deg_h: e,
+                specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
+                temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
+                rate_2n_mean_square_deg2_s2: 0.0,
+            };
+            let pred = DtgTerm::regressors(&x);
+            for k in 0..18 {
+                d[k][n] = c[k] * (regressors[n][ch][k] - pred[k]);
+                let term = DtgTerm::ALL[k];
+                if term.is_calibrated() && !hidden_here.contains(&term) {
+                    cal_err[n] += (c[k] - cal[k]) * pred[k];
+                }
+            }
+            pred_all[n] = pred;
+            unmodelled[n] = d.iter().map(|dk| dk[n]).sum::<f64>() + hr.nonlinearity_deg_h[n][ch]
+                - truth.nonlinearity_deg_h(e.i);
+            motion[n] = hr.rate_i_deg_h[n][ch] - e.i;
+        }
+        let mut expected = vec![0.0; n_out];
+        let mut at_full = BTreeMap::new();
+        for (k, dk) in d.iter().enumerate() {
+            let kk = if g2_energy > 0.0 {
+                dk.iter().zip(g2).map(|(a, b)| a * b).sum::<f64>() / g2_energy
+            } else {
+                0.0
+            };
+            if kk.abs() >= 1e-4 {
+                at_full.insert(DtgTerm::ALL[k], kk);
+            }
+            for (e, g) in expected.iter_mut().zip(g2) {
+                *e += kk * g;
+            }
+        }
+        let noise_ch: Vec<f64> = noise.iter().map(|v| v[ch]).collect();
+        let floor: Vec<f64> = (0..n_out)
+            .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
+            .collect();
+        let after: Vec<f64> = (0..n_out)
+            .map(|n| noise_ch[n] + motion[n] + unmodelled[n])
+            .collect();
+        let noise_floor = std_dev(&floor);
+        for &term in &hidden_here {
+            let k = term.index();
+            let visible: Vec<f64> = pred_all.iter().map(|p| c[k] * p[k]).collect();
+            let rms_deg_h = std_dev(&visible);
+            hidden.push(HiddenTruth {
+                channel,
+                term,
+                coefficient: c[k],
+                unit: term.unit().to_string(),
+                description: term.ieee_name().to_string(),
+                rms_deg_h,
+                ratio_to_noise_floor: rms_deg_h / noise_floor,
+            });
+            components.push(&format!("hidden_{channel}_{term}"), visible);
+        }
+        // Candidates that move together on this record (gravity-only
+        // constants excluded: a constant regressor has no correlation).
+        let series: Vec<Vec<f64>> = CANDIDATES
+            .iter()
+            .map(|t| pred_all.iter().map(|p| p[t.index()]).collect())
+            .collect();
+        let mut collinear = Vec::new();
+        for i in 0..CANDIDATES.len() {
+            for j in i + 1..CANDIDATES.len() {
+                let r = correlation(&series[i], &series[j]);
+                if r.abs() > 0.95 {
+                    collinear.push(Collinear {
+                        a: CANDIDATES[i],
+                        b: CANDIDATES[j],
+                        correlation: r,
+                    });
+                }
+            }
+        }
+        channels.insert(
+            channel,
+            ChannelTruth {
+                coefficients: truth,
+                noise_floor_deg_h: noise_floor,
+                noise_rms_deg_h: std_dev(&noise_ch),
+                motion_rms_deg_h: rms(&motion),
+                unmodelled_rms_deg_h: rms(&unmodelled),
+                rectification_expected_rms_deg_h: rms(&expected),
+                rectification_at_full_level_deg_h: at_full,
+                calibration_error_rms_deg_h: std_dev(&cal_err),
+                after_true_compensation_rms_deg_h: rms(&after),
+                collinear,
+            },
+        );
+        components.push(&format!("{channel}_noise"), noise_ch);
+        components.push(&format!("{channel}_motion"), motion);
+        components.push(&format!("{channel}_unmodelled"), unmodelled);
+        components.push(&format!("{channel}_expected"), expected);
+        components.push(&format!("{channel}_floor"), floor.clone());
+        floor_series[ch] = floor;
+        after_true[ch] = after;
+    }
+    let combine = |series: &[Vec<f64>; 6], r: Residue| -> Vec<f64> {
+        let w = r.coefficients();
+        (0..n_out)
+            .map(|n| (0..6).map(|k| w[k] * series[k][n]).sum())
+            .collect()
+    };
+    let residue_noise_floor_deg_h = Residue::ALL
+        .iter()
+        .map(|&r| (r, std_dev(&combine(&floor_series, r))))
+        .collect();
+    let residue_after_true_compensation_rms_deg_h = Residue::ALL
+        .iter()
+        .map(|&r| (r, rms(&combine(&after_true, r))))
+        .collect();
+    let truth = Truth {
+        format_version: Truth::FORMAT_VERSION,
+        scenario: s.clone(),
+        earth_rate_cluster_deg_h: [earth.x, earth.y, earth.z],
+        gravity_cluster_g: [gravity.x, gravity.y, gravity.z],
+        hidden,
+        channels,
+        residue_noise_floor_deg_h,
+        residue_after_true_compensation_rms_deg_h,
+    };
+    (truth, components)
+}

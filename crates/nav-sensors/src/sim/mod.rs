@@ -1,0 +1,20 @@
+//! The vibration-test simulator: scenarios (TOML, seeded), the simulation
+//! itself, the ground calibration it hands out and the truth it keeps.
+
+mod budget;
+mod calibrate;
+mod engine;
+mod error;
+mod output;
+mod presets;
+mod scenario;
+mod site;
+mod thermal;
+
+pub use engine::simulate;
+pub use error::SimError;
+pub use output::{Components, Simulation};
+pub use presets::low_frequency_psd;
+pub use scenario::{AccelSet, CalibrationError, GyroSet, HiddenEffect, Scenario, ScenarioError};
+pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
+pub use thermal::Thermal;

@@ -1,0 +1,161 @@
+//! What a simulation returns, and writing it to a directory.
+
+use std::path::Path;
+
+use super::error::SimError;
+use crate::calibration::Calibration;
+use crate::record::Record;
+use crate::truth::Truth;
+
+/// Named per-sample series that explain a record (same time base):
+/// `level_squared`, then per channel `{ch}_noise`, `{ch}_motion`,
+/// `{ch}_unmodelled`, `{ch}_expected`, `{ch}_floor`, and per hidden effect
+/// `hidden_{ch}_{term}` (the part of the effect a model can see), deg/h.
+///
+/// ```
+/// let mut c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);
+/// c.push("X_noise", vec![0.1, -0.1]);
+/// assert_eq!(c.get("X_noise").unwrap(), &[0.1, -0.1]);
+/// assert!(c.get("Y_noise").is_none());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Components {
+    t: Vec<f64>,
+    names: Vec<String>,
+    columns: Vec<Vec<f64>>,
+}
+
+impl Components {
+    /// Empty components on a time base, s.
+    ///
+    /// ```
+    /// let c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);
+    /// assert!(c.names().is_empty());
+    /// ```
+    pub fn new(t: Vec<f64>) -> Self {
+        Self {
+            t,
+            names: Vec::new(),
+            columns: Vec::new(),
+        }
+    }
+
+    /// Adds a named series.
+    ///
+    /// ```
+    /// let mut c = nav_sensors::sim::Components::new(vec![0.02]);
+    /// c.push("Z_noise", vec![0.3]);
+    /// assert_eq!(c.names(), ["Z_noise"]);
+    /// ```
+    #[track_caller]
+    pub fn push(&mut self, name: &str, values: Vec<f64>) {
+        assert_eq!(values.len(), self.t.len(), "one value per sample");
+        self.names.push(name.to_string());
+        self.columns.push(values);
+    }
+
+    /// A series by name.
+    ///
+    /// ```
+    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// assert_eq!(sim.components.get("Z_floor").unwrap().len(), 50);
+    /// ```
+    pub fn get(&self, name: &str) -> Option<&[f64]> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .map(|k| self.columns[k].as_slice())
+    }
+
+    /// The series' names.
+    ///
+    /// ```
+    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// assert_eq!(sim.components.names()[0], "level_squared");
+    /// ```
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Writes `t` and every series as CSV.
+    ///
+    /// ```
+    /// let mut c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);
+    /// c.push("X_noise", vec![0.1, -0.2]);
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-components.csv");
+    /// c.write_csv(&path).unwrap();
+    /// let t = tabular::Table::read(&path).unwrap();
+    /// assert_eq!(t.numeric("X_noise").unwrap(), vec![0.1, -0.2]);
+    /// ```
+    pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<(), SimError> {
+        let mut names: Vec<&str> = vec!["t"];
+        names.extend(self.names.iter().map(String::as_str));
+        let mut cols: Vec<&[f64]> = vec![&self.t];
+        cols.extend(self.columns.iter().map(Vec::as_slice));
+        tabular::write_csv(path, &names, &cols).map_err(crate::record::RecordError::from)?;
+        Ok(())
+    }
+}
+
+/// The result of [`crate::sim::simulate`].
+///
+/// ```
+/// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+/// assert_eq!(sim.record.len(), 50);
+/// assert_eq!(sim.truth.scenario.duration_s, 1.0);
+/// assert!(sim.calibration.gyros.contains_key(&nav_sensors::geometry::Channel::X));
+/// ```
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// The test record (what the instruments delivered).
+    pub record: Record,
+    /// The ground calibration handed to the user.
+    pub calibration: Calibration,
+    /// Everything used, and the noise floor.
+    pub truth: Truth,
+    /// Per-sample component series.
+    pub components: Components,
+}
+
+impl Simulation {
+    /// File names written by [`Simulation::write_dir`].
+    ///
+    /// ```
+    /// assert!(nav_sensors::sim::Simulation::FILES.contains(&"truth.json"));
+    /// ```
+    pub const FILES: [&'static str; 5] = [
+        "record.csv",
+        "calibration.json",
+        "truth.json",
+        "components.csv",
+        "scenario.toml",
+    ];
+
+    /// Writes `record.csv`, `calibration.json`, `truth.json`,
+    /// `components.csv` and `scenario.toml` into `dir` (created if needed).
+    ///
+    /// ```
+    /// use nav_sensors::sim::{simulate, Scenario, Simulation};
+    /// let dir = std::env::temp_dir().join("nav-sensors-doc-write-dir");
+    /// let sim = simulate(&Scenario { duration_s: 1.0, ..Scenario::default() }).unwrap();
+    /// sim.write_dir(&dir).unwrap();
+    /// for f in Simulation::FILES { assert!(dir.join(f).exists()); }
+    /// let back = nav_sensors::record::Record::read_csv(dir.join("record.csv")).unwrap();
+    /// assert_eq!(back, sim.record);
+    /// ```
+    pub fn write_dir(&self, dir: impl AsRef<Path>) -> Result<(), SimError> {
+        let dir = dir.as_ref();
+        let io = |path: &Path| {
+            let path = path.display().to_string();
+            move |source| SimError::Io { path, source }
+        };
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        self.record.write_csv(dir.join("record.csv"))?;
+        self.calibration.save(dir.join("calibration.json"))?;
+        let truth = dir.join("truth.json");
+        std::fs::write(&truth, self.truth.to_json()).map_err(io(&truth))?;
+        self.components.write_csv(dir.join("components.csv"))?;
+        self.truth.scenario.save(dir.join("scenario.toml"))?;
+        Ok(())
+    }
+}

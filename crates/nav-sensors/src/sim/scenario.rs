@@ -1,0 +1,515 @@
+//! A vibration test described as data (TOML), with a seed.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::site::Site;
+use super::thermal::Thermal;
+use crate::accel::{AccelCoefficients, AccelNoise, ServoLoop};
+use crate::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
+use crate::geometry::{Axis, Channel};
+use crate::vibration::{VibrationConfig, VibrationError};
+
+/// The three DTGs: shared dynamics and noise, coefficients per channel.
+///
+/// ```
+/// let g = &nav_sensors::sim::Scenario::default().gyros;
+/// assert_eq!(g.spin_hz, 200.0);
+/// assert_eq!(g.channels.len(), 6);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GyroSet {
+    /// Rotor spin frequency, Hz (2N = twice this).
+    pub spin_hz: f64,
+    /// Quality factor of the 2N rectification resonance.
+    pub rect_2n_q: f64,
+    /// Noise, the same model on every channel.
+    pub noise: DtgNoise,
+    /// Output quantisation: angle per pulse, arcsec (remainder carried to
+    /// the next interval); absent for none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pulse_arcsec: Option<f64>,
+    /// True coefficients per channel (a missing channel is an ideal one).
+    pub channels: BTreeMap<Channel, DtgCoefficients>,
+}
+
+/// The accelerometer triad.
+///
+/// ```
+/// let a = &nav_sensors::sim::Scenario::default().accels;
+/// assert_eq!(a.servo.natural_hz, 800.0);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AccelSet {
+    /// Servo-loop dynamics (the same on every axis).
+    #[serde(default)]
+    pub servo: ServoLoop,
+    /// Noise.
+    #[serde(default)]
+    pub noise: AccelNoise,
+    /// True coefficients per axis (a missing axis is an ideal one).
+    #[serde(default)]
+    pub axes: BTreeMap<Axis, AccelCoefficients>,
+}
+
+/// Errors of the ground calibration handed to the user: each calibrated
+/// coefficient is `truth·(1 + relative·n₁) + absolute·n₂` with n₁, n₂
+/// independent standard normal draws (seeded). Values are 1σ.
+///
+/// ```
+/// let e: nav_sensors::sim::CalibrationError = toml::from_str("relative = 0.05").unwrap();
+/// assert_eq!(e.relative, 0.05);
+/// assert_eq!(e.bias_deg_h, nav_sensors::sim::CalibrationError::default().bias_deg_h);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CalibrationError {
+    /// Relative error of every calibrated coefficient (1σ, fraction).
+    pub relative: f64,
+    /// DTG bias, deg/h.
+    pub bias_deg_h: f64,
+    /// DTG scale factor, ppm.
+    pub scale_factor_ppm: f64,
+    /// DTG misalignments, µrad.
+    pub misalignment_urad: f64,
+    /// DTG g-sensitive drifts, deg/h/g.
+    pub g_deg_h_g: f64,
+    /// DTG anisoelastic drifts, deg/h/g².
+    pub gg_deg_h_g2: f64,
+    /// DTG anisoinertia, deg/h/(deg/s)².
+    pub ai_deg_h_per_deg_s2: f64,
+    /// Accelerometer bias, µg.
+    pub accel_bias_ug: f64,
+    /// Accelerometer scale factor, ppm.
+    pub accel_scale_factor_ppm: f64,
+    /// Accelerometer K2, µg/g².
+    pub accel_k2_ug_per_g2: f64,
+    /// Accelerometer misalignments, µrad.
+    pub accel_misalignment_urad: f64,
+}
+
+impl Default for CalibrationError {
+    /// Small, as after a good multi-position and centrifuge calibration:
+    /// 1% relative plus 0.02 deg/h, 20 ppm, 20 µrad, 0.01 deg/h/g,
+    /// 0.002 deg/h/g², 0.002 deg/h/(deg/s)²; accelerometers 20 µg, 20 ppm,
+    /// 1 µg/g², 10 µrad.
+    fn default() -> Self {
+        Self {
+            relative: 0.01,
+            bias_deg_h: 0.02,
+            scale_factor_ppm: 20.0,
+            misalignment_urad: 20.0,
+            g_deg_h_g: 0.01,
+            gg_deg_h_g2: 0.002,
+            ai_deg_h_per_deg_s2: 0.002,
+            accel_bias_ug: 20.0,
+            accel_scale_factor_ppm: 20.0,
+            accel_k2_ug_per_g2: 1.0,
+            accel_misalignment_urad: 10.0,
+        }
+    }
+}
+
+impl CalibrationError {
+    /// No calibration error at all (the calibration equals the truth on
+    /// every calibrated term).
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::sim::CalibrationError::none().relative, 0.0);
+    /// ```
+    pub fn none() -> Self {
+        Self {
+            relative: 0.0,
+            bias_deg_h: 0.0,
+            scale_factor_ppm: 0.0,
+            misalignment_urad: 0.0,
+            g_deg_h_g: 0.0,
+            gg_deg_h_g2: 0.0,
+            ai_deg_h_per_deg_s2: 0.0,
+            accel_bias_ug: 0.0,
+            accel_scale_factor_ppm: 0.0,
+            accel_k2_ug_per_g2: 0.0,
+            accel_misalignment_urad: 0.0,
+        }
+    }
+
+    /// The absolute 1σ for a DTG term (zero for terms calibration does not cover).
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgTerm;
+    /// let e = nav_sensors::sim::CalibrationError::default();
+    /// assert_eq!(e.absolute_for(DtgTerm::GgIS), e.gg_deg_h_g2);
+    /// assert_eq!(e.absolute_for(DtgTerm::Temp), 0.0);
+    /// ```
+    pub fn absolute_for(&self, term: DtgTerm) -> f64 {
+        match term {
+            DtgTerm::Bias => self.bias_deg_h,
+            DtgTerm::ScaleFactor => self.scale_factor_ppm,
+            DtgTerm::MisalignmentO | DtgTerm::MisalignmentS => self.misalignment_urad,
+            DtgTerm::GI | DtgTerm::GO | DtgTerm::GS => self.g_deg_h_g,
+            DtgTerm::GgII
+            | DtgTerm::GgOO
+            | DtgTerm::GgSS
+            | DtgTerm::GgIO
+            | DtgTerm::GgIS
+            | DtgTerm::GgOS => self.gg_deg_h_g2,
+            DtgTerm::AiIO | DtgTerm::AiIS | DtgTerm::AiOS => self.ai_deg_h_per_deg_s2,
+            DtgTerm::Temp | DtgTerm::Rect2N => 0.0,
+        }
+    }
+}
+
+/// An effect present in the truth and zeroed in the calibration handed to
+/// the user: what the application's diagnosis must find.
+///
+/// ```
+/// let h: nav_sensors::sim::HiddenEffect = toml::from_str("channel = \"Y1\"\nterm = \"gg_IS\"").unwrap();
+/// assert_eq!(h.term, nav_sensors::dtg::DtgTerm::GgIS);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HiddenEffect {
+    /// The channel.
+    pub channel: Channel,
+    /// The term, by stable id.
+    pub term: DtgTerm,
+}
+
+/// A complete vibration test.
+///
+/// `Scenario::default()` is the paper's test ([`Scenario::paper_z_random`]).
+///
+/// ```
+/// use nav_sensors::sim::Scenario;
+/// let s = Scenario::default();
+/// let text = s.to_toml().unwrap();
+/// assert_eq!(Scenario::from_toml(&text, "inline").unwrap(), s);
+/// assert_eq!(s.output_samples(), 5000);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Short name.
+    pub name: String,
+    /// What the test is for.
+    #[serde(default)]
+    pub description: String,
+    /// Seed of every random draw; the same seed gives byte-identical files.
+    pub seed: u64,
+    /// Test length, s.
+    pub duration_s: f64,
+    /// Rate at which physics and error models run, Hz (≥ 4 kHz so the
+    /// 2000-Hz band is represented).
+    pub internal_rate_hz: f64,
+    /// Rate of the instruments' outputs, Hz (a divisor of the internal rate).
+    pub output_rate_hz: f64,
+    /// Latitude and orientation.
+    pub site: Site,
+    /// The shaker.
+    pub vibration: VibrationConfig,
+    /// Temperature.
+    pub thermal: Thermal,
+    /// The gyros.
+    pub gyros: GyroSet,
+    /// The accelerometers.
+    pub accels: AccelSet,
+    /// Errors of the ground calibration handed to the user.
+    #[serde(default)]
+    pub calibration_error: CalibrationError,
+    /// Effects present in the truth but zeroed in the calibration.
+    #[serde(default)]
+    pub hidden: Vec<HiddenEffect>,
+}
+
+/// What is wrong with a scenario.
+///
+/// ```
+/// use nav_sensors::sim::{Scenario, ScenarioError};
+/// let err = Scenario::from_toml("seed = 1", "s.toml").unwrap_err();
+/// assert!(matches!(err, ScenarioError::Parse { .. }));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The TOML does not describe a scenario (the message has line and column).
+    #[error("{file}: {message}")]
+    Parse {
+        /// The file.
+        file: String,
+        /// The parser's message, with the location.
+        message: String,
+    },
+    /// Serialising failed.
+    #[error("cannot write scenario as TOML: {0}")]
+    Serialize(String),
+    /// A rate, duration or parameter out of range.
+    #[error("{field} = {value}: {requirement}")]
+    OutOfRange {
+        /// The field's path.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
+    /// The cluster's x and z directions are not perpendicular.
+    #[error("orientation: x {x:?} and z {z:?} are not perpendicular")]
+    Orientation {
+        /// x direction.
+        x: super::site::Direction,
+        /// z direction.
+        z: super::site::Direction,
+    },
+    /// The vibration description is invalid.
+    #[error("vibration: {0}")]
+    Vibration(#[from] VibrationError),
+    /// A hidden effect whose truth coefficient is zero (nothing to find).
+    #[error("hidden effect {channel}/{term}: its truth coefficient is zero")]
+    HiddenIsZero {
+        /// Channel.
+        channel: Channel,
+        /// Term.
+        term: DtgTerm,
+    },
+}
+
+impl Default for Scenario {
+    fn default() -> Self {
+        Self::paper_z_random()
+    }
+}
+
+impl Scenario {
+    /// Parses a scenario from TOML text; `file` labels errors.
+    ///
+    /// ```
+    /// let text = nav_sensors::sim::Scenario::triaxial_clean().to_toml().unwrap();
+    /// let s = nav_sensors::sim::Scenario::from_toml(&text, "inline").unwrap();
+    /// assert_eq!(s.name, "triaxial_clean");
+    /// ```
+    pub fn from_toml(text: &str, file: &str) -> Result<Self, ScenarioError> {
+        toml::from_str(text).map_err(|e| ScenarioError::Parse {
+            file: file.to_string(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Reads a scenario TOML file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-scenario-load.toml");
+    /// nav_sensors::sim::Scenario::default().save(&path).unwrap();
+    /// assert_eq!(nav_sensors::sim::Scenario::load(&path).unwrap(), nav_sensors::sim::Scenario::default());
+    /// ```
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// The scenario as TOML text.
+    ///
+    /// ```
+    /// let text = nav_sensors::sim::Scenario::default().to_toml().unwrap();
+    /// assert!(text.contains("[gyros.channels.Z1]"));
+    /// ```
+    pub fn to_toml(&self) -> Result<String, ScenarioError> {
+        toml::to_string(self).map_err(|e| ScenarioError::Serialize(e.to_string()))
+    }
+
+    /// Writes the scenario as a TOML file.
+    ///
+    /// ```
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-scenario-save.toml");
+    /// nav_sensors::sim::Scenario::default().save(&path).unwrap();
+    /// assert!(std::fs::read_to_string(&path).unwrap().starts_with("name = "));
+    /// ```
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), ScenarioError> {
+        let path = path.as_ref();
+        std::fs::write(path, self.to_toml()?).map_err(|source| ScenarioError::Io {
+            path: path.display().to_string(),
+            source,
+        })
+    }
+
+    /// Number of output samples, `round(duration·output rate)`.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario { duration_s: 2.0, ..Default::default() };
+    /// assert_eq!(s.output_samples(), 100);
+    /// ```
+    pub fn output_samples(&self) -> usize {
+        (self.duration_s * self.output_rate_hz).round() as usize
+    }
+
+    /// Internal samples per output interval.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::sim::Scenario::default().oversampling(), 80);
+    /// ```
+    pub fn oversampling(&self) -> usize {
+        (self.internal_rate_hz / self.output_rate_hz).round() as usize
+    }
+
+    /// The true coefficients of a channel (zero when not listed).
+    ///
+    /// ```
+    /// use nav_sensors::geometry::Channel;
+    /// let mut s = nav_sensors::sim::Scenario::default();
+    /// s.gyros.channels.remove(&Channel::X);
+    /// assert_eq!(s.gyro(Channel::X).bias_deg_h, 0.0);
+    /// ```
+    pub fn gyro(&self, channel: Channel) -> DtgCoefficients {
+        self.gyros
+            .channels
+            .get(&channel)
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// The true coefficients of an accelerometer (zero when not listed).
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario::default();
+    /// assert_eq!(s.accel(nav_sensors::geometry::Axis::Z).bias_ug, 140.0);
+    /// ```
+    pub fn accel(&self, axis: Axis) -> AccelCoefficients {
+        self.accels.axes.get(&axis).copied().unwrap_or_default()
+    }
+
+    /// Checks every range the simulator relies on.
+    ///
+    /// ```
+    /// let s = nav_sensors::sim::Scenario { internal_rate_hz: 1000.0, ..Default::default() };
+    /// assert!(s.validate().is_err());
+    /// assert!(nav_sensors::sim::Scenario::default().validate().is_ok());
+    /// ```
+    pub fn validate(&self) -> Result<(), ScenarioError> {
+        let range = |field, value: f64, ok: bool, requirement| {
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(ScenarioError::OutOfRange {
+                    field,
+                    value,
+                    requirement,
+                })
+            }
+        };
+        range(
+            "output_rate_hz",
+            self.output_rate_hz,
+            self.output_rate_hz > 0.0,
+            "must be positive",
+        )?;
+        range(
+            "internal_rate_hz",
+            self.internal_rate_hz,
+            self.internal_rate_hz >= 4000.0,
+            "must be at least 4000 Hz so the 2000-Hz band is represented",
+        )?;
+        let ratio = self.internal_rate_hz / self.output_rate_hz;
+        range(
+            "internal_rate_hz",
+            self.internal_rate_hz,
+            (ratio - ratio.round()).abs() < 1e-9,
+            "must be a whole multiple of output_rate_hz",
+        )?;
+        range(
+            "duration_s",
+            self.duration_s,
+            self.output_samples() >= 2,
+            "must give at least two output samples",
+        )?;
+        range(
+            "gyros.spin_hz",
+            self.gyros.spin_hz,
+            self.gyros.spin_hz > 0.0 && 2.0 * self.gyros.spin_hz < 0.5 * self.internal_rate_hz,
+            "must be positive with 2N below the internal Nyquist frequency",
+        )?;
+        range(
+            "gyros.rect_2n_q",
+            self.gyros.rect_2n_q,
+            self.gyros.rect_2n_q > 0.0,
+            "must be positive",
+        )?;
+        if let Some(q) = self.gyros.pulse_arcsec {
+            range("gyros.pulse_arcsec", q, q > 0.0, "must be positive")?;
+        }
+        let s = &self.accels.servo;
+        range(
+            "accels.servo.natural_hz",
+            s.natural_hz,
+            s.natural_hz > 0.0 && s.natural_hz < 0.5 * self.internal_rate_hz,
+            "must be positive and below the internal Nyquist frequency",
+        )?;
+        range(
+            "accels.servo.damping",
+            s.damping,
+            s.damping > 0.0,
+            "must be positive",
+        )?;
+        range(
+            "thermal.time_constant_s",
+            self.thermal.time_constant_s,
+            self.thermal.time_constant_s >= 0.0,
+            "must not be negative",
+        )?;
+        for (field, v) in [
+            (
+                "gyros.noise.arw_deg_per_rt_h",
+                self.gyros.noise.arw_deg_per_rt_h,
+            ),
+            (
+                "gyros.noise.bias_instability_deg_h",
+                self.gyros.noise.bias_instability_deg_h,
+            ),
+            (
+                "accels.noise.density_ug_per_rt_hz",
+                self.accels.noise.density_ug_per_rt_hz,
+            ),
+            ("thermal.sensor_noise_c", self.thermal.sensor_noise_c),
+        ] {
+            range(field, v, v >= 0.0, "must not be negative")?;
+        }
+        if self.gyros.noise.bias_instability_deg_h > 0.0 {
+            range(
+                "gyros.noise.bias_instability_tau_s",
+                self.gyros.noise.bias_instability_tau_s,
+                self.gyros.noise.bias_instability_tau_s > 0.0,
+                "must be positive when there is bias instability",
+            )?;
+        }
+        if self.site.orientation.axes_enu().is_none() {
+            return Err(ScenarioError::Orientation {
+                x: self.site.orientation.x,
+                z: self.site.orientation.z,
+            });
+        }
+        self.vibration.validate(self.internal_rate_hz)?;
+        for h in &self.hidden {
+            if self.gyro(h.channel).get(h.term) == 0.0 {
+                return Err(ScenarioError::HiddenIsZero {
+                    channel: h.channel,
+                    term: h.term,
+                });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,593 @@
+//! Fitting: inputs → design (standardisation, fixed columns) → centres and widths →
+//! output weights.
+
+use faer::{Mat, MatRef};
+
+use super::errors::RbfError;
+use super::fitted::{RbfModel, Scaling, Selection};
+use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
+use super::{Progress, Stage};
+use crate::check::first_non_finite;
+use crate::design::{Widths, kernel_matrix};
+use crate::estimate::{InterpolationOptions, LstsqOptions, interpolate, lstsq};
+use crate::select::kmeans::kmeans_centres;
+use crate::select::ols::{OlsOptions, OlsPath, OlsProgress, StopReason, forward_select_owned};
+use crate::select::random::random_subset;
+
+type Observer<'a> = Option<&'a (dyn Fn(Progress) + Sync)>;
+
+fn report(progress: Observer<'_>, stage: Stage, done: usize, total: usize) {
+    if let Some(f) = progress {
+        f(Progress { stage, done, total });
+    }
+}
+
+/// Standardised inputs and the fixed columns [1 | x | z] of a fit.
+pub(crate) struct Design {
+    pub(crate) scaling: Option<Scaling>,
+    pub(crate) xs: Mat<f64>,
+    pub(crate) forced: Mat<f64>,
+    pub(crate) bias: bool,
+    pub(crate) tail: bool,
+    pub(crate) n_linear: usize,
+}
+
+impl Design {
+    fn new(params: &RbfValidParams, x: MatRef<'_, f64>, z: MatRef<'_, f64>) -> Self {
+        let (n, d) = (x.nrows(), x.ncols());
+        let scaling = params.standardise.then(|| Scaling::from_data(x));
+        let xs = match &scaling {
+            Some(s) => s.apply(x),
+            None => x.to_owned(),
+        };
+        // All-points interpolation with a conditionally definite kernel needs the tail of
+        // its order for a uniquely solvable system.
+        let all = matches!(params.centres, CentreSelection::AllPoints);
+        let order = params.kernel.polynomial_order();
+        let bias = params.bias || (all && order >= 1);
+        let tail = params.linear_tail || (all && order >= 2);
+        let p = usize::from(bias) + if tail { d } else { 0 } + z.ncols();
+        let mut forced = Mat::<f64>::zeros(n, p);
+        let mut c = 0;
+        if bias {
+            forced.as_mut().col_mut(0).fill(1.0);
+            c = 1;
+        }
+        if tail {
+            forced.as_mut().subcols_mut(c, d).copy_from(xs.as_ref());
+            c += d;
+        }
+        forced.as_mut().subcols_mut(c, z.ncols()).copy_from(z);
+        Self {
+            scaling,
+            xs,
+            forced,
+            bias,
+            tail,
+            n_linear: z.ncols(),
+        }
+    }
+
+    fn standardised(&self, points: MatRef<'_, f64>) -> Mat<f64> {
+        match &self.scaling {
+            Some(s) => s.apply(points),
+            None => points.to_owned(),
+        }
+    }
+
+    fn n(&self) -> usize {
+        self.xs.nrows()
+    }
+}
+
+#[track_caller]
+fn check_inputs(
+    x: MatRef<'_, f64>,
+    z: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+) -> Result<(), RbfError> {
+    assert_eq!(
+        x.nrows(),
+        y.nrows(),
+        "x has {} rows but y has {}",
+        x.nrows(),
+        y.nrows()
+    );
+    assert_eq!(
+        z.nrows(),
+        x.nrows(),
+        "z has {} rows but x has {}",
+        z.nrows(),
+        x.nrows()
+    );
+    assert!(y.ncols() >= 1, "y needs at least one column");
+    for (matrix, m) in [("x", x), ("z", z), ("y", y)] {
+        if let Some((row, col)) = first_non_finite(m) {
+            return Err(RbfError::NonFinite { matrix, row, col });
+        }
+    }
+    if x.nrows() == 0 {
+        return Err(RbfError::TooFewSamples {
+            samples: 0,
+            needed: 1,
+        });
+    }
+    Ok(())
+}
+
+fn check_dim(what: &'static str, points: MatRef<'_, f64>, d: usize) -> Result<(), RbfError> {
+    if points.ncols() != d {
+        return Err(RbfError::Dimension {
+            what,
+            expected: d,
+            found: points.ncols(),
+        });
+    }
+    Ok(())
+}
+
+fn rows(m: MatRef<'_, f64>, idx: &[usize]) -> Mat<f64> {
+    Mat::from_fn(idx.len(), m.ncols(), |i, k| m[(idx[i], k)])
+}
+
+/// Solves the output weights on [fixed columns | kernel columns] by faer QR and
+/// assembles the model.
+#[allow(clippy::too_many_arguments)] // internal: every argument is a distinct piece of the model
+fn solve_model(
+    params: &RbfValidParams,
+    design: &Design,
+    centres: Mat<f64>,
+    widths: Widths,
+    phi: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+    ridge: f64,
+    selection: Option<Selection>,
+) -> Result<RbfModel, RbfError> {
+    let (n, p, k) = (design.n(), design.forced.ncols(), phi.ncols());
+    let mut a = Mat::<f64>::zeros(n, p + k);
+    a.as_mut()
+        .subcols_mut(0, p)
+        .copy_from(design.forced.as_ref());
+    a.as_mut().subcols_mut(p, k).copy_from(phi);
+    let opts = LstsqOptions {
+        ridge,
+        unpenalised: p,
+        rank_tol: None,
+        max_condition: params.max_condition,
+        par: params.par,
+    };
+    let sol = lstsq(a.as_ref(), y, &opts)?;
+    let coefficients = sol.coefficients;
+    Ok(RbfModel::assemble(
+        params,
+        design,
+        centres,
+        widths,
+        coefficients.as_ref().subrows(p, k),
+        coefficients.as_ref().subrows(0, p),
+        sol.condition,
+        selection,
+    ))
+}
+
+/// OLS centre selection, kept so that every model size (and ridge) can be built from
+/// one forward-selection run.
+pub(crate) struct OlsStage {
+    design: Design,
+    /// Candidate centres (standardised coordinates).
+    candidates: Mat<f64>,
+    widths: Widths,
+    /// What a candidate's index means to the user (training row or given row).
+    labels: Vec<usize>,
+    path: OlsPath,
+    /// Kernel columns of the picks, in pick order (n × K).
+    phi: Mat<f64>,
+}
+
+impl OlsStage {
+    pub(crate) fn run(
+        params: &RbfValidParams,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+        max_terms: usize,
+        tol: f64,
+        progress: Observer<'_>,
+    ) -> Result<Self, RbfError> {
+        check_inputs(x, z, y)?;
+        let CentreSelection::Ols {
+            regularisation,
+            candidates,
+            ..
+        } = &params.centres
+        else {
+            unreachable!("OlsStage::run needs OLS centre selection")
+        };
+        let design = Design::new(params, x, z);
+        let (n, d, p) = (design.n(), x.ncols(), design.forced.ncols());
+        if n < p + 1 {
+            return Err(RbfError::TooFewSamples {
+                samples: n,
+                needed: p + 1,
+            });
+        }
+        let (cands, labels) = match candidates {
+            Candidates::TrainingVectors => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
+            Candidates::Subsample { size } => {
+                let idx = random_subset(n, (*size).min(n), params.seed);
+                (rows(design.xs.as_ref(), &idx), idx)
+            }
+            Candidates::Given(c) => {
+                check_dim("candidate centres", c.as_ref(), d)?;
+                (design.standardised(c.as_ref()), (0..c.nrows()).collect())
+            }
+        };
+        report(progress, Stage::Widths, 0, 1);
+        let widths = params.width.widths(cands.as_ref(), params.par)?;
+        report(progress, Stage::KernelMatrix, 0, 1);
+        let phi_all = kernel_matrix(
+            design.xs.as_ref(),
+            cands.as_ref(),
+            params.kernel,
+            &widths,
+            params.par,
+        );
+        let forward = |pr: OlsProgress| report(progress, Stage::Selection, pr.picks, pr.max_terms);
+        let mut opts = OlsOptions::new(max_terms)
+            .tol(tol)
+            .regularisation(*regularisation)
+            .par(params.par);
+        if progress.is_some() {
+            opts = opts.progress(&forward);
+        }
+        let path = forward_select_owned(phi_all, design.forced.as_ref(), y, &opts)?;
+        let sel = path.selected();
+        let phi = kernel_matrix(
+            design.xs.as_ref(),
+            rows(cands.as_ref(), &sel).as_ref(),
+            params.kernel,
+            &widths.select(&sel),
+            params.par,
+        );
+        Ok(Self {
+            design,
+            candidates: cands,
+            widths,
+            labels,
+            path,
+            phi,
+        })
+    }
+
+    pub(crate) fn path(&self) -> &OlsPath {
+        &self.path
+    }
+
+    /// The model with the forced columns and the first `k` picks, weights re-solved by
+    /// QR with ridge `ridge`.
+    pub(crate) fn model(
+        &self,
+        params: &RbfValidParams,
+        k: usize,
+        ridge: f64,
+        y: MatRef<'_, f64>,
+    ) -> Result<RbfModel, RbfError> {
+        let sel: Vec<usize> = self.path.selected()[..k].to_vec();
+        let centres = rows(self.candidates.as_ref(), &sel);
+        let selection = Selection {
+            n_candidates: self.candidates.nrows(),
+            forced_errs: self.path.forced_errs().to_vec(),
+            picks: self.path.picks()[..k]
+                .iter()
+                .map(|p| crate::Pick {
+                    index: self.labels[p.index],
+                    ..*p
+                })
+                .collect(),
+            stop: if k == self.path.len() {
+                self.path.stop_reason()
+            } else {
+                StopReason::MaxTerms
+            },
+        };
+        solve_model(
+            params,
+            &self.design,
+            centres,
+            self.widths.select(&sel),
+            self.phi.as_ref().subcols(0, k),
+            y,
+            ridge,
+            Some(selection),
+        )
+    }
+}
+
+/// Centres and widths for k-means, random and given centres.
+fn fixed_centres(
+    params: &RbfValidParams,
+    design: &Design,
+    progress: Observer<'_>,
+) -> Result<(Mat<f64>, Widths), RbfError> {
+    let (n, d) = (design.n(), design.xs.ncols());
+    let need = |k: usize| {
+        if n < k {
+            Err(RbfError::FewerRowsThanCentres {
+                rows: n,
+                centres: k,
+            })
+        } else {
+            Ok(())
+        }
+    };
+    match &params.centres {
+        CentreSelection::KMeans(s) => {
+            need(s.n_centres)?;
+            report(progress, Stage::Clustering, 0, 1);
+            let km = kmeans_centres(design.xs.as_ref(), s, params.seed)?;
+            report(progress, Stage::Widths, 0, 1);
+            let w = params.width.cluster_widths(
+                design.xs.as_ref(),
+                km.centres.as_ref(),
+                &km.memberships,
+                params.par,
+            )?;
+            Ok((km.centres, w))
+        }
+        CentreSelection::Random { n_centres } => {
+            need(*n_centres)?;
+            let idx = random_subset(n, *n_centres, params.seed);
+            let c = rows(design.xs.as_ref(), &idx);
+            report(progress, Stage::Widths, 0, 1);
+            let w = params.width.widths(c.as_ref(), params.par)?;
+            Ok((c, w))
+        }
+        CentreSelection::Given(c) => {
+            check_dim("centres", c.as_ref(), d)?;
+            need(c.nrows())?;
+            let c = design.standardised(c.as_ref());
+            report(progress, Stage::Widths, 0, 1);
+            let w = params.width.widths(c.as_ref(), params.par)?;
+            Ok((c, w))
+        }
+        CentreSelection::Ols { .. } | CentreSelection::AllPoints => {
+            unreachable!("not a fixed-centre strategy")
+        }
+    }
+}
+
+impl RbfValidParams {
+    /// Fits f(x) = λ0 + Σ λᵢ φ(‖x − cᵢ‖) (plus the optional tail) to targets `y`
+    /// (n × q, several outputs at once); rows of `x` (n × d) are samples.
+    ///
+    /// This inherent method takes faer views; linfa's `Fit` (on datasets) is available
+    /// through `RbfParams::fit` or `linfa::traits::Fit::fit(&valid, &dataset)`.
+    ///
+    /// # Errors
+    /// [`RbfError`]: non-finite inputs, too few samples, fewer rows than centres,
+    /// rank deficiency or ill-conditioning of the weight solve (never silently wrong),
+    /// width, k-means or OLS failures.
+    ///
+    /// # Panics
+    /// If `x` and `y` have different numbers of rows or `y` has no column.
+    ///
+    /// ```
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// use rbf::{CentreSelection, RbfParams, WidthRule};
+    /// let x = Mat::from_fn(100, 2, |i, j| ((i * (j + 3)) as f64 * 0.13).sin());
+    /// let y = Mat::from_fn(100, 1, |i, _| x[(i, 0)] * x[(i, 1)]);
+    /// let p = RbfParams::new().centres(CentreSelection::kmeans(12)).width(WidthRule::Fixed(0.8))
+    ///     .ridge(1e-10).parallelism(Par::Seq).check().unwrap();
+    /// let m = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// assert_eq!((m.n_centres(), m.dim(), m.n_outputs()), (12, 2, 1));
+    /// ```
+    #[track_caller]
+    pub fn fit(&self, x: MatRef<'_, f64>, y: MatRef<'_, f64>) -> Result<RbfModel, RbfError> {
+        let z = Mat::<f64>::zeros(x.nrows(), 0);
+        self.fit_impl(x, z.as_ref(), y, None)
+    }
+
+    /// Fits the semi-parametric network f(x, z) = λ0 + zᵀθ + Σ λᵢ φ(‖x − cᵢ‖): the
+    /// exogenous regressors `z` (n × r) enter linearly — as forced columns of the OLS
+    /// selection, as unpenalised columns of the QR weight solve, and in the polynomial
+    /// block of the all-points system. θ is [`RbfModel::linear_coefficients`].
+    ///
+    /// # Errors
+    /// As [`RbfValidParams::fit`]; also `Ols(ForcedCollinear)` / `Solve(RankDeficient)`
+    /// when columns of `z` are dependent.
+    ///
+    /// # Panics
+    /// As [`RbfValidParams::fit`], or if `z` has a different number of rows.
+    ///
+    /// ```
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// use rbf::{CentreSelection, RbfParams, WidthRule};
+    /// let n = 300;
+    /// let x = Mat::from_fn(n, 1, |i, _| (i as f64 * 0.05).sin());
+    /// let z = Mat::from_fn(n, 1, |i, _| ((i * 7 % 13) as f64) - 6.0);
+    /// let y = Mat::from_fn(n, 1, |i, _| (3.0 * x[(i, 0)]).cos() + 0.25 * z[(i, 0)]);
+    /// let p = RbfParams::new().centres(CentreSelection::ols(20)).width(WidthRule::Fixed(0.5))
+    ///     .parallelism(Par::Seq).check().unwrap();
+    /// let m = p.fit_with_linear(x.as_ref(), z.as_ref(), y.as_ref()).unwrap();
+    /// assert!((m.linear_coefficients()[(0, 0)] - 0.25).abs() < 1e-4);
+    /// let yhat = m.predict_with_linear(x.as_ref(), z.as_ref());
+    /// assert!((&yhat - &y).norm_max() < 1e-3);
+    /// ```
+    #[track_caller]
+    pub fn fit_with_linear(
+        &self,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+    ) -> Result<RbfModel, RbfError> {
+        self.fit_impl(x, z, y, None)
+    }
+
+    /// [`RbfValidParams::fit_with_linear`] reporting [`Progress`] to `observer` (stages,
+    /// and each OLS pick); `z` may have zero columns.
+    ///
+    /// # Errors
+    /// As [`RbfValidParams::fit_with_linear`].
+    ///
+    /// ```
+    /// use std::sync::Mutex;
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// let x = Mat::from_fn(50, 1, |i, _| i as f64 / 10.0);
+    /// let y = Mat::from_fn(50, 1, |i, _| x[(i, 0)].sin());
+    /// let p = rbf::RbfParams::new().centres(rbf::CentreSelection::ols(5)).parallelism(Par::Seq).check().unwrap();
+    /// let seen = Mutex::new(Vec::new());
+    /// let obs = |pr: rbf::Progress| seen.lock().unwrap().push(pr);
+    /// p.fit_with_progress(x.as_ref(), Mat::<f64>::zeros(50, 0).as_ref(), y.as_ref(), &obs).unwrap();
+    /// let seen = seen.into_inner().unwrap();
+    /// assert_eq!(seen.iter().filter(|p| p.stage == rbf::Stage::Selection).count(), 5);
+    /// ```
+    #[track_caller]
+    pub fn fit_with_progress(
+        &self,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+        observer: &(dyn Fn(Progress) + Sync),
+    ) -> Result<RbfModel, RbfError> {
+        self.fit_impl(x, z, y, Some(observer))
+    }
+
+    #[track_caller]
+    fn fit_impl(
+        &self,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+        progress: Observer<'_>,
+    ) -> Result<RbfModel, RbfError> {
+        match &self.centres {
+            CentreSelection::Ols {
+                max_centres, tol, ..
+            } => {
+                let stage = OlsStage::run(self, x, z, y, *max_centres, *tol, progress)?;
+                report(progress, Stage::Weights, 0, 1);
+                stage.model(self, stage.path.len(), self.ridge, y)
+            }
+            CentreSelection::AllPoints => {
+                check_inputs(x, z, y)?;
+                let design = Design::new(self, x, z);
+                fit_all_points(self, design, y, progress)
+            }
+            _ => {
+                check_inputs(x, z, y)?;
+                let design = Design::new(self, x, z);
+                let (centres, widths) = fixed_centres(self, &design, progress)?;
+                report(progress, Stage::KernelMatrix, 0, 1);
+                let phi = kernel_matrix(
+                    design.xs.as_ref(),
+                    centres.as_ref(),
+                    self.kernel,
+                    &widths,
+                    self.par,
+                );
+                report(progress, Stage::Weights, 0, 1);
+                solve_model(
+                    self,
+                    &design,
+                    centres,
+                    widths,
+                    phi.as_ref(),
+                    y,
+                    self.ridge,
+                    None,
+                )
+            }
+        }
+    }
+
+    /// Fits with centres computed once and reused for several ridges (k-means, random,
+    /// given): returns one model per ridge value.
+    pub(crate) fn fit_ridges(
+        &self,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+        ridges: &[f64],
+    ) -> Result<Vec<Result<RbfModel, RbfError>>, RbfError> {
+        check_inputs(x, z, y)?;
+        let design = Design::new(self, x, z);
+        match &self.centres {
+            CentreSelection::AllPoints => Ok(ridges
+                .iter()
+                .map(|&r| fit_all_points(&self.with_ridge(r), Design::new(self, x, z), y, None))
+                .collect()),
+            CentreSelection::Ols { .. } => unreachable!("OLS grids go through OlsStage"),
+            _ => {
+                let (centres, widths) = fixed_centres(self, &design, None)?;
+                let phi = kernel_matrix(
+                    design.xs.as_ref(),
+                    centres.as_ref(),
+                    self.kernel,
+                    &widths,
+                    self.par,
+                );
+                Ok(ridges
+                    .iter()
+                    .map(|&r| {
+                        solve_model(
+                            self,
+                            &design,
+                            centres.clone(),
+                            widths.clone(),
+                            phi.as_ref(),
+                            y,
+                            r,
+                            None,
+                        )
+                    })
+                    .collect())
+            }
+        }
+    }
+}
+
+fn fit_all_points(
+    params: &RbfValidParams,
+    design: Design,
+    y: MatRef<'_, f64>,
+    progress: Observer<'_>,
+) -> Result<RbfModel, RbfError> {
+    let (n, p) = (design.n(), design.forced.ncols());
+    if n < p + 1 {
+        return Err(RbfError::TooFewSamples {
+            samples: n,
+            needed: p + 1,
+        });
+    }
+    report(progress, Stage::Widths, 0, 1);
+    let widths = params.width.widths(design.xs.as_ref(), params.par)?;
+    report(progress, Stage::KernelMatrix, 0, 1);
+    let phi = kernel_matrix(
+        design.xs.as_ref(),
+        design.xs.as_ref(),
+        params.kernel,
+        &widths,
+        params.par,
+    );
+    report(progress, Stage::Weights, 0, 1);
+    let opts = InterpolationOptions {
+        smoothing: params.ridge,
+        sign: params.kernel.definiteness_sign(),
+        max_condition: params.max_condition,
+        par: params.par,
+    };
+    let sol = interpolate(phi, design.forced.as_ref(), y, &opts)?;
+    Ok(RbfModel::assemble(
+        params,
+        &design,
+        design.xs.clone(),
+        widths,
+        sol.weights.as_ref(),
+        sol.tail.as_ref(),
+        sol.condition,
+        None,
+    ))
+}

@@ -1,0 +1,187 @@
+//! Errors of the RBF model: invalid hyperparameters, bad data, numerical failure.
+
+use linfa_clustering::KMeansError;
+
+use crate::cv::SplitError;
+use crate::estimate::SolveError;
+use crate::select::ols::OlsError;
+use crate::width::WidthError;
+
+/// An invalid hyperparameter, one variant per validation rule.
+///
+/// ```
+/// use linfa::ParamGuard;
+/// let e = rbf::RbfParams::new().ridge(-1.0).check().unwrap_err();
+/// assert_eq!(e, rbf::RbfParamsError::Ridge { value: -1.0 });
+/// ```
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RbfParamsError {
+    /// A fixed width must be finite and positive.
+    #[error("fixed width β must be finite and > 0, got {value}")]
+    Width {
+        /// Value given.
+        value: f64,
+    },
+    /// A width-rule scale must be finite and positive.
+    #[error("width scale must be finite and > 0, got {value}")]
+    WidthScale {
+        /// Value given.
+        value: f64,
+    },
+    /// The cluster-spread rule needs k-means centres.
+    #[error("the cluster-spread width rule needs k-means centre selection")]
+    ClusterSpreadNeedsKMeans,
+    /// The ridge must be finite and non-negative.
+    #[error("ridge λ must be finite and ≥ 0, got {value}")]
+    Ridge {
+        /// Value given.
+        value: f64,
+    },
+    /// The condition limit must be ≥ 1 (∞ disables the check).
+    #[error("max_condition must be ≥ 1, got {value}")]
+    MaxCondition {
+        /// Value given.
+        value: f64,
+    },
+    /// OLS must be allowed at least one centre.
+    #[error("OLS max_centres must be ≥ 1")]
+    OlsMaxCentres,
+    /// ρ must lie in [0, 1).
+    #[error("OLS tolerance ρ must lie in [0, 1), got {value}")]
+    OlsTolerance {
+        /// Value given.
+        value: f64,
+    },
+    /// The OLS regularisation must be finite and non-negative.
+    #[error("OLS regularisation must be finite and ≥ 0, got {value}")]
+    OlsRegularisation {
+        /// Value given.
+        value: f64,
+    },
+    /// A candidate subsample needs at least one candidate.
+    #[error("the candidate subsample size must be ≥ 1")]
+    SubsampleSize,
+    /// Given candidates must not be empty.
+    #[error("the given candidate matrix has no rows")]
+    EmptyCandidates,
+    /// Given candidates must be finite.
+    #[error("non-finite given candidate at row {row}, column {col}")]
+    NonFiniteCandidates {
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+    },
+    /// k-means needs at least one centre.
+    #[error("k-means n_centres must be ≥ 1")]
+    KMeansCentres,
+    /// k-means needs at least one run.
+    #[error("k-means n_runs must be ≥ 1")]
+    KMeansRuns,
+    /// k-means needs at least one iteration.
+    #[error("k-means max_iterations must be ≥ 1")]
+    KMeansIterations,
+    /// The k-means tolerance must be finite and positive.
+    #[error("k-means tolerance must be finite and > 0, got {value}")]
+    KMeansTolerance {
+        /// Value given.
+        value: f64,
+    },
+    /// Random selection needs at least one centre.
+    #[error("random n_centres must be ≥ 1")]
+    RandomCentres,
+    /// Given centres must not be empty.
+    #[error("the given centre matrix has no rows")]
+    EmptyCentres,
+    /// Given centres must be finite.
+    #[error("non-finite given centre at row {row}, column {col}")]
+    NonFiniteCentres {
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+    },
+}
+
+/// Why a fit (or cross-validation) failed.
+///
+/// ```
+/// use faer::mat;
+/// let p = linfa::ParamGuard::check(rbf::RbfParams::new()).unwrap();
+/// let x = mat![[f64::NAN], [1.0]];
+/// let y = mat![[0.0], [1.0]];
+/// let e = p.fit(x.as_ref(), y.as_ref()).unwrap_err();
+/// assert!(matches!(e, rbf::RbfError::NonFinite { matrix: "x", row: 0, col: 0 }));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum RbfError {
+    /// Invalid hyperparameters.
+    #[error("invalid hyperparameters: {0}")]
+    InvalidParams(#[from] RbfParamsError),
+    /// A NaN or infinite input.
+    #[error("non-finite value in {matrix} at row {row}, column {col}")]
+    NonFinite {
+        /// `x`, `z` or `y`.
+        matrix: &'static str,
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+    },
+    /// Too few samples for the model's fixed columns.
+    #[error("too few samples: {samples}, need at least {needed}")]
+    TooFewSamples {
+        /// Samples given.
+        samples: usize,
+        /// Samples needed.
+        needed: usize,
+    },
+    /// Fewer training rows than requested centres.
+    #[error("fewer rows ({rows}) than centres ({centres})")]
+    FewerRowsThanCentres {
+        /// Training rows.
+        rows: usize,
+        /// Centres requested.
+        centres: usize,
+    },
+    /// Given centres or candidates with the wrong number of columns.
+    #[error("{what} have {found} columns but the inputs have {expected}")]
+    Dimension {
+        /// What was given.
+        what: &'static str,
+        /// Input dimension.
+        expected: usize,
+        /// Columns found.
+        found: usize,
+    },
+    /// Width computation failed.
+    #[error(transparent)]
+    Width(#[from] WidthError),
+    /// Forward selection failed.
+    #[error(transparent)]
+    Ols(#[from] OlsError),
+    /// A linear solve failed (rank deficiency, ill-conditioning, ...).
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// k-means failed.
+    #[error("k-means: {0}")]
+    KMeans(#[from] KMeansError),
+    /// A cross-validation split could not be made.
+    #[error(transparent)]
+    Split(#[from] SplitError),
+    /// A grid that does not fit the strategy.
+    #[error("grid search: {reason}")]
+    GridMismatch {
+        /// What does not fit.
+        reason: &'static str,
+    },
+    /// A fit shared by several grid points failed (the message of the original error).
+    #[error("fold fit failed: {reason}")]
+    FoldFailed {
+        /// The original error's message.
+        reason: String,
+    },
+    /// An error raised by linfa itself.
+    #[error(transparent)]
+    Linfa(#[from] linfa::error::Error),
+}

@@ -1,0 +1,545 @@
+//! The fitted network and its predictions.
+
+use faer::linalg::matmul::matmul;
+use faer::prelude::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
+use serde::{Deserialize, Serialize};
+
+use super::algorithm::Design;
+use super::hyperparams::{RbfValidParams, Strategy};
+use super::matser;
+use crate::design::{Widths, kernel_matrix_into};
+use crate::kernel::Kernel;
+use crate::select::ols::{Pick, StopReason};
+
+/// Per-input standardisation x ↦ (x − mean)/scale (population standard deviation;
+/// constant inputs keep scale 1).
+///
+/// ```
+/// let s = rbf::Scaling::from_data(faer::mat![[1.0], [3.0]].as_ref());
+/// assert_eq!((s.mean[0], s.scale[0]), (2.0, 1.0));
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Scaling {
+    /// Mean of each input.
+    pub mean: Vec<f64>,
+    /// Standard deviation of each input (1 where it is 0).
+    pub scale: Vec<f64>,
+}
+
+impl Scaling {
+    /// Mean and population standard deviation of every column of `x`.
+    ///
+    /// ```
+    /// let s = rbf::Scaling::from_data(faer::mat![[5.0, 0.0], [5.0, 2.0]].as_ref());
+    /// assert_eq!(s.scale, vec![1.0, 1.0]);
+    /// ```
+    pub fn from_data(x: MatRef<'_, f64>) -> Self {
+        let (n, d) = (x.nrows(), x.ncols());
+        let mut mean = vec![0.0; d];
+        let mut scale = vec![1.0; d];
+        for k in 0..d {
+            let m = (0..n).map(|i| x[(i, k)]).sum::<f64>() / n as f64;
+            let v = (0..n).map(|i| (x[(i, k)] - m).powi(2)).sum::<f64>() / n as f64;
+            mean[k] = m;
+            if v.sqrt() > 0.0 {
+                scale[k] = v.sqrt();
+            }
+        }
+        Self { mean, scale }
+    }
+
+    /// The standardised copy of `x`.
+    ///
+    /// # Panics
+    /// If `x` does not have one column per input.
+    ///
+    /// ```
+    /// let s = rbf::Scaling { mean: vec![1.0], scale: vec![2.0] };
+    /// assert_eq!(s.apply(faer::mat![[5.0]].as_ref())[(0, 0)], 2.0);
+    /// ```
+    #[track_caller]
+    pub fn apply(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        assert_eq!(x.ncols(), self.mean.len(), "wrong number of inputs");
+        Mat::from_fn(x.nrows(), x.ncols(), |i, k| {
+            (x[(i, k)] - self.mean[k]) / self.scale[k]
+        })
+    }
+}
+
+/// The OLS selection record of a model.
+///
+/// ```
+/// let s = rbf::Selection { n_candidates: 10, forced_errs: vec![0.5], picks: vec![], stop: rbf::StopReason::Tolerance };
+/// assert!(s.picks.is_empty());
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Selection {
+    /// Size of the candidate set.
+    pub n_candidates: usize,
+    /// ERR of each fixed column (bias, tail, linear regressors), in that order.
+    pub forced_errs: Vec<f64>,
+    /// The picks in order; `index` is the training row of the centre (candidates drawn
+    /// from the training vectors, also when subsampled) or the row of the given
+    /// candidate matrix.
+    pub picks: Vec<Pick>,
+    /// Why the selection stopped.
+    pub stop: StopReason,
+}
+
+/// A fitted RBF network f(x, z) = λ0 + aᵀx + zᵀθ + Σᵢ λᵢ φ(‖x − cᵢ‖; βᵢ).
+///
+/// Output weights were solved by faer column-pivoted QR on the selected columns (for
+/// OLS too: the path's triangular system gives the same coefficients in exact
+/// arithmetic, but the QR solve also applies the ridge and the rank/condition checks).
+///
+/// ```
+/// use faer::{Mat, Par};
+/// use linfa::ParamGuard;
+/// let x = Mat::from_fn(30, 1, |i, _| i as f64 / 10.0);
+/// let y = Mat::from_fn(30, 1, |i, _| x[(i, 0)].powi(2));
+/// let m = rbf::RbfParams::new().centres(rbf::CentreSelection::random(6))
+///     .width(rbf::WidthRule::Fixed(1.0)).parallelism(Par::Seq).check().unwrap()
+///     .fit(x.as_ref(), y.as_ref()).unwrap();
+/// assert_eq!(m.n_centres(), 6);
+/// assert_eq!(m.weights().nrows(), 6);
+/// assert!(m.bias().is_some());
+/// assert!(m.selection().is_none());
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RbfModel {
+    kernel: Kernel,
+    strategy: Strategy,
+    dim: usize,
+    n_outputs: usize,
+    /// Centres in the kernel's coordinates (standardised if `scaling` is set).
+    #[serde(with = "matser")]
+    centres: Mat<f64>,
+    widths: Widths,
+    /// K × q.
+    #[serde(with = "matser")]
+    weights: Mat<f64>,
+    bias: Option<Vec<f64>>,
+    /// d × q, on the kernel's coordinates.
+    #[serde(with = "matser::option")]
+    tail: Option<Mat<f64>>,
+    /// r × q.
+    #[serde(with = "matser")]
+    linear: Mat<f64>,
+    scaling: Option<Scaling>,
+    selection: Option<Selection>,
+    condition: f64,
+}
+
+impl RbfModel {
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn assemble(
+        params: &RbfValidParams,
+        design: &Design,
+        centres: Mat<f64>,
+        widths: Widths,
+        kernel_weights: MatRef<'_, f64>,
+        fixed: MatRef<'_, f64>,
+        condition: f64,
+        selection: Option<Selection>,
+    ) -> Self {
+        let (d, q) = (design.xs.ncols(), kernel_weights.ncols());
+        let mut row = 0;
+        let bias = design.bias.then(|| {
+            row = 1;
+            (0..q).map(|o| fixed[(0, o)]).collect()
+        });
+        let tail = design.tail.then(|| {
+            let t = fixed.subrows(row, d).to_owned();
+            row += d;
+            t
+        });
+        let linear = fixed.subrows(row, design.n_linear).to_owned();
+        RbfModel {
+            kernel: params.kernel,
+            strategy: params.centres.strategy(),
+            dim: d,
+            n_outputs: q,
+            centres,
+            widths,
+            weights: kernel_weights.to_owned(),
+            bias,
+            tail,
+            linear,
+            scaling: design.scaling.clone(),
+            selection,
+            condition,
+        }
+    }
+
+    /// The kernel.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.kernel(), rbf::Kernel::Gaussian);
+    /// ```
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+
+    /// How the centres were chosen.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.strategy(), rbf::Strategy::Ols);
+    /// ```
+    pub fn strategy(&self) -> Strategy {
+        self.strategy
+    }
+
+    /// The centres (K × d) in data units.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.centres().nrows(), m.n_centres());
+    /// ```
+    pub fn centres(&self) -> Mat<f64> {
+        match &self.scaling {
+            Some(s) => Mat::from_fn(self.centres.nrows(), self.dim, |i, k| {
+                self.centres[(i, k)] * s.scale[k] + s.mean[k]
+            }),
+            None => self.centres.clone(),
+        }
+    }
+
+    /// The centres in the coordinates the kernel sees (standardised when the model
+    /// standardises; then equal to [`RbfModel::centres`] otherwise).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.kernel_centres(), m.centres().as_ref());
+    /// ```
+    pub fn kernel_centres(&self) -> MatRef<'_, f64> {
+        self.centres.as_ref()
+    }
+
+    /// The widths β (in the kernel's coordinates).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.widths(), &rbf::Widths::Uniform(1.0));
+    /// ```
+    pub fn widths(&self) -> &Widths {
+        &self.widths
+    }
+
+    /// Output weights λᵢ (K × q).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.weights().ncols(), 1);
+    /// ```
+    pub fn weights(&self) -> MatRef<'_, f64> {
+        self.weights.as_ref()
+    }
+
+    /// The bias λ0 per output, if fitted.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.bias().unwrap().len(), 1);
+    /// ```
+    pub fn bias(&self) -> Option<&[f64]> {
+        self.bias.as_deref()
+    }
+
+    /// Coefficients a of the linear tail (d × q, on the kernel's coordinates), if fitted.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert!(m.tail().is_none());
+    /// ```
+    pub fn tail(&self) -> Option<MatRef<'_, f64>> {
+        self.tail.as_ref().map(Mat::as_ref)
+    }
+
+    /// θ, the coefficients of the exogenous linear regressors z (r × q; r = 0 without).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.linear_coefficients().nrows(), 0);
+    /// ```
+    pub fn linear_coefficients(&self) -> MatRef<'_, f64> {
+        self.linear.as_ref()
+    }
+
+    /// Input dimension d.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.dim(), 1);
+    /// ```
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Number of centres K.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert!(m.n_centres() <= 8);
+    /// ```
+    pub fn n_centres(&self) -> usize {
+        self.centres.nrows()
+    }
+
+    /// Number of outputs q.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.n_outputs(), 1);
+    /// ```
+    pub fn n_outputs(&self) -> usize {
+        self.n_outputs
+    }
+
+    /// Number of exogenous linear regressors r.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.n_linear(), 0);
+    /// ```
+    pub fn n_linear(&self) -> usize {
+        self.linear.nrows()
+    }
+
+    /// The OLS selection record (picks and their ERRs), for OLS models.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let s = m.selection().unwrap();
+    /// assert_eq!(s.picks.len(), m.n_centres());
+    /// ```
+    pub fn selection(&self) -> Option<&Selection> {
+        self.selection.as_ref()
+    }
+
+    /// 1-norm condition estimate of the weight solve.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert!(m.condition() >= 1.0);
+    /// ```
+    pub fn condition(&self) -> f64 {
+        self.condition
+    }
+
+    /// The input standardisation, if any.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert!(m.scaling().is_none());
+    /// ```
+    pub fn scaling(&self) -> Option<&Scaling> {
+        self.scaling.as_ref()
+    }
+
+    /// Predictions (n × q) for inputs `x` (n × d), with faer's global parallelism.
+    /// Non-finite inputs give non-finite predictions.
+    ///
+    /// # Panics
+    /// If `x` does not have d columns, or the model has linear regressors (use
+    /// [`RbfModel::predict_with_linear`]).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let y = m.predict(faer::mat![[0.5], [1.5]].as_ref());
+    /// assert_eq!((y.nrows(), y.ncols()), (2, 1));
+    /// ```
+    #[track_caller]
+    pub fn predict(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let mut out = Mat::zeros(x.nrows(), self.n_outputs);
+        self.predict_into(x, out.as_mut(), faer::get_global_parallelism());
+        out
+    }
+
+    /// [`RbfModel::predict`] into `out` (n × q) with parallelism `par`.
+    ///
+    /// # Panics
+    /// As [`RbfModel::predict`], or if `out` is not n × q.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let mut out = faer::Mat::zeros(1, 1);
+    /// m.predict_into(faer::mat![[0.5]].as_ref(), out.as_mut(), faer::Par::Seq);
+    /// assert_eq!(out, m.predict(faer::mat![[0.5]].as_ref()));
+    /// ```
+    #[track_caller]
+    pub fn predict_into(&self, x: MatRef<'_, f64>, out: MatMut<'_, f64>, par: Par) {
+        assert_eq!(
+            self.n_linear(),
+            0,
+            "the model has {} linear regressors: use predict_with_linear",
+            self.n_linear()
+        );
+        let z = Mat::<f64>::zeros(x.nrows(), 0);
+        self.predict_impl(x, z.as_ref(), out, par);
+    }
+
+    /// Predictions for inputs `x` (n × d) and linear regressors `z` (n × r).
+    ///
+    /// # Panics
+    /// If `x` does not have d columns, `z` does not have r columns, or their rows differ.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let x = faer::mat![[0.5]];
+    /// let z = faer::Mat::<f64>::zeros(1, 0);
+    /// assert_eq!(m.predict_with_linear(x.as_ref(), z.as_ref()), m.predict(x.as_ref()));
+    /// ```
+    #[track_caller]
+    pub fn predict_with_linear(&self, x: MatRef<'_, f64>, z: MatRef<'_, f64>) -> Mat<f64> {
+        let mut out = Mat::zeros(x.nrows(), self.n_outputs);
+        self.predict_impl(x, z, out.as_mut(), faer::get_global_parallelism());
+        out
+    }
+
+    /// [`RbfModel::predict_with_linear`] into `out` with parallelism `par`.
+    ///
+    /// # Panics
+    /// As [`RbfModel::predict_with_linear`], or if `out` is not n × q.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let mut out = faer::Mat::zeros(1, 1);
+    /// m.predict_with_linear_into(faer::mat![[0.5]].as_ref(), faer::Mat::<f64>::zeros(1, 0).as_ref(), out.as_mut(), faer::Par::Seq);
+    /// ```
+    #[track_caller]
+    pub fn predict_with_linear_into(
+        &self,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        out: MatMut<'_, f64>,
+        par: Par,
+    ) {
+        self.predict_impl(x, z, out, par);
+    }
+
+    #[track_caller]
+    fn predict_impl(&self, x: MatRef<'_, f64>, z: MatRef<'_, f64>, out: MatMut<'_, f64>, par: Par) {
+        let (n, q) = (x.nrows(), self.n_outputs);
+        assert_eq!(
+            x.ncols(),
+            self.dim,
+            "x has {} columns but the model has {} inputs",
+            x.ncols(),
+            self.dim
+        );
+        assert_eq!(
+            z.ncols(),
+            self.n_linear(),
+            "z has {} columns but the model has {} linear regressors",
+            z.ncols(),
+            self.n_linear()
+        );
+        assert_eq!(z.nrows(), n, "z has {} rows but x has {}", z.nrows(), n);
+        assert_eq!((out.nrows(), out.ncols()), (n, q), "output must be n × q");
+        let mut out = out;
+        let scaled;
+        let xs = match &self.scaling {
+            Some(s) => {
+                scaled = s.apply(x);
+                scaled.as_ref()
+            }
+            None => x,
+        };
+        for o in 0..q {
+            let b = self.bias.as_ref().map_or(0.0, |b| b[o]);
+            out.as_mut().col_mut(o).fill(b);
+        }
+        if let Some(t) = &self.tail {
+            matmul(out.rb_mut(), Accum::Add, xs, t.as_ref(), 1.0, par);
+        }
+        if self.n_linear() > 0 {
+            matmul(out.rb_mut(), Accum::Add, z, self.linear.as_ref(), 1.0, par);
+        }
+        let k = self.n_centres();
+        if k == 0 || n == 0 {
+            return;
+        }
+        // Row blocks bound the kernel scratch to ~4M doubles (32 MB) whatever n is.
+        let block = (4_194_304 / k).clamp(1, n);
+        let mut phi = Mat::<f64>::zeros(block, k);
+        for start in (0..n).step_by(block) {
+            let b = block.min(n - start);
+            let mut pb = phi.as_mut().subrows_mut(0, b);
+            kernel_matrix_into(
+                xs.subrows(start, b),
+                self.centres.as_ref(),
+                self.kernel,
+                &self.widths,
+                pb.rb_mut(),
+                par,
+            );
+            matmul(
+                out.rb_mut().subrows_mut(start, b),
+                Accum::Add,
+                pb.rb(),
+                self.weights.as_ref(),
+                1.0,
+                par,
+            );
+        }
+    }
+
+    /// Checks the internal consistency of a deserialised model.
+    pub(crate) fn validate(&self) -> Result<(), String> {
+        let (k, d, q) = (self.centres.nrows(), self.dim, self.n_outputs);
+        if self.centres.ncols() != d {
+            return Err(format!(
+                "centres have {} columns, dim is {d}",
+                self.centres.ncols()
+            ));
+        }
+        if (self.weights.nrows(), self.weights.ncols()) != (k, q) {
+            return Err(format!(
+                "weights are {}×{}, expected {k}×{q}",
+                self.weights.nrows(),
+                self.weights.ncols()
+            ));
+        }
+        if let Widths::PerCentre(w) = &self.widths
+            && w.len() != k
+        {
+            return Err(format!("{} widths for {k} centres", w.len()));
+        }
+        if !self.widths.all_positive() {
+            return Err("non-positive width".into());
+        }
+        if let Some(b) = &self.bias
+            && b.len() != q
+        {
+            return Err(format!("{} bias values for {q} outputs", b.len()));
+        }
+        if let Some(t) = &self.tail
+            && (t.nrows(), t.ncols()) != (d, q)
+        {
+            return Err(format!(
+                "tail is {}×{}, expected {d}×{q}",
+                t.nrows(),
+                t.ncols()
+            ));
+        }
+        if self.linear.ncols() != q {
+            return Err(format!(
+                "linear coefficients have {} columns for {q} outputs",
+                self.linear.ncols()
+            ));
+        }
+        if let Some(s) = &self.scaling
+            && (s.mean.len() != d || s.scale.len() != d)
+        {
+            return Err("scaling length differs from dim".into());
+        }
+        let finite = |m: &Mat<f64>| crate::check::first_non_finite(m.as_ref()).is_none();
+        if !finite(&self.centres) || !finite(&self.weights) || !finite(&self.linear) {
+            return Err("non-finite coefficient".into());
+        }
+        Ok(())
+    }
+}
