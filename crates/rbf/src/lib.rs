@@ -58,6 +58,8 @@ pub mod width;
 
 pub use faer;
 pub use faer::Par;
+/// `rbf::ols` (the path docs/architecture.md uses) is `rbf::select::ols`.
+pub use select::ols;
 
 pub use cv::{
     CvReport, Fold, FoldReport, Grid, GridPoint, GridReport, Sizes, Split, SplitError,
@@ -81,7 +83,8 @@ pub use select::ols::{
 };
 pub use width::{WidthError, WidthRule};
 
-/// `docs/rbf.md`, compiled as documentation so that its examples run as doctests.
+/// `docs/rbf.md`, compiled as documentation so that its examples run as doctests
+/// (the examples are the file's own code blocks).
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/rbf.md")]
 pub struct RbfGuideDoctests;

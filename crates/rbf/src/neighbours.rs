@@ -17,6 +17,10 @@ use rand_xoshiro::Xoshiro256Plus;
 use crate::parallel::for_each_chunk_mut;
 
 /// Highest dimension served by the k-d tree.
+///
+/// ```
+/// assert_eq!(rbf::neighbours::KD_TREE_MAX_DIM, 10);
+/// ```
 pub const KD_TREE_MAX_DIM: usize = 10;
 
 /// Euclidean distance from every row of `points` to its nearest *other* row

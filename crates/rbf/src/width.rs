@@ -7,6 +7,10 @@ use crate::design::Widths;
 use crate::neighbours::{median_pairwise_distance, nearest_neighbour_distances};
 
 /// Pairwise distances for [`WidthRule::MedianPairwise`] use at most this many points.
+///
+/// ```
+/// assert_eq!(rbf::width::MEDIAN_SUBSAMPLE, 1000);
+/// ```
 pub const MEDIAN_SUBSAMPLE: usize = 1000;
 
 /// How the kernel width β is chosen, in input units (standardised units when the model

@@ -198,3 +198,51 @@ fn reports_are_consistent_with_their_folds() {
         RbfError::Split(rbf::SplitError::EmptyFold { .. })
     ));
 }
+
+/// All-points grids share one kernel matrix across ridges; each point equals
+/// cross-validating that smoothing directly.
+#[test]
+fn all_points_grid_over_smoothing_equals_direct_cross_validation() {
+    let (x, y) = chen();
+    let (x, y) = (
+        x.as_ref().subrows(0, 150).to_owned(),
+        y.as_ref().subrows(0, 150).to_owned(),
+    );
+    let split = Split::Blocked { k: 3, gap: 2 };
+    let p = RbfParams::new()
+        .kernel(rbf::Kernel::ThinPlateSpline)
+        .centres(CentreSelection::AllPoints)
+        .width(WidthRule::Fixed(1.0))
+        .parallelism(Par::Seq);
+    let grid = Grid {
+        widths: vec![],
+        sizes: Sizes::Default,
+        ridges: vec![1e-6, 1e-2, 1.0],
+    };
+    let rep = grid_search(
+        &p.clone().check().unwrap(),
+        x.as_ref(),
+        y.as_ref(),
+        &split,
+        &grid,
+    )
+    .unwrap();
+    for point in &rep.points {
+        let direct = cross_validate(
+            &p.clone().ridge(point.ridge).check().unwrap(),
+            x.as_ref(),
+            y.as_ref(),
+            &split,
+        )
+        .unwrap();
+        let got = point.result.as_ref().unwrap();
+        assert!((got.mean.rmse - direct.mean.rmse).abs() < 1e-12);
+    }
+    // interpolating noise (tiny smoothing) validates worse than smoothing it
+    let nmse: Vec<f64> = rep
+        .points
+        .iter()
+        .map(|p| p.result.as_ref().unwrap().mean.nmse)
+        .collect();
+    assert!(nmse[0] > nmse[1].min(nmse[2]), "{nmse:?}");
+}

@@ -608,3 +608,16 @@ fn progress_reports_every_stage_in_order() {
         ]
     );
 }
+
+/// Errors and models cross threads (the application wraps errors in anyhow and fits
+/// channels in parallel).
+#[test]
+fn errors_and_models_are_send_and_sync() {
+    fn check<T: Send + Sync + 'static>() {}
+    check::<RbfError>();
+    check::<RbfModel>();
+    check::<rbf::RbfValidParams>();
+    check::<rbf::OlsPath>();
+    check::<PersistError>();
+    check::<SolveError>();
+}

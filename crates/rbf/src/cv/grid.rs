@@ -77,6 +77,12 @@ impl Grid {
 }
 
 /// One grid point and its cross-validation result.
+///
+/// ```
+/// let p = rbf::GridPoint { width: rbf::WidthRule::Fixed(1.0), n_centres: Some(5), tol: None, ridge: 0.0,
+///     result: Err(rbf::RbfError::FoldFailed { reason: "example".into() }) };
+/// assert!(p.result.is_err());
+/// ```
 #[derive(Debug)]
 pub struct GridPoint {
     /// Width rule.
@@ -92,6 +98,11 @@ pub struct GridPoint {
 }
 
 /// All grid points, in width-major, then size, then ridge order.
+///
+/// ```
+/// let r = rbf::GridReport { points: vec![], best: None };
+/// assert!(r.points.is_empty());
+/// ```
 #[derive(Debug)]
 pub struct GridReport {
     /// Every point.

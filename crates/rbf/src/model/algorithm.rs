@@ -515,10 +515,22 @@ impl RbfValidParams {
         check_inputs(x, z, y)?;
         let design = Design::new(self, x, z);
         match &self.centres {
-            CentreSelection::AllPoints => Ok(ridges
-                .iter()
-                .map(|&r| fit_all_points(&self.with_ridge(r), Design::new(self, x, z), y, None))
-                .collect()),
+            CentreSelection::AllPoints => {
+                // One kernel matrix for all ridges; each solve consumes a copy.
+                let (widths, phi) = all_points_matrix(self, &design, None)?;
+                Ok(ridges
+                    .iter()
+                    .map(|&r| {
+                        solve_all_points(
+                            &self.with_ridge(r),
+                            &design,
+                            widths.clone(),
+                            phi.clone(),
+                            y,
+                        )
+                    })
+                    .collect())
+            }
             CentreSelection::Ols { .. } => unreachable!("OLS grids go through OlsStage"),
             _ => {
                 let (centres, widths) = fixed_centres(self, &design, None)?;
@@ -555,6 +567,17 @@ fn fit_all_points(
     y: MatRef<'_, f64>,
     progress: Observer<'_>,
 ) -> Result<RbfModel, RbfError> {
+    let (widths, phi) = all_points_matrix(params, &design, progress)?;
+    report(progress, Stage::Weights, 0, 1);
+    solve_all_points(params, &design, widths, phi, y)
+}
+
+/// Widths and the N × N kernel matrix of an all-points fit.
+fn all_points_matrix(
+    params: &RbfValidParams,
+    design: &Design,
+    progress: Observer<'_>,
+) -> Result<(Widths, Mat<f64>), RbfError> {
     let (n, p) = (design.n(), design.forced.ncols());
     if n < p + 1 {
         return Err(RbfError::TooFewSamples {
@@ -572,7 +595,17 @@ fn fit_all_points(
         &widths,
         params.par,
     );
-    report(progress, Stage::Weights, 0, 1);
+    Ok((widths, phi))
+}
+
+/// The interpolation (smoothing = the params' ridge) solve and the model.
+fn solve_all_points(
+    params: &RbfValidParams,
+    design: &Design,
+    widths: Widths,
+    phi: Mat<f64>,
+    y: MatRef<'_, f64>,
+) -> Result<RbfModel, RbfError> {
     let opts = InterpolationOptions {
         smoothing: params.ridge,
         sign: params.kernel.definiteness_sign(),
@@ -582,7 +615,7 @@ fn fit_all_points(
     let sol = interpolate(phi, design.forced.as_ref(), y, &opts)?;
     Ok(RbfModel::assemble(
         params,
-        &design,
+        design,
         design.xs.clone(),
         widths,
         sol.weights.as_ref(),

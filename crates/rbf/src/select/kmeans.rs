@@ -73,6 +73,15 @@ pub struct KMeansCentres {
 ///
 /// # Errors
 /// linfa's [`KMeansError`] (invalid settings, or fewer samples than clusters).
+///
+/// ```
+/// use rbf::select::kmeans::{kmeans_centres, KMeansSettings};
+/// let x = faer::Mat::from_fn(30, 2, |i, j| ((i * (j + 1)) % 11) as f64);
+/// let a = kmeans_centres(x.as_ref(), &KMeansSettings::new(4), 3).unwrap();
+/// let b = kmeans_centres(x.as_ref(), &KMeansSettings::new(4), 3).unwrap();
+/// assert_eq!(a.centres, b.centres); // same seed, same centres
+/// assert!(a.memberships.iter().all(|&c| c < 4));
+/// ```
 pub fn kmeans_centres(
     x: MatRef<'_, f64>,
     settings: &KMeansSettings,

@@ -237,22 +237,27 @@ impl Engine<'_, '_> {
 
     /// One streaming pass over the candidate matrix: its products with basis columns
     /// `from..to` (accumulated into the energy estimates) and with the residuals, as one
-    /// faer product Pᵀ[q_from … q_to, r] (m × s).
+    /// faer product [q_from … q_to, r]ᵀP (s × m). Written with the small factor on the
+    /// left: faer then streams P without repacking it, which measured 2.5 ms per pass
+    /// for a 2500 × 2500 P against 3–4 ms for PᵀV and 4.5–6 ms for hand-written
+    /// column-dot loops (AVX2) on one core.
     fn pass(&mut self, from: usize, to: usize) {
         let (q, nb) = (self.q, to - from);
         let n = self.resid.nrows();
-        let mut v = Mat::<f64>::zeros(n, nb + q);
-        v.as_mut()
-            .subcols_mut(0, nb)
-            .copy_from(self.basis.q.as_ref().subcols(from, nb));
-        v.as_mut().subcols_mut(nb, q).copy_from(self.resid.as_ref());
+        let mut vt = Mat::<f64>::zeros(nb + q, n);
+        vt.as_mut()
+            .subrows_mut(0, nb)
+            .copy_from(self.basis.q.as_ref().subcols(from, nb).transpose());
+        vt.as_mut()
+            .subrows_mut(nb, q)
+            .copy_from(self.resid.transpose());
         let p = self.store.mat();
-        let mut out = Mat::<f64>::zeros(p.ncols(), nb + q);
+        let mut out = Mat::<f64>::zeros(nb + q, p.ncols());
         matmul(
             out.as_mut(),
             Accum::Replace,
-            p.transpose(),
-            v.as_ref(),
+            vt.as_ref(),
+            p,
             1.0,
             self.options.par,
         );
@@ -260,9 +265,9 @@ impl Engine<'_, '_> {
             if c.status != Status::Live {
                 continue;
             }
-            c.proj2 += (0..nb).map(|k| out[(j, k)].powi(2)).sum::<f64>();
+            c.proj2 += (0..nb).map(|k| out[(k, j)].powi(2)).sum::<f64>();
             for o in 0..q {
-                self.cdot[j * q + o] = out[(j, nb + o)];
+                self.cdot[j * q + o] = out[(nb + o, j)];
             }
         }
     }
