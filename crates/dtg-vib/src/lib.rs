@@ -2,7 +2,15 @@
 //! skewed cluster of Dynamically Tuned Gyroscopes, with RBF networks.
 
 pub mod effects;
+pub mod error;
+pub mod fit;
+pub mod model;
+pub mod pipeline;
 pub mod report;
 pub mod residuals;
+pub mod residue;
 pub mod signal;
+pub mod split;
 pub mod window;
+
+pub use error::DtgVibError;
