@@ -17,11 +17,12 @@ use std::str::FromStr;
 /// ```
 /// use dtg_vib::split::SplitKind;
 /// let s: SplitKind = "interleaved".parse().unwrap();
-/// let (train, val) = s.rows(10, 3).unwrap();
-/// assert_eq!(train, [0, 2, 4, 6, 8]);
-/// assert_eq!(val, [1, 3, 5, 7, 9]);
-/// let (train, val) = SplitKind::Blocked { train_fraction: 0.5 }.rows(10, 2).unwrap();
-/// assert_eq!((train, val), ((0..5).collect(), vec![7, 8, 9]));
+/// let (train, val) = s.rows(100, 3).unwrap();
+/// assert_eq!(&train[..3], [0, 2, 4]);
+/// assert_eq!(&val[..3], [1, 3, 5]);
+/// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
+/// let (train, val) = SplitKind::Blocked { train_fraction: 0.5 }.rows(100, 3).unwrap();
+/// assert_eq!((train.len(), val[0]), (50, 53));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "kind")]
