@@ -94,7 +94,7 @@ impl Default for FitOptions {
             add: Vec::new(),
             centres: CentreMethod::Ols,
             max_centres: 60,
-            candidates: 800,
+            candidates: 400,
             width_scales: vec![0.5, 1.0, 2.0],
             ridge: 1e-8,
             split: SplitKind::default(),

@@ -365,8 +365,57 @@ impl Scenario {
         s
     }
 
+    /// The paper's test ([`Scenario::paper_z_random`]) with one effect hidden
+    /// for the diagnosis loop to find: channel Y1's drift temperature
+    /// sensitivity is 0.6 deg/h/°C (ten times the other channels'), and the
+    /// vibration warms the fixture by about 3 °C, so Y1 drifts by about
+    /// 1.5 deg/h over the test. Temperature sensitivity is never part of a
+    /// ground calibration; the record's `temp` column carries what a model
+    /// needs. `dtg-vib demo` runs on this record.
+    ///
+    /// ```
+    /// use nav_sensors::{dtg::DtgTerm, geometry::Channel, sim::Scenario};
+    /// let s = Scenario::demo();
+    /// assert_eq!(s.hidden.len(), 1);
+    /// assert_eq!((s.hidden[0].channel, s.hidden[0].term), (Channel::Y1, DtgTerm::Temp));
+    /// assert_eq!(s.gyro(Channel::Y1).temp_deg_h_per_c, 0.6);
+    /// ```
+    pub fn demo() -> Self {
+        let mut s = Self::paper_z_random();
+        s.name = "demo".into();
+        s.description = "The paper's Z-axis random test with the drift temperature sensitivity of \
+                         channel Y1 hidden (0.6 deg/h/°C; the fixture warms by about 3 °C)"
+            .into();
+        if let Some(c) = s.gyros.channels.get_mut(&Channel::Y1) {
+            c.temp_deg_h_per_c = 0.6;
+        }
+        // The unit warms up after power-on (toward 28 °C with a 60-s time
+        // constant) while the shaker runs: a temperature that rises through
+        // the test independently of the vibration schedule.
+        s.thermal.initial_c = 22.0;
+        s.thermal.ambient_c = 28.0;
+        s.thermal.vibration_heating_c = 0.0;
+        // Levels stepped twice through −6, 0 and −3 dB, so that each half of
+        // the test sees every level: a slow effect (the temperature) is then
+        // not confounded with the level in either half.
+        s.vibration.schedule = LevelSchedule::new(vec![
+            seg(4.0, None, 0.0),
+            seg(16.0, Some(-6.0), 2.0),
+            seg(16.0, Some(0.0), 2.0),
+            seg(16.0, Some(-3.0), 2.0),
+            seg(16.0, Some(-6.0), 2.0),
+            seg(16.0, Some(0.0), 2.0),
+            seg(16.0, Some(-3.0), 2.0),
+        ]);
+        s.hidden = vec![HiddenEffect {
+            channel: Channel::Y1,
+            term: DtgTerm::Temp,
+        }];
+        s
+    }
+
     /// A built-in scenario by name (`paper_z_random`, `triaxial_clean`,
-    /// `triaxial_hidden`).
+    /// `triaxial_hidden`, `demo`).
     ///
     /// ```
     /// assert!(nav_sensors::sim::Scenario::builtin("triaxial_hidden").is_some());
@@ -377,6 +426,7 @@ impl Scenario {
             "paper_z_random" => Some(Self::paper_z_random()),
             "triaxial_clean" => Some(Self::triaxial_clean()),
             "triaxial_hidden" => Some(Self::triaxial_hidden()),
+            "demo" => Some(Self::demo()),
             _ => None,
         }
     }
@@ -388,5 +438,10 @@ impl Scenario {
     ///     assert!(nav_sensors::sim::Scenario::builtin(name).is_some());
     /// }
     /// ```
-    pub const BUILTIN: [&'static str; 3] = ["paper_z_random", "triaxial_clean", "triaxial_hidden"];
+    pub const BUILTIN: [&'static str; 4] = [
+        "paper_z_random",
+        "triaxial_clean",
+        "triaxial_hidden",
+        "demo",
+    ];
 }
