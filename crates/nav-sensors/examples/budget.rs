@@ -42,8 +42,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let t = &sim.truth;
     println!(
-        "\n{:<4} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8}  collinear",
-        "ch", "floor", "noise", "motion", "unmod", "expect", "calerr", "after"
+        "\n{:<4} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8}  collinear",
+        "ch",
+        "floor",
+        "lvlonly",
+        "noise",
+        "motion",
+        "unmod",
+        "expect",
+        "predict",
+        "calerr",
+        "after"
     );
     for c in Channel::ALL {
         let ct = &t.channels[&c];
@@ -53,13 +62,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|p| format!("{}~{}", p.a, p.b))
             .collect();
         println!(
-            "{:<4} {:>7.3} {:>7.3} {:>7.3} {:>8.3} {:>8.3} {:>8.4} {:>8.3}  {}",
+            "{:<4} {:>7.3} {:>7.3} {:>7.3} {:>7.3} {:>8.3} {:>8.3} {:>8.3} {:>8.4} {:>8.3}  {}",
             c.name(),
             ct.noise_floor_deg_h,
+            ct.level_only_noise_floor_deg_h,
             ct.noise_rms_deg_h,
             ct.motion_rms_deg_h,
             ct.unmodelled_rms_deg_h,
             ct.rectification_expected_rms_deg_h,
+            ct.predictable_rms_deg_h,
             ct.calibration_error_rms_deg_h,
             ct.after_true_compensation_rms_deg_h,
             pairs.join(" ")

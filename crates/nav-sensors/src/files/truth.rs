@@ -74,9 +74,16 @@ pub struct ChannelTruth {
     /// The rms (about the mean) at the output rate of everything no model of
     /// the record can predict: sensor noise (ARW, bias instability,
     /// quantisation), the true angular motion (fixture rocking) about I, and
-    /// the interval-to-interval fluctuation of every term's high-rate effect
-    /// about its expectation given the vibration level. See docs/nav-sensors.md.
+    /// every term's high-rate effect minus its least-squares conditional
+    /// expectation given the vibration level and the 50-Hz accelerations
+    /// (local linear and quadratic features). See docs/nav-sensors.md §8.
     pub noise_floor_deg_h: f64,
+    /// The floor of format version 1: the high-rate effects minus their
+    /// expectation given the vibration level only (`Σ k_term·g²`). Above
+    /// `noise_floor_deg_h` by what the neighbouring 50-Hz accelerations
+    /// reveal of the within-interval motion (0 when read from a version-1 file).
+    #[serde(default)]
+    pub level_only_noise_floor_deg_h: f64,
     /// Sensor noise alone (ARW, bias instability, quantisation), rms about the mean, deg/h.
     pub noise_rms_deg_h: f64,
     /// True rocking rate about I averaged per interval, rms, deg/h.
@@ -86,6 +93,11 @@ pub struct ChannelTruth {
     pub unmodelled_rms_deg_h: f64,
     /// Its expectation given the level, `Σ k_term · g(t)²`, rms about zero, deg/h.
     pub rectification_expected_rms_deg_h: f64,
+    /// Its least-squares conditional expectation given the level and the
+    /// 50-Hz accelerations (what the floor subtracts), rms about zero, deg/h
+    /// (0 when read from a version-1 file).
+    #[serde(default)]
+    pub predictable_rms_deg_h: f64,
     /// Per term, the expected unmodelled drift at full level (0 dB) `k_term`,
     /// deg/h (terms with |k| < 1e-4 deg/h omitted).
     pub rectification_at_full_level_deg_h: BTreeMap<DtgTerm, f64>,
@@ -166,9 +178,13 @@ impl Truth {
     /// The format version written.
     ///
     /// ```
-    /// assert_eq!(nav_sensors::truth::Truth::FORMAT_VERSION, 1);
+    /// assert_eq!(nav_sensors::truth::Truth::FORMAT_VERSION, 2);
     /// ```
-    pub const FORMAT_VERSION: u32 = 1;
+    ///
+    /// Version 2 conditions the noise floor on the 50-Hz accelerations as
+    /// well as the level (version 1's floor is kept as
+    /// `level_only_noise_floor_deg_h`).
+    pub const FORMAT_VERSION: u32 = 2;
 
     /// The truth as pretty JSON (deterministic).
     ///

@@ -13,23 +13,30 @@
 //! ```
 //!
 //! is the unmodelled part (for a g² term, `c_k` times the within-interval
-//! covariance of the vibration: the rectification). Its expectation given
-//! the vibration level is `k_k · g²[n]` (g the schedule's amplitude gain), with
-//! `k_k` fitted by least squares through the origin; a model that knows the
-//! level (from the accelerometer windows) can predict that much. The noise
-//! floor is the rms about the mean of
+//! covariance of the vibration: the rectification). What a model of the
+//! record can predict of it is its conditional expectation given the
+//! vibration level g² **and** the observed 50-Hz accelerations: for
+//! band-limited vibration the neighbouring samples reveal the motion's
+//! local slope and curvature, hence much of the within-interval covariance.
+//! [`super::predictable`] estimates it by least squares on local linear
+//! and quadratic features of x̄ (lags −3..=3); the noise floor is the rms
+//! about the mean of
 //!
 //! ```text
-//! floor[n] = noise[n] + motion[n] + Σ_k (d_k[n] − k_k · g²[n])
+//! floor[n] = noise[n] + motion[n] + Σ_k d_k[n] − Ê[Σ_k d_k | g², x̄][n]
 //! ```
 //!
 //! with `noise` the sensor noise (ARW, bias instability, quantisation) and
 //! `motion` the true angular motion (rocking) about I averaged per interval.
+//! The level-only expectation of format version 1, `k_k · g²[n]` (g the
+//! schedule's amplitude gain, `k_k` fitted through the origin), is kept as
+//! `{ch}_expected`, `k_k` at full level and `level_only_noise_floor_deg_h`.
 
 use std::collections::BTreeMap;
 
 use super::engine::HighRate;
 use super::output::Components;
+use super::predictable;
 use super::scenario::Scenario;
 use crate::calibration::Calibration;
 use crate::dtg::{DtgInput, DtgTerm};
@@ -96,6 +103,12 @@ pub(crate) fn budget(
     let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut components = Components::new(t.to_vec());
     components.push("level_squared", g2.clone());
+    let elementary = predictable::elementary(
+        &hr.force_moments,
+        &hr.accel_ideal_g,
+        [gravity.x, gravity.y, gravity.z],
+        g2,
+    );
     let mut channels = BTreeMap::new();
     let mut hidden = Vec::new();
     let mut floor_series: [Vec<f64>; 6] = Default::default();
@@ -153,8 +166,22 @@ pub(crate) fn budget(
                 *e += kk * g;
             }
         }
+        // What a model given the level and the 50-Hz accelerations can
+        // predict: the g and g² terms through the elementary series, the
+        // rest (temperature lag, rates, 2N, nonlinearity) through the level.
+        let w = predictable::weights(&frame.input, &frame.other, &frame.spin, &c);
+        let rest: Vec<f64> = (0..n_out)
+            .map(|n| unmodelled[n] - predictable::combine(&w, &elementary.actual, n))
+            .collect();
+        let rest_predicted = predictable::level_only(g2, &[&rest]).pop().expect("one");
+        let predicted: Vec<f64> = (0..n_out)
+            .map(|n| predictable::combine(&w, &elementary.predicted, n) + rest_predicted[n])
+            .collect();
         let noise_ch: Vec<f64> = noise.iter().map(|v| v[ch]).collect();
         let floor: Vec<f64> = (0..n_out)
+            .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - predicted[n])
+            .collect();
+        let level_only_floor: Vec<f64> = (0..n_out)
             .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
             .collect();
         let after: Vec<f64> = (0..n_out)
@@ -200,10 +227,12 @@ pub(crate) fn budget(
             ChannelTruth {
                 coefficients: truth,
                 noise_floor_deg_h: noise_floor,
+                level_only_noise_floor_deg_h: std_dev(&level_only_floor),
                 noise_rms_deg_h: std_dev(&noise_ch),
                 motion_rms_deg_h: rms(&motion),
                 unmodelled_rms_deg_h: rms(&unmodelled),
                 rectification_expected_rms_deg_h: rms(&expected),
+                predictable_rms_deg_h: rms(&predicted),
                 rectification_at_full_level_deg_h: at_full,
                 calibration_error_rms_deg_h: std_dev(&cal_err),
                 after_true_compensation_rms_deg_h: rms(&after),
@@ -214,6 +243,7 @@ pub(crate) fn budget(
         components.push(&format!("{channel}_motion"), motion);
         components.push(&format!("{channel}_unmodelled"), unmodelled);
         components.push(&format!("{channel}_expected"), expected);
+        components.push(&format!("{channel}_predictable"), predicted);
         components.push(&format!("{channel}_floor"), floor.clone());
         floor_series[ch] = floor;
         after_true[ch] = after;

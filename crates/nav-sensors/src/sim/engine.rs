@@ -67,6 +67,11 @@ pub(crate) struct HighRate {
     pub accel_ideal_g: Vec<[f64; 3]>,
     /// Mean squared level gain of the schedule.
     pub level_squared: Vec<f64>,
+    /// Moments of the true specific force in the cluster frame over the
+    /// interval, g and g²: mean f_x, f_y, f_z, then mean f_x², f_y², f_z²,
+    /// f_x·f_y, f_x·f_z, f_y·f_z (every channel's g and g² regressor means
+    /// are linear combinations of these).
+    pub force_moments: Vec<[f64; 9]>,
 }
 
 fn high_rate(
@@ -98,6 +103,7 @@ fn high_rate(
         accel_output_g: Vec::with_capacity(n_out),
         accel_ideal_g: Vec::with_capacity(n_out),
         level_squared: Vec::with_capacity(n_out),
+        force_moments: Vec::with_capacity(n_out),
     };
     for j in 0..n_out {
         let mut reg = [[0.0; 18]; 6];
@@ -106,6 +112,7 @@ fn high_rate(
         let mut acc_out = [0.0; 3];
         let mut acc_ideal = [0.0; 3];
         let mut g2 = 0.0;
+        let mut moments = [0.0; 9];
         for idx in j * m..(j + 1) * m {
             let f = Vector3::new(
                 gravity.x + vib.accel_g[0][idx],
@@ -117,6 +124,19 @@ fn high_rate(
                 earth.y + 3600.0 * vib.angular_rate_deg_s[1][idx],
                 earth.z + 3600.0 * vib.angular_rate_deg_s[2][idx],
             );
+            for (acc, v) in moments.iter_mut().zip([
+                f.x,
+                f.y,
+                f.z,
+                f.x * f.x,
+                f.y * f.y,
+                f.z * f.z,
+                f.x * f.y,
+                f.x * f.z,
+                f.y * f.z,
+            ]) {
+                *acc += v;
+            }
             for a in Axis::ALL {
                 let k = a.index();
                 acc_out[k] += servo_out[k].step(accel[k].output_g(a, &f));
@@ -150,6 +170,7 @@ fn high_rate(
         out.accel_output_g.push(acc_out.map(|v| v * inv_m));
         out.accel_ideal_g.push(acc_ideal.map(|v| v * inv_m));
         out.level_squared.push(g2 * inv_m);
+        out.force_moments.push(moments.map(|v| v * inv_m));
     }
     out
 }

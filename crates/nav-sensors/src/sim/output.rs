@@ -9,8 +9,10 @@ use crate::truth::Truth;
 
 /// Named per-sample series that explain a record (same time base):
 /// `level_squared`, then per channel `{ch}_noise`, `{ch}_motion`,
-/// `{ch}_unmodelled`, `{ch}_expected`, `{ch}_floor`, and per hidden effect
-/// `hidden_{ch}_{term}` (the part of the effect a model can see), deg/h.
+/// `{ch}_unmodelled`, `{ch}_expected` (its expectation given the level),
+/// `{ch}_predictable` (given the level and the 50-Hz accelerations),
+/// `{ch}_floor` (noise + motion + unmodelled − predictable), and per hidden
+/// effect `hidden_{ch}_{term}` (the part of the effect a model can see), deg/h.
 ///
 /// ```
 /// let mut c = nav_sensors::sim::Components::new(vec![0.02, 0.04]);

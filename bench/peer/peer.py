@@ -1,0 +1,295 @@
+#!/usr/bin/env python3
+"""The Python side of the peer comparison (not part of the test suite).
+
+Subcommands:
+  gen     write the windowed data file both sides read, and the Gaussian width β
+  run     time the Python peers on that file, print one JSON object per method
+  report  read both sides' JSON lines, print medians, ratios, OLS pick agreement
+
+Peers (each timed from in-memory arrays to fitted weights, as `rbf fit` times its
+`fit_seconds`; data loading is not timed on either side):
+  ols     a straightforward numpy implementation of Chen, Cowan & Grant (1991): the
+          Gaussian kernel matrix of all training vectors as candidates, the bias forced
+          first, then per pick the error-reduction ratio of every candidate from its
+          deflated column and the candidates deflated against the new column (the
+          classic per-pick deflation, modified Gram-Schmidt order), then the output
+          weights by numpy lstsq on [1 | picked columns];
+  kmeans  scikit-learn KMeans (k-means++, n_init=1, the same K) + numpy lstsq;
+  rbfi    scipy RBFInterpolator, Gaussian kernel exp(-(eps r)^2) with eps = 1/β (the
+          library's exp(-r²/β²)), degree 0 (a constant, the library's bias), the same
+          smoothing as the library's ridge; fit and predict;
+  matvec  one plain matrix-vector product vᵀP over the N×N kernel matrix (numpy gemv):
+          the memory-bandwidth bound of an OLS pick.
+"""
+
+import argparse
+import csv
+import json
+import statistics
+import sys
+import time
+
+import numpy as np
+from scipy.interpolate import RBFInterpolator
+from scipy.spatial.distance import cdist, pdist
+from sklearn.cluster import KMeans
+
+DIM = 50
+
+
+# ---------------------------------------------------------------- data
+
+def windowed(n, seed):
+    """Windows of a resonant low-pass filtered white-noise signal and a nonlinear
+    target: the recipe of benches/centre_selection.rs (its own random numbers)."""
+    rng = np.random.default_rng(seed)
+    burn = 200
+    length = n + DIM + burn
+    u = rng.standard_normal(length)
+    s = np.zeros(length)
+    for k in range(2, length):
+        s[k] = 1.6 * s[k - 1] - 0.8 * s[k - 2] + u[k]
+    s = s[burn:]
+    s = s / np.sqrt(np.mean(s * s))
+    t = np.arange(n) + DIM - 1
+    x = np.stack([s[t - j] for j in range(DIM)], axis=1)
+    e = rng.standard_normal(n)
+    y = np.sin(1.5 * s[t]) * np.exp(-s[t - 10] ** 2 / 2) + 0.3 * s[t - 3] * s[t - 7] + 0.05 * e
+    return x, y
+
+
+def cmd_gen(a):
+    x, y = windowed(a.train + a.val, a.seed)
+    roles = np.array(["train"] * a.train + ["val"] * a.val)
+    with open(a.out, "w") as f:
+        f.write(",".join([f"x{j}" for j in range(DIM)] + ["y", "split"]) + "\n")
+        for i in range(len(y)):
+            f.write(",".join(repr(float(v)) for v in x[i]) + f",{float(y[i])!r},{roles[i]}\n")
+    # β = the median pairwise distance of (up to 2000 of) the training windows: both
+    # sides get this fixed width, so only the algorithms differ.
+    m = min(a.train, 2000)
+    beta = float(np.median(pdist(x[:m])))
+    print(json.dumps({"file": a.out, "n_train": a.train, "n_val": a.val, "dim": DIM, "beta": beta}))
+
+
+def load(path):
+    with open(path) as f:
+        header = next(csv.reader(f))
+    xcols = [i for i, h in enumerate(header) if h.startswith("x")]
+    ycol = header.index("y")
+    scol = header.index("split")
+    num = np.loadtxt(path, delimiter=",", skiprows=1, usecols=xcols + [ycol])
+    roles = np.loadtxt(path, delimiter=",", skiprows=1, usecols=[scol], dtype=str)
+    train = np.flatnonzero(roles == "train")
+    val = np.flatnonzero(roles == "val")
+    x, y = num[:, :-1], num[:, -1]
+    return x[train], y[train], x[val], y[val], train
+
+
+# ---------------------------------------------------------------- peers
+
+def gaussian(a, c, beta):
+    return np.exp(-cdist(a, c, "sqeuclidean") / beta**2)
+
+
+def ols_chen(p, d, k, collinear=1e-12):
+    """Chen's OLS with the bias forced: returns picks (column indices) and their ERRs."""
+    n, m = p.shape
+    dd = d @ d
+    w = p.copy()
+    norms = np.einsum("ij,ij->j", p, p)
+    # forced bias column
+    ones = np.ones(n)
+    w -= np.outer(ones, (ones @ w) / n)
+    r = d - d.mean()
+    picks, errs = [], []
+    alive = np.ones(m, dtype=bool)
+    for _ in range(k):
+        ww = np.einsum("ij,ij->j", w, w)
+        wd = r @ w  # = wᵀd: the deflated columns are orthogonal to the span already fitted
+        ok = alive & (ww > collinear * norms)
+        err = np.where(ok, wd**2 / np.where(ok, ww, 1.0) / dd, -1.0)
+        j = int(np.argmax(err))
+        if err[j] <= 0:
+            break
+        picks.append(j)
+        errs.append(float(err[j]))
+        alive[j] = False
+        q = w[:, j].copy()
+        qq = q @ q
+        r -= q * ((q @ r) / qq)
+        w -= np.outer(q, (q @ w) / qq)
+    return picks, errs
+
+
+def fit_ols(xt, yt, beta, k):
+    phi = gaussian(xt, xt, beta)
+    picks, errs = ols_chen(phi, yt, k)
+    a = np.column_stack([np.ones(len(yt)), phi[:, picks]])
+    coef = np.linalg.lstsq(a, yt, rcond=None)[0]
+    return xt[picks], coef, picks, errs
+
+
+def fit_kmeans(xt, yt, beta, k, seed):
+    km = KMeans(n_clusters=k, init="k-means++", n_init=1, random_state=seed).fit(xt)
+    c = km.cluster_centers_
+    a = np.column_stack([np.ones(len(yt)), gaussian(xt, c, beta)])
+    coef = np.linalg.lstsq(a, yt, rcond=None)[0]
+    return c, coef, int(km.n_iter_)
+
+
+def predict(x, c, coef, beta):
+    return coef[0] + gaussian(x, c, beta) @ coef[1:]
+
+
+def scores(y, yhat):
+    mse = float(np.mean((y - yhat) ** 2))
+    return {"val_rmse": mse**0.5, "val_nmse": mse / float(np.var(y))}
+
+
+def timed(f):
+    t = time.perf_counter()
+    out = f()
+    return out, time.perf_counter() - t
+
+
+def cmd_run(a):
+    xt, yt, xv, yv, train_rows = load(a.data)
+    methods = a.methods.split(",")
+    base = {"side": "python", "n_train": len(yt), "n_val": len(yv)}
+    for _ in range(a.reps):
+        if "ols" in methods:
+            (c, coef, picks, errs), secs = timed(lambda: fit_ols(xt, yt, a.beta, a.k))
+            rec = dict(base, method="ols", fit_seconds=secs, n_centers=len(picks),
+                       picks=[int(train_rows[j]) for j in picks], errs=errs,
+                       **scores(yv, predict(xv, c, coef, a.beta)))
+            print(json.dumps(rec), flush=True)
+        if "kmeans" in methods:
+            (c, coef, iters), secs = timed(lambda: fit_kmeans(xt, yt, a.beta, a.k, a.seed))
+            rec = dict(base, method="kmeans", fit_seconds=secs, n_centers=a.k, iterations=iters,
+                       **scores(yv, predict(xv, c, coef, a.beta)))
+            print(json.dumps(rec), flush=True)
+        if "rbfi" in methods:
+            interp, fit_s = timed(lambda: RBFInterpolator(
+                xt, yt, kernel="gaussian", epsilon=1.0 / a.beta, smoothing=a.smoothing, degree=0))
+            yhat, pred_s = timed(lambda: interp(xv))
+            rec = dict(base, method="all", fit_seconds=fit_s, predict_seconds=pred_s,
+                       n_centers=len(yt), **scores(yv, yhat))
+            print(json.dumps(rec), flush=True)
+        if "matvec" in methods:
+            phi = gaussian(xt, xt, a.beta)
+            v = np.sin(np.arange(len(yt)))
+            ts = []
+            for _ in range(30):
+                _, s = timed(lambda: v @ phi)
+                ts.append(s)
+            print(json.dumps(dict(base, method="matvec", seconds=statistics.median(ts))), flush=True)
+
+
+# ---------------------------------------------------------------- report
+
+def normalise(r):
+    """`rbf fit --json` objects become records like the Python side's; our records are
+    labelled by the threads they ran on."""
+    if r.get("command") == "fit":
+        r = dict(r, side="rust", method=r["centers"])
+        if r.get("ols"):
+            r["picks"] = [p["row"] for p in r["ols"]["picks"]]
+    if r.get("side") == "rust":
+        r["side"] = f"rust-{r.get('threads', 0)}t"
+    return r
+
+
+def cmd_report(a):
+    recs = [normalise(json.loads(line)) for path in a.files for line in open(path)
+            if line.startswith("{")]
+    ours = sorted({r["side"] for r in recs if r["side"].startswith("rust")}, reverse=True)
+
+    def pick(side, method):
+        return [r for r in recs if r.get("side") == side and r.get("method") == method]
+
+    def med(rs, key):
+        vals = [r[key] for r in rs if r.get(key) is not None]
+        return statistics.median(vals) if vals else float("nan")
+
+    for r in recs:
+        if r.get("method") == "all":
+            r["fit+predict"] = r["fit_seconds"] + r["predict_seconds"]
+    print("| measurement | ours: threads | reps ours/peer | ours median (s) | peer median (s) | ours/peer "
+          "| val NMSE ours | val NMSE peer |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, method, key in [
+        ("OLS K=100, fit", "ols", "fit_seconds"),
+        ("k-means K=100 + least squares, fit", "kmeans", "fit_seconds"),
+        ("all points, fit", "all", "fit_seconds"),
+        ("all points, predict 2500", "all", "predict_seconds"),
+        ("all points, fit + predict", "all", "fit+predict"),
+    ]:
+        ps = pick("python", method)
+        peer = med(ps, key)
+        for side in ours:
+            rs = pick(side, method)
+            if not rs:
+                continue
+            o = med(rs, key)
+            print(f"| {label} | {side[5:-1]} | {len(rs)}/{len(ps)} | {o:.4f} | {peer:.4f} | {o / peer:.3f} "
+                  f"| {med(rs, 'val_nmse'):.6f} | {med(ps, 'val_nmse'):.6f} |")
+
+    po = pick("python", "ols")
+    print()
+    for side in ours:
+        ro = pick(side, "ols")
+        if not (ro and po):
+            continue
+        a_, b_ = ro[0]["picks"], po[0]["picks"]
+        first_diff = next((i for i, (u, v) in enumerate(zip(a_, b_)) if u != v), None)
+        shared = len(set(a_) & set(b_))
+        same = ("identical, in the same order" if a_ == b_
+                else f"first difference at pick {first_diff + 1}" if first_diff is not None
+                else "one list is a prefix of the other")
+        consistent = all(r["picks"] == a_ for r in ro)
+        print(f"OLS picks ({side[5:-1]} threads): ours {len(a_)}, numpy {len(b_)}: {same}; "
+              f"{shared} of {min(len(a_), len(b_))} centres shared; "
+              f"{'the same in every repetition' if consistent else 'NOT the same in every repetition'}")
+        print(f"OLS validation RMSE: ours {med(ro, 'val_rmse'):.9f}, numpy {med(po, 'val_rmse'):.9f}")
+        spp = med(ro, "seconds_per_pick")
+        line = f"OLS core ({side[5:-1]} threads): {spp * 1e3:.2f} ms per pick"
+        mv = pick(side, "matvec")
+        if mv:
+            b1, b2 = med(mv, "seconds"), med(mv, "seconds_2row")
+            line += (f"; one faer vᵀP over the 2500×2500 candidates {b1 * 1e3:.2f} ms "
+                     f"({med(mv, 'gb_per_s'):.1f} GB/s), [q r]ᵀP {b2 * 1e3:.2f} ms: "
+                     f"a pick costs {spp / b1:.2f}× one streaming pass")
+        print(line)
+    mp = pick("python", "matvec")
+    if mp:
+        print(f"numpy v @ P over the same matrix: {med(mp, 'seconds') * 1e3:.2f} ms")
+    ko = pick("python", "kmeans")
+    if ko:
+        print(f"scikit-learn k-means iterations (median): {med(ko, 'iterations'):.0f}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    g = sub.add_parser("gen")
+    g.add_argument("--train", type=int, default=2500)
+    g.add_argument("--val", type=int, default=2500)
+    g.add_argument("--seed", type=int, default=2024)
+    g.add_argument("--out", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--data", required=True)
+    r.add_argument("--beta", type=float, required=True)
+    r.add_argument("--k", type=int, default=100)
+    r.add_argument("--seed", type=int, default=42)
+    r.add_argument("--smoothing", type=float, default=1e-8)
+    r.add_argument("--reps", type=int, default=1)
+    r.add_argument("--methods", default="ols,kmeans,rbfi,matvec")
+    p = sub.add_parser("report")
+    p.add_argument("files", nargs="+")
+    a = ap.parse_args()
+    {"gen": cmd_gen, "run": cmd_run, "report": cmd_report}[a.cmd](a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,222 @@
+//! The command-line flags. Names are a contract with scripts and the docs: keep them.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use rbf::Kernel;
+use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
+
+/// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
+#[derive(Debug, Parser)]
+#[command(name = "rbf", version, about, long_about = None, max_term_width = 100)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+    /// Threads for the numerical kernels (1: sequential) [default: every core].
+    #[arg(long, global = true, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Fit a network on the training rows, score it on the validation rows, save it.
+    ///
+    /// Rows: with --split-column, rows marked `train` train and rows marked `val`
+    /// validate (any other value is an error). Without it, the seed paper's interleaved
+    /// split: data rows 0, 2, 4, … (the 1st, 3rd, 5th … after the header) train and rows 1, 3, 5, …
+    /// validate.
+    Fit(FitArgs),
+    /// Predict every row of a CSV file with a saved model.
+    ///
+    /// The model's input columns are found by name; the output CSV has a `prediction`
+    /// column, and the target and `residual` (target − prediction) when the file has the
+    /// target column.
+    Predict(PredictArgs),
+    /// Cross-validate and grid-search width × size × ridge (the library's grid_search).
+    ///
+    /// With OLS, one forward selection per fold and width gives every size in --sizes or
+    /// --tols. Prints per-grid-point mean ± sd validation scores, the best point (lowest
+    /// mean validation NMSE) and its per-fold scores.
+    Cv(CvArgs),
+}
+
+/// Where the data is and which columns to use.
+#[derive(Debug, Args)]
+pub struct DataArgs {
+    /// CSV file with a header row (`#` starts a comment line).
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// The column to predict.
+    #[arg(long, value_name = "COL")]
+    pub target: String,
+    /// Input columns, comma-separated [default: every numeric column but the target
+    /// and the split column].
+    #[arg(long, value_name = "COL,COL,...", value_delimiter = ',')]
+    pub inputs: Option<Vec<String>>,
+}
+
+/// The network.
+#[derive(Debug, Args)]
+pub struct ModelArgs {
+    /// Centre selection: ols (forward selection by error-reduction ratio over the
+    /// training rows), kmeans (k-means++ seeded, QR weights), random (seeded subset, QR
+    /// weights), all (every training row; interpolation, or smoothing with --ridge).
+    #[arg(long, value_name = "ols|kmeans|random|all")]
+    pub centers: Centers,
+    /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
+    /// and random [default: 50].
+    #[arg(long, value_name = "K")]
+    pub max_centers: Option<usize>,
+    /// ols only: choose among a seeded random subsample of M training rows instead of
+    /// all of them (the way to large files: the candidate matrix is rows × M).
+    #[arg(long, value_name = "M")]
+    pub candidates: Option<usize>,
+    /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
+    #[arg(allow_negative_numbers = true, long, value_name = "RHO")]
+    pub tol: Option<f64>,
+    /// Kernel: gaussian exp(−r²/β²), multiquadric, inverse-multiquadric,
+    /// inverse-quadratic, thin-plate, cubic, wendland-c2.
+    #[arg(long, value_name = "NAME", default_value = "gaussian")]
+    pub kernel: Kernel,
+    /// Width β in input units, or auto: β = the median pairwise distance between the
+    /// candidate centres (training rows for ols and all, the centres for kmeans and
+    /// random; a seeded 1000-point subsample above that).
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "BETA|auto",
+        default_value = "auto"
+    )]
+    pub width: WidthArg,
+    /// Ridge λ ≥ 0 on the kernel weights (with --centers all: added to the kernel
+    /// matrix's diagonal, scipy's `smoothing`).
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "L",
+        default_value_t = 0.0
+    )]
+    pub ridge: f64,
+    /// Standardise every input to zero mean and unit variance (β is then in
+    /// standardised units).
+    #[arg(long)]
+    pub standardize: bool,
+    /// Seed of every random draw (k-means, random centres, candidate subsample, k-fold).
+    #[arg(long, value_name = "S", default_value_t = 42)]
+    pub seed: u64,
+}
+
+impl ModelArgs {
+    pub fn settings(&self) -> FitSettings {
+        FitSettings {
+            centers: self.centers,
+            max_centers: self.max_centers,
+            candidates: self.candidates,
+            tol: self.tol,
+            kernel: self.kernel,
+            width: self.width,
+            ridge: self.ridge,
+            standardize: self.standardize,
+            seed: self.seed,
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct FitArgs {
+    #[command(flatten)]
+    pub data: DataArgs,
+    /// Column whose cells say `train` or `val` for each row [default: interleaved split,
+    /// even data rows train, odd rows validate].
+    #[arg(long, value_name = "COL")]
+    pub split_column: Option<String>,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Where to write the model (JSON, with the input and target column names).
+    #[arg(long, value_name = "MODEL.json")]
+    pub out: PathBuf,
+    /// Print one JSON object on stdout (n_train, n_val, dim, n_centers, fit_seconds,
+    /// train_rmse, val_rmse, val_nmse, kernel, width, condition, OLS picks, …).
+    #[arg(long)]
+    pub json: bool,
+    /// No progress bar and no summary.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct PredictArgs {
+    /// A model written by `rbf fit --out`.
+    #[arg(long, value_name = "MODEL.json")]
+    pub model: PathBuf,
+    /// CSV file holding (at least) the model's input columns.
+    #[arg(long, value_name = "FILE.csv")]
+    pub data: PathBuf,
+    /// Where to write the predictions (CSV).
+    #[arg(long, value_name = "PRED.csv")]
+    pub out: PathBuf,
+    /// Print one JSON object on stdout (n_rows, predict_seconds, rmse and nmse when the
+    /// target column is present).
+    #[arg(long)]
+    pub json: bool,
+    /// No summary.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct CvArgs {
+    #[command(flatten)]
+    pub data: DataArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// kfold (shuffled, seeded), interleaved (fold f validates every k-th row) or
+    /// blocked (contiguous blocks: the honest choice for overlapping windows).
+    #[arg(long, value_name = "kfold|interleaved|blocked")]
+    pub split: SplitKind,
+    /// Number of folds.
+    #[arg(long, value_name = "K", default_value_t = 5)]
+    pub folds: usize,
+    /// blocked only: rows dropped from training on each side of the validation block
+    /// (at least the window length for windowed inputs).
+    #[arg(long, value_name = "G")]
+    pub gap: Option<usize>,
+    /// Widths to try (numbers or auto) [default: --width].
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "B1,B2,...",
+        value_delimiter = ','
+    )]
+    pub widths: Vec<WidthArg>,
+    /// Numbers of centres to try [default: --max-centers].
+    #[arg(
+        long,
+        value_name = "K1,K2,...",
+        value_delimiter = ',',
+        conflicts_with = "tols"
+    )]
+    pub sizes: Vec<usize>,
+    /// ols only: tolerances ρ to try [default: --tol].
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "R1,R2,...",
+        value_delimiter = ','
+    )]
+    pub tols: Vec<f64>,
+    /// Ridges to try [default: --ridge].
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "L1,L2,...",
+        value_delimiter = ','
+    )]
+    pub ridges: Vec<f64>,
+    /// Print one JSON object on stdout (every grid point with its folds, and the best).
+    #[arg(long)]
+    pub json: bool,
+    /// No spinner.
+    #[arg(long)]
+    pub quiet: bool,
+}

@@ -1,0 +1,90 @@
+//! `rbf cv`: cross-validation and grid search through the library's `grid_search`.
+
+use std::time::Instant;
+
+use anyhow::{Result, bail};
+use rbf::{Grid, Sizes, grid_search};
+use rbf_cli::data;
+use rbf_cli::progress;
+use rbf_cli::report::{CvContext, CvOut};
+use rbf_cli::settings::{Centers, SplitKind};
+use tabular::Table;
+
+use super::args::CvArgs;
+use super::fit::fit_failed;
+
+pub fn run(a: CvArgs) -> Result<()> {
+    let mut settings = a.model.settings();
+    if a.gap.is_some() && a.split != SplitKind::Blocked {
+        bail!("--gap applies to --split blocked only");
+    }
+    if !a.sizes.is_empty() && settings.centers == Centers::All {
+        bail!("--sizes applies to --centers ols, kmeans and random only, not all");
+    }
+    if !a.tols.is_empty() && settings.centers != Centers::Ols {
+        bail!(
+            "--tols applies to --centers ols only, not {}",
+            settings.centers
+        );
+    }
+    // The grid's largest size is the one the params must allow.
+    if let Some(&k) = a.sizes.iter().max() {
+        settings.max_centers = Some(k);
+    }
+
+    let table = Table::read(&a.data.data)?;
+    let target = a.data.target.clone();
+    let y = data::numeric_matrix(&table, std::slice::from_ref(&target))?;
+    let inputs = data::input_columns(&table, &target, a.data.inputs.as_deref(), &[])?;
+    let x = data::numeric_matrix(&table, &inputs)?;
+    let params = settings.params(table.len())?;
+
+    let gap = a.gap.unwrap_or(0);
+    let split = a.split.split(a.folds, gap, settings.seed);
+    let grid = Grid {
+        widths: a.widths.iter().map(|w| w.rule()).collect(),
+        sizes: if !a.sizes.is_empty() {
+            Sizes::Centres(a.sizes.clone())
+        } else if !a.tols.is_empty() {
+            Sizes::Tolerances(a.tols.clone())
+        } else {
+            Sizes::Default
+        },
+        ridges: a.ridges.clone(),
+    };
+
+    let spinner = progress::spinner(progress::visible(a.quiet), "cross-validating");
+    let start = Instant::now();
+    let result = grid_search(&params, x.as_ref(), y.as_ref(), &split, &grid);
+    let seconds = start.elapsed().as_secs_f64();
+    spinner.finish_and_clear();
+    let report = result.map_err(|e| fit_failed(e, &settings))?;
+
+    let ctx = CvContext {
+        data: table.file().to_string(),
+        target,
+        inputs,
+        n_rows: table.len(),
+        split: a.split.name().to_string(),
+        folds: a.folds,
+        gap,
+        settings: settings.clone(),
+        seconds,
+    };
+    let out = CvOut::new(&report, ctx);
+    if a.json {
+        println!("{}", out.json());
+    } else {
+        println!("{}", out.summary());
+    }
+    if report.best.is_none() {
+        // Every point failed: report the first failure as the error, with its remedy.
+        if let Some(Err(e)) = report.points.first().map(|p| &p.result) {
+            let msg = e.to_string();
+            let e = rbf::RbfError::FoldFailed { reason: msg };
+            return Err(fit_failed(e, &settings).context("no grid point could be fitted"));
+        }
+        bail!("no grid point could be fitted");
+    }
+    Ok(())
+}

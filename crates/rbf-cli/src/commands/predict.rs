@@ -1,0 +1,81 @@
+//! `rbf predict`: load the model, find its inputs by name, predict, write CSV.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use rbf::metrics::Scores;
+use rbf_cli::data;
+use rbf_cli::saved::SavedModel;
+use serde_json::json;
+use tabular::Table;
+
+use super::args::PredictArgs;
+
+pub fn run(a: PredictArgs) -> Result<()> {
+    let saved = SavedModel::load(&a.model)?;
+    let table = Table::read(&a.data)?;
+    let x = data::numeric_matrix(&table, &saved.inputs).with_context(|| {
+        format!(
+            "the model {} needs input columns {}",
+            a.model.display(),
+            saved.inputs.join(", ")
+        )
+    })?;
+    let start = Instant::now();
+    let yhat = saved.model.predict(x.as_ref());
+    let predict_seconds = start.elapsed().as_secs_f64();
+    let prediction = data::column(yhat.as_ref(), 0);
+
+    let target = if table.has_column(&saved.target) {
+        Some(table.numeric(&saved.target)?)
+    } else {
+        None
+    };
+    let out = a.out.display().to_string();
+    let scores = match &target {
+        Some(y) => {
+            let residual: Vec<f64> = y.iter().zip(&prediction).map(|(a, b)| a - b).collect();
+            tabular::write_csv(
+                &a.out,
+                &["prediction", saved.target.as_str(), "residual"],
+                &[&prediction, y, &residual],
+            )?;
+            (!y.is_empty()).then(|| {
+                let ym = rbf::faer::Mat::from_fn(y.len(), 1, |i, _| y[i]);
+                Scores::of(ym.as_ref(), yhat.as_ref())
+            })
+        }
+        None => {
+            tabular::write_csv(&a.out, &["prediction"], &[&prediction])?;
+            None
+        }
+    };
+    let finite = |v: f64| v.is_finite().then_some(v);
+    if a.json {
+        let v = json!({
+            "command": "predict",
+            "model": a.model.display().to_string(),
+            "data": table.file(),
+            "target": saved.target,
+            "inputs": saved.inputs,
+            "n_rows": table.len(),
+            "predict_seconds": predict_seconds,
+            "rmse": scores.as_ref().and_then(|s| finite(s.rmse)),
+            "nmse": scores.as_ref().and_then(|s| finite(s.nmse)),
+            "out": out,
+        });
+        println!("{v}");
+    } else if !a.quiet {
+        match &scores {
+            Some(s) => println!(
+                "rbf predict: {} rows → {out}; against '{}': RMSE {:.6}, NMSE {:.6}",
+                table.len(),
+                saved.target,
+                s.rmse,
+                s.nmse
+            ),
+            None => println!("rbf predict: {} rows → {out}", table.len()),
+        }
+    }
+    Ok(())
+}

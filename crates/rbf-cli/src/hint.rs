@@ -1,0 +1,44 @@
+//! How to fix a failed fit, said as the flag to change.
+//!
+//! The library's errors carry the numbers (rank, condition, rows, centres); this
+//! module maps them to the command-line remedy appended to the one-line error.
+
+use rbf::{RbfError, SolveError, WidthError};
+
+/// The remedy for `err`, if a flag fixes it. `ridge` is the ridge the fit used.
+///
+/// ```
+/// use rbf::{RbfError, SolveError};
+/// let e = RbfError::Solve(SolveError::NotPositiveDefinite { pivot: 3 });
+/// assert_eq!(rbf_cli::hint::fix_for(&e, 0.0).as_deref(), Some("use --ridge 1e-8"));
+/// assert_eq!(rbf_cli::hint::fix_for(&e, 1e-8).as_deref(), Some("use a larger --ridge (e.g. 1e-6)"));
+/// let e = RbfError::FewerRowsThanCentres { rows: 20, centres: 50 };
+/// assert_eq!(rbf_cli::hint::fix_for(&e, 0.0).as_deref(), Some("use --max-centers ≤ 20"));
+/// ```
+pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
+    match err {
+        RbfError::Solve(
+            SolveError::IllConditioned { .. }
+            | SolveError::RankDeficient { .. }
+            | SolveError::NotPositiveDefinite { .. },
+        ) => Some(if ridge > 0.0 {
+            format!(
+                "use a larger --ridge (e.g. {:e})",
+                (ridge * 100.0).max(1e-8)
+            )
+        } else {
+            "use --ridge 1e-8".to_string()
+        }),
+        RbfError::FewerRowsThanCentres { rows, .. } => Some(format!("use --max-centers ≤ {rows}")),
+        RbfError::Width(WidthError::Degenerate | WidthError::TooFewCentres { .. }) => {
+            Some("use a fixed --width BETA".to_string())
+        }
+        RbfError::TooFewSamples { needed, .. } => {
+            Some(format!("provide at least {needed} training rows"))
+        }
+        RbfError::FoldFailed { reason } if reason.contains("ridge") => {
+            Some("use --ridge 1e-8 or add ridges to --ridges".to_string())
+        }
+        _ => None,
+    }
+}

@@ -1,0 +1,366 @@
+//! Command-line choices and the library parameters they stand for.
+//!
+//! Flags arrive here already parsed (clap); this module checks the combinations that
+//! only make sense together (`--tol` needs OLS, at most as many centres as training
+//! rows) and builds the checked [`rbf::RbfValidParams`].
+
+use std::fmt;
+use std::str::FromStr;
+
+use linfa::ParamGuard;
+use rbf::{
+    Candidates, CentreSelection, Kernel, RbfParams, RbfParamsError, RbfValidParams, Split,
+    WidthRule,
+};
+
+/// Centres when `--max-centers` is not given (the library's default OLS size).
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::DEFAULT_MAX_CENTERS, 50);
+/// ```
+pub const DEFAULT_MAX_CENTERS: usize = 50;
+
+/// `--centers`: how the centres are chosen.
+///
+/// ```
+/// use rbf_cli::settings::Centers;
+/// assert_eq!("kmeans".parse::<Centers>().unwrap(), Centers::Kmeans);
+/// assert!("best".parse::<Centers>().unwrap_err().contains("ols, kmeans, random, all"));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Centers {
+    /// OLS forward selection by error-reduction ratio (Chen, Cowan & Grant 1991).
+    #[default]
+    Ols,
+    /// k-means centroids (k-means++, seeded) with QR output weights.
+    Kmeans,
+    /// A seeded random subset of the training rows with QR output weights.
+    Random,
+    /// Every training row is a centre (interpolation, or smoothing with a ridge).
+    All,
+}
+
+impl Centers {
+    /// The names `--centers` accepts.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::Centers::NAMES[0], "ols");
+    /// ```
+    pub const NAMES: [&'static str; 4] = ["ols", "kmeans", "random", "all"];
+
+    /// The flag value naming this choice.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::Centers::All.name(), "all");
+    /// ```
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+}
+
+impl FromStr for Centers {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "ols" => Ok(Centers::Ols),
+            "kmeans" => Ok(Centers::Kmeans),
+            "random" => Ok(Centers::Random),
+            "all" => Ok(Centers::All),
+            _ => Err(format!("valid names: {}", Self::NAMES.join(", "))),
+        }
+    }
+}
+
+impl fmt::Display for Centers {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// `--width`: a fixed β in input units, or `auto`, the library's default rule (β = the
+/// median pairwise distance between the candidate centres, on a seeded subsample of
+/// 1000 of them above that count).
+///
+/// ```
+/// use rbf_cli::settings::WidthArg;
+/// assert_eq!("auto".parse::<WidthArg>().unwrap(), WidthArg::Auto);
+/// assert_eq!("0.5".parse::<WidthArg>().unwrap(), WidthArg::Fixed(0.5));
+/// assert!("-1".parse::<WidthArg>().is_err());
+/// assert_eq!(WidthArg::Auto.rule(), rbf::WidthRule::default());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum WidthArg {
+    /// The library's default width rule.
+    #[default]
+    Auto,
+    /// A fixed β.
+    Fixed(f64),
+}
+
+impl WidthArg {
+    /// The library's width rule.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::WidthArg::Fixed(2.0).rule(), rbf::WidthRule::Fixed(2.0));
+    /// ```
+    pub fn rule(self) -> WidthRule {
+        match self {
+            WidthArg::Auto => WidthRule::default(),
+            WidthArg::Fixed(b) => WidthRule::Fixed(b),
+        }
+    }
+}
+
+impl FromStr for WidthArg {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "auto" {
+            return Ok(WidthArg::Auto);
+        }
+        match s.parse::<f64>() {
+            Ok(b) if b.is_finite() && b > 0.0 => Ok(WidthArg::Fixed(b)),
+            _ => Err("expected 'auto' or a finite width β > 0".to_string()),
+        }
+    }
+}
+
+impl fmt::Display for WidthArg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            WidthArg::Auto => f.write_str("auto"),
+            WidthArg::Fixed(b) => write!(f, "{b}"),
+        }
+    }
+}
+
+/// `--split` of `rbf cv`.
+///
+/// ```
+/// use rbf_cli::settings::SplitKind;
+/// assert_eq!(SplitKind::Blocked.split(5, 3, 0), rbf::Split::Blocked { k: 5, gap: 3 });
+/// assert_eq!("kfold".parse::<SplitKind>().unwrap(), SplitKind::Kfold);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SplitKind {
+    /// Shuffled k-fold (seeded).
+    Kfold,
+    /// Fold f validates every k-th row (k = 2: the seed paper's alternate rows).
+    Interleaved,
+    /// Contiguous blocks, `gap` rows dropped from training on each side.
+    Blocked,
+}
+
+impl SplitKind {
+    /// The names `--split` accepts.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::SplitKind::NAMES[2], "blocked");
+    /// ```
+    pub const NAMES: [&'static str; 3] = ["kfold", "interleaved", "blocked"];
+
+    /// The library's split with `folds` folds.
+    ///
+    /// ```
+    /// use rbf_cli::settings::SplitKind;
+    /// assert_eq!(SplitKind::Kfold.split(4, 0, 9), rbf::Split::KFold { k: 4, seed: 9 });
+    /// ```
+    pub fn split(self, folds: usize, gap: usize, seed: u64) -> Split {
+        match self {
+            SplitKind::Kfold => Split::KFold { k: folds, seed },
+            SplitKind::Interleaved => Split::Interleaved { k: folds },
+            SplitKind::Blocked => Split::Blocked { k: folds, gap },
+        }
+    }
+
+    /// The flag value naming this split.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::SplitKind::Interleaved.name(), "interleaved");
+    /// ```
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+}
+
+impl FromStr for SplitKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "kfold" => Ok(SplitKind::Kfold),
+            "interleaved" => Ok(SplitKind::Interleaved),
+            "blocked" => Ok(SplitKind::Blocked),
+            _ => Err(format!("valid names: {}", Self::NAMES.join(", "))),
+        }
+    }
+}
+
+/// A combination of flags that cannot be fitted.
+///
+/// ```
+/// let e = rbf_cli::settings::SettingsError::TooManyCenters { centers: 9, rows: 4, what: "training rows" };
+/// assert!(e.to_string().ends_with("use --max-centers ≤ 4"));
+/// ```
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum SettingsError {
+    /// A flag that only applies to other `--centers`.
+    #[error("{flag} applies to --centers {applies} only, not {centers}")]
+    NotApplicable {
+        /// The flag.
+        flag: &'static str,
+        /// The strategies it applies to.
+        applies: &'static str,
+        /// The strategy given.
+        centers: Centers,
+    },
+    /// More centres than there are rows (or candidates) to choose them from.
+    #[error("{centers} centres asked for but only {rows} {what}; use --max-centers ≤ {rows}")]
+    TooManyCenters {
+        /// Centres asked for.
+        centers: usize,
+        /// Rows or candidates available.
+        rows: usize,
+        /// What `rows` counts.
+        what: &'static str,
+    },
+    /// The library rejected the parameters.
+    #[error(transparent)]
+    Params(#[from] RbfParamsError),
+}
+
+/// Everything `rbf fit` needs to build the library's parameters.
+///
+/// ```
+/// use rbf_cli::settings::{Centers, FitSettings};
+/// let s = FitSettings { centers: Centers::Kmeans, max_centers: Some(8), ..FitSettings::default() };
+/// let p = s.params(100).unwrap();
+/// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.n_centres == 8));
+/// assert!(s.params(5).unwrap_err().to_string().contains("--max-centers ≤ 5"));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitSettings {
+    /// `--centers`.
+    pub centers: Centers,
+    /// `--max-centers` (OLS: the most; k-means and random: exactly).
+    pub max_centers: Option<usize>,
+    /// `--candidates` (OLS: a seeded subsample of this many training rows).
+    pub candidates: Option<usize>,
+    /// `--tol` (OLS ρ: stop once 1 − ΣERR < ρ).
+    pub tol: Option<f64>,
+    /// `--kernel`.
+    pub kernel: Kernel,
+    /// `--width`.
+    pub width: WidthArg,
+    /// `--ridge`.
+    pub ridge: f64,
+    /// `--standardize`.
+    pub standardize: bool,
+    /// `--seed`.
+    pub seed: u64,
+}
+
+impl Default for FitSettings {
+    fn default() -> Self {
+        Self {
+            centers: Centers::Ols,
+            max_centers: None,
+            candidates: None,
+            tol: None,
+            kernel: Kernel::Gaussian,
+            width: WidthArg::Auto,
+            ridge: 0.0,
+            standardize: false,
+            seed: 42,
+        }
+    }
+}
+
+impl FitSettings {
+    /// The number of centres asked for (all: none).
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::FitSettings::default().n_centers(), Some(50));
+    /// ```
+    pub fn n_centers(&self) -> Option<usize> {
+        match self.centers {
+            Centers::All => None,
+            _ => Some(self.max_centers.unwrap_or(DEFAULT_MAX_CENTERS)),
+        }
+    }
+
+    /// Checks the flag combination for `n_train` training rows and builds the params.
+    ///
+    /// # Errors
+    /// [`SettingsError`]: a flag for another strategy, more centres than rows (or OLS
+    /// candidates), or parameters the library rejects (e.g. a negative ridge).
+    ///
+    /// ```
+    /// use rbf_cli::settings::{Centers, FitSettings};
+    /// let s = FitSettings { centers: Centers::All, tol: Some(0.01), ..FitSettings::default() };
+    /// assert_eq!(s.params(10).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
+    /// ```
+    pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
+        self.check_flags()?;
+        let k = self.n_centers();
+        if let Some(k) = k {
+            let (rows, what) = match self.candidates {
+                Some(m) if m < n_train => (m, "OLS candidates (--candidates)"),
+                _ => (n_train, "training rows"),
+            };
+            if k > rows {
+                return Err(SettingsError::TooManyCenters {
+                    centers: k,
+                    rows,
+                    what,
+                });
+            }
+        }
+        let k = k.unwrap_or(0);
+        let centres = match self.centers {
+            Centers::Ols => CentreSelection::Ols {
+                max_centres: k,
+                tol: self.tol.unwrap_or(0.0),
+                regularisation: 0.0,
+                candidates: match self.candidates {
+                    Some(size) => Candidates::Subsample { size },
+                    None => Candidates::TrainingVectors,
+                },
+            },
+            Centers::Kmeans => CentreSelection::kmeans(k),
+            Centers::Random => CentreSelection::random(k),
+            Centers::All => CentreSelection::AllPoints,
+        };
+        Ok(RbfParams::new()
+            .kernel(self.kernel)
+            .centres(centres)
+            .width(self.width.rule())
+            .ridge(self.ridge)
+            .standardise(self.standardize)
+            .seed(self.seed)
+            .check()?)
+    }
+
+    fn check_flags(&self) -> Result<(), SettingsError> {
+        let only = |flag, applies, ok: bool| {
+            if ok {
+                Ok(())
+            } else {
+                Err(SettingsError::NotApplicable {
+                    flag,
+                    applies,
+                    centers: self.centers,
+                })
+            }
+        };
+        let ols = self.centers == Centers::Ols;
+        only("--tol", "ols", ols || self.tol.is_none())?;
+        only("--candidates", "ols", ols || self.candidates.is_none())?;
+        only(
+            "--max-centers",
+            "ols, kmeans and random",
+            self.centers != Centers::All || self.max_centers.is_none(),
+        )
+    }
+}

@@ -1,0 +1,609 @@
+//! The `rbf` binary end to end: small CSV files in a temporary directory, the built
+//! binary run on them, its stdout/stderr/exit status and output files checked.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use rbf_cli::data;
+use rbf_cli::saved::SavedModel;
+use rbf_cli::settings::{Centers, FitSettings, WidthArg};
+use serde_json::Value;
+use tabular::Table;
+
+/// A fresh directory per test (tests run in parallel).
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rbf-cli-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn rbf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rbf"))
+        .args(args)
+        .output()
+        .expect("runs the rbf binary")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn succeeds(out: &Output) {
+    assert!(
+        out.status.success(),
+        "rbf failed: {}\nstdout: {}",
+        stderr(out),
+        stdout(out)
+    );
+}
+
+/// Non-zero exit, one line on stderr that contains every needle, no panic.
+fn fails_with(out: &Output, needles: &[&str]) {
+    let err = stderr(out);
+    assert!(!out.status.success(), "expected failure, stderr: {err}");
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err:?}");
+    for n in needles {
+        assert!(err.contains(n), "{n:?} not in {err:?}");
+    }
+}
+
+/// Deterministic smooth data: inputs a, b on a scrambled grid, a text column, the
+/// target y = sin(2a)·cos(b) with a small deterministic wiggle.
+fn smooth_csv(n: usize, split: Option<&dyn Fn(usize) -> &'static str>) -> String {
+    let mut s = String::from("a,label,b,y");
+    if split.is_some() {
+        s.push_str(",split");
+    }
+    s.push('\n');
+    for i in 0..n {
+        let a = ((i * 37) % n) as f64 / n as f64 * 3.0 - 1.5;
+        let b = ((i * 11) % 17) as f64 / 17.0 * 3.0 - 1.5;
+        let y = (2.0 * a).sin() * b.cos() + 0.002 * ((i * 7919) % 13) as f64;
+        s.push_str(&format!("{a},L{},{b},{y}", i % 3));
+        if let Some(f) = split {
+            s.push(',');
+            s.push_str(f(i));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).expect("writes");
+    p.display().to_string()
+}
+
+fn json(out: &Output) -> Value {
+    serde_json::from_str(stdout(out).trim()).expect("stdout is one JSON object")
+}
+
+#[test]
+fn fit_then_predict_round_trip_matches_the_library() {
+    let dir = scratch("roundtrip");
+    let data_path = write(&dir, "d.csv", &smooth_csv(120, None));
+    let model_path = dir.join("m.json").display().to_string();
+    let out = rbf(&[
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--max-centers",
+        "12",
+        "--width",
+        "1",
+        "--out",
+        &model_path,
+        "--json",
+        "--quiet",
+    ]);
+    succeeds(&out);
+    let v = json(&out);
+    for key in [
+        "n_train",
+        "n_val",
+        "dim",
+        "n_centers",
+        "fit_seconds",
+        "train_rmse",
+        "val_rmse",
+        "val_nmse",
+        "kernel",
+        "width",
+        "condition",
+        "ols",
+    ] {
+        assert!(v.get(key).is_some(), "missing key {key} in {v}");
+    }
+    assert_eq!(v["n_train"], 60);
+    assert_eq!(v["n_val"], 60);
+    assert_eq!(v["dim"], 2, "the text column is not an input");
+    assert_eq!(v["n_centers"], 12);
+    assert_eq!(v["kernel"], "gaussian");
+    assert_eq!(v["width"], 1.0);
+    let secs = v["fit_seconds"].as_f64().unwrap();
+    assert!(secs > 0.0 && secs < 10.0, "{secs}");
+    let (tr, vr, vn) = (
+        v["train_rmse"].as_f64().unwrap(),
+        v["val_rmse"].as_f64().unwrap(),
+        v["val_nmse"].as_f64().unwrap(),
+    );
+    assert!(tr > 0.0 && tr < 0.1 && vr > 0.0 && vr < 0.2, "{tr} {vr}");
+    assert!(vn > 0.0 && vn < 0.05, "{vn}");
+    let picks = v["ols"]["picks"].as_array().unwrap();
+    assert_eq!(picks.len(), 12);
+    assert!(
+        picks.iter().all(|p| p["row"].as_u64().unwrap() % 2 == 0),
+        "centres are training (even) rows"
+    );
+
+    let pred_path = dir.join("p.csv").display().to_string();
+    succeeds(&rbf(&[
+        "predict",
+        "--model",
+        &model_path,
+        "--data",
+        &data_path,
+        "--out",
+        &pred_path,
+    ]));
+    let pred = Table::read(&pred_path).unwrap();
+    assert_eq!(pred.header(), ["prediction", "y", "residual"]);
+    let cli_pred = pred.numeric("prediction").unwrap();
+
+    // The saved model, through the library, predicts exactly what the CLI wrote.
+    let saved = SavedModel::load(&model_path).unwrap();
+    assert_eq!(saved.inputs, ["a", "b"]);
+    let table = Table::read(&data_path).unwrap();
+    let x = data::numeric_matrix(&table, &saved.inputs).unwrap();
+    let lib_pred = data::column(saved.model.predict(x.as_ref()).as_ref(), 0);
+    assert_eq!(cli_pred, lib_pred);
+
+    // A library fit on the even rows with the same settings gives the same model.
+    let params = FitSettings {
+        centers: Centers::Ols,
+        max_centers: Some(12),
+        width: WidthArg::Fixed(1.0),
+        ..FitSettings::default()
+    }
+    .params(60)
+    .unwrap();
+    let y = data::numeric_matrix(&table, &["y".to_string()]).unwrap();
+    let even = data::interleaved(120).train;
+    let model = params
+        .fit(
+            data::take_rows(x.as_ref(), &even).as_ref(),
+            data::take_rows(y.as_ref(), &even).as_ref(),
+        )
+        .unwrap();
+    let direct = data::column(model.predict(x.as_ref()).as_ref(), 0);
+    for (a, b) in direct.iter().zip(&cli_pred) {
+        assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()), "{a} vs {b}");
+    }
+    let resid = pred.numeric("residual").unwrap();
+    let yv = pred.numeric("y").unwrap();
+    for i in 0..120 {
+        assert_eq!(resid[i], yv[i] - cli_pred[i]);
+    }
+}
+
+#[test]
+fn fit_prints_a_human_summary_without_json() {
+    let dir = scratch("summary");
+    let data_path = write(&dir, "d.csv", &smooth_csv(80, None));
+    let model_path = dir.join("m.json").display().to_string();
+    let out = rbf(&[
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "all",
+        "--width",
+        "0.5",
+        "--ridge",
+        "1e-8",
+        "--out",
+        &model_path,
+    ]);
+    succeeds(&out);
+    let text = stdout(&out);
+    assert!(text.contains("40 training / 40 validation rows"), "{text}");
+    assert!(text.contains("40 centres (all)"), "{text}");
+    assert!(text.contains("model written to"), "{text}");
+    assert!(
+        stderr(&out).is_empty(),
+        "no progress when stderr is not a terminal"
+    );
+}
+
+#[test]
+fn split_column_chooses_training_and_validation_rows() {
+    let dir = scratch("split");
+    let role: &dyn Fn(usize) -> &'static str = &|i| if i % 4 == 3 { "val" } else { "train" };
+    let data_path = write(&dir, "d.csv", &smooth_csv(100, Some(role)));
+    let model_path = dir.join("m.json").display().to_string();
+    let out = rbf(&[
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--split-column",
+        "split",
+        "--centers",
+        "kmeans",
+        "--max-centers",
+        "10",
+        "--width",
+        "0.8",
+        "--seed",
+        "3",
+        "--standardize",
+        "--out",
+        &model_path,
+        "--json",
+        "--threads",
+        "1",
+    ]);
+    succeeds(&out);
+    let v = json(&out);
+    assert_eq!(v["threads"], 1);
+    assert_eq!(
+        (v["n_train"].as_u64(), v["n_val"].as_u64()),
+        (Some(75), Some(25))
+    );
+    assert_eq!(v["dim"], 2, "the split column is not an input");
+    assert_eq!(v["n_centers"], 10);
+    assert!(v["ols"].is_null());
+    assert!(v["val_nmse"].as_f64().unwrap() < 0.2);
+}
+
+#[test]
+fn cv_grid_search_reports_every_point_and_the_best() {
+    let dir = scratch("cv");
+    let data_path = write(&dir, "d.csv", &smooth_csv(90, None));
+    let out = rbf(&[
+        "cv",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--split",
+        "blocked",
+        "--folds",
+        "3",
+        "--gap",
+        "2",
+        "--sizes",
+        "4,8",
+        "--widths",
+        "0.8,auto",
+        "--ridges",
+        "0,1e-6",
+        "--json",
+    ]);
+    succeeds(&out);
+    let v = json(&out);
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 8);
+    let best = v["best"].as_u64().unwrap() as usize;
+    assert_eq!(v["best_point"], points[best]);
+    assert_eq!(points[best]["folds"].as_array().unwrap().len(), 3);
+    let best_nmse = points[best]["mean"]["nmse"].as_f64().unwrap();
+    assert!(
+        points
+            .iter()
+            .all(|p| p["mean"]["nmse"].as_f64().unwrap() >= best_nmse)
+    );
+
+    let out = rbf(&[
+        "cv",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "random",
+        "--max-centers",
+        "8",
+        "--width",
+        "1",
+        "--split",
+        "kfold",
+        "--folds",
+        "3",
+    ]);
+    succeeds(&out);
+    let text = stdout(&out);
+    assert!(
+        text.contains("best:") && text.contains("val NMSE"),
+        "{text}"
+    );
+}
+
+#[test]
+fn predict_without_the_target_writes_predictions_only() {
+    let dir = scratch("notarget");
+    let data_path = write(&dir, "d.csv", &smooth_csv(60, None));
+    let model_path = dir.join("m.json").display().to_string();
+    succeeds(&rbf(&[
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "random",
+        "--max-centers",
+        "6",
+        "--out",
+        &model_path,
+        "--quiet",
+    ]));
+    // Columns in another order, no target: inputs are found by name.
+    let new_path = write(&dir, "new.csv", "b,a\n0.5,0.1\n-0.5,0.2\n");
+    let pred_path = dir.join("p.csv").display().to_string();
+    let out = rbf(&[
+        "predict",
+        "--model",
+        &model_path,
+        "--data",
+        &new_path,
+        "--out",
+        &pred_path,
+        "--json",
+    ]);
+    succeeds(&out);
+    assert_eq!(json(&out)["n_rows"], 2);
+    let pred = Table::read(&pred_path).unwrap();
+    assert_eq!(pred.header(), ["prediction"]);
+    let saved = SavedModel::load(&model_path).unwrap();
+    let x = rbf::faer::mat![[0.1, 0.5], [0.2, -0.5]];
+    assert_eq!(
+        pred.numeric("prediction").unwrap(),
+        data::column(saved.model.predict(x.as_ref()).as_ref(), 0)
+    );
+}
+
+// ---- bad input: one line on stderr, non-zero exit, no panic ----
+
+fn fit_on(dir: &Path, csv: &str, extra: &[&str]) -> Output {
+    let data_path = write(dir, "d.csv", csv);
+    let model_path = dir.join("m.json").display().to_string();
+    let mut args = vec![
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--out",
+        &model_path,
+    ];
+    args.extend_from_slice(extra);
+    if !extra.contains(&"--centers") {
+        args.extend_from_slice(&["--centers", "ols", "--max-centers", "2"]);
+    }
+    rbf(&args)
+}
+
+#[test]
+fn missing_target_column_lists_the_available_ones() {
+    let dir = scratch("e-target");
+    let out = fit_on(&dir, "a,b,z\n1,2,3\n4,5,6\n", &[]);
+    fails_with(&out, &["d.csv", "no column 'y'", "a, b, z"]);
+}
+
+#[test]
+fn missing_input_column_lists_the_available_ones() {
+    let dir = scratch("e-input");
+    let out = fit_on(&dir, "a,b,y\n1,2,3\n4,5,6\n", &["--inputs", "a,c"]);
+    fails_with(&out, &["no column 'c'", "a, b, y"]);
+}
+
+#[test]
+fn non_numeric_cell_names_file_line_and_column() {
+    let dir = scratch("e-text");
+    let out = fit_on(
+        &dir,
+        "a,b,y\n1,2,3\n4,5,6\n7,eight,9\n",
+        &["--inputs", "a,b"],
+    );
+    fails_with(
+        &out,
+        &["d.csv:4:2:", "column 'b'", "'eight' is not a number"],
+    );
+}
+
+#[test]
+fn nan_cell_is_rejected_with_its_position() {
+    let dir = scratch("e-nan");
+    let out = fit_on(&dir, "a,b,y\n1,2,3\n4,5,NaN\n7,8,9\n", &[]);
+    fails_with(&out, &["d.csv:3:3:", "'NaN' is not finite"]);
+}
+
+#[test]
+fn infinite_cell_is_rejected_with_its_position() {
+    let dir = scratch("e-inf");
+    let out = fit_on(&dir, "a,b,y\n1,2,3\n4,-inf,6\n7,8,9\n", &[]);
+    fails_with(&out, &["d.csv:3:2:", "'-inf' is not finite"]);
+}
+
+#[test]
+fn fewer_rows_than_centres_says_how_many_fit() {
+    let dir = scratch("e-rows");
+    let csv = smooth_csv(20, None);
+    let out = fit_on(&dir, &csv, &["--centers", "kmeans", "--max-centers", "15"]);
+    fails_with(
+        &out,
+        &["15 centres", "10 training rows", "use --max-centers ≤ 10"],
+    );
+}
+
+#[test]
+fn unknown_kernel_lists_the_valid_names() {
+    let dir = scratch("e-kernel");
+    let out = fit_on(&dir, &smooth_csv(20, None), &["--kernel", "gauss"]);
+    fails_with(
+        &out,
+        &["unknown kernel", "gaussian", "thin-plate", "wendland-c2"],
+    );
+}
+
+#[test]
+fn singular_all_points_fit_suggests_a_ridge() {
+    let dir = scratch("e-ridge");
+    // every row four times: the even (training) rows hold each point twice, so the
+    // all-points kernel matrix is singular
+    let mut csv = String::from("a,y\n");
+    for i in 0..10 {
+        let a = i as f64 / 10.0;
+        for _ in 0..4 {
+            csv.push_str(&format!("{a},{}\n", a * a));
+        }
+    }
+    let out = fit_on(&dir, &csv, &["--centers", "all", "--width", "1"]);
+    fails_with(&out, &["fit failed", "use --ridge 1e-8"]);
+}
+
+#[test]
+fn bad_split_value_names_the_allowed_ones() {
+    let dir = scratch("e-split");
+    let out = fit_on(
+        &dir,
+        "a,y,s\n1,2,train\n3,4,test\n",
+        &["--split-column", "s"],
+    );
+    fails_with(&out, &["d.csv:3:3:", "'test'", "allowed: train, val"]);
+}
+
+#[test]
+fn unreadable_data_file_is_named() {
+    let dir = scratch("e-io");
+    let missing = dir.join("nope.csv").display().to_string();
+    let out = rbf(&[
+        "fit",
+        "--data",
+        &missing,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--out",
+        "m.json",
+    ]);
+    fails_with(&out, &["nope.csv", "No such file"]);
+}
+
+#[test]
+fn missing_required_flag_is_one_line() {
+    let out = rbf(&[
+        "fit",
+        "--data",
+        "d.csv",
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+    ]);
+    fails_with(&out, &["--out"]);
+}
+
+fn saved_model(dir: &Path) -> (String, String) {
+    let data_path = write(dir, "d.csv", &smooth_csv(40, None));
+    let model_path = dir.join("m.json").display().to_string();
+    succeeds(&rbf(&[
+        "fit",
+        "--data",
+        &data_path,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--max-centers",
+        "5",
+        "--out",
+        &model_path,
+        "--quiet",
+    ]));
+    (data_path, model_path)
+}
+
+#[test]
+fn corrupt_model_file_is_rejected() {
+    let dir = scratch("e-corrupt");
+    let (data_path, model_path) = saved_model(&dir);
+    let text = std::fs::read_to_string(&model_path).unwrap();
+    std::fs::write(&model_path, &text[..text.len() / 2]).unwrap();
+    let out = rbf(&[
+        "predict",
+        "--model",
+        &model_path,
+        "--data",
+        &data_path,
+        "--out",
+        "p.csv",
+    ]);
+    fails_with(&out, &["m.json", "corrupt model file"]);
+}
+
+#[test]
+fn wrong_version_model_file_is_rejected() {
+    let dir = scratch("e-version");
+    let (data_path, model_path) = saved_model(&dir);
+    let text = std::fs::read_to_string(&model_path).unwrap();
+    std::fs::write(
+        &model_path,
+        text.replacen("\"format_version\": 1", "\"format_version\": 99", 1),
+    )
+    .unwrap();
+    let out = rbf(&[
+        "predict",
+        "--model",
+        &model_path,
+        "--data",
+        &data_path,
+        "--out",
+        "p.csv",
+    ]);
+    fails_with(&out, &["format_version 99", "reads 1"]);
+}
+
+#[test]
+fn predict_data_lacking_a_model_input_is_an_error() {
+    let dir = scratch("e-predict-input");
+    let (_, model_path) = saved_model(&dir);
+    let other = write(&dir, "other.csv", "a,y\n0.1,0.2\n");
+    let pred_path = dir.join("p.csv").display().to_string();
+    let out = rbf(&[
+        "predict",
+        "--model",
+        &model_path,
+        "--data",
+        &other,
+        "--out",
+        &pred_path,
+    ]);
+    fails_with(
+        &out,
+        &[
+            "needs input columns a, b",
+            "no column 'b'",
+            "the header has: a, y",
+        ],
+    );
+    assert!(!Path::new(&pred_path).exists());
+}
