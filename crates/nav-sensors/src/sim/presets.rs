@@ -332,9 +332,9 @@ impl Scenario {
     }
 
     /// As [`Scenario::triaxial_clean`] with two hidden effects: an
-    /// anisoelastic `gg_IS` of 0.8 deg/h/g² on Y1 and a temperature
+    /// anisoelastic `gg_IS` of 0.4 deg/h/g² on Y1 and a temperature
     /// sensitivity of 0.8 deg/h/°C on Z, both zeroed in the calibration.
-    /// Both are about ten times what a real DTG shows, so that each
+    /// Both are several times what a real DTG shows, so that each
     /// contributes 3–5× the 50-Hz noise floor over 100 s.
     ///
     /// ```
@@ -349,7 +349,7 @@ impl Scenario {
                          hidden on Z (temperature ramp in the record's temp column)"
             .into();
         let y1 = s.gyros.channels.entry(Channel::Y1).or_default();
-        y1.set(DtgTerm::GgIS, 0.8);
+        y1.set(DtgTerm::GgIS, 0.4);
         let z = s.gyros.channels.entry(Channel::Z).or_default();
         z.set(DtgTerm::Temp, 0.8);
         s.hidden = vec![
@@ -367,9 +367,11 @@ impl Scenario {
 
     /// The paper's test ([`Scenario::paper_z_random`]) with one effect hidden
     /// for the diagnosis loop to find: channel Y1's drift temperature
-    /// sensitivity is 0.6 deg/h/°C (ten times the other channels'), and the
-    /// vibration warms the fixture by about 3 °C, so Y1 drifts by about
-    /// 1.5 deg/h over the test. Temperature sensitivity is never part of a
+    /// sensitivity is 0.6 deg/h/°C (thirty times the other channels'), and
+    /// the unit warms up from 22 °C toward 28 °C (60-s time constant), so Y1
+    /// drifts by about 3 deg/h over the test. The levels step twice through
+    /// −6, 0 and −3 dB, so that temperature and level are not confounded
+    /// within either half of a blocked split. Temperature sensitivity is never part of a
     /// ground calibration; the record's `temp` column carries what a model
     /// needs. `dtg-vib demo` runs on this record.
     ///
@@ -384,7 +386,7 @@ impl Scenario {
         let mut s = Self::paper_z_random();
         s.name = "demo".into();
         s.description = "The paper's Z-axis random test with the drift temperature sensitivity of \
-                         channel Y1 hidden (0.6 deg/h/°C; the fixture warms by about 3 °C)"
+                         channel Y1 hidden (0.6 deg/h/°C; the unit warms up from 22 °C toward 28 °C)"
             .into();
         if let Some(c) = s.gyros.channels.get_mut(&Channel::Y1) {
             c.temp_deg_h_per_c = 0.6;
