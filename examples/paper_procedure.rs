@@ -26,8 +26,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         sim.record.len(),
         1.0 / sim.record.dt()
     );
-    for (name, split) in [("interleaved (the paper's)", SplitKind::Interleaved), ("blocked (first half trains)", SplitKind::default())] {
-        let options = FitOptions { split, ..FitOptions::default() };
+    for (name, split) in [
+        ("interleaved (the paper's)", SplitKind::Interleaved),
+        ("blocked (first half trains)", SplitKind::default()),
+    ] {
+        let options = FitOptions {
+            split,
+            ..FitOptions::default()
+        };
         let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {})?;
         let applied = Applied::new(&model, &sim.record)?;
         println!();
@@ -39,11 +45,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         println!("channel  centres  validation rms (deg/h)  bias-only rms");
         for c in model.channels() {
-            println!("{:>7}  {:>7}  {:>22.4}  {:>13.4}", c.channel().name(), c.n_centres(), c.scores().val_rms, c.scores().val_rms_bias_only);
+            println!(
+                "{:>7}  {:>7}  {:>22.4}  {:>13.4}",
+                c.channel().name(),
+                c.n_centres(),
+                c.scores().val_rms,
+                c.scores().val_rms_bias_only
+            );
         }
         println!("residue  rms before  rms after (deg/h, validation vectors)  reduction");
         for s in applied.validation_residues() {
-            println!("{:>7}  {:>10.4}  {:>9.4}  {:>38.2}x", s.residue.name(), s.rms_before, s.rms_after, s.reduction);
+            println!(
+                "{:>7}  {:>10.4}  {:>9.4}  {:>38.2}x",
+                s.residue.name(),
+                s.rms_before,
+                s.rms_after,
+                s.reduction
+            );
         }
     }
     Ok(())

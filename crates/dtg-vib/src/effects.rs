@@ -11,7 +11,7 @@
 //!
 //! The bias is not an effect: every channel model has one (λ0 of eq. 7).
 
-use nav_sensors::dtg::{DtgInput, DtgTerm};
+use nav_sensors::dtg::{DtgInput, DtgTerm, within_interval_covariance};
 use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate};
 use nav_sensors::record::Record;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -228,7 +228,9 @@ impl FromStr for ChannelEffect {
 ///
 /// Specific force comes from the record's accelerometers (g, cluster frame);
 /// rate from the least-squares combination of the six gyro outputs (deg/h),
-/// both resolved into the channel's (I, O, S) frame.
+/// both resolved into the channel's (I, O, S) frame. The g² regressors are
+/// interval means of products (product of means plus the within-interval
+/// covariance estimated from neighbouring samples), as the gyro output is.
 ///
 /// ```
 /// use dtg_vib::effects::{Effect, EffectColumns};
@@ -245,6 +247,8 @@ impl FromStr for ChannelEffect {
 pub struct EffectColumns<'a> {
     record: &'a Record,
     rate_deg_h: Vec<nalgebra::Vector3<f64>>,
+    /// Within-interval covariance of the specific force (cluster frame), g².
+    covariance: Vec<nalgebra::Matrix3<f64>>,
 }
 
 impl<'a> EffectColumns<'a> {
@@ -253,7 +257,14 @@ impl<'a> EffectColumns<'a> {
         let rate_deg_h = (0..record.len())
             .map(|i| least_squares_rate(&record.gyro_sample(i)))
             .collect();
-        Self { record, rate_deg_h }
+        let means: Vec<nalgebra::Vector3<f64>> =
+            (0..record.len()).map(|i| record.accel_sample(i)).collect();
+        let covariance = within_interval_covariance(&means);
+        Self {
+            record,
+            rate_deg_h,
+            covariance,
+        }
     }
 
     /// One column per effect, each of the record's length.
@@ -265,7 +276,10 @@ impl<'a> EffectColumns<'a> {
         let frame = ChannelFrame::of(channel);
         let n = self.record.len();
         let inputs: Vec<DtgInput> = (0..n)
-            .map(|i| DtgInput::resolved(&frame, &self.rate_deg_h[i], &self.record.accel_sample(i)))
+            .map(|i| {
+                DtgInput::resolved(&frame, &self.rate_deg_h[i], &self.record.accel_sample(i))
+                    .with_covariance(&frame, &self.covariance[i])
+            })
             .collect();
         effects
             .iter()

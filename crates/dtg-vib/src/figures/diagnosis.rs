@@ -162,7 +162,7 @@ pub fn write_diagnosis_report(
             err_fig = err_fig.panel(
                 BarChart::ranked(
                     format!("Channel {}", c.channel),
-                    "ERR (share of residual variance)",
+                    "ERR (share of residual mean square)",
                     "ERR",
                     items,
                 )
