@@ -3,12 +3,14 @@
 //! the 2N angular-vibration rectification detector.
 
 mod coefficients;
+mod interval;
 mod model;
 mod noise;
 mod rect2n;
 mod term;
 
 pub use coefficients::DtgCoefficients;
+pub use interval::within_interval_covariance;
 pub use model::DtgInput;
 pub use noise::DtgNoise;
 pub use rect2n::Rect2nDetector;

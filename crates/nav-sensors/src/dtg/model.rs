@@ -35,6 +35,12 @@ pub struct DtgInput {
     /// Mean-square angular rate about I in the band around twice the spin
     /// frequency, (deg/s)² (zero where unknown, e.g. in compensation).
     pub rate_2n_mean_square_deg2_s2: f64,
+    /// Within-interval covariance of the specific force in the channel frame
+    /// (II, OO, SS, IO, IS, OS), g²: what the product of interval means misses
+    /// of the interval mean of a product (see
+    /// [`within_interval_covariance`](crate::dtg::within_interval_covariance)).
+    /// Zero at an instant (the simulator's high rate) and where unknown.
+    pub specific_force_cov_g2: [f64; 6],
 }
 
 impl DtgInput {
@@ -194,6 +200,7 @@ mod tests {
                 },
                 temperature_delta_c: rng.gen_range(-20.0..20.0),
                 rate_2n_mean_square_deg2_s2: rng.gen_range(0.0..1.0),
+                specific_force_cov_g2: std::array::from_fn(|_| rng.gen_range(0.0..2.0)),
             };
             let y = c.output_deg_h(&x);
             let back = c.compensate_deg_h(y, &x);
@@ -245,6 +252,7 @@ mod tests {
             },
             temperature_delta_c: 5.0,
             rate_2n_mean_square_deg2_s2: 0.25,
+            specific_force_cov_g2: [0.1, 0.2, 0.3, 0.4, 0.5, 0.6],
         };
         let expect = wi + 1.0 + 100e-6 * wi + 50e-6 * wo - 20e-6 * ws + 0.5 * fi - 0.3 * fo
             + 2.0 * fs
@@ -254,6 +262,8 @@ mod tests {
             + 0.04 * fi * fo
             + 0.05 * fi * fs
             + 0.06 * fo * fs
+            // Within-interval covariances add to the anisoelastic products.
+            + (0.01 * 0.1 + 0.02 * 0.2 + 0.03 * 0.3 + 0.04 * 0.4 + 0.05 * 0.5 + 0.06 * 0.6)
             + 0.1 * 10.0 * -2.0
             + 0.2 * 10.0 * 1.0
             + 0.3 * -2.0 * 1.0

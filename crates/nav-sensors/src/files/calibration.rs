@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::record::Record;
 use crate::accel::{AccelCoefficients, compensate_triad};
-use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm};
+use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
 
 /// Reading or writing a calibration file failed.
@@ -231,6 +231,13 @@ impl Calibration {
             }
         }
         let frames = ChannelFrame::all();
+        // The gyro output holds the interval mean of each g² product; the
+        // product of the accelerometers' interval means misses the
+        // within-interval covariance, estimated from neighbouring means.
+        let means: Vec<Vector3<f64>> = (0..n)
+            .map(|i| Vector3::new(accel[0][i], accel[1][i], accel[2][i]))
+            .collect();
+        let covariance = within_interval_covariance(&means);
         let gyro_coefficients = Channel::ALL.map(|c| self.gyro(c));
         let mut gyro: [Vec<f64>; 6] =
             std::array::from_fn(|k| record.gyro(Channel::ALL[k]).to_vec());
@@ -241,7 +248,8 @@ impl Calibration {
                 let rate = least_squares_rate(&current);
                 let f = Vector3::new(accel[0][i], accel[1][i], accel[2][i]);
                 for (k, frame) in frames.iter().enumerate() {
-                    let x = DtgInput::resolved(frame, &rate, &f);
+                    let x =
+                        DtgInput::resolved(frame, &rate, &f).with_covariance(frame, &covariance[i]);
                     let measured = record.gyro(frame.channel)[i];
                     next[k].push(gyro_coefficients[k].compensate_deg_h(measured, &x));
                 }

@@ -137,6 +137,8 @@ pub(crate) fn budget(
                 specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
                 temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
                 rate_2n_mean_square_deg2_s2: 0.0,
+                // The product of means: d_k is defined against it.
+                specific_force_cov_g2: [0.0; 6],
             };
             let pred = DtgTerm::regressors(&x);
             for k in 0..18 {

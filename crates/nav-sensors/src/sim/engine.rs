@@ -149,6 +149,8 @@ fn high_rate(
                     specific_force_g: frame.resolve(&f),
                     temperature_delta_c: 0.0,
                     rate_2n_mean_square_deg2_s2: detectors[ch].step(rate.i / 3600.0),
+                    // An instant: no interval to average over.
+                    specific_force_cov_g2: [0.0; 6],
                 };
                 let r = DtgTerm::regressors(&x);
                 for (acc, v) in reg[ch].iter_mut().zip(r) {

@@ -332,9 +332,9 @@ impl Scenario {
     }
 
     /// As [`Scenario::triaxial_clean`] with two hidden effects: an
-    /// anisoelastic `gg_IS` of 0.8 deg/h/g² on Y1 and a temperature
+    /// anisoelastic `gg_IS` of 0.4 deg/h/g² on Y1 and a temperature
     /// sensitivity of 0.8 deg/h/°C on Z, both zeroed in the calibration.
-    /// Both are about ten times what a real DTG shows, so that each
+    /// Both are several times what a real DTG shows, so that each
     /// contributes 3–5× the 50-Hz noise floor over 100 s.
     ///
     /// ```
@@ -349,7 +349,7 @@ impl Scenario {
                          hidden on Z (temperature ramp in the record's temp column)"
             .into();
         let y1 = s.gyros.channels.entry(Channel::Y1).or_default();
-        y1.set(DtgTerm::GgIS, 0.8);
+        y1.set(DtgTerm::GgIS, 0.4);
         let z = s.gyros.channels.entry(Channel::Z).or_default();
         z.set(DtgTerm::Temp, 0.8);
         s.hidden = vec![
@@ -365,8 +365,59 @@ impl Scenario {
         s
     }
 
+    /// The paper's test ([`Scenario::paper_z_random`]) with one effect hidden
+    /// for the diagnosis loop to find: channel Y1's drift temperature
+    /// sensitivity is 0.6 deg/h/°C (thirty times the other channels'), and
+    /// the unit warms up from 22 °C toward 28 °C (60-s time constant), so Y1
+    /// drifts by about 3 deg/h over the test. The levels step twice through
+    /// −6, 0 and −3 dB, so that temperature and level are not confounded
+    /// within either half of a blocked split. Temperature sensitivity is never part of a
+    /// ground calibration; the record's `temp` column carries what a model
+    /// needs. `dtg-vib demo` runs on this record.
+    ///
+    /// ```
+    /// use nav_sensors::{dtg::DtgTerm, geometry::Channel, sim::Scenario};
+    /// let s = Scenario::demo();
+    /// assert_eq!(s.hidden.len(), 1);
+    /// assert_eq!((s.hidden[0].channel, s.hidden[0].term), (Channel::Y1, DtgTerm::Temp));
+    /// assert_eq!(s.gyro(Channel::Y1).temp_deg_h_per_c, 0.6);
+    /// ```
+    pub fn demo() -> Self {
+        let mut s = Self::paper_z_random();
+        s.name = "demo".into();
+        s.description = "The paper's Z-axis random test with the drift temperature sensitivity of \
+                         channel Y1 hidden (0.6 deg/h/°C; the unit warms up from 22 °C toward 28 °C)"
+            .into();
+        if let Some(c) = s.gyros.channels.get_mut(&Channel::Y1) {
+            c.temp_deg_h_per_c = 0.6;
+        }
+        // The unit warms up after power-on (toward 28 °C with a 60-s time
+        // constant) while the shaker runs: a temperature that rises through
+        // the test independently of the vibration schedule.
+        s.thermal.initial_c = 22.0;
+        s.thermal.ambient_c = 28.0;
+        s.thermal.vibration_heating_c = 0.0;
+        // Levels stepped twice through −6, 0 and −3 dB, so that each half of
+        // the test sees every level: a slow effect (the temperature) is then
+        // not confounded with the level in either half.
+        s.vibration.schedule = LevelSchedule::new(vec![
+            seg(4.0, None, 0.0),
+            seg(16.0, Some(-6.0), 2.0),
+            seg(16.0, Some(0.0), 2.0),
+            seg(16.0, Some(-3.0), 2.0),
+            seg(16.0, Some(-6.0), 2.0),
+            seg(16.0, Some(0.0), 2.0),
+            seg(16.0, Some(-3.0), 2.0),
+        ]);
+        s.hidden = vec![HiddenEffect {
+            channel: Channel::Y1,
+            term: DtgTerm::Temp,
+        }];
+        s
+    }
+
     /// A built-in scenario by name (`paper_z_random`, `triaxial_clean`,
-    /// `triaxial_hidden`).
+    /// `triaxial_hidden`, `demo`).
     ///
     /// ```
     /// assert!(nav_sensors::sim::Scenario::builtin("triaxial_hidden").is_some());
@@ -377,6 +428,7 @@ impl Scenario {
             "paper_z_random" => Some(Self::paper_z_random()),
             "triaxial_clean" => Some(Self::triaxial_clean()),
             "triaxial_hidden" => Some(Self::triaxial_hidden()),
+            "demo" => Some(Self::demo()),
             _ => None,
         }
     }
@@ -388,5 +440,10 @@ impl Scenario {
     ///     assert!(nav_sensors::sim::Scenario::builtin(name).is_some());
     /// }
     /// ```
-    pub const BUILTIN: [&'static str; 3] = ["paper_z_random", "triaxial_clean", "triaxial_hidden"];
+    pub const BUILTIN: [&'static str; 4] = [
+        "paper_z_random",
+        "triaxial_clean",
+        "triaxial_hidden",
+        "demo",
+    ];
 }

@@ -1,0 +1,137 @@
+//! Applying a fitted model to a record: predicted errors, the compensated
+//! record, and the residues before and after.
+
+use crate::error::DtgVibError;
+use crate::model::CompensationModel;
+use crate::pipeline::Prepared;
+use crate::residue::{ResidueSeries, ResidueStats};
+use nav_sensors::geometry::{Channel, residues};
+use nav_sensors::record::Record;
+
+/// A model applied to a record.
+#[derive(Debug, Clone)]
+pub struct Applied {
+    /// The record prepared as the model's training data were.
+    pub prepared: Prepared,
+    /// Predicted error per channel and row, deg/h.
+    pub predicted: [Vec<f64>; 6],
+    /// Residues of the pre-processed outputs before and after compensation, per row.
+    pub residues: ResidueSeries,
+    /// Training rows of the model's split (meaningful on the record it was fitted on).
+    pub train: Vec<usize>,
+    /// Validation rows.
+    pub val: Vec<usize>,
+}
+
+impl Applied {
+    /// Prepares `record` as the model's data, predicts every channel's error
+    /// and forms the residues.
+    pub fn new(model: &CompensationModel, record: &Record) -> Result<Self, DtgVibError> {
+        let prepared = model.prepare(record)?;
+        let predicted = model.predict(&prepared)?;
+        let first = prepared.first_sample();
+        let outputs: [Vec<f64>; 6] =
+            std::array::from_fn(|k| prepared.target_full(Channel::ALL[k])[first..].to_vec());
+        let t = prepared.calibrated().t()[first..].to_vec();
+        let residues = ResidueSeries::new(t, &outputs, &predicted);
+        let (train, val) = model.rows(&prepared)?;
+        Ok(Self {
+            prepared,
+            predicted,
+            residues,
+            train,
+            val,
+        })
+    }
+
+    /// Residue rms before and after on the validation rows.
+    pub fn validation_residues(&self) -> Vec<ResidueStats> {
+        self.residues.stats(&self.val)
+    }
+
+    /// Residue rms before and after on every row.
+    pub fn all_residues(&self) -> Vec<ResidueStats> {
+        let all: Vec<usize> = (0..self.residues.t.len()).collect();
+        self.residues.stats(&all)
+    }
+
+    /// The record compensated: from the first sample with a full window on,
+    /// each gyro output (after the model's ground calibration, not filtered)
+    /// minus the channel's predicted error; accelerations calibrated; extra
+    /// columns as given. The first `window − 1` samples have no window and
+    /// are not in it.
+    pub fn compensated_record(&self) -> Record {
+        let first = self.prepared.first_sample();
+        let rec = self.prepared.calibrated();
+        let sliced = rec.slice(first..rec.len());
+        let gyro: [Vec<f64>; 6] = std::array::from_fn(|k| {
+            sliced
+                .gyro(Channel::ALL[k])
+                .iter()
+                .zip(&self.predicted[k])
+                .map(|(m, p)| m - p)
+                .collect()
+        });
+        sliced.with_gyro(gyro)
+    }
+}
+
+/// The residues of a record as given (no calibration, no filter), per sample:
+/// `[K0..K5]` series.
+///
+/// ```
+/// use nav_sensors::record::Record;
+/// let csv = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0.02,1,0,0,0,0,0,0,0,1\n0.04,1,0,0,0,0,0,0,0,1\n";
+/// let rec = Record::from_reader(csv.as_bytes(), "r.csv").unwrap();
+/// let k = dtg_vib::apply::raw_residues(&rec);
+/// assert_eq!(k[0], vec![1.0, 1.0]); // K0 = x0 − x1 sees an error on X
+/// ```
+pub fn raw_residues(record: &Record) -> [Vec<f64>; 6] {
+    let mut out: [Vec<f64>; 6] = Default::default();
+    for i in 0..record.len() {
+        let k = residues(&record.gyro_sample(i));
+        for (o, v) in out.iter_mut().zip(k) {
+            o.push(v);
+        }
+    }
+    out
+}
+
+/// Writes the residues CSV: `t,K0..K5` of the record as given for every
+/// sample; with a model, from the first windowed sample on, also
+/// `K0_pre..K5_pre` (after the model's calibration and filter) and
+/// `K0_comp..K5_comp` (after compensation).
+pub fn write_residues(
+    path: &std::path::Path,
+    record: &Record,
+    applied: Option<&Applied>,
+) -> Result<(), DtgVibError> {
+    let raw = raw_residues(record);
+    let names = ["K0", "K1", "K2", "K3", "K4", "K5"];
+    match applied {
+        None => {
+            let mut cols: Vec<&[f64]> = vec![record.t()];
+            cols.extend(raw.iter().map(Vec::as_slice));
+            let mut header = vec!["t".to_string()];
+            header.extend(names.iter().map(|s| s.to_string()));
+            write(path, &header, &cols)
+        }
+        Some(a) => {
+            let first = a.prepared.first_sample();
+            let mut header = vec!["t".to_string()];
+            header.extend(names.iter().map(|s| s.to_string()));
+            header.extend(names.iter().map(|s| format!("{s}_pre")));
+            header.extend(names.iter().map(|s| format!("{s}_comp")));
+            let mut cols: Vec<&[f64]> = vec![&record.t()[first..]];
+            cols.extend(raw.iter().map(|c| &c[first..]));
+            cols.extend(a.residues.before.iter().map(Vec::as_slice));
+            cols.extend(a.residues.after.iter().map(Vec::as_slice));
+            write(path, &header, &cols)
+        }
+    }
+}
+
+fn write(path: &std::path::Path, header: &[String], cols: &[&[f64]]) -> Result<(), DtgVibError> {
+    let names: Vec<&str> = header.iter().map(String::as_str).collect();
+    Ok(tabular::write_csv(path, &names, cols)?)
+}

@@ -1,0 +1,176 @@
+//! The main job on a built-in default: simulate the paper's test (with one
+//! effect hidden), fit, compensate, report, then walk the diagnosis loop —
+//! diagnose, add what it names, refit — and show the error fall.
+
+use crate::apply::Applied;
+use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose};
+use crate::effects::ChannelEffect;
+use crate::error::DtgVibError;
+use crate::figures::{Baseline, write_diagnosis_report, write_report};
+use crate::fit::{FitOptions, FitStage, fit};
+use crate::model::CompensationModel;
+use crate::residue::ResidueStats;
+use nav_sensors::geometry::Channel;
+use nav_sensors::sim::{Scenario, simulate};
+use std::path::{Path, PathBuf};
+
+/// A step of the demo, for progress display.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DemoStep {
+    /// Simulating the vibration test.
+    Simulate,
+    /// Fitting the baseline model.
+    FitBaseline,
+    /// Writing the baseline report.
+    ReportBaseline,
+    /// Diagnosing the baseline.
+    Diagnose,
+    /// Refitting with the suggested effects.
+    Refit,
+    /// Writing the final report.
+    ReportFinal,
+}
+
+/// What the demo found and where it wrote it.
+#[derive(Debug, Clone)]
+pub struct DemoSummary {
+    /// The output directory.
+    pub out: PathBuf,
+    /// The simulated record.
+    pub record: PathBuf,
+    /// The baseline report page (the paper's procedure).
+    pub baseline_report: PathBuf,
+    /// The diagnosis page.
+    pub diagnosis_report: PathBuf,
+    /// The final report page (after adding the suggested effects).
+    pub final_report: PathBuf,
+    /// Residue rms before/after the baseline compensation, validation rows.
+    pub baseline_residues: Vec<ResidueStats>,
+    /// Residue rms before/after the final compensation, validation rows.
+    pub final_residues: Vec<ResidueStats>,
+    /// What the simulation hid, as `CHANNEL=term`.
+    pub hidden: Vec<String>,
+    /// What the diagnosis suggested.
+    pub suggested: Vec<ChannelEffect>,
+    /// Per channel: validation rms of the baseline and of the final model, deg/h.
+    pub channel_rms: Vec<(Channel, f64, f64)>,
+    /// The diagnosis of the baseline.
+    pub diagnosis: Diagnosis,
+}
+
+/// Runs the demo into `out` (created if needed).
+pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSummary, DtgVibError> {
+    let mkdir = |p: &Path| {
+        std::fs::create_dir_all(p).map_err(|source| DtgVibError::Output {
+            path: p.to_path_buf(),
+            source,
+        })
+    };
+    mkdir(out)?;
+
+    progress(DemoStep::Simulate);
+    let scenario = Scenario::demo();
+    let sim = simulate(&scenario)?;
+    let sim_dir = out.join("simulation");
+    sim.write_dir(&sim_dir)?;
+    let record_path = sim_dir.join("record.csv");
+
+    progress(DemoStep::FitBaseline);
+    let options = FitOptions::default();
+    let baseline = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        &options,
+        &|_: FitStage| {},
+    )?;
+    mkdir(&out.join("baseline"))?;
+    baseline.save(out.join("baseline").join("model.json"))?;
+    let applied_base = Applied::new(&baseline, &sim.record)?;
+
+    progress(DemoStep::ReportBaseline);
+    let base_report = write_report(
+        &baseline,
+        &applied_base,
+        &sim.record,
+        "simulated (built-in demo scenario)",
+        None,
+        &out.join("baseline").join("report"),
+    )?;
+
+    progress(DemoStep::Diagnose);
+    let diag_options = DiagnoseOptions::default();
+    let diagnosis = diagnose(&baseline, &sim.record, &diag_options)?;
+    let diag_page = write_diagnosis_report(
+        &diagnosis,
+        1.0 / sim.record.dt(),
+        diag_options.rank.min_err(),
+        &out.join("diagnosis"),
+    )?;
+    let suggested: Vec<ChannelEffect> = diagnosis
+        .channels
+        .iter()
+        .flat_map(|c| c.suggested.iter().map(move |id| (c.channel, id)))
+        .map(|(channel, id)| {
+            Ok(ChannelEffect {
+                channel,
+                effect: id.parse()?,
+            })
+        })
+        .collect::<Result<_, DtgVibError>>()?;
+
+    progress(DemoStep::Refit);
+    let refit_options = FitOptions {
+        add: suggested.clone(),
+        ..options
+    };
+    let fitted = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        &refit_options,
+        &|_: FitStage| {},
+    )?;
+    mkdir(&out.join("final"))?;
+    fitted.save(out.join("final").join("model.json"))?;
+    let applied_final = Applied::new(&fitted, &sim.record)?;
+
+    progress(DemoStep::ReportFinal);
+    let final_report = write_report(
+        &fitted,
+        &applied_final,
+        &sim.record,
+        "simulated (built-in demo scenario), refitted with the diagnosed effects",
+        Some(Baseline {
+            label: "baseline",
+            model: &baseline,
+            applied: &applied_base,
+        }),
+        &out.join("final").join("report"),
+    )?;
+
+    Ok(DemoSummary {
+        out: out.to_path_buf(),
+        record: record_path,
+        baseline_report: base_report.index,
+        diagnosis_report: diag_page,
+        final_report: final_report.index,
+        baseline_residues: base_report.residues,
+        final_residues: final_report.residues,
+        hidden: scenario
+            .hidden
+            .iter()
+            .map(|h| format!("{}={}", h.channel, h.term))
+            .collect(),
+        suggested,
+        channel_rms: channel_rms(&baseline, &fitted),
+        diagnosis,
+    })
+}
+
+fn channel_rms(before: &CompensationModel, after: &CompensationModel) -> Vec<(Channel, f64, f64)> {
+    before
+        .channels()
+        .iter()
+        .zip(after.channels())
+        .map(|(b, a)| (b.channel(), b.scores().val_rms, a.scores().val_rms))
+        .collect()
+}

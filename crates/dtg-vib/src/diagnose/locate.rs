@@ -1,0 +1,236 @@
+//! Where a model fails: the validation residual broken down by time segment,
+//! by frequency band against a white-noise floor, and by operating regime
+//! (bins of acceleration along each axis).
+
+use serde::Serialize;
+
+/// Residual statistics over one stretch of time.
+#[derive(Debug, Clone, Serialize)]
+pub struct Segment {
+    /// Start, s.
+    pub t_start: f64,
+    /// End, s.
+    pub t_end: f64,
+    /// RMS of the acceleration deviation from its record mean over the segment,
+    /// summed over the three axes (the vibration level), g.
+    pub vibration_rms_g: f64,
+    /// Mean of the residual, deg/h.
+    pub residual_mean: f64,
+    /// RMS of the residual, deg/h.
+    pub residual_rms: f64,
+}
+
+/// Residual power in one frequency band.
+#[derive(Debug, Clone, Serialize)]
+pub struct Band {
+    /// Lower edge, Hz.
+    pub f_lo_hz: f64,
+    /// Upper edge, Hz.
+    pub f_hi_hz: f64,
+    /// Share of the residual variance in the band.
+    pub share: f64,
+    /// Band power over what a white residual of the same pass-band level would
+    /// have there (through the pre-processing filter): ≫ 1 means structure.
+    pub ratio_to_floor: f64,
+}
+
+/// Residual statistics in one bin of one acceleration axis.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegimeBin {
+    /// Lower edge of the acceleration bin, g.
+    pub lo_g: f64,
+    /// Upper edge, g.
+    pub hi_g: f64,
+    /// Rows in the bin.
+    pub count: usize,
+    /// Mean of the residual, deg/h.
+    pub residual_mean: f64,
+    /// RMS of the residual, deg/h.
+    pub residual_rms: f64,
+}
+
+/// The residual binned by one acceleration axis.
+#[derive(Debug, Clone, Serialize)]
+pub struct Regime {
+    /// The axis column (`ax`, `ay`, `az`).
+    pub axis: String,
+    /// Quantile bins of the (filtered) acceleration.
+    pub bins: Vec<RegimeBin>,
+    /// Spread of the bin means, in units of their standard error: a residual
+    /// that depends on this acceleration (a missing g or g² term) gives ≫ 3.
+    pub mean_spread_sigma: f64,
+}
+
+fn mean(x: impl Iterator<Item = f64> + Clone) -> f64 {
+    let n = x.clone().count().max(1) as f64;
+    x.sum::<f64>() / n
+}
+
+fn rms(x: impl Iterator<Item = f64> + Clone) -> f64 {
+    mean(x.map(|v| v * v)).sqrt()
+}
+
+/// Splits rows into `count` contiguous segments of (nearly) equal length.
+///
+/// ```
+/// use dtg_vib::diagnose::segments;
+/// let t: Vec<f64> = (0..100).map(|i| i as f64).collect();
+/// let r: Vec<f64> = (0..100).map(|i| if i < 50 { 1.0 } else { 3.0 }).collect();
+/// let acc = [vec![0.0; 100], vec![0.0; 100], vec![0.0; 100]];
+/// let s = segments(&t, &r, &acc, 2);
+/// assert_eq!((s[0].residual_rms, s[1].residual_rms), (1.0, 3.0));
+/// ```
+#[track_caller]
+pub fn segments(t: &[f64], residual: &[f64], accel: &[Vec<f64>; 3], count: usize) -> Vec<Segment> {
+    let n = residual.len();
+    assert!(
+        t.len() == n && accel.iter().all(|a| a.len() == n),
+        "series lengths differ"
+    );
+    let count = count.clamp(1, n.max(1));
+    let means: Vec<f64> = accel.iter().map(|a| mean(a.iter().copied())).collect();
+    (0..count)
+        .filter_map(|s| {
+            let (lo, hi) = (s * n / count, (s + 1) * n / count);
+            (hi > lo).then(|| {
+                let r = residual[lo..hi].iter().copied();
+                let vib = (0..3)
+                    .map(|k| mean(accel[k][lo..hi].iter().map(|v| (v - means[k]).powi(2))))
+                    .sum::<f64>()
+                    .sqrt();
+                Segment {
+                    t_start: t[lo],
+                    t_end: t[hi - 1],
+                    vibration_rms_g: vib,
+                    residual_mean: mean(r.clone()),
+                    residual_rms: rms(r),
+                }
+            })
+        })
+        .collect()
+}
+
+/// Breaks a residual's power into bands: `edges_hz` are the band edges
+/// (ascending, the last at most Nyquist). `white_shape(f)` is the power
+/// transfer of the pre-processing at f (|H(f)|² of the zero-phase filter, 1
+/// without one): the floor is a white residual whose level matches the
+/// median of density / shape over the bins where the shape is above 0.5.
+///
+/// ```
+/// use dtg_vib::diagnose::bands;
+/// // A white residual: every band is at its floor.
+/// let mut s = 9u64;
+/// let x: Vec<f64> = (0..20000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
+/// let b = bands(&x, 50.0, &[0.0, 1.0, 5.0, 25.0], &|_| 1.0);
+/// assert!(b.iter().all(|b| (b.ratio_to_floor - 1.0).abs() < 0.25), "{b:?}");
+/// ```
+#[track_caller]
+pub fn bands(
+    residual: &[f64],
+    fs: f64,
+    edges_hz: &[f64],
+    white_shape: &dyn Fn(f64) -> f64,
+) -> Vec<Band> {
+    assert!(edges_hz.len() >= 2, "need at least one band");
+    let seg = 512.min(residual.len().next_power_of_two() / 2).max(8);
+    if residual.len() < seg {
+        return Vec::new();
+    }
+    let s = nav_sensors::vibration::welch(residual, fs, seg);
+    let df = s.resolution_hz();
+    let total: f64 = s
+        .density
+        .iter()
+        .map(|d| d * df)
+        .sum::<f64>()
+        .max(f64::MIN_POSITIVE);
+    let mut levels: Vec<f64> = s
+        .frequency_hz
+        .iter()
+        .zip(&s.density)
+        .filter(|(f, _)| **f > 0.0 && white_shape(**f) > 0.5)
+        .map(|(f, d)| d / white_shape(*f))
+        .collect();
+    levels.sort_by(f64::total_cmp);
+    let white = levels.get(levels.len() / 2).copied().unwrap_or(0.0);
+    edges_hz
+        .windows(2)
+        .map(|w| {
+            let in_band = |f: f64| f >= w[0] && (f < w[1] || (w[1] >= fs / 2.0 && f <= w[1]));
+            let (mut p, mut floor) = (0.0, 0.0);
+            for (f, d) in s.frequency_hz.iter().zip(&s.density) {
+                if in_band(*f) {
+                    p += d * df;
+                    floor += white * white_shape(*f) * df;
+                }
+            }
+            Band {
+                f_lo_hz: w[0],
+                f_hi_hz: w[1],
+                share: p / total,
+                ratio_to_floor: if floor > 0.0 {
+                    p / floor
+                } else {
+                    f64::INFINITY
+                },
+            }
+        })
+        .collect()
+}
+
+/// Bins the residual by quantiles of one acceleration series.
+///
+/// ```
+/// use dtg_vib::diagnose::regime;
+/// // A residual proportional to the acceleration: the bin means spread far.
+/// let a: Vec<f64> = (0..1000).map(|i| ((i * 37) % 100) as f64 / 100.0).collect();
+/// let r: Vec<f64> = a.iter().enumerate().map(|(i, v)| 2.0 * v + 0.01 * ((i % 7) as f64 - 3.0)).collect();
+/// let g = regime("az", &a, &r, 5, 1000.0);
+/// assert_eq!(g.bins.len(), 5);
+/// assert!(g.mean_spread_sigma > 10.0);
+/// ```
+#[track_caller]
+pub fn regime(
+    axis: &str,
+    accel: &[f64],
+    residual: &[f64],
+    bins: usize,
+    effective_samples: f64,
+) -> Regime {
+    assert_eq!(accel.len(), residual.len(), "series lengths differ");
+    let n = accel.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| accel[a].total_cmp(&accel[b]));
+    let bins = bins.clamp(1, n.max(1));
+    let out: Vec<RegimeBin> = (0..bins)
+        .filter_map(|b| {
+            let idx = &order[b * n / bins..(b + 1) * n / bins];
+            (!idx.is_empty()).then(|| {
+                let r = idx.iter().map(|&i| residual[i]);
+                RegimeBin {
+                    lo_g: accel[idx[0]],
+                    hi_g: accel[idx[idx.len() - 1]],
+                    count: idx.len(),
+                    residual_mean: mean(r.clone()),
+                    residual_rms: rms(r),
+                }
+            })
+        })
+        .collect();
+    // Standard error of a bin mean with the residual's effective samples
+    // shared out over the bins.
+    let sd = {
+        let m = mean(residual.iter().copied());
+        rms(residual.iter().map(|v| v - m))
+    };
+    let per_bin = (effective_samples / bins as f64).max(1.0);
+    let se = sd / per_bin.sqrt();
+    let means: Vec<f64> = out.iter().map(|b| b.residual_mean).collect();
+    let spread = means.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        - means.iter().copied().fold(f64::INFINITY, f64::min);
+    Regime {
+        axis: axis.to_string(),
+        bins: out,
+        mean_spread_sigma: if se > 0.0 { spread / se } else { 0.0 },
+    }
+}

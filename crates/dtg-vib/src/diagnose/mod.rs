@@ -1,0 +1,474 @@
+//! The diagnosis loop: compare the model with the measurements, see where it
+//! fails, and learn which physical effect is missing.
+//!
+//! Everything is computed on the validation rows of the model's own split,
+//! because a residual on training rows has already been fitted away.
+
+mod locate;
+mod rank;
+
+pub use locate::{Band, Regime, RegimeBin, Segment, bands, regime, segments};
+pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
+
+use crate::effects::{Effect, TERM_EFFECTS};
+use crate::error::DtgVibError;
+use crate::model::{ChannelModel, CompensationModel};
+use crate::pipeline::Prepared;
+use crate::residuals::{CorrelationCheck, billings_voon, independence, whiteness};
+use nav_sensors::dtg::DtgTerm;
+use nav_sensors::geometry::{Axis, Channel, least_squares_rate};
+use nav_sensors::record::Record;
+use serde::Serialize;
+
+/// Anisoinertia (rate-product) candidates are offered only when the angular
+/// rate varies by more than this (deg/s, standard deviation of any axis):
+/// in a stationary vibration test the rate is Earth rate plus gyro noise, and
+/// a product of noise with noise would only correlate with the noise.
+pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
+
+/// Diagnosis settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DiagnoseOptions {
+    /// Candidate ranking and suggestion thresholds.
+    pub rank: RankOptions,
+    /// Confidence of the correlation tests' per-lag bands (MATLAB's `resid` uses 0.99).
+    pub confidence: f64,
+    /// Largest lag of the correlation tests, samples (MATLAB's default is 25).
+    pub max_lag: usize,
+    /// Time segments of the validation part.
+    pub segments: usize,
+    /// Quantile bins per acceleration axis.
+    pub regime_bins: usize,
+}
+
+impl Default for DiagnoseOptions {
+    fn default() -> Self {
+        Self {
+            rank: RankOptions::default(),
+            confidence: 0.99,
+            max_lag: 25,
+            segments: 10,
+            regime_bins: 5,
+        }
+    }
+}
+
+/// Measured against predicted, as MATLAB's `compare` reports it.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Comparison {
+    /// Training rows.
+    pub n_train: usize,
+    /// Validation rows.
+    pub n_val: usize,
+    /// Residual rms on training rows, deg/h.
+    pub train_rms: f64,
+    /// Residual rms on validation rows, deg/h.
+    pub val_rms: f64,
+    /// What a bias-only model leaves on validation rows, deg/h.
+    pub val_rms_bias_only: f64,
+    /// Fit percentage on training rows.
+    pub train_fit_percent: f64,
+    /// Fit percentage on validation rows.
+    pub val_fit_percent: f64,
+}
+
+/// A correlation test with the name of what it tested against.
+#[derive(Debug, Clone, Serialize)]
+pub struct NamedCheck {
+    /// `whiteness`, `independence:az`, `billings_voon_u2_e:ax`, …
+    pub name: String,
+    /// The curve, bands and verdict.
+    pub check: CorrelationCheck,
+}
+
+/// Per-row series of a channel on the validation rows, for figures.
+#[derive(Debug, Clone, Default)]
+pub struct ChannelSeries {
+    /// Time, s.
+    pub t: Vec<f64>,
+    /// Pre-processed output minus the rate reference, deg/h.
+    pub measured: Vec<f64>,
+    /// Model prediction, deg/h.
+    pub predicted: Vec<f64>,
+    /// `measured − predicted`, deg/h.
+    pub residual: Vec<f64>,
+    /// The candidate columns (filtered, less their training mean) on the validation rows, by id.
+    pub candidates: Vec<(String, Vec<f64>)>,
+}
+
+/// Everything found about one channel.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChannelDiagnosis {
+    /// The channel.
+    pub channel: Channel,
+    /// Effects the model already has.
+    pub effects: Vec<String>,
+    /// RMS of the validation residual, deg/h.
+    pub rms: f64,
+    /// Measured against predicted.
+    pub compare: Comparison,
+    /// Residual by time segment.
+    pub segments: Vec<Segment>,
+    /// Residual power by frequency band.
+    pub bands: Vec<Band>,
+    /// Residual by acceleration regime.
+    pub regimes: Vec<Regime>,
+    /// Correlation tests.
+    pub checks: Vec<NamedCheck>,
+    /// Names of the correlation tests that fail.
+    pub failing: Vec<String>,
+    /// Candidate effects, sorted by ERR descending.
+    pub candidates: Vec<Candidate>,
+    /// Candidates the record does not excite.
+    pub unexcited: Vec<Unexcited>,
+    /// Suggested effect ids (significant only; empty when nothing is).
+    pub suggested: Vec<String>,
+    /// Plain-language findings, most important first.
+    pub findings: Vec<String>,
+    /// Series for figures (not serialised).
+    #[serde(skip)]
+    pub series: ChannelSeries,
+}
+
+/// The diagnosis of all six channels.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diagnosis {
+    /// Per channel, in X, X1, Y, Y1, Z, Z1 order.
+    pub channels: Vec<ChannelDiagnosis>,
+}
+
+/// Diagnoses a fitted model on a record (normally the one it was fitted on:
+/// the validation rows of the model's split are used).
+pub fn diagnose(
+    model: &CompensationModel,
+    record: &Record,
+    options: &DiagnoseOptions,
+) -> Result<Diagnosis, DtgVibError> {
+    let prepared = model.prepare(record)?;
+    let predictions = model.predict(&prepared)?;
+    let (train, val) = model.rows(&prepared)?;
+    let context = Context::new(&prepared, &val)?;
+    let channels = model
+        .channels()
+        .iter()
+        .map(|c| {
+            diagnose_channel(
+                c,
+                &prepared,
+                &predictions[c.channel().index()],
+                &train,
+                &val,
+                &context,
+                options,
+            )
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Diagnosis { channels })
+}
+
+/// What every channel's diagnosis shares: inputs on the validation rows.
+struct Context {
+    t: Vec<f64>,
+    /// Filtered accelerations (ax, ay, az) on the validation rows.
+    accel: [Vec<f64>; 3],
+    /// Filtered extra columns on the validation rows.
+    extras: Vec<(String, Vec<f64>)>,
+    /// Largest standard deviation of the least-squares rate, deg/s.
+    rate_std_deg_s: f64,
+    fs: f64,
+    /// Decimation for the whiteness test and the filter's reference ACF.
+    decimation: usize,
+    reference_acf: Option<Vec<f64>>,
+    band_edges: Vec<f64>,
+    shape: Box<dyn Fn(f64) -> f64>,
+}
+
+impl Context {
+    fn new(prepared: &Prepared, val: &[usize]) -> Result<Self, DtgVibError> {
+        let first = prepared.first_sample();
+        let on_val = |x: &[f64]| -> Vec<f64> { val.iter().map(|&r| x[first + r]).collect() };
+        let rec = prepared.calibrated();
+        let accel = [
+            on_val(&prepared.signal_full(Axis::X.column())?),
+            on_val(&prepared.signal_full(Axis::Y.column())?),
+            on_val(&prepared.signal_full(Axis::Z.column())?),
+        ];
+        let extras = rec
+            .extra_names()
+            .iter()
+            .map(|n| Ok((n.to_string(), on_val(&prepared.signal_full(n)?))))
+            .collect::<Result<Vec<_>, DtgVibError>>()?;
+        let rates: Vec<nalgebra::Vector3<f64>> = val
+            .iter()
+            .map(|&r| least_squares_rate(&rec.gyro_sample(first + r)) / 3600.0)
+            .collect();
+        let rate_std_deg_s = (0..3)
+            .map(|k| {
+                let m = rates.iter().map(|w| w[k]).sum::<f64>() / rates.len().max(1) as f64;
+                (rates.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / rates.len().max(1) as f64)
+                    .sqrt()
+            })
+            .fold(0.0, f64::max);
+        let fs = 1.0 / rec.dt();
+        let nyquist = fs / 2.0;
+        let (decimation, reference_acf, cutoff) = match prepared.filter() {
+            Some(f) => {
+                let q = ((fs / (2.0 * f.cutoff_hz())).floor() as usize).max(1);
+                (q, Some(filter_acf(f, q, 40)), f.cutoff_hz())
+            }
+            None => (1, None, nyquist),
+        };
+        let mut band_edges: Vec<f64> = vec![0.0, 0.1, 0.5, 2.0];
+        band_edges.retain(|&e| e < cutoff);
+        band_edges.push(cutoff);
+        if cutoff < nyquist {
+            band_edges.push(nyquist);
+        }
+        let shape: Box<dyn Fn(f64) -> f64> = match prepared.filter() {
+            Some(f) => {
+                let f = f.clone();
+                Box::new(move |hz| f.gain_at(hz).powi(4))
+            }
+            None => Box::new(|_| 1.0),
+        };
+        Ok(Self {
+            t: on_val(rec.t()),
+            accel,
+            extras,
+            rate_std_deg_s,
+            fs,
+            decimation,
+            reference_acf,
+            band_edges,
+            shape,
+        })
+    }
+}
+
+/// Autocorrelation of white noise through the zero-phase filter, at lags
+/// 0, q, 2q, … (`count` of them).
+fn filter_acf(f: &crate::signal::LowPass, q: usize, count: usize) -> Vec<f64> {
+    let half = 2000;
+    let mut impulse = vec![0.0; 2 * half + 1];
+    impulse[half] = 1.0;
+    let h = f.filtfilt(&impulse).unwrap_or(impulse);
+    let energy: f64 = h.iter().map(|v| v * v).sum();
+    (0..count)
+        .map(|i| i * q)
+        .map(|k| {
+            h[..h.len() - k]
+                .iter()
+                .zip(&h[k..])
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                / energy
+        })
+        .collect()
+}
+
+fn diagnose_channel(
+    model: &ChannelModel,
+    prepared: &Prepared,
+    predicted: &[f64],
+    train: &[usize],
+    val: &[usize],
+    ctx: &Context,
+    opts: &DiagnoseOptions,
+) -> Result<ChannelDiagnosis, DtgVibError> {
+    let ch = model.channel();
+    let y = prepared.target(ch);
+    let scores = crate::fit::score(y, predicted, train, val);
+    let residual: Vec<f64> = val.iter().map(|&r| y[r] - predicted[r]).collect();
+    let compare = Comparison {
+        n_train: scores.n_train,
+        n_val: scores.n_val,
+        train_rms: scores.train_rms,
+        val_rms: scores.val_rms,
+        val_rms_bias_only: scores.val_rms_bias_only,
+        train_fit_percent: scores.train_fit_percent,
+        val_fit_percent: scores.val_fit_percent,
+    };
+
+    // Candidates: every effect the model lacks; rate products only where rates vary.
+    let extra_names: Vec<&str> = ctx.extras.iter().map(|(n, _)| n.as_str()).collect();
+    let mut unexcited_ai = Vec::new();
+    let wanted: Vec<Effect> = Effect::candidates(&extra_names)
+        .into_iter()
+        .filter(|e| !model.effects().contains(e))
+        .filter(|e| {
+            let ai = matches!(e, Effect::Term(DtgTerm::AiIO | DtgTerm::AiIS | DtgTerm::AiOS));
+            if ai && ctx.rate_std_deg_s < ANISOINERTIA_MIN_RATE_DEG_S {
+                unexcited_ai.push(Unexcited {
+                    effect: e.id(),
+                    reason: format!(
+                        "the angular rate does not vary (largest std {:.3} deg/s < {ANISOINERTIA_MIN_RATE_DEG_S} deg/s): anisoinertia is not observable",
+                        ctx.rate_std_deg_s
+                    ),
+                });
+                return false;
+            }
+            true
+        })
+        .collect();
+    debug_assert!(TERM_EFFECTS.len() + extra_names.len() >= wanted.len());
+    let full = prepared.effect_columns_full(ch, &wanted)?;
+    let first = prepared.first_sample();
+    let columns: Vec<(Effect, Vec<f64>, f64)> = wanted
+        .iter()
+        .cloned()
+        .zip(&full)
+        .map(|(e, c)| {
+            let train_mean =
+                train.iter().map(|&r| c[first + r]).sum::<f64>() / train.len().max(1) as f64;
+            (e, val.iter().map(|&r| c[first + r]).collect(), train_mean)
+        })
+        .collect();
+    let mut ranking = rank(&residual, &columns, opts.rank);
+    ranking.unexcited.extend(unexcited_ai);
+
+    // Correlation tests.
+    let mut checks = Vec::new();
+    let dec: Vec<f64> = residual.iter().step_by(ctx.decimation).copied().collect();
+    let lag = opts.max_lag.min(dec.len().saturating_sub(2)).max(1);
+    if dec.len() > lag + 2 {
+        checks.push(NamedCheck {
+            name: "whiteness".into(),
+            check: whiteness(&dec, lag, ctx.reference_acf.as_deref(), opts.confidence),
+        });
+    }
+    let lag = opts.max_lag.min(residual.len() / 4).max(1);
+    let inputs = Axis::ALL
+        .iter()
+        .map(|a| (a.column().to_string(), &ctx.accel[a.index()]))
+        .chain(ctx.extras.iter().map(|(n, v)| (format!("col:{n}"), v)));
+    for (name, u) in inputs {
+        checks.push(NamedCheck {
+            name: format!("independence:{name}"),
+            check: independence(&residual, u, lag, opts.confidence),
+        });
+        if name.starts_with('a') {
+            for c in billings_voon(&residual, u, lag.min(10), opts.confidence) {
+                checks.push(NamedCheck {
+                    name: format!("{}:{name}", c.kind.name()),
+                    check: c,
+                });
+            }
+        }
+    }
+    let failing: Vec<String> = checks
+        .iter()
+        .filter(|c| !c.check.passed)
+        .map(|c| c.name.clone())
+        .collect();
+
+    // Where it fails.
+    let segs = segments(&ctx.t, &residual, &ctx.accel, opts.segments);
+    let bnds = bands(&residual, ctx.fs, &ctx.band_edges, &*ctx.shape);
+    let regs: Vec<Regime> = Axis::ALL
+        .iter()
+        .map(|a| {
+            regime(
+                a.column(),
+                &ctx.accel[a.index()],
+                &residual,
+                opts.regime_bins,
+                ranking.effective_samples,
+            )
+        })
+        .collect();
+
+    let findings = findings(&ranking, &failing, &segs, &bnds, &regs);
+    let series = ChannelSeries {
+        t: ctx.t.clone(),
+        measured: val.iter().map(|&r| y[r]).collect(),
+        predicted: val.iter().map(|&r| predicted[r]).collect(),
+        residual,
+        candidates: columns
+            .into_iter()
+            .map(|(e, c, m)| (e.id(), c.iter().map(|v| v - m).collect()))
+            .collect(),
+    };
+    Ok(ChannelDiagnosis {
+        channel: ch,
+        effects: model.effects().iter().map(Effect::id).collect(),
+        rms: compare.val_rms,
+        compare,
+        segments: segs,
+        bands: bnds,
+        regimes: regs,
+        checks,
+        failing,
+        candidates: ranking.candidates,
+        unexcited: ranking.unexcited,
+        suggested: ranking.suggested,
+        findings,
+        series,
+    })
+}
+
+/// Plain-language findings, most actionable first.
+fn findings(
+    ranking: &Ranking,
+    failing: &[String],
+    segs: &[Segment],
+    bands: &[Band],
+    regimes: &[Regime],
+) -> Vec<String> {
+    let mut out = Vec::new();
+    for id in &ranking.suggested {
+        if let Some(c) = ranking.candidates.iter().find(|c| &c.effect == id) {
+            let mut s = format!(
+                "missing effect {id} ({}): explains {:.0}% of the validation residual, coefficient ≈ {:.4} {} (p = {:.1e})",
+                c.description,
+                100.0 * c.conditional_err.unwrap_or(c.err),
+                c.coef,
+                c.unit,
+                c.p_value.unwrap_or(f64::NAN)
+            );
+            if !c.collinear_with.is_empty() {
+                s.push_str(&format!(
+                    "; nearly collinear on this record with {}: cannot be told apart here",
+                    c.collinear_with.join(", ")
+                ));
+            }
+            out.push(s);
+        }
+    }
+    if ranking.suggested.is_empty() {
+        out.push(
+            "no candidate effect explains a significant part of the validation residual".into(),
+        );
+    }
+    for b in bands
+        .iter()
+        .filter(|b| b.ratio_to_floor > 3.0 && b.share > 0.1)
+    {
+        out.push(format!(
+            "{:.0}% of the residual power lies in {}–{} Hz, {:.1}× a white floor there{}",
+            100.0 * b.share,
+            b.f_lo_hz,
+            b.f_hi_hz,
+            b.ratio_to_floor,
+            if b.f_hi_hz <= 0.5 {
+                ": a slow effect (temperature, drift) is missing"
+            } else {
+                ""
+            }
+        ));
+    }
+    for r in regimes.iter().filter(|r| r.mean_spread_sigma > 5.0) {
+        out.push(format!("the residual's mean changes with {} across its range ({:.0}σ): a g- or g²-sensitive term along it may be missing", r.axis, r.mean_spread_sigma));
+    }
+    if !segs.is_empty() {
+        let mut rms: Vec<f64> = segs.iter().map(|s| s.residual_rms).collect();
+        rms.sort_by(f64::total_cmp);
+        let median = rms[rms.len() / 2];
+        for s in segs.iter().filter(|s| s.residual_rms > 2.0 * median) {
+            out.push(format!("{:.1}–{:.1} s: residual rms {:.3} deg/h, {:.1}× the median segment (vibration {:.2} g rms)", s.t_start, s.t_end, s.residual_rms, s.residual_rms / median, s.vibration_rms_g));
+        }
+    }
+    if !failing.is_empty() {
+        out.push(format!("failing correlation tests: {}", failing.join(", ")));
+    }
+    out
+}

@@ -1,0 +1,96 @@
+//! The application library's errors: each variant says what is wrong and,
+//! where it helps, how to fix it; the command line adds nothing but the exit.
+
+use nav_sensors::geometry::Channel;
+use std::path::PathBuf;
+
+/// Everything the dtg-vib pipeline can refuse.
+#[derive(Debug, thiserror::Error)]
+pub enum DtgVibError {
+    /// The test record is unreadable or invalid (file:line:column inside).
+    #[error(transparent)]
+    Record(#[from] nav_sensors::record::RecordError),
+    /// The calibration file is unreadable or invalid.
+    #[error(transparent)]
+    Calibration(#[from] nav_sensors::calibration::CalibrationFileError),
+    /// A scenario file is unreadable or invalid.
+    #[error(transparent)]
+    Scenario(#[from] nav_sensors::sim::ScenarioError),
+    /// The simulation failed.
+    #[error(transparent)]
+    Simulation(#[from] nav_sensors::sim::SimError),
+    /// The pre-processing filter cannot be designed or applied.
+    #[error("pre-processing filter: {0}")]
+    Filter(#[from] crate::signal::FilterError),
+    /// Windows cannot be formed.
+    #[error(transparent)]
+    Window(#[from] crate::window::WindowError),
+    /// An effect id, `CHANNEL=ID` pair or effect column is wrong.
+    #[error(transparent)]
+    Effect(#[from] crate::effects::EffectError),
+    /// A windowed signal is neither an accelerometer axis nor an extra column.
+    #[error("window signal '{name}' is not a record column (use ax, ay, az or an extra column: {})", if available.is_empty() { "none".to_string() } else { available.join(", ") })]
+    WindowSignal {
+        name: String,
+        available: Vec<String>,
+    },
+    /// Too few windows to train and validate.
+    #[error("{what}: {have} windows, need at least {need} ({hint})")]
+    TooFewSamples {
+        what: &'static str,
+        have: usize,
+        need: usize,
+        hint: &'static str,
+    },
+    /// An option is out of range.
+    #[error("{name} = {value}: {reason}")]
+    InvalidOption {
+        name: &'static str,
+        value: String,
+        reason: &'static str,
+    },
+    /// The RBF fit of one channel failed.
+    #[error("channel {channel}: {source}")]
+    Fit {
+        channel: Channel,
+        #[source]
+        source: rbf::RbfError,
+    },
+    /// The record's sample interval differs from the one the model was fitted at.
+    #[error(
+        "the record is sampled every {record_dt_s} s but the model was fitted at {model_dt_s} s: its filter and windows assume that interval; refit on data at this rate"
+    )]
+    SampleInterval { record_dt_s: f64, model_dt_s: f64 },
+    /// A model file could not be read or written.
+    #[error("{path}: {source}")]
+    ModelIo {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A model file is not a dtg-vib model.
+    #[error("{path}: not a dtg-vib model file ({reason})")]
+    ModelCorrupt { path: PathBuf, reason: String },
+    /// A model file of another format version.
+    #[error(
+        "{path}: model format_version {found} is not the supported {expected}; refit the model with this version"
+    )]
+    ModelVersion {
+        path: PathBuf,
+        found: u64,
+        expected: u32,
+    },
+    /// A figure or the report could not be written.
+    #[error(transparent)]
+    Report(#[from] crate::report::ReportError),
+    /// Writing an output file failed.
+    #[error("{path}: {source}")]
+    Output {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Writing a CSV failed.
+    #[error(transparent)]
+    Table(#[from] tabular::TableError),
+}

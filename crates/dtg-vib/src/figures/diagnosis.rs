@@ -1,0 +1,287 @@
+//! Figures and page of a diagnosis: measured against predicted, the residual
+//! against its top candidates, residual spectra against a white floor, the
+//! correlation tests with their bands, and the ERR ranking.
+
+use super::{fmt, save_all};
+use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::error::DtgVibError;
+use crate::report::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
+use std::path::{Path, PathBuf};
+
+fn per_channel(
+    title: &str,
+    diag: &Diagnosis,
+    panel: impl Fn(&ChannelDiagnosis) -> Panel,
+) -> Figure {
+    diag.channels
+        .iter()
+        .fold(Figure::new(title), |f, c| f.panel(panel(c)))
+}
+
+/// Writes the diagnosis figures and `index.html` into `dir`; `fs` is the
+/// record's sample rate (Hz) and `min_err` the suggestion threshold drawn on
+/// the ERR charts.
+pub fn write_diagnosis_report(
+    diag: &Diagnosis,
+    fs: f64,
+    min_err: f64,
+    dir: &Path,
+) -> Result<PathBuf, DtgVibError> {
+    let mut figs: Vec<(Figure, &str)> = Vec::new();
+    figs.push((
+        per_channel("Measured against predicted, validation rows", diag, |c| {
+            let s = &c.series;
+            Panel::new(
+                format!(
+                    "Channel {} (fit {:.1}%)",
+                    c.channel, c.compare.val_fit_percent
+                ),
+                "time (s)",
+                format!("{} (deg/h)", c.channel),
+            )
+            .series(Series::line("measured", s.t.clone(), s.measured.clone()).colour(1))
+            .series(Series::line("predicted", s.t.clone(), s.predicted.clone()).colour(0))
+        })
+        .share_x(),
+        "diag_compare",
+    ));
+    figs.push((
+        per_channel(
+            "Residual and its top candidate effect (scaled by its coefficient)",
+            diag,
+            |c| {
+                let s = &c.series;
+                let mut p = Panel::new(format!("Channel {}", c.channel), "time (s)", "deg/h")
+                    .series(Series::line("residual", s.t.clone(), s.residual.clone()).colour(1));
+                if let Some(top) = c.candidates.first()
+                    && let Some((_, col)) = s.candidates.iter().find(|(id, _)| *id == top.effect)
+                {
+                    let scaled: Vec<f64> = col.iter().map(|v| top.coef * v).collect();
+                    p = p.series(
+                        Series::line(
+                            format!("{} × {:.3} {}", top.effect, top.coef, top.unit),
+                            s.t.clone(),
+                            scaled,
+                        )
+                        .colour(0),
+                    );
+                }
+                p
+            },
+        )
+        .share_x(),
+        "diag_top_candidates",
+    ));
+    figs.push((
+        per_channel("Residual spectrum, validation rows", diag, |c| {
+            let seg = 512
+                .min(c.series.residual.len().next_power_of_two() / 2)
+                .max(8);
+            let mut p = Panel::psd(format!("Channel {}", c.channel), "PSD ((deg/h)²/Hz)");
+            if c.series.residual.len() >= seg {
+                let s = nav_sensors::vibration::welch(&c.series.residual, fs, seg);
+                p = p.series(Series::line("residual", s.frequency_hz, s.density).colour(0));
+            }
+            p
+        }),
+        "diag_residual_psd",
+    ));
+    figs.push((
+        per_channel(
+            "Whiteness test (decimated residual, against white noise through the pre-filter)",
+            diag,
+            |c| match c.checks.iter().find(|k| k.name == "whiteness") {
+                Some(k) => {
+                    let dev: Vec<f64> = k
+                        .check
+                        .values
+                        .iter()
+                        .zip(&k.check.expected)
+                        .map(|(v, e)| v - e)
+                        .collect();
+                    let lags: Vec<f64> = k.check.lags.iter().map(|&l| l as f64).collect();
+                    let band = k.check.band.iter().copied().fold(0.0, f64::max);
+                    Panel::correlation(
+                        format!(
+                            "Channel {}: {}",
+                            c.channel,
+                            if k.check.passed { "passes" } else { "FAILS" }
+                        ),
+                        "lag (decimated samples)",
+                        lags,
+                        dev,
+                        band,
+                    )
+                }
+                None => Panel::new(format!("Channel {}", c.channel), "lag", "ρ"),
+            },
+        ),
+        "diag_whiteness",
+    ));
+    figs.push((
+        per_channel(
+            "Independence test against the acceleration with the worst statistic",
+            diag,
+            |c| {
+                let worst = c
+                    .checks
+                    .iter()
+                    .filter(|k| k.name.starts_with("independence:"))
+                    .max_by(|a, b| a.check.statistic.total_cmp(&b.check.statistic));
+                match worst {
+                    Some(k) => {
+                        let lags: Vec<f64> = k.check.lags.iter().map(|&l| l as f64).collect();
+                        let band = k.check.band.first().copied().unwrap_or(0.0);
+                        Panel::correlation(
+                            format!(
+                                "Channel {}: {} {}",
+                                c.channel,
+                                k.name,
+                                if k.check.passed { "passes" } else { "FAILS" }
+                            ),
+                            "lag (samples)",
+                            lags,
+                            k.check.values.clone(),
+                            band,
+                        )
+                    }
+                    None => Panel::new(format!("Channel {}", c.channel), "lag", "ρ"),
+                }
+            },
+        ),
+        "diag_independence",
+    ));
+    let mut err_fig = Figure::new("Candidate effects: ERR on the validation residual");
+    for c in &diag.channels {
+        let items: Vec<(String, f64)> = c
+            .candidates
+            .iter()
+            .map(|k| (k.effect.clone(), k.err))
+            .collect();
+        if !items.is_empty() {
+            err_fig = err_fig.panel(
+                BarChart::ranked(
+                    format!("Channel {}", c.channel),
+                    "ERR (share of residual mean square)",
+                    "ERR",
+                    items,
+                )
+                .threshold(min_err, "suggestion threshold"),
+            );
+        }
+    }
+    figs.push((err_fig, "diag_err"));
+    let names: Vec<&str> = diag.channels.iter().map(|c| c.channel.name()).collect();
+    figs.push((
+        Figure::new("Validation residual rms").panel(
+            BarChart::new("Per channel", "rms (deg/h)", names)
+                .group(
+                    "bias only",
+                    diag.channels
+                        .iter()
+                        .map(|c| c.compare.val_rms_bias_only)
+                        .collect::<Vec<_>>(),
+                )
+                .group(
+                    "model",
+                    diag.channels.iter().map(|c| c.rms).collect::<Vec<_>>(),
+                ),
+        ),
+        "diag_before_after",
+    ));
+    let files = save_all(figs, dir)?;
+    let f = |stem: &str| {
+        files
+            .iter()
+            .find(|(s, _)| *s == stem)
+            .map(|(_, f)| f)
+            .expect("drawn")
+    };
+
+    let mut overview = Table::new([
+        "channel",
+        "effects",
+        "val rms (deg/h)",
+        "val fit %",
+        "suggested",
+        "failing tests",
+    ]);
+    for c in &diag.channels {
+        overview = overview.row([
+            c.channel.name().to_string(),
+            if c.effects.is_empty() {
+                "—".into()
+            } else {
+                c.effects.join(", ")
+            },
+            fmt(c.rms),
+            format!("{:.1}", c.compare.val_fit_percent),
+            if c.suggested.is_empty() {
+                "—".into()
+            } else {
+                c.suggested.join(", ")
+            },
+            c.failing.len().to_string(),
+        ]);
+    }
+    let suggestions: Vec<String> = diag
+        .channels
+        .iter()
+        .filter(|c| !c.suggested.is_empty())
+        .map(|c| {
+            format!(
+                "--add-effect {}={}",
+                c.channel,
+                c.suggested.join(&format!(" --add-effect {}=", c.channel))
+            )
+        })
+        .collect();
+    let mut page = HtmlReport::new("Diagnosis: what the model is missing")
+        .summary(if suggestions.is_empty() {
+            "No candidate effect explains a significant, worthwhile part of any channel's validation residual.".to_string()
+        } else {
+            format!("Suggested: refit with {}.", suggestions.join(" "))
+        })
+        .section(Section::new("Overview").table(overview).figure(f("diag_before_after"), "Validation residual rms: bias-only model against the fitted model."));
+    for c in &diag.channels {
+        let mut sec = Section::new(format!("Channel {}", c.channel));
+        for line in &c.findings {
+            sec = sec.text(line.clone());
+        }
+        let mut t = Table::new([
+            "effect",
+            "ERR",
+            "coefficient",
+            "unit",
+            "p (forward step)",
+            "collinear with",
+            "description",
+        ]);
+        for k in c.candidates.iter().take(8) {
+            t = t.row([
+                format!("{}{}", k.effect, if k.significant { " ✓" } else { "" }),
+                format!("{:.4}", k.err),
+                fmt(k.coef),
+                k.unit.clone(),
+                k.p_value.map_or("—".into(), |p| format!("{p:.1e}")),
+                if k.collinear_with.is_empty() {
+                    "—".into()
+                } else {
+                    k.collinear_with.join(", ")
+                },
+                k.description.clone(),
+            ]);
+        }
+        page = page.section(sec.table(t));
+    }
+    page = page.section(
+        Section::new("Figures")
+            .figure(f("diag_err"), "ERR of each candidate effect on the validation residual; the dashed line is the suggestion threshold.")
+            .figure(f("diag_top_candidates"), "The residual and its top candidate, scaled by its estimated coefficient.")
+            .figure(f("diag_residual_psd"), "Residual power spectral density.")
+            .figure(f("diag_whiteness"), "Whiteness: residual autocorrelation minus that of white noise through the pre-filter, with its band.")
+            .figure(f("diag_independence"), "Independence: residual–acceleration cross-correlation with its (Bartlett) band.")
+            .figure(f("diag_compare"), "Measured against predicted on the validation rows."),
+    );
+    Ok(page.write(dir)?)
+}

@@ -1,0 +1,357 @@
+//! Fitting the six channel models: physical effects and an RBF on the
+//! acceleration window, fitted together, with the width and the number of
+//! centres chosen by blocked cross-validation inside the training rows.
+//!
+//! Together, not in stages: the effect columns (e.g. g_I ∝ a_z) and the RBF
+//! features (functions of the a_z window) are correlated, and a staged fit
+//! would hand the shared part to whichever stage runs first. The OLS engine
+//! takes the effects as forced columns (always in, orthogonalised first), so
+//! the centres explain only what the physics does not, and the final weights
+//! and effect coefficients come from one QR solve.
+
+use crate::effects::{ChannelEffect, Effect};
+use crate::error::DtgVibError;
+use crate::model::{ChannelModel, ChannelScores, CompensationModel};
+use crate::pipeline::{Prepared, Preprocess};
+use crate::split::SplitKind;
+use faer::{Mat, MatRef, Par};
+use linfa::ParamGuard;
+use nav_sensors::calibration::Calibration;
+use nav_sensors::geometry::Channel;
+use nav_sensors::record::Record;
+use rayon::prelude::*;
+use rbf::{
+    Candidates, CentreSelection, Grid, KMeansSettings, Kernel, RbfParams, Sizes, Split, WidthRule,
+};
+use serde::{Deserialize, Serialize};
+
+/// How centres are chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CentreMethod {
+    /// OLS forward selection by error-reduction ratio (Chen, Cowan & Grant 1991).
+    Ols,
+    /// k-means centroids.
+    #[serde(rename = "kmeans")]
+    KMeans,
+}
+
+impl std::str::FromStr for CentreMethod {
+    type Err = DtgVibError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "ols" => Ok(CentreMethod::Ols),
+            "kmeans" => Ok(CentreMethod::KMeans),
+            other => Err(DtgVibError::InvalidOption {
+                name: "centers",
+                value: other.to_string(),
+                reason: "use ols or kmeans",
+            }),
+        }
+    }
+}
+
+/// Everything a fit can be told.
+///
+/// ```
+/// let o = dtg_vib::fit::FitOptions::default();
+/// assert_eq!(o.max_centres, 60);
+/// assert!(o.effects.is_empty());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitOptions {
+    /// Pre-processing (filter, window, rate reference).
+    pub preprocess: Preprocess,
+    /// Effects of every channel's linear part.
+    pub effects: Vec<Effect>,
+    /// Effects added to one channel each.
+    pub add: Vec<ChannelEffect>,
+    /// Centre selection.
+    pub centres: CentreMethod,
+    /// Largest number of centres tried.
+    pub max_centres: usize,
+    /// OLS candidates: a seeded subsample of this many training windows.
+    pub candidates: usize,
+    /// Gaussian widths tried, as multiples of the median distance between windows.
+    pub width_scales: Vec<f64>,
+    /// Ridge λ on the output weights.
+    pub ridge: f64,
+    /// Training/validation split.
+    pub split: SplitKind,
+    /// Folds of the blocked cross-validation inside the training rows.
+    pub inner_folds: usize,
+    /// The kernel (the paper's Gaussian by default).
+    pub kernel: Kernel,
+    /// Seed of every random choice (candidate subsample, k-means).
+    pub seed: u64,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            preprocess: Preprocess::default(),
+            effects: Vec::new(),
+            add: Vec::new(),
+            centres: CentreMethod::Ols,
+            max_centres: 60,
+            candidates: 400,
+            width_scales: vec![0.5, 1.0, 2.0],
+            ridge: 1e-8,
+            split: SplitKind::default(),
+            inner_folds: 3,
+            kernel: Kernel::Gaussian,
+            seed: 1,
+        }
+    }
+}
+
+impl FitOptions {
+    /// The effects of one channel: the common ones, then its additions.
+    pub fn effects_of(&self, channel: Channel) -> Vec<Effect> {
+        let mut e = self.effects.clone();
+        for a in self.add.iter().filter(|a| a.channel == channel) {
+            if !e.contains(&a.effect) {
+                e.push(a.effect.clone());
+            }
+        }
+        e
+    }
+
+    fn check(&self) -> Result<(), DtgVibError> {
+        let bad = |name, value: String, reason| {
+            Err(DtgVibError::InvalidOption {
+                name,
+                value,
+                reason,
+            })
+        };
+        if self.max_centres == 0 {
+            return bad("max centres", "0".into(), "need at least one centre");
+        }
+        if self.width_scales.is_empty()
+            || self
+                .width_scales
+                .iter()
+                .any(|s| !(s.is_finite() && *s > 0.0))
+        {
+            return bad(
+                "width scales",
+                format!("{:?}", self.width_scales),
+                "need positive finite multiples",
+            );
+        }
+        if !(self.ridge.is_finite() && self.ridge >= 0.0) {
+            return bad(
+                "ridge",
+                self.ridge.to_string(),
+                "must be a finite number ≥ 0",
+            );
+        }
+        if self.inner_folds < 2 {
+            return bad(
+                "inner folds",
+                self.inner_folds.to_string(),
+                "cross-validation needs at least 2 folds",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Rows closer than this to the other side of a split may share samples:
+/// a window length plus the filter's reach.
+pub fn leakage_gap(prepared: &Prepared) -> usize {
+    // Row 0's window ends at sample `first_sample()`: a window spans that many
+    // samples before its own.
+    prepared.first_sample() + prepared.filter_memory()
+}
+
+/// Training and validation rows of prepared data.
+pub fn split_rows(
+    prepared: &Prepared,
+    split: SplitKind,
+) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+    split.rows(prepared.rows(), leakage_gap(prepared))
+}
+
+/// Numbers of centres tried: a roughly geometric ladder up to `max`.
+fn size_ladder(max: usize) -> Vec<usize> {
+    let mut v: Vec<usize> = [2, 5, 10, 15, 20, 30, 40, 60, 80, 100, 150, 200, 300]
+        .into_iter()
+        .filter(|&k| k < max)
+        .collect();
+    v.push(max);
+    v
+}
+
+/// Which stage of a fit is running, for progress display.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FitStage {
+    /// Reading and pre-processing the record.
+    Preparing,
+    /// One channel's cross-validation and fit finished.
+    ChannelDone(Channel),
+}
+
+/// Fits the six channel models on a record.
+///
+/// ```no_run
+/// use dtg_vib::fit::{fit, FitOptions};
+/// let rec = nav_sensors::record::Record::read_csv("record.csv")?;
+/// let model = fit(&rec, None, &FitOptions::default(), &|_| {})?;
+/// println!("{}", model.channel(nav_sensors::geometry::Channel::Z).scores().val_rms);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fit(
+    record: &Record,
+    calibration: Option<&Calibration>,
+    options: &FitOptions,
+    progress: &(dyn Fn(FitStage) + Sync),
+) -> Result<CompensationModel, DtgVibError> {
+    options.check()?;
+    progress(FitStage::Preparing);
+    let prepared = Prepared::new(record, calibration, &options.preprocess)?;
+    fit_prepared(&prepared, calibration, options, progress)
+}
+
+/// [`fit`] on data already prepared with `options.preprocess`.
+pub fn fit_prepared(
+    prepared: &Prepared,
+    calibration: Option<&Calibration>,
+    options: &FitOptions,
+    progress: &(dyn Fn(FitStage) + Sync),
+) -> Result<CompensationModel, DtgVibError> {
+    options.check()?;
+    let (train, val) = split_rows(prepared, options.split)?;
+    let x = prepared.window_matrix();
+    let x_train = gather(x.as_ref(), &train);
+    let channels: Vec<ChannelModel> = Channel::ALL
+        .par_iter()
+        .map(|&ch| {
+            let m = fit_channel(prepared, &x, &x_train, &train, &val, ch, options);
+            progress(FitStage::ChannelDone(ch));
+            m
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(CompensationModel {
+        preprocess: options.preprocess.clone(),
+        calibration: calibration.cloned(),
+        dt_s: prepared.calibrated().dt(),
+        split: options.split,
+        channels,
+    })
+}
+
+fn fit_channel(
+    prepared: &Prepared,
+    x: &Mat<f64>,
+    x_train: &Mat<f64>,
+    train: &[usize],
+    val: &[usize],
+    channel: Channel,
+    options: &FitOptions,
+) -> Result<ChannelModel, DtgVibError> {
+    let effects = options.effects_of(channel);
+    let z = prepared.effect_matrix(channel, &effects)?;
+    let y = prepared.target(channel);
+    let z_train = gather(z.as_ref(), train);
+    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
+    let fail = |source| DtgVibError::Fit { channel, source };
+
+    let selection = |k: usize| match options.centres {
+        CentreMethod::Ols => CentreSelection::Ols {
+            max_centres: k,
+            tol: 0.0,
+            regularisation: 0.0,
+            candidates: Candidates::Subsample {
+                size: options.candidates,
+            },
+        },
+        CentreMethod::KMeans => CentreSelection::KMeans(KMeansSettings::new(k)),
+    };
+    let params = |k: usize, width: WidthRule| {
+        RbfParams::new()
+            .kernel(options.kernel)
+            .centres(selection(k))
+            .width(width)
+            .ridge(options.ridge)
+            .seed(options.seed)
+            .parallelism(Par::Seq)
+            .check()
+            .map_err(|e| fail(e.into()))
+    };
+    let widths: Vec<WidthRule> = options
+        .width_scales
+        .iter()
+        .map(|&s| WidthRule::MedianPairwise { scale: s })
+        .collect();
+    let max_k = options.max_centres.min(train.len() / 2).max(1);
+    let grid = Grid {
+        widths: widths.clone(),
+        sizes: Sizes::Centres(size_ladder(max_k)),
+        ridges: vec![],
+    };
+    let gap = leakage_gap(prepared);
+    let report = rbf::grid_search_with_linear(
+        &params(max_k, widths[0].clone())?,
+        x_train.as_ref(),
+        z_train.as_ref(),
+        y_train.as_ref(),
+        &Split::Blocked {
+            k: options.inner_folds,
+            gap,
+        },
+        &grid,
+    )
+    .map_err(fail)?;
+    let best = match report.best() {
+        Some(b) => b,
+        None => {
+            let first_error = report.points.into_iter().find_map(|p| p.result.err());
+            return Err(fail(first_error.unwrap_or(rbf::RbfError::FoldFailed {
+                reason: "no grid point".into(),
+            })));
+        }
+    };
+    let k = best.n_centres.unwrap_or(max_k);
+    let model = params(k, best.width.clone())?
+        .fit_with_linear(x_train.as_ref(), z_train.as_ref(), y_train.as_ref())
+        .map_err(fail)?;
+    let width = model.widths().get(0);
+
+    let yhat = model.predict_with_linear(x.as_ref(), z.as_ref());
+    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
+    let scores = score(y, &yhat, train, val);
+    Ok(ChannelModel::new(channel, effects, width, model, scores))
+}
+
+/// Rows `rows` of `m`.
+fn gather(m: MatRef<'_, f64>, rows: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), m.ncols(), |i, j| m[(rows[i], j)])
+}
+
+fn rms(v: impl Iterator<Item = f64>) -> f64 {
+    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x * x, n + 1));
+    (s / n.max(1) as f64).sqrt()
+}
+
+/// Scores of a prediction on training and validation rows.
+pub(crate) fn score(y: &[f64], yhat: &[f64], train: &[usize], val: &[usize]) -> ChannelScores {
+    let mean = |rows: &[usize]| rows.iter().map(|&i| y[i]).sum::<f64>() / rows.len() as f64;
+    let fit = |rows: &[usize]| {
+        let m = mean(rows);
+        let num = rms(rows.iter().map(|&i| y[i] - yhat[i]));
+        let den = rms(rows.iter().map(|&i| y[i] - m));
+        100.0 * (1.0 - num / den)
+    };
+    let train_mean = mean(train);
+    ChannelScores {
+        n_train: train.len(),
+        n_val: val.len(),
+        train_rms: rms(train.iter().map(|&i| y[i] - yhat[i])),
+        val_rms: rms(val.iter().map(|&i| y[i] - yhat[i])),
+        val_rms_bias_only: rms(val.iter().map(|&i| y[i] - train_mean)),
+        train_fit_percent: fit(train),
+        val_fit_percent: fit(val),
+    }
+}

@@ -1,0 +1,549 @@
+//! `dtg-vib`: the command line. Parsing, reading, calling the library,
+//! printing; nothing else lives here.
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+use dtg_vib::apply::{Applied, write_residues};
+use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
+use dtg_vib::effects::{ChannelEffect, Effect};
+use dtg_vib::figures::{Baseline, write_diagnosis_report, write_report};
+use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit};
+use dtg_vib::model::CompensationModel;
+use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
+use dtg_vib::split::SplitKind;
+use dtg_vib::window::WindowSpec;
+use indicatif::{ProgressBar, ProgressStyle};
+use nav_sensors::calibration::Calibration;
+use nav_sensors::record::Record;
+use nav_sensors::sim::{Scenario, Site, simulate};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Duration;
+
+#[derive(Parser)]
+#[command(
+    name = "dtg-vib",
+    version,
+    about = "Identify and compensate vibration-induced DTG errors with RBF networks, and find what the model is missing"
+)]
+struct Cli {
+    /// No progress display on stderr.
+    #[arg(long, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a sensor-unit vibration test (default: the paper's Z-axis random test).
+    Simulate {
+        /// Scenario file (TOML, see docs/formats.md).
+        #[arg(long, conflicts_with = "builtin")]
+        scenario: Option<PathBuf>,
+        /// A built-in scenario: paper_z_random, triaxial_clean, triaxial_hidden, demo.
+        #[arg(long)]
+        builtin: Option<String>,
+        /// Override the scenario's seed.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Output directory (record.csv, calibration.json, truth.json, components.csv, scenario.toml).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Fit the six channel models on a test record.
+    Fit(Box<FitArgs>),
+    /// Write the record compensated by a model.
+    Compensate {
+        /// Model file from `fit`.
+        #[arg(long)]
+        model: PathBuf,
+        /// Test record (CSV).
+        #[arg(long)]
+        data: PathBuf,
+        /// Output CSV (same columns; rows from the first full window on).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Write the parity residues K0..K5 (eq. 6), and with a model the compensated ones.
+    Residues {
+        /// Test record (CSV).
+        #[arg(long)]
+        data: PathBuf,
+        /// Model file: adds K*_pre (calibrated, filtered) and K*_comp (compensated) columns.
+        #[arg(long)]
+        model: Option<PathBuf>,
+        /// Output CSV.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Write the figures and index.html of a model on a record.
+    Report {
+        /// Model file from `fit`.
+        #[arg(long)]
+        model: PathBuf,
+        /// Test record (CSV).
+        #[arg(long)]
+        data: PathBuf,
+        /// An earlier model of the same record, to show each channel's error before and after.
+        #[arg(long)]
+        baseline: Option<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Find what a model is missing: compare, locate failures, rank candidate effects.
+    Diagnose {
+        /// Model file from `fit`.
+        #[arg(long)]
+        model: PathBuf,
+        /// The test record it was fitted on.
+        #[arg(long)]
+        data: PathBuf,
+        /// Print one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Write figures and index.html into this directory.
+        #[arg(long)]
+        report: Option<PathBuf>,
+    },
+    /// The main job on a built-in default: simulate, fit, compensate, report, diagnose, refit.
+    Demo {
+        /// Output directory.
+        #[arg(long, default_value = "demo-out")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Args)]
+struct FitArgs {
+    /// Test record (CSV: t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra columns]).
+    #[arg(long)]
+    data: PathBuf,
+    /// Ground-calibration file (JSON); without it nothing is compensated.
+    #[arg(long)]
+    calib: Option<PathBuf>,
+    /// Physical effects of every channel, comma-separated (g_I, gg_IS, ai_OS, col:NAME, ...).
+    #[arg(long, value_delimiter = ',')]
+    effects: Vec<String>,
+    /// An effect for one channel, CHANNEL=ID (repeatable), e.g. Y1=gg_IS.
+    #[arg(long = "add-effect")]
+    add_effect: Vec<String>,
+    /// Centre selection.
+    #[arg(long, default_value = "ols")]
+    centers: String,
+    /// Window length, samples (the paper: 50).
+    #[arg(long, default_value_t = 50)]
+    window: usize,
+    /// Windowed signals, comma-separated (accelerometer axes or extra columns).
+    #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
+    window_signals: Vec<String>,
+    /// Training/validation split: blocked (honest) or interleaved (the paper's).
+    #[arg(long, default_value = "blocked")]
+    split: String,
+    /// Fraction of the rows that train in a blocked split.
+    #[arg(long = "train-fraction", default_value_t = 0.5)]
+    train_fraction: f64,
+    /// Largest number of RBF centres tried by cross-validation.
+    #[arg(long = "max-centers", default_value_t = 60)]
+    max_centers: usize,
+    /// OLS candidate centres: a seeded subsample of this many training windows.
+    #[arg(long, default_value_t = 400)]
+    candidates: usize,
+    /// Low-pass cut-off of outputs and effects, Hz (zero-phase Butterworth).
+    #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter")]
+    cutoff: f64,
+    /// Low-pass order.
+    #[arg(long = "filter-order", default_value_t = 4)]
+    filter_order: usize,
+    /// No low-pass at all.
+    #[arg(long = "no-filter")]
+    no_filter: bool,
+    /// Also low-pass the windowed inputs at this cut-off, Hz (the paper filtered them).
+    #[arg(long = "input-cutoff")]
+    input_cutoff: Option<f64>,
+    /// Rate reference: Earth rate at this latitude, deg (cluster x north, z up).
+    #[arg(long = "earth-rate", conflicts_with = "table_rate")]
+    earth_rate: Option<f64>,
+    /// Rate reference: a known table rate about cluster x,y,z, deg/s.
+    #[arg(long = "table-rate", value_delimiter = ',', num_args = 3)]
+    table_rate: Option<Vec<f64>>,
+    /// Ridge on the output weights.
+    #[arg(long, default_value_t = 1e-8)]
+    ridge: f64,
+    /// Seed of the candidate subsample and k-means.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Model file to write.
+    #[arg(long)]
+    out: PathBuf,
+    /// Print one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+fn main() {
+    let cli = Cli::parse();
+    if let Err(e) = run(cli) {
+        // One line: what, where (the library's errors carry file:line:column), how to fix.
+        let msg = e
+            .chain()
+            .map(|c| c.to_string())
+            .collect::<Vec<_>>()
+            .join(": ");
+        eprintln!("error: {msg}");
+        std::process::exit(1);
+    }
+}
+
+/// A spinner on stderr, or nothing when quiet or not a terminal.
+struct Progress(Option<ProgressBar>);
+
+impl Progress {
+    fn new(quiet: bool) -> Self {
+        if quiet || !std::io::stderr().is_terminal() {
+            return Self(None);
+        }
+        let pb = ProgressBar::new_spinner();
+        pb.set_style(
+            ProgressStyle::with_template("{spinner} {elapsed:>3} {msg}").expect("static template"),
+        );
+        pb.enable_steady_tick(Duration::from_millis(120));
+        Self(Some(pb))
+    }
+    fn say(&self, msg: impl Into<String>) {
+        if let Some(pb) = &self.0 {
+            pb.set_message(msg.into());
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        if let Some(pb) = &self.0 {
+            pb.finish_and_clear();
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    let progress = Progress::new(cli.quiet);
+    match cli.command {
+        Command::Simulate {
+            scenario,
+            builtin,
+            seed,
+            out,
+        } => {
+            let mut s = match (scenario, builtin) {
+                (Some(path), _) => Scenario::load(&path)?,
+                (None, Some(name)) => Scenario::builtin(&name).with_context(|| {
+                    format!(
+                        "unknown built-in scenario '{name}' (valid: {})",
+                        Scenario::BUILTIN.join(", ")
+                    )
+                })?,
+                (None, None) => Scenario::default(),
+            };
+            if let Some(seed) = seed {
+                s.seed = seed;
+            }
+            progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
+            let sim = simulate(&s)?;
+            sim.write_dir(&out)?;
+            drop(progress);
+            println!("wrote {}", out.join("record.csv").display());
+        }
+        Command::Fit(args) => fit_command(*args, &progress)?,
+        Command::Compensate { model, data, out } => {
+            let model = CompensationModel::load(&model)?;
+            let record = Record::read_csv(&data)?;
+            progress.say("compensating");
+            let applied = Applied::new(&model, &record)?;
+            applied.compensated_record().write_csv(&out)?;
+            drop(progress);
+            eprintln!(
+                "wrote {} ({} rows: the first {} samples have no full window)",
+                out.display(),
+                record.len() - applied.prepared.first_sample(),
+                applied.prepared.first_sample()
+            );
+        }
+        Command::Residues { data, model, out } => {
+            let record = Record::read_csv(&data)?;
+            let applied = match &model {
+                Some(m) => Some(Applied::new(&CompensationModel::load(m)?, &record)?),
+                None => None,
+            };
+            write_residues(&out, &record, applied.as_ref())?;
+            drop(progress);
+            if let Some(a) = &applied {
+                print_residues(&a.validation_residues());
+            }
+            eprintln!("wrote {}", out.display());
+        }
+        Command::Report {
+            model,
+            data,
+            baseline,
+            out,
+        } => {
+            let m = CompensationModel::load(&model)?;
+            let record = Record::read_csv(&data)?;
+            progress.say("applying the model");
+            let applied = Applied::new(&m, &record)?;
+            let base = match &baseline {
+                Some(b) => {
+                    let bm = CompensationModel::load(b)?;
+                    let ba = Applied::new(&bm, &record)?;
+                    Some((bm, ba))
+                }
+                None => None,
+            };
+            progress.say("drawing figures");
+            let summary = write_report(
+                &m,
+                &applied,
+                &record,
+                &data.display().to_string(),
+                base.as_ref().map(|(model, applied)| Baseline {
+                    label: "baseline",
+                    model,
+                    applied,
+                }),
+                &out,
+            )?;
+            drop(progress);
+            print_residues(&summary.residues);
+            println!("report: {}", summary.index.display());
+        }
+        Command::Diagnose {
+            model,
+            data,
+            json,
+            report,
+        } => {
+            let m = CompensationModel::load(&model)?;
+            let record = Record::read_csv(&data)?;
+            progress.say("diagnosing");
+            let options = DiagnoseOptions::default();
+            let d = diagnose(&m, &record, &options)?;
+            if let Some(dir) = &report {
+                progress.say("drawing figures");
+                let page =
+                    write_diagnosis_report(&d, 1.0 / record.dt(), options.rank.min_err(), dir)?;
+                eprintln!("report: {}", page.display());
+            }
+            drop(progress);
+            if json {
+                println!("{}", serde_json::to_string(&d)?);
+            } else {
+                for c in &d.channels {
+                    println!(
+                        "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
+                        c.channel,
+                        c.rms,
+                        c.compare.val_fit_percent,
+                        if c.suggested.is_empty() {
+                            "nothing".to_string()
+                        } else {
+                            c.suggested.join(", ")
+                        }
+                    );
+                    for f in &c.findings {
+                        println!("     {f}");
+                    }
+                }
+            }
+        }
+        Command::Demo { out } => {
+            let summary = dtg_vib::demo::run(&out, &|step| progress.say(format!("{step:?}")))?;
+            drop(progress);
+            print_demo(&summary);
+        }
+    }
+    Ok(())
+}
+
+fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
+    let record = Record::read_csv(&a.data)?;
+    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
+    let effects = Effect::parse_list(&a.effects.join(","))?;
+    let add = a
+        .add_effect
+        .iter()
+        .map(|s| s.parse::<ChannelEffect>())
+        .collect::<Result<Vec<_>, _>>()?;
+    let split = match a.split.parse::<SplitKind>()? {
+        SplitKind::Blocked { .. } => SplitKind::Blocked {
+            train_fraction: a.train_fraction,
+        },
+        other => other,
+    };
+    let filter = (!a.no_filter).then_some(FilterSpec {
+        order: a.filter_order,
+        cutoff_hz: a.cutoff,
+    });
+    let input_filter = a.input_cutoff.map(|c| FilterSpec {
+        order: a.filter_order,
+        cutoff_hz: c,
+    });
+    let rate_reference = match (a.earth_rate, &a.table_rate) {
+        (Some(lat), _) => RateReference::Earth {
+            site: Site {
+                latitude_deg: lat,
+                ..Site::default()
+            },
+        },
+        (None, Some(w)) => RateReference::Table {
+            rate_deg_s: [w[0], w[1], w[2]],
+        },
+        (None, None) => RateReference::None,
+    };
+    let options = FitOptions {
+        preprocess: Preprocess {
+            filter,
+            input_filter,
+            window: WindowSpec::new(a.window_signals.clone(), a.window)?,
+            rate_reference,
+        },
+        effects,
+        add,
+        centres: a.centers.parse::<CentreMethod>()?,
+        max_centres: a.max_centers,
+        candidates: a.candidates,
+        ridge: a.ridge,
+        split,
+        seed: a.seed,
+        ..FitOptions::default()
+    };
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let start = std::time::Instant::now();
+    let model = fit(
+        &record,
+        calibration.as_ref(),
+        &options,
+        &|stage| match stage {
+            FitStage::Preparing => progress.say("preparing the record"),
+            FitStage::ChannelDone(ch) => {
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress.say(format!("fitted {n}/6 channels (last {ch})"));
+            }
+        },
+    )?;
+    let fit_seconds = start.elapsed().as_secs_f64();
+    model.save(&a.out)?;
+    if a.json {
+        let channels: Vec<serde_json::Value> = model
+            .channels()
+            .iter()
+            .map(|c| {
+                let s = c.scores();
+                serde_json::json!({
+                    "channel": c.channel(),
+                    "effects": c.effects().iter().map(|e| e.id()).collect::<Vec<_>>(),
+                    "n_centers": c.n_centres(),
+                    "train_rms": s.train_rms,
+                    "val_rms": s.val_rms,
+                    "val_rms_bias_only": s.val_rms_bias_only,
+                    "val_fit_percent": s.val_fit_percent,
+                    "width": c.width(),
+                    "bias": c.bias(),
+                    "effect_coefficients": c.effects().iter().zip(c.effect_coefficients()).map(|(e, v)| (e.id(), serde_json::json!({"value": v, "unit": e.unit()}))).collect::<serde_json::Map<_, _>>(),
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({ "channels": channels, "split": model.split().to_string(), "fit_seconds": fit_seconds })
+        );
+    } else {
+        println!("channel  centres  train rms  val rms  (deg/h)  effects");
+        for c in model.channels() {
+            let s = c.scores();
+            let e: Vec<String> = c.effects().iter().map(|e| e.id()).collect();
+            println!(
+                "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
+                c.channel().name(),
+                c.n_centres(),
+                s.train_rms,
+                s.val_rms,
+                if e.is_empty() {
+                    "—".into()
+                } else {
+                    e.join(", ")
+                }
+            );
+        }
+        println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
+    }
+    Ok(())
+}
+
+fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {
+    println!("residue  rms before  rms after  (deg/h, validation rows)  reduction");
+    for s in stats {
+        println!(
+            "{:>7}  {:>10.4}  {:>9.4}  {:>35.2}×",
+            s.residue.name(),
+            s.rms_before,
+            s.rms_after,
+            s.reduction
+        );
+    }
+}
+
+fn print_demo(s: &dtg_vib::demo::DemoSummary) {
+    println!(
+        "The paper's procedure on the simulated Z-axis random vibration test ({}):",
+        s.record.display()
+    );
+    print_residues(&s.baseline_residues);
+    println!();
+    println!(
+        "Diagnosis (hidden in the simulation: {}):",
+        s.hidden.join(", ")
+    );
+    for c in &s.diagnosis.channels {
+        println!(
+            "  {:>3}: validation rms {:.4} deg/h; suggested: {}",
+            c.channel,
+            c.rms,
+            if c.suggested.is_empty() {
+                "nothing".into()
+            } else {
+                c.suggested.join(", ")
+            }
+        );
+    }
+    let added: Vec<String> = s
+        .suggested
+        .iter()
+        .map(|a| format!("{}={}", a.channel, a.effect))
+        .collect();
+    println!();
+    println!(
+        "Refitted with {}:",
+        if added.is_empty() {
+            "nothing to add".into()
+        } else {
+            added.join(", ")
+        }
+    );
+    println!("channel  val rms before  val rms after  (deg/h)");
+    for (ch, b, a) in &s.channel_rms {
+        println!(
+            "{:>7}  {:>14.4}  {:>13.4}  {:+.1}%",
+            ch.name(),
+            b,
+            a,
+            100.0 * (a / b - 1.0)
+        );
+    }
+    print_residues(&s.final_residues);
+    println!();
+    println!("reports:");
+    println!("  paper's procedure: {}", s.baseline_report.display());
+    println!("  diagnosis:         {}", s.diagnosis_report.display());
+    println!("  after the refit:   {}", s.final_report.display());
+}

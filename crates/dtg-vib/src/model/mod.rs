@@ -1,0 +1,211 @@
+//! The fitted compensation model: per channel, physical effects (linear) plus
+//! an RBF network on the acceleration window, with everything needed to
+//! prepare new data the same way (calibration, filter, window, rate
+//! reference). Saved as versioned JSON.
+
+mod persist;
+
+pub use persist::FORMAT_VERSION;
+
+use crate::effects::Effect;
+use crate::error::DtgVibError;
+use crate::pipeline::{Prepared, Preprocess};
+use crate::split::SplitKind;
+use faer::Mat;
+use nav_sensors::calibration::Calibration;
+use nav_sensors::geometry::Channel;
+use nav_sensors::record::Record;
+use rbf::RbfModel;
+use serde::{Deserialize, Serialize};
+
+/// How well a channel model did, deg/h.
+///
+/// `fit_percent` is 100·(1 − ‖y − ŷ‖/‖y − ȳ‖), as MATLAB's `compare`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ChannelScores {
+    /// Training rows.
+    pub n_train: usize,
+    /// Validation rows.
+    pub n_val: usize,
+    /// RMS of the residual on training rows, deg/h.
+    pub train_rms: f64,
+    /// RMS of the residual on validation rows, deg/h.
+    pub val_rms: f64,
+    /// RMS on validation rows of what a bias-only model leaves (the target
+    /// minus its training mean), deg/h: the "before" of this channel.
+    pub val_rms_bias_only: f64,
+    /// Fit percentage on training rows.
+    pub train_fit_percent: f64,
+    /// Fit percentage on validation rows.
+    pub val_fit_percent: f64,
+}
+
+/// One gyro channel's model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChannelModel {
+    channel: Channel,
+    effects: Vec<Effect>,
+    /// Kernel width chosen by cross-validation, in window units (g).
+    width: f64,
+    rbf: RbfModel,
+    scores: ChannelScores,
+}
+
+impl ChannelModel {
+    pub(crate) fn new(
+        channel: Channel,
+        effects: Vec<Effect>,
+        width: f64,
+        rbf: RbfModel,
+        scores: ChannelScores,
+    ) -> Self {
+        Self {
+            channel,
+            effects,
+            width,
+            rbf,
+            scores,
+        }
+    }
+
+    /// The channel.
+    pub fn channel(&self) -> Channel {
+        self.channel
+    }
+
+    /// The physical effects of the linear part (the bias is always there).
+    pub fn effects(&self) -> &[Effect] {
+        &self.effects
+    }
+
+    /// Estimated effect coefficients, in each effect's unit, in the order of
+    /// [`ChannelModel::effects`].
+    pub fn effect_coefficients(&self) -> Vec<f64> {
+        let th = self.rbf.linear_coefficients();
+        (0..th.nrows()).map(|i| th[(i, 0)]).collect()
+    }
+
+    /// The bias λ0, deg/h.
+    pub fn bias(&self) -> f64 {
+        self.rbf.bias().map_or(0.0, |b| b[0])
+    }
+
+    /// The RBF network.
+    pub fn rbf(&self) -> &RbfModel {
+        &self.rbf
+    }
+
+    /// Number of RBF centres.
+    pub fn n_centres(&self) -> usize {
+        self.rbf.n_centres()
+    }
+
+    /// The Gaussian width β chosen by cross-validation, in window units (g).
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// Scores at fit time.
+    pub fn scores(&self) -> &ChannelScores {
+        &self.scores
+    }
+
+    /// Predicted error on every row of prepared data, deg/h.
+    pub fn predict(
+        &self,
+        prepared: &Prepared,
+        windows: &Mat<f64>,
+    ) -> Result<Vec<f64>, DtgVibError> {
+        let z = prepared.effect_matrix(self.channel, &self.effects)?;
+        let y = self.rbf.predict_with_linear(windows.as_ref(), z.as_ref());
+        Ok((0..y.nrows()).map(|i| y[(i, 0)]).collect())
+    }
+}
+
+/// The six channel models and how their data were prepared.
+///
+/// ```no_run
+/// use dtg_vib::model::CompensationModel;
+/// let model = CompensationModel::load("model.json")?;
+/// let rec = nav_sensors::record::Record::read_csv("record.csv")?;
+/// let prepared = model.prepare(&rec)?;
+/// let errors = model.predict(&prepared)?; // six series of predicted error, deg/h
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CompensationModel {
+    pub(crate) preprocess: Preprocess,
+    pub(crate) calibration: Option<Calibration>,
+    pub(crate) dt_s: f64,
+    pub(crate) split: SplitKind,
+    pub(crate) channels: Vec<ChannelModel>,
+}
+
+/// Relative tolerance on a record's sample interval against the model's.
+pub const INTERVAL_TOLERANCE: f64 = 1e-3;
+
+impl CompensationModel {
+    /// How data are prepared.
+    pub fn preprocess(&self) -> &Preprocess {
+        &self.preprocess
+    }
+
+    /// The ground calibration the model was fitted after, if any.
+    pub fn calibration(&self) -> Option<&Calibration> {
+        self.calibration.as_ref()
+    }
+
+    /// The sample interval the model was fitted at, s.
+    pub fn dt_s(&self) -> f64 {
+        self.dt_s
+    }
+
+    /// The split used at fit time.
+    pub fn split(&self) -> SplitKind {
+        self.split
+    }
+
+    /// The channel models, in X, X1, Y, Y1, Z, Z1 order.
+    pub fn channels(&self) -> &[ChannelModel] {
+        &self.channels
+    }
+
+    /// One channel's model.
+    pub fn channel(&self, channel: Channel) -> &ChannelModel {
+        &self.channels[channel.index()]
+    }
+
+    /// Prepares a record as the training data were, checking it can be: same
+    /// sample interval, and every column the effects and windows need.
+    pub fn prepare(&self, record: &Record) -> Result<Prepared, DtgVibError> {
+        let dt = record.dt();
+        if ((dt - self.dt_s) / self.dt_s).abs() > INTERVAL_TOLERANCE {
+            return Err(DtgVibError::SampleInterval {
+                record_dt_s: dt,
+                model_dt_s: self.dt_s,
+            });
+        }
+        let prepared = Prepared::new(record, self.calibration.as_ref(), &self.preprocess)?;
+        for c in &self.channels {
+            // Fails early, naming the missing column, for a model fitted on other columns.
+            crate::effects::EffectColumns::new(prepared.calibrated())
+                .evaluate(c.channel, &c.effects)?;
+        }
+        Ok(prepared)
+    }
+
+    /// Predicted error of every channel on every row, deg/h, in X, X1, Y, Y1, Z, Z1 order.
+    pub fn predict(&self, prepared: &Prepared) -> Result<[Vec<f64>; 6], DtgVibError> {
+        let w = prepared.window_matrix();
+        let mut out: [Vec<f64>; 6] = Default::default();
+        for c in &self.channels {
+            out[c.channel.index()] = c.predict(prepared, &w)?;
+        }
+        Ok(out)
+    }
+
+    /// Training and validation rows of prepared data, as at fit time.
+    pub fn rows(&self, prepared: &Prepared) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+        crate::fit::split_rows(prepared, self.split)
+    }
+}

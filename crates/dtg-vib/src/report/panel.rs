@@ -1,0 +1,279 @@
+//! An x–y panel: axes with units, series, and reference marks.
+
+use serde::Serialize;
+
+use super::Series;
+
+/// A shaded band `−limit ≤ y ≤ +limit`, e.g. the 95 % confidence band of a
+/// correlation test (±1.96/√N). Set with [`Panel::band`].
+///
+/// ```
+/// use dtg_vib::report::{Band, Panel};
+/// let p = Panel::new("r", "lag (samples)", "r (–)").band(-0.028, "95 % band");
+/// assert_eq!(p.band_limit(), Some(0.028)); // a half-width: the sign is dropped
+/// let b = Band { limit: 0.028, label: "95 % band".into() };
+/// assert_eq!(b.limit, 0.028);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Band {
+    /// Half-width of the band, in the units of the y axis.
+    pub limit: f64,
+    /// Legend text, e.g. "95 % band (±1.96/√N)".
+    pub label: String,
+}
+
+/// A horizontal dashed reference line, e.g. a PSD noise floor. Add with
+/// [`Panel::ref_line`].
+///
+/// ```
+/// use dtg_vib::report::{Panel, RefLine};
+/// let p = Panel::psd("K0", "PSD (deg²/h²/Hz)").ref_line(4e-6, "noise floor");
+/// assert_eq!(p.ref_lines(), &[RefLine { y: 4e-6, label: "noise floor".into() }]);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RefLine {
+    /// Height of the line, in the units of the y axis.
+    pub y: f64,
+    /// Legend text.
+    pub label: String,
+}
+
+/// One x–y panel of a [`Figure`](super::Figure): a title, axis labels (with
+/// units, e.g. `"time (s)"`, `"residue K0 (deg/h)"`, `"PSD (deg²/h²/Hz)"`),
+/// any number of [`Series`], optional log axes, an optional ±band and
+/// horizontal reference lines.
+///
+/// On a log axis, points with a value ≤ 0 (or NaN) cannot be placed: they are
+/// skipped, a line gets a gap there, and the skip is reported in
+/// [`FigureFiles::warnings`](super::FigureFiles::warnings) rather than
+/// clamped, because a clamped point would look like data.
+///
+/// ```
+/// use dtg_vib::report::{Figure, Panel, Series};
+///
+/// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
+/// let az: Vec<f64> = t.iter().map(|t| 2.0 * (31.0 * t).sin()).collect();
+/// let k0: Vec<f64> = az.iter().map(|a| 0.05 * a * a).collect();
+/// // The paper's Fig. 3: a residue and the thrust acceleration.
+/// let fig = Figure::new("Fig. 3 — parity residue and thrust acceleration")
+///     .share_x()
+///     .panel(Panel::new("Residue K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t.clone(), k0)))
+///     .panel(Panel::new("Thrust acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
+/// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig3")?;
+/// assert!(files.png.exists() && files.svg.exists());
+/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Panel {
+    pub(crate) title: String,
+    pub(crate) x_label: String,
+    pub(crate) y_label: String,
+    pub(crate) series: Vec<Series>,
+    pub(crate) log_x: bool,
+    pub(crate) log_y: bool,
+    pub(crate) band: Option<Band>,
+    pub(crate) ref_lines: Vec<RefLine>,
+}
+
+impl Panel {
+    /// An empty panel with a title and axis labels. Put the unit in each axis
+    /// label: the report never guesses units.
+    ///
+    /// ```
+    /// use dtg_vib::report::Panel;
+    /// let p = Panel::new("Rate X", "time (s)", "rate (deg/h)");
+    /// assert_eq!(p.title(), "Rate X");
+    /// ```
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+    ) -> Self {
+        Panel {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series: Vec::new(),
+            log_x: false,
+            log_y: false,
+            band: None,
+            ref_lines: Vec::new(),
+        }
+    }
+
+    /// A log–log panel for power spectral densities, x labelled
+    /// `"frequency (Hz)"`. The 0 Hz bin of a periodogram cannot be shown on a
+    /// log axis and is skipped with a warning.
+    ///
+    /// ```
+    /// use dtg_vib::report::{Panel, Series};
+    ///
+    /// let f: Vec<f64> = (0..=1250).map(|k| k as f64 * 0.02).collect(); // 0..25 Hz
+    /// let before: Vec<f64> = f.iter().map(|f| 1e-2 / (1.0 + f * f)).collect();
+    /// let after: Vec<f64> = f.iter().map(|f| 1e-4 + 1e-3 / (1.0 + f * f)).collect();
+    /// let p = Panel::psd("K0 spectrum", "PSD (deg²/h²/Hz)")
+    ///     .series(Series::line("before", f.clone(), before).colour(1))
+    ///     .series(Series::line("after", f, after).colour(0))
+    ///     .ref_line(1e-4, "noise floor");
+    /// assert!(p.is_log_x() && p.is_log_y());
+    /// ```
+    pub fn psd(title: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Panel::new(title, "frequency (Hz)", y_label).log_x().log_y()
+    }
+
+    /// A correlation test: `r` at each lag drawn as stems, with the ±`band`
+    /// confidence band (typically 1.96/√N for 95 %). The y axis is the
+    /// dimensionless normalised correlation.
+    ///
+    /// # Panics
+    /// If `lags` and `r` differ in length.
+    ///
+    /// ```
+    /// use dtg_vib::report::Panel;
+    ///
+    /// let n = 5000.0_f64;
+    /// let lags: Vec<f64> = (0..=25).map(f64::from).collect();
+    /// let r: Vec<f64> = lags.iter().map(|&k| if k == 0.0 { 1.0 } else { 0.3 * 0.7_f64.powf(k) }).collect();
+    /// let p = Panel::correlation("Autocorrelation of the K0 residual", "lag (samples)", lags, r, 1.96 / n.sqrt());
+    /// assert!(p.band_limit().unwrap() < 0.03);
+    /// ```
+    #[track_caller]
+    pub fn correlation(
+        title: impl Into<String>,
+        lag_label: impl Into<String>,
+        lags: impl Into<Vec<f64>>,
+        r: impl Into<Vec<f64>>,
+        band: f64,
+    ) -> Self {
+        Panel::new(title, lag_label, "correlation (–)")
+            // No legend entry for the stems: the title says what they are.
+            .series(Series::stems("", lags, r))
+            .band(band, "95 % confidence band")
+    }
+
+    /// Adds a series; it takes the next palette colour unless it has its own.
+    ///
+    /// ```
+    /// use dtg_vib::report::{Panel, Series};
+    /// let p = Panel::new("p", "t (s)", "y (g)").series(Series::sampled("a", 0.0, 1.0, vec![1.0]));
+    /// assert_eq!(p.series_count(), 1);
+    /// ```
+    pub fn series(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
+
+    /// Log scale (base 10) on x.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_x().is_log_x());
+    /// ```
+    pub fn log_x(mut self) -> Self {
+        self.log_x = true;
+        self
+    }
+
+    /// Log scale (base 10) on y.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_y().is_log_y());
+    /// ```
+    pub fn log_y(mut self) -> Self {
+        self.log_y = true;
+        self
+    }
+
+    /// A shaded band between −`limit` and +`limit` (replacing any earlier
+    /// one). On a log y axis only the part above zero can be drawn: the band
+    /// fills from the bottom of the axis up to `limit`.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// let p = Panel::new("p", "lag (samples)", "r (–)").band(0.028, "95 % band");
+    /// assert_eq!(p.band_limit(), Some(0.028));
+    /// ```
+    pub fn band(mut self, limit: f64, label: impl Into<String>) -> Self {
+        self.band = Some(Band {
+            limit: limit.abs(),
+            label: label.into(),
+        });
+        self
+    }
+
+    /// A horizontal dashed reference line at `y` (noise floor, limit, …).
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// let p = Panel::psd("p", "PSD (g²/Hz)").ref_line(1e-6, "noise floor");
+    /// assert_eq!(p.ref_lines()[0].y, 1e-6);
+    /// ```
+    pub fn ref_line(mut self, y: f64, label: impl Into<String>) -> Self {
+        self.ref_lines.push(RefLine {
+            y,
+            label: label.into(),
+        });
+        self
+    }
+
+    /// The panel title.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert_eq!(Panel::new("K5", "t (s)", "K5 (deg/h)").title(), "K5");
+    /// ```
+    pub fn title(&self) -> &str {
+        &self.title
+    }
+
+    /// Number of series.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert_eq!(Panel::new("p", "t (s)", "y (g)").series_count(), 0);
+    /// ```
+    pub fn series_count(&self) -> usize {
+        self.series.len()
+    }
+
+    /// Whether x is on a log scale.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert!(!Panel::new("p", "t (s)", "y (g)").is_log_x());
+    /// ```
+    pub fn is_log_x(&self) -> bool {
+        self.log_x
+    }
+
+    /// Whether y is on a log scale.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert!(Panel::psd("p", "PSD (g²/Hz)").is_log_y());
+    /// ```
+    pub fn is_log_y(&self) -> bool {
+        self.log_y
+    }
+
+    /// The band half-width, if a band is set.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert_eq!(Panel::new("p", "t (s)", "y (g)").band_limit(), None);
+    /// ```
+    pub fn band_limit(&self) -> Option<f64> {
+        self.band.as_ref().map(|b| b.limit)
+    }
+
+    /// The reference lines.
+    ///
+    /// ```
+    /// # use dtg_vib::report::Panel;
+    /// assert!(Panel::new("p", "t (s)", "y (g)").ref_lines().is_empty());
+    /// ```
+    pub fn ref_lines(&self) -> &[RefLine] {
+        &self.ref_lines
+    }
+}

@@ -1,0 +1,207 @@
+//! Windowed inputs: each sample's input vector is the last `length` samples
+//! of one or more signals, as the paper feeds the RBF network a window of 50
+//! thrust-axis acceleration samples.
+//!
+//! Windows end at the sample they belong to (causal), so a fitted model can
+//! run on-line: the compensation of sample t uses accelerations up to t only.
+
+use serde::{Deserialize, Serialize};
+
+/// Why windows could not be formed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum WindowError {
+    /// A window of zero samples was asked for.
+    #[error("a window needs at least one sample")]
+    ZeroLength,
+    /// No signal to window.
+    #[error("a window needs at least one input signal")]
+    NoSignals,
+    /// The record is shorter than one window.
+    #[error(
+        "the record has {samples} samples, fewer than one window of {length}: use a shorter window (--window) or a longer record"
+    )]
+    TooShort { samples: usize, length: usize },
+}
+
+/// How input windows are formed: `length` consecutive samples of each named
+/// signal, concatenated signal by signal (oldest sample first).
+///
+/// ```
+/// use dtg_vib::window::WindowSpec;
+/// let spec = WindowSpec::new(vec!["az".into()], 3).unwrap();
+/// let az = [0.0, 1.0, 2.0, 3.0, 4.0];
+/// let w = spec.build(&[&az]).unwrap();
+/// assert_eq!(w.first_sample(), 2);           // the first full window ends at sample 2
+/// assert_eq!(w.len(), 3);
+/// assert_eq!(w.row(0), &[0.0, 1.0, 2.0]);
+/// assert_eq!(w.row(2), &[2.0, 3.0, 4.0]);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct WindowSpec {
+    signals: Vec<String>,
+    length: usize,
+}
+
+impl WindowSpec {
+    /// A window of `length` samples over the named signals (record columns,
+    /// e.g. `az`).
+    pub fn new(signals: Vec<String>, length: usize) -> Result<Self, WindowError> {
+        if length == 0 {
+            return Err(WindowError::ZeroLength);
+        }
+        if signals.is_empty() {
+            return Err(WindowError::NoSignals);
+        }
+        Ok(Self { signals, length })
+    }
+
+    /// The paper's choice: 50 samples of the thrust-axis accelerometer `az`.
+    pub fn paper() -> Self {
+        Self {
+            signals: vec!["az".to_string()],
+            length: 50,
+        }
+    }
+
+    /// The signal names, in the order their samples appear in a window.
+    pub fn signals(&self) -> &[String] {
+        &self.signals
+    }
+
+    /// Samples per signal in one window.
+    pub fn length(&self) -> usize {
+        self.length
+    }
+
+    /// Input dimension: `length × number of signals`.
+    pub fn dim(&self) -> usize {
+        self.length * self.signals.len()
+    }
+
+    /// Forms every full window of the given signals (one slice per name in
+    /// [`WindowSpec::signals`], all of the record's length).
+    #[track_caller]
+    pub fn build(&self, signals: &[&[f64]]) -> Result<Windows, WindowError> {
+        assert_eq!(
+            signals.len(),
+            self.signals.len(),
+            "one slice per windowed signal"
+        );
+        let n = signals[0].len();
+        assert!(
+            signals.iter().all(|s| s.len() == n),
+            "windowed signals differ in length"
+        );
+        if n < self.length {
+            return Err(WindowError::TooShort {
+                samples: n,
+                length: self.length,
+            });
+        }
+        let first = self.length - 1;
+        let rows = n - first;
+        let dim = self.dim();
+        let mut data = Vec::with_capacity(rows * dim);
+        for end in first..n {
+            for s in signals {
+                data.extend_from_slice(&s[end + 1 - self.length..=end]);
+            }
+        }
+        Ok(Windows { data, dim, first })
+    }
+}
+
+/// Row-major windows: row `i` belongs to record sample `first_sample() + i`.
+///
+/// ```
+/// use dtg_vib::window::WindowSpec;
+/// let spec = WindowSpec::new(vec!["ax".into(), "az".into()], 2).unwrap();
+/// let w = spec.build(&[&[1.0, 2.0, 3.0], &[10.0, 20.0, 30.0]]).unwrap();
+/// assert_eq!(w.dim(), 4);
+/// assert_eq!(w.row(1), &[2.0, 3.0, 20.0, 30.0]);
+/// assert_eq!(w.sample_of_row(1), 2);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Windows {
+    data: Vec<f64>,
+    dim: usize,
+    first: usize,
+}
+
+impl Windows {
+    /// Number of windows.
+    pub fn len(&self) -> usize {
+        self.data.len() / self.dim
+    }
+
+    /// True when there are no windows.
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+
+    /// Input dimension.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Record index of the sample the first window belongs to.
+    pub fn first_sample(&self) -> usize {
+        self.first
+    }
+
+    /// Record index of the sample window `row` belongs to.
+    pub fn sample_of_row(&self, row: usize) -> usize {
+        self.first + row
+    }
+
+    /// One window.
+    #[track_caller]
+    pub fn row(&self, i: usize) -> &[f64] {
+        &self.data[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// All windows, row-major (`len() × dim()`).
+    pub fn as_slice(&self) -> &[f64] {
+        &self.data
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn too_short_record_is_an_error() {
+        let spec = WindowSpec::paper();
+        let az = vec![0.0; 49];
+        assert_eq!(
+            spec.build(&[&az]),
+            Err(WindowError::TooShort {
+                samples: 49,
+                length: 50
+            })
+        );
+        assert_eq!(spec.build(&[&vec![0.0; 50]]).unwrap().len(), 1);
+    }
+
+    #[test]
+    fn validation_rules() {
+        assert_eq!(
+            WindowSpec::new(vec!["az".into()], 0),
+            Err(WindowError::ZeroLength)
+        );
+        assert_eq!(WindowSpec::new(vec![], 5), Err(WindowError::NoSignals));
+    }
+
+    #[test]
+    fn every_row_is_the_causal_history_of_its_sample() {
+        let x: Vec<f64> = (0..200).map(|i| i as f64).collect();
+        let spec = WindowSpec::new(vec!["x".into()], 7).unwrap();
+        let w = spec.build(&[&x]).unwrap();
+        for r in 0..w.len() {
+            let t = w.sample_of_row(r);
+            let expect: Vec<f64> = (t - 6..=t).map(|i| i as f64).collect();
+            assert_eq!(w.row(r), expect.as_slice());
+        }
+    }
+}

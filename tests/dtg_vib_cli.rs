@@ -1,0 +1,364 @@
+//! The `dtg-vib` command line, driven as a user would: the happy path's
+//! contracts (flags, JSON keys, CSV columns) and one test per bad input,
+//! each of which must give a one-line error and a non-zero exit, never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
+}
+
+fn dir() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("dtg-vib-cli-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    })
+}
+
+fn run(args: &[&str]) -> Output {
+    bin()
+        .args(args)
+        .arg("--quiet")
+        .output()
+        .expect("binary runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Runs a command that must fail; returns its stderr after checking it is one
+/// line, says `error:` and holds no panic.
+fn fails(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(!out.status.success(), "{args:?} should fail");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
+    assert!(err.starts_with("error: "), "{err}");
+    err
+}
+
+/// The built-in demo record (the paper's test, temperature column included),
+/// simulated once for all tests.
+fn sim() -> &'static Path {
+    static SIM: OnceLock<PathBuf> = OnceLock::new();
+    SIM.get_or_init(|| {
+        let d = dir().join("sim");
+        ok(&[
+            "simulate",
+            "--builtin",
+            "demo",
+            "--out",
+            d.to_str().unwrap(),
+        ]);
+        d
+    })
+}
+
+fn record() -> String {
+    sim().join("record.csv").display().to_string()
+}
+
+/// A model fitted with `col:temp` on every channel, once for all tests.
+fn model() -> &'static str {
+    static MODEL: OnceLock<String> = OnceLock::new();
+    MODEL.get_or_init(|| {
+        let m = dir().join("model.json").display().to_string();
+        let calib = sim().join("calibration.json").display().to_string();
+        ok(&[
+            "fit",
+            "--data",
+            &record(),
+            "--calib",
+            &calib,
+            "--effects",
+            "col:temp",
+            "--max-centers",
+            "10",
+            "--out",
+            &m,
+        ]);
+        m
+    })
+}
+
+/// Writes a variant of the record: `edit` gets the lines and changes them.
+fn variant(name: &str, edit: impl FnOnce(&mut Vec<String>)) -> String {
+    let text = std::fs::read_to_string(record()).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    edit(&mut lines);
+    let p = dir().join(name);
+    std::fs::write(&p, lines.join("\n") + "\n").unwrap();
+    p.display().to_string()
+}
+
+#[test]
+fn fit_json_has_the_contract_keys() {
+    let calib = sim().join("calibration.json").display().to_string();
+    let out = dir().join("json-model.json").display().to_string();
+    let text = ok(&[
+        "fit",
+        "--data",
+        &record(),
+        "--calib",
+        &calib,
+        "--add-effect",
+        "Y1=col:temp",
+        "--max-centers",
+        "10",
+        "--out",
+        &out,
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(text.trim()).expect("one JSON object");
+    let channels = v["channels"].as_array().unwrap();
+    assert_eq!(channels.len(), 6);
+    for (c, name) in channels.iter().zip(["X", "X1", "Y", "Y1", "Z", "Z1"]) {
+        assert_eq!(c["channel"], name);
+        for key in ["effects", "n_centers", "train_rms", "val_rms"] {
+            assert!(!c[key].is_null(), "{key} missing in {c}");
+        }
+        let val = c["val_rms"].as_f64().unwrap();
+        assert!(val > 0.0 && val < 10.0, "{val}");
+    }
+    assert_eq!(channels[3]["effects"], serde_json::json!(["col:temp"]));
+    assert_eq!(channels[0]["effects"], serde_json::json!([]));
+}
+
+#[test]
+fn residues_columns_without_and_with_a_model() {
+    let out = dir().join("res.csv");
+    ok(&[
+        "residues",
+        "--data",
+        &record(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().next().unwrap(), "t,K0,K1,K2,K3,K4,K5");
+    assert_eq!(text.lines().count(), 5001);
+    let out2 = dir().join("res2.csv");
+    let printed = ok(&[
+        "residues",
+        "--data",
+        &record(),
+        "--model",
+        model(),
+        "--out",
+        out2.to_str().unwrap(),
+    ]);
+    let header = std::fs::read_to_string(&out2)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .to_string();
+    assert!(
+        header.starts_with("t,K0,K1,K2,K3,K4,K5,K0_pre,"),
+        "{header}"
+    );
+    assert!(header.ends_with(",K5_comp"), "{header}");
+    assert!(printed.contains("reduction"));
+}
+
+#[test]
+fn compensate_writes_the_record_format() {
+    let out = dir().join("comp.csv");
+    ok(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &record(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        text.lines().next().unwrap(),
+        "t,X,X1,Y,Y1,Z,Z1,ax,ay,az,temp"
+    );
+    // The first 49 samples have no full 50-sample window.
+    assert_eq!(text.lines().count(), 1 + 5000 - 49);
+}
+
+#[test]
+fn diagnose_json_has_the_contract_keys() {
+    let text = ok(&[
+        "diagnose",
+        "--model",
+        model(),
+        "--data",
+        &record(),
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(text.trim()).expect("one JSON object");
+    let channels = v["channels"].as_array().unwrap();
+    assert_eq!(channels.len(), 6);
+    for c in channels {
+        assert!(c["channel"].is_string() && c["rms"].is_f64() && c["suggested"].is_array());
+        let cands = c["candidates"].as_array().unwrap();
+        assert!(!cands.is_empty());
+        for k in cands {
+            for key in ["effect", "err", "coef", "description"] {
+                assert!(!k[key].is_null(), "{key} missing in {k}");
+            }
+        }
+        let errs: Vec<f64> = cands.iter().map(|k| k["err"].as_f64().unwrap()).collect();
+        assert!(
+            errs.windows(2).all(|w| w[0] >= w[1]),
+            "candidates not sorted by err: {errs:?}"
+        );
+        // col:temp is in the model already, so it is no candidate.
+        assert!(cands.iter().all(|k| k["effect"] != "col:temp"));
+    }
+}
+
+#[test]
+fn missing_column_is_named() {
+    let bad = variant("no-az.csv", |l| {
+        for line in l.iter_mut() {
+            let mut cells: Vec<&str> = line.split(',').collect();
+            cells.remove(9); // az
+            *line = cells.join(",");
+        }
+    });
+    let err = fails(&["fit", "--data", &bad, "--out", "/dev/null"]);
+    assert!(err.contains("no-az.csv") && err.contains("'az'"), "{err}");
+}
+
+#[test]
+fn text_cell_is_reported_at_file_line_column() {
+    let bad = variant("text.csv", |l| {
+        let mut cells: Vec<String> = l[7].split(',').map(str::to_string).collect();
+        cells[3] = "oops".into(); // column 4 (Y) of file line 8
+        l[7] = cells.join(",");
+    });
+    let err = fails(&["fit", "--data", &bad, "--out", "/dev/null"]);
+    assert!(
+        err.contains("text.csv:8:4") && err.contains("'oops' is not a number"),
+        "{err}"
+    );
+}
+
+#[test]
+fn nan_is_reported_at_file_line_column() {
+    let bad = variant("nan.csv", |l| {
+        let mut cells: Vec<String> = l[100].split(',').map(str::to_string).collect();
+        cells[9] = "NaN".into();
+        l[100] = cells.join(",");
+    });
+    let err = fails(&["residues", "--data", &bad, "--out", "/dev/null"]);
+    assert!(
+        err.contains("nan.csv:101:10") && err.contains("not finite"),
+        "{err}"
+    );
+}
+
+#[test]
+fn record_shorter_than_a_window_is_refused() {
+    let short = variant("short.csv", |l| l.truncate(31));
+    let err = fails(&["fit", "--data", &short, "--out", "/dev/null"]);
+    assert!(
+        err.contains("30 samples") && err.contains("window of 50"),
+        "{err}"
+    );
+}
+
+#[test]
+fn unknown_effect_lists_the_valid_ones() {
+    let err = fails(&[
+        "fit",
+        "--data",
+        &record(),
+        "--effects",
+        "gg_XY",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("unknown effect 'gg_XY'") && err.contains("gg_IS") && err.contains("col:NAME"),
+        "{err}"
+    );
+}
+
+#[test]
+fn unknown_channel_lists_the_valid_ones() {
+    let err = fails(&[
+        "fit",
+        "--data",
+        &record(),
+        "--add-effect",
+        "Q1=g_I",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("unknown channel 'Q1'") && err.contains("X, X1, Y, Y1, Z, Z1"),
+        "{err}"
+    );
+}
+
+#[test]
+fn model_fitted_on_other_columns_is_refused() {
+    let no_temp = variant("no-temp.csv", |l| {
+        for line in l.iter_mut() {
+            let cut = line.rfind(',').unwrap();
+            line.truncate(cut);
+        }
+    });
+    let err = fails(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &no_temp,
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("col:temp") && err.contains("no extra column 'temp'"),
+        "{err}"
+    );
+}
+
+#[test]
+fn corrupt_model_file_is_refused() {
+    let p = dir().join("corrupt.json");
+    std::fs::write(&p, "{\"kind\": \"something else\"}").unwrap();
+    let err = fails(&[
+        "diagnose",
+        "--model",
+        p.to_str().unwrap(),
+        "--data",
+        &record(),
+    ]);
+    assert!(err.contains("not a dtg-vib model file"), "{err}");
+}
+
+#[test]
+fn non_increasing_time_is_refused() {
+    let bad = variant("time.csv", |l| l.swap(10, 11));
+    let err = fails(&["fit", "--data", &bad, "--out", "/dev/null"]);
+    // Rows 11 and 12 swapped: line 12 is the first whose time does not increase.
+    assert!(
+        err.contains("time.csv:12:1") && err.contains("does not increase"),
+        "{err}"
+    );
+}
