@@ -328,15 +328,25 @@ fn run(cli: Cli) -> Result<()> {
             progress.say("diagnosing");
             let options = DiagnoseOptions::default();
             let d = diagnose(&m, &record, &options)?;
-            if let Some(dir) = &report {
-                progress.say("drawing figures");
-                let page =
-                    write_diagnosis_report(&d, 1.0 / record.dt(), options.rank.min_err(), dir)?;
-                eprintln!("report: {}", page.display());
-            }
+            let page = match &report {
+                Some(dir) => {
+                    progress.say("drawing figures");
+                    Some(write_diagnosis_report(
+                        &d,
+                        1.0 / record.dt(),
+                        options.rank.min_err(),
+                        dir,
+                    )?)
+                }
+                None => None,
+            };
             drop(progress);
             if json {
+                // stdout holds the one JSON object; the page goes to stderr.
                 println!("{}", serde_json::to_string(&d)?);
+                if let Some(p) = &page {
+                    eprintln!("report: {}", p.display());
+                }
             } else {
                 for c in &d.channels {
                     println!(
@@ -353,6 +363,9 @@ fn run(cli: Cli) -> Result<()> {
                     for f in &c.findings {
                         println!("     {f}");
                     }
+                }
+                if let Some(p) = &page {
+                    println!("report: {}", p.display());
                 }
             }
         }

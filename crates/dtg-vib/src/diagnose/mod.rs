@@ -450,7 +450,7 @@ fn findings(
             b.f_hi_hz,
             b.ratio_to_floor,
             if b.f_hi_hz <= 0.5 {
-                ": a slow effect (temperature, drift) is missing"
+                ": something slow is not modelled (a temperature, a drift, or the window's estimate of the vibration level)"
             } else {
                 ""
             }

@@ -175,16 +175,18 @@ pub fn write_diagnosis_report(
     figs.push((
         Figure::new("Validation residual rms").panel(
             BarChart::new("Per channel", "rms (deg/h)", names)
-                .group(
+                .group_coloured(
                     "bias only",
                     diag.channels
                         .iter()
                         .map(|c| c.compare.val_rms_bias_only)
                         .collect::<Vec<_>>(),
+                    1,
                 )
-                .group(
+                .group_coloured(
                     "model",
                     diag.channels.iter().map(|c| c.rms).collect::<Vec<_>>(),
+                    0,
                 ),
         ),
         "diag_before_after",

@@ -219,13 +219,15 @@ pub fn write_report(
     let names: Vec<&str> = Residue::ALL.iter().map(|r| r.name()).collect();
     let mut bars = Figure::new("RMS on the validation rows").panel(
         BarChart::new("Residues", "rms (deg/h)", names.clone())
-            .group(
+            .group_coloured(
                 "without compensation",
                 stats.iter().map(|s| s.rms_before).collect::<Vec<_>>(),
+                1,
             )
-            .group(
+            .group_coloured(
                 "with compensation",
                 stats.iter().map(|s| s.rms_after).collect::<Vec<_>>(),
+                0,
             ),
     );
     let ch_names: Vec<&str> = Channel::ALL.iter().map(|c| c.name()).collect();
@@ -234,31 +236,35 @@ pub fn write_report(
         "rms (deg/h)",
         ch_names.clone(),
     )
-    .group(
+    // Colours as in Fig. 7: orange without compensation, blue with.
+    .group_coloured(
         "bias only",
         model
             .channels()
             .iter()
             .map(|c| c.scores().val_rms_bias_only)
             .collect::<Vec<_>>(),
+        1,
     );
     if let Some(b) = &baseline {
-        ch_bars = ch_bars.group(
+        ch_bars = ch_bars.group_coloured(
             b.label,
             b.model
                 .channels()
                 .iter()
                 .map(|c| c.scores().val_rms)
                 .collect::<Vec<_>>(),
+            2,
         );
     }
-    ch_bars = ch_bars.group(
+    ch_bars = ch_bars.group_coloured(
         "this model",
         model
             .channels()
             .iter()
             .map(|c| c.scores().val_rms)
             .collect::<Vec<_>>(),
+        0,
     );
     bars = bars.panel(ch_bars);
     figs.push((bars, "before_after"));
