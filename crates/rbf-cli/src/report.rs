@@ -548,13 +548,18 @@ impl CvOut {
             return out;
         };
         let p = &self.points[b];
+        let mut point = vec![format!("width {}", cell(&p["width"]))];
+        if !p["n_centers"].is_null() {
+            point.push(format!("{} centres", cell(&p["n_centers"])));
+        }
+        if !p["tol"].is_null() {
+            point.push(format!("tol {}", cell(&p["tol"])));
+        }
+        point.push(format!("ridge {}", cell(&p["ridge"])));
         let _ = writeln!(
             out,
-            "best: width {}, {} centres, tol {}, ridge {}: validation NMSE {:.6}, RMSE {:.6} (mean over folds)",
-            cell(&p["width"]),
-            cell(&p["n_centers"]),
-            cell(&p["tol"]),
-            cell(&p["ridge"]),
+            "best: {}: validation NMSE {:.6}, RMSE {:.6} (mean over folds)",
+            point.join(", "),
             p["mean"]["nmse"].as_f64().unwrap_or(f64::NAN),
             p["mean"]["rmse"].as_f64().unwrap_or(f64::NAN)
         );
