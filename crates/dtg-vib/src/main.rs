@@ -185,13 +185,18 @@ struct FitArgs {
 fn main() {
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        // One line: what, where (the library's errors carry file:line:column), how to fix.
-        let msg = e
-            .chain()
-            .map(|c| c.to_string())
-            .collect::<Vec<_>>()
-            .join(": ");
-        eprintln!("error: {msg}");
+        // One line: what, where (the library's errors carry file:line:column),
+        // how to fix. Causes are joined unless the message already quotes them
+        // (many errors print their source themselves).
+        let mut msg = String::new();
+        for cause in e.chain().map(|c| c.to_string()) {
+            if msg.is_empty() {
+                msg = cause;
+            } else if !msg.contains(&cause) {
+                msg = format!("{msg}: {cause}");
+            }
+        }
+        eprintln!("error: {}", msg.replace('\n', "; "));
         std::process::exit(1);
     }
 }

@@ -406,6 +406,21 @@ fn diagnose_channel(
     })
 }
 
+/// A p-value as text: below double precision's resolution of 1 − cdf it
+/// is a bound, not a number.
+///
+/// ```
+/// assert_eq!(dtg_vib::diagnose::p_text(0.0), "< 1e-15");
+/// assert_eq!(dtg_vib::diagnose::p_text(0.0123), "= 1.2e-2");
+/// ```
+pub fn p_text(p: f64) -> String {
+    if p < 1e-15 {
+        "< 1e-15".into()
+    } else {
+        format!("= {p:.1e}")
+    }
+}
+
 /// Plain-language findings, most actionable first.
 fn findings(
     ranking: &Ranking,
@@ -418,12 +433,12 @@ fn findings(
     for id in &ranking.suggested {
         if let Some(c) = ranking.candidates.iter().find(|c| &c.effect == id) {
             let mut s = format!(
-                "missing effect {id} ({}): explains {:.0}% of the validation residual, coefficient ≈ {:.4} {} (p = {:.1e})",
+                "missing effect {id} ({}): explains {:.0}% of the validation residual, coefficient ≈ {:.4} {} (p {})",
                 c.description,
                 100.0 * c.conditional_err.unwrap_or(c.err),
                 c.coef,
                 c.unit,
-                c.p_value.unwrap_or(f64::NAN)
+                c.p_value.map_or("n/a".into(), p_text)
             );
             if !c.collinear_with.is_empty() {
                 s.push_str(&format!(

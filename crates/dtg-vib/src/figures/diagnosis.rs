@@ -265,7 +265,9 @@ pub fn write_diagnosis_report(
                 format!("{:.4}", k.err),
                 fmt(k.coef),
                 k.unit.clone(),
-                k.p_value.map_or("—".into(), |p| format!("{p:.1e}")),
+                k.p_value.map_or("—".into(), |p| {
+                    crate::diagnose::p_text(p).replace("= ", "")
+                }),
                 if k.collinear_with.is_empty() {
                     "—".into()
                 } else {
