@@ -12,7 +12,10 @@ use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, Simulation, simulate};
 use std::collections::BTreeMap;
 
-fn suggestions(d: &Diagnosis) -> BTreeMap<Channel, Vec<String>> {
+/// Suggested effect ids per channel (channels with none left out).
+type Suggestions = BTreeMap<Channel, Vec<String>>;
+
+fn suggestions(d: &Diagnosis) -> Suggestions {
     d.channels
         .iter()
         .filter(|c| !c.suggested.is_empty())
@@ -44,7 +47,7 @@ fn filtered_floor(sim: &Simulation, model: &CompensationModel, channel: Channel)
 
 /// Fits, diagnoses, refits with the suggestions; returns the suggestions and,
 /// per channel, the refitted validation rms over the filtered floor.
-fn loop_once(scenario: Scenario) -> (BTreeMap<Channel, Vec<String>>, Vec<(Channel, f64)>) {
+fn loop_once(scenario: Scenario) -> (Suggestions, Vec<(Channel, f64)>) {
     let sim = simulate(&scenario).unwrap();
     let options = FitOptions::default();
     let baseline = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
@@ -90,8 +93,8 @@ fn loop_once(scenario: Scenario) -> (BTreeMap<Channel, Vec<String>>, Vec<(Channe
     (found, ratios)
 }
 
-fn hidden(scenario: &Scenario) -> BTreeMap<Channel, Vec<String>> {
-    let mut m: BTreeMap<Channel, Vec<String>> = BTreeMap::new();
+fn hidden(scenario: &Scenario) -> Suggestions {
+    let mut m = Suggestions::new();
     for h in &scenario.hidden {
         // Temperature sensitivity is found through the record's temp column.
         let id = if h.term.id() == "temp" {

@@ -22,20 +22,19 @@ use std::str::FromStr;
 /// specific force or rate. Scale factor and misalignment need a varying rate
 /// reference, temperature enters as `col:temp`, and 2N rectification needs
 /// angular vibration the 50-Hz record does not carry.
-pub const TERM_EFFECTS: [DtgTerm; 12] = [
-    DtgTerm::GI,
-    DtgTerm::GO,
-    DtgTerm::GS,
-    DtgTerm::GgII,
-    DtgTerm::GgOO,
-    DtgTerm::GgSS,
-    DtgTerm::GgIO,
-    DtgTerm::GgIS,
-    DtgTerm::GgOS,
-    DtgTerm::AiIO,
-    DtgTerm::AiIS,
-    DtgTerm::AiOS,
-];
+pub const TERM_EFFECTS: [DtgTerm; 12] = {
+    let mut out = [DtgTerm::Bias; 12];
+    let mut i = 0;
+    while i < 9 {
+        out[i] = DtgTerm::SPECIFIC_FORCE[i];
+        i += 1;
+    }
+    while i < 12 {
+        out[i] = DtgTerm::ANISOINERTIA[i - 9];
+        i += 1;
+    }
+    out
+};
 
 /// Prefix of the ids of extra-column effects.
 pub const COLUMN_PREFIX: &str = "col:";

@@ -12,7 +12,7 @@ pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
 
 use crate::effects::{Effect, TERM_EFFECTS};
 use crate::error::DtgVibError;
-use crate::model::{ChannelModel, CompensationModel};
+use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::Prepared;
 use crate::residuals::{CorrelationCheck, billings_voon, independence, whiteness};
 use nav_sensors::dtg::DtgTerm;
@@ -53,25 +53,6 @@ impl Default for DiagnoseOptions {
     }
 }
 
-/// Measured against predicted, as MATLAB's `compare` reports it.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct Comparison {
-    /// Training rows.
-    pub n_train: usize,
-    /// Validation rows.
-    pub n_val: usize,
-    /// Residual rms on training rows, deg/h.
-    pub train_rms: f64,
-    /// Residual rms on validation rows, deg/h.
-    pub val_rms: f64,
-    /// What a bias-only model leaves on validation rows, deg/h.
-    pub val_rms_bias_only: f64,
-    /// Fit percentage on training rows.
-    pub train_fit_percent: f64,
-    /// Fit percentage on validation rows.
-    pub val_fit_percent: f64,
-}
-
 /// A correlation test with the name of what it tested against.
 #[derive(Debug, Clone, Serialize)]
 pub struct NamedCheck {
@@ -105,8 +86,9 @@ pub struct ChannelDiagnosis {
     pub effects: Vec<String>,
     /// RMS of the validation residual, deg/h.
     pub rms: f64,
-    /// Measured against predicted.
-    pub compare: Comparison,
+    /// Measured against predicted, as MATLAB's `compare` reports it (rms,
+    /// fit percentage, on training and validation rows).
+    pub compare: ChannelScores,
     /// Residual by time segment.
     pub segments: Vec<Segment>,
     /// Residual power by frequency band.
@@ -214,7 +196,7 @@ impl Context {
         let (decimation, reference_acf, cutoff) = match prepared.filter() {
             Some(f) => {
                 let q = ((fs / (2.0 * f.cutoff_hz())).floor() as usize).max(1);
-                (q, Some(filter_acf(f, q, 40)), f.cutoff_hz())
+                (q, Some(f.white_noise_acf(q, 40)), f.cutoff_hz())
             }
             None => (1, None, nyquist),
         };
@@ -245,27 +227,6 @@ impl Context {
     }
 }
 
-/// Autocorrelation of white noise through the zero-phase filter, at lags
-/// 0, q, 2q, … (`count` of them).
-fn filter_acf(f: &crate::signal::LowPass, q: usize, count: usize) -> Vec<f64> {
-    let half = 2000;
-    let mut impulse = vec![0.0; 2 * half + 1];
-    impulse[half] = 1.0;
-    let h = f.filtfilt(&impulse).unwrap_or(impulse);
-    let energy: f64 = h.iter().map(|v| v * v).sum();
-    (0..count)
-        .map(|i| i * q)
-        .map(|k| {
-            h[..h.len() - k]
-                .iter()
-                .zip(&h[k..])
-                .map(|(a, b)| a * b)
-                .sum::<f64>()
-                / energy
-        })
-        .collect()
-}
-
 fn diagnose_channel(
     model: &ChannelModel,
     prepared: &Prepared,
@@ -277,17 +238,8 @@ fn diagnose_channel(
 ) -> Result<ChannelDiagnosis, DtgVibError> {
     let ch = model.channel();
     let y = prepared.target(ch);
-    let scores = crate::fit::score(y, predicted, train, val);
     let residual: Vec<f64> = val.iter().map(|&r| y[r] - predicted[r]).collect();
-    let compare = Comparison {
-        n_train: scores.n_train,
-        n_val: scores.n_val,
-        train_rms: scores.train_rms,
-        val_rms: scores.val_rms,
-        val_rms_bias_only: scores.val_rms_bias_only,
-        train_fit_percent: scores.train_fit_percent,
-        val_fit_percent: scores.val_fit_percent,
-    };
+    let compare = crate::fit::score(y, predicted, train, val);
 
     // Candidates: every effect the model lacks; rate products only where rates vary.
     let extra_names: Vec<&str> = ctx.extras.iter().map(|(n, _)| n.as_str()).collect();
@@ -296,7 +248,7 @@ fn diagnose_channel(
         .into_iter()
         .filter(|e| !model.effects().contains(e))
         .filter(|e| {
-            let ai = matches!(e, Effect::Term(DtgTerm::AiIO | DtgTerm::AiIS | DtgTerm::AiOS));
+            let ai = matches!(e, Effect::Term(t) if DtgTerm::ANISOINERTIA.contains(t));
             if ai && ctx.rate_std_deg_s < ANISOINERTIA_MIN_RATE_DEG_S {
                 unexcited_ai.push(Unexcited {
                     effect: e.id(),

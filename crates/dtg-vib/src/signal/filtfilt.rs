@@ -69,6 +69,40 @@ impl LowPass {
         Ok(ext[pad..pad + n].to_vec())
     }
 
+    /// Autocorrelation of white noise after [`LowPass::filtfilt`], at lags
+    /// 0, `step`, 2·`step`, … (`count` of them): the reference a whiteness
+    /// test compares a filtered residual with.
+    ///
+    /// ```
+    /// use dtg_vib::signal::LowPass;
+    /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
+    /// let rho = lp.white_noise_acf(1, 30);
+    /// assert_eq!(rho[0], 1.0);
+    /// assert!(rho[1] > 0.9 && rho[29].abs() < 0.01); // smooth at lag 1, gone by lag 29
+    /// ```
+    pub fn white_noise_acf(&self, step: usize, count: usize) -> Vec<f64> {
+        // The zero-phase impulse response, long enough for any sensible filter
+        // and lag range.
+        let half = 2000.max(2 * step * count);
+        let mut impulse = vec![0.0; 2 * half + 1];
+        impulse[half] = 1.0;
+        let h = self
+            .filtfilt(&impulse)
+            .expect("an impulse is finite and long enough");
+        let energy: f64 = h.iter().map(|v| v * v).sum();
+        (0..count)
+            .map(|i| i * step)
+            .map(|k| {
+                h[..h.len() - k]
+                    .iter()
+                    .zip(&h[k..])
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>()
+                    / energy
+            })
+            .collect()
+    }
+
     /// Runs the cascade with each section's state set to its steady state for
     /// a constant input equal to the first sample.
     fn run_with_state(&self, y: &mut [f64], zi: &[[f64; 2]]) {

@@ -115,6 +115,34 @@ impl DtgTerm {
         DtgTerm::Rect2N,
     ];
 
+    /// The terms driven by specific force: g-sensitive drift (mass
+    /// unbalance, quadrature) along I, O, S and the six anisoelastic
+    /// (g²-sensitive) products — what a vibration test excites.
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgTerm;
+    /// assert!(DtgTerm::SPECIFIC_FORCE.iter().all(|t| t.unit().starts_with("deg/h/g")));
+    /// ```
+    pub const SPECIFIC_FORCE: [DtgTerm; 9] = [
+        DtgTerm::GI,
+        DtgTerm::GO,
+        DtgTerm::GS,
+        DtgTerm::GgII,
+        DtgTerm::GgOO,
+        DtgTerm::GgSS,
+        DtgTerm::GgIO,
+        DtgTerm::GgIS,
+        DtgTerm::GgOS,
+    ];
+
+    /// The anisoinertia terms (products of rates about I, O, S).
+    ///
+    /// ```
+    /// use nav_sensors::dtg::DtgTerm;
+    /// assert!(DtgTerm::ANISOINERTIA.iter().all(|t| t.id().starts_with("ai_")));
+    /// ```
+    pub const ANISOINERTIA: [DtgTerm; 3] = [DtgTerm::AiIO, DtgTerm::AiIS, DtgTerm::AiOS];
+
     /// Position in [`DtgTerm::ALL`].
     ///
     /// ```

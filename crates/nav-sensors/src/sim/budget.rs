@@ -43,17 +43,8 @@ use crate::dtg::{DtgInput, DtgTerm};
 use crate::geometry::{ChannelFrame, Ios, Residue};
 use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 
-const CANDIDATES: [DtgTerm; 9] = [
-    DtgTerm::GI,
-    DtgTerm::GO,
-    DtgTerm::GS,
-    DtgTerm::GgII,
-    DtgTerm::GgOO,
-    DtgTerm::GgSS,
-    DtgTerm::GgIO,
-    DtgTerm::GgIS,
-    DtgTerm::GgOS,
-];
+/// The candidate pairs checked for collinearity: the specific-force terms.
+const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;
 
 fn mean(x: &[f64]) -> f64 {
     x.iter().sum::<f64>() / x.len() as f64

@@ -293,17 +293,7 @@ mod tests {
         for (k, v) in c.iter_mut().enumerate() {
             *v = 0.1 * k as f64 - 0.7;
         }
-        let accel_terms = [
-            DtgTerm::GI,
-            DtgTerm::GO,
-            DtgTerm::GS,
-            DtgTerm::GgII,
-            DtgTerm::GgOO,
-            DtgTerm::GgSS,
-            DtgTerm::GgIO,
-            DtgTerm::GgIS,
-            DtgTerm::GgOS,
-        ];
+        let accel_terms = DtgTerm::SPECIFIC_FORCE;
         for frame in ChannelFrame::all() {
             let w = weights(&frame.input, &frame.other, &frame.spin, &c);
             for f in [
