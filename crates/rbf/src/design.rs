@@ -137,6 +137,36 @@ pub fn kernel_matrix_into(
     out: MatMut<'_, f64>,
     par: Par,
 ) {
+    check_shapes(x, centres, (out.nrows(), out.ncols()));
+    widths.assert_len(centres.nrows());
+    product_tiles(x, centres, out, par, |j, col, xn, cn| {
+        apply_kernel(kernel, widths.get(j), col, xn, cn)
+    });
+}
+
+/// Squared distances D[i, j] = ‖x_i − c_j‖² (n × m) into `out`, by the product formula of
+/// [`kernel_matrix`] (the same code: one faer product after shifting both sets by the
+/// centres' mean, tiny negative results clamped to 0). k-means assigns samples with it.
+///
+/// # Panics
+/// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
+#[track_caller]
+pub(crate) fn squared_distances_into(
+    x: MatRef<'_, f64>,
+    centres: MatRef<'_, f64>,
+    out: MatMut<'_, f64>,
+    par: Par,
+) {
+    check_shapes(x, centres, (out.nrows(), out.ncols()));
+    product_tiles(x, centres, out, par, |_, col, xn, cn| {
+        for (v, &xi) in col.iter_mut().zip(xn) {
+            *v = (*v + xi + cn).max(0.0);
+        }
+    });
+}
+
+#[track_caller]
+fn check_shapes(x: MatRef<'_, f64>, centres: MatRef<'_, f64>, out: (usize, usize)) {
     assert_eq!(
         x.ncols(),
         centres.ncols(),
@@ -145,11 +175,23 @@ pub fn kernel_matrix_into(
         centres.ncols()
     );
     assert_eq!(
-        (out.nrows(), out.ncols()),
+        out,
         (x.nrows(), centres.nrows()),
         "output must be samples × centres"
     );
-    widths.assert_len(centres.nrows());
+}
+
+/// Fills `out` (n × m) tile by tile with −2 x̃_i·c̃_j (x̃, c̃: both sets shifted by the
+/// centres' mean) and calls `finish(j, column j of the tile, ‖x̃_i‖² of the tile's rows,
+/// ‖c̃_j‖²)` on each tile column while it is in cache; `finish` turns the products into
+/// r² = v + ‖x̃_i‖² + ‖c̃_j‖² and whatever is wanted of them.
+fn product_tiles(
+    x: MatRef<'_, f64>,
+    centres: MatRef<'_, f64>,
+    out: MatMut<'_, f64>,
+    par: Par,
+    finish: impl Fn(usize, &mut [f64], &[f64], f64) + Sync,
+) {
     let (n, m, d) = (x.nrows(), centres.nrows(), x.ncols());
     let mut out = out;
     if n == 0 || m == 0 {
@@ -197,13 +239,13 @@ pub fn kernel_matrix_into(
             let xr = &xn[r0..r0 + rows];
             for jj in 0..cols {
                 let j = c0 + jj;
-                let (b, cj) = (widths.get(j), cn[j]);
+                let cj = cn[j];
                 let mut col = t.rb_mut().col_mut(jj);
                 match col.rb_mut().try_as_col_major_mut() {
-                    Some(c) => apply_kernel(kernel, b, c.as_slice_mut(), xr, cj),
+                    Some(c) => finish(j, c.as_slice_mut(), xr, cj),
                     None => {
                         let mut buf: Vec<f64> = (0..rows).map(|ii| col[ii]).collect();
-                        apply_kernel(kernel, b, &mut buf, xr, cj);
+                        finish(j, &mut buf, xr, cj);
                         (0..rows).for_each(|ii| col[ii] = buf[ii]);
                     }
                 }
@@ -302,6 +344,27 @@ mod tests {
                                 "{k} {i} {j}"
                             );
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The squared distances k-means uses come from the same product code and agree with
+    /// direct sums, also far from the origin, whatever the parallelism.
+    #[test]
+    fn squared_distances_match_direct_sums() {
+        for &(n, m, d, off) in &[(9, 4, 3, 0.0), (300, 130, 7, 1e4), (5, 1, 0, 0.0)] {
+            let x = random(n, d, off, 4);
+            let c = random(m, d, off, 5);
+            for par in [Par::Seq, Par::rayon(2)] {
+                let mut out = Mat::zeros(n, m);
+                squared_distances_into(x.as_ref(), c.as_ref(), out.as_mut(), par);
+                for i in 0..n {
+                    for j in 0..m {
+                        let want = (0..d).map(|t| (x[(i, t)] - c[(j, t)]).powi(2)).sum::<f64>();
+                        assert!((out[(i, j)] - want).abs() <= 1e-9 * (1.0 + want), "{i} {j}");
+                        assert!(out[(i, j)] >= 0.0);
                     }
                 }
             }

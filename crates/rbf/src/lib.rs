@@ -76,7 +76,7 @@ pub use model::{
     Candidates, CentreSelection, FORMAT_VERSION, PersistError, Progress, RbfError, RbfModel,
     RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
 };
-pub use select::kmeans::KMeansSettings;
+pub use select::kmeans::{KMeansAlgorithm, KMeansSettings, UnknownKMeansAlgorithm};
 pub use select::ols::{
     OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason, forward_select,
     forward_select_owned,

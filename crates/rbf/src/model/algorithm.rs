@@ -324,7 +324,7 @@ fn fixed_centres(
         CentreSelection::KMeans(s) => {
             need(s.n_centres)?;
             report(progress, Stage::Clustering, 0, 1);
-            let km = kmeans_centres(design.xs.as_ref(), s, params.seed)?;
+            let km = kmeans_centres(design.xs.as_ref(), s, params.seed, params.par)?;
             report(progress, Stage::Widths, 0, 1);
             let w = params.width.cluster_widths(
                 design.xs.as_ref(),
