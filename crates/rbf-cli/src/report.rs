@@ -14,7 +14,7 @@ use serde::Serialize;
 use serde_json::{Map, Value, json};
 
 use crate::progress::StageTimes;
-use crate::settings::{FitSettings, WidthArg};
+use crate::settings::{Centers, FitSettings, WidthArg};
 
 /// One OLS pick as reported: where the centre came from and its ERR.
 ///
@@ -135,6 +135,19 @@ pub fn width_rule_text(w: WidthArg) -> &'static str {
     }
 }
 
+/// The k-means algorithm that ran (`--kmeans-algorithm`, or the library's default),
+/// for k-means fits only.
+///
+/// ```
+/// use rbf_cli::settings::{Centers, FitSettings};
+/// let s = FitSettings { centers: Centers::Kmeans, ..FitSettings::default() };
+/// assert_eq!(rbf_cli::report::kmeans_algorithm(&s), Some("lloyd"));
+/// assert_eq!(rbf_cli::report::kmeans_algorithm(&FitSettings::default()), None);
+/// ```
+pub fn kmeans_algorithm(s: &FitSettings) -> Option<&'static str> {
+    (s.centers == Centers::Kmeans).then(|| s.kmeans_algorithm.unwrap_or_default().name())
+}
+
 fn nan_to_none(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
 }
@@ -236,6 +249,7 @@ impl FitReport {
         put("seed", json!(s.seed));
         put("max_centers", json!(s.n_centers()));
         put("candidates", json!(s.candidates));
+        put("kmeans_algorithm", json!(kmeans_algorithm(s)));
         put("tol", json!(s.tol));
         let stages: Map<String, Value> = c
             .times
@@ -285,9 +299,10 @@ impl FitReport {
         };
         let _ = writeln!(
             out,
-            "  {} centres ({}), {} kernel, width {} ({}), ridge {}{}",
+            "  {} centres ({}{}), {} kernel, width {} ({}), ridge {}{}",
             f["n_centers"],
             s.centers,
+            kmeans_algorithm(s).map_or(String::new(), |a| format!(", {a}")),
             s.kernel,
             width,
             width_rule_text(s.width),
@@ -476,6 +491,7 @@ impl CvOut {
             "n_rows": c.n_rows,
             "dim": c.inputs.len(),
             "centers": c.settings.centers.name(),
+            "kmeans_algorithm": kmeans_algorithm(&c.settings),
             "kernel": c.settings.kernel.name(),
             "split": c.split,
             "folds": c.folds,

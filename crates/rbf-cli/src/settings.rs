@@ -9,8 +9,8 @@ use std::str::FromStr;
 
 use linfa::ParamGuard;
 use rbf::{
-    Candidates, CentreSelection, Kernel, RbfParams, RbfParamsError, RbfValidParams, Split,
-    WidthRule,
+    Candidates, CentreSelection, KMeansAlgorithm, KMeansSettings, Kernel, RbfParams,
+    RbfParamsError, RbfValidParams, Split, WidthRule,
 };
 
 /// Centres when `--max-centers` is not given (the library's default OLS size).
@@ -238,6 +238,16 @@ pub enum SettingsError {
 /// let p = s.params(100).unwrap();
 /// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.n_centres == 8));
 /// assert!(s.params(5).unwrap_err().to_string().contains("--max-centers ≤ 5"));
+///
+/// // --kmeans-algorithm picks whose Lloyd iterations run (the library's default otherwise)
+/// use rbf::KMeansAlgorithm::{Linfa, Lloyd};
+/// let linfa = FitSettings { kmeans_algorithm: Some(Linfa), ..s.clone() };
+/// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.algorithm == Lloyd));
+/// assert!(matches!(linfa.params(100).unwrap().centres(),
+///     rbf::CentreSelection::KMeans(k) if k.algorithm == Linfa));
+/// let ols = FitSettings { centers: Centers::Ols, ..linfa };
+/// assert_eq!(ols.params(100).unwrap_err().to_string(),
+///     "--kmeans-algorithm applies to --centers kmeans only, not ols");
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitSettings {
@@ -247,6 +257,9 @@ pub struct FitSettings {
     pub max_centers: Option<usize>,
     /// `--candidates` (OLS: a seeded subsample of this many training rows).
     pub candidates: Option<usize>,
+    /// `--kmeans-algorithm` (k-means: whose Lloyd iterations; the library's default if
+    /// not given).
+    pub kmeans_algorithm: Option<KMeansAlgorithm>,
     /// `--tol` (OLS ρ: stop once 1 − ΣERR < ρ).
     pub tol: Option<f64>,
     /// `--kernel`.
@@ -267,6 +280,7 @@ impl Default for FitSettings {
             centers: Centers::Ols,
             max_centers: None,
             candidates: None,
+            kmeans_algorithm: None,
             tol: None,
             kernel: Kernel::Gaussian,
             width: WidthArg::Auto,
@@ -328,7 +342,9 @@ impl FitSettings {
                     None => Candidates::TrainingVectors,
                 },
             },
-            Centers::Kmeans => CentreSelection::kmeans(k),
+            Centers::Kmeans => CentreSelection::KMeans(
+                KMeansSettings::new(k).algorithm(self.kmeans_algorithm.unwrap_or_default()),
+            ),
             Centers::Random => CentreSelection::random(k),
             Centers::All => CentreSelection::AllPoints,
         };
@@ -357,6 +373,11 @@ impl FitSettings {
         let ols = self.centers == Centers::Ols;
         only("--tol", "ols", ols || self.tol.is_none())?;
         only("--candidates", "ols", ols || self.candidates.is_none())?;
+        only(
+            "--kmeans-algorithm",
+            "kmeans",
+            self.centers == Centers::Kmeans || self.kmeans_algorithm.is_none(),
+        )?;
         only(
             "--max-centers",
             "ols, kmeans and random",

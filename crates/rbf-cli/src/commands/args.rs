@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use rbf::Kernel;
+use rbf::{KMeansAlgorithm, Kernel};
 use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
@@ -67,6 +67,11 @@ pub struct ModelArgs {
     /// and random [default: 50].
     #[arg(long, value_name = "K")]
     pub max_centers: Option<usize>,
+    /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
+    /// (the library's: distances by faer products, scikit-learn's update and stopping
+    /// rule) or linfa (linfa-clustering's KMeans) [default: lloyd].
+    #[arg(long, value_name = "lloyd|linfa")]
+    pub kmeans_algorithm: Option<KMeansAlgorithm>,
     /// ols only: choose among a seeded random subsample of M training rows instead of
     /// all of them (the way to large files: the candidate matrix is rows × M).
     #[arg(long, value_name = "M")]
@@ -112,6 +117,7 @@ impl ModelArgs {
             centers: self.centers,
             max_centers: self.max_centers,
             candidates: self.candidates,
+            kmeans_algorithm: self.kmeans_algorithm,
             tol: self.tol,
             kernel: self.kernel,
             width: self.width,
