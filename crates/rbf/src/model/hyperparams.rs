@@ -51,7 +51,8 @@ pub enum CentreSelection {
         /// Candidate set.
         candidates: Candidates,
     },
-    /// k-means centroids (linfa-clustering, k-means++ initialisation, seeded).
+    /// k-means centroids (seeded k-means++ start; the library's Lloyd iterations or
+    /// linfa-clustering's: the `algorithm` field of [`KMeansSettings`]).
     KMeans(KMeansSettings),
     /// A seeded random subset of the training vectors.
     Random {

@@ -2,7 +2,8 @@
 //!
 //! - [`ols`]: orthogonal least squares forward selection by error-reduction ratio
 //!   (Chen, Cowan & Grant 1991), generic over candidate columns;
-//! - [`kmeans`]: k-means centres through linfa-clustering;
+//! - [`kmeans`]: k-means centres (seeded k-means++, then Lloyd iterations by faer
+//!   products, or linfa-clustering's `KMeans`);
 //! - [`random`]: a seeded random subset of the training vectors.
 
 pub mod kmeans;
