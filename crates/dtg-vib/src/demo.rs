@@ -102,7 +102,6 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
     let diagnosis = diagnose(&baseline, &sim.record, &diag_options)?;
     let diag_page = write_diagnosis_report(
         &diagnosis,
-        1.0 / sim.record.dt(),
         diag_options.rank.min_err(),
         &out.join("diagnosis"),
     )?;

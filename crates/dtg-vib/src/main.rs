@@ -336,12 +336,7 @@ fn run(cli: Cli) -> Result<()> {
             let page = match &report {
                 Some(dir) => {
                     progress.say("drawing figures");
-                    Some(write_diagnosis_report(
-                        &d,
-                        1.0 / record.dt(),
-                        options.rank.min_err(),
-                        dir,
-                    )?)
+                    Some(write_diagnosis_report(&d, options.rank.min_err(), dir)?)
                 }
                 None => None,
             };

@@ -110,72 +110,106 @@ pub fn segments(t: &[f64], residual: &[f64], accel: &[Vec<f64>; 3], count: usize
         .collect()
 }
 
-/// Breaks a residual's power into bands: `edges_hz` are the band edges
-/// (ascending, the last at most Nyquist). `white_shape(f)` is the power
-/// transfer of the pre-processing at f (|H(f)|² of the zero-phase filter, 1
-/// without one): the floor is a white residual whose level matches the
-/// median of density / shape over the bins where the shape is above 0.5.
-///
-/// ```
-/// use dtg_vib::diagnose::bands;
-/// // A white residual: every band is at its floor.
-/// let mut s = 9u64;
-/// let x: Vec<f64> = (0..20000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
-/// let b = bands(&x, 50.0, &[0.0, 1.0, 5.0, 25.0], &|_| 1.0);
-/// assert!(b.iter().all(|b| (b.ratio_to_floor - 1.0).abs() < 0.25), "{b:?}");
-/// ```
-#[track_caller]
-pub fn bands(
-    residual: &[f64],
-    fs: f64,
-    edges_hz: &[f64],
-    white_shape: &dyn Fn(f64) -> f64,
-) -> Vec<Band> {
-    assert!(edges_hz.len() >= 2, "need at least one band");
-    let seg = 512.min(residual.len().next_power_of_two() / 2).max(8);
-    if residual.len() < seg {
-        return Vec::new();
-    }
-    let s = nav_sensors::vibration::welch(residual, fs, seg);
-    let df = s.resolution_hz();
-    let total: f64 = s
-        .density
-        .iter()
-        .map(|d| d * df)
-        .sum::<f64>()
-        .max(f64::MIN_POSITIVE);
-    let mut levels: Vec<f64> = s
-        .frequency_hz
-        .iter()
-        .zip(&s.density)
-        .filter(|(f, _)| **f > 0.0 && white_shape(**f) > 0.5)
-        .map(|(f, d)| d / white_shape(*f))
-        .collect();
-    levels.sort_by(f64::total_cmp);
-    let white = levels.get(levels.len() / 2).copied().unwrap_or(0.0);
-    edges_hz
-        .windows(2)
-        .map(|w| {
-            let in_band = |f: f64| f >= w[0] && (f < w[1] || (w[1] >= fs / 2.0 && f <= w[1]));
-            let (mut p, mut floor) = (0.0, 0.0);
-            for (f, d) in s.frequency_hz.iter().zip(&s.density) {
-                if in_band(*f) {
-                    p += d * df;
-                    floor += white * white_shape(*f) * df;
-                }
-            }
-            Band {
-                f_lo_hz: w[0],
-                f_hi_hz: w[1],
-                share: p / total,
-                ratio_to_floor: if floor > 0.0 {
-                    p / floor
-                } else {
-                    f64::INFINITY
-                },
-            }
+/// A residual's power spectral density (Welch) and the floor a white
+/// residual of the same pass-band level would have after the pre-processing.
+#[derive(Debug, Clone, Default)]
+pub struct ResidualSpectrum {
+    /// Bin frequencies, Hz.
+    pub frequency_hz: Vec<f64>,
+    /// Residual PSD, (deg/h)²/Hz.
+    pub density: Vec<f64>,
+    /// White floor through the pre-filter at each bin, (deg/h)²/Hz.
+    pub floor: Vec<f64>,
+}
+
+impl ResidualSpectrum {
+    /// The spectrum of `residual` sampled at `fs` Hz. `white_shape(f)` is the
+    /// power transfer of the pre-processing at f (|H(f)|⁴ of a zero-phase
+    /// filter, 1 without one): the floor is a white level, the median of
+    /// density / shape over the bins where the shape is above 0.5, times the
+    /// shape. `None` for a residual shorter than 16 samples.
+    ///
+    /// ```
+    /// use dtg_vib::diagnose::ResidualSpectrum;
+    /// let x: Vec<f64> = (0..4096).map(|i| ((i * 7919) % 101) as f64 - 50.0).collect();
+    /// let s = ResidualSpectrum::new(&x, 50.0, &|_| 1.0).unwrap();
+    /// assert_eq!(s.frequency_hz.len(), s.floor.len());
+    /// assert!(s.floor.windows(2).all(|w| w[0] == w[1])); // white: a flat floor
+    /// ```
+    pub fn new(residual: &[f64], fs: f64, white_shape: &dyn Fn(f64) -> f64) -> Option<Self> {
+        let seg = 512.min(residual.len().next_power_of_two() / 2);
+        if seg < 8 || residual.len() < seg {
+            return None;
+        }
+        let s = nav_sensors::vibration::welch(residual, fs, seg);
+        let mut levels: Vec<f64> = s
+            .frequency_hz
+            .iter()
+            .zip(&s.density)
+            .filter(|(f, _)| **f > 0.0 && white_shape(**f) > 0.5)
+            .map(|(f, d)| d / white_shape(*f))
+            .collect();
+        levels.sort_by(f64::total_cmp);
+        let white = levels.get(levels.len() / 2).copied().unwrap_or(0.0);
+        let floor = s
+            .frequency_hz
+            .iter()
+            .map(|&f| white * white_shape(f))
+            .collect();
+        Some(Self {
+            frequency_hz: s.frequency_hz,
+            density: s.density,
+            floor,
         })
-        .collect()
+    }
+
+    /// Breaks the power into bands: `edges_hz` are the band edges
+    /// (ascending, the last at most Nyquist), each band with its share of
+    /// the variance and its ratio to the floor.
+    ///
+    /// ```
+    /// use dtg_vib::diagnose::ResidualSpectrum;
+    /// // A white residual: every band is at its floor.
+    /// let mut s = 9u64;
+    /// let x: Vec<f64> = (0..20000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
+    /// let b = ResidualSpectrum::new(&x, 50.0, &|_| 1.0).unwrap().bands(&[0.0, 1.0, 5.0, 25.0]);
+    /// assert!(b.iter().all(|b| (b.ratio_to_floor - 1.0).abs() < 0.25), "{b:?}");
+    /// ```
+    #[track_caller]
+    pub fn bands(&self, edges_hz: &[f64]) -> Vec<Band> {
+        assert!(edges_hz.len() >= 2, "need at least one band");
+        let df = self.frequency_hz.get(1).copied().unwrap_or(0.0);
+        let nyquist = self.frequency_hz.last().copied().unwrap_or(0.0);
+        let total: f64 = self
+            .density
+            .iter()
+            .map(|d| d * df)
+            .sum::<f64>()
+            .max(f64::MIN_POSITIVE);
+        edges_hz
+            .windows(2)
+            .map(|w| {
+                let in_band = |f: f64| f >= w[0] && (f < w[1] || (w[1] >= nyquist && f <= w[1]));
+                let (mut p, mut floor) = (0.0, 0.0);
+                for ((f, d), fl) in self.frequency_hz.iter().zip(&self.density).zip(&self.floor) {
+                    if in_band(*f) {
+                        p += d * df;
+                        floor += fl * df;
+                    }
+                }
+                Band {
+                    f_lo_hz: w[0],
+                    f_hi_hz: w[1],
+                    share: p / total,
+                    ratio_to_floor: if floor > 0.0 {
+                        p / floor
+                    } else {
+                        f64::INFINITY
+                    },
+                }
+            })
+            .collect()
+    }
 }
 
 /// Bins the residual by quantiles of one acceleration series.

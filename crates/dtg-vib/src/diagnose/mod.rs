@@ -7,7 +7,7 @@
 mod locate;
 mod rank;
 
-pub use locate::{Band, Regime, RegimeBin, Segment, bands, regime, segments};
+pub use locate::{Band, Regime, RegimeBin, ResidualSpectrum, Segment, regime, segments};
 pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
 
 use crate::effects::{Effect, TERM_EFFECTS};
@@ -75,6 +75,8 @@ pub struct ChannelSeries {
     pub residual: Vec<f64>,
     /// The candidate columns (filtered, less their training mean) on the validation rows, by id.
     pub candidates: Vec<(String, Vec<f64>)>,
+    /// The residual's spectrum and its white floor, if the residual is long enough.
+    pub spectrum: Option<ResidualSpectrum>,
 }
 
 /// Everything found about one channel.
@@ -315,7 +317,10 @@ fn diagnose_channel(
 
     // Where it fails.
     let segs = segments(&ctx.t, &residual, &ctx.accel, opts.segments);
-    let bnds = bands(&residual, ctx.fs, &ctx.band_edges, &*ctx.shape);
+    let spectrum = ResidualSpectrum::new(&residual, ctx.fs, &*ctx.shape);
+    let bnds = spectrum
+        .as_ref()
+        .map_or_else(Vec::new, |sp| sp.bands(&ctx.band_edges));
     let regs: Vec<Regime> = Axis::ALL
         .iter()
         .map(|a| {
@@ -335,6 +340,7 @@ fn diagnose_channel(
         measured: val.iter().map(|&r| y[r]).collect(),
         predicted: val.iter().map(|&r| predicted[r]).collect(),
         residual,
+        spectrum,
         candidates: columns
             .into_iter()
             .map(|(e, c, m)| (e.id(), c.iter().map(|v| v - m).collect()))

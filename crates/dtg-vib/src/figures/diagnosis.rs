@@ -18,12 +18,10 @@ fn per_channel(
         .fold(Figure::new(title), |f, c| f.panel(panel(c)))
 }
 
-/// Writes the diagnosis figures and `index.html` into `dir`; `fs` is the
-/// record's sample rate (Hz) and `min_err` the suggestion threshold drawn on
-/// the ERR charts.
+/// Writes the diagnosis figures and `index.html` into `dir`; `min_err` is
+/// the suggestion threshold drawn on the ERR charts.
 pub fn write_diagnosis_report(
     diag: &Diagnosis,
-    fs: f64,
     min_err: f64,
     dir: &Path,
 ) -> Result<PathBuf, DtgVibError> {
@@ -73,17 +71,33 @@ pub fn write_diagnosis_report(
         "diag_top_candidates",
     ));
     figs.push((
-        per_channel("Residual spectrum, validation rows", diag, |c| {
-            let seg = 512
-                .min(c.series.residual.len().next_power_of_two() / 2)
-                .max(8);
-            let mut p = Panel::psd(format!("Channel {}", c.channel), "PSD ((deg/h)²/Hz)");
-            if c.series.residual.len() >= seg {
-                let s = nav_sensors::vibration::welch(&c.series.residual, fs, seg);
-                p = p.series(Series::line("residual", s.frequency_hz, s.density).colour(0));
-            }
-            p
-        }),
+        per_channel(
+            "Residual spectrum against a white floor through the pre-filter, validation rows",
+            diag,
+            |c| {
+                let mut p = Panel::psd(format!("Channel {}", c.channel), "PSD ((deg/h)²/Hz)");
+                if let Some(sp) = &c.series.spectrum {
+                    // The floor falls to nothing at Nyquist through the
+                    // filter's |H|⁴: drawn down to 1e-4 of its peak so the
+                    // axis stays readable.
+                    let peak = sp.floor.iter().copied().fold(0.0, f64::max);
+                    let (f, floor): (Vec<f64>, Vec<f64>) = sp
+                        .frequency_hz
+                        .iter()
+                        .zip(&sp.floor)
+                        .filter(|(_, v)| **v >= 1e-4 * peak)
+                        .map(|(a, b)| (*a, *b))
+                        .unzip();
+                    p = p
+                        .series(
+                            Series::line("residual", sp.frequency_hz.clone(), sp.density.clone())
+                                .colour(0),
+                        )
+                        .series(Series::line("white floor", f, floor).colour(1));
+                }
+                p
+            },
+        ),
         "diag_residual_psd",
     ));
     figs.push((
