@@ -414,13 +414,7 @@ pub(crate) fn draw<DB: DrawingBackend>(
         }
     }
     if n == 0 || p.groups.is_empty() {
-        let plot = chart.plotting_area().strip_coord_spec();
-        let (w, h) = plot.dim_in_pixel();
-        plot.draw_text(
-            "no data",
-            &style::text(LABEL_SIZE, MUTED).pos(Pos::new(HPos::Center, VPos::Center)),
-            (w as i32 / 2, h as i32 / 2),
-        )?;
+        style::no_data(&chart.plotting_area().strip_coord_spec())?;
     }
     Ok(())
 }

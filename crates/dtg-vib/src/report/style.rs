@@ -115,6 +115,19 @@ pub(crate) fn hex(c: RGBColor) -> String {
     format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
 }
 
+/// Writes "no data" in the middle of an empty panel's plotting area.
+pub(crate) fn no_data<DB: plotters::prelude::DrawingBackend>(
+    plot: &plotters::drawing::DrawingArea<DB, plotters::coord::Shift>,
+) -> Result<(), plotters::drawing::DrawingAreaErrorKind<DB::ErrorType>> {
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
+    let (w, h) = plot.dim_in_pixel();
+    plot.draw_text(
+        "no data",
+        &text(LABEL_SIZE, MUTED).pos(Pos::new(HPos::Center, VPos::Center)),
+        (w as i32 / 2, h as i32 / 2),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,13 +11,12 @@ use plotters::coord::Shift;
 use plotters::drawing::{DrawingArea, DrawingAreaErrorKind};
 use plotters::element::{Circle, DashedPathElement, PathElement, Rectangle};
 use plotters::prelude::DrawingBackend;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, RGBColor};
 
 use super::axis::{self, Axis, Extent};
 use super::decimate;
 use super::legend::{Entry, Header, Swatch};
-use super::style::{self, GRID, GRID_LIGHT, INK, LABEL_SIZE, MUTED, REFERENCE, TICK_SIZE};
+use super::style::{self, GRID, GRID_LIGHT, INK, LABEL_SIZE, REFERENCE, TICK_SIZE};
 use super::{Panel, SeriesStyle};
 
 /// Height reserved under the plot for x tick labels and the x axis label.
@@ -411,13 +410,7 @@ pub(crate) fn draw<DB: DrawingBackend>(
     }
 
     if p.empty {
-        let plot = chart.plotting_area().strip_coord_spec();
-        let (w, h) = plot.dim_in_pixel();
-        plot.draw_text(
-            "no data",
-            &style::text(LABEL_SIZE, MUTED).pos(Pos::new(HPos::Center, VPos::Center)),
-            (w as i32 / 2, h as i32 / 2),
-        )?;
+        style::no_data(&chart.plotting_area().strip_coord_spec())?;
     }
     Ok(())
 }
