@@ -362,3 +362,26 @@ fn non_increasing_time_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn table_rate_takes_the_documented_comma_form() {
+    // docs/dtg-vib.md: `--table-rate WX,WY,WZ` (deg/s).
+    let out = dir().join("table-rate.json").display().to_string();
+    ok(&[
+        "fit",
+        "--data",
+        &record(),
+        "--table-rate",
+        "0,0,0.01",
+        "--max-centers",
+        "5",
+        "--out",
+        &out,
+    ]);
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(
+        m["model"]["preprocess"]["rate_reference"]["rate_deg_s"],
+        serde_json::json!([0.0, 0.0, 0.01])
+    );
+}

@@ -165,9 +165,9 @@ struct FitArgs {
     /// Rate reference: Earth rate at this latitude, deg (cluster x north, z up).
     #[arg(long = "earth-rate", conflicts_with = "table_rate")]
     earth_rate: Option<f64>,
-    /// Rate reference: a known table rate about cluster x,y,z, deg/s.
-    #[arg(long = "table-rate", value_delimiter = ',', num_args = 3)]
-    table_rate: Option<Vec<f64>>,
+    /// Rate reference: a known table rate about cluster x,y,z, deg/s (WX,WY,WZ).
+    #[arg(long = "table-rate", value_name = "WX,WY,WZ", value_parser = parse_rate)]
+    table_rate: Option<[f64; 3]>,
     /// Ridge on the output weights.
     #[arg(long, default_value_t = 1e-8)]
     ridge: f64,
@@ -408,9 +408,7 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
                 ..Site::default()
             },
         },
-        (None, Some(w)) => RateReference::Table {
-            rate_deg_s: [w[0], w[1], w[2]],
-        },
+        (None, Some(w)) => RateReference::Table { rate_deg_s: *w },
         (None, None) => RateReference::None,
     };
     let options = FitOptions {
@@ -491,6 +489,17 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
     }
     Ok(())
+}
+
+/// `WX,WY,WZ`: three numbers, comma-separated (clap's `num_args = 3` with a
+/// delimiter would count `0,0,10` as one value and refuse it).
+fn parse_rate(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f64>().map_err(|e| format!("'{c}': {e}")))
+        .collect::<Result<_, _>>()?;
+    v.try_into()
+        .map_err(|v: Vec<f64>| format!("expected WX,WY,WZ (three numbers, deg/s), got {}", v.len()))
 }
 
 fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {
