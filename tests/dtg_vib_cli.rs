@@ -385,3 +385,31 @@ fn table_rate_takes_the_documented_comma_form() {
         serde_json::json!([0.0, 0.0, 0.01])
     );
 }
+
+#[test]
+fn usage_errors_are_one_line_too() {
+    let err = fails(&[
+        "fit",
+        "--data",
+        &record(),
+        "--table-rate",
+        "1,2",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("--table-rate") && err.contains("WX,WY,WZ"),
+        "{err}"
+    );
+    let err = fails(&["fit", "--data", &record(), "--window", "ten", "--out", "x"]);
+    assert!(err.contains("'ten'") && err.contains("--window"), "{err}");
+    let err = fails(&["fit", "--data", &record(), "--cutoff", "3", "--no-filter"]);
+    assert!(err.contains("--no-filter"), "{err}");
+    let err = fails(&["diagnose", "--modle", "m.json"]);
+    assert!(err.contains("--modle"), "{err}");
+    let err = fails(&["compensate", "--data", &record()]);
+    assert!(
+        err.contains("not provided: --model <MODEL>; --out <OUT>"),
+        "{err}"
+    );
+}

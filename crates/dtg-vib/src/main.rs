@@ -183,7 +183,10 @@ struct FitArgs {
 }
 
 fn main() {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => usage_error(e),
+    };
     if let Err(e) = run(cli) {
         // One line: what, where (the library's errors carry file:line:column),
         // how to fix. Causes are joined unless the message already quotes them
@@ -199,6 +202,36 @@ fn main() {
         eprintln!("error: {}", msg.replace('\n', "; "));
         std::process::exit(1);
     }
+}
+
+/// A command-line usage error on one line, like every other error: clap's
+/// message and any tip, without the usage block (`--help` has it). Help and
+/// version requests print as clap prints them.
+fn usage_error(e: clap::Error) -> ! {
+    use clap::error::ErrorKind;
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        e.exit();
+    }
+    let text = e.to_string();
+    let mut line = String::new();
+    for part in text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+    {
+        if !line.is_empty() {
+            line.push_str(if line.ends_with(':') { " " } else { "; " });
+        }
+        line.push_str(part);
+    }
+    eprintln!("{line} (see --help)");
+    std::process::exit(2);
 }
 
 /// A spinner on stderr, or nothing when quiet or not a terminal.
