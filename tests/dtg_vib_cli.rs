@@ -413,3 +413,48 @@ fn usage_errors_are_one_line_too() {
         "{err}"
     );
 }
+
+#[test]
+fn a_record_too_short_to_split_is_still_compensated() {
+    // 150 samples: 101 full windows, too few for the model's blocked split,
+    // which compensation does not need.
+    let short = variant("short150.csv", |l| l.truncate(151));
+    let out = dir().join("comp-short.csv");
+    ok(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &short,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().count(), 1 + 150 - 49);
+    let res = dir().join("res-short.csv");
+    ok(&[
+        "residues",
+        "--data",
+        &short,
+        "--model",
+        model(),
+        "--out",
+        res.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read_to_string(&res).unwrap().lines().count(),
+        1 + 150 - 49
+    );
+    // One full window is one compensated sample: not a record.
+    let one = variant("short50.csv", |l| l.truncate(51));
+    let err = fails(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &one,
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(err.contains("1 windows, need at least 2"), "{err}");
+}

@@ -17,30 +17,47 @@ pub struct Applied {
     pub predicted: [Vec<f64>; 6],
     /// Residues of the pre-processed outputs before and after compensation, per row.
     pub residues: ResidueSeries,
-    /// Training rows of the model's split (meaningful on the record it was fitted on).
+    /// Training rows of the model's split (meaningful on the record it was
+    /// fitted on); empty from [`Applied::unsplit`].
     pub train: Vec<usize>,
-    /// Validation rows.
+    /// Validation rows; empty from [`Applied::unsplit`].
     pub val: Vec<usize>,
 }
 
 impl Applied {
-    /// Prepares `record` as the model's data, predicts every channel's error
-    /// and forms the residues.
+    /// Prepares `record` as the model's data, predicts every channel's error,
+    /// forms the residues and splits the rows as at fit time.
     pub fn new(model: &CompensationModel, record: &Record) -> Result<Self, DtgVibError> {
+        let mut applied = Self::unsplit(model, record)?;
+        (applied.train, applied.val) = model.rows(&applied.prepared)?;
+        Ok(applied)
+    }
+
+    /// As [`Applied::new`] without the split (`train` and `val` empty): all
+    /// that compensation and the residue series need, on any record with at
+    /// least two full windows, however short.
+    pub fn unsplit(model: &CompensationModel, record: &Record) -> Result<Self, DtgVibError> {
         let prepared = model.prepare(record)?;
+        if prepared.rows() < 2 {
+            return Err(DtgVibError::TooFewSamples {
+                what: "full windows",
+                have: prepared.rows(),
+                need: 2,
+                hint: "a compensated record needs two samples with a full window: use a longer record",
+            });
+        }
         let predicted = model.predict(&prepared)?;
         let first = prepared.first_sample();
         let outputs: [Vec<f64>; 6] =
             std::array::from_fn(|k| prepared.target_full(Channel::ALL[k])[first..].to_vec());
         let t = prepared.calibrated().t()[first..].to_vec();
         let residues = ResidueSeries::new(t, &outputs, &predicted);
-        let (train, val) = model.rows(&prepared)?;
         Ok(Self {
             prepared,
             predicted,
             residues,
-            train,
-            val,
+            train: Vec::new(),
+            val: Vec::new(),
         })
     }
 

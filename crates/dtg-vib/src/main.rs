@@ -297,7 +297,7 @@ fn run(cli: Cli) -> Result<()> {
             let model = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
             progress.say("compensating");
-            let applied = Applied::new(&model, &record)?;
+            let applied = Applied::unsplit(&model, &record)?;
             applied.compensated_record().write_csv(&out)?;
             drop(progress);
             eprintln!(
@@ -310,13 +310,20 @@ fn run(cli: Cli) -> Result<()> {
         Command::Residues { data, model, out } => {
             let record = Record::read_csv(&data)?;
             let applied = match &model {
-                Some(m) => Some(Applied::new(&CompensationModel::load(m)?, &record)?),
+                Some(m) => {
+                    let m = CompensationModel::load(m)?;
+                    let a = Applied::unsplit(&m, &record)?;
+                    Some((m, a))
+                }
                 None => None,
             };
-            write_residues(&out, &record, applied.as_ref())?;
+            write_residues(&out, &record, applied.as_ref().map(|(_, a)| a))?;
             drop(progress);
-            if let Some(a) = &applied {
-                print_residues(&a.validation_residues());
+            // The validation rows of the model's split, if this record has them.
+            if let Some((m, a)) = &applied
+                && let Ok((_, val)) = m.rows(&a.prepared)
+            {
+                print_residues(&a.residues.stats(&val));
             }
             eprintln!("wrote {}", out.display());
         }
