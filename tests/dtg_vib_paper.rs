@@ -62,3 +62,40 @@ fn a_saved_model_compensates_identically_after_loading() {
     assert_eq!(a.predicted, b.predicted);
     std::fs::remove_file(path).ok();
 }
+
+#[test]
+fn a_report_on_another_record_shows_that_records_channel_scores() {
+    let short = |seed| Scenario {
+        duration_s: 30.0,
+        seed,
+        ..Scenario::default()
+    };
+    let sim = simulate(&short(1)).unwrap();
+    let options = FitOptions {
+        max_centres: 10,
+        ..FitOptions::default()
+    };
+    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    let other = simulate(&short(2)).unwrap().record;
+    let applied = Applied::new(&model, &other).unwrap();
+    let dir = std::env::temp_dir().join(format!("dtg-vib-report-other-{}", std::process::id()));
+    let summary =
+        dtg_vib::figures::write_report(&model, &applied, &other, "other", None, &dir).unwrap();
+    for (c, shown) in model.channels().iter().zip(&summary.channels) {
+        let y = applied.prepared.target(c.channel());
+        let p = &applied.predicted[c.channel().index()];
+        let rms = |rows: &[usize]| {
+            (rows.iter().map(|&r| (y[r] - p[r]).powi(2)).sum::<f64>() / rows.len() as f64).sqrt()
+        };
+        assert!((shown.val_rms - rms(&applied.val)).abs() < 1e-12);
+        assert!((shown.train_rms - rms(&applied.train)).abs() < 1e-12);
+        // Not the numbers of the record the model was fitted on.
+        assert_ne!(shown.val_rms, c.scores().val_rms);
+    }
+    // On the fitting record, the same numbers as at fit time.
+    let own = Applied::new(&model, &sim.record).unwrap();
+    for c in model.channels() {
+        assert_eq!(own.scores(c.channel()), *c.scores());
+    }
+    std::fs::remove_dir_all(dir).ok();
+}

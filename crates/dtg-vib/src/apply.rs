@@ -2,7 +2,7 @@
 //! record, and the residues before and after.
 
 use crate::error::DtgVibError;
-use crate::model::CompensationModel;
+use crate::model::{ChannelScores, CompensationModel};
 use crate::pipeline::Prepared;
 use crate::residue::{ResidueSeries, ResidueStats};
 use nav_sensors::geometry::{Channel, residues};
@@ -59,6 +59,18 @@ impl Applied {
             train: Vec::new(),
             val: Vec::new(),
         })
+    }
+
+    /// A channel's scores on the split's rows of this record (the model's
+    /// own [`ChannelModel::scores`](crate::model::ChannelModel::scores) on the
+    /// record it was fitted on). Needs the split: from [`Applied::new`].
+    pub fn scores(&self, channel: Channel) -> ChannelScores {
+        crate::fit::score(
+            self.prepared.target(channel),
+            &self.predicted[channel.index()],
+            &self.train,
+            &self.val,
+        )
     }
 
     /// Residue rms before and after on the validation rows.

@@ -4,7 +4,7 @@
 use super::{fmt, save_all};
 use crate::apply::{Applied, raw_residues};
 use crate::error::DtgVibError;
-use crate::model::CompensationModel;
+use crate::model::{ChannelScores, CompensationModel};
 use crate::report::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
 use crate::residue::ResidueStats;
 use nav_sensors::geometry::{Channel, Residue};
@@ -19,6 +19,8 @@ pub struct ReportSummary {
     pub index: PathBuf,
     /// Residue rms before/after on the validation rows.
     pub residues: Vec<ResidueStats>,
+    /// Each channel's scores on this record, in X, X1, Y, Y1, Z, Z1 order.
+    pub channels: Vec<ChannelScores>,
 }
 
 /// A previous model of the same record, to show each channel's error before
@@ -42,16 +44,15 @@ fn pick(v: &[f64], rows: &[usize]) -> Vec<f64> {
 
 /// The channel whose validation residual fell most against a bias-only model:
 /// the one the paper's single-channel figures show.
-fn showcase(model: &CompensationModel) -> Channel {
-    model
-        .channels()
-        .iter()
-        .max_by(|a, b| {
-            let g =
-                |c: &crate::model::ChannelModel| c.scores().val_rms_bias_only / c.scores().val_rms;
+fn showcase(scores: &[ChannelScores]) -> Channel {
+    Channel::ALL
+        .into_iter()
+        .zip(scores)
+        .max_by(|(_, a), (_, b)| {
+            let g = |s: &ChannelScores| s.val_rms_bias_only / s.val_rms;
             g(a).total_cmp(&g(b))
         })
-        .map_or(Channel::X, |c| c.channel())
+        .map_or(Channel::X, |(c, _)| c)
 }
 
 /// Writes the figures and `index.html` into `dir`.
@@ -67,7 +68,12 @@ pub fn write_report(
 ) -> Result<ReportSummary, DtgVibError> {
     let t_all = record.t();
     let raw = raw_residues(record);
-    let show = showcase(model);
+    // Scores on this record (not the fit-time ones: the record may be another).
+    let scores: Vec<ChannelScores> = Channel::ALL.map(|c| applied.scores(c)).to_vec();
+    let base_scores: Option<Vec<ChannelScores>> = baseline
+        .as_ref()
+        .map(|b| Channel::ALL.map(|c| b.applied.scores(c)).to_vec());
+    let show = showcase(&scores);
     let thrust = model
         .preprocess()
         .window
@@ -239,31 +245,19 @@ pub fn write_report(
     // Colours as in Fig. 7: orange without compensation, blue with.
     .group_coloured(
         "bias only",
-        model
-            .channels()
+        scores
             .iter()
-            .map(|c| c.scores().val_rms_bias_only)
+            .map(|s| s.val_rms_bias_only)
             .collect::<Vec<_>>(),
         1,
     );
-    if let Some(b) = &baseline {
-        ch_bars = ch_bars.group_coloured(
-            b.label,
-            b.model
-                .channels()
-                .iter()
-                .map(|c| c.scores().val_rms)
-                .collect::<Vec<_>>(),
-            2,
-        );
+    if let (Some(b), Some(bs)) = (&baseline, &base_scores) {
+        ch_bars =
+            ch_bars.group_coloured(b.label, bs.iter().map(|s| s.val_rms).collect::<Vec<_>>(), 2);
     }
     ch_bars = ch_bars.group_coloured(
         "this model",
-        model
-            .channels()
-            .iter()
-            .map(|c| c.scores().val_rms)
-            .collect::<Vec<_>>(),
+        scores.iter().map(|s| s.val_rms).collect::<Vec<_>>(),
         0,
     );
     bars = bars.panel(ch_bars);
@@ -298,8 +292,7 @@ pub fn write_report(
         "bias-only val rms",
         "val fit %",
     ]);
-    for c in model.channels() {
-        let s = c.scores();
+    for (c, s) in model.channels().iter().zip(&scores) {
         let eff: Vec<String> = c.effects().iter().map(|e| e.id()).collect();
         ch_table = ch_table.row([
             c.channel().name().to_string(),
@@ -339,7 +332,7 @@ pub fn write_report(
         f("before_after").expect("drawn"),
         "Residue and channel rms on the validation rows.",
     );
-    if let Some(b) = &baseline {
+    if let (Some(b), Some(bs)) = (&baseline, &base_scores) {
         let mut t = Table::new([
             "channel",
             format!("{} effects", b.label).as_str(),
@@ -348,7 +341,13 @@ pub fn write_report(
             "this model's val rms",
             "change",
         ]);
-        for (old, new) in b.model.channels().iter().zip(model.channels()) {
+        for ((old, new), (old_s, new_s)) in b
+            .model
+            .channels()
+            .iter()
+            .zip(model.channels())
+            .zip(bs.iter().zip(&scores))
+        {
             let ids = |c: &crate::model::ChannelModel| {
                 let e: Vec<String> = c.effects().iter().map(|e| e.id()).collect();
                 if e.is_empty() {
@@ -360,13 +359,10 @@ pub fn write_report(
             t = t.row([
                 new.channel().name().to_string(),
                 ids(old),
-                fmt(old.scores().val_rms),
+                fmt(old_s.val_rms),
                 ids(new),
-                fmt(new.scores().val_rms),
-                format!(
-                    "{:+.1}%",
-                    100.0 * (new.scores().val_rms / old.scores().val_rms - 1.0)
-                ),
+                fmt(new_s.val_rms),
+                format!("{:+.1}%", 100.0 * (new_s.val_rms / old_s.val_rms - 1.0)),
             ]);
         }
         before_after = before_after.table(t);
@@ -394,5 +390,6 @@ pub fn write_report(
     Ok(ReportSummary {
         index,
         residues: stats,
+        channels: scores,
     })
 }
