@@ -58,6 +58,7 @@ pub struct Regime {
     pub bins: Vec<RegimeBin>,
     /// Spread of the bin means, in units of their standard error: a residual
     /// that depends on this acceleration (a missing g or g² term) gives ≫ 3.
+    /// 0 for an axis that does not vary (one bin).
     pub mean_spread_sigma: f64,
 }
 
@@ -235,7 +236,17 @@ pub fn regime(
     let n = accel.len();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| accel[a].total_cmp(&accel[b]));
-    let bins = bins.clamp(1, n.max(1));
+    // An axis that does not move has one regime: quantile bins of tied
+    // values would split the rows by time and call a drift a dependence.
+    let (lo, hi) = match (order.first(), order.last()) {
+        (Some(&a), Some(&b)) => (accel[a], accel[b]),
+        _ => (0.0, 0.0),
+    };
+    let bins = if hi - lo <= 1e-12 * lo.abs().max(hi.abs()) {
+        1
+    } else {
+        bins.clamp(1, n.max(1))
+    };
     let out: Vec<RegimeBin> = (0..bins)
         .filter_map(|b| {
             let idx = &order[b * n / bins..(b + 1) * n / bins];
@@ -266,5 +277,28 @@ pub fn regime(
         axis: axis.to_string(),
         bins: out,
         mean_spread_sigma: if se > 0.0 { spread / se } else { 0.0 },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_constant_axis_has_no_regimes_to_compare() {
+        // An axis that does not move (a column of zeros, or a constant after
+        // filtering's rounding) must not be binned by row order: that would
+        // turn a drift in time into a "dependence" on the axis.
+        let n = 1000;
+        let drift: Vec<f64> = (0..n).map(|i| i as f64 / n as f64).collect();
+        for accel in [
+            vec![0.0; n],
+            (0..n).map(|i| 1.0 + 1e-16 * (i % 3) as f64).collect(),
+        ] {
+            let g = regime("ax", &accel, &drift, 5, n as f64);
+            assert_eq!(g.mean_spread_sigma, 0.0, "{g:?}");
+            assert_eq!(g.bins.len(), 1);
+            assert_eq!(g.bins[0].count, n);
+        }
     }
 }
