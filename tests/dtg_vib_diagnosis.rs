@@ -138,3 +138,42 @@ fn the_demo_record_names_its_hidden_temperature_sensitivity() {
     let (found, _) = loop_once(scenario.clone());
     assert_eq!(found, hidden(&scenario));
 }
+
+#[test]
+fn an_interleaved_split_is_analysed_at_the_rate_of_its_validation_rows() {
+    // Alternate rows validate: the validation residual is sampled every
+    // 2·dt, so its spectrum ends at a quarter of the record's rate, and a
+    // white floor through the pre-filter leaves nothing above the cut-off
+    // but the network's jitter (docs/dtg-vib.md, limits: 1–2%).
+    let sim = simulate(&Scenario {
+        duration_s: 40.0,
+        ..Scenario::default()
+    })
+    .unwrap();
+    let options = FitOptions {
+        split: dtg_vib::split::SplitKind::Interleaved,
+        max_centres: 10,
+        ..FitOptions::default()
+    };
+    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    let d = diagnose(&model, &sim.record, &DiagnoseOptions::default()).unwrap();
+    let quarter_rate = 0.25 / sim.record.dt();
+    for c in &d.channels {
+        let sp = c.series.spectrum.as_ref().expect("long enough");
+        let top = *sp.frequency_hz.last().unwrap();
+        assert!((top - quarter_rate).abs() < 1e-9, "{}: {top} Hz", c.channel);
+        let last = c.bands.last().unwrap();
+        assert!(last.f_hi_hz <= quarter_rate + 1e-9, "{last:?}");
+        let above: f64 = c
+            .bands
+            .iter()
+            .filter(|b| b.f_lo_hz >= 5.0)
+            .map(|b| b.share)
+            .sum();
+        assert!(
+            above < 0.05,
+            "{}: {above:.3} of the power above 5 Hz",
+            c.channel
+        );
+    }
+}

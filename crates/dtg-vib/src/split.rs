@@ -83,6 +83,26 @@ impl SplitKind {
     }
 }
 
+/// Record samples between consecutive rows of a split's part: 1 for a
+/// blocked part, 2 for the alternate rows of an interleaved one. A series on
+/// those rows is sampled at `1 / (spacing · dt)`, which spectra and lags of
+/// it must use.
+///
+/// ```
+/// use dtg_vib::split::{row_spacing, SplitKind};
+/// let (train, val) = SplitKind::Interleaved.rows(100, 0).unwrap();
+/// assert_eq!((row_spacing(&train), row_spacing(&val)), (2, 2));
+/// let (_, val) = SplitKind::default().rows(100, 3).unwrap();
+/// assert_eq!(row_spacing(&val), 1);
+/// ```
+pub fn row_spacing(rows: &[usize]) -> usize {
+    rows.windows(2)
+        .map(|w| w[1] - w[0])
+        .min()
+        .unwrap_or(1)
+        .max(1)
+}
+
 impl fmt::Display for SplitKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -193,12 +193,20 @@ impl Context {
                     .sqrt()
             })
             .fold(0.0, f64::max);
-        let fs = 1.0 / rec.dt();
+        // The validation series' own rate: alternate rows (an interleaved
+        // split) are two samples apart.
+        let spacing = crate::split::row_spacing(val);
+        let fs = 1.0 / (rec.dt() * spacing as f64);
         let nyquist = fs / 2.0;
         let (decimation, reference_acf, cutoff) = match prepared.filter() {
             Some(f) => {
+                // Decimation in validation rows; the reference ACF's lags in samples.
                 let q = ((fs / (2.0 * f.cutoff_hz())).floor() as usize).max(1);
-                (q, Some(f.white_noise_acf(q, 40)), f.cutoff_hz())
+                (
+                    q,
+                    Some(f.white_noise_acf(q * spacing, 40)),
+                    f.cutoff_hz().min(nyquist),
+                )
             }
             None => (1, None, nyquist),
         };

@@ -196,8 +196,10 @@ pub fn write_report(
         );
     }
     figs.push((fig7, "fig7_residues"));
-    // Residue spectra before and after, validation rows.
+    // Residue spectra before and after, validation rows (at their own rate:
+    // alternate rows of an interleaved split are two samples apart).
     let fs = 1.0 / record.dt();
+    let fs_val = fs / crate::split::row_spacing(val) as f64;
     let mut spectra = Figure::new("Residue spectra on the validation rows");
     for r in Residue::ALL {
         let k = r.index();
@@ -205,8 +207,8 @@ pub fn write_report(
         let a = pick(&applied.residues.after[k], val);
         let seg = 512.min(b.len().next_power_of_two() / 2).max(8);
         if b.len() >= seg {
-            let sb = nav_sensors::vibration::welch(&b, fs, seg);
-            let sa = nav_sensors::vibration::welch(&a, fs, seg);
+            let sb = nav_sensors::vibration::welch(&b, fs_val, seg);
+            let sa = nav_sensors::vibration::welch(&a, fs_val, seg);
             spectra = spectra.panel(
                 Panel::psd(r.name(), "PSD ((deg/h)²/Hz)")
                     .series(
