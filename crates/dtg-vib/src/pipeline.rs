@@ -74,6 +74,49 @@ pub enum RateReference {
 }
 
 impl RateReference {
+    /// Checks the reference can be a rate: a latitude in [−90°, 90°] with
+    /// perpendicular x and z axes, or three finite table rates.
+    pub fn check(&self) -> Result<(), DtgVibError> {
+        let bad = |name, value: String, reason| {
+            Err(DtgVibError::InvalidOption {
+                name,
+                value,
+                reason,
+            })
+        };
+        match self {
+            RateReference::None => Ok(()),
+            RateReference::Earth { site } => {
+                if !(site.latitude_deg.abs() <= 90.0) {
+                    return bad(
+                        "latitude",
+                        site.latitude_deg.to_string(),
+                        "must be a number of degrees in [-90, 90]",
+                    );
+                }
+                if site.orientation.axes_enu().is_none() {
+                    return bad(
+                        "orientation",
+                        format!("{:?}", site.orientation),
+                        "the cluster's x and z axes must be perpendicular",
+                    );
+                }
+                Ok(())
+            }
+            RateReference::Table { rate_deg_s } => {
+                if rate_deg_s.iter().all(|w| w.is_finite()) {
+                    Ok(())
+                } else {
+                    bad(
+                        "table rate",
+                        format!("{rate_deg_s:?}"),
+                        "must be three finite rates, deg/s",
+                    )
+                }
+            }
+        }
+    }
+
     /// The reference rate in the cluster frame, deg/h.
     pub fn rate_deg_h(&self) -> Option<nalgebra::Vector3<f64>> {
         match self {
@@ -143,6 +186,7 @@ impl Prepared {
         calibration: Option<&Calibration>,
         pre: &Preprocess,
     ) -> Result<Self, DtgVibError> {
+        pre.rate_reference.check()?;
         let calibrated = match calibration {
             Some(c) => c.compensate(record),
             None => record.clone(),
@@ -345,6 +389,62 @@ mod tests {
         for ch in Channel::ALL {
             assert!((p.target_full(ch)[7] - (rec.gyro(ch)[7] - m[ch.index()])).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn an_impossible_rate_reference_is_refused_with_its_reason() {
+        let rec = record(200);
+        let with = |r| Preprocess {
+            filter: None,
+            rate_reference: r,
+            ..Preprocess::default()
+        };
+        for (r, want) in [
+            (
+                RateReference::Earth {
+                    site: Site {
+                        latitude_deg: 95.0,
+                        ..Site::default()
+                    },
+                },
+                "latitude = 95",
+            ),
+            (
+                RateReference::Earth {
+                    site: Site {
+                        latitude_deg: f64::NAN,
+                        ..Site::default()
+                    },
+                },
+                "latitude = NaN",
+            ),
+            (
+                RateReference::Table {
+                    rate_deg_s: [0.0, f64::INFINITY, 0.0],
+                },
+                "table rate = [0.0, inf, 0.0]",
+            ),
+        ] {
+            let err = Prepared::new(&rec, None, &with(r))
+                .err()
+                .expect(want)
+                .to_string();
+            assert!(err.starts_with(want), "{err}");
+        }
+        let crossed = RateReference::Earth {
+            site: Site {
+                latitude_deg: 10.0,
+                orientation: nav_sensors::sim::Orientation {
+                    x: nav_sensors::sim::Direction::Up,
+                    z: nav_sensors::sim::Direction::Up,
+                },
+            },
+        };
+        let err = Prepared::new(&rec, None, &with(crossed))
+            .err()
+            .expect("crossed axes")
+            .to_string();
+        assert!(err.contains("orientation"), "{err}");
     }
 
     #[test]
