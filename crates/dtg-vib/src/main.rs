@@ -52,6 +52,9 @@ enum Command {
         out: PathBuf,
     },
     /// Fit the six channel models on a test record.
+    // Negative numbers are values here: a southern latitude (--earth-rate -33.9),
+    // a table turning backwards (--table-rate -1,0,0).
+    #[command(allow_negative_numbers = true)]
     Fit(Box<FitArgs>),
     /// Write the record compensated by a model.
     Compensate {
@@ -166,7 +169,13 @@ struct FitArgs {
     #[arg(long = "earth-rate", conflicts_with = "table_rate")]
     earth_rate: Option<f64>,
     /// Rate reference: a known table rate about cluster x,y,z, deg/s (WX,WY,WZ).
-    #[arg(long = "table-rate", value_name = "WX,WY,WZ", value_parser = parse_rate)]
+    // "-0.01,0,0" is not one number, so allow_negative_numbers does not cover it.
+    #[arg(
+        long = "table-rate",
+        value_name = "WX,WY,WZ",
+        value_parser = parse_rate,
+        allow_hyphen_values = true
+    )]
     table_rate: Option<[f64; 3]>,
     /// Ridge on the output weights.
     #[arg(long, default_value_t = 1e-8)]

@@ -87,7 +87,7 @@ impl RateReference {
         match self {
             RateReference::None => Ok(()),
             RateReference::Earth { site } => {
-                if !(site.latitude_deg.abs() <= 90.0) {
+                if !(-90.0..=90.0).contains(&site.latitude_deg) {
                     return bad(
                         "latitude",
                         site.latitude_deg.to_string(),
@@ -425,10 +425,10 @@ mod tests {
                 "table rate = [0.0, inf, 0.0]",
             ),
         ] {
-            let err = Prepared::new(&rec, None, &with(r))
-                .err()
-                .expect(want)
-                .to_string();
+            let Err(err) = Prepared::new(&rec, None, &with(r)) else {
+                panic!("{want}: accepted");
+            };
+            let err = err.to_string();
             assert!(err.starts_with(want), "{err}");
         }
         let crossed = RateReference::Earth {
@@ -440,10 +440,10 @@ mod tests {
                 },
             },
         };
-        let err = Prepared::new(&rec, None, &with(crossed))
-            .err()
-            .expect("crossed axes")
-            .to_string();
+        let Err(err) = Prepared::new(&rec, None, &with(crossed)) else {
+            panic!("crossed axes: accepted");
+        };
+        let err = err.to_string();
         assert!(err.contains("orientation"), "{err}");
     }
 
