@@ -30,7 +30,9 @@ pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
             "use --ridge 1e-8".to_string()
         }),
         RbfError::FewerRowsThanCentres { rows, .. } => Some(format!("use --max-centers ≤ {rows}")),
-        RbfError::Width(WidthError::Degenerate | WidthError::TooFewCentres { .. }) => {
+        // The library's message already says "use a fixed width": say how.
+        RbfError::Width(WidthError::Degenerate) => Some("give it with --width BETA".to_string()),
+        RbfError::Width(WidthError::TooFewCentres { .. }) => {
             Some("use a fixed --width BETA".to_string())
         }
         RbfError::TooFewSamples { needed, .. } => {
