@@ -387,6 +387,70 @@ fn table_rate_takes_the_documented_comma_form() {
 }
 
 #[test]
+fn negative_numbers_are_values_not_flags() {
+    // A southern site and a table turning backwards are ordinary tests.
+    let out = dir().join("south.json").display().to_string();
+    ok(&[
+        "fit",
+        "--data",
+        &record(),
+        "--earth-rate",
+        "-33.9",
+        "--max-centers",
+        "5",
+        "--out",
+        &out,
+    ]);
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(
+        m["model"]["preprocess"]["rate_reference"]["site"]["latitude_deg"],
+        serde_json::json!(-33.9)
+    );
+    let out = dir().join("backwards.json").display().to_string();
+    ok(&[
+        "fit",
+        "--data",
+        &record(),
+        "--table-rate",
+        "-0.01,0,0",
+        "--max-centers",
+        "5",
+        "--out",
+        &out,
+    ]);
+    // A negative cut-off is a value the library refuses, with its reason.
+    let err = fails(&["fit", "--data", &record(), "--cutoff", "-1", "--out", "x"]);
+    assert!(err.contains("cut-off -1 Hz"), "{err}");
+}
+
+#[test]
+fn a_constant_effect_is_named_not_numbered() {
+    // A thermal chamber held at 25 °C: col:temp cannot be told from the bias.
+    let held = variant("held.csv", |lines| {
+        let temp = lines[0].split(',').position(|c| c == "temp").unwrap();
+        for l in lines.iter_mut().skip(1) {
+            let mut cells: Vec<&str> = l.split(',').collect();
+            cells[temp] = "25.0";
+            *l = cells.join(",");
+        }
+    });
+    let err = fails(&[
+        "fit",
+        "--data",
+        &held,
+        "--add-effect",
+        "Y1=col:temp",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("channel Y1") && err.contains("col:temp") && err.contains("does not vary"),
+        "{err}"
+    );
+}
+
+#[test]
 fn usage_errors_are_one_line_too() {
     let err = fails(&[
         "fit",

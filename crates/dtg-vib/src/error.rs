@@ -49,6 +49,16 @@ pub enum DtgVibError {
         value: String,
         reason: &'static str,
     },
+    /// An effect's regressor is constant over the training rows, so the bias
+    /// absorbs it and its coefficient has no estimate.
+    #[error(
+        "channel {channel}: effect {effect} does not vary over the training rows (it stays at {value}), so its coefficient cannot be told from the bias; drop it or fit on a record where it varies"
+    )]
+    EffectConstant {
+        channel: Channel,
+        effect: String,
+        value: f64,
+    },
     /// The RBF fit of one channel failed.
     #[error("channel {channel}: {source}")]
     Fit {

@@ -257,6 +257,21 @@ fn fit_channel(
     let z_train = gather(z.as_ref(), train);
     let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
     let fail = |source| DtgVibError::Fit { channel, source };
+    // A constant effect (a temperature column held by a thermal chamber, say)
+    // would surface as an anonymous collinear forced column deep in OLS: name it.
+    for (j, effect) in effects.iter().enumerate() {
+        let col = (0..z_train.nrows()).map(|i| z_train[(i, j)]);
+        let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        if hi - lo <= 1e-12 * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE) {
+            return Err(DtgVibError::EffectConstant {
+                channel,
+                effect: effect.id(),
+                value: lo,
+            });
+        }
+    }
 
     let selection = |k: usize| match options.centres {
         CentreMethod::Ols => CentreSelection::Ols {
