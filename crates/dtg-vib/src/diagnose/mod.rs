@@ -420,6 +420,19 @@ fn findings(
             "no candidate effect explains a significant part of the validation residual".into(),
         );
     }
+    // What this record cannot reveal matters as much as what it does: a
+    // stationary test never excites anisoinertia, a held chamber never temperature.
+    if !ranking.unexcited.is_empty() {
+        let ids: Vec<&str> = ranking
+            .unexcited
+            .iter()
+            .map(|u| u.effect.as_str())
+            .collect();
+        out.push(format!(
+            "not ranked, this record does not excite them: {}",
+            ids.join(", ")
+        ));
+    }
     for b in bands
         .iter()
         .filter(|b| b.ratio_to_floor > 3.0 && b.share > 0.1)
