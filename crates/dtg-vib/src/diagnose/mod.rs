@@ -444,7 +444,7 @@ fn findings(
             b.f_hi_hz,
             b.ratio_to_floor,
             if b.f_hi_hz <= 0.5 {
-                ": something slow is not modelled (a temperature, a drift, or the window's estimate of the vibration level)"
+                ": something slow is not modelled (a temperature or a drift: add its column as col:NAME; or the vibration level as the window estimates it: try a longer --window)"
             } else {
                 ""
             }
