@@ -451,6 +451,26 @@ fn a_constant_effect_is_named_not_numbered() {
 }
 
 #[test]
+fn anisoinertia_on_a_stationary_test_is_refused() {
+    // On a shaker the rate is Earth rate plus gyro noise: rate products would
+    // fit the gyros' own errors (validation rms 1.23 → 0.21 deg/h on X before
+    // this was refused, far below the simulated floor).
+    let err = fails(&[
+        "fit",
+        "--data",
+        &record(),
+        "--add-effect",
+        "X=ai_IO",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("channel X") && err.contains("ai_IO") && err.contains("varying angular rate"),
+        "{err}"
+    );
+}
+
+#[test]
 fn usage_errors_are_one_line_too() {
     let err = fails(&[
         "fit",

@@ -12,7 +12,7 @@
 //! The bias is not an effect: every channel model has one (λ0 of eq. 7).
 
 use nav_sensors::dtg::{DtgInput, DtgTerm, within_interval_covariance};
-use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate};
+use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate, measurement_matrix};
 use nav_sensors::record::Record;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
@@ -226,8 +226,10 @@ impl FromStr for ChannelEffect {
 /// Evaluates effect regressors on a record for one channel.
 ///
 /// Specific force comes from the record's accelerometers (g, cluster frame);
-/// rate from the least-squares combination of the six gyro outputs (deg/h),
-/// both resolved into the channel's (I, O, S) frame. The g² regressors are
+/// rate from the least-squares combination of the five gyro outputs other
+/// than the channel's own (deg/h), both resolved into the channel's (I, O, S)
+/// frame. A channel's own output never enters its regressors: its noise and
+/// its vibration error would make the rate products fit the target itself. The g² regressors are
 /// interval means of products (product of means plus the within-interval
 /// covariance estimated from neighbouring samples), as the gyro output is.
 ///
@@ -245,16 +247,21 @@ impl FromStr for ChannelEffect {
 /// ```
 pub struct EffectColumns<'a> {
     record: &'a Record,
-    rate_deg_h: Vec<nalgebra::Vector3<f64>>,
+    /// Per sample, the rate seen without each channel (index = `Channel::index`).
+    rate_deg_h: Vec<[nalgebra::Vector3<f64>; 6]>,
     /// Within-interval covariance of the specific force (cluster frame), g².
     covariance: Vec<nalgebra::Matrix3<f64>>,
 }
 
 impl<'a> EffectColumns<'a> {
-    /// Prepares the record (computes the least-squares rate once).
+    /// Prepares the record (computes the least-squares rates once).
     pub fn new(record: &'a Record) -> Self {
+        let ops = rate_without_each_channel();
         let rate_deg_h = (0..record.len())
-            .map(|i| least_squares_rate(&record.gyro_sample(i)))
+            .map(|i| {
+                let m = nalgebra::SVector::<f64, 6>::from(record.gyro_sample(i));
+                std::array::from_fn(|j| ops[j] * m)
+            })
             .collect();
         let means: Vec<nalgebra::Vector3<f64>> =
             (0..record.len()).map(|i| record.accel_sample(i)).collect();
@@ -276,7 +283,8 @@ impl<'a> EffectColumns<'a> {
         let n = self.record.len();
         let inputs: Vec<DtgInput> = (0..n)
             .map(|i| {
-                DtgInput::resolved(&frame, &self.rate_deg_h[i], &self.record.accel_sample(i))
+                let rate = &self.rate_deg_h[i][channel.index()];
+                DtgInput::resolved(&frame, rate, &self.record.accel_sample(i))
                     .with_covariance(&frame, &self.covariance[i])
             })
             .collect();
@@ -300,9 +308,81 @@ impl<'a> EffectColumns<'a> {
     }
 }
 
+/// Anisoinertia (rate-product) effects are observable only when the angular
+/// rate varies by more than this (deg/s, standard deviation of any axis): in
+/// a stationary vibration test the rate is Earth rate plus gyro noise and
+/// drift, and a product of those would only fit the gyros' own errors.
+pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
+
+/// How much the angular rate varies over the given samples of a record: the
+/// largest standard deviation of the least-squares rate's three axes, deg/s.
+///
+/// ```
+/// use dtg_vib::effects::rate_variation_deg_s;
+/// use nav_sensors::geometry::ideal_outputs;
+/// use nav_sensors::record::Record;
+/// // A table turning about x at +1 and −1 deg/s (3600 deg/h) in turn.
+/// let mut csv = String::from("t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n");
+/// for i in 0..10 {
+///     let w = if i % 2 == 0 { 3600.0 } else { -3600.0 };
+///     let m = ideal_outputs(&nalgebra::Vector3::new(w, 0.0, 0.0));
+///     let cells: Vec<String> = m.iter().map(|v| v.to_string()).collect();
+///     csv += &format!("{},{},0,0,1\n", i as f64 * 0.02, cells.join(","));
+/// }
+/// let rec = Record::from_reader(csv.as_bytes(), "doc.csv").unwrap();
+/// assert!((rate_variation_deg_s(&rec, 0..10) - 1.0).abs() < 1e-9);
+/// ```
+pub fn rate_variation_deg_s(record: &Record, samples: impl IntoIterator<Item = usize>) -> f64 {
+    let rates: Vec<nalgebra::Vector3<f64>> = samples
+        .into_iter()
+        .map(|i| least_squares_rate(&record.gyro_sample(i)) / 3600.0)
+        .collect();
+    let n = rates.len().max(1) as f64;
+    (0..3)
+        .map(|k| {
+            let m = rates.iter().map(|w| w[k]).sum::<f64>() / n;
+            (rates.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// For each channel j, the 3×6 least-squares operator of eq. 4 with row j
+/// left out (its column is zero). Any five rows of eq. 4 have rank 3: the
+/// skewed geometry tolerates one failed channel.
+fn rate_without_each_channel() -> [nalgebra::SMatrix<f64, 3, 6>; 6] {
+    let h = measurement_matrix();
+    std::array::from_fn(|j| {
+        let mut ht = h.transpose();
+        ht.column_mut(j).fill(0.0);
+        let inv = (ht * h)
+            .try_inverse()
+            .expect("any five rows of eq. 4 have rank 3 (constant matrix)");
+        inv * ht
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_channels_own_output_never_enters_its_rate() {
+        use nav_sensors::geometry::ideal_outputs;
+        let w = nalgebra::Vector3::new(15.0, -4.0, 7.5);
+        let ideal = ideal_outputs(&w);
+        let ops = rate_without_each_channel();
+        for (j, op) in ops.iter().enumerate() {
+            // Exact on ideal outputs …
+            assert!((op * nalgebra::SVector::<f64, 6>::from(ideal) - w).norm() < 1e-12);
+            // … and blind to a fault on the left-out channel.
+            let mut m = ideal;
+            m[j] += 1e3;
+            assert!(
+                (op * nalgebra::SVector::<f64, 6>::from(m) - w).norm() < 1e-9,
+                "{j}"
+            );
+        }
+    }
 
     #[test]
     fn every_term_effect_round_trips_through_its_id() {

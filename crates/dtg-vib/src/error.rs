@@ -59,6 +59,16 @@ pub enum DtgVibError {
         effect: String,
         value: f64,
     },
+    /// An anisoinertia effect on a record whose angular rate does not vary.
+    #[error(
+        "channel {channel}: effect {effect} (anisoinertia) needs a varying angular rate, but the rate varies by only {rate_std_deg_s:.3} deg/s (< {min_deg_s} deg/s) over the training rows: its rate products would fit the gyros' own noise and drift; drop it or fit on a rate-table record"
+    )]
+    EffectNotObservable {
+        channel: Channel,
+        effect: String,
+        rate_std_deg_s: f64,
+        min_deg_s: f64,
+    },
     /// The RBF fit of one channel failed.
     #[error("channel {channel}: {source}")]
     Fit {

@@ -9,7 +9,7 @@
 //! the centres explain only what the physics does not, and the final weights
 //! and effect coefficients come from one QR solve.
 
-use crate::effects::{ChannelEffect, Effect};
+use crate::effects::{ANISOINERTIA_MIN_RATE_DEG_S, ChannelEffect, Effect, rate_variation_deg_s};
 use crate::error::DtgVibError;
 use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::{Prepared, Preprocess};
@@ -259,6 +259,20 @@ fn fit_channel(
     let fail = |source| DtgVibError::Fit { channel, source };
     // A constant effect (a temperature column held by a thermal chamber, say)
     // would surface as an anonymous collinear forced column deep in OLS: name it.
+    if let Some(ai) = effects.iter().find(
+        |e| matches!(e, Effect::Term(t) if nav_sensors::dtg::DtgTerm::ANISOINERTIA.contains(t)),
+    ) {
+        let first = prepared.first_sample();
+        let v = rate_variation_deg_s(prepared.calibrated(), train.iter().map(|&r| first + r));
+        if v < ANISOINERTIA_MIN_RATE_DEG_S {
+            return Err(DtgVibError::EffectNotObservable {
+                channel,
+                effect: ai.id(),
+                rate_std_deg_s: v,
+                min_deg_s: ANISOINERTIA_MIN_RATE_DEG_S,
+            });
+        }
+    }
     for (j, effect) in effects.iter().enumerate() {
         let col = (0..z_train.nrows()).map(|i| z_train[(i, j)]);
         let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {

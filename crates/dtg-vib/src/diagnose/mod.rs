@@ -16,15 +16,13 @@ use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::Prepared;
 use crate::residuals::{CorrelationCheck, billings_voon, independence, whiteness};
 use nav_sensors::dtg::DtgTerm;
-use nav_sensors::geometry::{Axis, Channel, least_squares_rate};
+use nav_sensors::geometry::{Axis, Channel};
 use nav_sensors::record::Record;
 use serde::Serialize;
 
 /// Anisoinertia (rate-product) candidates are offered only when the angular
-/// rate varies by more than this (deg/s, standard deviation of any axis):
-/// in a stationary vibration test the rate is Earth rate plus gyro noise, and
-/// a product of noise with noise would only correlate with the noise.
-pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
+/// rate varies by more than this: see [`crate::effects::ANISOINERTIA_MIN_RATE_DEG_S`].
+pub use crate::effects::ANISOINERTIA_MIN_RATE_DEG_S;
 
 /// Diagnosis settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -182,17 +180,8 @@ impl Context {
             .iter()
             .map(|n| Ok((n.to_string(), on_val(&prepared.signal_full(n)?))))
             .collect::<Result<Vec<_>, DtgVibError>>()?;
-        let rates: Vec<nalgebra::Vector3<f64>> = val
-            .iter()
-            .map(|&r| least_squares_rate(&rec.gyro_sample(first + r)) / 3600.0)
-            .collect();
-        let rate_std_deg_s = (0..3)
-            .map(|k| {
-                let m = rates.iter().map(|w| w[k]).sum::<f64>() / rates.len().max(1) as f64;
-                (rates.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / rates.len().max(1) as f64)
-                    .sqrt()
-            })
-            .fold(0.0, f64::max);
+        let rate_std_deg_s =
+            crate::effects::rate_variation_deg_s(rec, val.iter().map(|&r| first + r));
         // The validation series' own rate: alternate rows (an interleaved
         // split) are two samples apart.
         let spacing = crate::split::row_spacing(val);
