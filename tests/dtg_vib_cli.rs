@@ -353,6 +353,52 @@ fn corrupt_model_file_is_refused() {
 }
 
 #[test]
+fn a_hand_edited_model_that_disagrees_with_itself_is_refused() {
+    let text = std::fs::read_to_string(model()).unwrap();
+    let edits: [(&str, fn(&mut serde_json::Value), &str); 4] = [
+        (
+            "window-length",
+            |m| m["model"]["preprocess"]["window"]["length"] = 10.into(),
+            "takes 50 inputs but the window gives 10 samples",
+        ),
+        (
+            "window-zero",
+            |m| m["model"]["preprocess"]["window"]["length"] = 0.into(),
+            "at least one sample",
+        ),
+        (
+            "window-signals",
+            |m| m["model"]["preprocess"]["window"]["signals"] = serde_json::json!(["ax", "az"]),
+            "× 2 signals",
+        ),
+        (
+            "rbf-dim",
+            |m| m["model"]["channels"][2]["rbf"]["dim"] = 7.into(),
+            "channel Y",
+        ),
+    ];
+    for (name, edit, want) in edits {
+        let mut m: serde_json::Value = serde_json::from_str(&text).unwrap();
+        edit(&mut m);
+        let p = dir().join(format!("edited-{name}.json"));
+        std::fs::write(&p, m.to_string()).unwrap();
+        for cmd in ["compensate", "diagnose"] {
+            let mut args = vec![cmd, "--model", p.to_str().unwrap(), "--data"];
+            let rec = record();
+            args.push(&rec);
+            if cmd == "compensate" {
+                args.extend(["--out", "/dev/null"]);
+            }
+            let err = fails(&args);
+            assert!(
+                err.contains("not a dtg-vib model file") && err.contains(want),
+                "{name} {cmd}: {err}"
+            );
+        }
+    }
+}
+
+#[test]
 fn non_increasing_time_is_refused() {
     let bad = variant("time.csv", |l| l.swap(10, 11));
     let err = fails(&["fit", "--data", &bad, "--out", "/dev/null"]);

@@ -145,6 +145,48 @@ pub struct CompensationModel {
 pub const INTERVAL_TOLERANCE: f64 = 1e-3;
 
 impl CompensationModel {
+    /// What a model file must agree with before anything runs on it: a
+    /// hand-edited window or effect list would otherwise meet the networks'
+    /// shapes only deep inside a prediction.
+    pub(crate) fn check_consistency(&self) -> Result<(), String> {
+        if !(self.dt_s.is_finite() && self.dt_s > 0.0) {
+            return Err(format!("sample interval {} s is not positive", self.dt_s));
+        }
+        let w = &self.preprocess.window;
+        if w.length() == 0 || w.signals().is_empty() {
+            return Err("the window needs at least one sample of one signal".into());
+        }
+        let dim = w.length() * w.signals().len();
+        for c in &self.channels {
+            let ch = c.channel();
+            c.rbf
+                .check_consistency()
+                .map_err(|e| format!("channel {ch}: {e}"))?;
+            if c.rbf.dim() != dim {
+                return Err(format!(
+                    "channel {ch}: the network takes {} inputs but the window gives {} samples × {} signals = {dim}",
+                    c.rbf.dim(),
+                    w.length(),
+                    w.signals().len()
+                ));
+            }
+            if c.rbf.n_linear() != c.effects.len() {
+                return Err(format!(
+                    "channel {ch}: {} effect coefficients for {} effects",
+                    c.rbf.n_linear(),
+                    c.effects.len()
+                ));
+            }
+            if c.rbf.n_outputs() != 1 {
+                return Err(format!(
+                    "channel {ch}: the network has {} outputs, not 1",
+                    c.rbf.n_outputs()
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// How data are prepared.
     pub fn preprocess(&self) -> &Preprocess {
         &self.preprocess

@@ -92,6 +92,7 @@ impl CompensationModel {
                 "expected six channel models in X, X1, Y, Y1, Z, Z1 order".into(),
             ));
         }
+        m.check_consistency().map_err(corrupt)?;
         Ok(m)
     }
 }

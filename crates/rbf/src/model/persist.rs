@@ -125,6 +125,26 @@ impl RbfModel {
         Ok(model)
     }
 
+    /// Checks the consistency of a model deserialised by other means, e.g.
+    /// embedded with serde in an application's own file: shapes agree with
+    /// `dim`, the centres and outputs, widths are positive, coefficients finite.
+    /// [`RbfModel::from_reader`] runs the same check.
+    ///
+    /// # Errors
+    /// [`PersistError::Inconsistent`] naming the first disagreement.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert!(m.check_consistency().is_ok());
+    /// let mut v = serde_json::to_value(&m).unwrap();
+    /// v["dim"] = serde_json::json!(m.dim() + 1);
+    /// let bad: rbf::RbfModel = serde_json::from_value(v).unwrap();
+    /// assert!(matches!(bad.check_consistency(), Err(rbf::PersistError::Inconsistent(_))));
+    /// ```
+    pub fn check_consistency(&self) -> Result<(), PersistError> {
+        self.validate().map_err(PersistError::Inconsistent)
+    }
+
     /// Saves the model to a JSON file.
     ///
     /// # Errors
