@@ -107,6 +107,49 @@ pub struct Table {
     lines: Vec<u64>,
 }
 
+/// Byte offsets where lines end ('\n', "\r\n" or a lone '\r'), to turn a
+/// byte position into a 1-based line number.
+struct LineIndex<'a> {
+    bytes: &'a [u8],
+    ends: Vec<u64>,
+}
+
+impl<'a> LineIndex<'a> {
+    fn new(bytes: &'a [u8]) -> Self {
+        let mut ends = Vec::new();
+        for (i, &b) in bytes.iter().enumerate() {
+            let crlf_tail = b == b'\n' && i > 0 && bytes[i - 1] == b'\r';
+            if b == b'\r' || (b == b'\n' && !crlf_tail) {
+                ends.push(i as u64);
+            }
+        }
+        Self { bytes, ends }
+    }
+
+    /// The line of the record the csv reader started at byte `pos`: that
+    /// position is where it began reading, before the comment and blank
+    /// lines it skipped, so those are skipped here too.
+    fn line_of(&self, pos: u64) -> u64 {
+        let mut start = pos as usize;
+        // The csv reader may stop between the '\r' and '\n' of a "\r\n".
+        if start > 0 && self.bytes.get(start - 1..=start) == Some(b"\r\n") {
+            start += 1;
+        }
+        let mut line = 1 + self.ends.partition_point(|&e| (e as usize) < start);
+        while let Some(&end) = self.ends.get(line - 1) {
+            let end = end as usize;
+            let text = &self.bytes[start.min(end)..end];
+            if !(text.is_empty() || text.starts_with(b"#")) {
+                break;
+            }
+            // Past this line's end: one byte, two for "\r\n".
+            start = end + 1 + usize::from(self.bytes.get(end..end + 2) == Some(b"\r\n"));
+            line += 1;
+        }
+        line as u64
+    }
+}
+
 impl Table {
     /// Reads a CSV file with a header row.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, TableError> {
@@ -119,12 +162,24 @@ impl Table {
     }
 
     /// Reads CSV text from any reader; `file` names the source in errors.
-    pub fn from_reader<R: Read>(reader: R, file: &str) -> Result<Self, TableError> {
+    pub fn from_reader<R: Read>(mut reader: R, file: &str) -> Result<Self, TableError> {
+        // The csv crate counts lines by '\n' only after the first record, so a
+        // CRLF file's lines came out one low and a CR-only file's all as 1:
+        // lines are counted here from the bytes, for every convention.
+        let mut bytes = Vec::new();
+        reader
+            .read_to_end(&mut bytes)
+            .map_err(|source| TableError::Io {
+                path: file.to_string(),
+                source,
+            })?;
+        let lines_at = LineIndex::new(&bytes);
+        let line_of = |p: Option<&csv::Position>| p.map_or(0, |p| lines_at.line_of(p.byte()));
         let mut rdr = csv::ReaderBuilder::new()
             .has_headers(true)
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
-            .from_reader(reader);
+            .from_reader(bytes.as_slice());
         let malformed = |e: csv::Error| match e.kind() {
             csv::ErrorKind::Io(_) => TableError::Io {
                 path: file.to_string(),
@@ -132,7 +187,7 @@ impl Table {
             },
             _ => TableError::Malformed {
                 file: file.to_string(),
-                line: e.position().map_or(0, |p| p.line()),
+                line: line_of(e.position()),
                 message: describe_csv_error(&e),
             },
         };
@@ -160,7 +215,7 @@ impl Table {
         let mut lines = Vec::new();
         for rec in rdr.records() {
             let rec = rec.map_err(malformed)?;
-            lines.push(rec.position().map_or(0, |p| p.line()));
+            lines.push(line_of(rec.position()));
             rows.push(rec);
         }
         Ok(Self {
@@ -391,6 +446,28 @@ mod tests {
             err.to_string(),
             "t.csv:3:2: column 'b': 'NaN' is not finite"
         );
+    }
+
+    #[test]
+    fn line_numbers_hold_for_every_line_ending() {
+        // (The csv crate ends a comment only at '\n': a CR-only file gets a blank line instead.)
+        for (eol, name) in [("\n", "lf"), ("\r\n", "crlf"), ("\r", "cr")] {
+            let skipped = if eol == "\r" { "" } else { "# a comment" };
+            let text = ["t,x", skipped, "0,1", "1,2", "2,oops", "3,4"].join(eol) + eol;
+            let t = Table::from_reader(text.as_bytes(), name).unwrap();
+            assert_eq!(
+                (0..t.len()).map(|r| t.line_of_row(r)).collect::<Vec<_>>(),
+                [3, 4, 5, 6],
+                "{name}"
+            );
+            let e = t.numeric("x").unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{name}:5:2:")), "{e}");
+            let ragged = ["t,x", "0,1", "1,2,3"].join(eol) + eol;
+            match Table::from_reader(ragged.as_bytes(), name).unwrap_err() {
+                TableError::Malformed { line, .. } => assert_eq!(line, 3, "{name}"),
+                e => panic!("{e}"),
+            }
+        }
     }
 
     #[test]
