@@ -517,6 +517,25 @@ fn anisoinertia_on_a_stationary_test_is_refused() {
 }
 
 #[test]
+fn collinear_effects_are_named_not_numbered() {
+    // Under Z-axis vibration X's six g² regressors are not independent.
+    let err = fails(&[
+        "fit",
+        "--data",
+        &record(),
+        "--effects",
+        "gg_II,gg_OO,gg_SS,gg_IO,gg_IS,gg_OS",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(
+        err.contains("linear combination of the bias and gg_II")
+            && err.contains("cannot tell them apart"),
+        "{err}"
+    );
+}
+
+#[test]
 fn usage_errors_are_one_line_too() {
     let err = fails(&[
         "fit",

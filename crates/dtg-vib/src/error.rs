@@ -29,7 +29,7 @@ pub enum DtgVibError {
     #[error(transparent)]
     Effect(#[from] crate::effects::EffectError),
     /// A windowed signal is neither an accelerometer axis nor an extra column.
-    #[error("window signal '{name}' is not a record column (use ax, ay, az or an extra column: {})", if available.is_empty() { "none".to_string() } else { available.join(", ") })]
+    #[error("window signal '{name}' is not a record column (use ax, ay, az or an extra column: {})", if available.is_empty() { "the record has none".to_string() } else { available.join(", ") })]
     WindowSignal {
         name: String,
         available: Vec<String>,
@@ -52,7 +52,7 @@ pub enum DtgVibError {
     /// An effect's regressor is constant over the training rows, so the bias
     /// absorbs it and its coefficient has no estimate.
     #[error(
-        "channel {channel}: effect {effect} does not vary over the training rows (it stays at {value}), so its coefficient cannot be told from the bias; drop it or fit on a record where it varies"
+        "channel {channel}: effect {effect} does not vary over the training rows (it stays at {value:.6}), so its coefficient cannot be told from the bias; drop it or fit on a record where it varies"
     )]
     EffectConstant {
         channel: Channel,
@@ -68,6 +68,18 @@ pub enum DtgVibError {
         effect: String,
         rate_std_deg_s: f64,
         min_deg_s: f64,
+    },
+    /// An effect is (nearly) a linear combination of the bias and the effects
+    /// before it on the training rows: the record cannot tell them apart.
+    #[error(
+        "channel {channel}: effect {effect} is (nearly) a linear combination of the bias{} on the training rows (it keeps {kept:.1e} of its variation): this record cannot tell them apart; drop one of them",
+        if earlier.is_empty() { String::new() } else { format!(" and {}", earlier.join(", ")) }
+    )]
+    EffectsCollinear {
+        channel: Channel,
+        effect: String,
+        earlier: Vec<String>,
+        kept: f64,
     },
     /// The RBF fit of one channel failed.
     #[error("channel {channel}: {source}")]

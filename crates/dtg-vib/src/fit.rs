@@ -287,6 +287,14 @@ fn fit_channel(
         }
     }
 
+    if let Some((j, kept)) = first_collinear_effect(z_train.as_ref()) {
+        return Err(DtgVibError::EffectsCollinear {
+            channel,
+            effect: effects[j].id(),
+            earlier: effects[..j].iter().map(Effect::id).collect(),
+            kept,
+        });
+    }
     let selection = |k: usize| match options.centres {
         CentreMethod::Ols => CentreSelection::Ols {
             max_centres: k,
@@ -352,6 +360,36 @@ fn fit_channel(
     let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
     let scores = score(y, &yhat, train, val);
     Ok(ChannelModel::new(channel, effects, width, model, scores))
+}
+
+/// Share of a column's variation (energy about its mean) that an effect must
+/// keep once the bias and the effects before it are projected out. Stricter
+/// than the OLS engine's own 1e-12, so a cross-validation fold on fewer rows
+/// does not meet the collinearity first.
+const EFFECT_COLLINEARITY_TOL: f64 = 1e-9;
+
+/// The first effect column (and the share of its variation it keeps) that is
+/// (nearly) a combination of the bias and the columns before it: modified
+/// Gram–Schmidt on the centred columns, in order.
+fn first_collinear_effect(z: MatRef<'_, f64>) -> Option<(usize, f64)> {
+    let n = z.nrows();
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    for j in 0..z.ncols() {
+        let mean = (0..n).map(|i| z[(i, j)]).sum::<f64>() / n.max(1) as f64;
+        let mut v: Vec<f64> = (0..n).map(|i| z[(i, j)] - mean).collect();
+        let orig: f64 = v.iter().map(|x| x * x).sum();
+        for q in &basis {
+            let c: f64 = q.iter().zip(&v).map(|(a, b)| a * b).sum();
+            v.iter_mut().zip(q).for_each(|(x, a)| *x -= c * a);
+        }
+        let kept: f64 = v.iter().map(|x| x * x).sum();
+        if !(kept > EFFECT_COLLINEARITY_TOL * orig) {
+            return Some((j, if orig > 0.0 { kept / orig } else { 0.0 }));
+        }
+        let norm = kept.sqrt();
+        basis.push(v.into_iter().map(|x| x / norm).collect());
+    }
+    None
 }
 
 /// Rows `rows` of `m`.

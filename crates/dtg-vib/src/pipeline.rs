@@ -328,11 +328,7 @@ pub fn signal<'r>(record: &'r Record, name: &str) -> Result<&'r [f64], DtgVibErr
     }
     record.extra(name).ok_or_else(|| DtgVibError::WindowSignal {
         name: name.to_string(),
-        available: Axis::ALL
-            .iter()
-            .map(|a| a.column().to_string())
-            .chain(record.extra_names().iter().map(|s| s.to_string()))
-            .collect(),
+        available: record.extra_names().iter().map(|s| s.to_string()).collect(),
     })
 }
 
@@ -457,7 +453,7 @@ mod tests {
         let err = Prepared::new(&rec, None, &pre).unwrap_err();
         assert_eq!(
             err.to_string(),
-            "window signal 'aw' is not a record column (use ax, ay, az or an extra column: ax, ay, az, temp)"
+            "window signal 'aw' is not a record column (use ax, ay, az or an extra column: temp)"
         );
     }
 
