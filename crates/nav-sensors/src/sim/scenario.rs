@@ -347,6 +347,16 @@ impl Scenario {
         })
     }
 
+    /// The most internal-rate samples a scenario may ask for (2^26: about
+    /// 5 GiB of simulator memory, 4.6 hours at 4 kHz).
+    ///
+    /// ```
+    /// let mut s = nav_sensors::sim::Scenario::default();
+    /// s.duration_s = 1e9;
+    /// assert!(s.validate().unwrap_err().to_string().contains("2^26"));
+    /// ```
+    pub const MAX_INTERNAL_SAMPLES: usize = 1 << 26;
+
     /// Number of output samples, `round(duration·output rate)`.
     ///
     /// ```
@@ -435,6 +445,16 @@ impl Scenario {
             self.duration_s,
             self.output_samples() >= 2,
             "must give at least two output samples",
+        )?;
+        // The simulator holds the internal-rate histories in memory, about
+        // 80 bytes per internal sample (310 MiB for 1000 s at 4 kHz): refuse
+        // what would exhaust the machine instead of aborting in the allocator.
+        range(
+            "duration_s",
+            self.duration_s,
+            (self.output_samples() as f64) * (self.oversampling() as f64)
+                <= Self::MAX_INTERNAL_SAMPLES as f64,
+            "with internal_rate_hz gives more than 2^26 internal samples (about 5 GiB of memory; 4.6 h at 4 kHz): split a longer test into several scenarios",
         )?;
         range(
             "gyros.spin_hz",
