@@ -53,6 +53,14 @@ fn fails(args: &[&str]) -> String {
     err
 }
 
+/// `fit --data DATA ARGS… --out /dev/null`, which must fail: its stderr.
+fn fit_refuses(data: &str, args: &[&str]) -> String {
+    let mut all = vec!["fit", "--data", data];
+    all.extend_from_slice(args);
+    all.extend(["--out", "/dev/null"]);
+    fails(&all)
+}
+
 /// The built-in demo record (the paper's test, temperature column included),
 /// simulated once for all tests.
 fn sim() -> &'static Path {
@@ -283,15 +291,7 @@ fn record_shorter_than_a_window_is_refused() {
 
 #[test]
 fn unknown_effect_lists_the_valid_ones() {
-    let err = fails(&[
-        "fit",
-        "--data",
-        &record(),
-        "--effects",
-        "gg_XY",
-        "--out",
-        "/dev/null",
-    ]);
+    let err = fit_refuses(&record(), &["--effects", "gg_XY"]);
     assert!(
         err.contains("unknown effect 'gg_XY'") && err.contains("gg_IS") && err.contains("col:NAME"),
         "{err}"
@@ -300,15 +300,7 @@ fn unknown_effect_lists_the_valid_ones() {
 
 #[test]
 fn unknown_channel_lists_the_valid_ones() {
-    let err = fails(&[
-        "fit",
-        "--data",
-        &record(),
-        "--add-effect",
-        "Q1=g_I",
-        "--out",
-        "/dev/null",
-    ]);
+    let err = fit_refuses(&record(), &["--add-effect", "Q1=g_I"]);
     assert!(
         err.contains("unknown channel 'Q1'") && err.contains("X, X1, Y, Y1, Z, Z1"),
         "{err}"
@@ -481,15 +473,7 @@ fn a_constant_effect_is_named_not_numbered() {
             *l = cells.join(",");
         }
     });
-    let err = fails(&[
-        "fit",
-        "--data",
-        &held,
-        "--add-effect",
-        "Y1=col:temp",
-        "--out",
-        "/dev/null",
-    ]);
+    let err = fit_refuses(&held, &["--add-effect", "Y1=col:temp"]);
     assert!(
         err.contains("channel Y1") && err.contains("col:temp") && err.contains("does not vary"),
         "{err}"
@@ -501,15 +485,7 @@ fn anisoinertia_on_a_stationary_test_is_refused() {
     // On a shaker the rate is Earth rate plus gyro noise: rate products would
     // fit the gyros' own errors (validation rms 1.23 → 0.21 deg/h on X before
     // this was refused, far below the simulated floor).
-    let err = fails(&[
-        "fit",
-        "--data",
-        &record(),
-        "--add-effect",
-        "X=ai_IO",
-        "--out",
-        "/dev/null",
-    ]);
+    let err = fit_refuses(&record(), &["--add-effect", "X=ai_IO"]);
     assert!(
         err.contains("channel X") && err.contains("ai_IO") && err.contains("varying angular rate"),
         "{err}"
@@ -519,15 +495,10 @@ fn anisoinertia_on_a_stationary_test_is_refused() {
 #[test]
 fn collinear_effects_are_named_not_numbered() {
     // Under Z-axis vibration X's six g² regressors are not independent.
-    let err = fails(&[
-        "fit",
-        "--data",
+    let err = fit_refuses(
         &record(),
-        "--effects",
-        "gg_II,gg_OO,gg_SS,gg_IO,gg_IS,gg_OS",
-        "--out",
-        "/dev/null",
-    ]);
+        &["--effects", "gg_II,gg_OO,gg_SS,gg_IO,gg_IS,gg_OS"],
+    );
     assert!(
         err.contains("linear combination of the bias and gg_II")
             && err.contains("cannot tell them apart"),
@@ -537,15 +508,7 @@ fn collinear_effects_are_named_not_numbered() {
 
 #[test]
 fn usage_errors_are_one_line_too() {
-    let err = fails(&[
-        "fit",
-        "--data",
-        &record(),
-        "--table-rate",
-        "1,2",
-        "--out",
-        "/dev/null",
-    ]);
+    let err = fit_refuses(&record(), &["--table-rate", "1,2"]);
     assert!(
         err.contains("--table-rate") && err.contains("WX,WY,WZ"),
         "{err}"
