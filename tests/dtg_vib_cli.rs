@@ -347,7 +347,9 @@ fn corrupt_model_file_is_refused() {
 #[test]
 fn a_hand_edited_model_that_disagrees_with_itself_is_refused() {
     let text = std::fs::read_to_string(model()).unwrap();
-    let edits: [(&str, fn(&mut serde_json::Value), &str); 4] = [
+    // (file name, the edit, what the error must say)
+    type Edit = (&'static str, fn(&mut serde_json::Value), &'static str);
+    let edits: [Edit; 4] = [
         (
             "window-length",
             |m| m["model"]["preprocess"]["window"]["length"] = 10.into(),

@@ -383,7 +383,7 @@ fn first_collinear_effect(z: MatRef<'_, f64>) -> Option<(usize, f64)> {
             v.iter_mut().zip(q).for_each(|(x, a)| *x -= c * a);
         }
         let kept: f64 = v.iter().map(|x| x * x).sum();
-        if !(kept > EFFECT_COLLINEARITY_TOL * orig) {
+        if kept.is_nan() || kept <= EFFECT_COLLINEARITY_TOL * orig {
             return Some((j, if orig > 0.0 { kept / orig } else { 0.0 }));
         }
         let norm = kept.sqrt();
