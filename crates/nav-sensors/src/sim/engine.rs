@@ -124,17 +124,10 @@ fn high_rate(
                 earth.y + 3600.0 * vib.angular_rate_deg_s[1][idx],
                 earth.z + 3600.0 * vib.angular_rate_deg_s[2][idx],
             );
-            for (acc, v) in moments.iter_mut().zip([
-                f.x,
-                f.y,
-                f.z,
-                f.x * f.x,
-                f.y * f.y,
-                f.z * f.z,
-                f.x * f.y,
-                f.x * f.z,
-                f.y * f.z,
-            ]) {
+            for (acc, v) in moments
+                .iter_mut()
+                .zip(super::predictable::elementary_moments(&f))
+            {
                 *acc += v;
             }
             for a in Axis::ALL {

@@ -77,6 +77,18 @@ pub(crate) const MIN_ROWS_PER_COLUMN: usize = 20;
 /// Pairs (i, j) of the six quadratic elementary series, in their order.
 pub(crate) const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
 
+/// One sample of the nine elementary series for specific force `f` (g):
+/// f_x, f_y, f_z, then the products of [`PAIRS`]. The engine accumulates
+/// these and [`weights`] acts on them, so both take the order from here.
+pub(crate) fn elementary_moments(f: &nalgebra::Vector3<f64>) -> [f64; 9] {
+    let mut out = [0.0; 9];
+    out[..3].copy_from_slice(f.as_slice());
+    for (o, &(i, j)) in out[3..].iter_mut().zip(&PAIRS) {
+        *o = f[i] * f[j];
+    }
+    out
+}
+
 /// The nine elementary series (per sample: e_x, e_y, e_z, Q_xx, Q_yy, Q_zz,
 /// Q_xy, Q_xz, Q_yz) and their least-squares predictions.
 pub(crate) struct Elementary {
@@ -309,18 +321,11 @@ mod tests {
                     .iter()
                     .map(|t| c[t.index()] * t.regressor(&x))
                     .sum();
-                let elementary = [
-                    f.x,
-                    f.y,
-                    f.z,
-                    f.x * f.x,
-                    f.y * f.y,
-                    f.z * f.z,
-                    f.x * f.y,
-                    f.x * f.z,
-                    f.y * f.z,
-                ];
-                let packed: f64 = w.iter().zip(elementary).map(|(a, b)| a * b).sum();
+                let packed: f64 = w
+                    .iter()
+                    .zip(elementary_moments(&f))
+                    .map(|(a, b)| a * b)
+                    .sum();
                 assert!(
                     (direct - packed).abs() < 1e-12,
                     "{:?}: {direct} vs {packed}",
