@@ -257,16 +257,11 @@ impl SavedModel {
             },
             other => other,
         };
-        let file = std::fs::File::create(path).map_err(|source| SavedError::Io {
+        let io = |source| SavedError::Io {
             file: name.clone(),
             source,
-        })?;
-        let mut out = std::io::BufWriter::new(file);
-        self.to_writer(&mut out).map_err(relabel)?;
-        out.flush().map_err(|source| SavedError::Io {
-            file: name.clone(),
-            source,
-        })
+        };
+        outfile::write_atomic_or(path, io, |out| self.to_writer(out)).map_err(relabel)
     }
 
     /// Loads from a file.

@@ -373,10 +373,13 @@ pub fn write_csv(
         path: path.display().to_string(),
         source,
     };
-    let file = std::fs::File::create(path).map_err(io)?;
-    let mut out = std::io::BufWriter::new(file);
-    write_csv_to(&mut out, &path.display().to_string(), names, columns)?;
-    out.flush().map_err(io)
+    let name = path.display().to_string();
+    outfile::write_atomic_or(path, io, |out| {
+        write_csv_to(out, &name, names, columns).map_err(|e| match e {
+            TableError::Io { source, .. } => io(source),
+            other => other,
+        })
+    })
 }
 
 /// As [`write_csv`], into any writer; `name` labels errors.

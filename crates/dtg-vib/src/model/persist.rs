@@ -42,7 +42,7 @@ impl CompensationModel {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
-        std::fs::write(path, text).map_err(|source| DtgVibError::ModelIo {
+        outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
             path: path.to_path_buf(),
             source,
         })

@@ -241,22 +241,33 @@ impl Figure {
         let size = prepared.size;
 
         let png = dir.join(format!("{stem}.png"));
-        // plotters opens the PNG only when it presents, and reports a failure
-        // as text; opening it first gives a typed I/O error with the path.
-        fs::File::create(&png).map_err(|source| ReportError::Io {
+        // plotters writes the PNG itself: drawn under a temporary name and
+        // renamed, so an interrupted run leaves no half-drawn figure. It opens
+        // the file only when it presents and reports a failure as text;
+        // opening it first gives a typed I/O error with the path.
+        // (the image encoder picks the format from the extension, so it stays .png)
+        let png_part = dir.join(format!(".{stem}.part.png"));
+        fs::File::create(&png_part).map_err(|source| ReportError::Io {
             path: png.clone(),
             source,
         })?;
         {
-            let root = BitMapBackend::new(&png, size).into_drawing_area();
+            let root = BitMapBackend::new(&png_part, size).into_drawing_area();
             prepared
                 .draw(&root)
                 .and_then(|()| root.present())
-                .map_err(|e| ReportError::Draw {
-                    path: png.clone(),
-                    message: e.to_string(),
+                .map_err(|e| {
+                    let _ = fs::remove_file(&png_part);
+                    ReportError::Draw {
+                        path: png.clone(),
+                        message: e.to_string(),
+                    }
                 })?;
         }
+        fs::rename(&png_part, &png).map_err(|source| ReportError::Io {
+            path: png.clone(),
+            source,
+        })?;
 
         let svg = dir.join(format!("{stem}.svg"));
         let mut text = String::new();
@@ -270,7 +281,7 @@ impl Figure {
                     message: e.to_string(),
                 })?;
         }
-        fs::write(&svg, text).map_err(|source| ReportError::Io {
+        outfile::write_bytes(&svg, text).map_err(|source| ReportError::Io {
             path: svg.clone(),
             source,
         })?;

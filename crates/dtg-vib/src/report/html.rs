@@ -352,7 +352,7 @@ impl HtmlReport {
             source,
         })?;
         let path = dir.join("index.html");
-        fs::write(&path, self.to_html(dir)).map_err(|source| ReportError::Io {
+        outfile::write_bytes(&path, self.to_html(dir)).map_err(|source| ReportError::Io {
             path: path.clone(),
             source,
         })?;

@@ -190,7 +190,7 @@ impl Calibration {
     /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_json()).map_err(|source| CalibrationFileError::Io {
+        outfile::write_bytes(path, self.to_json()).map_err(|source| CalibrationFileError::Io {
             path: path.display().to_string(),
             source,
         })

@@ -155,7 +155,7 @@ impl Simulation {
         self.record.write_csv(dir.join("record.csv"))?;
         self.calibration.save(dir.join("calibration.json"))?;
         let truth = dir.join("truth.json");
-        std::fs::write(&truth, self.truth.to_json()).map_err(io(&truth))?;
+        outfile::write_bytes(&truth, self.truth.to_json()).map_err(io(&truth))?;
         self.components.write_csv(dir.join("components.csv"))?;
         self.truth.scenario.save(dir.join("scenario.toml"))?;
         Ok(())

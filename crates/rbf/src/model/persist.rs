@@ -160,16 +160,15 @@ impl RbfModel {
     /// ```
     pub fn save_json(&self, path: impl AsRef<Path>) -> Result<(), PersistError> {
         let path = path.as_ref();
-        let file = File::create(path).map_err(|source| PersistError::Io {
+        let io = |source| PersistError::Io {
             path: Some(path.into()),
             source,
-        })?;
-        self.to_writer(file).map_err(|e| match e {
-            PersistError::Io { source, .. } => PersistError::Io {
-                path: Some(path.into()),
-                source,
-            },
-            other => other,
+        };
+        outfile::write_atomic_or(path, io, |w| {
+            self.to_writer(w).map_err(|e| match e {
+                PersistError::Io { source, .. } => io(source),
+                other => other,
+            })
         })
     }
 
