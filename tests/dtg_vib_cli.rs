@@ -572,3 +572,119 @@ fn a_record_too_short_to_split_is_still_compensated() {
     ]);
     assert!(err.contains("1 windows, need at least 2"), "{err}");
 }
+
+/// `--out` naming an input is refused before any work, naming both flags, and
+/// the input is byte-identical afterwards; so is a missing output directory.
+#[test]
+fn outputs_never_overwrite_inputs() {
+    let s = sim();
+    let data = s.join("record.csv");
+    let calib = s.join("calibration.json");
+    let model = dir().join("guard-model.json");
+    ok(&[
+        "fit",
+        "--data",
+        data.to_str().unwrap(),
+        "--calib",
+        calib.to_str().unwrap(),
+        "--max-centers",
+        "5",
+        "--out",
+        model.to_str().unwrap(),
+    ]);
+    let before: Vec<Vec<u8>> = [&data, &calib, &model]
+        .iter()
+        .map(|p| std::fs::read(p).unwrap())
+        .collect();
+    // The same file spelled differently is still the same file.
+    let data_alias = s.join(".").join("record.csv");
+    let (d, c, m, a) = (
+        data.to_str().unwrap(),
+        calib.to_str().unwrap(),
+        model.to_str().unwrap(),
+        data_alias.to_str().unwrap(),
+    );
+    let cases: [(&[&str], &str); 6] = [
+        (&["fit", "--data", d, "--calib", c, "--out", a], "--data"),
+        (&["fit", "--data", d, "--calib", c, "--out", c], "--calib"),
+        (
+            &["compensate", "--model", m, "--data", d, "--out", d],
+            "--data",
+        ),
+        (
+            &["compensate", "--model", m, "--data", d, "--out", m],
+            "--model",
+        ),
+        (
+            &["residues", "--data", d, "--model", m, "--out", m],
+            "--model",
+        ),
+        (&["residues", "--data", d, "--out", a], "--data"),
+    ];
+    for (args, flag) in cases {
+        let err = fails(args);
+        assert!(
+            err.contains("--out") && err.contains(&format!("same file as {flag}")),
+            "{args:?}: {err}"
+        );
+    }
+    let after: Vec<Vec<u8>> = [&data, &calib, &model]
+        .iter()
+        .map(|p| std::fs::read(p).unwrap())
+        .collect();
+    assert!(before == after, "an input changed");
+    // simulate --scenario S --out DIR where DIR/scenario.toml is S.
+    let scen = s.join("scenario.toml");
+    let scen_before = std::fs::read(&scen).unwrap();
+    let err = fails(&[
+        "simulate",
+        "--scenario",
+        scen.to_str().unwrap(),
+        "--out",
+        s.to_str().unwrap(),
+    ]);
+    assert!(err.contains("--scenario"), "{err}");
+    assert_eq!(std::fs::read(&scen).unwrap(), scen_before);
+    // A directory that does not exist: said before any work.
+    let missing = dir().join("no-such-dir").join("m.json");
+    let err = fails(&["fit", "--data", d, "--out", missing.to_str().unwrap()]);
+    assert!(err.contains("does not exist"), "{err}");
+}
+
+/// Physical ranges of a scenario are checked before anything is simulated
+/// (these used to write records of NaN with exit 0).
+#[test]
+fn scenarios_out_of_physical_range_are_refused() {
+    let text = std::fs::read_to_string(sim().join("scenario.toml")).unwrap();
+    let cases = [
+        (
+            "latitude_deg = 8.5",
+            "latitude_deg = 91.0",
+            "from -90 to 90",
+        ),
+        ("latitude_deg = 8.5", "latitude_deg = nan", "from -90 to 90"),
+        ("gain_db = 0.0", "gain_db = nan", "must be finite"),
+        ("[350.0, 0.04]", "[350.0, 1e300]", "at most 1000 g"),
+    ];
+    for (k, (from, to, needle)) in cases.iter().enumerate() {
+        assert!(text.contains(from), "{from} not in the demo scenario");
+        let bad = dir().join(format!("bad-scenario-{k}.toml"));
+        std::fs::write(&bad, text.replacen(from, to, 1)).unwrap();
+        let out = dir().join(format!("bad-scenario-{k}"));
+        let err = fails(&[
+            "simulate",
+            "--scenario",
+            bad.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            err.contains(needle) && err.contains(bad.to_str().unwrap()),
+            "{to}: {err}"
+        );
+        assert!(
+            !out.join("record.csv").exists(),
+            "{to}: a record was written"
+        );
+    }
+}

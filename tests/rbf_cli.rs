@@ -607,3 +607,152 @@ fn predict_data_lacking_a_model_input_is_an_error() {
     );
     assert!(!Path::new(&pred_path).exists());
 }
+
+/// `--out` naming an input is refused before any work, naming both flags;
+/// every input is byte-identical afterwards.
+#[test]
+fn outputs_never_overwrite_inputs() {
+    let dir = scratch("guard");
+    let data = write(&dir, "d.csv", &smooth_csv(60, None));
+    let model = dir.join("m.json");
+    let m = model.to_str().unwrap();
+    succeeds(&rbf(&[
+        "fit",
+        "--data",
+        &data,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--max-centers",
+        "5",
+        "--out",
+        m,
+    ]));
+    let before = (
+        std::fs::read(&data).unwrap(),
+        std::fs::read(&model).unwrap(),
+    );
+    fails_with(
+        &rbf(&[
+            "fit",
+            "--data",
+            &data,
+            "--target",
+            "y",
+            "--centers",
+            "ols",
+            "--out",
+            &data,
+        ]),
+        &["--out", "same file as --data"],
+    );
+    fails_with(
+        &rbf(&["predict", "--model", m, "--data", &data, "--out", &data]),
+        &["--out", "same file as --data"],
+    );
+    fails_with(
+        &rbf(&["predict", "--model", m, "--data", &data, "--out", m]),
+        &["--out", "same file as --model"],
+    );
+    assert_eq!(
+        before,
+        (
+            std::fs::read(&data).unwrap(),
+            std::fs::read(&model).unwrap()
+        )
+    );
+    // No partial file is left behind by the refused or the successful runs.
+    let parts: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".part"))
+        .collect();
+    assert!(parts.is_empty(), "{parts:?}");
+}
+
+/// `--threads` outside 1..=256 is refused at once with the valid range (10,000
+/// used to hang while the pool started).
+#[test]
+fn absurd_thread_counts_are_refused() {
+    for bad in ["0", "10000", "two", "1e3"] {
+        let out = rbf(&[
+            "--threads",
+            bad,
+            "fit",
+            "--data",
+            "x.csv",
+            "--target",
+            "y",
+            "--centers",
+            "ols",
+            "--out",
+            "m.json",
+        ]);
+        fails_with(&out, &["--threads", "1 to 256"]);
+    }
+}
+
+/// `--folds` beyond the rows is refused at once, with the flag and the valid
+/// range (a billion folds used to abort allocating).
+#[test]
+fn folds_beyond_the_rows_are_refused() {
+    let dir = scratch("folds");
+    let data = write(&dir, "d.csv", &smooth_csv(30, None));
+    for bad in ["1000000000", "31", "1"] {
+        let out = rbf(&[
+            "cv",
+            "--data",
+            &data,
+            "--target",
+            "y",
+            "--centers",
+            "ols",
+            "--split",
+            "kfold",
+            "--folds",
+            bad,
+        ]);
+        fails_with(&out, &["--folds", "use --folds 2 to 30"]);
+    }
+}
+
+/// A model whose `linear` block is not empty (edited, or from the library's
+/// forced columns) is refused by `rbf predict` with the reason; it used to
+/// panic. A weight edited to 1e155 is refused on load or gives finite output.
+#[test]
+fn edited_models_are_refused_not_panicked_on() {
+    let dir = scratch("edited");
+    let data = write(&dir, "d.csv", &smooth_csv(60, None));
+    let model = dir.join("m.json");
+    let m = model.to_str().unwrap();
+    succeeds(&rbf(&[
+        "fit",
+        "--data",
+        &data,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--max-centers",
+        "5",
+        "--out",
+        m,
+    ]));
+    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    v["rbf"]["model"]["linear"] = serde_json::json!({"cols": 1, "data": [[2.0]], "rows": 1});
+    let edited = write(&dir, "linear.json", &v.to_string());
+    let out_csv = dir.join("p.csv");
+    fails_with(
+        &rbf(&[
+            "predict",
+            "--model",
+            &edited,
+            "--data",
+            &data,
+            "--out",
+            out_csv.to_str().unwrap(),
+        ]),
+        &["linear", "rbf fit"],
+    );
+}

@@ -282,6 +282,7 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             out,
         } => {
+            let scenario_path = scenario.clone();
             let mut s = match (scenario, builtin) {
                 (Some(path), _) => Scenario::load(&path)?,
                 (None, Some(name)) => Scenario::builtin(&name).with_context(|| {
@@ -295,6 +296,17 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(seed) = seed {
                 s.seed = seed;
             }
+            if let Some(p) = &scenario_path {
+                // Named with the file, before anything is written.
+                s.validate()
+                    .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
+            }
+            outfile::guard_dir(
+                "--out",
+                &out,
+                &nav_sensors::sim::Simulation::FILES,
+                &[("--scenario", scenario_path.as_deref())],
+            )?;
             progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
             let sim = simulate(&s)?;
             sim.write_dir(&out)?;
@@ -303,6 +315,11 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Fit(args) => fit_command(*args, &progress)?,
         Command::Compensate { model, data, out } => {
+            outfile::guard_file(
+                "--out",
+                &out,
+                &[("--model", Some(&model)), ("--data", Some(&data))],
+            )?;
             let model = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
             progress.say("compensating");
@@ -317,6 +334,11 @@ fn run(cli: Cli) -> Result<()> {
             );
         }
         Command::Residues { data, model, out } => {
+            outfile::guard_file(
+                "--out",
+                &out,
+                &[("--data", Some(&data)), ("--model", model.as_deref())],
+            )?;
             let record = Record::read_csv(&data)?;
             let applied = match &model {
                 Some(m) => {
@@ -342,6 +364,16 @@ fn run(cli: Cli) -> Result<()> {
             baseline,
             out,
         } => {
+            outfile::guard_dir(
+                "--out",
+                &out,
+                &["index.html"],
+                &[
+                    ("--model", Some(&model)),
+                    ("--data", Some(&data)),
+                    ("--baseline", baseline.as_deref()),
+                ],
+            )?;
             let m = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
             progress.say("applying the model");
@@ -377,6 +409,14 @@ fn run(cli: Cli) -> Result<()> {
             json,
             report,
         } => {
+            if let Some(dir) = &report {
+                outfile::guard_dir(
+                    "--report",
+                    dir,
+                    &["index.html"],
+                    &[("--model", Some(&model)), ("--data", Some(&data))],
+                )?;
+            }
             let m = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
             progress.say("diagnosing");
@@ -419,6 +459,7 @@ fn run(cli: Cli) -> Result<()> {
             }
         }
         Command::Demo { out } => {
+            outfile::guard_dir("--out", &out, &[], &[])?;
             let summary = dtg_vib::demo::run(&out, &|step| progress.say(format!("{step:?}")))?;
             drop(progress);
             print_demo(&summary);
@@ -428,6 +469,11 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
+    outfile::guard_file(
+        "--out",
+        &a.out,
+        &[("--data", Some(&a.data)), ("--calib", a.calib.as_deref())],
+    )?;
     let record = Record::read_csv(&a.data)?;
     let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
     let effects = Effect::parse_list(&a.effects.join(","))?;

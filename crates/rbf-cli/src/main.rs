@@ -20,7 +20,6 @@ fn main() -> ExitCode {
     if let Some(n) = cli.threads {
         // Before any params are built: they capture faer's global parallelism. The rayon
         // pool bounds what runs outside faer too (linfa's k-means, the library's loops).
-        let n = n.max(1);
         let _ = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global();

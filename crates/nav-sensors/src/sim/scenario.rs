@@ -234,6 +234,14 @@ pub struct Scenario {
 /// ```
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
+    /// A number that is NaN or infinite (TOML spells them `nan` and `inf`).
+    #[error("{field} = {value}: every number in a scenario must be finite")]
+    NotFinite {
+        /// Dotted path of the field, e.g. `gyros.channels.Y1.gg_is`.
+        field: String,
+        /// The value.
+        value: f64,
+    },
     /// The file could not be read or written.
     #[error("{path}: {source}")]
     Io {
@@ -341,7 +349,7 @@ impl Scenario {
     /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), ScenarioError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_toml()?).map_err(|source| ScenarioError::Io {
+        outfile::write_bytes(path, self.to_toml()?).map_err(|source| ScenarioError::Io {
             path: path.display().to_string(),
             source,
         })
@@ -515,6 +523,17 @@ impl Scenario {
                 "must be positive when there is bias instability",
             )?;
         }
+        range(
+            "site.latitude_deg",
+            self.site.latitude_deg,
+            self.site.latitude_deg.abs() <= 90.0,
+            "must be from -90 to 90 degrees",
+        )?;
+        if let Ok(value) = toml::Value::try_from(self)
+            && let Some((field, value)) = first_non_finite(&value, "")
+        {
+            return Err(ScenarioError::NotFinite { field, value });
+        }
         if self.site.orientation.axes_enu().is_none() {
             return Err(ScenarioError::Orientation {
                 x: self.site.orientation.x,
@@ -531,5 +550,25 @@ impl Scenario {
             }
         }
         Ok(())
+    }
+}
+
+/// The first NaN or infinite number in a TOML tree, with its dotted path.
+fn first_non_finite(v: &toml::Value, path: &str) -> Option<(String, f64)> {
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
+        }
+    };
+    match v {
+        toml::Value::Float(f) if !f.is_finite() => Some((path.to_string(), *f)),
+        toml::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_non_finite(x, &format!("{path}[{i}]"))),
+        toml::Value::Table(t) => t.iter().find_map(|(k, x)| first_non_finite(x, &join(k))),
+        _ => None,
     }
 }

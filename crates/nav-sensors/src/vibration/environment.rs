@@ -251,6 +251,19 @@ pub enum VibrationError {
         /// The value.
         value: f64,
     },
+    /// A level beyond what a vibration test produces; such values only
+    /// overflow the simulation into infinities and NaN.
+    #[error("drive {index}: {what} = {value:e} is out of range: {requirement}")]
+    OutOfRange {
+        /// Drive (or schedule segment) index (0-based).
+        index: usize,
+        /// Which parameter.
+        what: &'static str,
+        /// The value.
+        value: f64,
+        /// The valid range, in words.
+        requirement: &'static str,
+    },
     /// A schedule segment with a negative or non-finite duration or ramp.
     #[error(
         "schedule segment {index}: duration {duration_s} s and ramp {ramp_s} s must be finite, ramp ≤ duration, both ≥ 0"
@@ -264,6 +277,14 @@ pub enum VibrationError {
         ramp_s: f64,
     },
 }
+
+/// The strongest vibration a scenario may ask for, g (rms for random, peak
+/// for sine): far beyond any shaker or flight, far below where squares of
+/// the simulated signals overflow.
+pub const MAX_LEVEL_G: f64 = 1000.0;
+/// The largest gain or level change in dB, either way (a factor of 1000 in g).
+const MAX_DB: f64 = 60.0;
+const DB_RANGE: &str = "finite, from -60 to +60 dB";
 
 /// The vibration part of a scenario.
 ///
@@ -316,7 +337,62 @@ impl VibrationConfig {
     /// ```
     pub fn validate(&self, fs: f64) -> Result<(), VibrationError> {
         let nyquist_hz = 0.5 * fs;
+        let out_of_range = |index, what, value: f64, ok: bool, requirement| {
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(VibrationError::OutOfRange {
+                    index,
+                    what,
+                    value,
+                    requirement,
+                })
+            }
+        };
         for (index, d) in self.drives.iter().enumerate() {
+            let (amplitude, transverse) = match d {
+                Drive::Random {
+                    psd,
+                    gain_db,
+                    transverse,
+                    ..
+                } => {
+                    out_of_range(
+                        index,
+                        "gain_db",
+                        *gain_db,
+                        gain_db.abs() <= MAX_DB,
+                        DB_RANGE,
+                    )?;
+                    (psd.scaled_db(*gain_db).grms(), transverse)
+                }
+                Drive::Sine {
+                    amplitude_g,
+                    transverse,
+                    ..
+                }
+                | Drive::Sweep {
+                    amplitude_g,
+                    transverse,
+                    ..
+                } => (*amplitude_g, transverse),
+            };
+            out_of_range(
+                index,
+                "level (g rms, or g amplitude)",
+                amplitude,
+                amplitude <= MAX_LEVEL_G,
+                "at most 1000 g (shakers reach tens of g)",
+            )?;
+            for &c in transverse.values() {
+                out_of_range(
+                    index,
+                    "transverse",
+                    c,
+                    c.abs() <= 10.0,
+                    "a fraction of the drive, at most 10 in magnitude",
+                )?;
+            }
             let checks: Vec<(&'static str, f64)> = match d {
                 Drive::Random { .. } => vec![],
                 Drive::Sine {
@@ -359,6 +435,9 @@ impl VibrationConfig {
             }
         }
         for (index, s) in self.schedule.segments().iter().enumerate() {
+            if let Some(db) = s.level_db {
+                out_of_range(index, "schedule level_db", db, db.abs() <= MAX_DB, DB_RANGE)?;
+            }
             let ok = s.duration_s.is_finite()
                 && s.ramp_s.is_finite()
                 && s.duration_s >= 0.0

@@ -12,9 +12,26 @@ use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
-    /// Threads for the numerical kernels (1: sequential) [default: every core].
-    #[arg(long, global = true, value_name = "N")]
+    /// Threads for the numerical kernels, 1 to 256 (1: sequential) [default: every core].
+    #[arg(long, global = true, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
+}
+
+/// The most threads `--threads` takes: far above any core count this tool
+/// meets, far below what makes spawning the pool itself the work (10,000
+/// threads took minutes to start).
+pub const MAX_THREADS: usize = 256;
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            Err(format!(
+                "must be a whole number from 1 to {MAX_THREADS} (this machine has {cores} cores)"
+            ))
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]

@@ -37,6 +37,16 @@ pub fn run(a: CvArgs) -> Result<()> {
     let y = data::numeric_matrix(&table, std::slice::from_ref(&target))?;
     let inputs = data::input_columns(&table, &target, a.data.inputs.as_deref(), &[])?;
     let x = data::numeric_matrix(&table, &inputs)?;
+    // Checked here, with the flag, before k folds of n rows are allocated.
+    if a.folds < 2 || a.folds > table.len() {
+        anyhow::bail!(
+            "--folds {}: {} has {} data rows; use --folds 2 to {}",
+            a.folds,
+            table.file(),
+            table.len(),
+            table.len().max(2)
+        );
+    }
     let params = settings.params(table.len())?;
 
     let gap = a.gap.unwrap_or(0);

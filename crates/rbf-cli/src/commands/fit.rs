@@ -15,6 +15,7 @@ use tabular::{Table, TableError};
 use super::args::FitArgs;
 
 pub fn run(a: FitArgs) -> Result<()> {
+    outfile::guard_file("--out", &a.out, &[("--data", Some(&a.data.data))])?;
     let table = Table::read(&a.data.data)?;
     let target = a.data.target.clone();
     let y_all = data::numeric_matrix(&table, std::slice::from_ref(&target))?;

@@ -12,7 +12,19 @@ use tabular::Table;
 use super::args::PredictArgs;
 
 pub fn run(a: PredictArgs) -> Result<()> {
+    outfile::guard_file(
+        "--out",
+        &a.out,
+        &[("--model", Some(&a.model)), ("--data", Some(&a.data))],
+    )?;
     let saved = SavedModel::load(&a.model)?;
+    if saved.model.n_linear() > 0 {
+        anyhow::bail!(
+            "{}: the model has {} linear (forced) regressor columns, which `rbf predict` cannot supply from a CSV; models from `rbf fit` have none: refit with `rbf fit`, or evaluate this model with the library's predict_with_linear",
+            a.model.display(),
+            saved.model.n_linear()
+        );
+    }
     let table = Table::read(&a.data)?;
     let x = data::numeric_matrix(&table, &saved.inputs).with_context(|| {
         format!(

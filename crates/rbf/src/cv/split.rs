@@ -71,6 +71,15 @@ pub enum SplitError {
         /// Folds asked for.
         k: usize,
     },
+    /// More folds than samples: some fold would validate on nothing. Checked
+    /// before any fold is built, since k folds of n rows take k·n indices.
+    #[error("{k} folds asked for but there are only {n} samples; use 2 to {n} folds")]
+    MoreFoldsThanSamples {
+        /// Folds asked for.
+        k: usize,
+        /// Samples.
+        n: usize,
+    },
     /// A fold would have an empty training or validation set.
     #[error("fold {fold} of {n} samples has {train} training and {validation} validation rows")]
     EmptyFold {
@@ -110,6 +119,9 @@ impl Split {
         };
         if k < 2 {
             return Err(SplitError::TooFewFolds { k });
+        }
+        if k > n {
+            return Err(SplitError::MoreFoldsThanSamples { k, n });
         }
         let folds: Vec<Fold> = match *self {
             Split::KFold { seed, .. } => {
@@ -245,10 +257,22 @@ mod tests {
             Split::Interleaved { k: 0 }.folds(5),
             Err(SplitError::TooFewFolds { k: 0 })
         );
-        assert!(matches!(
+        assert_eq!(
             Split::KFold { k: 6, seed: 0 }.folds(5),
-            Err(SplitError::EmptyFold { .. })
-        ));
+            Err(SplitError::MoreFoldsThanSamples { k: 6, n: 5 })
+        );
+        // Refused before k folds are allocated (this aborted before).
+        assert_eq!(
+            Split::Blocked {
+                k: 1_000_000_000,
+                gap: 0
+            }
+            .folds(5),
+            Err(SplitError::MoreFoldsThanSamples {
+                k: 1_000_000_000,
+                n: 5
+            })
+        );
         assert_eq!(
             holdout(10, 1.0, 0),
             Err(SplitError::Fraction { fraction: 1.0 })
