@@ -452,3 +452,61 @@ fn ranks_the_known_true_terms_first() {
         );
     }
 }
+
+/// Values whose squares overflow (≥ 1e155) used to make every score NaN and
+/// the selection loop spin for ever; now each is a typed error, at once.
+#[test]
+fn overflowing_columns_end_selection_with_an_error() {
+    let n = 40;
+    let none = Mat::<f64>::zeros(n, 0);
+    let cand = random(n, 10, 7);
+    let mut y = Mat::from_fn(n, 1, |i, _| cand[(i, 2)]);
+    y[(5, 0)] = 1e155;
+    assert!(matches!(
+        forward_select(
+            cand.as_ref(),
+            none.as_ref(),
+            y.as_ref(),
+            &OlsOptions::new(5)
+        ),
+        Err(OlsError::Overflow {
+            what: "targets",
+            ..
+        })
+    ));
+    let y = Mat::from_fn(n, 1, |i, _| cand[(i, 2)]);
+    let mut big = cand.clone();
+    big[(9, 4)] = 1e160;
+    assert!(matches!(
+        forward_select(big.as_ref(), none.as_ref(), y.as_ref(), &OlsOptions::new(5)),
+        Err(OlsError::Overflow {
+            what: "candidates",
+            ..
+        })
+    ));
+    let mut forced = Mat::<f64>::ones(n, 1);
+    forced[(0, 0)] = -1e200;
+    assert!(matches!(
+        forward_select(
+            cand.as_ref(),
+            forced.as_ref(),
+            y.as_ref(),
+            &OlsOptions::new(5)
+        ),
+        Err(OlsError::Overflow {
+            what: "forced columns",
+            ..
+        })
+    ));
+    // Large values whose ERR products stay finite still select normally.
+    let scaled = Mat::from_fn(n, 10, |i, j| cand[(i, j)] * 1e50);
+    let ys = Mat::from_fn(n, 1, |i, _| scaled[(i, 2)]);
+    let path = forward_select(
+        scaled.as_ref(),
+        none.as_ref(),
+        ys.as_ref(),
+        &OlsOptions::new(3),
+    )
+    .unwrap();
+    assert_eq!(path.picks()[0].index, 2);
+}

@@ -362,16 +362,27 @@ impl Engine<'_, '_> {
     }
 
     /// The next pick: best estimate, confirmed on exact ERRs among near-ties.
-    fn choose(&mut self) -> Option<Exact> {
+    /// Every turn of the loop either returns or retires at least one live
+    /// candidate (the best one is always a contender), so it ends; a
+    /// non-finite score is an error, never compared.
+    fn choose(&mut self) -> Result<Option<Exact>, OlsError> {
         loop {
             let live = self.live();
+            if let Some(&j) = live.iter().find(|&&j| !self.err[j].is_finite()) {
+                return Err(OlsError::Overflow {
+                    what: "candidates",
+                    value: self.err[j],
+                });
+            }
             let mut best: Option<usize> = None;
             for &j in &live {
                 if best.is_none_or(|b| self.err[j] > self.err[b]) {
                     best = Some(j);
                 }
             }
-            let best = best?;
+            let Some(best) = best else {
+                return Ok(None);
+            };
             let threshold = self.err[best] * (1.0 - TIE);
             let contenders: Vec<usize> = live
                 .into_iter()
@@ -379,6 +390,12 @@ impl Engine<'_, '_> {
                 .collect();
             let mut chosen: Option<Exact> = None;
             for e in self.exact(&contenders) {
+                if !(e.err.is_finite() && e.norm2.is_finite()) {
+                    return Err(OlsError::Overflow {
+                        what: "candidates",
+                        value: if e.err.is_finite() { e.norm2 } else { e.err },
+                    });
+                }
                 if !(e.norm2 > self.options.collinearity_tol * self.cands[e.j].orig2
                     && e.norm2 > 0.0)
                 {
@@ -392,7 +409,7 @@ impl Engine<'_, '_> {
                 }
             }
             if chosen.is_some() {
-                return chosen;
+                return Ok(chosen);
             }
         }
     }
@@ -469,6 +486,12 @@ fn run(
     }
     let resid = targets.to_owned();
     let target_energy: f64 = (0..q).map(|o| resid.col(o).squared_norm_l2()).sum();
+    if !target_energy.is_finite() {
+        return Err(OlsError::Overflow {
+            what: "targets",
+            value: target_energy,
+        });
+    }
     if target_energy == 0.0 {
         return Err(OlsError::ZeroTarget);
     }
@@ -496,6 +519,12 @@ fn run(
     for k in 0..p {
         let mut w = forced.subcols(k, 1).to_owned();
         let orig2 = dot(w.col_as_slice(0), w.col_as_slice(0));
+        if !orig2.is_finite() {
+            return Err(OlsError::Overflow {
+                what: "forced columns",
+                value: orig2,
+            });
+        }
         let c = eng.basis.project_out(w.as_mut(), 0, options.par);
         let coefs: Vec<f64> = (0..c.nrows()).map(|i| c[(i, 0)]).collect();
         let w = w.col_as_slice(0).to_vec();
@@ -514,6 +543,12 @@ fn run(
             for (k, v) in chunk.iter_mut().enumerate() {
                 *v = p.col(start + k).squared_norm_l2();
             }
+        });
+    }
+    if let Some(&e) = norms.iter().find(|e| !e.is_finite()) {
+        return Err(OlsError::Overflow {
+            what: "candidates",
+            value: e,
         });
     }
     eng.cands = norms
@@ -545,7 +580,7 @@ fn run(
         if picks.len() >= max_picks {
             break StopReason::MaxTerms;
         }
-        let Some(e) = eng.choose() else {
+        let Some(e) = eng.choose()? else {
             break StopReason::Exhausted;
         };
         let j = e.j;

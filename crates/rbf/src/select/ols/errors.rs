@@ -30,6 +30,19 @@ pub enum OlsError {
         /// Index of the forced column.
         column: usize,
     },
+    /// The columns overflow `f64`: a column energy or an error-reduction
+    /// ratio (a product of squares) is infinite or NaN. Entries beyond about
+    /// 1e154 overflow the energies and beyond about 1e75 the ratios.
+    /// Selection stops rather than compare NaN scores.
+    #[error(
+        "the {what} overflow f64 (a sum of squares or an error-reduction ratio is {value}): entries beyond about 1e75 in magnitude cannot be scored; scale the data"
+    )]
+    Overflow {
+        /// `targets`, `candidates` or `forced columns`.
+        what: &'static str,
+        /// The non-finite value met.
+        value: f64,
+    },
     /// An option out of range.
     #[error("invalid OLS option {option} = {value}")]
     InvalidOption {
