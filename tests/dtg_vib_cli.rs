@@ -688,3 +688,45 @@ fn scenarios_out_of_physical_range_are_refused() {
         );
     }
 }
+
+/// Number-shaped hostile values: each is a one-line error naming where it
+/// is (file:line:column, or the flag with its valid range), within seconds.
+/// These used to hang selection (NaN scores), or save models of NaN.
+#[test]
+fn hostile_numbers_are_refused_where_they_enter() {
+    let s = sim();
+    let text = std::fs::read_to_string(s.join("record.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let az = header.iter().position(|h| *h == "az").unwrap();
+    let mut cells: Vec<String> = lines[300].split(',').map(str::to_string).collect();
+    cells[az] = "1e308".into();
+    lines[300] = cells.join(",");
+    let big = dir().join("big-cell.csv");
+    std::fs::write(&big, lines.join("\n") + "\n").unwrap();
+    let err = fit_refuses(big.to_str().unwrap(), &[]);
+    assert!(
+        err.contains(&format!("big-cell.csv:301:{}", az + 1)) && err.contains("1e150"),
+        "{err}"
+    );
+    let data = s.join("record.csv");
+    let d = data.to_str().unwrap();
+    for (args, needle) in [
+        (&["--table-rate", "1e200,0,0"][..], "±10000 deg/s"),
+        (&["--table-rate", "1e160,0,0"][..], "±10000 deg/s"),
+        (&["--table-rate", "nan,0,0"][..], "±10000 deg/s"),
+        (&["--earth-rate", "91"][..], "from -90 to 90"),
+        (&["--earth-rate", "NaN"][..], "from -90 to 90"),
+    ] {
+        let mut all = vec!["fit", "--data", d];
+        all.extend_from_slice(args);
+        all.extend(["--out", "/dev/null"]);
+        let out = run(&all);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(args[0]) && err.contains(needle),
+            "{args:?}: {err}"
+        );
+    }
+}

@@ -166,7 +166,7 @@ struct FitArgs {
     #[arg(long = "input-cutoff")]
     input_cutoff: Option<f64>,
     /// Rate reference: Earth rate at this latitude, deg (cluster x north, z up).
-    #[arg(long = "earth-rate", conflicts_with = "table_rate")]
+    #[arg(long = "earth-rate", conflicts_with = "table_rate", value_parser = parse_latitude)]
     earth_rate: Option<f64>,
     /// Rate reference: a known table rate about cluster x,y,z, deg/s (WX,WY,WZ).
     // "-0.01,0,0" is not one number, so allow_negative_numbers does not cover it.
@@ -593,8 +593,28 @@ fn parse_rate(s: &str) -> Result<[f64; 3], String> {
         .split(',')
         .map(|c| c.trim().parse::<f64>().map_err(|e| format!("'{c}': {e}")))
         .collect::<Result<_, _>>()?;
+    if v.iter()
+        .any(|w| !(w.is_finite() && w.abs() <= MAX_TABLE_RATE_DEG_S))
+    {
+        return Err(format!(
+            "each rate must be finite and within ±{MAX_TABLE_RATE_DEG_S} deg/s"
+        ));
+    }
     v.try_into()
         .map_err(|v: Vec<f64>| format!("expected WX,WY,WZ (three numbers, deg/s), got {}", v.len()))
+}
+
+/// The fastest table rate `--table-rate` takes, deg/s: rate tables turn at
+/// up to a few thousand deg/s; beyond, the rate reference only overflows.
+const MAX_TABLE_RATE_DEG_S: f64 = 10_000.0;
+
+fn parse_latitude(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() <= 90.0 => Ok(v),
+        _ => Err(format!(
+            "'{s}': a latitude must be a number from -90 to 90 (deg)"
+        )),
+    }
 }
 
 fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {

@@ -81,6 +81,18 @@ pub enum TableError {
         name: String,
         value: String,
     },
+    /// A cell beyond [`MAX_MAGNITUDE`]: its square, or a sum of such
+    /// squares, would overflow `f64` in any fit.
+    #[error(
+        "{file}:{line}:{column}: column '{name}': '{value}' is beyond ±1e150, where squares overflow f64; rescale the column"
+    )]
+    TooLarge {
+        file: String,
+        line: u64,
+        column: usize,
+        name: String,
+        value: String,
+    },
     /// Columns handed to [`write_csv`] differ in length.
     #[error("{path}: column '{name}' has {len} values, expected {expected}")]
     RaggedColumns {
@@ -90,6 +102,11 @@ pub enum TableError {
         expected: usize,
     },
 }
+
+/// The largest magnitude a numeric cell may hold. Squares of larger values,
+/// and sums of a few million such squares, overflow `f64` (1.8e308) in every
+/// fit and filter downstream; no measurement comes near it.
+pub const MAX_MAGNITUDE: f64 = 1e150;
 
 /// A CSV table held as text, with the source line of every row.
 ///
@@ -312,7 +329,17 @@ impl Table {
             )
         };
         match cell.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
+            Ok(v) if v.is_finite() && v.abs() <= MAX_MAGNITUDE => Ok(v),
+            Ok(v) if v.is_finite() => {
+                let (file, line, column, name, value) = located(cell);
+                Err(TableError::TooLarge {
+                    file,
+                    line,
+                    column,
+                    name,
+                    value,
+                })
+            }
             Ok(_) => {
                 let (file, line, column, name, value) = located(cell);
                 Err(TableError::NotFinite {
