@@ -756,3 +756,65 @@ fn edited_models_are_refused_not_panicked_on() {
         &["linear", "rbf fit"],
     );
 }
+
+/// Cells whose squares would overflow are refused at the file, line and
+/// column (a 1e308 target used to save a model of NaN with exit 0; inputs of
+/// 1e155 gave NaN predictions).
+#[test]
+fn overflowing_cells_are_refused_with_their_position() {
+    let dir = scratch("huge");
+    let text = smooth_csv(40, None);
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let mut cells: Vec<String> = lines[5].split(',').map(str::to_string).collect();
+    let last = cells.len() - 1;
+    cells[last] = "1e308".into();
+    lines[5] = cells.join(",");
+    let data = write(&dir, "h.csv", &(lines.join("\n") + "\n"));
+    let out = dir.join("m.json");
+    fails_with(
+        &rbf(&[
+            "fit",
+            "--data",
+            &data,
+            "--target",
+            "y",
+            "--centers",
+            "kmeans",
+            "--max-centers",
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]),
+        &["h.csv:6:", "1e150"],
+    );
+    assert!(!out.exists());
+}
+
+/// OLS over every training row as a candidate needs an N × N kernel matrix:
+/// on 200,000 rows (320 GB) it is refused before the allocation, with the
+/// `--candidates` that fits (it used to abort in the allocator).
+#[test]
+fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
+    let dir = scratch("memory");
+    let mut text = String::from("a,b,y\n");
+    for i in 0..200_000u64 {
+        let a = (i % 997) as f64 / 997.0;
+        let b = (i % 1009) as f64 / 1009.0;
+        text.push_str(&format!("{a},{b},{}\n", (3.0 * a).sin() + b));
+    }
+    let data = write(&dir, "big.csv", &text);
+    let out = dir.join("m.json");
+    let run = rbf(&[
+        "fit",
+        "--data",
+        &data,
+        "--target",
+        "y",
+        "--centers",
+        "ols",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(&run, &["GiB", "use --candidates"]);
+    assert!(!out.exists());
+}

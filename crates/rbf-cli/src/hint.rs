@@ -30,6 +30,10 @@ pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
             "use --ridge 1e-8".to_string()
         }),
         RbfError::FewerRowsThanCentres { rows, .. } => Some(format!("use --max-centers ≤ {rows}")),
+        RbfError::Memory(m) => Some(format!(
+            "use --candidates {} (OLS picks centres from a random subsample of the training rows)",
+            m.max_columns.max(1)
+        )),
         // The library's message already says "use a fixed width": say how.
         RbfError::Width(WidthError::Degenerate) => Some("give it with --width BETA".to_string()),
         RbfError::Width(WidthError::TooFewCentres { .. }) => {

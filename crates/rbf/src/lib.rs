@@ -49,6 +49,7 @@ pub mod cv;
 pub mod design;
 pub mod estimate;
 pub mod kernel;
+pub mod memory;
 pub mod metrics;
 pub mod model;
 pub mod neighbours;

@@ -222,6 +222,12 @@ impl OlsStage {
                 (design.standardised(c.as_ref()), (0..c.nrows()).collect())
             }
         };
+        crate::memory::check_matrix(
+            n,
+            cands.nrows(),
+            crate::memory::available_bytes(),
+            "OLS candidate kernel matrix",
+        )?;
         report(progress, Stage::Widths, 0, 1);
         let widths = params.width.widths(cands.as_ref(), params.par)?;
         report(progress, Stage::KernelMatrix, 0, 1);

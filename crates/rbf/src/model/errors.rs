@@ -118,6 +118,9 @@ pub enum RbfError {
     /// Invalid hyperparameters.
     #[error("invalid hyperparameters: {0}")]
     InvalidParams(#[from] RbfParamsError),
+    /// A matrix the fit needs would not fit in memory.
+    #[error(transparent)]
+    Memory(#[from] crate::memory::MemoryError),
     /// A NaN or infinite input.
     #[error("non-finite value in {matrix} at row {row}, column {col}")]
     NonFinite {
