@@ -730,3 +730,39 @@ fn hostile_numbers_are_refused_where_they_enter() {
         );
     }
 }
+
+/// A model whose filter cut-off is edited to 1e-9 Hz is refused with the
+/// valid range (diagnose used to try to allocate 32 TB and abort).
+#[test]
+fn a_model_with_an_absurd_cutoff_is_refused() {
+    let s = sim();
+    let (d, c) = (s.join("record.csv"), s.join("calibration.json"));
+    let model = dir().join("cutoff-model.json");
+    ok(&[
+        "fit",
+        "--data",
+        d.to_str().unwrap(),
+        "--calib",
+        c.to_str().unwrap(),
+        "--max-centers",
+        "5",
+        "--out",
+        model.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&model).unwrap();
+    assert!(text.contains("\"cutoff_hz\": 5.0"));
+    let edited = dir().join("cutoff-edited.json");
+    std::fs::write(
+        &edited,
+        text.replacen("\"cutoff_hz\": 5.0", "\"cutoff_hz\": 1e-9", 1),
+    )
+    .unwrap();
+    let err = fails(&[
+        "diagnose",
+        "--model",
+        edited.to_str().unwrap(),
+        "--data",
+        d.to_str().unwrap(),
+    ]);
+    assert!(err.contains("0.005 Hz"), "{err}");
+}

@@ -73,6 +73,9 @@ pub struct LowPass {
 /// and its transients outgrow short records.
 pub const MAX_ORDER: usize = 12;
 
+/// The lowest cut-off, as a fraction of the sample rate (0.005 Hz at 50 Hz).
+pub const MIN_CUTOFF_PER_RATE: f64 = 1e-4;
+
 impl LowPass {
     /// Designs an `order`-th Butterworth low-pass with −3 dB at `cutoff_hz`
     /// for data sampled at `sample_rate_hz`, by the bilinear transform with
@@ -97,6 +100,10 @@ impl LowPass {
                 cutoff_hz,
                 nyquist_hz: nyquist,
             });
+        }
+        let min_hz = sample_rate_hz * MIN_CUTOFF_PER_RATE;
+        if cutoff_hz < min_hz {
+            return Err(FilterError::CutoffTooLow { cutoff_hz, min_hz });
         }
         let fs2 = 2.0 * sample_rate_hz;
         // Pre-warped analog cut-off (rad/s).

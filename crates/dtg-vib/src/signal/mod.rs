@@ -17,6 +17,15 @@ pub enum FilterError {
         "cut-off {cutoff_hz} Hz must lie strictly between 0 and the Nyquist frequency {nyquist_hz} Hz"
     )]
     Cutoff { cutoff_hz: f64, nyquist_hz: f64 },
+    /// The cut-off is below a ten-thousandth of the sample rate: a filter
+    /// that slow has a time constant of tens of thousands of samples, longer
+    /// than any test record, and the whiteness test's reference would need
+    /// an impulse response of that length (a model edited to 1e-9 Hz asked
+    /// for 32 TB).
+    #[error(
+        "cut-off {cutoff_hz} Hz is below {min_hz} Hz, a ten-thousandth of the sample rate: use a cut-off from {min_hz} Hz up to the Nyquist frequency"
+    )]
+    CutoffTooLow { cutoff_hz: f64, min_hz: f64 },
     /// The sample rate is not a positive number.
     #[error("sample rate {sample_rate_hz} Hz must be a positive number")]
     SampleRate { sample_rate_hz: f64 },
