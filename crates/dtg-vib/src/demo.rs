@@ -31,6 +31,24 @@ pub enum DemoStep {
     ReportFinal,
 }
 
+impl std::fmt::Display for DemoStep {
+    /// What the user reads while the step runs.
+    ///
+    /// ```
+    /// assert_eq!(dtg_vib::demo::DemoStep::FitBaseline.to_string(), "fitting the baseline model");
+    /// ```
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            DemoStep::Simulate => "simulating the vibration test",
+            DemoStep::FitBaseline => "fitting the baseline model",
+            DemoStep::ReportBaseline => "writing the baseline report",
+            DemoStep::Diagnose => "diagnosing the baseline",
+            DemoStep::Refit => "refitting with the suggested effects",
+            DemoStep::ReportFinal => "writing the final report",
+        })
+    }
+}
+
 /// What the demo found and where it wrote it.
 #[derive(Debug, Clone)]
 pub struct DemoSummary {

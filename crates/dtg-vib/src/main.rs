@@ -460,7 +460,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Demo { out } => {
             outfile::guard_dir("--out", &out, &[], &[])?;
-            let summary = dtg_vib::demo::run(&out, &|step| progress.say(format!("{step:?}")))?;
+            let summary = dtg_vib::demo::run(&out, &|step| progress.say(step.to_string()))?;
             drop(progress);
             print_demo(&summary);
         }

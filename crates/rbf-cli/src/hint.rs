@@ -5,6 +5,11 @@
 
 use rbf::{RbfError, SolveError, WidthError};
 
+/// The largest ridge a hint proposes: the weights' penalty then matches the
+/// kernel columns' own scale (Gaussian values ≤ 1), beyond which the fit
+/// stops following the data.
+const MAX_SUGGESTED_RIDGE: f64 = 1.0;
+
 /// The remedy for `err`, if a flag fixes it. `ridge` is the ridge the fit used.
 ///
 /// ```
@@ -21,14 +26,22 @@ pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
             SolveError::IllConditioned { .. }
             | SolveError::RankDeficient { .. }
             | SolveError::NotPositiveDefinite { .. },
-        ) => Some(if ridge > 0.0 {
-            format!(
-                "use a larger --ridge (e.g. {:e})",
-                (ridge * 100.0).max(1e-8)
-            )
-        } else {
-            "use --ridge 1e-8".to_string()
-        }),
+        ) => {
+            if ridge >= MAX_SUGGESTED_RIDGE {
+                // A larger ridge would only swamp the data: the cause is elsewhere.
+                Some("use fewer centres (--max-centers) or a smaller --width".to_string())
+            } else if ridge > 0.0 {
+                Some(format!(
+                    "use a larger --ridge (e.g. {:e})",
+                    (ridge * 100.0).clamp(1e-8, MAX_SUGGESTED_RIDGE)
+                ))
+            } else {
+                Some("use --ridge 1e-8".to_string())
+            }
+        }
+        RbfError::FewerRowsThanCentres { rows: 0, .. } => {
+            Some("the training set is empty: check the split".to_string())
+        }
         RbfError::FewerRowsThanCentres { rows, .. } => Some(format!("use --max-centers ≤ {rows}")),
         RbfError::Memory(m) => Some(format!(
             "use --candidates {} (OLS picks centres from a random subsample of the training rows)",
@@ -46,5 +59,27 @@ pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
             Some("use --ridge 1e-8 or add ridges to --ridges".to_string())
         }
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hints propose only values that work: no "--max-centers ≤ 0", no
+    /// "--ridge 1e302".
+    #[test]
+    fn hints_never_propose_invalid_values() {
+        let e = RbfError::FewerRowsThanCentres {
+            rows: 0,
+            centres: 5,
+        };
+        assert!(!fix_for(&e, 0.0).unwrap().contains("≤ 0"));
+        let e = RbfError::Solve(SolveError::NotPositiveDefinite { pivot: 1 });
+        assert!(!fix_for(&e, 1e300).unwrap().contains("--ridge"));
+        assert_eq!(
+            fix_for(&e, 0.5).as_deref(),
+            Some("use a larger --ridge (e.g. 1e0)")
+        );
     }
 }
