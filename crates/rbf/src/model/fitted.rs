@@ -339,6 +339,103 @@ impl RbfModel {
         self.scaling.as_ref()
     }
 
+    /// The standardised copy of `x` if the model standardises (`None`: the
+    /// kernel sees `x` as it is, and nothing is copied).
+    ///
+    /// # Panics
+    /// If `x` does not have d columns.
+    #[track_caller]
+    fn standardised(&self, x: MatRef<'_, f64>) -> Option<Mat<f64>> {
+        assert_eq!(
+            x.ncols(),
+            self.dim,
+            "x has {} columns but the model has {} inputs",
+            x.ncols(),
+            self.dim
+        );
+        self.scaling.as_ref().map(|s| s.apply(x))
+    }
+
+    /// The model's basis evaluated at `x` (n × d): a column of ones if the model
+    /// has a bias, the tail's d inputs if it has one, then one column per centre.
+    /// Every network this model can be (with these centres and widths) is a
+    /// linear combination of these columns, which is what a semi-parametric
+    /// fit needs to project other series on the same function space.
+    ///
+    /// # Panics
+    /// If `x` does not have d columns.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let x = faer::mat![[0.5], [1.5]];
+    /// let f = m.features(x.as_ref());
+    /// assert_eq!(f.ncols(), 1 + m.n_centres());
+    /// // The prediction is the features times [bias; weights].
+    /// let mut w = faer::Mat::zeros(f.ncols(), 1);
+    /// w[(0, 0)] = m.bias().unwrap()[0];
+    /// for k in 0..m.n_centres() { w[(k + 1, 0)] = m.weights()[(k, 0)]; }
+    /// assert!((&f * &w - m.predict(x.as_ref())).norm_max() < 1e-12);
+    /// ```
+    #[track_caller]
+    pub fn features(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let standardised = self.standardised(x);
+        let xs = standardised.as_ref().map_or(x, Mat::as_ref);
+        let lead = usize::from(self.bias.is_some()) + self.tail.as_ref().map_or(0, |_| self.dim);
+        let k = self.n_centres();
+        let mut out = Mat::zeros(x.nrows(), lead + k);
+        let mut col = 0;
+        if self.bias.is_some() {
+            out.as_mut().col_mut(0).fill(1.0);
+            col = 1;
+        }
+        if self.tail.is_some() {
+            out.as_mut().subcols_mut(col, self.dim).copy_from(xs);
+        }
+        kernel_matrix_into(
+            xs,
+            self.centres.as_ref(),
+            self.kernel,
+            &self.widths,
+            out.as_mut().subcols_mut(lead, k),
+            Par::Seq,
+        );
+        out
+    }
+
+    /// This model with exogenous linear regressors of fixed coefficients θ
+    /// (r × q) added to its output: a network fitted to y − zθ becomes the
+    /// model of y. The network's own part is unchanged.
+    ///
+    /// # Panics
+    /// If the model already has linear regressors, or θ does not have q columns.
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// let theta = faer::mat![[2.0]];
+    /// let with = m.clone().with_linear(theta.as_ref());
+    /// let x = faer::mat![[0.5]];
+    /// let z = faer::mat![[3.0]];
+    /// let y = with.predict_with_linear(x.as_ref(), z.as_ref());
+    /// assert!((y[(0, 0)] - m.predict(x.as_ref())[(0, 0)] - 6.0).abs() < 1e-12);
+    /// ```
+    #[track_caller]
+    pub fn with_linear(mut self, theta: MatRef<'_, f64>) -> Self {
+        assert_eq!(
+            self.n_linear(),
+            0,
+            "the model already has linear regressors"
+        );
+        assert_eq!(
+            theta.ncols(),
+            self.n_outputs,
+            "θ has {} columns for {} outputs",
+            theta.ncols(),
+            self.n_outputs
+        );
+        self.linear = theta.to_owned();
+        self
+    }
+
     /// Predictions (n × q) for inputs `x` (n × d), with faer's global parallelism.
     /// Non-finite inputs give non-finite predictions.
     ///
@@ -424,13 +521,6 @@ impl RbfModel {
     fn predict_impl(&self, x: MatRef<'_, f64>, z: MatRef<'_, f64>, out: MatMut<'_, f64>, par: Par) {
         let (n, q) = (x.nrows(), self.n_outputs);
         assert_eq!(
-            x.ncols(),
-            self.dim,
-            "x has {} columns but the model has {} inputs",
-            x.ncols(),
-            self.dim
-        );
-        assert_eq!(
             z.ncols(),
             self.n_linear(),
             "z has {} columns but the model has {} linear regressors",
@@ -440,14 +530,8 @@ impl RbfModel {
         assert_eq!(z.nrows(), n, "z has {} rows but x has {}", z.nrows(), n);
         assert_eq!((out.nrows(), out.ncols()), (n, q), "output must be n × q");
         let mut out = out;
-        let scaled;
-        let xs = match &self.scaling {
-            Some(s) => {
-                scaled = s.apply(x);
-                scaled.as_ref()
-            }
-            None => x,
-        };
+        let standardised = self.standardised(x);
+        let xs = standardised.as_ref().map_or(x, Mat::as_ref);
         for o in 0..q {
             let b = self.bias.as_ref().map_or(0.0, |b| b[o]);
             out.as_mut().col_mut(o).fill(b);
