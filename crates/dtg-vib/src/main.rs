@@ -6,6 +6,7 @@ use clap::{Args, Parser, Subcommand};
 use dtg_vib::apply::{Applied, write_residues};
 use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
 use dtg_vib::effects::{ChannelEffect, Effect};
+use dtg_vib::explain::ExplainStage;
 use dtg_vib::figures::{Baseline, write_diagnosis_report, write_report};
 use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit};
 use dtg_vib::model::CompensationModel;
@@ -109,13 +110,71 @@ enum Command {
         /// Write figures and index.html into this directory.
         #[arg(long)]
         report: Option<PathBuf>,
+        #[command(flatten)]
+        thresholds: Thresholds,
     },
+    /// The whole loop: fit, diagnose, add every suggested effect, refit, until nothing new is suggested.
+    #[command(allow_negative_numbers = true)]
+    Explain(Box<ExplainArgs>),
     /// The main job on a built-in default: simulate, fit, compensate, report, diagnose, refit.
     Demo {
         /// Output directory.
         #[arg(long, default_value = "demo-out")]
         out: PathBuf,
     },
+}
+
+/// When the diagnosis suggests an effect.
+#[derive(Args, Clone, Copy)]
+struct Thresholds {
+    /// False-alarm level of a record: the chance, on a record with nothing
+    /// missing, that any channel gets a suggestion (Bonferroni over channels and candidates).
+    #[arg(long, default_value_t = 0.01, value_parser = parse_alpha)]
+    alpha: f64,
+    /// Worth threshold: suggest an effect only if adding it cuts the channel's residual rms by at least this fraction.
+    #[arg(long = "min-gain", default_value_t = 0.1, value_parser = parse_gain)]
+    min_gain: f64,
+}
+
+impl Thresholds {
+    fn options(self) -> DiagnoseOptions {
+        let mut o = DiagnoseOptions::default();
+        o.rank.alpha = self.alpha;
+        o.rank.min_rms_reduction = self.min_gain;
+        o
+    }
+}
+
+fn parse_alpha(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
+        _ => Err(format!(
+            "'{s}': a false-alarm level must lie strictly between 0 and 1 (e.g. 0.01)"
+        )),
+    }
+}
+
+fn parse_gain(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..1.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{s}': a gain is a fraction of the rms from 0 to below 1 (e.g. 0.1 for 10%)"
+        )),
+    }
+}
+
+#[derive(Args)]
+struct ExplainArgs {
+    #[command(flatten)]
+    fit: FitArgs,
+    #[command(flatten)]
+    thresholds: Thresholds,
+    /// Most fits to make (the first one included).
+    #[arg(long = "max-rounds", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=50))]
+    max_rounds: u64,
+    /// Write the final model's diagnosis figures and index.html into this directory.
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -258,6 +317,12 @@ impl Progress {
         pb.enable_steady_tick(Duration::from_millis(120));
         Self(Some(pb))
     }
+    /// Clears the spinner before the command prints its results.
+    fn clear(&self) {
+        if let Some(pb) = &self.0 {
+            pb.finish_and_clear();
+        }
+    }
     fn say(&self, msg: impl Into<String>) {
         if let Some(pb) = &self.0 {
             pb.set_message(msg.into());
@@ -314,6 +379,7 @@ fn run(cli: Cli) -> Result<()> {
             println!("wrote {}", out.join("record.csv").display());
         }
         Command::Fit(args) => fit_command(*args, &progress)?,
+        Command::Explain(args) => explain_command(*args, &progress)?,
         Command::Compensate { model, data, out } => {
             outfile::guard_file(
                 "--out",
@@ -408,6 +474,7 @@ fn run(cli: Cli) -> Result<()> {
             data,
             json,
             report,
+            thresholds,
         } => {
             if let Some(dir) = &report {
                 outfile::guard_dir(
@@ -419,8 +486,8 @@ fn run(cli: Cli) -> Result<()> {
             }
             let m = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
-            progress.say("diagnosing");
-            let options = DiagnoseOptions::default();
+            progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
+            let options = thresholds.options();
             let d = diagnose(&m, &record, &options)?;
             let page = match &report {
                 Some(dir) => {
@@ -468,14 +535,8 @@ fn run(cli: Cli) -> Result<()> {
     Ok(())
 }
 
-fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
-    outfile::guard_file(
-        "--out",
-        &a.out,
-        &[("--data", Some(&a.data)), ("--calib", a.calib.as_deref())],
-    )?;
-    let record = Record::read_csv(&a.data)?;
-    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
+/// The fit options the flags say.
+fn fit_options(a: &FitArgs) -> Result<FitOptions> {
     let effects = Effect::parse_list(&a.effects.join(","))?;
     let add = a
         .add_effect
@@ -506,7 +567,7 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         (None, Some(w)) => RateReference::Table { rate_deg_s: *w },
         (None, None) => RateReference::None,
     };
-    let options = FitOptions {
+    Ok(FitOptions {
         preprocess: Preprocess {
             filter,
             input_filter,
@@ -522,7 +583,18 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         split,
         seed: a.seed,
         ..FitOptions::default()
-    };
+    })
+}
+
+fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
+    outfile::guard_file(
+        "--out",
+        &a.out,
+        &[("--data", Some(&a.data)), ("--calib", a.calib.as_deref())],
+    )?;
+    let record = Record::read_csv(&a.data)?;
+    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
+    let options = fit_options(&a)?;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let start = std::time::Instant::now();
     let model = fit(
@@ -539,49 +611,251 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
     )?;
     let fit_seconds = start.elapsed().as_secs_f64();
     model.save(&a.out)?;
+    progress.clear();
     if a.json {
-        let channels: Vec<serde_json::Value> = model
+        println!(
+            "{}",
+            serde_json::to_string(&FitReport::new(&model, fit_seconds))?
+        );
+    } else {
+        print_fit(&model);
+        println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
+    }
+    Ok(())
+}
+
+fn print_fit(model: &CompensationModel) {
+    println!(
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error)"
+    );
+    for c in model.channels() {
+        let s = c.scores();
+        let e: Vec<String> = c
+            .effects()
+            .iter()
+            .enumerate()
+            .map(|(j, e)| match c.coefficients() {
+                Some(k) => format!(
+                    "{} {:.4} ± {:.4} {}",
+                    e.id(),
+                    k[j].value,
+                    k[j].se,
+                    k[j].unit
+                ),
+                None => e.id(),
+            })
+            .collect();
+        println!(
+            "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
+            c.channel().name(),
+            c.n_centres(),
+            s.train_rms,
+            s.val_rms,
+            if e.is_empty() {
+                "—".into()
+            } else {
+                e.join(", ")
+            }
+        );
+    }
+}
+
+/// `fit --json`.
+#[derive(serde::Serialize)]
+struct FitReport {
+    channels: Vec<ChannelReport>,
+    split: String,
+    fit_seconds: f64,
+}
+
+#[derive(serde::Serialize)]
+struct ChannelReport {
+    channel: nav_sensors::geometry::Channel,
+    effects: Vec<String>,
+    n_centers: usize,
+    train_rms: f64,
+    val_rms: f64,
+    val_rms_bias_only: f64,
+    val_fit_percent: f64,
+    width: f64,
+    bias: f64,
+    effect_coefficients: std::collections::BTreeMap<String, CoefficientReport>,
+}
+
+#[derive(serde::Serialize)]
+struct CoefficientReport {
+    value: f64,
+    unit: String,
+    /// Absent for a model file that predates standard errors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    se: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ci95: Option<[f64; 2]>,
+}
+
+impl FitReport {
+    fn new(model: &CompensationModel, fit_seconds: f64) -> Self {
+        let channels = model
             .channels()
             .iter()
             .map(|c| {
                 let s = c.scores();
-                serde_json::json!({
-                    "channel": c.channel(),
-                    "effects": c.effects().iter().map(|e| e.id()).collect::<Vec<_>>(),
-                    "n_centers": c.n_centres(),
-                    "train_rms": s.train_rms,
-                    "val_rms": s.val_rms,
-                    "val_rms_bias_only": s.val_rms_bias_only,
-                    "val_fit_percent": s.val_fit_percent,
-                    "width": c.width(),
-                    "bias": c.bias(),
-                    "effect_coefficients": c.effects().iter().zip(c.effect_coefficients()).map(|(e, v)| (e.id(), serde_json::json!({"value": v, "unit": e.unit()}))).collect::<serde_json::Map<_, _>>(),
-                })
+                let effect_coefficients = c
+                    .effects()
+                    .iter()
+                    .zip(c.effect_coefficients())
+                    .enumerate()
+                    .map(|(j, (e, v))| {
+                        let k = c.coefficients().map(|k| &k[j]);
+                        (
+                            e.id(),
+                            CoefficientReport {
+                                value: v,
+                                unit: e.unit(),
+                                se: k.map(|k| k.se),
+                                ci95: k.map(|k| k.ci95),
+                            },
+                        )
+                    })
+                    .collect();
+                ChannelReport {
+                    channel: c.channel(),
+                    effects: c.effects().iter().map(|e| e.id()).collect(),
+                    n_centers: c.n_centres(),
+                    train_rms: s.train_rms,
+                    val_rms: s.val_rms,
+                    val_rms_bias_only: s.val_rms_bias_only,
+                    val_fit_percent: s.val_fit_percent,
+                    width: c.width(),
+                    bias: c.bias(),
+                    effect_coefficients,
+                }
             })
             .collect();
+        Self {
+            channels,
+            split: model.split().to_string(),
+            fit_seconds,
+        }
+    }
+}
+
+fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
+    let f = &a.fit;
+    outfile::guard_file(
+        "--out",
+        &f.out,
+        &[("--data", Some(&f.data)), ("--calib", f.calib.as_deref())],
+    )?;
+    if let Some(dir) = &a.report {
+        outfile::guard_dir(
+            "--report",
+            dir,
+            &["index.html"],
+            &[("--data", Some(&f.data)), ("--calib", f.calib.as_deref())],
+        )?;
+    }
+    let record = Record::read_csv(&f.data)?;
+    let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
+    let options = fit_options(f)?;
+    let diagnose_options = a.thresholds.options();
+    let start = std::time::Instant::now();
+    let e = dtg_vib::explain::explain(
+        &record,
+        calibration.as_ref(),
+        &options,
+        &diagnose_options,
+        a.max_rounds as usize,
+        &|stage| match stage {
+            ExplainStage::Fitting(n) => progress.say(format!("round {n}: fitting")),
+            ExplainStage::Diagnosing(n) => progress.say(format!("round {n}: diagnosing")),
+        },
+    )?;
+    let seconds = start.elapsed().as_secs_f64();
+    e.model.save(&f.out)?;
+    let page = match &a.report {
+        Some(dir) => {
+            progress.say("drawing figures");
+            let last = &e.rounds.last().expect("at least one round").diagnosis;
+            Some(write_diagnosis_report(
+                last,
+                diagnose_options.rank.min_err(),
+                dir,
+            )?)
+        }
+        None => None,
+    };
+    progress.clear();
+    if f.json {
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            rounds: &'a [dtg_vib::explain::Round],
+            converged: bool,
+            #[serde(rename = "final")]
+            final_fit: FitReport,
+        }
         println!(
             "{}",
-            serde_json::json!({ "channels": channels, "split": model.split().to_string(), "fit_seconds": fit_seconds })
+            serde_json::to_string(&Out {
+                rounds: &e.rounds,
+                converged: e.converged,
+                final_fit: FitReport::new(&e.model, seconds),
+            })?
         );
-    } else {
-        println!("channel  centres  train rms  val rms  (deg/h)  effects");
-        for c in model.channels() {
-            let s = c.scores();
-            let e: Vec<String> = c.effects().iter().map(|e| e.id()).collect();
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
+        return Ok(());
+    }
+    for (k, r) in e.rounds.iter().enumerate() {
+        println!("round {}:", k + 1);
+        if k == 0 {
+            println!("  fitted with the given effects");
+        }
+        for x in &r.added {
             println!(
-                "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
-                c.channel().name(),
-                c.n_centres(),
-                s.train_rms,
-                s.val_rms,
-                if e.is_empty() {
-                    "—".into()
+                "  added {}={}: explains {:.0}% of what was left (p {}), coefficient {:.4} ± {:.4} {} (95% CI {:.4} to {:.4}){}",
+                x.channel,
+                x.effect,
+                100.0 * x.err,
+                dtg_vib::diagnose::p_text(x.p),
+                x.coef,
+                x.se,
+                x.unit,
+                x.ci95[0],
+                x.ci95[1],
+                if x.alternatives.is_empty() {
+                    String::new()
                 } else {
-                    e.join(", ")
+                    format!(
+                        "; this record cannot tell it from {}",
+                        x.alternatives.join(", ")
+                    )
                 }
             );
         }
-        println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
+        let rms: Vec<String> = r
+            .channels
+            .iter()
+            .map(|c| format!("{} {:.4}", c.channel, c.val_rms))
+            .collect();
+        println!("  validation rms (deg/h): {}", rms.join(", "));
+    }
+    if e.converged {
+        println!(
+            "nothing new suggested: the loop stopped after {} round(s)",
+            e.rounds.len()
+        );
+    } else {
+        println!(
+            "stopped at --max-rounds {}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)",
+            a.max_rounds
+        );
+    }
+    print_fit(&e.model);
+    println!("model: {} ({:.1} s)", f.out.display(), seconds);
+    if let Some(p) = &page {
+        println!("report: {}", p.display());
     }
     Ok(())
 }

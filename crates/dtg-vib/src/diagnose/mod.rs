@@ -6,15 +6,19 @@
 
 mod locate;
 mod rank;
+mod separate;
 
 pub use locate::{Band, Regime, RegimeBin, ResidualSpectrum, Segment, regime, segments};
 pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
+pub use separate::{Response, Separation, response, separation};
 
 use crate::effects::{Effect, TERM_EFFECTS};
 use crate::error::DtgVibError;
+use crate::fit::FitOptions;
 use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::Prepared;
-use crate::residuals::{CorrelationCheck, billings_voon, independence, whiteness};
+use crate::residuals::{CorrelationCheck, billings_voon, independence, whiteness_beyond};
+use faer::Mat;
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::{Axis, Channel};
 use nav_sensors::record::Record;
@@ -37,6 +41,9 @@ pub struct DiagnoseOptions {
     pub segments: usize,
     /// Quantile bins per acceleration axis.
     pub regime_bins: usize,
+    /// Where the residual stays correlated beyond the model's window, refit
+    /// with a three times longer window and report the validation rms it gives.
+    pub try_settings: bool,
 }
 
 impl Default for DiagnoseOptions {
@@ -47,6 +54,7 @@ impl Default for DiagnoseOptions {
             max_lag: 25,
             segments: 10,
             regime_bins: 5,
+            try_settings: true,
         }
     }
 }
@@ -105,6 +113,8 @@ pub struct ChannelDiagnosis {
     pub unexcited: Vec<Unexcited>,
     /// Suggested effect ids (significant only; empty when nothing is).
     pub suggested: Vec<String>,
+    /// The p-value a suggestion must fall below: α / (channels · candidates).
+    pub p_threshold: f64,
     /// Plain-language findings, most important first.
     pub findings: Vec<String>,
     /// Series for figures (not serialised).
@@ -129,23 +139,192 @@ pub fn diagnose(
     let prepared = model.prepare(record)?;
     let predictions = model.predict(&prepared)?;
     let (train, val) = model.rows(&prepared)?;
+    // The mirror of the model: the same settings trained on its validation
+    // rows, so every row of the record has an out-of-sample residual.
+    let mirror = crate::fit::fit_rows(
+        &prepared,
+        model.calibration(),
+        &FitOptions::of_model(model),
+        &val,
+        &train,
+        &|_| {},
+    )?;
+    let mirror_predictions = mirror.predict(&prepared)?;
+    let x = prepared.window_matrix();
     let context = Context::new(&prepared, &val)?;
     let channels = model
         .channels()
         .iter()
         .map(|c| {
+            let i = c.channel().index();
+            let halves = CrossFit {
+                x: &x,
+                ridge: model.fit_settings().ridge,
+                halves: [
+                    Half {
+                        model: c,
+                        predicted: &predictions[i],
+                        fit_rows: &train,
+                        test_rows: &val,
+                    },
+                    Half {
+                        model: &mirror.channels()[i],
+                        predicted: &mirror_predictions[i],
+                        fit_rows: &val,
+                        test_rows: &train,
+                    },
+                ],
+            };
             diagnose_channel(
                 c,
                 &prepared,
-                &predictions[c.channel().index()],
+                &predictions[i],
                 &train,
                 &val,
+                &halves,
                 &context,
                 options,
             )
         })
-        .collect::<Result<_, _>>()?;
+        .collect::<Result<Vec<ChannelDiagnosis>, _>>()?;
+    let mut channels = channels;
+    if options.try_settings {
+        try_longer_window(model, record, &mut channels);
+    }
     Ok(Diagnosis { channels })
+}
+
+/// Where a residual stays correlated beyond the model's window, a longer
+/// window is the setting to try; the advice is given only with the
+/// validation rms it gave on this record, before and after.
+fn try_longer_window(
+    model: &CompensationModel,
+    record: &Record,
+    channels: &mut [ChannelDiagnosis],
+) {
+    let slow: Vec<usize> = channels
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.failing.iter().any(|f| f == "whiteness"))
+        .map(|(i, _)| i)
+        .collect();
+    if slow.is_empty() {
+        return;
+    }
+    let mut options = FitOptions::of_model(model);
+    let w = &options.preprocess.window;
+    let longer = w.length() * 3;
+    let Ok(window) = crate::window::WindowSpec::new(w.signals().to_vec(), longer) else {
+        return;
+    };
+    options.preprocess.window = window;
+    // A record too short for the longer window has nothing to say about it.
+    let Ok(trial) = crate::fit::fit(record, model.calibration(), &options, &|_| {}) else {
+        return;
+    };
+    for i in slow {
+        let c = &mut channels[i];
+        let before = c.rms;
+        let after = trial.channels()[c.channel.index()].scores().val_rms;
+        c.findings.push(if after < 0.95 * before {
+            format!(
+                "tried --window {longer} on this record: validation rms {before:.4} → {after:.4} deg/h ({:+.0}%): refit with --window {longer}",
+                100.0 * (after / before - 1.0)
+            )
+        } else {
+            format!(
+                "tried --window {longer} on this record: validation rms {before:.4} → {after:.4} deg/h, no better: the slow error is not the window's"
+            )
+        });
+    }
+}
+
+/// One half of a cross-fit: a channel model, its predictions, the rows it
+/// was fitted on and the rows it predicts out of sample.
+struct Half<'a> {
+    model: &'a ChannelModel,
+    predicted: &'a [f64],
+    fit_rows: &'a [usize],
+    test_rows: &'a [usize],
+}
+
+/// The model and its mirror: between them every analysed row is predicted
+/// by a model that did not see it.
+struct CrossFit<'a> {
+    x: &'a Mat<f64>,
+    /// The fit's ridge on network weights.
+    ridge: f64,
+    halves: [Half<'a>; 2],
+}
+
+impl CrossFit<'_> {
+    /// The analysed rows, in time order.
+    fn rows(&self) -> Vec<usize> {
+        let mut r: Vec<usize> = self
+            .halves
+            .iter()
+            .flat_map(|h| h.test_rows.iter().copied())
+            .collect();
+        r.sort_unstable();
+        r
+    }
+
+    /// Out-of-sample residual `y − ŷ` on [`CrossFit::rows`].
+    fn residual(&self, y: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; y.len()];
+        for h in &self.halves {
+            for &r in h.test_rows {
+                out[r] = y[r] - h.predicted[r];
+            }
+        }
+        self.rows().iter().map(|&r| out[r]).collect()
+    }
+
+    /// `columns` (rows × m, all prepared rows) with each half's function space
+    /// (bias, the model's effects, its network basis) fitted on its fitting
+    /// rows and projected out of its test rows; on [`CrossFit::rows`].
+    fn partial_out(
+        &self,
+        prepared: &Prepared,
+        columns: &Mat<f64>,
+    ) -> Result<Mat<f64>, DtgVibError> {
+        let m = columns.ncols();
+        let mut out = Mat::<f64>::zeros(columns.nrows(), m);
+        for h in &self.halves {
+            let z = prepared.effect_matrix(h.model.channel(), h.model.effects())?;
+            let p = z.ncols();
+            let basis = |rows: &[usize]| {
+                let xr = Mat::from_fn(rows.len(), self.x.ncols(), |i, j| self.x[(rows[i], j)]);
+                let f = h.model.rbf().features(xr.as_ref());
+                // [bias, effects, network]: the unpenalised columns first.
+                Mat::from_fn(rows.len(), f.ncols() + p, |i, j| match j {
+                    0 => f[(i, 0)],
+                    j if j <= p => z[(rows[i], j - 1)],
+                    j => f[(i, j - p)],
+                })
+            };
+            let pick = |rows: &[usize]| Mat::from_fn(rows.len(), m, |i, j| columns[(rows[i], j)]);
+            let r = crate::inference::residualise(
+                basis(h.fit_rows).as_ref(),
+                pick(h.fit_rows).as_ref(),
+                basis(h.test_rows).as_ref(),
+                pick(h.test_rows).as_ref(),
+                1 + p,
+                self.ridge,
+            )
+            .map_err(|e| DtgVibError::Fit {
+                channel: h.model.channel(),
+                source: e.into(),
+            })?;
+            for (i, &row) in h.test_rows.iter().enumerate() {
+                for j in 0..m {
+                    out[(row, j)] = r[(i, j)];
+                }
+            }
+        }
+        let rows = self.rows();
+        Ok(Mat::from_fn(rows.len(), m, |i, j| out[(rows[i], j)]))
+    }
 }
 
 /// What every channel's diagnosis shares: inputs on the validation rows.
@@ -157,10 +336,19 @@ struct Context {
     extras: Vec<(String, Vec<f64>)>,
     /// Largest standard deviation of the least-squares rate, deg/s.
     rate_std_deg_s: f64,
+    /// Mean filtered specific force on the validation rows (cluster frame), g.
+    gravity_g: nalgebra::Vector3<f64>,
+    /// RMS of the filtered specific force about its mean, g.
+    vibration_g: f64,
+    /// The axis along which the filtered specific force varies most.
+    vibration_axis: Axis,
     fs: f64,
-    /// Decimation for the whiteness test and the filter's reference ACF.
+    /// The model's memory in decimated samples: a window plus the filter's
+    /// reach. The whiteness test looks beyond it.
+    memory: usize,
+    /// Decimation of the whiteness test: to about twice the filter's cut-off
+    /// (the lags in between carry no information).
     decimation: usize,
-    reference_acf: Option<Vec<f64>>,
     band_edges: Vec<f64>,
     shape: Box<dyn Fn(f64) -> f64>,
 }
@@ -187,17 +375,13 @@ impl Context {
         let spacing = crate::split::row_spacing(val);
         let fs = 1.0 / (rec.dt() * spacing as f64);
         let nyquist = fs / 2.0;
-        let (decimation, reference_acf, cutoff) = match prepared.filter() {
-            Some(f) => {
-                // Decimation in validation rows; the reference ACF's lags in samples.
-                let q = ((fs / (2.0 * f.cutoff_hz())).floor() as usize).max(1);
-                (
-                    q,
-                    Some(f.white_noise_acf(q * spacing, 40)),
-                    f.cutoff_hz().min(nyquist),
-                )
-            }
-            None => (1, None, nyquist),
+        let (decimation, cutoff) = match prepared.filter() {
+            // Decimation in validation rows.
+            Some(f) => (
+                ((fs / (2.0 * f.cutoff_hz())).floor() as usize).max(1),
+                f.cutoff_hz().min(nyquist),
+            ),
+            None => (1, nyquist),
         };
         let mut band_edges: Vec<f64> = vec![0.0, 0.1, 0.5, 2.0];
         band_edges.retain(|&e| e < cutoff);
@@ -212,26 +396,44 @@ impl Context {
             }
             None => Box::new(|_| 1.0),
         };
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+        let var = |v: &[f64]| {
+            let m = mean(v);
+            v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len().max(1) as f64
+        };
+        let gravity_g = nalgebra::Vector3::new(mean(&accel[0]), mean(&accel[1]), mean(&accel[2]));
+        let variances = [var(&accel[0]), var(&accel[1]), var(&accel[2])];
+        let vibration_axis = Axis::ALL
+            .into_iter()
+            .max_by(|a, b| variances[a.index()].total_cmp(&variances[b.index()]))
+            .expect("three axes");
+        let reach = prepared.first_sample() + 1 + prepared.filter_memory();
+        let memory = reach.div_ceil(spacing * decimation);
         Ok(Self {
             t: on_val(rec.t()),
+            memory,
+            gravity_g,
+            vibration_g: variances.iter().sum::<f64>().sqrt(),
+            vibration_axis,
             accel,
             extras,
             rate_std_deg_s,
             fs,
             decimation,
-            reference_acf,
             band_edges,
             shape,
         })
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn diagnose_channel(
     model: &ChannelModel,
     prepared: &Prepared,
     predicted: &[f64],
     train: &[usize],
     val: &[usize],
+    cross: &CrossFit<'_>,
     ctx: &Context,
     opts: &DiagnoseOptions,
 ) -> Result<ChannelDiagnosis, DtgVibError> {
@@ -274,17 +476,62 @@ fn diagnose_channel(
             (e, val.iter().map(|&r| c[first + r]).collect(), train_mean)
         })
         .collect();
-    let mut ranking = rank(&residual, &columns, opts.rank);
+    // The ranking's evidence: the whole record, cross-fitted and partialled out.
+    let all = Mat::from_fn(prepared.rows(), full.len(), |i, j| full[j][first + i]);
+    let partialled = cross.partial_out(prepared, &all)?;
+    let ranked: Vec<(Effect, Vec<f64>)> = wanted
+        .iter()
+        .enumerate()
+        .map(|(j, e)| {
+            (
+                e.clone(),
+                (0..partialled.nrows())
+                    .map(|i| partialled[(i, j)])
+                    .collect(),
+            )
+        })
+        .collect();
+    let mut ranking = rank(&cross.residual(y), &ranked, opts.rank);
+    for c in ranking
+        .candidates
+        .iter_mut()
+        .filter(|c| c.significant && !c.alternatives.is_empty())
+    {
+        let column = |id: &str| ranked.iter().find(|(e, _)| e.id() == id);
+        let Some((rep, r)) = column(&c.effect) else {
+            continue;
+        };
+        let rr: f64 = r.iter().map(|v| v * v).sum();
+        let mut group = vec![rep.clone()];
+        let mut kappa = Vec::new();
+        for alt in &c.alternatives {
+            if let Some((e, a)) = column(alt) {
+                group.push(e.clone());
+                kappa.push(r.iter().zip(a).map(|(p, q)| p * q).sum::<f64>() / rr);
+            }
+        }
+        c.separation = Some(separation(
+            ch,
+            &group,
+            &kappa,
+            &ctx.gravity_g,
+            ctx.vibration_g,
+            ctx.vibration_axis,
+        ));
+    }
     ranking.unexcited.extend(unexcited_ai);
 
     // Correlation tests.
     let mut checks = Vec::new();
     let dec: Vec<f64> = residual.iter().step_by(ctx.decimation).copied().collect();
-    let lag = opts.max_lag.min(dec.len().saturating_sub(2)).max(1);
-    if dec.len() > lag + 2 {
+    let lag = opts
+        .max_lag
+        .min(dec.len().saturating_sub(ctx.memory + 2) / 4)
+        .max(1);
+    if dec.len() > ctx.memory + lag + 2 {
         checks.push(NamedCheck {
             name: "whiteness".into(),
-            check: whiteness(&dec, lag, ctx.reference_acf.as_deref(), opts.confidence),
+            check: whiteness_beyond(&dec, ctx.memory, lag, opts.confidence),
         });
     }
     let lag = opts.max_lag.min(residual.len() / 4).max(1);
@@ -356,6 +603,7 @@ fn diagnose_channel(
         candidates: ranking.candidates,
         unexcited: ranking.unexcited,
         suggested: ranking.suggested,
+        p_threshold: ranking.p_threshold,
         findings,
         series,
     })
@@ -388,18 +636,27 @@ fn findings(
     for id in &ranking.suggested {
         if let Some(c) = ranking.candidates.iter().find(|c| &c.effect == id) {
             let mut s = format!(
-                "missing effect {id} ({}): explains {:.0}% of the validation residual, coefficient ≈ {:.4} {} (p {})",
+                "missing effect {id} ({}): explains {:.0}% of the cross-fitted residual, coefficient {:.4} ± {:.4} {} (95% CI {:.4} to {:.4}; p {})",
                 c.description,
                 100.0 * c.conditional_err.unwrap_or(c.err),
                 c.coef,
+                c.coef_se,
                 c.unit,
+                c.coef_ci95[0],
+                c.coef_ci95[1],
                 c.p_value.map_or("n/a".into(), p_text)
             );
-            if !c.collinear_with.is_empty() {
-                s.push_str(&format!(
+            match &c.separation {
+                Some(sep) => s.push_str(&format!(
+                    "; cannot be told apart here from {}: {}",
+                    c.alternatives.join(", "),
+                    sep.advice
+                )),
+                None if !c.collinear_with.is_empty() => s.push_str(&format!(
                     "; nearly collinear on this record with {}: cannot be told apart here",
                     c.collinear_with.join(", ")
-                ));
+                )),
+                None => {}
             }
             out.push(s);
         }
@@ -422,9 +679,14 @@ fn findings(
             ids.join(", ")
         ));
     }
+    // Excess slow power alone is expected of any model (its errors are
+    // correlated over its window); "something slow is left" needs the
+    // residual to be correlated beyond that memory as well.
+    let slow_left = failing.iter().any(|f| f == "whiteness");
     for b in bands
         .iter()
         .filter(|b| b.ratio_to_floor > 3.0 && b.share > 0.1)
+        .filter(|b| slow_left || b.f_hi_hz > 0.5)
     {
         out.push(format!(
             "{:.0}% of the residual power lies in {}–{} Hz, {:.1}× a white floor there{}",
@@ -433,7 +695,7 @@ fn findings(
             b.f_hi_hz,
             b.ratio_to_floor,
             if b.f_hi_hz <= 0.5 {
-                ": something slow is not modelled (a temperature or a drift: add its column as col:NAME; or the vibration level as the window estimates it: try a longer --window)"
+                ": something slow is not modelled and the residual stays correlated beyond the model's window (a temperature or a drift: add its column as col:NAME)"
             } else {
                 ""
             }

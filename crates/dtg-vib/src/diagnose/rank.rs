@@ -1,13 +1,20 @@
 //! Which physical effect is missing: candidate effects ranked by the share of
-//! the validation residual each explains (ERR, from the same OLS engine that
-//! selects the RBF centres), with a significance test that knows the
-//! residual is coloured, and a collinearity check that refuses to pretend.
+//! the cross-fitted residual each explains (ERR, from the same OLS engine that
+//! selects the RBF centres), tested with standard errors that hold for a
+//! coloured residual (Newey–West), and a collinearity check that refuses to
+//! pretend.
+//!
+//! The inputs are partialled out: the residual is the model's out-of-sample
+//! residual over the whole record (each half predicted by a model fitted on
+//! the other), and each candidate column has had the same model's function
+//! space (bias, current effects, network basis) projected out the same way.
+//! A candidate's coefficient is then what the network cannot absorb, and the
+//! evidence comes from every row of the record, not one validation half.
 
 use crate::effects::Effect;
-use crate::residuals::{autocorrelation, bartlett_cross_variance, bartlett_truncation};
+use crate::inference::{HacFit, hac_regression};
 use faer::Mat;
 use serde::Serialize;
-use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 /// A candidate effect and what it would explain.
 #[derive(Debug, Clone, Serialize)]
@@ -17,8 +24,13 @@ pub struct Candidate {
     /// Share of the validation residual's mean square this effect explains
     /// on its own (error-reduction ratio, 0 to 1).
     pub err: f64,
-    /// Least-squares coefficient of the effect alone on the residual, in `unit`.
+    /// Coefficient of the effect on the residual, in `unit`: given the
+    /// candidates picked before it if it was picked, alone otherwise.
     pub coef: f64,
+    /// Standard error of `coef` (Newey–West), in `unit`.
+    pub coef_se: f64,
+    /// 95% confidence interval of `coef`, in `unit`.
+    pub coef_ci95: [f64; 2],
     /// Unit of `coef`.
     pub unit: String,
     /// Physical name (IEEE Std 813 for DTG terms).
@@ -27,12 +39,20 @@ pub struct Candidate {
     pub rank: Option<usize>,
     /// Its ERR given the effects picked before it (forward selection), if picked.
     pub conditional_err: Option<f64>,
-    /// p-value of that conditional ERR (F-test on effective samples), if picked.
+    /// Two-sided p-value of its coefficient given the picks before it
+    /// (Newey–West t on the long-run variance's degrees of freedom), if picked.
     pub p_value: Option<f64>,
     /// Whether it passes the significance and size thresholds.
     pub significant: bool,
     /// Candidates this one cannot be told apart from on this record (|r| above the threshold).
     pub collinear_with: Vec<String>,
+    /// For a suggestion, the candidates that would explain the residual as
+    /// well (the same ids as `collinear_with`): the suggestion is one
+    /// representative of the group.
+    pub alternatives: Vec<String>,
+    /// For a suggestion with alternatives: the combination this record
+    /// identifies and the run that would split the group.
+    pub separation: Option<super::Separation>,
 }
 
 /// A candidate the record does not excite (no variation on the validation rows).
@@ -47,8 +67,12 @@ pub struct Unexcited {
 /// Ranking settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RankOptions {
-    /// Family-wise significance level of a suggestion (Bonferroni over the candidates).
+    /// Family-wise false-alarm level of a record: a suggestion's p-value must
+    /// fall below `alpha / (channels · candidates)` (Bonferroni over every
+    /// test the record's diagnosis makes).
     pub alpha: f64,
+    /// Channels sharing `alpha` (six for a diagnosis of the sensor unit).
+    pub channels: usize,
     /// Smallest cut of the residual rms worth suggesting (practical
     /// significance): 0.1 suggests an effect only if adding it would lower
     /// the validation residual rms by at least 10%, i.e. its conditional ERR
@@ -82,6 +106,7 @@ impl Default for RankOptions {
     fn default() -> Self {
         Self {
             alpha: 0.01,
+            channels: 6,
             min_rms_reduction: 0.1,
             collinearity: 0.95,
         }
@@ -97,23 +122,11 @@ pub struct Ranking {
     pub suggested: Vec<String>,
     /// Candidates left out because nothing excites them.
     pub unexcited: Vec<Unexcited>,
-    /// Effective number of independent samples of the residual (Bartlett).
+    /// Effective number of independent samples of the residual: rows over
+    /// the Newey–West bandwidth of the first test (rows if nothing was tested).
     pub effective_samples: f64,
-}
-
-/// Σ c(t)c(t+τ) / Σ c(t)², τ = 0..=max_lag, without removing the mean.
-fn uncentred_autocorrelation(c: &[f64], max_lag: usize) -> Vec<f64> {
-    let e: f64 = c.iter().map(|v| v * v).sum();
-    (0..=max_lag)
-        .map(|tau| {
-            c[..c.len() - tau]
-                .iter()
-                .zip(&c[tau..])
-                .map(|(a, b)| a * b)
-                .sum::<f64>()
-                / e
-        })
-        .collect()
+    /// The p-value a suggestion must fall below.
+    pub p_threshold: f64,
 }
 
 fn centre(v: &[f64]) -> Vec<f64> {
@@ -121,22 +134,24 @@ fn centre(v: &[f64]) -> Vec<f64> {
     v.iter().map(|x| x - m).collect()
 }
 
-/// Ranks `candidates` (effect, column on the validation rows, mean of the
-/// column on the training rows) against the validation `residual`.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Ranks partialled-out candidate columns against a cross-fitted residual.
 ///
-/// The residual is not centred: the model's bias was fitted on the training
-/// rows, so an offset on the validation rows is information (an effect whose
-/// input moved between training and validation, such as a temperature that
-/// kept rising, shows up first as an offset). Each candidate is centred on
-/// its training mean for the same reason: what the bias already absorbed is
-/// not the candidate's to explain. ERR is then the share of the residual's
-/// mean square each candidate explains.
+/// `residual` is the model's out-of-sample residual over the rows analysed;
+/// each candidate's column is the effect's series with the model's own
+/// function space projected out the same way (see the module docs). Neither
+/// is centred: the model's bias was fitted on other rows, so an offset is
+/// information (an input that drifted between the halves shows up first as
+/// an offset).
 ///
-/// A suggestion must be significant at `alpha` after a Bonferroni correction
-/// over the candidates, in an F-test whose degrees of freedom are the
-/// effective number of samples (Bartlett, from the residual's autocorrelation
-/// and the candidate's), and must cut the rms of what is left by at least
-/// `min_rms_reduction`.
+/// Forward selection by ERR picks candidates in order; each pick is tested
+/// by the Newey–West t of its coefficient given the picks before it. A
+/// suggestion must be significant at `alpha / (channels · candidates)` and
+/// cut the rms of what is left by at least `min_rms_reduction`; the first
+/// pick that fails ends the suggestions.
 ///
 /// ```
 /// use dtg_vib::diagnose::{rank, RankOptions};
@@ -144,65 +159,56 @@ fn centre(v: &[f64]) -> Vec<f64> {
 /// let n = 2000;
 /// let mut s = 1u64;
 /// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };
-/// let temp: Vec<f64> = (0..n).map(|i| 20.0 + i as f64 / 200.0).collect();
+/// let temp: Vec<f64> = (0..n).map(|i| i as f64 / 200.0 - 5.0).collect();
 /// let g: Vec<f64> = (0..n).map(|_| next()).collect();
-/// // Training rows had a mean temperature of 20 °C; the model knew nothing of it.
-/// let residual: Vec<f64> = temp.iter().map(|t| 0.5 * (t - 20.0) + 0.3 * next()).collect();
-/// let cands = vec![(Effect::Column("temp".into()), temp, 20.0), ("g_I".parse().unwrap(), g, 0.0)];
+/// let residual: Vec<f64> = temp.iter().map(|t| 0.5 * t + 0.3 * next()).collect();
+/// let cands = vec![(Effect::Column("temp".into()), temp), ("g_I".parse().unwrap(), g)];
 /// let r = rank(&residual, &cands, RankOptions::default());
 /// assert_eq!(r.suggested, ["col:temp"]);
-/// assert!((r.candidates[0].coef - 0.5).abs() < 0.01);
+/// let c = &r.candidates[0];
+/// assert!(c.coef_ci95[0] < 0.5 && 0.5 < c.coef_ci95[1], "{c:?}");
 /// ```
 #[track_caller]
-pub fn rank(
-    residual: &[f64],
-    candidates: &[(Effect, Vec<f64>, f64)],
-    opts: RankOptions,
-) -> Ranking {
+pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptions) -> Ranking {
     let n = residual.len();
     assert!(
-        candidates.iter().all(|(_, c, _)| c.len() == n),
+        candidates.iter().all(|(_, c)| c.len() == n),
         "candidate columns must match the residual"
     );
-    let r = residual.to_vec();
-    let r_energy: f64 = r.iter().map(|v| v * v).sum();
+    let r = residual;
+    let r_energy = dot(r, r);
     let mut unexcited = Vec::new();
-    let mut live: Vec<(&Effect, Vec<f64>)> = Vec::new();
-    for (e, c, train_mean) in candidates {
-        let cc: Vec<f64> = c.iter().map(|v| v - train_mean).collect();
-        let varying: f64 = centre(c).iter().map(|v| v * v).sum();
-        let energy: f64 = cc.iter().map(|v| v * v).sum();
-        let scale: f64 = c.iter().map(|v| v * v).sum::<f64>().max(f64::MIN_POSITIVE);
-        // A column that neither varies nor moved from its training mean
-        // (relative to its own size) is not excited.
-        if !(energy.is_finite()
-            && energy > 0.0
-            && (varying > 1e-20 * scale || energy > 1e-20 * scale))
-        {
+    let mut live: Vec<(&Effect, &[f64])> = Vec::new();
+    for (e, c) in candidates {
+        let energy = dot(c, c);
+        let scale: f64 = r_energy.max(f64::MIN_POSITIVE);
+        // A column the model's own function space explains entirely (it does
+        // not vary, or only as the bias and window do) has nothing left to
+        // offer: relative to the residual's size, its energy is nil.
+        if !(energy.is_finite() && energy > 1e-20 * scale && energy > 0.0) {
             unexcited.push(Unexcited {
                 effect: e.id(),
-                reason: "does not vary on the validation rows".into(),
+                reason:
+                    "does not vary once the model's bias, effects and network are projected out"
+                        .into(),
             });
         } else {
-            live.push((e, cc));
+            live.push((e, c.as_slice()));
         }
     }
-    let k = bartlett_truncation(n).min(n.saturating_sub(1));
-    // The residual's noise structure (centred), and each candidate's
-    // uncentred autocorrelation: a candidate that is mostly an offset has
-    // ρ ≈ 1 at every lag and so few effective samples, as it should.
-    let rho_r = autocorrelation(&r, k);
     let m = live.len();
-    if m == 0 || r_energy <= 0.0 {
+    let p_threshold = opts.alpha / (opts.channels.max(1) * m.max(1)) as f64;
+    if m == 0 || !(r_energy > 0.0 && r_energy.is_finite()) {
         return Ranking {
             candidates: Vec::new(),
             suggested: Vec::new(),
             unexcited,
             effective_samples: n as f64,
+            p_threshold,
         };
     }
 
-    // Forward selection by ERR (no forced column: see above).
+    // Forward selection by ERR (no forced column: both sides are residuals).
     let cand = Mat::from_fn(n, m, |i, j| live[j].1[i]);
     let target = Mat::from_fn(n, 1, |i, _| r[i]);
     let empty = Mat::<f64>::zeros(n, 0);
@@ -216,28 +222,25 @@ pub fn rank(
         Ok(p) => (p.first_step_errs().to_vec(), p.picks().to_vec()),
         Err(_) => (vec![0.0; m], Vec::new()),
     };
-
-    // Effective samples of the residual against each candidate (Bartlett).
-    let n_eff: Vec<f64> = live
-        .iter()
-        .map(|(_, c)| 1.0 / bartlett_cross_variance(&rho_r, &uncentred_autocorrelation(c, k), n))
-        .collect();
     let corr = |a: &[f64], b: &[f64]| {
         // Collinearity is about shape: compare the centred columns.
         let (a, b) = (centre(a), centre(b));
-        let ab: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
-        let aa: f64 = a.iter().map(|x| x * x).sum();
-        let bb: f64 = b.iter().map(|x| x * x).sum();
-        ab / (aa * bb).sqrt()
+        dot(&a, &b) / (dot(&a, &a) * dot(&b, &b)).sqrt()
     };
+    let ci = |f: &HacFit, j: usize| f.interval(j, 0.95);
 
+    let mut effective_samples = n as f64;
     let mut out: Vec<Candidate> = live
         .iter()
         .enumerate()
         .map(|(j, (e, c))| {
-            let cc: f64 = c.iter().map(|v| v * v).sum();
-            let coef = c.iter().zip(&r).map(|(a, b)| a * b).sum::<f64>() / cc;
-            let collinear_with = live
+            let alone = hac_regression(r, &[c]).ok();
+            if j == 0
+                && let Some(f) = &alone
+            {
+                effective_samples = n as f64 / f.bandwidth as f64;
+            }
+            let collinear_with: Vec<String> = live
                 .iter()
                 .enumerate()
                 .filter(|&(i, (_, other))| i != j && corr(c, other).abs() >= opts.collinearity)
@@ -246,39 +249,58 @@ pub fn rank(
             Candidate {
                 effect: e.id(),
                 err: first_errs[j],
-                coef,
+                coef: alone.as_ref().map_or(dot(c, r) / dot(c, c), |f| f.coef[0]),
+                coef_se: alone.as_ref().map_or(f64::NAN, |f| f.se[0]),
+                coef_ci95: alone.as_ref().map_or([f64::NAN; 2], |f| ci(f, 0)),
                 unit: e.unit(),
                 description: e.description(),
                 rank: None,
                 conditional_err: None,
                 p_value: None,
                 significant: false,
+                alternatives: Vec::new(),
+                separation: None,
                 collinear_with,
             }
         })
         .collect();
 
-    // Walk the forward path: each pick's ERR relative to what is left, tested
-    // on the effective samples; stop at the first that fails.
+    // Walk the forward path: each pick's ERR relative to what is left, and
+    // its coefficient's t given the picks before it; stop at the first failure.
     let mut suggested = Vec::new();
     let mut explained = 0.0_f64;
     let mut still_suggesting = true;
+    let mut picked: Vec<&[f64]> = Vec::new();
     for (step, p) in picks.iter().enumerate() {
         let j = p.index;
+        if !still_suggesting {
+            // Past the first failure the order is reported, not tested: a
+            // long-run covariance per pick of twenty would cost more than the
+            // whole diagnosis and decide nothing.
+            out[j].rank = Some(step + 1);
+            out[j].conditional_err =
+                Some((p.err / (1.0 - explained).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0));
+            explained += p.err;
+            continue;
+        }
         let left = (1.0 - explained).max(f64::MIN_POSITIVE);
         let partial = (p.err / left).clamp(0.0, 1.0);
-        let dof2 = (n_eff[j] - step as f64 - 2.0).max(1.0);
-        let f = partial * dof2 / (1.0 - partial).max(f64::MIN_POSITIVE);
-        let p_value = FisherSnedecor::new(1.0, dof2)
-            .map(|d| 1.0 - d.cdf(f))
-            .unwrap_or(1.0);
-        let significant = p_value < opts.alpha / m as f64 && partial >= opts.min_err();
+        picked.push(live[j].1);
+        let joint = hac_regression(r, &picked).ok();
+        let p_value = joint.as_ref().map_or(1.0, |f| f.p_value(step));
+        let significant = p_value < p_threshold && partial >= opts.min_err();
         let c = &mut out[j];
         c.rank = Some(step + 1);
         c.conditional_err = Some(partial);
         c.p_value = Some(p_value);
         c.significant = significant;
+        if let Some(f) = &joint {
+            c.coef = f.coef[step];
+            c.coef_se = f.se[step];
+            c.coef_ci95 = ci(f, step);
+        }
         if still_suggesting && significant {
+            c.alternatives = c.collinear_with.clone();
             suggested.push(c.effect.clone());
         } else {
             still_suggesting = false;
@@ -286,11 +308,11 @@ pub fn rank(
         explained += p.err;
     }
     out.sort_by(|a, b| b.err.total_cmp(&a.err));
-    let effective_samples = n_eff.iter().copied().fold(f64::INFINITY, f64::min);
     Ranking {
         candidates: out,
         suggested,
         unexcited,
         effective_samples,
+        p_threshold,
     }
 }

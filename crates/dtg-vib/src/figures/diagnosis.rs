@@ -102,7 +102,7 @@ pub fn write_diagnosis_report(
     ));
     figs.push((
         per_channel(
-            "Whiteness test (decimated residual, against white noise through the pre-filter)",
+            "Whiteness beyond the model's memory (decimated residual, lags past a window plus the filter's reach)",
             diag,
             |c| match c.checks.iter().find(|k| k.name == "whiteness") {
                 Some(k) => {
@@ -259,6 +259,16 @@ pub fn write_diagnosis_report(
             format!("Suggested: refit with {}.", suggestions.join(" "))
         })
         .section(Section::new("Overview").table(overview).figure(f("diag_before_after"), "Validation residual rms: bias-only model against the fitted model."));
+    page = page.section(Section::new("How to read the tables").text(format!(
+        "ERR is the share of a channel's residual that a candidate effect explains on its own, on the cross-fitted residual of the whole record \
+         (each half predicted by a model fitted on the other half, with the model's bias, effects and network projected out of the candidate too). \
+         A suggestion (✓) needs two things: its p-value, from the t-statistic of its coefficient given the candidates picked before it, \
+         below α/(6·candidates) (here {}), and a share of what was left of at least {:.2} (the worth threshold, --min-gain). \
+         Coefficients are given ± their standard error (Newey–West, valid for a coloured residual) with a 95% interval. \
+         A rejected candidate's coefficient can be large: it is fitted to a residual it barely explains, and its interval shows how little the record determines it.",
+        diag.channels.first().map_or("—".to_string(), |c| fmt(c.p_threshold)),
+        min_err
+    )));
     for c in &diag.channels {
         let mut sec = Section::new(format!("Channel {}", c.channel));
         for line in &c.findings {
@@ -267,7 +277,8 @@ pub fn write_diagnosis_report(
         let mut t = Table::new([
             "effect",
             "ERR",
-            "coefficient",
+            "coefficient ± standard error",
+            "95% interval",
             "unit",
             "p (forward step)",
             "collinear with",
@@ -277,7 +288,8 @@ pub fn write_diagnosis_report(
             t = t.row([
                 format!("{}{}", k.effect, if k.significant { " ✓" } else { "" }),
                 format!("{:.4}", k.err),
-                fmt(k.coef),
+                format!("{} ± {}", fmt(k.coef), fmt(k.coef_se)),
+                format!("[{}, {}]", fmt(k.coef_ci95[0]), fmt(k.coef_ci95[1])),
                 k.unit.clone(),
                 k.p_value.map_or("—".into(), |p| {
                     crate::diagnose::p_text(p).replace("= ", "")
@@ -294,10 +306,10 @@ pub fn write_diagnosis_report(
     }
     page = page.section(
         Section::new("Figures")
-            .figure(f("diag_err"), "ERR of each candidate effect on the validation residual; the dashed line is the suggestion threshold.")
+            .figure(f("diag_err"), "ERR of each candidate effect on the cross-fitted residual of the whole record; the dashed line is the worth threshold (--min-gain).")
             .figure(f("diag_top_candidates"), "The residual and its top candidate, scaled by its estimated coefficient.")
             .figure(f("diag_residual_psd"), "Residual power spectral density.")
-            .figure(f("diag_whiteness"), "Whiteness: residual autocorrelation minus that of white noise through the pre-filter, with its band.")
+            .figure(f("diag_whiteness"), "Whiteness beyond the model's memory: the residual's autocorrelation at lags past one window plus the filter's reach, where a model that left nothing slow has none, with its band.")
             .figure(f("diag_independence"), "Independence: residual–acceleration cross-correlation with its (Bartlett) band.")
             .figure(f("diag_compare"), "Measured against predicted on the validation rows."),
     );

@@ -9,6 +9,8 @@ pub use persist::FORMAT_VERSION;
 
 use crate::effects::Effect;
 use crate::error::DtgVibError;
+use crate::fit::FitSettings;
+use crate::inference::Coefficient;
 use crate::pipeline::{Prepared, Preprocess};
 use crate::split::SplitKind;
 use faer::Mat;
@@ -49,6 +51,10 @@ pub struct ChannelModel {
     width: f64,
     rbf: RbfModel,
     scores: ChannelScores,
+    /// Each effect's coefficient with its standard error and interval, in the
+    /// order of `effects` (empty in files written before they were estimated).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    coefficients: Vec<Coefficient>,
 }
 
 impl ChannelModel {
@@ -65,7 +71,21 @@ impl ChannelModel {
             width,
             rbf,
             scores,
+            coefficients: Vec::new(),
         }
+    }
+
+    pub(crate) fn with_coefficients(mut self, coefficients: Vec<Coefficient>) -> Self {
+        self.coefficients = coefficients;
+        self
+    }
+
+    /// Each effect's coefficient with its standard error and 95% interval, in
+    /// the order of [`ChannelModel::effects`]; `None` for a model file that
+    /// predates them.
+    pub fn coefficients(&self) -> Option<&[Coefficient]> {
+        (self.coefficients.len() == self.effects.len() && !self.effects.is_empty())
+            .then_some(self.coefficients.as_slice())
     }
 
     /// The channel.
@@ -139,6 +159,9 @@ pub struct CompensationModel {
     pub(crate) dt_s: f64,
     pub(crate) split: SplitKind,
     pub(crate) channels: Vec<ChannelModel>,
+    /// How the networks were chosen (absent in older files: the defaults).
+    #[serde(default)]
+    pub(crate) fit: FitSettings,
 }
 
 /// Relative tolerance on a record's sample interval against the model's.
@@ -200,6 +223,11 @@ impl CompensationModel {
     /// The sample interval the model was fitted at, s.
     pub fn dt_s(&self) -> f64 {
         self.dt_s
+    }
+
+    /// How the networks were chosen.
+    pub fn fit_settings(&self) -> &FitSettings {
+        &self.fit
     }
 
     /// The split used at fit time.

@@ -9,7 +9,9 @@ pub use correlation::{
     autocorrelation, bartlett_auto_variance, bartlett_cross_variance, bartlett_truncation,
     cross_correlation,
 };
-pub use validity::{CorrelationCheck, CorrelationKind, billings_voon, independence, whiteness};
+pub use validity::{
+    CorrelationCheck, CorrelationKind, billings_voon, independence, whiteness, whiteness_beyond,
+};
 
 #[cfg(test)]
 mod tests {

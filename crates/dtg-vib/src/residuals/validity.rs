@@ -167,6 +167,54 @@ pub fn whiteness(
     )
 }
 
+/// Whiteness beyond the model's memory: the residual may be correlated over
+/// `memory` lags (a network on a one-second window errs alike on
+/// overlapping windows, and the pre-filter smears each error), but not
+/// beyond. Tests ρ(k) = 0 on lags memory+1..=memory+max_lag with Bartlett's
+/// variance for a series correlated up to `memory` lags, (1 + 2Σ_{j≤memory} ρ̂(j)²)/N.
+///
+/// This is the question a user asks of a residual ("is something slow left
+/// that the model could not explain?") without the null hypothesis that the
+/// residual is the sensor's noise alone, which no finite model meets.
+///
+/// ```
+/// use dtg_vib::residuals::whiteness_beyond;
+/// let mut s = 99u64;
+/// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };
+/// let w: Vec<f64> = (0..3000).map(|_| next()).collect();
+/// // A moving sum over 10 samples is correlated over 9 lags only …
+/// let ma: Vec<f64> = w.windows(10).map(|x| x.iter().sum()).collect();
+/// assert!(whiteness_beyond(&ma, 9, 20, 0.99).passed);
+/// // … a slow drift added to it is not.
+/// let drift: Vec<f64> = ma.iter().enumerate().map(|(i, v)| v + (i as f64 / 400.0).sin()).collect();
+/// assert!(!whiteness_beyond(&drift, 9, 20, 0.99).passed);
+/// ```
+#[track_caller]
+pub fn whiteness_beyond(
+    e: &[f64],
+    memory: usize,
+    max_lag: usize,
+    confidence: f64,
+) -> CorrelationCheck {
+    check_confidence(confidence);
+    assert!(max_lag >= 1, "whiteness needs at least one lag");
+    let n = e.len();
+    let top = (memory + max_lag).min(n.saturating_sub(1));
+    let r = autocorrelation(e, top);
+    let within: f64 = r[1..=memory.min(top)].iter().map(|v| v * v).sum();
+    let sigma = ((1.0 + 2.0 * within) / n as f64).sqrt();
+    let lags: Vec<i64> = (memory + 1..=top).map(|k| k as i64).collect();
+    let m = lags.len();
+    verdict(
+        CorrelationKind::Whiteness,
+        lags,
+        r[memory + 1..=top].to_vec(),
+        vec![0.0; m],
+        vec![sigma; m],
+        confidence,
+    )
+}
+
 /// Cross-correlation test of `a` against `b` on the given lags (positive lag
 /// pairs `a` now with `b` later), with Bartlett bands from both series'
 /// sample autocorrelations.

@@ -1,0 +1,419 @@
+//! The loop to the noise floor (`dtg-vib explain`): two effects on one
+//! channel are both found, a clean record gets nothing, and the coefficients'
+//! 95% intervals cover the simulated truth.
+//!
+//! The statistical claims over many seeds (false-alarm rate per record over
+//! 50 clean records, power on the two-effect record, interval coverage over
+//! 100 seeds) are the `#[ignore]`d tests at the end:
+//! `cargo test --release -p dtg-vib --test dtg_vib_explain -- --ignored --nocapture`
+//! prints what docs/dtg-vib.md quotes.
+
+use dtg_vib::diagnose::DiagnoseOptions;
+use dtg_vib::effects::ChannelEffect;
+use dtg_vib::explain::explain;
+use dtg_vib::fit::{FitOptions, fit};
+use nav_sensors::dtg::DtgTerm;
+use nav_sensors::geometry::Channel;
+use nav_sensors::sim::{HiddenEffect, Scenario, simulate};
+use nav_sensors::vibration::{Drive, PsdTable};
+
+/// The tri-axial record with two effects hidden on Y1: an anisoelastic term
+/// (gg_IS, 0.4 deg/h/g²) and a drift temperature sensitivity of
+/// `temp_deg_h_per_c` (the unit's temperature ramps by 8 °C over the record).
+/// At 0.06 deg/h/°C the temperature term explains about half of what gg_IS
+/// leaves.
+fn two_effects(temp_deg_h_per_c: f64) -> Scenario {
+    let mut s = Scenario::triaxial_hidden();
+    s.name = "two_effects".into();
+    s.gyros
+        .channels
+        .entry(Channel::Z)
+        .or_default()
+        .set(DtgTerm::Temp, 0.0);
+    s.gyros
+        .channels
+        .entry(Channel::Y1)
+        .or_default()
+        .set(DtgTerm::Temp, temp_deg_h_per_c);
+    s.hidden = vec![
+        HiddenEffect {
+            channel: Channel::Y1,
+            term: DtgTerm::GgIS,
+        },
+        HiddenEffect {
+            channel: Channel::Y1,
+            term: DtgTerm::Temp,
+        },
+    ];
+    s
+}
+
+/// The same record with the hidden terms set to zero (same seed, same noise).
+fn without_hidden(s: &Scenario) -> Scenario {
+    let mut clean = s.clone();
+    for h in &s.hidden {
+        clean
+            .gyros
+            .channels
+            .entry(h.channel)
+            .or_default()
+            .set(h.term, 0.0);
+    }
+    clean.hidden.clear();
+    clean
+}
+
+/// Tri-axial random vibration at 1–8 Hz, well below the 50-Hz output rate,
+/// so the record resolves the within-interval power that a g² regressor
+/// needs (at 3–20 Hz the neighbouring-sample estimate misses about 9% of it,
+/// and the coefficient comes out that much high: docs/dtg-vib.md, limits).
+fn resolved_vibration(mut s: Scenario) -> Scenario {
+    for d in &mut s.vibration.drives {
+        if let Drive::Random { psd, .. } = d {
+            *psd = PsdTable::new(vec![[1.0, 0.05], [2.0, 0.2], [6.0, 0.2], [8.0, 0.05]])
+                .expect("valid table");
+        }
+    }
+    s
+}
+
+fn id_of(term: DtgTerm) -> String {
+    if term == DtgTerm::Temp {
+        "col:temp".into()
+    } else {
+        term.id().into()
+    }
+}
+
+/// Simulates `scenario` and runs the loop with default settings; returns
+/// the loop and the `CHANNEL=ID` it added, sorted.
+fn explain_with_defaults(scenario: &Scenario) -> (dtg_vib::explain::Explanation, Vec<String>) {
+    let sim = simulate(scenario).unwrap();
+    let e = explain(
+        &sim.record,
+        Some(&sim.calibration),
+        &FitOptions::default(),
+        &DiagnoseOptions::default(),
+        5,
+        &|_| {},
+    )
+    .unwrap();
+    let mut added: Vec<String> = e
+        .rounds
+        .iter()
+        .flat_map(|r| {
+            r.added
+                .iter()
+                .map(|a| format!("{}={}", a.channel, a.effect))
+        })
+        .collect();
+    added.sort();
+    (e, added)
+}
+
+#[test]
+fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error() {
+    let scenario = two_effects(0.06);
+    let (e, added) = explain_with_defaults(&scenario);
+    assert!(
+        e.converged,
+        "still suggesting after {} rounds",
+        e.rounds.len()
+    );
+    assert_eq!(added, ["Y1=col:temp", "Y1=gg_IS"]);
+
+    // The final model's Y1 against a fit of the same record without the hidden terms.
+    let clean = simulate(&without_hidden(&scenario)).unwrap();
+    let reference = fit(
+        &clean.record,
+        Some(&clean.calibration),
+        &FitOptions::default(),
+        &|_| {},
+    )
+    .unwrap();
+    for c in e.model.channels() {
+        let r = c.scores().val_rms / reference.channel(c.channel()).scores().val_rms;
+        eprintln!(
+            "{}: val rms {:.4} deg/h, {r:.3}× the clean record's",
+            c.channel(),
+            c.scores().val_rms
+        );
+        assert!(r <= 1.10, "{}: {r:.3}× the clean record's rms", c.channel());
+    }
+    // The coefficients stored in the final model, with their intervals, against the truth.
+    let y1 = e.model.channel(Channel::Y1);
+    let k = y1.coefficients().expect("intervals");
+    for (effect, coef) in y1.effects().iter().zip(k) {
+        eprintln!(
+            "Y1 {effect}: {:.4} ± {:.4} {} [{:.4}, {:.4}]",
+            coef.value, coef.se, coef.unit, coef.ci95[0], coef.ci95[1]
+        );
+        assert!(coef.se > 0.0 && coef.ci95[0] < coef.value && coef.value < coef.ci95[1]);
+    }
+}
+
+/// One fit per seed with both effects named; returns, per effect, whether
+/// its 95% interval covered the truth.
+fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
+    let base = resolved_vibration(Scenario::triaxial_hidden());
+    let add: Vec<ChannelEffect> = base
+        .hidden
+        .iter()
+        .map(|h| ChannelEffect {
+            channel: h.channel,
+            effect: id_of(h.term).parse().unwrap(),
+        })
+        .collect();
+    let mut tally: Vec<(String, usize, usize)> = base
+        .hidden
+        .iter()
+        .map(|h| (format!("{}={}", h.channel, id_of(h.term)), 0, 0))
+        .collect();
+    for seed in seeds {
+        let mut s = base.clone();
+        s.seed = 1_000_003 * (seed + 1);
+        let sim = simulate(&s).unwrap();
+        let options = FitOptions {
+            add: add.clone(),
+            ..FitOptions::default()
+        };
+        let m = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+        for (h, t) in base.hidden.iter().zip(&mut tally) {
+            let c = m.channel(h.channel);
+            let j = c
+                .effects()
+                .iter()
+                .position(|e| e.id() == id_of(h.term))
+                .unwrap();
+            let k = &c.coefficients().expect("intervals")[j];
+            let truth = s.gyro(h.channel).get(h.term);
+            t.1 += usize::from(k.covers(truth));
+            t.2 += 1;
+            eprintln!(
+                "seed {seed} {}: {:.4} ± {:.4} (truth {truth}){}",
+                t.0,
+                k.value,
+                k.se,
+                if k.covers(truth) { "" } else { "  MISSED" }
+            );
+        }
+    }
+    tally
+}
+
+/// The short coverage check CI runs: over 8 seeds each 95% interval covers
+/// the truth at least 6 times (P(≤ 5 of 8 | 95%) = 0.6%).
+#[test]
+fn intervals_cover_the_true_coefficients_on_a_few_seeds() {
+    for (effect, covered, n) in coverage(0..8) {
+        assert!(covered >= 6, "{effect}: covered {covered} of {n}");
+    }
+}
+
+/// Coverage over 100 seeds: must lie in 90–99% for the temperature and the g² term.
+#[test]
+#[ignore = "statistical claim over 100 seeds, ~10 min: run with --ignored"]
+fn interval_coverage_over_100_seeds() {
+    for (effect, covered, n) in coverage(0..100) {
+        println!("coverage {effect}: {covered}/{n}");
+        assert!(
+            (90..=99).contains(&(100 * covered / n)),
+            "{effect}: {covered}/{n}"
+        );
+    }
+}
+
+/// False alarms per record over 50 clean records: how many records get any
+/// suggestion on any channel.
+#[test]
+#[ignore = "statistical claim over 50 seeds, ~10 min: run with --ignored"]
+fn false_alarm_rate_per_record_over_50_clean_records() {
+    let options = DiagnoseOptions::default();
+    let mut alarms = 0;
+    // Correlation tests failing per kind, over every channel of every record.
+    let mut failing: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut tests: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut slow_claims = 0;
+    for seed in 0..50u64 {
+        let mut s = Scenario::triaxial_clean();
+        s.seed = 2_000_003 * (seed + 1);
+        let sim = simulate(&s).unwrap();
+        let m = fit(
+            &sim.record,
+            Some(&sim.calibration),
+            &FitOptions::default(),
+            &|_| {},
+        )
+        .unwrap();
+        let d = dtg_vib::diagnose::diagnose(&m, &sim.record, &options).unwrap();
+        let found: Vec<String> = d
+            .channels
+            .iter()
+            .flat_map(|c| {
+                c.suggested
+                    .iter()
+                    .map(move |id| format!("{}={id}", c.channel))
+            })
+            .collect();
+        if !found.is_empty() {
+            alarms += 1;
+            eprintln!("seed {seed}: {found:?}");
+        }
+        for c in &d.channels {
+            for k in &c.checks {
+                let kind = k.name.split(':').next().unwrap_or_default().to_string();
+                *tests.entry(kind.clone()).or_default() += 1;
+                *failing.entry(kind).or_default() += usize::from(!k.check.passed);
+            }
+            slow_claims += c
+                .findings
+                .iter()
+                .filter(|f| f.contains("something slow"))
+                .count();
+        }
+    }
+    for (kind, n) in &tests {
+        println!(
+            "correlation test {kind}: failed {} of {n} (nominal 1%)",
+            failing[kind]
+        );
+    }
+    println!("'something slow' findings: {slow_claims} of 300 channels");
+    println!(
+        "false alarms: {alarms} of 50 clean records (design level {:.2})",
+        options.rank.alpha
+    );
+    assert!(alarms <= 3, "{alarms} of 50");
+}
+
+/// Power on the two-effect record: the second effect is found in at least
+/// 90% of seeds.
+#[test]
+#[ignore = "statistical claim over 20 seeds, ~15 min: run with --ignored"]
+fn power_on_the_two_effect_record() {
+    let mut found = 0;
+    let n = 20;
+    for seed in 0..n {
+        let mut s = two_effects(0.06);
+        s.seed = 3_000_017 * (seed + 1);
+        let (_, added) = explain_with_defaults(&s);
+        let both =
+            added.contains(&"Y1=gg_IS".to_string()) && added.contains(&"Y1=col:temp".to_string());
+        found += usize::from(both);
+        eprintln!("seed {seed}: {added:?}");
+    }
+    println!("power: both effects found in {found} of {n} seeds");
+    assert!(found * 10 >= n as usize * 9, "{found} of {n}");
+}
+
+/// The command line's contract: `explain --json` and `diagnose --json` keys,
+/// and `fit --json`'s coefficients with their standard errors and intervals.
+#[test]
+fn explain_and_diagnose_json_keep_their_keys() {
+    use std::process::Command;
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = Scenario::triaxial_hidden();
+    s.duration_s = 60.0;
+    let scenario = dir.path().join("short.toml");
+    s.save(&scenario).unwrap();
+    let bin = env!("CARGO_BIN_EXE_dtg-vib");
+    let run = |args: &[&str]| {
+        let out = Command::new(bin)
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).ok()
+    };
+    run(&["simulate", "--scenario", "short.toml", "--out", "sim"]);
+    let e = run(&[
+        "explain",
+        "--data",
+        "sim/record.csv",
+        "--calib",
+        "sim/calibration.json",
+        "--out",
+        "final.json",
+        "--json",
+        "--max-rounds",
+        "2",
+        "--alpha",
+        "0.01",
+        "--min-gain",
+        "0.1",
+    ])
+    .expect("one JSON object");
+    let rounds = e["rounds"].as_array().unwrap();
+    assert_eq!(rounds.len(), 2, "{e}");
+    let added = rounds[1]["added"].as_array().unwrap();
+    assert!(!added.is_empty(), "{e}");
+    for a in added {
+        for key in ["channel", "effect", "coef", "p"] {
+            assert!(!a[key].is_null(), "{key} in {a}");
+        }
+        let ci = a["ci95"].as_array().unwrap();
+        assert!(ci[0].as_f64().unwrap() < a["coef"].as_f64().unwrap());
+        assert!(a["coef"].as_f64().unwrap() < ci[1].as_f64().unwrap());
+    }
+    for c in rounds[0]["channels"].as_array().unwrap() {
+        assert!(
+            c["channel"].is_string() && c["val_rms"].as_f64().unwrap() > 0.0,
+            "{c}"
+        );
+    }
+    let channels = e["final"]["channels"].as_array().unwrap();
+    let with_effects: Vec<&serde_json::Value> = channels
+        .iter()
+        .filter(|c| !c["effects"].as_array().unwrap().is_empty())
+        .collect();
+    assert!(!with_effects.is_empty());
+    for c in with_effects {
+        for (_, k) in c["effect_coefficients"].as_object().unwrap() {
+            assert!(k["value"].is_number() && k["unit"].is_string(), "{k}");
+            assert!(k["se"].as_f64().unwrap() > 0.0, "{k}");
+            assert_eq!(k["ci95"].as_array().unwrap().len(), 2, "{k}");
+        }
+    }
+    let d = run(&[
+        "diagnose",
+        "--model",
+        "final.json",
+        "--data",
+        "sim/record.csv",
+        "--json",
+    ])
+    .expect("one JSON object");
+    let k = &d["channels"][0]["candidates"][0];
+    for key in [
+        "effect",
+        "err",
+        "coef",
+        "coef_se",
+        "coef_ci95",
+        "unit",
+        "alternatives",
+    ] {
+        assert!(!k[key].is_null(), "{key} in {k}");
+    }
+    // Thresholds out of range are usage errors naming the range.
+    let out = Command::new(bin)
+        .args([
+            "diagnose",
+            "--model",
+            "final.json",
+            "--data",
+            "sim/record.csv",
+            "--alpha",
+            "1.5",
+        ])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("between 0 and 1"));
+}
