@@ -34,6 +34,38 @@ fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
+/// The largest ridge the flags take. Beyond it the penalty swamps the
+/// unpenalised bias column and the least-squares solve reports it rank
+/// deficient (measured: 1e18 still fits, 1e30 does not); at 1e12 the kernel
+/// weights are already zero for any data whose rows number below a million.
+pub const MAX_RIDGE: f64 = 1e12;
+
+/// A count of centres or candidates: a whole number ≥ 1 (0 would leave
+/// nothing to fit; hints built from it proposed "--max-centers ≤ 0").
+fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("must be a whole number ≥ 1".to_string()),
+    }
+}
+
+/// An OLS tolerance ρ: 1 − ΣERR < ρ stops selection, so ρ lies in [0, 1).
+fn parse_tol(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..1.0).contains(&v) => Ok(v),
+        _ => Err("must be a number from 0 up to (not including) 1".to_string()),
+    }
+}
+
+/// A ridge λ: finite, from 0 to [`MAX_RIDGE`].
+fn parse_ridge(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        // −0 is 0: no ridge.
+        Ok(v) if (0.0..=MAX_RIDGE).contains(&v) => Ok(v.abs()),
+        _ => Err(format!("must be a number from 0 to {MAX_RIDGE:e}")),
+    }
+}
+
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Fit a network on the training rows, score it on the validation rows, save it.
@@ -82,7 +114,7 @@ pub struct ModelArgs {
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", value_parser = parse_count)]
     pub max_centers: Option<usize>,
     /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
     /// (the library's: distances by faer products, scikit-learn's update and stopping
@@ -91,10 +123,10 @@ pub struct ModelArgs {
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
     /// ols only: choose among a seeded random subsample of M training rows instead of
     /// all of them (the way to large files: the candidate matrix is rows × M).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = parse_count)]
     pub candidates: Option<usize>,
     /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
-    #[arg(allow_negative_numbers = true, long, value_name = "RHO")]
+    #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol)]
     pub tol: Option<f64>,
     /// Kernel: gaussian exp(−r²/β²), multiquadric, inverse-multiquadric,
     /// inverse-quadratic, thin-plate, cubic, wendland-c2.
@@ -116,7 +148,8 @@ pub struct ModelArgs {
         allow_negative_numbers = true,
         long,
         value_name = "L",
-        default_value_t = 0.0
+        default_value_t = 0.0,
+        value_parser = parse_ridge
     )]
     pub ridge: f64,
     /// Standardise every input to zero mean and unit variance (β is then in
@@ -217,7 +250,8 @@ pub struct CvArgs {
         long,
         value_name = "K1,K2,...",
         value_delimiter = ',',
-        conflicts_with = "tols"
+        conflicts_with = "tols",
+        value_parser = parse_count
     )]
     pub sizes: Vec<usize>,
     /// ols only: tolerances ρ to try [default: --tol].
@@ -225,7 +259,8 @@ pub struct CvArgs {
         allow_negative_numbers = true,
         long,
         value_name = "R1,R2,...",
-        value_delimiter = ','
+        value_delimiter = ',',
+        value_parser = parse_tol
     )]
     pub tols: Vec<f64>,
     /// Ridges to try [default: --ridge].
@@ -233,7 +268,8 @@ pub struct CvArgs {
         allow_negative_numbers = true,
         long,
         value_name = "L1,L2,...",
-        value_delimiter = ','
+        value_delimiter = ',',
+        value_parser = parse_ridge
     )]
     pub ridges: Vec<f64>,
     /// Print one JSON object on stdout (every grid point with its folds, and the best).

@@ -37,6 +37,19 @@ pub fn run(a: PredictArgs) -> Result<()> {
     let yhat = saved.model.predict(x.as_ref());
     let predict_seconds = start.elapsed().as_secs_f64();
     let prediction = data::column(yhat.as_ref(), 0);
+    // Said per row, before anything is written: which row, and why.
+    if let Some(i) = prediction
+        .iter()
+        .position(|v| !(v.is_finite() && v.abs() <= tabular::MAX_MAGNITUDE))
+    {
+        anyhow::bail!(
+            "{}:{}: the prediction for this row is {:e}: its inputs lie so far outside the training data that the {} kernel overflows; remove or rescale the row (nothing was written)",
+            table.file(),
+            table.line_of_row(i),
+            prediction[i],
+            saved.model.kernel()
+        );
+    }
 
     let target = if table.has_column(&saved.target) {
         Some(table.numeric(&saved.target)?)
