@@ -22,6 +22,19 @@ pub enum DtgVibError {
     /// The pre-processing filter cannot be designed or applied.
     #[error("pre-processing filter: {0}")]
     Filter(#[from] crate::signal::FilterError),
+    /// A value the pre-processing computed is non-finite or beyond ±1e150
+    /// (where squares overflow): said with the record time it belongs to.
+    #[error(
+        "{what} is {value:e} at t = {t} s (data row {row}), beyond ±1e150 where squares overflow; {hint}"
+    )]
+    OutOfRange {
+        what: String,
+        value: f64,
+        t: f64,
+        /// 1-based data row of the record.
+        row: usize,
+        hint: &'static str,
+    },
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),
