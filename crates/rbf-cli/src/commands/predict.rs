@@ -43,9 +43,10 @@ pub fn run(a: PredictArgs) -> Result<()> {
         .position(|v| !(v.is_finite() && v.abs() <= tabular::MAX_MAGNITUDE))
     {
         anyhow::bail!(
-            "{}:{}: the prediction for this row is {:e}: its inputs lie so far outside the training data that the {} kernel overflows; remove or rescale the row (nothing was written)",
+            "{}:{}: the prediction of {} for this row is {:e}: the {} kernel overflows on its inputs (far outside the training data, or a model of extreme numbers); remove or rescale the row, or refit (nothing was written)",
             table.file(),
             table.line_of_row(i),
+            a.model.display(),
             prediction[i],
             saved.model.kernel()
         );

@@ -573,23 +573,19 @@ impl RbfModel {
                 "scaling.scale",
                 self.scaling.as_ref().map(|s| s.scale.as_slice()),
             ),
-            (
-                "widths",
-                match &self.widths {
-                    Widths::PerCentre(w) => Some(w.as_slice()),
-                    Widths::Uniform(_) => None,
-                },
-            ),
         ];
         for (name, v) in vectors {
             for (i, &x) in v.unwrap_or_default().iter().enumerate() {
                 check_coefficient(&format!("{name}[{i}]"), x)?;
             }
         }
-        if let Widths::Uniform(b) = self.widths {
-            check_coefficient("widths.uniform", b)?;
+        match &self.widths {
+            Widths::Uniform(b) => check_width("widths.uniform", *b),
+            Widths::PerCentre(w) => w
+                .iter()
+                .enumerate()
+                .try_for_each(|(i, &b)| check_width(&format!("widths[{i}]"), b)),
         }
-        Ok(())
     }
 }
 
@@ -597,6 +593,20 @@ impl RbfModel {
 /// argument, a weighted sum or its square overflows `f64` (the readers of
 /// data refuse cells beyond the same bound).
 pub const MAX_COEFFICIENT: f64 = 1e150;
+
+/// A width β: distances over β (inputs are within ±1e150) and their squares
+/// stay finite from 1/[`MAX_COEFFICIENT`] up; a width edited to 1e-308 made
+/// every Gaussian value 0/0.
+fn check_width(field: &str, b: f64) -> Result<(), String> {
+    if (1.0 / MAX_COEFFICIENT..=MAX_COEFFICIENT).contains(&b) {
+        Ok(())
+    } else {
+        Err(format!(
+            "{field} = {b:e}: a width must be from {:e} to {MAX_COEFFICIENT:e}",
+            1.0 / MAX_COEFFICIENT
+        ))
+    }
+}
 
 fn check_coefficient(field: &str, v: f64) -> Result<(), String> {
     if v.is_finite() && v.abs() <= MAX_COEFFICIENT {
