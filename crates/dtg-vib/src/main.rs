@@ -136,7 +136,7 @@ struct FitArgs {
     #[arg(long, default_value = "ols")]
     centers: String,
     /// Window length, samples (the paper: 50).
-    #[arg(long, default_value_t = 50, value_parser = parse_count)]
+    #[arg(long, default_value_t = 50, value_parser = parse_count, allow_hyphen_values = true)]
     window: usize,
     /// Windowed signals, comma-separated (accelerometer axes or extra columns).
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
@@ -145,28 +145,28 @@ struct FitArgs {
     #[arg(long, default_value = "blocked")]
     split: String,
     /// Fraction of the rows that train in a blocked split.
-    #[arg(long = "train-fraction", default_value_t = 0.5, value_parser = parse_fraction)]
+    #[arg(long = "train-fraction", default_value_t = 0.5, value_parser = parse_fraction, allow_hyphen_values = true)]
     train_fraction: f64,
     /// Largest number of RBF centres tried by cross-validation.
-    #[arg(long = "max-centers", default_value_t = 60, value_parser = parse_count)]
+    #[arg(long = "max-centers", default_value_t = 60, value_parser = parse_count, allow_hyphen_values = true)]
     max_centers: usize,
     /// OLS candidate centres: a seeded subsample of this many training windows.
-    #[arg(long, default_value_t = 400, value_parser = parse_count)]
+    #[arg(long, default_value_t = 400, value_parser = parse_count, allow_hyphen_values = true)]
     candidates: usize,
     /// Low-pass cut-off of outputs and effects, Hz (zero-phase Butterworth).
-    #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter", value_parser = parse_hz)]
+    #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter", value_parser = parse_hz, allow_hyphen_values = true)]
     cutoff: f64,
     /// Low-pass order.
-    #[arg(long = "filter-order", default_value_t = 4, value_parser = parse_order)]
+    #[arg(long = "filter-order", default_value_t = 4, value_parser = parse_order, allow_hyphen_values = true)]
     filter_order: usize,
     /// No low-pass at all.
     #[arg(long = "no-filter")]
     no_filter: bool,
     /// Also low-pass the windowed inputs at this cut-off, Hz (the paper filtered them).
-    #[arg(long = "input-cutoff", value_parser = parse_hz)]
+    #[arg(long = "input-cutoff", value_parser = parse_hz, allow_hyphen_values = true)]
     input_cutoff: Option<f64>,
     /// Rate reference: Earth rate at this latitude, deg (cluster x north, z up).
-    #[arg(long = "earth-rate", conflicts_with = "table_rate", value_parser = parse_latitude)]
+    #[arg(long = "earth-rate", conflicts_with = "table_rate", value_parser = parse_latitude, allow_hyphen_values = true)]
     earth_rate: Option<f64>,
     /// Rate reference: a known table rate about cluster x,y,z, deg/s (WX,WY,WZ).
     // "-0.01,0,0" is not one number, so allow_negative_numbers does not cover it.
@@ -178,10 +178,10 @@ struct FitArgs {
     )]
     table_rate: Option<[f64; 3]>,
     /// Ridge on the output weights.
-    #[arg(long, default_value_t = 1e-8, value_parser = parse_ridge)]
+    #[arg(long, default_value_t = 1e-8, value_parser = parse_ridge, allow_hyphen_values = true)]
     ridge: f64,
     /// Seed of the candidate subsample and k-means.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     seed: u64,
     /// Model file to write.
     #[arg(long)]
