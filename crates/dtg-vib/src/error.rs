@@ -35,6 +35,24 @@ pub enum DtgVibError {
         row: usize,
         hint: &'static str,
     },
+    /// The inner cross-validation's folds, kept a leakage gap apart, leave
+    /// one of them no training rows.
+    #[error(
+        "the {n_train} training windows are too few for {folds} cross-validation folds kept {gap} samples apart (a window of {window} samples plus the filter's reach of {filter_memory}): use a longer record, a shorter --window, a higher --cutoff or a larger --train-fraction"
+    )]
+    InnerFoldsEmpty {
+        folds: usize,
+        n_train: usize,
+        gap: usize,
+        window: usize,
+        filter_memory: usize,
+    },
+    /// Every training window is the same point.
+    #[error(
+        "the windowed signals ({}) do not vary over the training rows, so every window is the same point and the network has nothing to tell apart; window a signal that varies (--window-signals)",
+        signals.join(", ")
+    )]
+    WindowsConstant { signals: Vec<String> },
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),

@@ -225,6 +225,8 @@ pub fn fit_prepared(
     let (train, val) = split_rows(prepared, options.split)?;
     let x = prepared.window_matrix();
     let x_train = gather(x.as_ref(), &train);
+    windows_vary(&x_train, options.preprocess.window.signals())?;
+    inner_folds_fit(prepared, train.len(), options.inner_folds)?;
     let channels: Vec<ChannelModel> = Channel::ALL
         .par_iter()
         .map(|&ch| {
@@ -240,6 +242,40 @@ pub fn fit_prepared(
         split: options.split,
         channels,
     })
+}
+
+/// Windows that are all the same point leave the network nothing to tell
+/// apart, and the library's width rule would say "use a fixed width", which
+/// no flag here sets: say which signals do not vary instead.
+fn windows_vary(x_train: &Mat<f64>, signals: &[String]) -> Result<(), DtgVibError> {
+    let same = (0..x_train.ncols()).all(|j| {
+        let first = x_train[(0, j)];
+        (0..x_train.nrows()).all(|i| x_train[(i, j)] == first)
+    });
+    if x_train.nrows() > 0 && same {
+        return Err(DtgVibError::WindowsConstant {
+            signals: signals.to_vec(),
+        });
+    }
+    Ok(())
+}
+
+/// The inner cross-validation keeps its blocked folds a leakage gap apart;
+/// on a short record the gap can leave a fold no training rows, which the
+/// library reports as "fold 1 of 226 samples has 0 training rows" without
+/// the settings behind it: say them here, before any channel is fitted.
+fn inner_folds_fit(prepared: &Prepared, n_train: usize, folds: usize) -> Result<(), DtgVibError> {
+    let gap = leakage_gap(prepared);
+    match (Split::Blocked { k: folds, gap }).folds(n_train) {
+        Ok(_) => Ok(()),
+        Err(_) => Err(DtgVibError::InnerFoldsEmpty {
+            folds,
+            n_train,
+            gap,
+            window: prepared.first_sample() + 1,
+            filter_memory: prepared.filter_memory(),
+        }),
+    }
 }
 
 fn fit_channel(
