@@ -564,6 +564,14 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         },
     )?;
     let fit_seconds = start.elapsed().as_secs_f64();
+    let n_train = model.channels()[0].scores().n_train;
+    let stride = dtg_vib::fit::selection_stride(n_train);
+    if stride > 1 {
+        eprintln!(
+            "note: {n_train} training windows: cross-validation and centre selection used every {stride}th of them ({}); the weights were solved on all",
+            n_train.div_ceil(stride)
+        );
+    }
     model.save(&a.out)?;
     if a.json {
         let channels: Vec<serde_json::Value> = model
