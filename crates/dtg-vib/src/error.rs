@@ -22,6 +22,37 @@ pub enum DtgVibError {
     /// The pre-processing filter cannot be designed or applied.
     #[error("pre-processing filter: {0}")]
     Filter(#[from] crate::signal::FilterError),
+    /// A value the pre-processing computed is non-finite or beyond ±1e150
+    /// (where squares overflow): said with the record time it belongs to.
+    #[error(
+        "{what} is {value:e} at t = {t} s (data row {row}), beyond ±1e150 where squares overflow; {hint}"
+    )]
+    OutOfRange {
+        what: String,
+        value: f64,
+        t: f64,
+        /// 1-based data row of the record.
+        row: usize,
+        hint: &'static str,
+    },
+    /// The inner cross-validation's folds, kept a leakage gap apart, leave
+    /// one of them no training rows.
+    #[error(
+        "the {n_train} training windows are too few for {folds} cross-validation folds kept {gap} samples apart (a window of {window} samples plus the filter's reach of {filter_memory}): use a longer record, a shorter --window, a higher --cutoff or a larger --train-fraction"
+    )]
+    InnerFoldsEmpty {
+        folds: usize,
+        n_train: usize,
+        gap: usize,
+        window: usize,
+        filter_memory: usize,
+    },
+    /// Every training window is the same point.
+    #[error(
+        "the windowed signals ({}) do not vary over the training rows, so every window is the same point and the network has nothing to tell apart; window a signal that varies (--window-signals)",
+        signals.join(", ")
+    )]
+    WindowsConstant { signals: Vec<String> },
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),

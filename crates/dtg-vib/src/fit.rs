@@ -329,14 +329,31 @@ pub(crate) fn fit_rows(
     let (train, val) = (train.to_vec(), val.to_vec());
     let x = prepared.window_matrix();
     let x_train = gather(x.as_ref(), &train);
+    windows_vary(&x_train, options.preprocess.window.signals())?;
+    let stride = selection_stride(train.len());
+    let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
+    inner_folds_fit(prepared, sel.len(), options.inner_folds)?;
+    let x_sel = (stride > 1).then(|| gather(x.as_ref(), &sel));
     let channels: Vec<ChannelModel> = Channel::ALL
         .par_iter()
         .map(|&ch| {
-            let m = fit_channel(prepared, &x, &x_train, &train, &val, ch, options);
+            let m = match &x_sel {
+                None => fit_channel(prepared, &x, &x_train, &train, &val, ch, options),
+                Some(x_sel) => fit_channel(prepared, &x, x_sel, &sel, &val, ch, options),
+            };
             progress(FitStage::ChannelDone(ch));
             m
         })
         .collect::<Result<_, _>>()?;
+    // One channel at a time: each refit holds an n × (1 + effects + K)
+    // design and its QR copy (0.5 GB at 500,000 training rows).
+    let channels = match &x_sel {
+        None => channels,
+        Some(_) => channels
+            .into_iter()
+            .map(|m| refit_weights(prepared, &x, &x_train, &train, &val, m, options))
+            .collect::<Result<_, _>>()?,
+    };
     Ok(CompensationModel {
         preprocess: options.preprocess.clone(),
         calibration: calibration.cloned(),
@@ -345,6 +362,112 @@ pub(crate) fn fit_rows(
         channels,
         fit: options.settings(),
     })
+}
+
+/// Training windows above which cross-validation and centre selection run on
+/// every `selection_stride`-th of them; the weights are still solved on all.
+/// Their cost is rows × candidates per fold and channel: 1.6 GB a channel at
+/// 500,000 rows, where a 1M-row record needed 6 GB and over 5 minutes.
+pub const MAX_SELECTION_ROWS: usize = 50_000;
+
+/// The stride of the training windows that choose centres and width: 1 up to
+/// [`MAX_SELECTION_ROWS`]. A stride keeps time order, so the blocked folds'
+/// leakage gap of g rows spans g·stride samples, never fewer than needed.
+///
+/// ```
+/// assert_eq!(dtg_vib::fit::selection_stride(50_000), 1);
+/// assert_eq!(dtg_vib::fit::selection_stride(500_000), 10);
+/// ```
+pub fn selection_stride(n_train: usize) -> usize {
+    n_train.div_ceil(MAX_SELECTION_ROWS).max(1)
+}
+
+/// A channel model whose centres and width were chosen on a subsample, with
+/// its bias, effect coefficients and weights solved again by QR on every
+/// training row, and scored on all rows.
+fn refit_weights(
+    prepared: &Prepared,
+    x: &Mat<f64>,
+    x_train: &Mat<f64>,
+    train: &[usize],
+    val: &[usize],
+    m: ChannelModel,
+    options: &FitOptions,
+) -> Result<ChannelModel, DtgVibError> {
+    let channel = m.channel();
+    let effects = m.effects().to_vec();
+    let z = prepared.effect_matrix(channel, &effects)?;
+    let y = prepared.target(channel);
+    let z_train = gather(z.as_ref(), train);
+    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
+    let fail = |source| DtgVibError::Fit { channel, source };
+    let params = RbfParams::new()
+        .kernel(options.kernel)
+        .centres(CentreSelection::Given(m.rbf().centres()))
+        .width(WidthRule::Fixed(m.width()))
+        .ridge(options.ridge)
+        .seed(options.seed)
+        .parallelism(Par::Seq)
+        .check()
+        .map_err(|e| fail(e.into()))?;
+    // Effect coefficients estimated by partialling out stay as they are
+    // (with their intervals); the network is solved on what they leave.
+    let model = match m.coefficients() {
+        Some(_) => {
+            let theta = m.rbf().linear_coefficients().to_owned();
+            let y_adj = &y_train - &z_train * &theta;
+            let no_z = Mat::<f64>::zeros(train.len(), 0);
+            params
+                .fit_with_linear(x_train.as_ref(), no_z.as_ref(), y_adj.as_ref())
+                .map_err(fail)?
+                .with_linear(theta.as_ref())
+        }
+        None => params
+            .fit_with_linear(x_train.as_ref(), z_train.as_ref(), y_train.as_ref())
+            .map_err(fail)?,
+    };
+    let yhat = model.predict_with_linear(x.as_ref(), z.as_ref());
+    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
+    let scores = score(y, &yhat, train, val);
+    let coefficients = m.coefficients().map(<[_]>::to_vec).unwrap_or_default();
+    Ok(
+        ChannelModel::new(channel, effects, m.width(), model, scores)
+            .with_coefficients(coefficients),
+    )
+}
+
+/// Windows that are all the same point leave the network nothing to tell
+/// apart, and the library's width rule would say "use a fixed width", which
+/// no flag here sets: say which signals do not vary instead.
+fn windows_vary(x_train: &Mat<f64>, signals: &[String]) -> Result<(), DtgVibError> {
+    let same = (0..x_train.ncols()).all(|j| {
+        let first = x_train[(0, j)];
+        (0..x_train.nrows()).all(|i| x_train[(i, j)] == first)
+    });
+    if x_train.nrows() > 0 && same {
+        return Err(DtgVibError::WindowsConstant {
+            signals: signals.to_vec(),
+        });
+    }
+    Ok(())
+}
+
+/// The inner cross-validation keeps its blocked folds a leakage gap apart;
+/// on a short record the gap can leave a fold no training rows, which the
+/// library reports as "fold 1 of 226 samples has 0 training rows" without
+/// the settings behind it: say them here, before any channel is fitted.
+fn inner_folds_fit(prepared: &Prepared, n_train: usize, folds: usize) -> Result<(), DtgVibError> {
+    let gap = leakage_gap(prepared);
+    match (Split::Blocked { k: folds, gap }).folds(n_train) {
+        Ok(_) => Ok(()),
+        Err(_) => Err(DtgVibError::InnerFoldsEmpty {
+            folds,
+            n_train,
+            gap,
+            window: prepared.first_sample() + 1,
+            filter_memory: prepared.filter_memory(),
+        }),
+    }
 }
 
 fn fit_channel(

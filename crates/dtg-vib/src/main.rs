@@ -195,7 +195,7 @@ struct FitArgs {
     #[arg(long, default_value = "ols")]
     centers: String,
     /// Window length, samples (the paper: 50).
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = parse_count, allow_hyphen_values = true)]
     window: usize,
     /// Windowed signals, comma-separated (accelerometer axes or extra columns).
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
@@ -204,28 +204,28 @@ struct FitArgs {
     #[arg(long, default_value = "blocked")]
     split: String,
     /// Fraction of the rows that train in a blocked split.
-    #[arg(long = "train-fraction", default_value_t = 0.5)]
+    #[arg(long = "train-fraction", default_value_t = 0.5, value_parser = parse_fraction, allow_hyphen_values = true)]
     train_fraction: f64,
     /// Largest number of RBF centres tried by cross-validation.
-    #[arg(long = "max-centers", default_value_t = 60)]
+    #[arg(long = "max-centers", default_value_t = 60, value_parser = parse_count, allow_hyphen_values = true)]
     max_centers: usize,
     /// OLS candidate centres: a seeded subsample of this many training windows.
-    #[arg(long, default_value_t = 400)]
+    #[arg(long, default_value_t = 400, value_parser = parse_count, allow_hyphen_values = true)]
     candidates: usize,
     /// Low-pass cut-off of outputs and effects, Hz (zero-phase Butterworth).
-    #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter")]
+    #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter", value_parser = parse_hz, allow_hyphen_values = true)]
     cutoff: f64,
     /// Low-pass order.
-    #[arg(long = "filter-order", default_value_t = 4)]
+    #[arg(long = "filter-order", default_value_t = 4, value_parser = parse_order, allow_hyphen_values = true)]
     filter_order: usize,
     /// No low-pass at all.
     #[arg(long = "no-filter")]
     no_filter: bool,
     /// Also low-pass the windowed inputs at this cut-off, Hz (the paper filtered them).
-    #[arg(long = "input-cutoff")]
+    #[arg(long = "input-cutoff", value_parser = parse_hz, allow_hyphen_values = true)]
     input_cutoff: Option<f64>,
     /// Rate reference: Earth rate at this latitude, deg (cluster x north, z up).
-    #[arg(long = "earth-rate", conflicts_with = "table_rate", value_parser = parse_latitude)]
+    #[arg(long = "earth-rate", conflicts_with = "table_rate", value_parser = parse_latitude, allow_hyphen_values = true)]
     earth_rate: Option<f64>,
     /// Rate reference: a known table rate about cluster x,y,z, deg/s (WX,WY,WZ).
     // "-0.01,0,0" is not one number, so allow_negative_numbers does not cover it.
@@ -237,10 +237,10 @@ struct FitArgs {
     )]
     table_rate: Option<[f64; 3]>,
     /// Ridge on the output weights.
-    #[arg(long, default_value_t = 1e-8)]
+    #[arg(long, default_value_t = 1e-8, value_parser = parse_ridge, allow_hyphen_values = true)]
     ridge: f64,
     /// Seed of the candidate subsample and k-means.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     seed: u64,
     /// Model file to write.
     #[arg(long)]
@@ -374,7 +374,12 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
             let sim = simulate(&s)?;
-            sim.write_dir(&out)?;
+            sim.write_dir(&out).with_context(|| {
+                format!(
+                    "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
+                    s.name
+                )
+            })?;
             drop(progress);
             println!("wrote {}", out.join("record.csv").display());
         }
@@ -537,6 +542,17 @@ fn run(cli: Cli) -> Result<()> {
 
 /// The fit options the flags say.
 fn fit_options(a: &FitArgs) -> Result<FitOptions> {
+    let centres = a.centers.parse::<CentreMethod>()?;
+    if centres == CentreMethod::Ols && a.max_centers > a.candidates {
+        // OLS picks among the candidates; more centres than that used to
+        // run a size ladder far past them (--max-centers 100000000 hung).
+        anyhow::bail!(
+            "--max-centers {}: OLS picks centres among --candidates {} windows; use --max-centers 1 to {} (or raise --candidates)",
+            a.max_centers,
+            a.candidates,
+            a.candidates
+        );
+    }
     let effects = Effect::parse_list(&a.effects.join(","))?;
     let add = a
         .add_effect
@@ -576,7 +592,7 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         },
         effects,
         add,
-        centres: a.centers.parse::<CentreMethod>()?,
+        centres,
         max_centres: a.max_centers,
         candidates: a.candidates,
         ridge: a.ridge,
@@ -586,15 +602,30 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
     })
 }
 
+/// The flags that depend on the record's rate, said with the flag.
+fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
+    for (flag, cutoff) in [
+        ("--cutoff", (!a.no_filter).then_some(a.cutoff)),
+        ("--input-cutoff", a.input_cutoff),
+    ] {
+        if let Some(c) = cutoff {
+            dtg_vib::signal::LowPass::butterworth(a.filter_order, c, 1.0 / record.dt())
+                .map_err(|e| anyhow::anyhow!("{flag} {}: {e}", dtg_vib::signal::num(c)))?;
+        }
+    }
+    Ok(())
+}
+
 fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
     outfile::guard_file(
         "--out",
         &a.out,
         &[("--data", Some(&a.data)), ("--calib", a.calib.as_deref())],
     )?;
-    let record = Record::read_csv(&a.data)?;
-    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
     let options = fit_options(&a)?;
+    let record = Record::read_csv(&a.data)?;
+    check_against_record(&a, &record)?;
+    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let start = std::time::Instant::now();
     let model = fit(
@@ -610,6 +641,14 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         },
     )?;
     let fit_seconds = start.elapsed().as_secs_f64();
+    let n_train = model.channels()[0].scores().n_train;
+    let stride = dtg_vib::fit::selection_stride(n_train);
+    if stride > 1 {
+        eprintln!(
+            "note: {n_train} training windows: cross-validation and centre selection used every {stride}th of them ({}); the weights were solved on all",
+            n_train.div_ceil(stride)
+        );
+    }
     model.save(&a.out)?;
     progress.clear();
     if a.json {
@@ -755,9 +794,10 @@ fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
             &[("--data", Some(&f.data)), ("--calib", f.calib.as_deref())],
         )?;
     }
-    let record = Record::read_csv(&f.data)?;
-    let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
     let options = fit_options(f)?;
+    let record = Record::read_csv(&f.data)?;
+    check_against_record(f, &record)?;
+    let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
     let e = dtg_vib::explain::explain(
@@ -881,6 +921,50 @@ fn parse_rate(s: &str) -> Result<[f64; 3], String> {
 /// The fastest table rate `--table-rate` takes, deg/s: rate tables turn at
 /// up to a few thousand deg/s; beyond, the rate reference only overflows.
 const MAX_TABLE_RATE_DEG_S: f64 = 10_000.0;
+
+/// A count (window samples, centres, candidates): a whole number ≥ 1.
+fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("must be a whole number ≥ 1".into()),
+    }
+}
+
+fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
+        _ => Err("must be a number strictly between 0 and 1".into()),
+    }
+}
+
+/// A cut-off frequency: positive and finite here; its upper bound (the
+/// record's Nyquist frequency) is checked once the record is read.
+fn parse_hz(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err("must be a positive frequency in Hz, below the record's Nyquist frequency".into()),
+    }
+}
+
+fn parse_order(s: &str) -> Result<usize, String> {
+    let max = dtg_vib::signal::MAX_ORDER;
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!("must be a whole number from 1 to {max}")),
+    }
+}
+
+/// The largest `--ridge`: beyond it the penalty swamps the unpenalised bias
+/// and effect columns and the solve reports them rank deficient (measured:
+/// 1e18 still fits, 1e30 does not); at 1e12 the kernel weights are zero.
+const MAX_RIDGE: f64 = 1e12;
+
+fn parse_ridge(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..=MAX_RIDGE).contains(&v) => Ok(v.abs()),
+        _ => Err(format!("must be a number from 0 to {MAX_RIDGE:e}")),
+    }
+}
 
 fn parse_latitude(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

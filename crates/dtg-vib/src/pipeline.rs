@@ -188,7 +188,11 @@ impl Prepared {
     ) -> Result<Self, DtgVibError> {
         pre.rate_reference.check()?;
         let calibrated = match calibration {
-            Some(c) => c.compensate(record),
+            Some(c) => {
+                let calibrated = c.compensate(record);
+                check_calibrated(&calibrated)?;
+                calibrated
+            }
             None => record.clone(),
         };
         let filter = pre
@@ -268,6 +272,14 @@ impl Prepared {
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.
         let cols = EffectColumns::new(&self.calibrated).evaluate(channel, effects)?;
+        for (e, c) in effects.iter().zip(&cols) {
+            check_range(
+                || format!("channel {channel}'s effect {}", e.id()),
+                c,
+                self.calibrated.t(),
+                "the record's accelerations (g) or rates are too large for this effect's products: check their units, or drop the effect",
+            )?;
+        }
         cols.iter().map(|c| apply(&self.filter, c)).collect()
     }
 
@@ -311,6 +323,54 @@ impl Prepared {
             .rev()
             .find(|&k| h[half + k].abs() > 1e-3 * peak)
             .unwrap_or(0)
+    }
+}
+
+/// The record's values are within ±1e150 (the reader refuses more), but a
+/// calibration's polynomial terms (an accelerometer's k3·a³, a gyro's g²
+/// sensitivities) can carry them past what the filter and the fit can square.
+fn check_calibrated(calibrated: &Record) -> Result<(), DtgVibError> {
+    let hint = "the calibration's coefficients or the record's values are out of range: check the units of both";
+    let t = calibrated.t();
+    for ch in Channel::ALL {
+        check_range(
+            || format!("column '{}' after calibration", ch.name()),
+            calibrated.gyro(ch),
+            t,
+            hint,
+        )?;
+    }
+    for axis in Axis::ALL {
+        check_range(
+            || format!("column '{}' after calibration", axis.column()),
+            calibrated.accel(axis),
+            t,
+            hint,
+        )?;
+    }
+    Ok(())
+}
+
+/// The first value of `x` that is non-finite or beyond ±1e150, as an error
+/// naming `what` and the record time.
+fn check_range(
+    what: impl FnOnce() -> String,
+    x: &[f64],
+    t: &[f64],
+    hint: &'static str,
+) -> Result<(), DtgVibError> {
+    match x
+        .iter()
+        .position(|v| !(v.is_finite() && v.abs() <= tabular::MAX_MAGNITUDE))
+    {
+        None => Ok(()),
+        Some(i) => Err(DtgVibError::OutOfRange {
+            what: what(),
+            value: x[i],
+            t: t[i],
+            row: i + 1,
+            hint,
+        }),
     }
 }
 

@@ -78,6 +78,13 @@ impl fmt::Display for Centers {
     }
 }
 
+/// The narrowest fixed width `--width` takes: inputs (at most ±1e150, the
+/// readers' limit) divided by β stay finite, so kernel arguments never become
+/// NaN (a width of 1e-308 made every candidate non-finite).
+pub const MIN_WIDTH: f64 = 1e-100;
+/// The widest fixed width `--width` takes (the mirror of [`MIN_WIDTH`]).
+pub const MAX_WIDTH: f64 = 1e100;
+
 /// `--width`: a fixed β in input units, or `auto`, the library's default rule (β = the
 /// median pairwise distance between the candidate centres, on a seeded subsample of
 /// 1000 of them above that count).
@@ -120,8 +127,10 @@ impl FromStr for WidthArg {
             return Ok(WidthArg::Auto);
         }
         match s.parse::<f64>() {
-            Ok(b) if b.is_finite() && b > 0.0 => Ok(WidthArg::Fixed(b)),
-            _ => Err("expected 'auto' or a finite width β > 0".to_string()),
+            Ok(b) if (MIN_WIDTH..=MAX_WIDTH).contains(&b) => Ok(WidthArg::Fixed(b)),
+            _ => Err(format!(
+                "expected 'auto' or a width β from {MIN_WIDTH:e} to {MAX_WIDTH:e}"
+            )),
         }
     }
 }

@@ -74,8 +74,8 @@ pub use estimate::{
 };
 pub use kernel::{Kernel, UnknownKernel};
 pub use model::{
-    Candidates, CentreSelection, FORMAT_VERSION, PersistError, Progress, RbfError, RbfModel,
-    RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
+    Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, Progress, RbfError,
+    RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
 };
 pub use select::kmeans::{KMeansAlgorithm, KMeansSettings, UnknownKMeansAlgorithm};
 pub use select::ols::{

@@ -93,6 +93,18 @@ pub enum TableError {
         name: String,
         value: String,
     },
+    /// A value handed to [`write_csv`] is not finite or beyond
+    /// [`MAX_MAGNITUDE`]: written, it would make a file the readers refuse.
+    #[error(
+        "{path}: column '{name}', data row {row} would be {value:e}, which no reader takes (a number must be finite and within ±1e150); nothing was written"
+    )]
+    NotWritable {
+        path: String,
+        name: String,
+        /// 1-based data row (file line − 1).
+        row: usize,
+        value: f64,
+    },
     /// Columns handed to [`write_csv`] differ in length.
     #[error("{path}: column '{name}' has {len} values, expected {expected}")]
     RaggedColumns {
@@ -409,6 +421,29 @@ pub fn write_csv(
     })
 }
 
+/// The first value [`write_csv`] refuses: non-finite, or beyond
+/// [`MAX_MAGNITUDE`] (what [`Table::numeric`] would refuse on reading back).
+///
+/// ```
+/// let e = tabular::first_unwritable("o.csv", &["a"], &[&[1.0, f64::NAN]]).unwrap();
+/// assert!(e.to_string().starts_with("o.csv: column 'a', data row 2 would be NaN"));
+/// assert!(tabular::first_unwritable("o.csv", &["a"], &[&[1.0, -1e150]]).is_none());
+/// ```
+pub fn first_unwritable(path: &str, names: &[&str], columns: &[&[f64]]) -> Option<TableError> {
+    let n = columns.first().map_or(0, |c| c.len());
+    (0..n).find_map(|i| {
+        columns.iter().zip(names).find_map(|(c, nm)| {
+            let v = c[i];
+            (!(v.is_finite() && v.abs() <= MAX_MAGNITUDE)).then(|| TableError::NotWritable {
+                path: path.to_string(),
+                name: nm.to_string(),
+                row: i + 1,
+                value: v,
+            })
+        })
+    })
+}
+
 /// As [`write_csv`], into any writer; `name` labels errors.
 #[track_caller]
 pub fn write_csv_to<W: Write>(
@@ -428,6 +463,10 @@ pub fn write_csv_to<W: Write>(
                 expected: n,
             });
         }
+    }
+    // Checked before the first byte, so a refused table leaves nothing behind.
+    if let Some(e) = first_unwritable(name, names, columns) {
+        return Err(e);
     }
     let io = |source| TableError::Io {
         path: name.to_string(),

@@ -14,7 +14,9 @@ pub enum FilterError {
     Order { order: usize, max: usize },
     /// The cut-off is not strictly between 0 and the Nyquist frequency.
     #[error(
-        "cut-off {cutoff_hz} Hz must lie strictly between 0 and the Nyquist frequency {nyquist_hz} Hz"
+        "cut-off {} Hz must lie strictly between 0 and the Nyquist frequency {} Hz",
+        num(*cutoff_hz),
+        num(*nyquist_hz)
     )]
     Cutoff { cutoff_hz: f64, nyquist_hz: f64 },
     /// The cut-off is below a ten-thousandth of the sample rate: a filter
@@ -23,7 +25,10 @@ pub enum FilterError {
     /// an impulse response of that length (a model edited to 1e-9 Hz asked
     /// for 32 TB).
     #[error(
-        "cut-off {cutoff_hz} Hz is below {min_hz} Hz, a ten-thousandth of the sample rate: use a cut-off from {min_hz} Hz up to the Nyquist frequency"
+        "cut-off {} Hz is below {} Hz, a ten-thousandth of the sample rate: use a cut-off from {} Hz up to the Nyquist frequency",
+        num(*cutoff_hz),
+        num(*min_hz),
+        num(*min_hz)
     )]
     CutoffTooLow { cutoff_hz: f64, min_hz: f64 },
     /// The sample rate is not a positive number.
@@ -33,8 +38,25 @@ pub enum FilterError {
     #[error("{len} samples are too few for zero-phase filtering: need at least {min}")]
     TooShort { len: usize, min: usize },
     /// The signal holds NaN or an infinity.
-    #[error("sample {index} is not finite")]
+    #[error("sample {index} (data row {}) is not finite", index + 1)]
     NotFinite { index: usize },
+}
+
+/// A number as a reader would type it: plain in the usual range, in
+/// exponent form beyond (1e308 printed plainly is 309 digits).
+///
+/// ```
+/// # use dtg_vib::signal::num;
+/// assert_eq!(num(5.0), "5");
+/// assert_eq!(num(1e308), "1e308");
+/// assert_eq!(num(1e-9), "1e-9");
+/// ```
+pub fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 #[cfg(test)]

@@ -303,7 +303,7 @@ impl Record {
         Ok(())
     }
 
-    fn columns(&self) -> (Vec<&str>, Vec<&[f64]>) {
+    pub(crate) fn columns(&self) -> (Vec<&str>, Vec<&[f64]>) {
         let mut names: Vec<&str> = vec!["t"];
         let mut cols: Vec<&[f64]> = vec![&self.t];
         for c in Channel::ALL {

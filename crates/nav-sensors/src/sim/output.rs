@@ -151,6 +151,20 @@ impl Simulation {
             let path = path.display().to_string();
             move |source| SimError::Io { path, source }
         };
+        // Nothing is written if a table holds a number no reader takes (a
+        // scenario temperature of 1e308 used to write records of inf).
+        let (names, cols) = self.record.columns();
+        let record = dir.join("record.csv").display().to_string();
+        let components = dir.join("components.csv").display().to_string();
+        let mut comp_names: Vec<&str> = vec!["t"];
+        comp_names.extend(self.components.names.iter().map(String::as_str));
+        let mut comp_cols: Vec<&[f64]> = vec![&self.components.t];
+        comp_cols.extend(self.components.columns.iter().map(Vec::as_slice));
+        if let Some(e) = tabular::first_unwritable(&record, &names, &cols)
+            .or_else(|| tabular::first_unwritable(&components, &comp_names, &comp_cols))
+        {
+            return Err(crate::record::RecordError::from(e).into());
+        }
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         self.record.write_csv(dir.join("record.csv"))?;
         self.calibration.save(dir.join("calibration.json"))?;

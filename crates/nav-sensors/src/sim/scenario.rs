@@ -263,7 +263,7 @@ pub enum ScenarioError {
     #[error("cannot write scenario as TOML: {0}")]
     Serialize(String),
     /// A rate, duration or parameter out of range.
-    #[error("{field} = {value}: {requirement}")]
+    #[error("{field} = {}: {requirement}", num(*value))]
     OutOfRange {
         /// The field's path.
         field: &'static str,
@@ -445,8 +445,10 @@ impl Scenario {
         range(
             "internal_rate_hz",
             self.internal_rate_hz,
-            (ratio - ratio.round()).abs() < 1e-9,
-            "must be a whole multiple of output_rate_hz",
+            // At least once: an output rate above the internal one (1e308)
+            // rounded the ratio to 0 and left the synthesis no samples.
+            ratio >= 1.0 && (ratio - ratio.round()).abs() < 1e-9,
+            "must be a whole multiple (1 or more) of output_rate_hz",
         )?;
         range(
             "duration_s",
@@ -570,5 +572,15 @@ fn first_non_finite(v: &toml::Value, path: &str) -> Option<(String, f64)> {
             .find_map(|(i, x)| first_non_finite(x, &format!("{path}[{i}]"))),
         toml::Value::Table(t) => t.iter().find_map(|(k, x)| first_non_finite(x, &join(k))),
         _ => None,
+    }
+}
+
+/// A number as a reader would type it: exponent form far from 1 (1e308
+/// printed plainly is 309 digits).
+fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }

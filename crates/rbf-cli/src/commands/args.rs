@@ -13,7 +13,7 @@ pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
     /// Threads for the numerical kernels, 1 to 256 (1: sequential) [default: every core].
-    #[arg(long, global = true, value_name = "N", value_parser = parse_threads)]
+    #[arg(long, global = true, value_name = "N", value_parser = parse_threads, allow_hyphen_values = true)]
     pub threads: Option<usize>,
 }
 
@@ -31,6 +31,38 @@ fn parse_threads(s: &str) -> Result<usize, String> {
                 "must be a whole number from 1 to {MAX_THREADS} (this machine has {cores} cores)"
             ))
         }
+    }
+}
+
+/// The largest ridge the flags take. Beyond it the penalty swamps the
+/// unpenalised bias column and the least-squares solve reports it rank
+/// deficient (measured: 1e18 still fits, 1e30 does not); at 1e12 the kernel
+/// weights are already zero for any data whose rows number below a million.
+pub const MAX_RIDGE: f64 = 1e12;
+
+/// A count of centres or candidates: a whole number ≥ 1 (0 would leave
+/// nothing to fit; hints built from it proposed "--max-centers ≤ 0").
+fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("must be a whole number ≥ 1".to_string()),
+    }
+}
+
+/// An OLS tolerance ρ: 1 − ΣERR < ρ stops selection, so ρ lies in [0, 1).
+fn parse_tol(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..1.0).contains(&v) => Ok(v),
+        _ => Err("must be a number from 0 up to (not including) 1".to_string()),
+    }
+}
+
+/// A ridge λ: finite, from 0 to [`MAX_RIDGE`].
+fn parse_ridge(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        // −0 is 0: no ridge.
+        Ok(v) if (0.0..=MAX_RIDGE).contains(&v) => Ok(v.abs()),
+        _ => Err(format!("must be a number from 0 to {MAX_RIDGE:e}")),
     }
 }
 
@@ -82,7 +114,7 @@ pub struct ModelArgs {
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
     pub max_centers: Option<usize>,
     /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
     /// (the library's: distances by faer products, scikit-learn's update and stopping
@@ -91,10 +123,10 @@ pub struct ModelArgs {
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
     /// ols only: choose among a seeded random subsample of M training rows instead of
     /// all of them (the way to large files: the candidate matrix is rows × M).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = parse_count, allow_hyphen_values = true)]
     pub candidates: Option<usize>,
     /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
-    #[arg(allow_negative_numbers = true, long, value_name = "RHO")]
+    #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol, allow_hyphen_values = true)]
     pub tol: Option<f64>,
     /// Kernel: gaussian exp(−r²/β²), multiquadric, inverse-multiquadric,
     /// inverse-quadratic, thin-plate, cubic, wendland-c2.
@@ -107,7 +139,8 @@ pub struct ModelArgs {
         allow_negative_numbers = true,
         long,
         value_name = "BETA|auto",
-        default_value = "auto"
+        default_value = "auto",
+        allow_hyphen_values = true
     )]
     pub width: WidthArg,
     /// Ridge λ ≥ 0 on the kernel weights (with --centers all: added to the kernel
@@ -116,7 +149,9 @@ pub struct ModelArgs {
         allow_negative_numbers = true,
         long,
         value_name = "L",
-        default_value_t = 0.0
+        default_value_t = 0.0,
+        value_parser = parse_ridge,
+        allow_hyphen_values = true
     )]
     pub ridge: f64,
     /// Standardise every input to zero mean and unit variance (β is then in
@@ -124,7 +159,12 @@ pub struct ModelArgs {
     #[arg(long)]
     pub standardize: bool,
     /// Seed of every random draw (k-means, random centres, candidate subsample, k-fold).
-    #[arg(long, value_name = "S", default_value_t = 42)]
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 42,
+        allow_hyphen_values = true
+    )]
     pub seed: u64,
 }
 
@@ -198,18 +238,24 @@ pub struct CvArgs {
     #[arg(long, value_name = "kfold|interleaved|blocked")]
     pub split: SplitKind,
     /// Number of folds.
-    #[arg(long, value_name = "K", default_value_t = 5)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 5,
+        allow_hyphen_values = true
+    )]
     pub folds: usize,
     /// blocked only: rows dropped from training on each side of the validation block
     /// (at least the window length for windowed inputs).
-    #[arg(long, value_name = "G")]
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
     pub gap: Option<usize>,
     /// Widths to try (numbers or auto) [default: --width].
     #[arg(
         allow_negative_numbers = true,
         long,
         value_name = "B1,B2,...",
-        value_delimiter = ','
+        value_delimiter = ',',
+        allow_hyphen_values = true
     )]
     pub widths: Vec<WidthArg>,
     /// Numbers of centres to try [default: --max-centers].
@@ -217,7 +263,9 @@ pub struct CvArgs {
         long,
         value_name = "K1,K2,...",
         value_delimiter = ',',
-        conflicts_with = "tols"
+        conflicts_with = "tols",
+        value_parser = parse_count,
+        allow_hyphen_values = true
     )]
     pub sizes: Vec<usize>,
     /// ols only: tolerances ρ to try [default: --tol].
@@ -225,7 +273,9 @@ pub struct CvArgs {
         allow_negative_numbers = true,
         long,
         value_name = "R1,R2,...",
-        value_delimiter = ','
+        value_delimiter = ',',
+        value_parser = parse_tol,
+        allow_hyphen_values = true
     )]
     pub tols: Vec<f64>,
     /// Ridges to try [default: --ridge].
@@ -233,7 +283,9 @@ pub struct CvArgs {
         allow_negative_numbers = true,
         long,
         value_name = "L1,L2,...",
-        value_delimiter = ','
+        value_delimiter = ',',
+        value_parser = parse_ridge,
+        allow_hyphen_values = true
     )]
     pub ridges: Vec<f64>,
     /// Print one JSON object on stdout (every grid point with its folds, and the best).

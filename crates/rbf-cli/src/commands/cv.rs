@@ -51,6 +51,7 @@ pub fn run(a: CvArgs) -> Result<()> {
 
     let gap = a.gap.unwrap_or(0);
     let split = a.split.split(a.folds, gap, settings.seed);
+    check_folds(&a, &split, gap, table.file(), table.len())?;
     let grid = Grid {
         widths: a.widths.iter().map(|w| w.rule()).collect(),
         sizes: if !a.sizes.is_empty() {
@@ -97,4 +98,41 @@ pub fn run(a: CvArgs) -> Result<()> {
         bail!("no grid point could be fitted");
     }
     Ok(())
+}
+
+/// Builds the folds once before any fitting, so that a split leaving a fold
+/// without training rows (a `--gap` that eats them) is said with the flags
+/// that caused it and the largest `--gap` that works.
+fn check_folds(a: &CvArgs, split: &rbf::Split, gap: usize, file: &str, n: usize) -> Result<()> {
+    let Err(e) = split.folds(n) else {
+        return Ok(());
+    };
+    let rbf::SplitError::EmptyFold {
+        fold,
+        train,
+        validation,
+        ..
+    } = e
+    else {
+        bail!("--split {} --folds {}: {e}", a.split.name(), a.folds);
+    };
+    let what = if train == 0 { "training" } else { "validation" };
+    // The largest gap that leaves every fold rows on both sides: the split is
+    // monotone in the gap, so bisect (log n splits of n indices each).
+    let works = |g: usize| a.split.split(a.folds, g, 0).folds(n).is_ok();
+    let fix = if a.split == SplitKind::Blocked && works(0) {
+        let (mut lo, mut hi) = (0, gap);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if works(mid) { lo = mid } else { hi = mid }
+        }
+        format!("use --gap {lo} or less (or fewer --folds)")
+    } else {
+        "use fewer --folds".to_string()
+    };
+    bail!(
+        "--split {} --folds {} --gap {gap}: fold {fold} of {file}'s {n} data rows would have no {what} rows ({train} training, {validation} validation); {fix}",
+        a.split.name(),
+        a.folds,
+    )
 }

@@ -37,6 +37,20 @@ pub fn run(a: PredictArgs) -> Result<()> {
     let yhat = saved.model.predict(x.as_ref());
     let predict_seconds = start.elapsed().as_secs_f64();
     let prediction = data::column(yhat.as_ref(), 0);
+    // Said per row, before anything is written: which row, and why.
+    if let Some(i) = prediction
+        .iter()
+        .position(|v| !(v.is_finite() && v.abs() <= tabular::MAX_MAGNITUDE))
+    {
+        anyhow::bail!(
+            "{}:{}: the prediction of {} for this row is {:e}: the {} kernel overflows on its inputs (far outside the training data, or a model of extreme numbers); remove or rescale the row, or refit (nothing was written)",
+            table.file(),
+            table.line_of_row(i),
+            a.model.display(),
+            prediction[i],
+            saved.model.kernel()
+        );
+    }
 
     let target = if table.has_column(&saved.target) {
         Some(table.numeric(&saved.target)?)

@@ -158,7 +158,7 @@ fn solve_model(
     };
     let sol = lstsq(a.as_ref(), y, &opts)?;
     let coefficients = sol.coefficients;
-    Ok(RbfModel::assemble(
+    RbfModel::assemble(
         params,
         design,
         centres,
@@ -167,7 +167,8 @@ fn solve_model(
         coefficients.as_ref().subrows(0, p),
         sol.condition,
         selection,
-    ))
+    )
+    .usable()
 }
 
 /// OLS centre selection, kept so that every model size (and ridge) can be built from
@@ -619,7 +620,7 @@ fn solve_all_points(
         par: params.par,
     };
     let sol = interpolate(phi, design.forced.as_ref(), y, &opts)?;
-    Ok(RbfModel::assemble(
+    RbfModel::assemble(
         params,
         design,
         design.xs.clone(),
@@ -628,5 +629,6 @@ fn solve_all_points(
         sol.tail.as_ref(),
         sol.condition,
         None,
-    ))
+    )
+    .usable()
 }

@@ -121,6 +121,10 @@ pub enum RbfError {
     /// A matrix the fit needs would not fit in memory.
     #[error(transparent)]
     Memory(#[from] crate::memory::MemoryError),
+    /// The fit produced a number no model may hold (non-finite, or beyond
+    /// [`crate::MAX_COEFFICIENT`]): the data's scale overflowed the solve.
+    #[error("the fit produced an unusable model ({0}); rescale the inputs or the target")]
+    UnusableModel(String),
     /// A NaN or infinite input.
     #[error("non-finite value in {matrix} at row {row}, column {col}")]
     NonFinite {

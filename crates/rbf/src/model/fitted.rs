@@ -172,6 +172,15 @@ impl RbfModel {
         }
     }
 
+    /// The assembled model, or [`RbfError::UnusableModel`] if it holds a
+    /// number no model may hold: a fit never returns what could not be saved
+    /// and loaded back.
+    pub(crate) fn usable(self) -> Result<Self, crate::RbfError> {
+        self.validate()
+            .map_err(crate::RbfError::UnusableModel)
+            .map(|()| self)
+    }
+
     /// The kernel.
     ///
     /// ```
@@ -620,10 +629,75 @@ impl RbfModel {
         {
             return Err("scaling length differs from dim".into());
         }
-        let finite = |m: &Mat<f64>| crate::check::first_non_finite(m.as_ref()).is_none();
-        if !finite(&self.centres) || !finite(&self.weights) || !finite(&self.linear) {
-            return Err("non-finite coefficient".into());
+        // Every number, named with its field and place: a hand-edited weight
+        // of 1e155 used to give NaN predictions, and a selection over NaN
+        // scores that never ended.
+        let mut fields: Vec<(&str, MatRef<'_, f64>)> = vec![
+            ("centres", self.centres.as_ref()),
+            ("weights", self.weights.as_ref()),
+            ("linear", self.linear.as_ref()),
+        ];
+        if let Some(t) = &self.tail {
+            fields.push(("tail", t.as_ref()));
         }
+        for (name, m) in fields {
+            for i in 0..m.nrows() {
+                for j in 0..m.ncols() {
+                    check_coefficient(&format!("{name}[{i}][{j}]"), m[(i, j)])?;
+                }
+            }
+        }
+        let vectors = [
+            ("bias", self.bias.as_deref()),
+            (
+                "scaling.mean",
+                self.scaling.as_ref().map(|s| s.mean.as_slice()),
+            ),
+            (
+                "scaling.scale",
+                self.scaling.as_ref().map(|s| s.scale.as_slice()),
+            ),
+        ];
+        for (name, v) in vectors {
+            for (i, &x) in v.unwrap_or_default().iter().enumerate() {
+                check_coefficient(&format!("{name}[{i}]"), x)?;
+            }
+        }
+        match &self.widths {
+            Widths::Uniform(b) => check_width("widths.uniform", *b),
+            Widths::PerCentre(w) => w
+                .iter()
+                .enumerate()
+                .try_for_each(|(i, &b)| check_width(&format!("widths[{i}]"), b)),
+        }
+    }
+}
+
+/// The largest magnitude of any number in a model: beyond it a kernel
+/// argument, a weighted sum or its square overflows `f64` (the readers of
+/// data refuse cells beyond the same bound).
+pub const MAX_COEFFICIENT: f64 = 1e150;
+
+/// A width β: distances over β (inputs are within ±1e150) and their squares
+/// stay finite from 1/[`MAX_COEFFICIENT`] up; a width edited to 1e-308 made
+/// every Gaussian value 0/0.
+fn check_width(field: &str, b: f64) -> Result<(), String> {
+    if (1.0 / MAX_COEFFICIENT..=MAX_COEFFICIENT).contains(&b) {
         Ok(())
+    } else {
+        Err(format!(
+            "{field} = {b:e}: a width must be from {:e} to {MAX_COEFFICIENT:e}",
+            1.0 / MAX_COEFFICIENT
+        ))
+    }
+}
+
+fn check_coefficient(field: &str, v: f64) -> Result<(), String> {
+    if v.is_finite() && v.abs() <= MAX_COEFFICIENT {
+        Ok(())
+    } else {
+        Err(format!(
+            "{field} = {v:e}: every number in a model must be finite and within ±{MAX_COEFFICIENT:e}"
+        ))
     }
 }

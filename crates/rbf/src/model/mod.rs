@@ -14,7 +14,7 @@ mod matser;
 mod persist;
 
 pub use errors::{RbfError, RbfParamsError};
-pub use fitted::{RbfModel, Scaling, Selection};
+pub use fitted::{MAX_COEFFICIENT, RbfModel, Scaling, Selection};
 pub use hyperparams::{Candidates, CentreSelection, RbfParams, RbfValidParams, Strategy};
 pub use persist::{FORMAT_VERSION, PersistError};
 

@@ -61,7 +61,9 @@ impl RbfModel {
     /// Writes the model as JSON (`{"format_version": 1, "model": {...}}`).
     ///
     /// # Errors
-    /// [`PersistError::Io`] or [`PersistError::Corrupt`] (serialisation).
+    /// [`PersistError::Inconsistent`] for a model that would not load back (a
+    /// non-finite or out-of-range number), [`PersistError::Io`] or
+    /// [`PersistError::Corrupt`] (serialisation).
     ///
     /// ```
     /// # let m = rbf::doc_model();
@@ -70,6 +72,8 @@ impl RbfModel {
     /// assert_eq!(rbf::RbfModel::from_reader(buf.as_slice()).unwrap(), m);
     /// ```
     pub fn to_writer(&self, writer: impl Write) -> Result<(), PersistError> {
+        // A model that could not be loaded back is not written.
+        self.check_consistency()?;
         let mut w = BufWriter::new(writer);
         serde_json::to_writer_pretty(
             &mut w,
