@@ -140,3 +140,32 @@ fn gauss_markov_bias_peaks_where_the_closed_form_says() {
     }
     assert!((closed(1.89 * t_c) / sigma_b - 0.617).abs() < 1e-3);
 }
+
+/// allantools 2024.6 (`allantools.oadev(y, rate=50, data_type="freq",
+/// taus=m·0.02)`) on a fixed series: 1000 values of a linear congruential
+/// generator, x ← (1103515245·x + 12345) mod 2³¹ from x = 12345, as
+/// x/2³¹ − 0.5 + 1e-4·k. Printed by `bench/peer/allan.py fixture`.
+#[test]
+fn agrees_with_allantools_on_a_fixed_series() {
+    const ALLANTOOLS: [(usize, f64); 7] = [
+        (1, 0.2926653652038885),
+        (2, 0.20412704958184263),
+        (4, 0.1342510750094769),
+        (8, 0.10368465612831859),
+        (16, 0.07414277246142748),
+        (32, 0.046771270266729725),
+        (64, 0.03049281158583224),
+    ];
+    let mut x: u64 = 12345;
+    let y: Vec<f64> = (0..1000)
+        .map(|k| {
+            x = (1_103_515_245 * x + 12345) % (1 << 31);
+            x as f64 / (1u64 << 31) as f64 - 0.5 + 1e-4 * k as f64
+        })
+        .collect();
+    let factors: Vec<usize> = ALLANTOOLS.iter().map(|(m, _)| *m).collect();
+    let ours = overlapping_adev(&y, 0.02, &factors).unwrap();
+    for ((m, theirs), o) in ALLANTOOLS.iter().zip(ours) {
+        assert!((o / theirs - 1.0).abs() < 1e-12, "m = {m}: {o} vs {theirs}");
+    }
+}

@@ -48,4 +48,4 @@ pub use curve::{AllanCurve, AllanPoint};
 pub use edf::{deviation_interval, edf_overlapping};
 pub use error::AllanError;
 pub use identify::{MIN_IDENTIFY_SAMPLES, PowerLaw, identify_noise};
-pub use terms::{Estimate, NoiseTerm, NoiseTerms};
+pub use terms::{Estimate, FLICKER_FLOOR, NoiseTerm, NoiseTerms};

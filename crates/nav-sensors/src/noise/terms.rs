@@ -2,8 +2,10 @@
 //! random walk on the τ^−½ region, bias instability at the flat minimum,
 //! rate random walk on the τ^+½ region.
 //!
-//! A region is a run of consecutive octaves whose log-log slope is within
-//! ±0.25 of the term's slope (halfway to the neighbouring power laws). What
+//! A region is a run of at least two consecutive octaves (three points)
+//! whose log-log slope is within ±0.25 of the term's slope (halfway to the
+//! neighbouring power laws): one octave alone may be a bend between two
+//! regions. What
 //! the curve does not show is not extrapolated: the term is then
 //! [`NoiseTerm::Unresolved`] with the reason and the upper bound every
 //! point still gives (independent noises add in Allan variance, so no term
@@ -97,9 +99,9 @@ fn slopes(points: &[AllanPoint]) -> Vec<f64> {
         .collect()
 }
 
-/// The longest run of consecutive segments (from index `from` on) whose
-/// slope is within 0.25 of `target`, as an inclusive point range; the
-/// earliest on ties.
+/// The longest run of at least [`MIN_REGION_OCTAVES`] consecutive segments
+/// (from index `from` on) whose slope is within 0.25 of `target`, as an
+/// inclusive point range; the earliest on ties.
 fn region(slopes: &[f64], from: usize, target: f64) -> Option<(usize, usize)> {
     let mut best: Option<(usize, usize)> = None;
     let mut start = None;
@@ -113,8 +115,11 @@ fn region(slopes: &[f64], from: usize, target: f64) -> Option<(usize, usize)> {
             start = None;
         }
     }
-    best
+    best.filter(|(a, b)| b - a >= MIN_REGION_OCTAVES)
 }
+
+/// Fewest octaves a power-law region spans.
+const MIN_REGION_OCTAVES: usize = 2;
 
 /// Reads a term on points `a..=b`: EDF-weighted geometric mean of
 /// `read(point, σ)`, interval of the point with the largest EDF for `noise`.
@@ -356,9 +361,12 @@ mod tests {
 
     #[test]
     fn regions_are_the_longest_runs_within_a_quarter() {
-        let s = [-1.0, -0.5, -0.6, 0.0, -0.45, -0.5, -0.55, 0.5];
+        let s = [-1.0, -0.5, -0.6, 0.0, -0.45, -0.5, -0.55, 0.5, 0.3];
         assert_eq!(region(&s, 0, -0.5), Some((4, 7)));
-        assert_eq!(region(&s, 0, 0.5), Some((7, 8)));
+        assert_eq!(region(&s, 5, -0.5), Some((5, 7)));
+        assert_eq!(region(&s, 0, 0.5), Some((7, 9)));
+        // One octave is not a region.
+        assert_eq!(region(&s[..8], 0, 0.5), None);
         assert_eq!(region(&s, 0, 1.5), None);
     }
 }
