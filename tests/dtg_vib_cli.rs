@@ -769,3 +769,92 @@ fn a_model_with_an_absurd_cutoff_is_refused() {
     ]);
     assert!(err.contains("0.005 Hz"), "{err}");
 }
+
+#[test]
+fn allan_json_has_the_contract_keys_and_after_is_what_compensate_writes() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        serde_json::from_str(&ok(args)).expect("one JSON object on stdout")
+    };
+    let plain = json(&["allan", "--data", &record(), "--json"]);
+    let with = json(&["allan", "--data", &record(), "--model", model(), "--json"]);
+    for (j, after) in [(&plain, false), (&with, true)] {
+        let channels = j["channels"].as_array().unwrap();
+        let names: Vec<&str> = channels
+            .iter()
+            .map(|c| c["channel"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["X", "X1", "Y", "Y1", "Z", "Z1"]);
+        assert_eq!(j["residues"].as_array().unwrap().len(), 6);
+        for c in channels {
+            let n = c["tau_s"].as_array().unwrap().len();
+            assert_eq!(c["adev_before"].as_array().unwrap().len(), n);
+            assert_eq!(c.get("adev_after").is_some(), after);
+            for key in ["arw_deg_per_sqrt_h", "bias_instability_deg_per_h"] {
+                let v = &c[key];
+                assert!(v["before"].is_number() || v["before"].is_null(), "{v}");
+                assert_eq!(v.get("after").is_some(), after, "{key}");
+            }
+        }
+    }
+    // 5000 samples from sample 0, or 4951 from the first full 50-sample
+    // window: m = 1 … 256 (up to a tenth of the record), τ = 0.02 … 5.12 s.
+    assert_eq!(
+        (plain["samples"].as_u64(), plain["first_sample"].as_u64()),
+        (Some(5000), Some(0))
+    );
+    assert_eq!(
+        (with["samples"].as_u64(), with["first_sample"].as_u64()),
+        (Some(4951), Some(49))
+    );
+    for j in [&plain, &with] {
+        let tau = j["channels"][0]["tau_s"].as_array().unwrap();
+        assert_eq!((tau.len(), tau[8].as_f64()), (9, Some(5.12)));
+    }
+
+    // "after" is the Allan deviation of what `compensate` writes.
+    let comp = dir().join("allan-comp.csv");
+    ok(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &record(),
+        "--out",
+        comp.to_str().unwrap(),
+    ]);
+    let rec = nav_sensors::record::Record::read_csv(&comp).unwrap();
+    let y1 = rec.gyro(nav_sensors::geometry::Channel::Y1);
+    let factors: Vec<usize> = (0..9).map(|k| 1 << k).collect();
+    let expected = nav_sensors::noise::overlapping_adev(y1, 0.02, &factors).unwrap();
+    let got = with["channels"][3]["adev_after"].as_array().unwrap();
+    for (g, e) in got.iter().zip(&expected) {
+        assert!((g.as_f64().unwrap() / e - 1.0).abs() < 1e-12, "{g} vs {e}");
+    }
+}
+
+#[test]
+fn allan_report_writes_its_figures_and_refuses_an_input_as_output() {
+    let report = dir().join("allan-report");
+    std::fs::create_dir_all(&report).unwrap();
+    let out = ok(&[
+        "allan",
+        "--data",
+        &record(),
+        "--model",
+        model(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert!(out.contains("ARW (deg/√h)"), "{out}");
+    for f in [
+        "index.html",
+        "allan_channels.png",
+        "allan_channels.svg",
+        "allan_residues.png",
+        "allan_residues.svg",
+    ] {
+        assert!(report.join(f).is_file(), "{f} missing");
+    }
+    let err = fails(&["allan", "--data", &record(), "--report", &record()]);
+    assert!(err.contains("--report"), "{err}");
+}

@@ -4,6 +4,7 @@
 #
 #   bench/peer/run.sh peer    # OLS, k-means, all points vs the Python peers (default)
 #   bench/peer/run.sh large   # fit time and peak memory against N, M = 5000 candidates
+#   bench/peer/run.sh allan   # `dtg-vib allan` against allantools.oadev on the demo's record
 #
 # Environment: PYTHON (a Python with bench/peer/requirements.txt; default python3),
 # REPS (repetitions per side, default 5), OUT (work directory, default /tmp/rbf-peer),
@@ -27,7 +28,9 @@ export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
 mode=${1:-peer}
 mkdir -p "$OUT"
 
-(cd "$root" && cargo build --quiet --release -p rbf-cli --bin rbf --example stream_bound)
+if [[ $mode != allan ]]; then
+    (cd "$root" && cargo build --quiet --release -p rbf-cli --bin rbf --example stream_bound)
+fi
 RBF=$CARGO_TARGET_DIR/release/rbf
 BOUND=$CARGO_TARGET_DIR/release/examples/stream_bound
 
@@ -94,8 +97,18 @@ EOF
     done
 }
 
+allan() {
+    (cd "$root" && cargo build --quiet --release -p dtg-vib --bin dtg-vib)
+    local bin=$CARGO_TARGET_DIR/release/dtg-vib
+    rm -rf "$OUT/demo"
+    "$bin" demo --out "$OUT/demo" --quiet >/dev/null
+    "$PY" "$here/allan.py" compare --bin "$bin" --data "$OUT/demo/simulation/record.csv" \
+        --model "$OUT/demo/final/model.json"
+}
+
 case $mode in
     peer) peer ;;
     large) large ;;
-    *) echo "usage: $0 [peer|large]" >&2; exit 2 ;;
+    allan) allan ;;
+    *) echo "usage: $0 [peer|large|allan]" >&2; exit 2 ;;
 esac

@@ -153,6 +153,9 @@ pub enum DtgVibError {
         #[source]
         source: std::io::Error,
     },
+    /// An Allan deviation cannot be computed (too short a series).
+    #[error("Allan deviation: {0}")]
+    Allan(#[from] nav_sensors::noise::AllanError),
     /// Writing a CSV failed.
     #[error(transparent)]
     Table(#[from] tabular::TableError),

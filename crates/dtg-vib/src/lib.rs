@@ -1,6 +1,7 @@
 //! dtg-vib: vibration-induced error identification and compensation for a
 //! skewed cluster of Dynamically Tuned Gyroscopes, with RBF networks.
 
+pub mod allan;
 pub mod apply;
 pub mod demo;
 pub mod diagnose;

@@ -6,6 +6,7 @@
 //! - [`geometry`]: channels, frames, eqs. 1–6 of Malini, Mohanlal & Harikumar, FDI;
 //! - [`dtg`], [`accel`]: sensor error models, forward and inverse;
 //! - [`vibration`]: PSD tables, synthesis, schedules, Welch PSD;
+//! - [`noise`]: Allan deviation and the IEEE Std 952 noise terms read from it;
 //! - [`sim`]: scenarios and the shaker-test simulator;
 //! - [`record`], [`calibration`], [`truth`]: the files a test produces;
 //! - [`signal`]: the second-order sections the sensor dynamics use.
@@ -32,6 +33,7 @@ pub mod accel;
 pub mod dtg;
 pub mod files;
 pub mod geometry;
+pub mod noise;
 pub mod signal;
 pub mod sim;
 pub mod vibration;

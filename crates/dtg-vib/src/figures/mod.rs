@@ -1,9 +1,11 @@
 //! The application's figures and report pages, drawn with the [`crate::report`]
 //! vocabulary: the paper's figures for a fitted model, and the diagnosis.
 
+mod allan;
 mod diagnosis;
 mod paper;
 
+pub use allan::write_allan_report;
 pub use diagnosis::write_diagnosis_report;
 pub use paper::{Baseline, ReportSummary, write_report};
 
@@ -24,7 +26,7 @@ fn save_all<'s>(
 }
 
 /// A number for a table: four significant digits, no exponent for everyday sizes.
-fn fmt(v: f64) -> String {
+pub(crate) fn fmt(v: f64) -> String {
     if v == 0.0 {
         "0".to_string()
     } else if (1e-3..1e5).contains(&v.abs()) {

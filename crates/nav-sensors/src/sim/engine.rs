@@ -41,6 +41,9 @@ pub(crate) enum Stream {
     AccelNoise = 2,
     TemperatureNoise = 3,
     Calibration = 4,
+    /// The rate random walk has its own stream: adding it leaves every
+    /// other draw, hence the ARW and bias-instability realisation, as it was.
+    GyroRateWalk = 5,
 }
 
 pub(crate) fn stream(seed: u64, which: Stream) -> Xoshiro256PlusPlus {
@@ -171,8 +174,36 @@ fn high_rate(
 }
 
 /// Sensor noise per output sample and channel: white (ARW) plus a
-/// first-order Gauss–Markov bias, deg/h.
+/// first-order Gauss–Markov bias, deg/h, plus the rate random walk.
 fn gyro_noise(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<[f64; 6]> {
+    let mut noise = white_and_markov(s, n_out, rng);
+    add_rate_random_walk(s, &mut noise);
+    noise
+}
+
+/// Adds the rate random walk's interval means, deg/h: over each interval
+/// the walk moves by W = q·z₁ (q = K·√dt) and its mean over the interval is
+/// b + W/2 + q·z₂/√12 (a Brownian bridge's mean has variance dt/12 and is
+/// independent of the end point), so the Allan deviation is K·√(τ/3) at
+/// every τ, the shortest included. Nothing is drawn when K is zero.
+fn add_rate_random_walk(s: &Scenario, noise: &mut [[f64; 6]]) {
+    let q = s.gyros.noise.rrw_step_deg_h(1.0 / s.output_rate_hz);
+    if q == 0.0 {
+        return;
+    }
+    let mut rng = stream(s.seed, Stream::GyroRateWalk);
+    let mut walk = [0.0; 6];
+    for sample in noise.iter_mut() {
+        for (e, b) in sample.iter_mut().zip(walk.iter_mut()) {
+            let z1: f64 = StandardNormal.sample(&mut rng);
+            let z2: f64 = StandardNormal.sample(&mut rng);
+            *e += *b + q * (0.5 * z1 + z2 / 12f64.sqrt());
+            *b += q * z1;
+        }
+    }
+}
+
+fn white_and_markov(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<[f64; 6]> {
     let dt = 1.0 / s.output_rate_hz;
     let p = &s.gyros.noise;
     let white = p.white_sigma_deg_h(dt);

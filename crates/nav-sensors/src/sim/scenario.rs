@@ -510,6 +510,10 @@ impl Scenario {
                 self.gyros.noise.bias_instability_deg_h,
             ),
             (
+                "gyros.noise.rrw_deg_h_per_rt_h",
+                self.gyros.noise.rrw_deg_h_per_rt_h,
+            ),
+            (
                 "accels.noise.density_ug_per_rt_hz",
                 self.accels.noise.density_ug_per_rt_hz,
             ),

@@ -1,0 +1,286 @@
+//! Allan deviation of a record's gyro channels and parity residues, before
+//! and after a model's compensation, with the IEEE Std 952 noise terms read
+//! from each curve ([`nav_sensors::noise`] does the computing).
+//!
+//! The series are the ones `compensate` works on, unfiltered: **before** is
+//! the calibrated output with the model's rate reference removed, **after**
+//! the series `compensate` writes (calibrated output minus predicted error),
+//! both from the first sample with a full window on, so both curves share
+//! their τ. (`compensate` keeps the rate reference in its output; a constant
+//! does not change an Allan deviation.) Without a model, before is the
+//! record as given, every sample.
+
+use crate::error::DtgVibError;
+use crate::model::CompensationModel;
+use nav_sensors::geometry::{Channel, Residue, ideal_outputs, residues};
+use nav_sensors::noise::{AllanCurve, NoiseTerm, NoiseTerms};
+use nav_sensors::record::Record;
+use serde_json::{Value, json};
+
+/// One series' curves and terms, before and (with a model) after.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeriesAllan {
+    /// `X` … `Z1` or `K0` … `K5`.
+    pub name: &'static str,
+    /// Curve before compensation (deg/h against s).
+    pub before: AllanCurve,
+    /// Noise terms read on `before`.
+    pub terms_before: NoiseTerms,
+    /// Curve after compensation, with a model.
+    pub after: Option<AllanCurve>,
+    /// Noise terms read on `after`.
+    pub terms_after: Option<NoiseTerms>,
+}
+
+/// The Allan analysis of a record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AllanAnalysis {
+    /// Sample interval τ₀, s.
+    pub tau0_s: f64,
+    /// First record sample used (0-based; the model's first full window).
+    pub first_sample: usize,
+    /// Samples used.
+    pub samples: usize,
+    /// Two-sided confidence level of every interval.
+    pub confidence: f64,
+    /// Whether a model compensated the record (then `after` is present).
+    pub compensated: bool,
+    /// Gyro channels X, X1, Y, Y1, Z, Z1.
+    pub channels: Vec<SeriesAllan>,
+    /// Parity residues K0 … K5 (eq. 6) of the same series.
+    pub residues: Vec<SeriesAllan>,
+}
+
+/// The six channel series before and (with a model) after, deg/h, and the
+/// first record sample they start at.
+type Series = ([Vec<f64>; 6], Option<[Vec<f64>; 6]>, usize);
+
+fn series(record: &Record, model: Option<&CompensationModel>) -> Result<Series, DtgVibError> {
+    let Some(model) = model else {
+        let before = Channel::ALL.map(|c| record.gyro(c).to_vec());
+        return Ok((before, None, 0));
+    };
+    let applied = crate::apply::Applied::unsplit(model, record)?;
+    let first = applied.prepared.first_sample();
+    let calibrated = applied.prepared.calibrated();
+    let reference = model
+        .preprocess()
+        .rate_reference
+        .rate_deg_h()
+        .map(|w| ideal_outputs(&w))
+        .unwrap_or([0.0; 6]);
+    let before: [Vec<f64>; 6] = std::array::from_fn(|k| {
+        calibrated.gyro(Channel::ALL[k])[first..]
+            .iter()
+            .map(|v| v - reference[k])
+            .collect()
+    });
+    let compensated = applied.compensated_record();
+    let after = Channel::ALL.map(|c| compensated.gyro(c).to_vec());
+    Ok((before, Some(after), first))
+}
+
+/// K0 … K5 of six channel series, per sample.
+fn residue_series(ch: &[Vec<f64>; 6]) -> [Vec<f64>; 6] {
+    let mut out: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(ch[0].len()));
+    let samples = (0..ch[0].len()).map(|i| std::array::from_fn(|c| ch[c][i]));
+    for m in samples {
+        for (o, v) in out.iter_mut().zip(residues(&m)) {
+            o.push(v);
+        }
+    }
+    out
+}
+
+fn analyse_one(
+    name: &'static str,
+    before: &[f64],
+    after: Option<&[f64]>,
+    tau0_s: f64,
+    confidence: f64,
+) -> Result<SeriesAllan, DtgVibError> {
+    let before = AllanCurve::octaves(before, tau0_s, confidence)?;
+    let after = after
+        .map(|a| AllanCurve::octaves(a, tau0_s, confidence))
+        .transpose()?;
+    Ok(SeriesAllan {
+        name,
+        terms_before: NoiseTerms::fit(&before),
+        terms_after: after.as_ref().map(NoiseTerms::fit),
+        before,
+        after,
+    })
+}
+
+impl AllanAnalysis {
+    /// Analyses `record`, compensated by `model` if given, with intervals at
+    /// `confidence` (e.g. 0.683).
+    ///
+    /// ```
+    /// use dtg_vib::allan::AllanAnalysis;
+    /// use nav_sensors::sim::{simulate, Scenario};
+    /// let sim = simulate(&Scenario { duration_s: 10.0, ..Scenario::default() }).unwrap();
+    /// let a = AllanAnalysis::new(&sim.record, None, 0.683).unwrap();
+    /// assert_eq!(a.channels.len(), 6);
+    /// assert_eq!(a.residues[0].name, "K0");
+    /// // 500 samples: τ = 0.02 s to 0.64 s (m up to a tenth of the record).
+    /// assert_eq!(a.channels[0].before.points.last().unwrap().tau_s, 0.64);
+    /// ```
+    pub fn new(
+        record: &Record,
+        model: Option<&CompensationModel>,
+        confidence: f64,
+    ) -> Result<Self, DtgVibError> {
+        let (before, after, first_sample) = series(record, model)?;
+        let tau0_s = record.dt();
+        let k_before = residue_series(&before);
+        let k_after = after.as_ref().map(residue_series);
+        let mut channels = Vec::with_capacity(6);
+        for c in Channel::ALL {
+            let k = c.index();
+            channels.push(analyse_one(
+                c.name(),
+                &before[k],
+                after.as_ref().map(|a| a[k].as_slice()),
+                tau0_s,
+                confidence,
+            )?);
+        }
+        let mut res = Vec::with_capacity(6);
+        for r in Residue::ALL {
+            let k = r.index();
+            res.push(analyse_one(
+                r.name(),
+                &k_before[k],
+                k_after.as_ref().map(|a| a[k].as_slice()),
+                tau0_s,
+                confidence,
+            )?);
+        }
+        Ok(Self {
+            tau0_s,
+            first_sample,
+            samples: before[0].len(),
+            confidence,
+            compensated: after.is_some(),
+            channels,
+            residues: res,
+        })
+    }
+
+    /// The JSON of `dtg-vib allan --json` (docs/formats.md).
+    pub fn to_json(&self) -> Value {
+        let entry = |s: &SeriesAllan, key: &str| {
+            let mut o = serde_json::Map::new();
+            o.insert(key.into(), json!(s.name));
+            o.insert("tau_s".into(), json!(s.before.tau_s()));
+            o.insert("adev_before".into(), json!(s.before.adev()));
+            if let Some(a) = &s.after {
+                o.insert("adev_after".into(), json!(a.adev()));
+            }
+            let pick = |f: fn(&NoiseTerms) -> &NoiseTerm| {
+                let mut m = serde_json::Map::new();
+                m.insert("before".into(), value(f(&s.terms_before)));
+                if let Some(t) = &s.terms_after {
+                    m.insert("after".into(), value(f(t)));
+                }
+                Value::Object(m)
+            };
+            o.insert("arw_deg_per_sqrt_h".into(), pick(|t| &t.arw));
+            o.insert(
+                "bias_instability_deg_per_h".into(),
+                pick(|t| &t.bias_instability),
+            );
+            o.insert("rrw_deg_per_h_per_sqrt_h".into(), pick(|t| &t.rrw));
+            let curve = |c: &AllanCurve| {
+                json!({
+                    "low": c.points.iter().map(|p| p.low).collect::<Vec<_>>(),
+                    "high": c.points.iter().map(|p| p.high).collect::<Vec<_>>(),
+                    "edf": c.points.iter().map(|p| p.edf).collect::<Vec<_>>(),
+                    "noise": c.points.iter().map(|p| p.noise).collect::<Vec<_>>(),
+                    "noise_identified": c.points.iter().map(|p| p.noise_identified).collect::<Vec<_>>(),
+                })
+            };
+            o.insert("adev_before_detail".into(), curve(&s.before));
+            if let Some(a) = &s.after {
+                o.insert("adev_after_detail".into(), curve(a));
+            }
+            let mut terms = serde_json::Map::new();
+            terms.insert("before".into(), json!(s.terms_before));
+            if let Some(t) = &s.terms_after {
+                terms.insert("after".into(), json!(t));
+            }
+            o.insert("noise_terms".into(), Value::Object(terms));
+            Value::Object(o)
+        };
+        json!({
+            "channels": self.channels.iter().map(|s| entry(s, "channel")).collect::<Vec<_>>(),
+            "residues": self.residues.iter().map(|s| entry(s, "residue")).collect::<Vec<_>>(),
+            "tau0_s": self.tau0_s,
+            "first_sample": self.first_sample,
+            "samples": self.samples,
+            "confidence": self.confidence,
+            "units": {
+                "tau_s": "s",
+                "adev": "deg/h",
+                "arw": "deg/√h",
+                "bias_instability": "deg/h",
+                "rrw": "deg/h/√h"
+            }
+        })
+    }
+}
+
+/// A term for people: `value [low, high]`, or `< bound (not resolved)`.
+///
+/// ```
+/// use nav_sensors::noise::NoiseTerm;
+/// let t = NoiseTerm::Unresolved { reason: "short".into(), upper_bound: Some(0.0123456) };
+/// assert_eq!(dtg_vib::allan::term_text(&t), "< 0.01235 (not resolved)");
+/// ```
+pub fn term_text(t: &NoiseTerm) -> String {
+    use crate::figures::fmt;
+    match t {
+        NoiseTerm::Resolved(e) => format!("{} [{}, {}]", fmt(e.value), fmt(e.low), fmt(e.high)),
+        NoiseTerm::Unresolved {
+            upper_bound: Some(b),
+            ..
+        } => format!("< {} (not resolved)", fmt(*b)),
+        NoiseTerm::Unresolved { .. } => "not resolved".into(),
+    }
+}
+
+/// A term's value, or null when the curve does not resolve it.
+fn value(t: &NoiseTerm) -> Value {
+    t.estimate().map_or(Value::Null, |e| json!(e.value))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nav_sensors::sim::{Scenario, simulate};
+
+    #[test]
+    fn json_has_the_contract_keys_and_no_after_without_a_model() {
+        let sim = simulate(&Scenario {
+            duration_s: 4.0,
+            ..Scenario::default()
+        })
+        .unwrap();
+        let j = AllanAnalysis::new(&sim.record, None, 0.683)
+            .unwrap()
+            .to_json();
+        let ch = &j["channels"];
+        assert_eq!(ch.as_array().unwrap().len(), 6);
+        let x = &ch[0];
+        assert_eq!(x["channel"], "X");
+        let n = x["tau_s"].as_array().unwrap().len();
+        assert_eq!(n, 5); // 200 samples: m = 1 … 16
+        assert_eq!(x["adev_before"].as_array().unwrap().len(), n);
+        assert!(x.get("adev_after").is_none());
+        assert!(x["arw_deg_per_sqrt_h"].get("before").is_some());
+        assert!(x["arw_deg_per_sqrt_h"].get("after").is_none());
+        assert!(x["bias_instability_deg_per_h"].get("before").is_some());
+        assert_eq!(j["residues"][5]["residue"], "K5");
+    }
+}
