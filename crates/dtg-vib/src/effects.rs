@@ -11,7 +11,9 @@
 //!
 //! The bias is not an effect: every channel model has one (λ0 of eq. 7).
 
-use nav_sensors::dtg::{DtgInput, DtgTerm, within_interval_covariance};
+use nav_sensors::dtg::{
+    DtgInput, DtgTerm, within_interval_covariance, within_interval_covariance_causal,
+};
 use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate, measurement_matrix};
 use nav_sensors::record::Record;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -256,6 +258,14 @@ pub struct EffectColumns<'a> {
 impl<'a> EffectColumns<'a> {
     /// Prepares the record (computes the least-squares rates once).
     pub fn new(record: &'a Record) -> Self {
+        Self::with_causality(record, false)
+    }
+
+    /// As [`EffectColumns::new`]; with `causal`, the g² regressors take the
+    /// previous interval's within-interval covariance
+    /// ([`within_interval_covariance_causal`]), so every column at sample
+    /// `n` depends on samples `≤ n` only.
+    pub fn with_causality(record: &'a Record, causal: bool) -> Self {
         let ops = rate_without_each_channel();
         let rate_deg_h = (0..record.len())
             .map(|i| {
@@ -265,7 +275,11 @@ impl<'a> EffectColumns<'a> {
             .collect();
         let means: Vec<nalgebra::Vector3<f64>> =
             (0..record.len()).map(|i| record.accel_sample(i)).collect();
-        let covariance = within_interval_covariance(&means);
+        let covariance = if causal {
+            within_interval_covariance_causal(&means)
+        } else {
+            within_interval_covariance(&means)
+        };
         Self {
             record,
             rate_deg_h,
@@ -349,7 +363,7 @@ pub fn rate_variation_deg_s(record: &Record, samples: impl IntoIterator<Item = u
 /// For each channel j, the 3×6 least-squares operator of eq. 4 with row j
 /// left out (its column is zero). Any five rows of eq. 4 have rank 3: the
 /// skewed geometry tolerates one failed channel.
-fn rate_without_each_channel() -> [nalgebra::SMatrix<f64, 3, 6>; 6] {
+pub(crate) fn rate_without_each_channel() -> [nalgebra::SMatrix<f64, 3, 6>; 6] {
     let h = measurement_matrix();
     std::array::from_fn(|j| {
         let mut ht = h.transpose();

@@ -183,6 +183,10 @@ struct FitArgs {
     /// Seed of the candidate subsample and k-means.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Causal mode: causal low-passes and covariances, so the model runs
+    /// on-line (`dtg-vib export`) and `compensate` runs sample by sample.
+    #[arg(long)]
+    causal: bool,
     /// Model file to write.
     #[arg(long)]
     out: PathBuf,
@@ -512,6 +516,7 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
             input_filter,
             window: WindowSpec::new(a.window_signals.clone(), a.window)?,
             rate_reference,
+            causal: a.causal,
         },
         effects,
         add,

@@ -1,5 +1,6 @@
 //! From a test record to model inputs: ground-calibration compensation, the
-//! optional rate reference, zero-phase low-pass, windows and effect columns.
+//! optional rate reference, low-pass (zero-phase, or causal in
+//! [`Preprocess::causal`] mode), windows and effect columns.
 //!
 //! The same [`Preprocess`] is stored in a fitted model, so compensation and
 //! diagnosis see data prepared exactly as the training data were.
@@ -150,6 +151,16 @@ pub struct Preprocess {
     pub window: WindowSpec,
     /// Known true rate.
     pub rate_reference: RateReference,
+    /// Causal mode: every step uses past and present samples only, so the
+    /// model maps the past to the present correction and runs on-line
+    /// (the `dtg-onboard` evaluator, the exported C). The low-passes are one
+    /// forward pass started in the steady state of the first sample instead
+    /// of forward–backward; the within-interval covariance of the g² terms
+    /// (ground calibration and effects) is the previous interval's
+    /// ([`nav_sensors::dtg::within_interval_covariance_causal`]). Absent in
+    /// model files written before it: zero-phase.
+    #[serde(default)]
+    pub causal: bool,
 }
 
 impl Default for Preprocess {
@@ -161,6 +172,7 @@ impl Default for Preprocess {
             input_filter: None,
             window: WindowSpec::paper(),
             rate_reference: RateReference::None,
+            causal: false,
         }
     }
 }
@@ -173,6 +185,7 @@ impl Default for Preprocess {
 pub struct Prepared {
     calibrated: Record,
     filter: Option<LowPass>,
+    causal: bool,
     /// Filtered gyro outputs minus the rate reference, deg/h, full length.
     targets: [Vec<f64>; 6],
     windows: Windows,
@@ -187,7 +200,9 @@ impl Prepared {
         pre: &Preprocess,
     ) -> Result<Self, DtgVibError> {
         pre.rate_reference.check()?;
+        let causal = pre.causal;
         let calibrated = match calibration {
+            Some(c) if causal => c.compensate_causal(record),
             Some(c) => c.compensate(record),
             None => record.clone(),
         };
@@ -202,7 +217,7 @@ impl Prepared {
             if let Some(r) = reference {
                 y.iter_mut().for_each(|v| *v -= r[k]);
             }
-            targets[k] = apply(&filter, &y)?;
+            targets[k] = apply(&filter, causal, &y)?;
         }
         let input_filter = pre
             .input_filter
@@ -210,13 +225,14 @@ impl Prepared {
             .transpose()?;
         let mut signals = Vec::with_capacity(pre.window.signals().len());
         for name in pre.window.signals() {
-            signals.push(apply(&input_filter, signal(&calibrated, name)?)?);
+            signals.push(apply(&input_filter, causal, signal(&calibrated, name)?)?);
         }
         let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
         let windows = pre.window.build(&refs)?;
         Ok(Self {
             calibrated,
             filter,
+            causal,
             targets,
             windows,
         })
@@ -267,8 +283,11 @@ impl Prepared {
         // Regressors first, filter second: the gyro saw D·a_I·a_S, and the
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.
-        let cols = EffectColumns::new(&self.calibrated).evaluate(channel, effects)?;
-        cols.iter().map(|c| apply(&self.filter, c)).collect()
+        let cols = EffectColumns::with_causality(&self.calibrated, self.causal)
+            .evaluate(channel, effects)?;
+        cols.iter()
+            .map(|c| apply(&self.filter, self.causal, c))
+            .collect()
     }
 
     /// The effect columns of a channel on the rows, as an `rows × effects` matrix.
@@ -286,7 +305,12 @@ impl Prepared {
 
     /// A record signal (accelerometer axis or extra column), filtered, over the whole record.
     pub fn signal_full(&self, name: &str) -> Result<Vec<f64>, DtgVibError> {
-        apply(&self.filter, signal(&self.calibrated, name)?)
+        apply(&self.filter, self.causal, signal(&self.calibrated, name)?)
+    }
+
+    /// True when prepared in causal mode ([`Preprocess::causal`]).
+    pub fn causal(&self) -> bool {
+        self.causal
     }
 
     /// The designed filter, if any.
@@ -295,11 +319,21 @@ impl Prepared {
     }
 
     /// Samples over which one sample influences its filtered neighbours on
-    /// each side (where the zero-phase impulse response exceeds 10⁻³ of its
-    /// peak); 0 without a filter. Train and validation rows are kept this far
-    /// apart, plus a window length, so nothing leaks across.
+    /// each side (where the impulse response, zero-phase or causal, exceeds
+    /// 10⁻³ of its peak); 0 without a filter. Train and validation rows are
+    /// kept this far apart, plus a window length, so nothing leaks across.
     pub fn filter_memory(&self) -> usize {
         let Some(f) = &self.filter else { return 0 };
+        if self.causal {
+            let mut impulse = vec![0.0; 4000];
+            impulse[0] = 1.0;
+            let h = f.filter(&impulse);
+            let peak = h.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            return (1..h.len())
+                .rev()
+                .find(|&k| h[k].abs() > 1e-3 * peak)
+                .unwrap_or(0);
+        }
         let half = 2000;
         let mut impulse = vec![0.0; 2 * half + 1];
         impulse[half] = 1.0;
@@ -314,8 +348,14 @@ impl Prepared {
     }
 }
 
-fn apply(filter: &Option<LowPass>, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
+fn apply(filter: &Option<LowPass>, causal: bool, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
     Ok(match filter {
+        Some(f) if causal => {
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                return Err(crate::signal::FilterError::NotFinite { index: i }.into());
+            }
+            f.filter_causal(x)
+        }
         Some(f) => f.filtfilt(x)?,
         None => x.to_vec(),
     })
