@@ -6,6 +6,7 @@ pub mod demo;
 pub mod diagnose;
 pub mod effects;
 pub mod error;
+pub mod export;
 pub mod figures;
 pub mod fit;
 pub mod model;

@@ -411,6 +411,48 @@ mod tests {
     }
 
     #[test]
+    fn a_preprocess_written_before_causal_mode_reads_as_zero_phase() {
+        let old = r#"{"filter": {"order": 4, "cutoff_hz": 5.0}, "input_filter": null,
+            "window": {"signals": ["az"], "length": 50}, "rate_reference": {"kind": "none"}}"#;
+        let p: Preprocess = serde_json::from_str(old).unwrap();
+        assert!(!p.causal);
+        assert_eq!(p, Preprocess::default());
+    }
+
+    #[test]
+    fn causal_preparation_never_looks_ahead() {
+        let rec = record(400);
+        let pre = Preprocess {
+            causal: true,
+            ..Preprocess::default()
+        };
+        let mut az = rec.accel(Axis::Z).to_vec();
+        az[300..].iter_mut().for_each(|v| *v += 1.0);
+        let changed = rec.with_accel([vec![0.0; 400], vec![0.0; 400], az]);
+        let (a, b) = (
+            Prepared::new(&rec, None, &pre).unwrap(),
+            Prepared::new(&changed, None, &pre).unwrap(),
+        );
+        let e: Vec<Effect> = vec!["gg_II".parse().unwrap()];
+        let (ea, eb) = (
+            a.effect_columns_full(Channel::Z, &e).unwrap(),
+            b.effect_columns_full(Channel::Z, &e).unwrap(),
+        );
+        assert_eq!(ea[0][..300], eb[0][..300]);
+        assert_ne!(ea[0][301], eb[0][301]);
+        // Zero-phase, the same change reaches back before sample 300.
+        let zp = Preprocess::default();
+        let (za, zb) = (
+            Prepared::new(&rec, None, &zp).unwrap(),
+            Prepared::new(&changed, None, &zp).unwrap(),
+        );
+        assert_ne!(
+            za.effect_columns_full(Channel::Z, &e).unwrap()[0][295],
+            zb.effect_columns_full(Channel::Z, &e).unwrap()[0][295]
+        );
+    }
+
+    #[test]
     fn rate_reference_is_removed_from_every_channel() {
         let rec = record(200);
         let pre = Preprocess {
