@@ -51,11 +51,20 @@ impl Applied {
         }
         // A causal model runs sample by sample through the onboard evaluator
         // (the code a flight computer runs); a zero-phase one as a batch.
-        let (predicted, onboard) = if model.preprocess().causal {
-            let s = crate::export::step_record(model, record)?;
-            (s.error_deg_h.clone(), Some(s))
+        // A model the onboard layout cannot carry (another kernel, input
+        // scaling: only from the library) is still compensated, as a batch.
+        let stepped = if model.preprocess().causal {
+            match crate::export::step_record(model, record) {
+                Ok(s) => Some(s),
+                Err(DtgVibError::Export(crate::export::ExportError::Unsupported { .. })) => None,
+                Err(e) => return Err(e),
+            }
         } else {
-            (model.predict(&prepared)?, None)
+            None
+        };
+        let (predicted, onboard) = match stepped {
+            Some(s) => (s.error_deg_h.clone(), Some(s)),
+            None => (model.predict(&prepared)?, None),
         };
         let first = prepared.first_sample();
         let outputs: [Vec<f64>; 6] =
