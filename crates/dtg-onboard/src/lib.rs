@@ -370,8 +370,10 @@ impl<'a> Model<'a> {
         self.channels[channel].n_effects
     }
 
-    /// Floating-point operations of one step, counted from the tables
-    /// (a multiply-add is two; `exp`, `/` and `fabs` count one each).
+    /// Floating-point operations of one step (a multiply-add is two; `exp`,
+    /// `/` and `fabs` count one each): the RBF sums, filters and effect
+    /// weights counted from the tables, the calibration's Newton steps and
+    /// the regressors estimated per operation.
     pub fn flops_per_step(&self) -> usize {
         let dim = self.window_len * self.n_signals;
         let mut f = 0;
