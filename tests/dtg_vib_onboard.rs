@@ -315,7 +315,7 @@ fn text_export_names_every_part_with_units() {
         "causal",
         "Ground calibration",
         "Butterworth, order 4",
-        "section 0:",
+        "section 0: b0 = ",
         "error_Y1 [deg/h] =",
         "deg/h/g²)·LP[gg_IS]",
         "deg/h/°C)·LP[col:temp]",
@@ -397,4 +397,38 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
     }
     eprintln!("all effect kinds: largest |step − batch| = {worst:e} deg/h");
     assert!(worst <= EQUAL_DEG_H, "{worst:e} deg/h");
+}
+
+#[test]
+fn export_usage_errors_are_one_line_with_the_fix() {
+    let model = plain();
+    for (args, want) in [
+        (vec!["--lang", "c"], "--out DIR"),
+        (vec!["--lang", "rust"], "use c (C99 sources) or text"),
+        (
+            vec!["--lang", "c", "--precision", "f16", "--out", "x"],
+            "use f64 or f32",
+        ),
+    ] {
+        let out = bin()
+            .args(["export", "--model"])
+            .arg(model)
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.starts_with("error: ") && err.contains(want), "{err}");
+    }
+    // A new output directory is created.
+    let new = dir().join("new").join("onboard");
+    ok(bin()
+        .args(["export", "--lang", "c", "--model"])
+        .arg(model)
+        .arg("--out")
+        .arg(&new));
+    for f in ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"] {
+        assert!(new.join(f).is_file(), "{f}");
+    }
 }

@@ -232,6 +232,8 @@ fn export_command(
             outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
             let c = dtg_vib::export::c_sources(&model, precision)?;
             let tables = dtg_vib::export::tables(&model)?;
+            std::fs::create_dir_all(out)
+                .map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
             for (name, text) in c.files() {
                 outfile::write_bytes(out.join(name), text)
                     .map_err(|e| anyhow::anyhow!("{}: {e}", out.join(name).display()))?;

@@ -103,10 +103,14 @@ pub fn equations(model: &CompensationModel) -> String {
             if let Ok(lp) =
                 crate::signal::LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / model.dt_s())
             {
+                let _ = writeln!(
+                    w,
+                    "  each section: y[n] = b0·x[n] + b1·x[n−1] + b2·x[n−2] − a1·y[n−1] − a2·y[n−2], in order"
+                );
                 for (i, sec) in lp.sections().iter().enumerate() {
                     let _ = writeln!(
                         w,
-                        "  section {i}: y = {:e}·x + {:e}·x[n−1] + {:e}·x[n−2] − {:e}·y[n−1] − {:e}·y[n−2]",
+                        "  section {i}: b0 = {:e}, b1 = {:e}, b2 = {:e}, a1 = {:e}, a2 = {:e}",
                         sec.b[0], sec.b[1], sec.b[2], sec.a[0], sec.a[1]
                     );
                 }
