@@ -8,15 +8,17 @@
 //! the input windows) in a caller-provided `f64` buffer of
 //! [`Model::state_len`] elements, and [`Evaluator::step`] turns one period's
 //! raw gyro outputs (deg/h), accelerations (g) and extra columns into the
-//! six compensated rates (deg/h).
+//! six compensated rates (deg/h) of the period before: one period of
+//! latency, because the g² terms' within-interval covariance of a sample is
+//! estimated from its two neighbours.
 //!
-//! Each step does, in this order (the same as `dtg-vib compensate` on a
-//! causal model, which runs this code):
+//! Each sample goes through, in this order (the same as `dtg-vib
+//! compensate` on a causal model, which runs this code):
 //!
 //! 1. ground calibration: the accelerometer triad's static inverse, then each
 //!    gyro's inverse DTG model with the other-axis rates from the
-//!    least-squares rate (two passes), the g² terms with the previous
-//!    interval's within-interval covariance;
+//!    least-squares rate (two passes), the g² terms with the within-interval
+//!    covariance from the sample and its two neighbours;
 //! 2. per channel, the effect regressors from the calibrated accelerations,
 //!    rates and extra columns, each through the causal low-pass;
 //! 3. the window signals through the causal input low-pass into their windows;
@@ -31,11 +33,11 @@
 //! let model = Model::parse(&bytes).unwrap();
 //! let mut state = [0.0f64; 4096];
 //! let mut ev = Evaluator::new(model, &mut state).unwrap();
-//! let mut last = None;
 //! for _ in 0..model.window_len() {
-//!     last = ev.step(&[0.0; 6], &[0.0, 0.0, 1.0], &[]).unwrap();
+//!     // Outputs lag one sample: the window_len-th sample's comes with the next.
+//!     assert!(ev.step(&[0.0; 6], &[0.0, 0.0, 1.0], &[]).unwrap().is_none());
 //! }
-//! let out = last.expect("the window is full after window_len() steps");
+//! let out = ev.flush().expect("the record's last sample, with a full window");
 //! assert!(out.rate_deg_h.iter().all(|w| w.is_finite()));
 //! ```
 
@@ -292,7 +294,7 @@ impl<'a> Model<'a> {
         };
         let out_filter = take(SECTION * n_sections);
         let in_filter = take(SECTION * n_in_sections);
-        let mut state = 6;
+        let mut state = PENDING_EXTRA + n_extra;
         for (c, ch) in channels.iter_mut().enumerate() {
             ch.bias = take(1);
             ch.coefficients = take(ch.n_effects);
@@ -420,13 +422,28 @@ pub struct Output {
 }
 
 /// The compensator's state over a model.
+///
+/// One period of latency: the call with sample n returns the output of
+/// sample n − 1, because the g² terms' within-interval covariance of a
+/// sample is estimated from its two neighbours. [`Evaluator::flush`] gives
+/// the last sample's output at the end of a record.
 #[derive(Debug)]
 pub struct Evaluator<'m, 's> {
     model: Model<'m>,
     state: &'s mut [f64],
+    /// Samples received since rest.
     steps: u64,
+    /// Samples processed (one fewer than received, once running).
+    processed: u64,
     ring_pos: usize,
 }
+
+/// State slots: calibrated accelerations of the pending sample and the one
+/// before it, the pending sample's raw gyro outputs, then its extra columns.
+const PENDING_ACCEL: usize = 0;
+const EARLIER_ACCEL: usize = 3;
+const PENDING_GYRO: usize = 6;
+const PENDING_EXTRA: usize = 12;
 
 impl<'m, 's> Evaluator<'m, 's> {
     /// An evaluator at rest; `state` needs [`Model::state_len`] elements
@@ -445,6 +462,7 @@ impl<'m, 's> Evaluator<'m, 's> {
             model,
             state,
             steps: 0,
+            processed: 0,
             ring_pos: 0,
         })
     }
@@ -453,19 +471,22 @@ impl<'m, 's> Evaluator<'m, 's> {
     pub fn reset(&mut self) {
         self.state.fill(0.0);
         self.steps = 0;
+        self.processed = 0;
         self.ring_pos = 0;
     }
 
-    /// Steps taken since rest.
+    /// Samples received since rest.
     pub fn steps(&self) -> u64 {
         self.steps
     }
 
     /// One output period: raw gyro outputs X, X1, Y, Y1, Z, Z1 (deg/h), raw
     /// accelerations x, y, z (g) and the model's extra columns (in the
-    /// exporter's order, [`Model::n_extra`] of them). `None` until the
-    /// windows are full ([`Model::window_len`] steps). A non-finite input
-    /// makes every later output non-finite (the filters keep it): reset.
+    /// exporter's order, [`Model::n_extra`] of them) of sample n; returns
+    /// the output of sample n − 1, or `None` while the windows fill (the
+    /// first output, of sample [`Model::window_len`] − 1, comes with sample
+    /// `window_len`). A non-finite input makes every later output
+    /// non-finite (the filters keep it): reset.
     pub fn step(
         &mut self,
         gyro_deg_h: &[f64; 6],
@@ -479,33 +500,75 @@ impl<'m, 's> Evaluator<'m, 's> {
                 have: extra.len(),
             });
         }
-        let first = self.steps == 0;
-        let st = &mut *self.state;
-
-        // 1. Calibration.
-        let (a, cov) = {
-            let a = if m.calibrated {
-                compensate_triad(&m, accel_g)
-            } else {
-                *accel_g
-            };
-            // Previous interval's covariance: needs n−2, n−1 and n.
+        let a = if m.calibrated {
+            compensate_triad(&m, accel_g)
+        } else {
+            *accel_g
+        };
+        let out = if self.steps >= 1 {
+            // The pending sample's covariance, centred: n − 2, n − 1, n (zero
+            // for the first sample, which has one neighbour, as in the batch).
             let cov = if self.steps >= 2 {
-                covariance(&[st[3], st[4], st[5]], &[st[0], st[1], st[2]], &a)
+                let st = &*self.state;
+                let earlier = [
+                    st[EARLIER_ACCEL],
+                    st[EARLIER_ACCEL + 1],
+                    st[EARLIER_ACCEL + 2],
+                ];
+                let pending = [
+                    st[PENDING_ACCEL],
+                    st[PENDING_ACCEL + 1],
+                    st[PENDING_ACCEL + 2],
+                ];
+                covariance(&earlier, &pending, &a)
             } else {
                 [[0.0; 3]; 3]
             };
-            st.copy_within(0..3, 3);
-            st[0..3].copy_from_slice(&a);
-            (a, cov)
-        };
-        let gyro = if m.calibrated {
-            compensate_gyros(&m, gyro_deg_h, &a, &cov)
+            self.process(&cov)
         } else {
-            *gyro_deg_h
+            None
+        };
+        let st = &mut *self.state;
+        st.copy_within(PENDING_ACCEL..PENDING_ACCEL + 3, EARLIER_ACCEL);
+        st[PENDING_ACCEL..PENDING_ACCEL + 3].copy_from_slice(&a);
+        st[PENDING_GYRO..PENDING_GYRO + 6].copy_from_slice(gyro_deg_h);
+        st[PENDING_EXTRA..PENDING_EXTRA + m.n_extra].copy_from_slice(extra);
+        self.steps += 1;
+        Ok(out)
+    }
+
+    /// The end of a record: the output of the last sample received (its
+    /// covariance is zero, as the batch's at a record's end), then back to
+    /// rest. `None` if nothing is pending or the windows are not full.
+    pub fn flush(&mut self) -> Option<Output> {
+        let out = if self.steps >= 1 {
+            self.process(&[[0.0; 3]; 3])
+        } else {
+            None
+        };
+        self.reset();
+        out
+    }
+
+    /// Compensates the pending sample with its covariance `cov`.
+    fn process(&mut self, cov: &[[f64; 3]; 3]) -> Option<Output> {
+        let m = self.model;
+        let first = self.processed == 0;
+        let st = &mut *self.state;
+        let a = [
+            st[PENDING_ACCEL],
+            st[PENDING_ACCEL + 1],
+            st[PENDING_ACCEL + 2],
+        ];
+        let mut raw = [0.0; 6];
+        raw.copy_from_slice(&st[PENDING_GYRO..PENDING_GYRO + 6]);
+        let gyro = if m.calibrated {
+            compensate_gyros(&m, &raw, &a, cov)
+        } else {
+            raw
         };
 
-        // 2. Effects, filtered, weighted: the linear part of each prediction.
+        // Effects, filtered, weighted: the linear part of each prediction.
         let mut linear = [0.0; 6];
         for (c, ch) in m.channels.iter().enumerate() {
             let mut p = ch.params;
@@ -513,11 +576,11 @@ impl<'m, 's> Evaluator<'m, 's> {
             for e in 0..ch.n_effects {
                 let k = m.w(ch.effect_words + 2 * e);
                 let z = match k {
-                    kind::COLUMN => extra[m.w(ch.effect_words + 2 * e + 1) as usize],
+                    kind::COLUMN => st[PENDING_EXTRA + m.w(ch.effect_words + 2 * e + 1) as usize],
                     kind::LINEAR_G => dot3(&m, p, &a),
                     kind::QUADRATIC_G => {
                         let (pf, qf) = (dot3(&m, p, &a), dot3(&m, p + 24, &a));
-                        pf * qf + quad(&m, p, &cov, p + 24)
+                        pf * qf + quad(&m, p, cov, p + 24)
                     }
                     _ => dot6(&m, p, &gyro) * dot6(&m, p + 48, &gyro),
                 };
@@ -529,11 +592,15 @@ impl<'m, 's> Evaluator<'m, 's> {
             linear[c] = sum;
         }
 
-        // 3. Window signals, filtered, into their windows.
+        // Window signals, filtered, into their windows.
         let l = m.window_len;
         for s in 0..m.n_signals {
             let code = m.w(m.signal_words + s) as usize;
-            let v = if code < 3 { a[code] } else { extra[code - 3] };
+            let v = if code < 3 {
+                a[code]
+            } else {
+                st[PENDING_EXTRA + code - 3]
+            };
             let s0 = m.in_state + 2 * m.n_in_sections * s;
             let v = cascade(&m, m.in_filter, m.n_in_sections, &mut st[s0..], v, first);
             let r = m.rings + 2 * l * s;
@@ -541,12 +608,12 @@ impl<'m, 's> Evaluator<'m, 's> {
             st[r + self.ring_pos + l] = v;
         }
         self.ring_pos = (self.ring_pos + 1) % l;
-        self.steps += 1;
-        if self.steps < l as u64 {
-            return Ok(None);
+        self.processed += 1;
+        if self.processed < l as u64 {
+            return None;
         }
 
-        // 4. Predictions.
+        // Predictions.
         let mut out = Output {
             rate_deg_h: [0.0; 6],
             error_deg_h: [0.0; 6],
@@ -568,7 +635,7 @@ impl<'m, 's> Evaluator<'m, 's> {
             out.error_deg_h[c] = y;
             out.rate_deg_h[c] = gyro[c] - y;
         }
-        Ok(Some(out))
+        Some(out)
     }
 }
 
@@ -962,9 +1029,14 @@ mod tests {
         let mut ev = Evaluator::new(m, &mut state).unwrap();
         let az = [1.0, 2.0, 1.0, 0.0, 1.0, 1.0];
         let mut outs = [None; 6];
-        for (o, a) in outs.iter_mut().zip(az) {
-            *o = ev.step(&[10.0; 6], &[0.0, 0.0, a], &[]).unwrap();
+        // Sample i's output comes with sample i + 1, the last one's from flush.
+        for (i, a) in az.iter().enumerate() {
+            let o = ev.step(&[10.0; 6], &[0.0, 0.0, *a], &[]).unwrap();
+            if i > 0 {
+                outs[i - 1] = o;
+            }
         }
+        outs[5] = ev.flush();
         assert!(outs[..3].iter().all(Option::is_none));
         for (i, o) in outs.iter().enumerate().skip(3) {
             // The window is the last four az samples, oldest first.
@@ -976,7 +1048,6 @@ mod tests {
                 assert!((o.rate_deg_h[c] - (10.0 - want)).abs() < 1e-14);
             }
         }
-        ev.reset();
-        assert_eq!(ev.steps(), 0);
+        assert_eq!(ev.steps(), 0, "flush leaves the evaluator at rest");
     }
 }

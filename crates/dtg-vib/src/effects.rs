@@ -11,9 +11,7 @@
 //!
 //! The bias is not an effect: every channel model has one (λ0 of eq. 7).
 
-use nav_sensors::dtg::{
-    DtgInput, DtgTerm, within_interval_covariance, within_interval_covariance_causal,
-};
+use nav_sensors::dtg::{DtgInput, DtgTerm, within_interval_covariance};
 use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate, measurement_matrix};
 use nav_sensors::record::Record;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -258,14 +256,6 @@ pub struct EffectColumns<'a> {
 impl<'a> EffectColumns<'a> {
     /// Prepares the record (computes the least-squares rates once).
     pub fn new(record: &'a Record) -> Self {
-        Self::with_causality(record, false)
-    }
-
-    /// As [`EffectColumns::new`]; with `causal`, the g² regressors take the
-    /// previous interval's within-interval covariance
-    /// ([`within_interval_covariance_causal`]), so every column at sample
-    /// `n` depends on samples `≤ n` only.
-    pub fn with_causality(record: &'a Record, causal: bool) -> Self {
         let ops = rate_without_each_channel();
         let rate_deg_h = (0..record.len())
             .map(|i| {
@@ -275,11 +265,7 @@ impl<'a> EffectColumns<'a> {
             .collect();
         let means: Vec<nalgebra::Vector3<f64>> =
             (0..record.len()).map(|i| record.accel_sample(i)).collect();
-        let covariance = if causal {
-            within_interval_covariance_causal(&means)
-        } else {
-            within_interval_covariance(&means)
-        };
+        let covariance = within_interval_covariance(&means);
         Self {
             record,
             rate_deg_h,

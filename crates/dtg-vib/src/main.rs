@@ -198,8 +198,8 @@ struct FitArgs {
     /// Seed of the candidate subsample and k-means.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Causal mode: causal low-passes and covariances, so the model runs
-    /// on-line (`dtg-vib export`) and `compensate` runs sample by sample.
+    /// Causal mode: causal low-passes, so the model runs on-line with one
+    /// period of latency (`dtg-vib export`) and `compensate` runs sample by sample.
     #[arg(long)]
     causal: bool,
     /// Model file to write.

@@ -151,14 +151,16 @@ pub struct Preprocess {
     pub window: WindowSpec,
     /// Known true rate.
     pub rate_reference: RateReference,
-    /// Causal mode: every step uses past and present samples only, so the
-    /// model maps the past to the present correction and runs on-line
-    /// (the `dtg-onboard` evaluator, the exported C). The low-passes are one
-    /// forward pass started in the steady state of the first sample instead
-    /// of forward–backward; the within-interval covariance of the g² terms
-    /// (ground calibration and effects) is the previous interval's
-    /// ([`nav_sensors::dtg::within_interval_covariance_causal`]). Absent in
-    /// model files written before it: zero-phase.
+    /// Causal mode: the model runs on-line with one output period of
+    /// latency (the `dtg-onboard` evaluator, the exported C): the correction
+    /// of sample n uses samples up to n + 1. The low-passes are one forward
+    /// pass started in the steady state of the first sample instead of
+    /// forward–backward; the g² terms' within-interval covariance (ground
+    /// calibration and effects) keeps its centred estimate from samples
+    /// n − 1, n, n + 1, hence the latency (a causal estimate from n − 2,
+    /// n − 1, n cost 33–40% in residual error on the triaxial test,
+    /// docs/dtg-vib.md). Absent in model files written before it:
+    /// zero-phase.
     #[serde(default)]
     pub causal: bool,
 }
@@ -202,7 +204,6 @@ impl Prepared {
         pre.rate_reference.check()?;
         let causal = pre.causal;
         let calibrated = match calibration {
-            Some(c) if causal => c.compensate_causal(record),
             Some(c) => c.compensate(record),
             None => record.clone(),
         };
@@ -283,8 +284,7 @@ impl Prepared {
         // Regressors first, filter second: the gyro saw D·a_I·a_S, and the
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.
-        let cols = EffectColumns::with_causality(&self.calibrated, self.causal)
-            .evaluate(channel, effects)?;
+        let cols = EffectColumns::new(&self.calibrated).evaluate(channel, effects)?;
         cols.iter()
             .map(|c| apply(&self.filter, self.causal, c))
             .collect()
@@ -438,9 +438,11 @@ mod tests {
             a.effect_columns_full(Channel::Z, &e).unwrap(),
             b.effect_columns_full(Channel::Z, &e).unwrap(),
         );
-        assert_eq!(ea[0][..300], eb[0][..300]);
+        // One sample of look-ahead: the covariance of sample 299 uses 300.
+        assert_eq!(ea[0][..299], eb[0][..299]);
+        assert_ne!(ea[0][299], eb[0][299]);
         assert_ne!(ea[0][301], eb[0][301]);
-        // Zero-phase, the same change reaches back before sample 300.
+        // Zero-phase, the same change reaches further back.
         let zp = Preprocess::default();
         let (za, zb) = (
             Prepared::new(&rec, None, &zp).unwrap(),

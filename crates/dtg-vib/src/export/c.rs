@@ -176,11 +176,14 @@ pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSource
     let header = format!(
         r#"/* DTG vibration-error compensator, exported by `dtg-vib export --lang c`.
  * C99, needs only <math.h>. Layout: docs/formats.md ("Onboard tables").
- * One call of dtg_step per output period ({dt} s): raw gyro outputs X, X1,
- * Y, Y1, Z, Z1 (deg/h), raw accelerations x, y, z (g) and the extra columns
- * below, in this order; out come the compensated rates (deg/h) and the
- * calibrated accelerations (g). The first {first} calls fill the windows and
- * return 0; every later call returns 1. */
+ * One call of dtg_step per output period ({dt} s) with sample n: raw gyro
+ * outputs X, X1, Y, Y1, Z, Z1 (deg/h), raw accelerations x, y, z (g) and the
+ * extra columns below, in this order; out come the compensated rates (deg/h)
+ * and calibrated accelerations (g) of sample n - 1 (one period of latency:
+ * the g² terms' within-interval covariance of a sample needs its two
+ * neighbours). The first {first} calls return 0 (no output yet; the windows
+ * fill); every later call returns 1. At the end of a record, dtg_flush gives
+ * the last sample's output. */
 #ifndef DTG_MODEL_H
 #define DTG_MODEL_H
 
@@ -198,9 +201,12 @@ typedef {real} dtg_real;
 
 /* All the state: its size is fixed at compile time. */
 typedef struct {{
-    long steps;
+    long steps;     /* samples received */
+    long processed; /* samples compensated */
     int ring_pos;
-    dtg_real prev_accel[6]; /* calibrated accelerations at n-1 and n-2, g */
+    dtg_real prev_accel[6]; /* calibrated accelerations of the pending sample and the one before, g */
+    dtg_real pending_gyro[6]; /* the pending sample's raw outputs, deg/h */
+    dtg_real pending_extra[DTG_N_EXTRA + 1];
     dtg_real out_z[2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1];
     dtg_real in_z[2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1];
     dtg_real ring[DTG_N_SIGNALS][2 * DTG_WINDOW_LEN];
@@ -209,10 +215,12 @@ typedef struct {{
 void dtg_init(dtg_state *s);
 int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
              const double *extra, double rate_deg_h[6], double accel_out_g[3]);
+/* The last sample's output (returns 1) or nothing (0); leaves s at rest. */
+int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]);
 
 #endif
 "#,
-        first = l - 1,
+        first = l,
         n_extra = extra.len(),
         extra_names = if names.is_empty() {
             "\"\"".to_string()
@@ -297,8 +305,11 @@ const STEP_C: &str = r#"
 void dtg_init(dtg_state *s) {
     int i, j;
     s->steps = 0;
+    s->processed = 0;
     s->ring_pos = 0;
     for (i = 0; i < 6; i++) s->prev_accel[i] = R(0);
+    for (i = 0; i < 6; i++) s->pending_gyro[i] = R(0);
+    for (i = 0; i < DTG_N_EXTRA + 1; i++) s->pending_extra[i] = R(0);
     for (i = 0; i < 2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1; i++) s->out_z[i] = R(0);
     for (i = 0; i < 2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1; i++) s->in_z[i] = R(0);
     for (i = 0; i < DTG_N_SIGNALS; i++)
@@ -419,38 +430,17 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 }
 #endif
 
-int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
-             const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real raw_a[3], a[3], raw_g[6], g[6], cov[3][3], linear[6];
-    int first = s->steps == 0;
-    int i, j, k, c, e, sig;
+/* Compensates the pending sample with its within-interval covariance. */
+static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real a[3], g[6], linear[6];
+    int first = s->processed == 0;
+    int i, k, c, e, sig;
     const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) raw_a[k] = (dtg_real)accel_g[k];
-    for (k = 0; k < 6; k++) raw_g[k] = (dtg_real)gyro_deg_h[k];
+    for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
 #if DTG_CALIBRATED
-    compensate_triad(raw_a, a);
+    compensate_gyros(s->pending_gyro, a, cov, g);
 #else
-    for (k = 0; k < 3; k++) a[k] = raw_a[k];
-#endif
-    /* The previous interval's within-interval covariance (n-2, n-1, n). */
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-    if (s->steps >= 2) {
-        dtg_real c1[3], c2[3];
-        for (k = 0; k < 3; k++) {
-            c1[k] = (a[k] - s->prev_accel[3 + k]) / R(2);
-            c2[k] = (a[k] + s->prev_accel[3 + k] - R(2) * s->prev_accel[k]) / R(2);
-        }
-        for (i = 0; i < 3; i++)
-            for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
-    }
-    for (k = 0; k < 3; k++) {
-        s->prev_accel[3 + k] = s->prev_accel[k];
-        s->prev_accel[k] = a[k];
-    }
-#if DTG_CALIBRATED
-    compensate_gyros(raw_g, a, cov, g);
-#else
-    for (k = 0; k < 6; k++) g[k] = raw_g[k];
+    for (k = 0; k < 6; k++) g[k] = s->pending_gyro[k];
 #endif
     for (c = 0; c < 6; c++) {
         dtg_real sum = R(0);
@@ -459,7 +449,7 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
             const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
             dtg_real z;
             switch (EFFECT_KIND[idx]) {
-            case 0: z = (dtg_real)extra[EFFECT_INDEX[idx]]; break;
+            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
             case 1: z = dot3(p, a); break;
             case 2: z = dot3(p, a) * dot3(p + 3, a) + quad(p, cov, p + 3); break;
             default: {
@@ -476,14 +466,14 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
     }
     for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
         int code = SIGNAL_CODE[sig];
-        dtg_real v = code < 3 ? a[code] : (dtg_real)extra[code - 3];
+        dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
         v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
         s->ring[sig][s->ring_pos] = v;
         s->ring[sig][s->ring_pos + l] = v;
     }
     s->ring_pos = (s->ring_pos + 1) % l;
-    s->steps += 1;
-    if (s->steps < l) return 0;
+    s->processed += 1;
+    if (s->processed < l) return 0;
     for (c = 0; c < 6; c++) {
         dtg_real y = BIAS[c] + linear[c];
         for (k = 0; k < N_CENTRES[c]; k++) {
@@ -509,6 +499,50 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
     }
     for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
     return 1;
+}
+
+int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
+             const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real raw_a[3], a[3], cov[3][3];
+    int i, j, k, out = 0;
+    for (k = 0; k < 3; k++) raw_a[k] = (dtg_real)accel_g[k];
+#if DTG_CALIBRATED
+    compensate_triad(raw_a, a);
+#else
+    for (k = 0; k < 3; k++) a[k] = raw_a[k];
+#endif
+    if (s->steps >= 1) {
+        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
+         * for the first sample, which has one neighbour. */
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
+        if (s->steps >= 2) {
+            dtg_real c1[3], c2[3];
+            for (k = 0; k < 3; k++) {
+                c1[k] = (a[k] - s->prev_accel[3 + k]) / R(2);
+                c2[k] = (a[k] + s->prev_accel[3 + k] - R(2) * s->prev_accel[k]) / R(2);
+            }
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
+        }
+        out = process(s, cov, rate_deg_h, accel_out_g);
+    }
+    for (k = 0; k < 3; k++) {
+        s->prev_accel[3 + k] = s->prev_accel[k];
+        s->prev_accel[k] = a[k];
+    }
+    for (k = 0; k < 6; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
+    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
+    s->steps += 1;
+    return out;
+}
+
+int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real cov[3][3];
+    int i, j, out = 0;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
+    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
+    dtg_init(s);
+    return out;
 }
 "#;
 
@@ -540,6 +574,16 @@ static int split(char *line, char **cells) {
         }
     }
     return n;
+}
+
+static void print_row(const double *v, int t, const double *rate, const double *acc,
+                      const int *other, int n_other) {
+    int k;
+    printf("%.17g", v[t]);
+    for (k = 0; k < 6; k++) printf(",%.17g", rate[k]);
+    for (k = 0; k < 3; k++) printf(",%.17g", acc[k]);
+    for (k = 0; k < n_other; k++) printf(",%.17g", v[other[k]]);
+    printf("\n");
 }
 
 int main(void) {
@@ -587,8 +631,11 @@ int main(void) {
     for (i = 0; i < n_other; i++) printf(",%s", names[other[i]]);
     printf("\n");
     dtg_init(&s);
+    /* Outputs lag one row: pv holds the previous row, whose output comes next. */
+    static double v[MAX_COLS], pv[MAX_COLS];
+    double rate[6], acc_out[3];
     while (fgets(line, sizeof line, stdin)) {
-        double v[MAX_COLS], gyro[6], acc[3], extra[DTG_N_EXTRA + 1], rate[6], acc_out[3];
+        double gyro[6], acc[3], extra[DTG_N_EXTRA + 1];
         row++;
         if (split(line, cells) != ncols) {
             fprintf(stderr, "dtg: line %d: expected %d cells\n", row, ncols);
@@ -605,14 +652,11 @@ int main(void) {
         for (k = 0; k < 6; k++) gyro[k] = v[base[1 + k]];
         for (k = 0; k < 3; k++) acc[k] = v[base[7 + k]];
         for (k = 0; k < DTG_N_EXTRA; k++) extra[k] = v[extra_col[k]];
-        if (dtg_step(&s, gyro, acc, extra, rate, acc_out)) {
-            printf("%.17g", v[base[0]]);
-            for (k = 0; k < 6; k++) printf(",%.17g", rate[k]);
-            for (k = 0; k < 3; k++) printf(",%.17g", acc_out[k]);
-            for (i = 0; i < n_other; i++) printf(",%.17g", v[other[i]]);
-            printf("\n");
-        }
+        if (dtg_step(&s, gyro, acc, extra, rate, acc_out))
+            print_row(pv, base[0], rate, acc_out, other, n_other);
+        for (i = 0; i < ncols; i++) pv[i] = v[i];
     }
+    if (dtg_flush(&s, rate, acc_out)) print_row(pv, base[0], rate, acc_out, other, n_other);
     return 0;
 }
 "#;

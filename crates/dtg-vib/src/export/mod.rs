@@ -311,6 +311,15 @@ pub fn step_record(
         accel_g: Default::default(),
     };
     let mut extra = vec![0.0; t.extra.len()];
+    let mut push = |o: dtg_onboard::Output| {
+        for k in 0..6 {
+            out.rate_deg_h[k].push(o.rate_deg_h[k]);
+            out.error_deg_h[k].push(o.error_deg_h[k]);
+        }
+        for k in 0..3 {
+            out.accel_g[k].push(o.accel_g[k]);
+        }
+    };
     for i in 0..record.len() {
         for (e, c) in extra.iter_mut().zip(&extra_cols) {
             *e = c[i];
@@ -320,14 +329,11 @@ pub fn step_record(
             .step(&record.gyro_sample(i), &[a.x, a.y, a.z], &extra)
             .map_err(|e| ExportError::Tables(e.to_string()))?;
         if let Some(o) = o {
-            for k in 0..6 {
-                out.rate_deg_h[k].push(o.rate_deg_h[k]);
-                out.error_deg_h[k].push(o.error_deg_h[k]);
-            }
-            for k in 0..3 {
-                out.accel_g[k].push(o.accel_g[k]);
-            }
+            push(o);
         }
+    }
+    if let Some(o) = ev.flush() {
+        push(o);
     }
     Ok(out)
 }

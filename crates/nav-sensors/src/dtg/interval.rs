@@ -53,38 +53,6 @@ pub fn within_interval_covariance(means: &[Vector3<f64>]) -> Vec<Matrix3<f64>> {
         .collect()
 }
 
-/// The causal variant of [`within_interval_covariance`]: at interval `n`
-/// the covariance of interval `n − 1`, the latest one whose two neighbours
-/// are both known at `n` (zero at the first two intervals). An on-line
-/// compensator cannot wait for interval `n + 1`; a one-interval lag on the
-/// covariance alone (the product of means stays current) costs little
-/// because the covariance follows the vibration level, which moves on the
-/// scale of seconds.
-///
-/// ```
-/// use nalgebra::Vector3;
-/// let m: Vec<Vector3<f64>> = (0..6).map(|n| Vector3::new((n * n) as f64, 0.0, n as f64)).collect();
-/// let centred = nav_sensors::dtg::within_interval_covariance(&m);
-/// let causal = nav_sensors::dtg::within_interval_covariance_causal(&m);
-/// assert_eq!(causal[0], nalgebra::Matrix3::zeros());
-/// assert_eq!(causal[1], nalgebra::Matrix3::zeros());
-/// assert_eq!(causal[4], centred[3]);
-/// assert_eq!(causal[5], centred[4]); // the last interval has its own too
-/// ```
-pub fn within_interval_covariance_causal(means: &[Vector3<f64>]) -> Vec<Matrix3<f64>> {
-    let n = means.len();
-    (0..n)
-        .map(|i| {
-            if i < 2 {
-                return Matrix3::zeros();
-            }
-            let c1 = (means[i] - means[i - 2]) / 2.0;
-            let c2 = (means[i] + means[i - 2] - 2.0 * means[i - 1]) / 2.0;
-            c1 * c1.transpose() / 12.0 + c2 * c2.transpose() / 180.0
-        })
-        .collect()
-}
-
 impl DtgInput {
     /// Sets the within-interval covariance of the specific force, resolving a
     /// cluster-frame covariance (g²) into the channel's frame.

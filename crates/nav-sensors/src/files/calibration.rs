@@ -9,10 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::record::Record;
 use crate::accel::{AccelCoefficients, compensate_triad};
-use crate::dtg::{
-    DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance,
-    within_interval_covariance_causal,
-};
+use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
 
 /// Reading or writing a calibration file failed.
@@ -224,42 +221,6 @@ impl Calibration {
     /// assert!((out.gyro(Channel::Z)[0] - 2.2).abs() < 1e-12);
     /// ```
     pub fn compensate(&self, record: &Record) -> Record {
-        self.compensate_with(record, within_interval_covariance)
-    }
-
-    /// [`Calibration::compensate`] using only past and present samples: the
-    /// within-interval covariance of the g² terms is
-    /// [`within_interval_covariance_causal`] (lagged one interval), so sample
-    /// `n` of the result depends on samples `≤ n` only, as an on-line
-    /// compensator computes it.
-    ///
-    /// ```
-    /// use nav_sensors::calibration::Calibration;
-    /// use nav_sensors::dtg::DtgCoefficients;
-    /// use nav_sensors::geometry::Channel;
-    /// use nav_sensors::record::Record;
-    /// let n = 20;
-    /// let az: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64).sin()).collect();
-    /// let rec = Record::new((1..=n).map(|i| i as f64 * 0.02).collect(),
-    ///     std::array::from_fn(|_| vec![0.0; n]), [vec![0.0; n], vec![0.0; n], az.clone()], vec![]).unwrap();
-    /// let mut cal = Calibration::ideal();
-    /// cal.gyros.insert(Channel::Z, DtgCoefficients { gg_ii_deg_h_g2: 0.5, ..Default::default() });
-    /// let full = cal.compensate_causal(&rec);
-    /// let mut cut = az.clone();
-    /// cut[12] += 3.0; // a change at sample 12 leaves samples before it alone
-    /// let rec2 = rec.with_accel([vec![0.0; n], vec![0.0; n], cut]);
-    /// let part = cal.compensate_causal(&rec2);
-    /// assert_eq!(&full.gyro(Channel::Z)[..12], &part.gyro(Channel::Z)[..12]);
-    /// ```
-    pub fn compensate_causal(&self, record: &Record) -> Record {
-        self.compensate_with(record, within_interval_covariance_causal)
-    }
-
-    fn compensate_with(
-        &self,
-        record: &Record,
-        covariance_of: fn(&[Vector3<f64>]) -> Vec<nalgebra::Matrix3<f64>>,
-    ) -> Record {
         let n = record.len();
         let accel_coefficients = Axis::ALL.map(|a| self.accel(a));
         let mut accel: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
@@ -276,7 +237,7 @@ impl Calibration {
         let means: Vec<Vector3<f64>> = (0..n)
             .map(|i| Vector3::new(accel[0][i], accel[1][i], accel[2][i]))
             .collect();
-        let covariance = covariance_of(&means);
+        let covariance = within_interval_covariance(&means);
         let gyro_coefficients = Channel::ALL.map(|c| self.gyro(c));
         let mut gyro: [Vec<f64>; 6] =
             std::array::from_fn(|k| record.gyro(Channel::ALL[k]).to_vec());
