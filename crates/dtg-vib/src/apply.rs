@@ -22,6 +22,9 @@ pub struct Applied {
     pub train: Vec<usize>,
     /// Validation rows; empty from [`Applied::unsplit`].
     pub val: Vec<usize>,
+    /// A causal model's run through the onboard evaluator, which gives its
+    /// predictions and compensated record.
+    onboard: Option<crate::export::Stepped>,
 }
 
 impl Applied {
@@ -46,7 +49,23 @@ impl Applied {
                 hint: "a compensated record needs two samples with a full window: use a longer record",
             });
         }
-        let predicted = model.predict(&prepared)?;
+        // A causal model runs sample by sample through the onboard evaluator
+        // (the code a flight computer runs); a zero-phase one as a batch.
+        // A model the onboard layout cannot carry (another kernel, input
+        // scaling: only from the library) is still compensated, as a batch.
+        let stepped = if model.preprocess().causal {
+            match crate::export::step_record(model, record) {
+                Ok(s) => Some(s),
+                Err(DtgVibError::Export(crate::export::ExportError::Unsupported { .. })) => None,
+                Err(e) => return Err(e),
+            }
+        } else {
+            None
+        };
+        let (predicted, onboard) = match stepped {
+            Some(s) => (s.error_deg_h.clone(), Some(s)),
+            None => (model.predict(&prepared)?, None),
+        };
         let first = prepared.first_sample();
         let outputs: [Vec<f64>; 6] =
             std::array::from_fn(|k| prepared.target_full(Channel::ALL[k])[first..].to_vec());
@@ -58,6 +77,7 @@ impl Applied {
             residues,
             train: Vec::new(),
             val: Vec::new(),
+            onboard,
         })
     }
 
@@ -88,11 +108,17 @@ impl Applied {
     /// each gyro output (after the model's ground calibration, not filtered)
     /// minus the channel's predicted error; accelerations calibrated; extra
     /// columns as given. The first `window − 1` samples have no window and
-    /// are not in it.
+    /// are not in it. For a causal model, the onboard evaluator's
+    /// compensated rates and calibrated accelerations.
     pub fn compensated_record(&self) -> Record {
         let first = self.prepared.first_sample();
         let rec = self.prepared.calibrated();
         let sliced = rec.slice(first..rec.len());
+        if let Some(s) = &self.onboard {
+            return sliced
+                .with_gyro(s.rate_deg_h.clone())
+                .with_accel(s.accel_g.clone());
+        }
         let gyro: [Vec<f64>; 6] = std::array::from_fn(|k| {
             sliced
                 .gyro(Channel::ALL[k])

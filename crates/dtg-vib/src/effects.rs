@@ -349,7 +349,7 @@ pub fn rate_variation_deg_s(record: &Record, samples: impl IntoIterator<Item = u
 /// For each channel j, the 3×6 least-squares operator of eq. 4 with row j
 /// left out (its column is zero). Any five rows of eq. 4 have rank 3: the
 /// skewed geometry tolerates one failed channel.
-fn rate_without_each_channel() -> [nalgebra::SMatrix<f64, 3, 6>; 6] {
+pub(crate) fn rate_without_each_channel() -> [nalgebra::SMatrix<f64, 3, 6>; 6] {
     let h = measurement_matrix();
     std::array::from_fn(|j| {
         let mut ht = h.transpose();

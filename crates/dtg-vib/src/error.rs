@@ -19,6 +19,9 @@ pub enum DtgVibError {
     /// The simulation failed.
     #[error(transparent)]
     Simulation(#[from] nav_sensors::sim::SimError),
+    /// A model cannot be exported or run on-line.
+    #[error("export: {0}")]
+    Export(#[from] crate::export::ExportError),
     /// The pre-processing filter cannot be designed or applied.
     #[error("pre-processing filter: {0}")]
     Filter(#[from] crate::signal::FilterError),

@@ -8,6 +8,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod error;
 pub mod explain;
+pub mod export;
 pub mod figures;
 pub mod fit;
 pub mod inference;

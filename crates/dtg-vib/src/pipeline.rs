@@ -1,5 +1,6 @@
 //! From a test record to model inputs: ground-calibration compensation, the
-//! optional rate reference, zero-phase low-pass, windows and effect columns.
+//! optional rate reference, low-pass (zero-phase, or causal in
+//! [`Preprocess::causal`] mode), windows and effect columns.
 //!
 //! The same [`Preprocess`] is stored in a fitted model, so compensation and
 //! diagnosis see data prepared exactly as the training data were.
@@ -150,6 +151,18 @@ pub struct Preprocess {
     pub window: WindowSpec,
     /// Known true rate.
     pub rate_reference: RateReference,
+    /// Causal mode: the model runs on-line with one output period of
+    /// latency (the `dtg-onboard` evaluator, the exported C): the correction
+    /// of sample n uses samples up to n + 1. The low-passes are one forward
+    /// pass started in the steady state of the first sample instead of
+    /// forward–backward; the g² terms' within-interval covariance (ground
+    /// calibration and effects) keeps its centred estimate from samples
+    /// n − 1, n, n + 1, hence the latency (a causal estimate from n − 2,
+    /// n − 1, n cost 33–40% in residual error on the triaxial test,
+    /// docs/dtg-vib.md). Absent in model files written before it:
+    /// zero-phase.
+    #[serde(default)]
+    pub causal: bool,
 }
 
 impl Default for Preprocess {
@@ -161,6 +174,7 @@ impl Default for Preprocess {
             input_filter: None,
             window: WindowSpec::paper(),
             rate_reference: RateReference::None,
+            causal: false,
         }
     }
 }
@@ -173,6 +187,7 @@ impl Default for Preprocess {
 pub struct Prepared {
     calibrated: Record,
     filter: Option<LowPass>,
+    causal: bool,
     /// Filtered gyro outputs minus the rate reference, deg/h, full length.
     targets: [Vec<f64>; 6],
     windows: Windows,
@@ -187,6 +202,7 @@ impl Prepared {
         pre: &Preprocess,
     ) -> Result<Self, DtgVibError> {
         pre.rate_reference.check()?;
+        let causal = pre.causal;
         let calibrated = match calibration {
             Some(c) => {
                 let calibrated = c.compensate(record);
@@ -206,7 +222,7 @@ impl Prepared {
             if let Some(r) = reference {
                 y.iter_mut().for_each(|v| *v -= r[k]);
             }
-            targets[k] = apply(&filter, &y)?;
+            targets[k] = apply(&filter, causal, &y)?;
         }
         let input_filter = pre
             .input_filter
@@ -214,13 +230,14 @@ impl Prepared {
             .transpose()?;
         let mut signals = Vec::with_capacity(pre.window.signals().len());
         for name in pre.window.signals() {
-            signals.push(apply(&input_filter, signal(&calibrated, name)?)?);
+            signals.push(apply(&input_filter, causal, signal(&calibrated, name)?)?);
         }
         let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
         let windows = pre.window.build(&refs)?;
         Ok(Self {
             calibrated,
             filter,
+            causal,
             targets,
             windows,
         })
@@ -280,7 +297,9 @@ impl Prepared {
                 "the record's accelerations (g) or rates are too large for this effect's products: check their units, or drop the effect",
             )?;
         }
-        cols.iter().map(|c| apply(&self.filter, c)).collect()
+        cols.iter()
+            .map(|c| apply(&self.filter, self.causal, c))
+            .collect()
     }
 
     /// The effect columns of a channel on the rows, as an `rows × effects` matrix.
@@ -298,7 +317,12 @@ impl Prepared {
 
     /// A record signal (accelerometer axis or extra column), filtered, over the whole record.
     pub fn signal_full(&self, name: &str) -> Result<Vec<f64>, DtgVibError> {
-        apply(&self.filter, signal(&self.calibrated, name)?)
+        apply(&self.filter, self.causal, signal(&self.calibrated, name)?)
+    }
+
+    /// True when prepared in causal mode ([`Preprocess::causal`]).
+    pub fn causal(&self) -> bool {
+        self.causal
     }
 
     /// The designed filter, if any.
@@ -307,11 +331,21 @@ impl Prepared {
     }
 
     /// Samples over which one sample influences its filtered neighbours on
-    /// each side (where the zero-phase impulse response exceeds 10⁻³ of its
-    /// peak); 0 without a filter. Train and validation rows are kept this far
-    /// apart, plus a window length, so nothing leaks across.
+    /// each side (where the impulse response, zero-phase or causal, exceeds
+    /// 10⁻³ of its peak); 0 without a filter. Train and validation rows are
+    /// kept this far apart, plus a window length, so nothing leaks across.
     pub fn filter_memory(&self) -> usize {
         let Some(f) = &self.filter else { return 0 };
+        if self.causal {
+            let mut impulse = vec![0.0; 4000];
+            impulse[0] = 1.0;
+            let h = f.filter(&impulse);
+            let peak = h.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            return (1..h.len())
+                .rev()
+                .find(|&k| h[k].abs() > 1e-3 * peak)
+                .unwrap_or(0);
+        }
         let half = 2000;
         let mut impulse = vec![0.0; 2 * half + 1];
         impulse[half] = 1.0;
@@ -374,8 +408,14 @@ fn check_range(
     }
 }
 
-fn apply(filter: &Option<LowPass>, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
+fn apply(filter: &Option<LowPass>, causal: bool, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
     Ok(match filter {
+        Some(f) if causal => {
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                return Err(crate::signal::FilterError::NotFinite { index: i }.into());
+            }
+            f.filter_causal(x)
+        }
         Some(f) => f.filtfilt(x)?,
         None => x.to_vec(),
     })
@@ -428,6 +468,50 @@ mod tests {
             assert_eq!(p.windows().row(r)[49], rec.accel(Axis::Z)[49 + r]);
             assert_eq!(p.target(Channel::Z)[r], rec.gyro(Channel::Z)[49 + r]);
         }
+    }
+
+    #[test]
+    fn a_preprocess_written_before_causal_mode_reads_as_zero_phase() {
+        let old = r#"{"filter": {"order": 4, "cutoff_hz": 5.0}, "input_filter": null,
+            "window": {"signals": ["az"], "length": 50}, "rate_reference": {"kind": "none"}}"#;
+        let p: Preprocess = serde_json::from_str(old).unwrap();
+        assert!(!p.causal);
+        assert_eq!(p, Preprocess::default());
+    }
+
+    #[test]
+    fn causal_preparation_never_looks_ahead() {
+        let rec = record(400);
+        let pre = Preprocess {
+            causal: true,
+            ..Preprocess::default()
+        };
+        let mut az = rec.accel(Axis::Z).to_vec();
+        az[300..].iter_mut().for_each(|v| *v += 1.0);
+        let changed = rec.with_accel([vec![0.0; 400], vec![0.0; 400], az]);
+        let (a, b) = (
+            Prepared::new(&rec, None, &pre).unwrap(),
+            Prepared::new(&changed, None, &pre).unwrap(),
+        );
+        let e: Vec<Effect> = vec!["gg_II".parse().unwrap()];
+        let (ea, eb) = (
+            a.effect_columns_full(Channel::Z, &e).unwrap(),
+            b.effect_columns_full(Channel::Z, &e).unwrap(),
+        );
+        // One sample of look-ahead: the covariance of sample 299 uses 300.
+        assert_eq!(ea[0][..299], eb[0][..299]);
+        assert_ne!(ea[0][299], eb[0][299]);
+        assert_ne!(ea[0][301], eb[0][301]);
+        // Zero-phase, the same change reaches further back.
+        let zp = Preprocess::default();
+        let (za, zb) = (
+            Prepared::new(&rec, None, &zp).unwrap(),
+            Prepared::new(&changed, None, &zp).unwrap(),
+        );
+        assert_ne!(
+            za.effect_columns_full(Channel::Z, &e).unwrap()[0][295],
+            zb.effect_columns_full(Channel::Z, &e).unwrap()[0][295]
+        );
     }
 
     #[test]

@@ -25,6 +25,30 @@ impl LowPass {
         y
     }
 
+    /// One causal pass started in the steady state of the first sample (as if
+    /// the signal had held that value forever): what an on-line filter does
+    /// from its first sample, without the start-up transient of
+    /// [`LowPass::filter`] on a signal far from zero (a 1-g acceleration, a
+    /// 15-deg/h Earth rate). Sample `n` of the result depends on samples
+    /// `≤ n` only.
+    ///
+    /// ```
+    /// use dtg_vib::signal::LowPass;
+    /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
+    /// let y = lp.filter_causal(&vec![3.0; 50]);
+    /// assert!(y.iter().all(|v| (v - 3.0).abs() < 1e-12)); // no transient
+    /// let mut x = vec![0.0; 50];
+    /// x[20] = 1.0;
+    /// assert!(lp.filter_causal(&x)[..20].iter().all(|&v| v == 0.0)); // nothing before the impulse
+    /// ```
+    pub fn filter_causal(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = x.to_vec();
+        if !y.is_empty() {
+            self.run_with_state(&mut y, &self.steady_state());
+        }
+        y
+    }
+
     /// Zero-phase filtering: forward then backward, with odd extension of
     /// [`LowPass::pad_len`] samples at both ends and steady-state initial
     /// conditions, as scipy's `sosfiltfilt` does (results agree with it to
@@ -112,10 +136,11 @@ impl LowPass {
         }
     }
 
-    /// Per-section states that make a unit step a steady state of the
-    /// cascade (scipy's `sosfilt_zi`): each section sees the DC gain of the
-    /// sections before it.
-    fn steady_state(&self) -> Vec<[f64; 2]> {
+    /// Per-section states (transposed direct form II, `[z1, z2]`) that make
+    /// a unit step a steady state of the cascade (scipy's `sosfilt_zi`): each
+    /// section sees the DC gain of the sections before it. Scaled by the
+    /// first sample, they start [`LowPass::filter_causal`].
+    pub fn steady_state(&self) -> Vec<[f64; 2]> {
         let mut scale = 1.0;
         self.sections()
             .iter()

@@ -1,0 +1,1053 @@
+//! On-line DTG vibration-error compensation, one output period per step, in
+//! bounded time and memory: no standard library, no heap.
+//!
+//! A model fitted by `dtg-vib fit --causal` is exported as flat tables (the
+//! versioned byte layout of docs/formats.md, "Onboard tables"). [`Model`]
+//! reads them from a byte slice (a file, flash, an `include_bytes!`);
+//! [`Evaluator`] keeps the state (filter states, the last two accelerations,
+//! the input windows) in a caller-provided `f64` buffer of
+//! [`Model::state_len`] elements, and [`Evaluator::step`] turns one period's
+//! raw gyro outputs (deg/h), accelerations (g) and extra columns into the
+//! six compensated rates (deg/h) of the period before: one period of
+//! latency, because the g² terms' within-interval covariance of a sample is
+//! estimated from its two neighbours.
+//!
+//! Each sample goes through, in this order (the same as `dtg-vib
+//! compensate` on a causal model, which runs this code):
+//!
+//! 1. ground calibration: the accelerometer triad's static inverse, then each
+//!    gyro's inverse DTG model with the other-axis rates from the
+//!    least-squares rate (two passes), the g² terms with the within-interval
+//!    covariance from the sample and its two neighbours;
+//! 2. per channel, the effect regressors from the calibrated accelerations,
+//!    rates and extra columns, each through the causal low-pass;
+//! 3. the window signals through the causal input low-pass into their windows;
+//! 4. once the windows are full, per channel the predicted error
+//!    `bias + Σ θⱼ·zⱼ + Σₖ wₖ·exp(−‖x − cₖ‖²/βₖ²)`, subtracted from the
+//!    calibrated output.
+//!
+//! ```
+//! # fn tables() -> Vec<u8> { dtg_onboard::doc_tables().to_vec() }
+//! use dtg_onboard::{Evaluator, Model};
+//! let bytes = tables(); // e.g. include_bytes!("model.dtgo")
+//! let model = Model::parse(&bytes).unwrap();
+//! let mut state = [0.0f64; 4096];
+//! let mut ev = Evaluator::new(model, &mut state).unwrap();
+//! for _ in 0..model.window_len() {
+//!     // Outputs lag one sample: the window_len-th sample's comes with the next.
+//!     assert!(ev.step(&[0.0; 6], &[0.0, 0.0, 1.0], &[]).unwrap().is_none());
+//! }
+//! let out = ev.flush().expect("the record's last sample, with a full window");
+//! assert!(out.rate_deg_h.iter().all(|w| w.is_finite()));
+//! ```
+
+#![no_std]
+#![forbid(unsafe_code)]
+// No dependencies: the evaluator needs only `+ − × ÷`, comparisons and bit
+// operations (its own `exp` below).
+
+/// The first four bytes of the tables.
+pub const MAGIC: [u8; 4] = *b"DTGO";
+/// The layout version this crate reads and `dtg-vib export` writes.
+pub const VERSION: u32 = 1;
+
+/// Fixed header words before the per-model lists (see docs/formats.md).
+pub const FIXED_HEADER_WORDS: usize = 21;
+
+/// Flag bit: the tables hold a ground calibration.
+pub const FLAG_CALIBRATION: u32 = 1;
+
+/// Effect kinds of the tables.
+pub mod kind {
+    /// An extra column, as given: `z = extra[index]`.
+    pub const COLUMN: u32 = 0;
+    /// Linear in specific force: `z = p·f` (3 parameters).
+    pub const LINEAR_G: u32 = 1;
+    /// Quadratic in specific force: `z = (p·f)(q·f) + pᵀ C q` (6 parameters).
+    pub const QUADRATIC_G: u32 = 2;
+    /// Product of rates: `z = (r·m)(s·m)` over the six calibrated outputs
+    /// (12 parameters).
+    pub const RATE_PRODUCT: u32 = 3;
+}
+
+/// Number of `f64` parameters of an effect kind.
+pub const fn kind_params(k: u32) -> Option<usize> {
+    match k {
+        kind::COLUMN => Some(0),
+        kind::LINEAR_G => Some(3),
+        kind::QUADRATIC_G => Some(6),
+        kind::RATE_PRODUCT => Some(12),
+        _ => None,
+    }
+}
+
+/// `f64` numbers of a gyro's calibration: the 18 DTG terms, then the
+/// scale-factor nonlinearity.
+const GYRO_CAL: usize = 19;
+/// `f64` numbers of an accelerometer's calibration.
+const ACCEL_CAL: usize = 8;
+/// `f64` numbers of one second-order section: b0 b1 b2 a1 a2 zi1 zi2.
+const SECTION: usize = 7;
+
+/// Why tables or a step were refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Error {
+    /// The bytes do not start with [`MAGIC`].
+    Magic,
+    /// A layout version this crate does not read.
+    Version {
+        /// Version in the tables.
+        found: u32,
+        /// The version read here.
+        supported: u32,
+    },
+    /// The tables end before what their header announces.
+    Truncated {
+        /// Bytes the header announces.
+        need: usize,
+        /// Bytes given.
+        have: usize,
+    },
+    /// A header field is out of range (an unknown effect kind, a signal or
+    /// column index beyond the extra columns, a zero window).
+    Header {
+        /// The header word, counted from 0.
+        word: usize,
+    },
+    /// The state buffer is smaller than [`Model::state_len`].
+    StateTooSmall {
+        /// Elements needed.
+        need: usize,
+        /// Elements given.
+        have: usize,
+    },
+    /// A step was given another number of extra columns than the model reads.
+    Extra {
+        /// Columns the model reads ([`Model::n_extra`]).
+        need: usize,
+        /// Columns given.
+        have: usize,
+    },
+}
+
+impl core::fmt::Display for Error {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Error::Magic => f.write_str("not onboard tables (the bytes do not start with DTGO)"),
+            Error::Version { found, supported } => write!(
+                f,
+                "onboard tables of layout version {found}; this evaluator reads version {supported}: export the model again"
+            ),
+            Error::Truncated { need, have } => write!(
+                f,
+                "onboard tables are {have} bytes, their header announces {need}: the file is cut short"
+            ),
+            Error::Header { word } => {
+                write!(f, "onboard tables: header word {word} is out of range")
+            }
+            Error::StateTooSmall { need, have } => write!(
+                f,
+                "state buffer of {have} elements; the model needs {need} (Model::state_len)"
+            ),
+            Error::Extra { need, have } => {
+                write!(f, "{have} extra columns given; the model reads {need}")
+            }
+        }
+    }
+}
+
+/// Reads a little-endian `f64` at byte `at`.
+#[inline(always)]
+fn rd(b: &[u8], at: usize) -> f64 {
+    let mut a = [0u8; 8];
+    a.copy_from_slice(&b[at..at + 8]);
+    f64::from_le_bytes(a)
+}
+
+fn word(b: &[u8], i: usize) -> Result<u32, Error> {
+    let at = 4 * i;
+    if b.len() < at + 4 {
+        return Err(Error::Truncated {
+            need: at + 4,
+            have: b.len(),
+        });
+    }
+    Ok(u32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]]))
+}
+
+/// Where one channel's numbers are.
+#[derive(Debug, Clone, Copy, Default)]
+struct ChannelAt {
+    n_effects: usize,
+    n_centres: usize,
+    /// Header word of the first (kind, index) pair.
+    effect_words: usize,
+    /// Byte offsets.
+    bias: usize,
+    coefficients: usize,
+    params: usize,
+    widths: usize,
+    weights: usize,
+    centres: usize,
+    /// First output-filter state of this channel's effects.
+    state: usize,
+}
+
+/// A model's tables, checked once; cheap to copy.
+#[derive(Debug, Clone, Copy)]
+pub struct Model<'a> {
+    bytes: &'a [u8],
+    calibrated: bool,
+    n_extra: usize,
+    n_sections: usize,
+    n_in_sections: usize,
+    window_len: usize,
+    n_signals: usize,
+    signal_words: usize,
+    dt_s: f64,
+    frames: usize,
+    ls: usize,
+    gyro_cal: usize,
+    accel_cal: usize,
+    out_filter: usize,
+    in_filter: usize,
+    channels: [ChannelAt; 6],
+    state_len: usize,
+    in_state: usize,
+    rings: usize,
+}
+
+impl<'a> Model<'a> {
+    /// Checks the header and sizes of `bytes` (layout version [`VERSION`]).
+    pub fn parse(bytes: &'a [u8]) -> Result<Self, Error> {
+        if bytes.len() < 4 || bytes[..4] != MAGIC {
+            return Err(Error::Magic);
+        }
+        let version = word(bytes, 1)?;
+        if version != VERSION {
+            return Err(Error::Version {
+                found: version,
+                supported: VERSION,
+            });
+        }
+        let header_words = word(bytes, 2)? as usize;
+        let flags = word(bytes, 3)?;
+        let n_extra = word(bytes, 4)? as usize;
+        let n_sections = word(bytes, 5)? as usize;
+        let n_in_sections = word(bytes, 6)? as usize;
+        let window_len = word(bytes, 7)? as usize;
+        let n_signals = word(bytes, 8)? as usize;
+        if window_len == 0 {
+            return Err(Error::Header { word: 7 });
+        }
+        if n_signals == 0 {
+            return Err(Error::Header { word: 8 });
+        }
+        let mut channels = [ChannelAt::default(); 6];
+        for (c, ch) in channels.iter_mut().enumerate() {
+            ch.n_effects = word(bytes, 9 + c)? as usize;
+            ch.n_centres = word(bytes, 15 + c)? as usize;
+        }
+        let signal_words = FIXED_HEADER_WORDS;
+        for s in 0..n_signals {
+            if word(bytes, signal_words + s)? as usize >= 3 + n_extra {
+                return Err(Error::Header {
+                    word: signal_words + s,
+                });
+            }
+        }
+        let mut w = signal_words + n_signals;
+        let mut params_len = [0usize; 6];
+        for (c, ch) in channels.iter_mut().enumerate() {
+            ch.effect_words = w;
+            for _ in 0..ch.n_effects {
+                let k = word(bytes, w)?;
+                let Some(p) = kind_params(k) else {
+                    return Err(Error::Header { word: w });
+                };
+                if k == kind::COLUMN && word(bytes, w + 1)? as usize >= n_extra {
+                    return Err(Error::Header { word: w + 1 });
+                }
+                params_len[c] += p;
+                w += 2;
+            }
+        }
+        if header_words < w || !header_words.is_multiple_of(2) {
+            return Err(Error::Header { word: 2 });
+        }
+        let calibrated = flags & FLAG_CALIBRATION != 0;
+        let dim = window_len * n_signals;
+        // Payload offsets, in bytes.
+        let mut at = 4 * header_words;
+        let mut take = |n: usize| {
+            let here = at;
+            at += 8 * n;
+            here
+        };
+        let dt_at = take(1);
+        let frames = take(54);
+        let ls = take(18);
+        let (gyro_cal, accel_cal) = if calibrated {
+            (take(6 * GYRO_CAL), take(3 * ACCEL_CAL))
+        } else {
+            (0, 0)
+        };
+        let out_filter = take(SECTION * n_sections);
+        let in_filter = take(SECTION * n_in_sections);
+        let mut state = PENDING_EXTRA + n_extra;
+        for (c, ch) in channels.iter_mut().enumerate() {
+            ch.bias = take(1);
+            ch.coefficients = take(ch.n_effects);
+            ch.params = take(params_len[c]);
+            ch.widths = take(ch.n_centres);
+            ch.weights = take(ch.n_centres);
+            ch.centres = take(ch.n_centres * dim);
+            ch.state = state;
+            state += 2 * n_sections * ch.n_effects;
+        }
+        let need = at;
+        if bytes.len() < need {
+            return Err(Error::Truncated {
+                need,
+                have: bytes.len(),
+            });
+        }
+        let in_state = state;
+        state += 2 * n_in_sections * n_signals;
+        let rings = state;
+        state += 2 * window_len * n_signals;
+        Ok(Self {
+            bytes: &bytes[..need],
+            calibrated,
+            n_extra,
+            n_sections,
+            n_in_sections,
+            window_len,
+            n_signals,
+            signal_words,
+            dt_s: rd(bytes, dt_at),
+            frames,
+            ls,
+            gyro_cal,
+            accel_cal,
+            out_filter,
+            in_filter,
+            channels,
+            state_len: state,
+            in_state,
+            rings,
+        })
+    }
+
+    /// Size of the tables, bytes.
+    pub fn size_bytes(&self) -> usize {
+        self.bytes.len()
+    }
+
+    /// `f64` elements of state an [`Evaluator`] needs.
+    pub fn state_len(&self) -> usize {
+        self.state_len
+    }
+
+    /// Extra columns each step takes, in the exporter's order.
+    pub fn n_extra(&self) -> usize {
+        self.n_extra
+    }
+
+    /// Samples per window: steps before the first output.
+    pub fn window_len(&self) -> usize {
+        self.window_len
+    }
+
+    /// The output period the model was fitted at, s.
+    pub fn dt_s(&self) -> f64 {
+        self.dt_s
+    }
+
+    /// Centres of one channel (0..6 = X, X1, Y, Y1, Z, Z1).
+    pub fn n_centres(&self, channel: usize) -> usize {
+        self.channels[channel].n_centres
+    }
+
+    /// Effects of one channel.
+    pub fn n_effects(&self, channel: usize) -> usize {
+        self.channels[channel].n_effects
+    }
+
+    /// Floating-point operations of one step (a multiply-add is two; `exp`,
+    /// `/` and `fabs` count one each): the RBF sums, filters and effect
+    /// weights counted from the tables, the calibration's Newton steps and
+    /// the regressors estimated per operation.
+    pub fn flops_per_step(&self) -> usize {
+        let dim = self.window_len * self.n_signals;
+        let mut f = 0;
+        if self.calibrated {
+            // Triad: 3 passes × 3 axes × 4 Newton steps of ~25 flops.
+            f += 3 * 3 * 4 * 25 + 3;
+            // Two passes: rate (36) + 6 × (resolve 3×3×5 + cov 6×15 + drift
+            // 2×36 + Newton 4×12).
+            f += 2 * (36 + 6 * (45 + 90 + 72 + 48 + 4));
+        }
+        f += 9 * 6; // covariance
+        for c in &self.channels {
+            f += 2 + 2 * c.n_effects + 9 * self.n_sections * c.n_effects + 20 * c.n_effects;
+            f += c.n_centres * (3 * dim + 6);
+        }
+        f + 9 * self.n_in_sections * self.n_signals
+    }
+
+    #[inline(always)]
+    fn f(&self, at: usize) -> f64 {
+        rd(self.bytes, at)
+    }
+
+    #[inline(always)]
+    fn w(&self, i: usize) -> u32 {
+        let at = 4 * i;
+        let b = self.bytes;
+        u32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
+    }
+}
+
+/// One step's result.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Output {
+    /// Compensated rates X, X1, Y, Y1, Z, Z1, deg/h: the calibrated outputs
+    /// minus the predicted errors.
+    pub rate_deg_h: [f64; 6],
+    /// The predicted vibration errors, deg/h.
+    pub error_deg_h: [f64; 6],
+    /// Calibrated accelerations x, y, z, g.
+    pub accel_g: [f64; 3],
+}
+
+/// The compensator's state over a model.
+///
+/// One period of latency: the call with sample n returns the output of
+/// sample n − 1, because the g² terms' within-interval covariance of a
+/// sample is estimated from its two neighbours. [`Evaluator::flush`] gives
+/// the last sample's output at the end of a record.
+#[derive(Debug)]
+pub struct Evaluator<'m, 's> {
+    model: Model<'m>,
+    state: &'s mut [f64],
+    /// Samples received since rest.
+    steps: u64,
+    /// Samples processed (one fewer than received, once running).
+    processed: u64,
+    ring_pos: usize,
+}
+
+/// State slots: calibrated accelerations of the pending sample and the one
+/// before it, the pending sample's raw gyro outputs, then its extra columns.
+const PENDING_ACCEL: usize = 0;
+const EARLIER_ACCEL: usize = 3;
+const PENDING_GYRO: usize = 6;
+const PENDING_EXTRA: usize = 12;
+
+impl<'m, 's> Evaluator<'m, 's> {
+    /// An evaluator at rest; `state` needs [`Model::state_len`] elements
+    /// (more are left alone).
+    pub fn new(model: Model<'m>, state: &'s mut [f64]) -> Result<Self, Error> {
+        let need = model.state_len();
+        if state.len() < need {
+            return Err(Error::StateTooSmall {
+                need,
+                have: state.len(),
+            });
+        }
+        let state = &mut state[..need];
+        state.fill(0.0);
+        Ok(Self {
+            model,
+            state,
+            steps: 0,
+            processed: 0,
+            ring_pos: 0,
+        })
+    }
+
+    /// Back to rest, as after [`Evaluator::new`].
+    pub fn reset(&mut self) {
+        self.state.fill(0.0);
+        self.steps = 0;
+        self.processed = 0;
+        self.ring_pos = 0;
+    }
+
+    /// Samples received since rest.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// One output period: raw gyro outputs X, X1, Y, Y1, Z, Z1 (deg/h), raw
+    /// accelerations x, y, z (g) and the model's extra columns (in the
+    /// exporter's order, [`Model::n_extra`] of them) of sample n; returns
+    /// the output of sample n − 1, or `None` while the windows fill (the
+    /// first output, of sample [`Model::window_len`] − 1, comes with sample
+    /// `window_len`). A non-finite input makes every later output
+    /// non-finite (the filters keep it): reset.
+    pub fn step(
+        &mut self,
+        gyro_deg_h: &[f64; 6],
+        accel_g: &[f64; 3],
+        extra: &[f64],
+    ) -> Result<Option<Output>, Error> {
+        let m = self.model;
+        if extra.len() != m.n_extra {
+            return Err(Error::Extra {
+                need: m.n_extra,
+                have: extra.len(),
+            });
+        }
+        let a = if m.calibrated {
+            compensate_triad(&m, accel_g)
+        } else {
+            *accel_g
+        };
+        let out = if self.steps >= 1 {
+            // The pending sample's covariance, centred: n − 2, n − 1, n (zero
+            // for the first sample, which has one neighbour, as in the batch).
+            let cov = if self.steps >= 2 {
+                let st = &*self.state;
+                let earlier = [
+                    st[EARLIER_ACCEL],
+                    st[EARLIER_ACCEL + 1],
+                    st[EARLIER_ACCEL + 2],
+                ];
+                let pending = [
+                    st[PENDING_ACCEL],
+                    st[PENDING_ACCEL + 1],
+                    st[PENDING_ACCEL + 2],
+                ];
+                covariance(&earlier, &pending, &a)
+            } else {
+                [[0.0; 3]; 3]
+            };
+            self.process(&cov)
+        } else {
+            None
+        };
+        let st = &mut *self.state;
+        st.copy_within(PENDING_ACCEL..PENDING_ACCEL + 3, EARLIER_ACCEL);
+        st[PENDING_ACCEL..PENDING_ACCEL + 3].copy_from_slice(&a);
+        st[PENDING_GYRO..PENDING_GYRO + 6].copy_from_slice(gyro_deg_h);
+        st[PENDING_EXTRA..PENDING_EXTRA + m.n_extra].copy_from_slice(extra);
+        self.steps += 1;
+        Ok(out)
+    }
+
+    /// The end of a record: the output of the last sample received (its
+    /// covariance is zero, as the batch's at a record's end), then back to
+    /// rest. `None` if nothing is pending or the windows are not full.
+    pub fn flush(&mut self) -> Option<Output> {
+        let out = if self.steps >= 1 {
+            self.process(&[[0.0; 3]; 3])
+        } else {
+            None
+        };
+        self.reset();
+        out
+    }
+
+    /// Compensates the pending sample with its covariance `cov`.
+    fn process(&mut self, cov: &[[f64; 3]; 3]) -> Option<Output> {
+        let m = self.model;
+        let first = self.processed == 0;
+        let st = &mut *self.state;
+        let a = [
+            st[PENDING_ACCEL],
+            st[PENDING_ACCEL + 1],
+            st[PENDING_ACCEL + 2],
+        ];
+        let mut raw = [0.0; 6];
+        raw.copy_from_slice(&st[PENDING_GYRO..PENDING_GYRO + 6]);
+        let gyro = if m.calibrated {
+            compensate_gyros(&m, &raw, &a, cov)
+        } else {
+            raw
+        };
+
+        // Effects, filtered, weighted: the linear part of each prediction.
+        let mut linear = [0.0; 6];
+        for (c, ch) in m.channels.iter().enumerate() {
+            let mut p = ch.params;
+            let mut sum = 0.0;
+            for e in 0..ch.n_effects {
+                let k = m.w(ch.effect_words + 2 * e);
+                let z = match k {
+                    kind::COLUMN => st[PENDING_EXTRA + m.w(ch.effect_words + 2 * e + 1) as usize],
+                    kind::LINEAR_G => dot3(&m, p, &a),
+                    kind::QUADRATIC_G => {
+                        let (pf, qf) = (dot3(&m, p, &a), dot3(&m, p + 24, &a));
+                        pf * qf + quad(&m, p, cov, p + 24)
+                    }
+                    _ => dot6(&m, p, &gyro) * dot6(&m, p + 48, &gyro),
+                };
+                p += 8 * kind_params(k).unwrap_or(0);
+                let s0 = ch.state + 2 * m.n_sections * e;
+                let z = cascade(&m, m.out_filter, m.n_sections, &mut st[s0..], z, first);
+                sum += z * m.f(ch.coefficients + 8 * e);
+            }
+            linear[c] = sum;
+        }
+
+        // Window signals, filtered, into their windows.
+        let l = m.window_len;
+        for s in 0..m.n_signals {
+            let code = m.w(m.signal_words + s) as usize;
+            let v = if code < 3 {
+                a[code]
+            } else {
+                st[PENDING_EXTRA + code - 3]
+            };
+            let s0 = m.in_state + 2 * m.n_in_sections * s;
+            let v = cascade(&m, m.in_filter, m.n_in_sections, &mut st[s0..], v, first);
+            let r = m.rings + 2 * l * s;
+            st[r + self.ring_pos] = v;
+            st[r + self.ring_pos + l] = v;
+        }
+        self.ring_pos = (self.ring_pos + 1) % l;
+        self.processed += 1;
+        if self.processed < l as u64 {
+            return None;
+        }
+
+        // Predictions.
+        let mut out = Output {
+            rate_deg_h: [0.0; 6],
+            error_deg_h: [0.0; 6],
+            accel_g: a,
+        };
+        for (c, ch) in m.channels.iter().enumerate() {
+            let mut y = m.f(ch.bias) + linear[c];
+            let mut centre = ch.centres;
+            for k in 0..ch.n_centres {
+                let mut r2 = 0.0;
+                for s in 0..m.n_signals {
+                    let win = &st[m.rings + 2 * l * s + self.ring_pos..][..l];
+                    r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
+                    centre += 8 * l;
+                }
+                let beta = m.f(ch.widths + 8 * k);
+                y += exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k);
+            }
+            out.error_deg_h[c] = y;
+            out.rate_deg_h[c] = gyro[c] - y;
+        }
+        Some(out)
+    }
+}
+
+/// ‖x − c‖² of a window against a centre's bytes; four partial sums (the
+/// exported C sums the same way) keep the adds independent.
+#[inline(always)]
+fn sq_dist(centre: &[u8], x: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    let mut cs = centre.chunks_exact(32);
+    let mut xs = x.chunks_exact(4);
+    for (c4, x4) in (&mut cs).zip(&mut xs) {
+        for j in 0..4 {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&c4[8 * j..8 * j + 8]);
+            let d = x4[j] - f64::from_le_bytes(b);
+            acc[j] += d * d;
+        }
+    }
+    let mut tail = 0.0;
+    for (c, &v) in cs.remainder().chunks_exact(8).zip(xs.remainder()) {
+        let mut b = [0u8; 8];
+        b.copy_from_slice(c);
+        let d = v - f64::from_le_bytes(b);
+        tail += d * d;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// One value through a cascade of second-order sections (transposed direct
+/// form II) whose states start at `state`; on the first step the states are
+/// set to the steady state of that value first.
+#[inline(always)]
+fn cascade(m: &Model, at: usize, n: usize, state: &mut [f64], x: f64, first: bool) -> f64 {
+    let mut v = x;
+    for s in 0..n {
+        let o = at + 8 * SECTION * s;
+        let z = &mut state[2 * s..2 * s + 2];
+        if first {
+            z[0] = m.f(o + 40) * x;
+            z[1] = m.f(o + 48) * x;
+        }
+        let (b0, b1, b2, a1, a2) = (m.f(o), m.f(o + 8), m.f(o + 16), m.f(o + 24), m.f(o + 32));
+        let y = b0 * v + z[0];
+        z[0] = b1 * v - a1 * y + z[1];
+        z[1] = b2 * v - a2 * y;
+        v = y;
+    }
+    v
+}
+
+#[inline(always)]
+fn dot3(m: &Model, at: usize, v: &[f64; 3]) -> f64 {
+    m.f(at) * v[0] + m.f(at + 8) * v[1] + m.f(at + 16) * v[2]
+}
+
+#[inline(always)]
+fn dot6(m: &Model, at: usize, v: &[f64; 6]) -> f64 {
+    let mut s = 0.0;
+    for (j, x) in v.iter().enumerate() {
+        s += m.f(at + 8 * j) * x;
+    }
+    s
+}
+
+/// `pᵀ C q` with p and q in the tables.
+#[inline(always)]
+fn quad(m: &Model, p: usize, c: &[[f64; 3]; 3], q: usize) -> f64 {
+    let pv = [m.f(p), m.f(p + 8), m.f(p + 16)];
+    let qv = [m.f(q), m.f(q + 8), m.f(q + 16)];
+    quad_v(&pv, c, &qv)
+}
+
+#[inline(always)]
+fn quad_v(p: &[f64; 3], c: &[[f64; 3]; 3], q: &[f64; 3]) -> f64 {
+    let t = [
+        p[0] * c[0][0] + p[1] * c[1][0] + p[2] * c[2][0],
+        p[0] * c[0][1] + p[1] * c[1][1] + p[2] * c[2][1],
+        p[0] * c[0][2] + p[1] * c[1][2] + p[2] * c[2][2],
+    ];
+    t[0] * q[0] + t[1] * q[1] + t[2] * q[2]
+}
+
+/// Within-interval covariance of the middle of three consecutive means
+/// (nav_sensors::dtg::within_interval_covariance), g².
+fn covariance(m0: &[f64; 3], m1: &[f64; 3], m2: &[f64; 3]) -> [[f64; 3]; 3] {
+    let mut c1 = [0.0; 3];
+    let mut c2 = [0.0; 3];
+    for k in 0..3 {
+        c1[k] = (m2[k] - m0[k]) / 2.0;
+        c2[k] = (m2[k] + m0[k] - 2.0 * m1[k]) / 2.0;
+    }
+    let mut c = [[0.0; 3]; 3];
+    for (i, row) in c.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = c1[i] * c1[j] / 12.0 + c2[i] * c2[j] / 180.0;
+        }
+    }
+    c
+}
+
+/// The accelerometer triad's static inverse (nav_sensors::accel::compensate_triad).
+fn compensate_triad(m: &Model, measured: &[f64; 3]) -> [f64; 3] {
+    let mut a = *measured;
+    for _ in 0..3 {
+        for k in 0..3 {
+            let o = m.accel_cal + 8 * ACCEL_CAL * k;
+            let c = |i: usize| m.f(o + 8 * i);
+            let (bias, sf, k2, k3, mo, mp, kip, kio) =
+                (c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7));
+            let (ap, ao) = (a[(k + 1) % 3], a[(k + 2) % 3]);
+            let target = measured[k] / (1.0 + 1e-6 * sf);
+            let mut x = target;
+            for _ in 0..4 {
+                let core = 1e-6
+                    * (bias + x * x * (k2 + k3 * x) + mo * ap - mp * ao
+                        + x * (kip * ap + kio * ao));
+                let g = x + core - target;
+                let dg = 1.0 + 1e-6 * (2.0 * k2 * x + 3.0 * k3 * x * x + kip * ap + kio * ao);
+                x -= g / dg;
+            }
+            a[k] = x;
+        }
+    }
+    a
+}
+
+/// The frame row `r` (0 = I, 1 = O, 2 = S) of channel `k`.
+#[inline(always)]
+fn axis(m: &Model, k: usize, r: usize) -> [f64; 3] {
+    let o = m.frames + 8 * (9 * k + 3 * r);
+    [m.f(o), m.f(o + 8), m.f(o + 16)]
+}
+
+#[inline(always)]
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Each gyro's inverse DTG model, two passes (nav_sensors Calibration::compensate).
+fn compensate_gyros(m: &Model, raw: &[f64; 6], f: &[f64; 3], cov: &[[f64; 3]; 3]) -> [f64; 6] {
+    let mut current = *raw;
+    for _ in 0..2 {
+        let mut rate = [0.0; 3];
+        for (i, r) in rate.iter_mut().enumerate() {
+            *r = dot6(m, m.ls + 8 * 6 * i, &current);
+        }
+        let mut next = [0.0; 6];
+        for (k, out) in next.iter_mut().enumerate() {
+            let (ia, oa, sa) = (axis(m, k, 0), axis(m, k, 1), axis(m, k, 2));
+            let w = [dot(&ia, &rate), dot(&oa, &rate), dot(&sa, &rate)];
+            let fr = [dot(&ia, f), dot(&oa, f), dot(&sa, f)];
+            let cv = [
+                quad_v(&ia, cov, &ia),
+                quad_v(&oa, cov, &oa),
+                quad_v(&sa, cov, &sa),
+                quad_v(&ia, cov, &oa),
+                quad_v(&ia, cov, &sa),
+                quad_v(&oa, cov, &sa),
+            ];
+            let o = m.gyro_cal + 8 * GYRO_CAL * k;
+            let drift = |wi: f64| {
+                const PER_S: f64 = 1.0 / 3600.0;
+                let r = [
+                    1.0,
+                    1e-6 * wi,
+                    1e-6 * w[1],
+                    1e-6 * w[2],
+                    fr[0],
+                    fr[1],
+                    fr[2],
+                    fr[0] * fr[0] + cv[0],
+                    fr[1] * fr[1] + cv[1],
+                    fr[2] * fr[2] + cv[2],
+                    fr[0] * fr[1] + cv[3],
+                    fr[0] * fr[2] + cv[4],
+                    fr[1] * fr[2] + cv[5],
+                    (wi * PER_S) * (w[1] * PER_S),
+                    (wi * PER_S) * (w[2] * PER_S),
+                    (w[1] * PER_S) * (w[2] * PER_S),
+                    0.0,
+                    0.0,
+                ];
+                let mut s = 0.0;
+                for (t, rv) in r.iter().enumerate() {
+                    s += rv * m.f(o + 8 * t);
+                }
+                s
+            };
+            let nl = m.f(o + 8 * 18);
+            let measured = raw[k];
+            let a0 = drift(0.0);
+            let b = 1.0 + drift(1.0) - a0;
+            let mut wi = (measured - a0) / b;
+            for _ in 0..4 {
+                let fx = a0 + b * wi + 1e-6 * nl * abs(wi / 3600.0) * wi - measured;
+                let df = b + 2e-6 * nl * abs(wi / 3600.0);
+                wi -= fx / df;
+            }
+            *out = wi;
+        }
+        current = next;
+    }
+    current
+}
+
+/// |x|, exactly (clears the sign bit).
+#[inline(always)]
+fn abs(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() & !(1u64 << 63))
+}
+
+/// `exp(x)` for `x ≤ 0`, the Gaussian's only range: the routine of the `rbf`
+/// crate's kernels (Cody–Waite reduction x = n·ln 2 + r, |r| ≤ ln 2 / 2, a
+/// degree-13 Taylor polynomial by Estrin's scheme, 2ⁿ from bits), within a
+/// few ulps of the C library's `exp`. Copied because this crate cannot
+/// depend on `rbf` (std); the pure-Rust `libm` `exp` took 44% of a step
+/// (perf, the onboard_step bench). Arguments below −708 give 0.
+#[inline(always)]
+fn exp_neg(x: f64) -> f64 {
+    const LOG2E: f64 = core::f64::consts::LOG2_E;
+    // ln 2 split so that n·LN2_HI is exact for |n| < 2¹¹ (fdlibm's constants).
+    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+    // 1.5·2⁵²: adding it rounds to an integer kept in the low mantissa bits.
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    const C: [f64; 14] = [
+        1.0,
+        1.0,
+        1.0 / 2.0,
+        1.0 / 6.0,
+        1.0 / 24.0,
+        1.0 / 120.0,
+        1.0 / 720.0,
+        1.0 / 5040.0,
+        1.0 / 40320.0,
+        1.0 / 362_880.0,
+        1.0 / 3_628_800.0,
+        1.0 / 39_916_800.0,
+        1.0 / 479_001_600.0,
+        1.0 / 6_227_020_800.0,
+    ];
+    let xc = x.clamp(-708.0, 0.0);
+    let t = xc * LOG2E + SHIFT;
+    let n = t - SHIFT;
+    let r = (xc - n * LN2_HI) - n * LN2_LO;
+    let r2 = r * r;
+    let r4 = r2 * r2;
+    let r8 = r4 * r4;
+    let q0 = (C[0] + C[1] * r) + (C[2] + C[3] * r) * r2;
+    let q1 = (C[4] + C[5] * r) + (C[6] + C[7] * r) * r2;
+    let q2 = (C[8] + C[9] * r) + (C[10] + C[11] * r) * r2;
+    let q3 = C[12] + C[13] * r;
+    let p = (q0 + q1 * r4) + (q2 + q3 * r4) * r8;
+    // bits(t) − bits(SHIFT) = n (two's complement); 2ⁿ = bits((n + 1023) << 52).
+    let ni = t.to_bits().wrapping_sub(SHIFT.to_bits());
+    let scale = f64::from_bits(ni.wrapping_add(1023) << 52);
+    if x < -708.0 { 0.0 } else { p * scale }
+}
+
+/// Tables of a small model for the examples: no calibration, one centre,
+/// a 4-sample window of `az`, no filters.
+#[doc(hidden)]
+pub fn doc_tables() -> [u8; 4 * 22 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)] {
+    let mut b = [0u8; 4 * 22 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)];
+    let words: [u32; 22] = [
+        u32::from_le_bytes(MAGIC),
+        VERSION,
+        22,
+        0,
+        0,
+        0,
+        0,
+        4,
+        1,
+        0,
+        0,
+        0,
+        0,
+        0,
+        0,
+        1,
+        1,
+        1,
+        1,
+        1,
+        1,
+        2,
+    ];
+    for (i, w) in words.iter().enumerate() {
+        b[4 * i..4 * i + 4].copy_from_slice(&w.to_le_bytes());
+    }
+    let mut at = 4 * 22;
+    let mut put = |v: f64| {
+        b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+        at += 8;
+    };
+    put(0.02);
+    for _ in 0..72 {
+        put(0.0);
+    }
+    for c in 0..6 {
+        put(c as f64); // bias
+        put(1.0); // width
+        put(0.5); // weight
+        for _ in 0..4 {
+            put(1.0); // centre
+        }
+    }
+    b
+}
+
+#[cfg(test)]
+extern crate std;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exp_neg_is_within_four_ulps_of_the_c_library() {
+        let mut x = 0.0f64;
+        while x > -720.0 {
+            let (got, want) = (exp_neg(x), x.exp());
+            let ulps = (got.to_bits() as i64 - want.to_bits() as i64).abs();
+            assert!(
+                ulps <= 4 || want < f64::MIN_POSITIVE * 16.0,
+                "x = {x}: {got} vs {want}"
+            );
+            x -= 0.0123;
+        }
+        assert_eq!(exp_neg(0.0), 1.0);
+        assert_eq!(exp_neg(-1000.0), 0.0);
+        assert_eq!(abs(-2.5), 2.5);
+    }
+
+    #[test]
+    fn each_refusal_has_its_error() {
+        let good = doc_tables();
+        let m = Model::parse(&good).unwrap();
+        assert_eq!(m.size_bytes(), good.len());
+
+        let mut bad = good;
+        bad[0] = b'X';
+        assert_eq!(Model::parse(&bad).unwrap_err(), Error::Magic);
+
+        let mut bad = good;
+        bad[4..8].copy_from_slice(&2u32.to_le_bytes());
+        assert_eq!(
+            Model::parse(&bad).unwrap_err(),
+            Error::Version {
+                found: 2,
+                supported: VERSION
+            }
+        );
+
+        assert_eq!(
+            Model::parse(&good[..good.len() - 1]).unwrap_err(),
+            Error::Truncated {
+                need: good.len(),
+                have: good.len() - 1
+            }
+        );
+
+        let mut bad = good;
+        bad[4 * 21..4 * 22].copy_from_slice(&3u32.to_le_bytes()); // signal 3: no extra column
+        assert_eq!(Model::parse(&bad).unwrap_err(), Error::Header { word: 21 });
+
+        let mut small = [0.0; 4];
+        assert_eq!(
+            Evaluator::new(m, &mut small).unwrap_err(),
+            Error::StateTooSmall {
+                need: m.state_len(),
+                have: 4
+            }
+        );
+        let mut state = [0.0; 64];
+        let mut ev = Evaluator::new(m, &mut state).unwrap();
+        assert_eq!(
+            ev.step(&[0.0; 6], &[0.0; 3], &[1.0]).unwrap_err(),
+            Error::Extra { need: 0, have: 1 }
+        );
+    }
+
+    #[test]
+    fn the_window_fills_then_every_step_gives_the_rbf_sum() {
+        // doc_tables: bias c on channel c, one centre of four 1 g samples,
+        // width 1 g, weight 0.5; no calibration, no filter.
+        let b = doc_tables();
+        let m = Model::parse(&b).unwrap();
+        let mut state = [0.0; 64];
+        let mut ev = Evaluator::new(m, &mut state).unwrap();
+        let az = [1.0, 2.0, 1.0, 0.0, 1.0, 1.0];
+        let mut outs = [None; 6];
+        // Sample i's output comes with sample i + 1, the last one's from flush.
+        for (i, a) in az.iter().enumerate() {
+            let o = ev.step(&[10.0; 6], &[0.0, 0.0, *a], &[]).unwrap();
+            if i > 0 {
+                outs[i - 1] = o;
+            }
+        }
+        outs[5] = ev.flush();
+        assert!(outs[..3].iter().all(Option::is_none));
+        for (i, o) in outs.iter().enumerate().skip(3) {
+            // The window is the last four az samples, oldest first.
+            let r2: f64 = az[i - 3..=i].iter().map(|a| (a - 1.0) * (a - 1.0)).sum();
+            let o = o.unwrap();
+            for c in 0..6 {
+                let want = c as f64 + 0.5 * exp_neg(-r2);
+                assert!((o.error_deg_h[c] - want).abs() < 1e-15, "{i} {c}");
+                assert!((o.rate_deg_h[c] - (10.0 - want)).abs() < 1e-14);
+            }
+        }
+        assert_eq!(ev.steps(), 0, "flush leaves the evaluator at rest");
+    }
+}

@@ -1,0 +1,662 @@
+//! C99 sources of a causal model: `dtg_model.h` (the state struct, `init`,
+//! `step`), `dtg_model.c` (the tables as `static const` arrays and the same
+//! step as the `dtg-onboard` evaluator) and `main.c` (record CSV on standard
+//! input to the compensated CSV of `dtg-vib compensate` on standard output).
+//! Only `math.h` (`exp`, `fabs`); no dynamic memory, no globals but the
+//! tables.
+
+use super::{ExportError, Tables, tables};
+use crate::model::CompensationModel;
+use dtg_onboard::{Model, kind_params};
+use std::fmt::Write;
+
+/// Arithmetic and table precision of the exported C.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// `double` tables and arithmetic: equal to the desktop tool.
+    F64,
+    /// `float` tables and arithmetic: half the table size; the difference
+    /// from the desktop tool is measured in docs/dtg-vib.md.
+    F32,
+}
+
+impl std::str::FromStr for Precision {
+    type Err = crate::DtgVibError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "f64" => Ok(Precision::F64),
+            "f32" => Ok(Precision::F32),
+            other => Err(crate::DtgVibError::InvalidOption {
+                name: "precision",
+                value: other.to_string(),
+                reason: "use f64 or f32",
+            }),
+        }
+    }
+}
+
+/// The three C files.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CSources {
+    /// `dtg_model.h`.
+    pub header: String,
+    /// `dtg_model.c`.
+    pub source: String,
+    /// `main.c`.
+    pub main: String,
+}
+
+impl CSources {
+    /// File names and contents, in writing order.
+    pub fn files(&self) -> [(&'static str, &str); 3] {
+        [
+            ("dtg_model.h", &self.header),
+            ("dtg_model.c", &self.source),
+            ("main.c", &self.main),
+        ]
+    }
+}
+
+/// A C array initialiser; a single 0 for an empty list (C99 has no empty arrays).
+fn arr(v: &[f64]) -> String {
+    if v.is_empty() {
+        return "{0}".into();
+    }
+    let mut s = String::from("{");
+    for (i, x) in v.iter().enumerate() {
+        if i % 4 == 0 {
+            s.push_str("\n    ");
+        }
+        // Shortest text that reads back to the same double.
+        let _ = write!(s, "{x:e}, ");
+    }
+    s.push_str("\n}");
+    s
+}
+
+fn iarr(v: &[usize]) -> String {
+    if v.is_empty() {
+        return "{0}".into();
+    }
+    let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+    format!("{{{}}}", items.join(", "))
+}
+
+fn words(b: &[u8], from: usize, n: usize) -> Vec<usize> {
+    (from..from + n)
+        .map(|i| u32::from_le_bytes([b[4 * i], b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]]) as usize)
+        .collect()
+}
+
+fn floats(b: &[u8], from_byte: usize, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| {
+            let at = from_byte + 8 * i;
+            f64::from_le_bytes(b[at..at + 8].try_into().expect("8 bytes"))
+        })
+        .collect()
+}
+
+/// The C sources of a causal model, generated from its onboard tables so
+/// that C and Rust read the same numbers.
+pub fn c_sources(model: &CompensationModel, precision: Precision) -> Result<CSources, ExportError> {
+    c_sources_from_tables(&tables(model)?, precision)
+}
+
+/// The C sources of any onboard tables (those of [`tables`], or tables built
+/// by hand, as the step bench does).
+pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
+    let Tables { bytes, extra } = t;
+    let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
+    let b = &bytes[..];
+    let hw = words(b, 2, 1)[0];
+    let calibrated = words(b, 3, 1)[0] & dtg_onboard::FLAG_CALIBRATION as usize != 0;
+    let n_sections = words(b, 5, 1)[0];
+    let n_in_sections = words(b, 6, 1)[0];
+    let l = m.window_len();
+    let n_signals = words(b, 8, 1)[0];
+    let n_effects = words(b, 9, 6);
+    let n_centres = words(b, 15, 6);
+    let signal_codes = words(b, dtg_onboard::FIXED_HEADER_WORDS, n_signals);
+    let total_effects: usize = n_effects.iter().sum();
+    let pairs = words(
+        b,
+        dtg_onboard::FIXED_HEADER_WORDS + n_signals,
+        2 * total_effects,
+    );
+    let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
+    let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
+    let dim = l * n_signals;
+
+    // Walk the payload as the evaluator does.
+    let mut at = 4 * hw;
+    let mut take = |n: usize| {
+        let v = floats(b, at, n);
+        at += 8 * n;
+        v
+    };
+    let dt = take(1)[0];
+    let frames = take(54);
+    let ls = take(18);
+    let (gyro_cal, accel_cal) = if calibrated {
+        (take(6 * 19), take(24))
+    } else {
+        (vec![], vec![])
+    };
+    let out_sos = take(7 * n_sections);
+    let in_sos = take(7 * n_in_sections);
+    let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    let mut param_offset = Vec::new();
+    let mut e0 = 0;
+    for c in 0..6 {
+        bias.push(take(1)[0]);
+        coeff.extend(take(n_effects[c]));
+        let np: usize = kinds[e0..e0 + n_effects[c]]
+            .iter()
+            .map(|&k| kind_params(k as u32).unwrap_or(0))
+            .sum();
+        let mut off = params.len();
+        for &k in &kinds[e0..e0 + n_effects[c]] {
+            param_offset.push(off);
+            off += kind_params(k as u32).unwrap_or(0);
+        }
+        params.extend(take(np));
+        widths.extend(take(n_centres[c]));
+        weights.extend(take(n_centres[c]));
+        centres.extend(take(n_centres[c] * dim));
+        e0 += n_effects[c];
+    }
+    let (real, exp, fabs) = match precision {
+        Precision::F64 => ("double", "exp", "fabs"),
+        Precision::F32 => ("float", "expf", "fabsf"),
+    };
+    let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
+
+    let header = format!(
+        r#"/* DTG vibration-error compensator, exported by `dtg-vib export --lang c`.
+ * C99, needs only <math.h>. Layout: docs/formats.md ("Onboard tables").
+ * One call of dtg_step per output period ({dt} s) with sample n: raw gyro
+ * outputs X, X1, Y, Y1, Z, Z1 (deg/h), raw accelerations x, y, z (g) and the
+ * extra columns below, in this order; out come the compensated rates (deg/h)
+ * and calibrated accelerations (g) of sample n - 1 (one period of latency:
+ * the g² terms' within-interval covariance of a sample needs its two
+ * neighbours). The first {first} calls return 0 (no output yet; the windows
+ * fill); every later call returns 1. At the end of a record, dtg_flush gives
+ * the last sample's output. */
+#ifndef DTG_MODEL_H
+#define DTG_MODEL_H
+
+typedef {real} dtg_real;
+
+#define DTG_DT_S {dt:e}
+#define DTG_WINDOW_LEN {l}
+#define DTG_N_SIGNALS {n_signals}
+#define DTG_N_EXTRA {n_extra}
+#define DTG_N_SECTIONS {n_sections}
+#define DTG_N_IN_SECTIONS {n_in_sections}
+#define DTG_N_EFFECTS {total_effects}
+/* Extra columns, in the order dtg_step takes them. */
+#define DTG_EXTRA_NAMES {{{extra_names}}}
+
+/* All the state: its size is fixed at compile time. */
+typedef struct {{
+    long steps;     /* samples received */
+    long processed; /* samples compensated */
+    int ring_pos;
+    dtg_real prev_accel[6]; /* calibrated accelerations of the pending sample and the one before, g */
+    dtg_real pending_gyro[6]; /* the pending sample's raw outputs, deg/h */
+    dtg_real pending_extra[DTG_N_EXTRA + 1];
+    dtg_real out_z[2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1];
+    dtg_real in_z[2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1];
+    dtg_real ring[DTG_N_SIGNALS][2 * DTG_WINDOW_LEN];
+}} dtg_state;
+
+void dtg_init(dtg_state *s);
+int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
+             const double *extra, double rate_deg_h[6], double accel_out_g[3]);
+/* The last sample's output (returns 1) or nothing (0); leaves s at rest. */
+int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]);
+
+#endif
+"#,
+        first = l,
+        n_extra = extra.len(),
+        extra_names = if names.is_empty() {
+            "\"\"".to_string()
+        } else {
+            names.join(", ")
+        },
+    );
+
+    let c_offsets: Vec<usize> = (0..6).map(|c| n_centres[..c].iter().sum()).collect();
+    let e_offsets: Vec<usize> = (0..6).map(|c| n_effects[..c].iter().sum()).collect();
+    let mut source = format!(
+        r#"/* Generated by `dtg-vib export --lang c`; the same step as the dtg-onboard
+ * Rust evaluator (crates/dtg-onboard/src/lib.rs), which documents each stage. */
+#include <math.h>
+#include "dtg_model.h"
+
+#define R(x) ((dtg_real)(x))
+#define DTG_CALIBRATED {cal}
+#define DTG_DIM {dim}
+
+static const dtg_real FRAMES[54] = {frames};
+static const dtg_real LS[18] = {ls};
+static const dtg_real GYRO_CAL[6 * 19 + 1] = {gyro_cal};
+static const dtg_real ACCEL_CAL[3 * 8 + 1] = {accel_cal};
+static const dtg_real OUT_SOS[7 * DTG_N_SECTIONS + 1] = {out_sos};
+static const dtg_real IN_SOS[7 * DTG_N_IN_SECTIONS + 1] = {in_sos};
+static const int SIGNAL_CODE[DTG_N_SIGNALS] = {codes};
+static const int N_EFFECTS[6] = {n_eff};
+static const int EFFECT_OFFSET[6] = {e_off};
+static const int EFFECT_KIND[DTG_N_EFFECTS + 1] = {kinds};
+static const int EFFECT_INDEX[DTG_N_EFFECTS + 1] = {indices};
+static const int PARAM_OFFSET[DTG_N_EFFECTS + 1] = {poff};
+static const dtg_real PARAMS[{np}] = {params};
+static const dtg_real BIAS[6] = {bias};
+static const dtg_real COEFF[DTG_N_EFFECTS + 1] = {coeff};
+static const int N_CENTRES[6] = {n_cen};
+static const int CENTRE_OFFSET[6] = {c_off};
+static const dtg_real WIDTH[{nk}] = {widths};
+static const dtg_real WEIGHT[{nk}] = {weights};
+static const dtg_real CENTRES[{nc}] = {centres};
+"#,
+        cal = calibrated as i32,
+        frames = arr(&frames),
+        ls = arr(&ls),
+        gyro_cal = arr(&gyro_cal),
+        accel_cal = arr(&accel_cal),
+        out_sos = arr(&out_sos),
+        in_sos = arr(&in_sos),
+        codes = iarr(&signal_codes),
+        n_eff = iarr(&n_effects),
+        e_off = iarr(&e_offsets),
+        kinds = iarr(&kinds),
+        indices = iarr(&indices),
+        poff = iarr(&param_offset),
+        np = params.len().max(1),
+        params = arr(&params),
+        bias = arr(&bias),
+        coeff = arr(&coeff),
+        n_cen = iarr(&n_centres),
+        c_off = iarr(&c_offsets),
+        nk = widths.len().max(1),
+        widths = arr(&widths),
+        weights = arr(&weights),
+        nc = centres.len().max(1),
+        centres = arr(&centres),
+    );
+    source.push_str(
+        &STEP_C
+            .replace("EXP(", &format!("{exp}("))
+            .replace("FABS(", &format!("{fabs}(")),
+    );
+
+    let main = MAIN_C.to_string();
+    Ok(CSources {
+        header,
+        source,
+        main,
+    })
+}
+
+const STEP_C: &str = r#"
+void dtg_init(dtg_state *s) {
+    int i, j;
+    s->steps = 0;
+    s->processed = 0;
+    s->ring_pos = 0;
+    for (i = 0; i < 6; i++) s->prev_accel[i] = R(0);
+    for (i = 0; i < 6; i++) s->pending_gyro[i] = R(0);
+    for (i = 0; i < DTG_N_EXTRA + 1; i++) s->pending_extra[i] = R(0);
+    for (i = 0; i < 2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1; i++) s->out_z[i] = R(0);
+    for (i = 0; i < 2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1; i++) s->in_z[i] = R(0);
+    for (i = 0; i < DTG_N_SIGNALS; i++)
+        for (j = 0; j < 2 * DTG_WINDOW_LEN; j++) s->ring[i][j] = R(0);
+}
+
+/* One value through a cascade of second-order sections (transposed direct
+ * form II); on the first step the states start in the steady state of x. */
+static dtg_real cascade(const dtg_real *sos, int n, dtg_real *z, dtg_real x, int first) {
+    int i;
+    dtg_real v = x;
+    for (i = 0; i < n; i++) {
+        const dtg_real *c = sos + 7 * i;
+        dtg_real y;
+        if (first) {
+            z[2 * i] = c[5] * x;
+            z[2 * i + 1] = c[6] * x;
+        }
+        y = c[0] * v + z[2 * i];
+        z[2 * i] = c[1] * v - c[3] * y + z[2 * i + 1];
+        z[2 * i + 1] = c[2] * v - c[4] * y;
+        v = y;
+    }
+    return v;
+}
+
+static dtg_real dot3(const dtg_real *a, const dtg_real *b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static dtg_real quad(const dtg_real *p, dtg_real c[3][3], const dtg_real *q) {
+    dtg_real t0 = p[0] * c[0][0] + p[1] * c[1][0] + p[2] * c[2][0];
+    dtg_real t1 = p[0] * c[0][1] + p[1] * c[1][1] + p[2] * c[2][1];
+    dtg_real t2 = p[0] * c[0][2] + p[1] * c[1][2] + p[2] * c[2][2];
+    return t0 * q[0] + t1 * q[1] + t2 * q[2];
+}
+
+#if DTG_CALIBRATED
+static void compensate_triad(const dtg_real *measured, dtg_real *a) {
+    int pass, k, it;
+    for (k = 0; k < 3; k++) a[k] = measured[k];
+    for (pass = 0; pass < 3; pass++) {
+        for (k = 0; k < 3; k++) {
+            const dtg_real *c = ACCEL_CAL + 8 * k;
+            dtg_real ap = a[(k + 1) % 3], ao = a[(k + 2) % 3];
+            dtg_real target = measured[k] / (R(1) + R(1e-6) * c[1]);
+            dtg_real x = target;
+            for (it = 0; it < 4; it++) {
+                dtg_real core = R(1e-6) * (c[0] + x * x * (c[2] + c[3] * x) + c[4] * ap - c[5] * ao
+                                           + x * (c[6] * ap + c[7] * ao));
+                dtg_real g = x + core - target;
+                dtg_real dg = R(1) + R(1e-6) * (R(2) * c[2] * x + R(3) * c[3] * x * x + c[6] * ap + c[7] * ao);
+                x -= g / dg;
+            }
+            a[k] = x;
+        }
+    }
+}
+
+static dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv) {
+    const dtg_real per_s = R(1) / R(3600);
+    dtg_real r[18];
+    dtg_real s = R(0);
+    int t;
+    r[0] = R(1);
+    r[1] = R(1e-6) * wi;
+    r[2] = R(1e-6) * w[1];
+    r[3] = R(1e-6) * w[2];
+    r[4] = fr[0];
+    r[5] = fr[1];
+    r[6] = fr[2];
+    r[7] = fr[0] * fr[0] + cv[0];
+    r[8] = fr[1] * fr[1] + cv[1];
+    r[9] = fr[2] * fr[2] + cv[2];
+    r[10] = fr[0] * fr[1] + cv[3];
+    r[11] = fr[0] * fr[2] + cv[4];
+    r[12] = fr[1] * fr[2] + cv[5];
+    r[13] = (wi * per_s) * (w[1] * per_s);
+    r[14] = (wi * per_s) * (w[2] * per_s);
+    r[15] = (w[1] * per_s) * (w[2] * per_s);
+    r[16] = R(0);
+    r[17] = R(0);
+    for (t = 0; t < 18; t++) s += r[t] * c[t];
+    return s;
+}
+
+static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
+    dtg_real current[6], next[6], rate[3];
+    int pass, i, j, k, it;
+    for (k = 0; k < 6; k++) current[k] = raw[k];
+    for (pass = 0; pass < 2; pass++) {
+        for (i = 0; i < 3; i++) {
+            dtg_real s = R(0);
+            for (j = 0; j < 6; j++) s += LS[6 * i + j] * current[j];
+            rate[i] = s;
+        }
+        for (k = 0; k < 6; k++) {
+            const dtg_real *ia = FRAMES + 9 * k, *oa = ia + 3, *sa = ia + 6;
+            const dtg_real *c = GYRO_CAL + 19 * k;
+            dtg_real w[3], fr[3], cv[6], a0, b, wi, nl = c[18];
+            w[0] = dot3(ia, rate); w[1] = dot3(oa, rate); w[2] = dot3(sa, rate);
+            fr[0] = dot3(ia, f); fr[1] = dot3(oa, f); fr[2] = dot3(sa, f);
+            cv[0] = quad(ia, cov, ia); cv[1] = quad(oa, cov, oa); cv[2] = quad(sa, cov, sa);
+            cv[3] = quad(ia, cov, oa); cv[4] = quad(ia, cov, sa); cv[5] = quad(oa, cov, sa);
+            a0 = drift(c, R(0), w, fr, cv);
+            b = R(1) + drift(c, R(1), w, fr, cv) - a0;
+            wi = (raw[k] - a0) / b;
+            for (it = 0; it < 4; it++) {
+                dtg_real fx = a0 + b * wi + R(1e-6) * nl * FABS(wi / R(3600)) * wi - raw[k];
+                dtg_real df = b + R(2e-6) * nl * FABS(wi / R(3600));
+                wi -= fx / df;
+            }
+            next[k] = wi;
+        }
+        for (k = 0; k < 6; k++) current[k] = next[k];
+    }
+    for (k = 0; k < 6; k++) out[k] = current[k];
+}
+#endif
+
+/* Compensates the pending sample with its within-interval covariance. */
+static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real a[3], g[6], linear[6];
+    int first = s->processed == 0;
+    int i, k, c, e, sig;
+    const int l = DTG_WINDOW_LEN;
+    for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
+#if DTG_CALIBRATED
+    compensate_gyros(s->pending_gyro, a, cov, g);
+#else
+    for (k = 0; k < 6; k++) g[k] = s->pending_gyro[k];
+#endif
+    for (c = 0; c < 6; c++) {
+        dtg_real sum = R(0);
+        for (e = 0; e < N_EFFECTS[c]; e++) {
+            int idx = EFFECT_OFFSET[c] + e;
+            const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
+            dtg_real z;
+            switch (EFFECT_KIND[idx]) {
+            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
+            case 1: z = dot3(p, a); break;
+            case 2: z = dot3(p, a) * dot3(p + 3, a) + quad(p, cov, p + 3); break;
+            default: {
+                dtg_real r = R(0), q = R(0);
+                for (k = 0; k < 6; k++) r += p[k] * g[k];
+                for (k = 0; k < 6; k++) q += p[6 + k] * g[k];
+                z = r * q;
+            }
+            }
+            z = cascade(OUT_SOS, DTG_N_SECTIONS, s->out_z + 2 * DTG_N_SECTIONS * idx, z, first);
+            sum += z * COEFF[idx];
+        }
+        linear[c] = sum;
+    }
+    for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
+        int code = SIGNAL_CODE[sig];
+        dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
+        v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
+        s->ring[sig][s->ring_pos] = v;
+        s->ring[sig][s->ring_pos + l] = v;
+    }
+    s->ring_pos = (s->ring_pos + 1) % l;
+    s->processed += 1;
+    if (s->processed < l) return 0;
+    for (c = 0; c < 6; c++) {
+        dtg_real y = BIAS[c] + linear[c];
+        for (k = 0; k < N_CENTRES[c]; k++) {
+            int kk = CENTRE_OFFSET[c] + k;
+            const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
+            dtg_real r2 = R(0), beta = WIDTH[kk];
+            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
+                const dtg_real *x = s->ring[sig] + s->ring_pos;
+                dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
+                for (i = 0; i + 4 <= l; i += 4) {
+                    d = x[i] - cen[i]; acc0 += d * d;
+                    d = x[i + 1] - cen[i + 1]; acc1 += d * d;
+                    d = x[i + 2] - cen[i + 2]; acc2 += d * d;
+                    d = x[i + 3] - cen[i + 3]; acc3 += d * d;
+                }
+                for (; i < l; i++) { d = x[i] - cen[i]; tail += d * d; }
+                r2 += (acc0 + acc1) + (acc2 + acc3) + tail;
+                cen += l;
+            }
+            y += EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
+        }
+        rate_deg_h[c] = (double)(g[c] - y);
+    }
+    for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
+    return 1;
+}
+
+int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
+             const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real raw_a[3], a[3], cov[3][3];
+    int i, j, k, out = 0;
+    for (k = 0; k < 3; k++) raw_a[k] = (dtg_real)accel_g[k];
+#if DTG_CALIBRATED
+    compensate_triad(raw_a, a);
+#else
+    for (k = 0; k < 3; k++) a[k] = raw_a[k];
+#endif
+    if (s->steps >= 1) {
+        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
+         * for the first sample, which has one neighbour. */
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
+        if (s->steps >= 2) {
+            dtg_real c1[3], c2[3];
+            for (k = 0; k < 3; k++) {
+                c1[k] = (a[k] - s->prev_accel[3 + k]) / R(2);
+                c2[k] = (a[k] + s->prev_accel[3 + k] - R(2) * s->prev_accel[k]) / R(2);
+            }
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
+        }
+        out = process(s, cov, rate_deg_h, accel_out_g);
+    }
+    for (k = 0; k < 3; k++) {
+        s->prev_accel[3 + k] = s->prev_accel[k];
+        s->prev_accel[k] = a[k];
+    }
+    for (k = 0; k < 6; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
+    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
+    s->steps += 1;
+    return out;
+}
+
+int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]) {
+    dtg_real cov[3][3];
+    int i, j, out = 0;
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
+    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
+    dtg_init(s);
+    return out;
+}
+"#;
+
+const MAIN_C: &str = r#"/* Reads a record CSV (t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra...]) on standard
+ * input and writes the compensated CSV of `dtg-vib compensate` on standard
+ * output: the same columns, rows from the first full window on, compensated
+ * rates and calibrated accelerations, other columns as given. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "dtg_model.h"
+
+#define MAX_COLS 256
+#define MAX_LINE 65536
+
+static const char *BASE[10] = {"t", "X", "X1", "Y", "Y1", "Z", "Z1", "ax", "ay", "az"};
+
+static int split(char *line, char **cells) {
+    int n = 0;
+    char *p = line;
+    char *end = line + strlen(line);
+    while (end > line && (end[-1] == '\n' || end[-1] == '\r')) *--end = '\0';
+    cells[n++] = p;
+    for (; *p; p++) {
+        if (*p == ',') {
+            *p = '\0';
+            if (n == MAX_COLS) return -1;
+            cells[n++] = p + 1;
+        }
+    }
+    return n;
+}
+
+static void print_row(const double *v, int t, const double *rate, const double *acc,
+                      const int *other, int n_other) {
+    int k;
+    printf("%.17g", v[t]);
+    for (k = 0; k < 6; k++) printf(",%.17g", rate[k]);
+    for (k = 0; k < 3; k++) printf(",%.17g", acc[k]);
+    for (k = 0; k < n_other; k++) printf(",%.17g", v[other[k]]);
+    printf("\n");
+}
+
+int main(void) {
+    static char line[MAX_LINE];
+    static char header[MAX_LINE];
+    char *cells[MAX_COLS];
+    char *names[MAX_COLS];
+    int base[10], extra_col[DTG_N_EXTRA + 1], other[MAX_COLS], n_other = 0;
+    static const char *extra_names[] = DTG_EXTRA_NAMES;
+    int ncols, i, k, row = 1;
+    dtg_state s;
+    if (!fgets(header, sizeof header, stdin)) {
+        fprintf(stderr, "dtg: empty input: expected a record CSV header\n");
+        return 2;
+    }
+    ncols = split(header, names);
+    if (ncols < 0) {
+        fprintf(stderr, "dtg: more than %d columns\n", MAX_COLS);
+        return 2;
+    }
+    for (k = 0; k < 10; k++) {
+        base[k] = -1;
+        for (i = 0; i < ncols; i++)
+            if (strcmp(names[i], BASE[k]) == 0) base[k] = i;
+        if (base[k] < 0) {
+            fprintf(stderr, "dtg: line 1: no column '%s'\n", BASE[k]);
+            return 2;
+        }
+    }
+    for (k = 0; k < DTG_N_EXTRA; k++) {
+        extra_col[k] = -1;
+        for (i = 0; i < ncols; i++)
+            if (strcmp(names[i], extra_names[k]) == 0) extra_col[k] = i;
+        if (extra_col[k] < 0) {
+            fprintf(stderr, "dtg: line 1: no column '%s' (the model reads it)\n", extra_names[k]);
+            return 2;
+        }
+    }
+    for (i = 0; i < ncols; i++) {
+        int is_base = 0;
+        for (k = 0; k < 10; k++) is_base |= base[k] == i;
+        if (!is_base) other[n_other++] = i;
+    }
+    printf("t,X,X1,Y,Y1,Z,Z1,ax,ay,az");
+    for (i = 0; i < n_other; i++) printf(",%s", names[other[i]]);
+    printf("\n");
+    dtg_init(&s);
+    /* Outputs lag one row: pv holds the previous row, whose output comes next. */
+    static double v[MAX_COLS], pv[MAX_COLS];
+    double rate[6], acc_out[3];
+    while (fgets(line, sizeof line, stdin)) {
+        double gyro[6], acc[3], extra[DTG_N_EXTRA + 1];
+        row++;
+        if (split(line, cells) != ncols) {
+            fprintf(stderr, "dtg: line %d: expected %d cells\n", row, ncols);
+            return 2;
+        }
+        for (i = 0; i < ncols; i++) {
+            char *end;
+            v[i] = strtod(cells[i], &end);
+            if (end == cells[i] || *end != '\0') {
+                fprintf(stderr, "dtg: line %d, column %d: '%s' is not a number\n", row, i + 1, cells[i]);
+                return 2;
+            }
+        }
+        for (k = 0; k < 6; k++) gyro[k] = v[base[1 + k]];
+        for (k = 0; k < 3; k++) acc[k] = v[base[7 + k]];
+        for (k = 0; k < DTG_N_EXTRA; k++) extra[k] = v[extra_col[k]];
+        if (dtg_step(&s, gyro, acc, extra, rate, acc_out))
+            print_row(pv, base[0], rate, acc_out, other, n_other);
+        for (i = 0; i < ncols; i++) pv[i] = v[i];
+    }
+    if (dtg_flush(&s, rate, acc_out)) print_row(pv, base[0], rate, acc_out, other, n_other);
+    return 0;
+}
+"#;

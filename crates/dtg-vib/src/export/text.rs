@@ -1,0 +1,164 @@
+//! A model as equations with units, for review (`dtg-vib export --lang text`).
+
+use crate::model::CompensationModel;
+use nav_sensors::dtg::DtgTerm;
+use nav_sensors::geometry::{Axis, Channel};
+use std::fmt::Write;
+
+/// The model written out: pre-processing, calibration, filter coefficients,
+/// and per channel the effect terms with their coefficients and the RBF sum
+/// with its centres, width and weights. Works on zero-phase and causal models.
+pub fn equations(model: &CompensationModel) -> String {
+    let mut s = String::new();
+    let pre = model.preprocess();
+    let w = &mut s;
+    let _ = writeln!(w, "# dtg-vib compensation model");
+    let _ = writeln!(
+        w,
+        "output period: {} s ({} Hz)",
+        model.dt_s(),
+        1.0 / model.dt_s()
+    );
+    let _ = writeln!(
+        w,
+        "mode: {}",
+        if pre.causal {
+            "causal (past and present samples only; runs on-line)"
+        } else {
+            "zero-phase (forward-backward low-pass; needs the whole record)"
+        }
+    );
+    let _ = writeln!(w, "\n## Ground calibration");
+    match model.calibration() {
+        None => {
+            let _ = writeln!(w, "none: the raw outputs are used as they are");
+        }
+        Some(cal) => {
+            let _ = writeln!(
+                w,
+                "accelerometers (static inverse of output/g = (1 + K1·1e-6)(K0 + a_i + K2·a_i² + K3·a_i³ + δo·a_p − δp·a_o + Kip·a_i·a_p + Kio·a_i·a_o), each coefficient ·1e-6):"
+            );
+            for a in Axis::ALL {
+                let c = cal.accel(a);
+                let _ = writeln!(
+                    w,
+                    "  {}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
+                    a.column(),
+                    c.bias_ug,
+                    c.scale_factor_ppm,
+                    c.k2_ug_per_g2,
+                    c.k3_ug_per_g3,
+                    c.misalignment_o_urad,
+                    c.misalignment_p_urad,
+                    c.kip_ug_per_g2,
+                    c.kio_ug_per_g2
+                );
+            }
+            let _ = writeln!(
+                w,
+                "gyros (inverse of output = ω_I + Σ coefficient·term, Newton on the scale-factor nonlinearity; g² terms with the {} within-interval covariance):",
+                if pre.causal {
+                    "previous interval's"
+                } else {
+                    "centred"
+                }
+            );
+            for ch in Channel::ALL {
+                let g = cal.gyro(ch);
+                let terms: Vec<String> = DtgTerm::ALL
+                    .iter()
+                    .zip(g.to_array())
+                    .filter(|(_, v)| *v != 0.0)
+                    .map(|(t, v)| format!("{} = {v} {}", t.id(), t.unit()))
+                    .collect();
+                let _ = writeln!(
+                    w,
+                    "  {ch}: {}; nonlinearity = {} ppm/(deg/s)",
+                    terms.join(", "),
+                    g.scale_factor_nonlinearity_ppm_per_deg_s
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        w,
+        "\n## Low-pass of the effect terms (and of the fit targets)"
+    );
+    let filt = |w: &mut String, f: &Option<crate::pipeline::FilterSpec>| match f {
+        None => {
+            let _ = writeln!(w, "none");
+        }
+        Some(f) => {
+            let _ = writeln!(
+                w,
+                "Butterworth, order {}, −3 dB at {} Hz, {}",
+                f.order,
+                f.cutoff_hz,
+                if pre.causal {
+                    "one forward pass started in the steady state of the first sample"
+                } else {
+                    "forward and backward (zero phase)"
+                }
+            );
+            if let Ok(lp) =
+                crate::signal::LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / model.dt_s())
+            {
+                let _ = writeln!(
+                    w,
+                    "  each section: y[n] = b0·x[n] + b1·x[n−1] + b2·x[n−2] − a1·y[n−1] − a2·y[n−2], in order"
+                );
+                for (i, sec) in lp.sections().iter().enumerate() {
+                    let _ = writeln!(
+                        w,
+                        "  section {i}: b0 = {:e}, b1 = {:e}, b2 = {:e}, a1 = {:e}, a2 = {:e}",
+                        sec.b[0], sec.b[1], sec.b[2], sec.a[0], sec.a[1]
+                    );
+                }
+            }
+        }
+    };
+    filt(w, &pre.filter);
+    let _ = writeln!(w, "\n## Low-pass of the windowed signals");
+    filt(w, &pre.input_filter);
+    let win = &pre.window;
+    let _ = writeln!(
+        w,
+        "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
+        win.length(),
+        win.signals().join(", then "),
+        win.dim()
+    );
+    for c in model.channels() {
+        let ch = c.channel();
+        let rbf = c.rbf();
+        let _ = writeln!(w, "\n## Channel {ch}");
+        let mut eq = format!("error_{ch} [deg/h] = {:e}", c.bias());
+        for (e, th) in c.effects().iter().zip(c.effect_coefficients()) {
+            let _ = write!(eq, " + ({th:e} {})·LP[{}]", e.unit(), e.id());
+        }
+        let _ = write!(
+            eq,
+            " + Σ_k w_k·exp(−‖x − c_k‖²/β_k²), {} centres",
+            rbf.n_centres()
+        );
+        let _ = writeln!(w, "{eq}");
+        let _ = writeln!(w, "compensated_{ch} [deg/h] = calibrated_{ch} − error_{ch}");
+        for e in c.effects() {
+            let _ = writeln!(w, "  {}: {}", e.id(), e.description());
+        }
+        let centres = rbf.centres();
+        for k in 0..rbf.n_centres() {
+            let row: Vec<String> = (0..centres.ncols())
+                .map(|d| format!("{:e}", centres[(k, d)]))
+                .collect();
+            let _ = writeln!(
+                w,
+                "  k = {k}: w = {:e} deg/h, β = {:e} g, c = [{}] g",
+                rbf.weights()[(k, 0)],
+                rbf.widths().get(k),
+                row.join(", ")
+            );
+        }
+    }
+    s
+}
