@@ -29,6 +29,45 @@ impl Blocks {
         Self::cut(rows, gap, 0.5)
     }
 
+    /// `rows` (sorted) in `chunks` equal spans of time, alternately assigned
+    /// to the first and second block, with `gap` record rows around every
+    /// boundary dropped; `None` if either block would be empty. Both blocks
+    /// then cover the whole record (every level step, the whole temperature
+    /// range), so neither block's network has to extrapolate to the other's
+    /// operating points.
+    ///
+    /// ```
+    /// let rows: Vec<usize> = (0..100).collect();
+    /// let b = dtg_vib::inference::Blocks::alternating(&rows, 4, 4).unwrap();
+    /// // Spans 0..25 and 50..75 against 25..50 and 75..100, 2 rows each side of a boundary dropped.
+    /// assert_eq!((b.first[0], *b.first.last().unwrap()), (0, 72));
+    /// assert_eq!((b.second[0], *b.second.last().unwrap()), (27, 99));
+    /// assert!(!b.first.contains(&24) && !b.second.contains(&25));
+    /// ```
+    pub fn alternating(rows: &[usize], gap: usize, chunks: usize) -> Option<Self> {
+        let &last = rows.last()?;
+        let &start = rows.first()?;
+        let chunks = chunks.max(2);
+        let span = (last - start + 1) as f64 / chunks as f64;
+        let chunk_of = |r: usize| (((r - start) as f64 / span) as usize).min(chunks - 1);
+        let boundary = |k: usize| start + (k as f64 * span).round() as usize;
+        let near_boundary = |r: usize| {
+            (1..chunks).any(|k| {
+                let b = boundary(k);
+                r + gap / 2 >= b && r < b + (gap - gap / 2)
+            })
+        };
+        let (mut first, mut second) = (Vec::new(), Vec::new());
+        for &r in rows.iter().filter(|&&r| !near_boundary(r)) {
+            if chunk_of(r) % 2 == 0 {
+                first.push(r);
+            } else {
+                second.push(r);
+            }
+        }
+        (!first.is_empty() && !second.is_empty()).then_some(Self { first, second })
+    }
+
     /// `rows` (sorted) cut at `fraction` of their span, with `gap` record
     /// rows around the cut dropped; `None` if either side would be empty.
     ///
