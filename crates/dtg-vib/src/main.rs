@@ -1174,14 +1174,26 @@ fn print_demo(s: &dtg_vib::demo::DemoSummary) {
         s.hidden.join(", ")
     );
     for c in &s.diagnosis.channels {
+        // Each suggestion with its coefficient and 95% interval.
+        let suggested: Vec<String> = c
+            .suggested
+            .iter()
+            .map(|id| match c.candidates.iter().find(|k| &k.effect == id) {
+                Some(k) => format!(
+                    "{id} ({:.3} ± {:.3} {}, 95% CI {:.3} to {:.3})",
+                    k.coef, k.coef_se, k.unit, k.coef_ci95[0], k.coef_ci95[1]
+                ),
+                None => id.clone(),
+            })
+            .collect();
         println!(
             "  {:>3}: validation rms {:.4} deg/h; suggested: {}",
             c.channel,
             c.rms,
-            if c.suggested.is_empty() {
+            if suggested.is_empty() {
                 "nothing".into()
             } else {
-                c.suggested.join(", ")
+                suggested.join(", ")
             }
         );
     }
