@@ -417,3 +417,60 @@ fn explain_and_diagnose_json_keep_their_keys() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("between 0 and 1"));
 }
+
+/// A pair one record cannot tell apart: channel X's g_O and g_S are both
+/// ∝ a_z under Z-only vibration. The diagnosis names one, lists the other,
+/// says which combination the record measures (c(g_S) + c(g_O), the hidden
+/// 1.0 deg/h/g) and which run splits them (vibration along y, where they
+/// respond with opposite signs).
+#[test]
+fn a_collinear_pair_is_reported_with_the_run_that_splits_it() {
+    let mut s = resolved_vibration(Scenario::triaxial_hidden());
+    s.vibration
+        .drives
+        .retain(|d| d.axis() == nav_sensors::geometry::Axis::Z);
+    let x = s.gyros.channels.entry(Channel::X).or_default();
+    x.set(DtgTerm::GO, 1.0);
+    s.hidden = vec![HiddenEffect {
+        channel: Channel::X,
+        term: DtgTerm::GO,
+    }];
+    let sim = simulate(&s).unwrap();
+    let m = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        &FitOptions::default(),
+        &|_| {},
+    )
+    .unwrap();
+    let d = dtg_vib::diagnose::diagnose(&m, &sim.record, &DiagnoseOptions::default()).unwrap();
+    let x = &d.channels[Channel::X.index()];
+    assert_eq!(x.suggested.len(), 1, "{:?}", x.findings);
+    let k = x
+        .candidates
+        .iter()
+        .find(|k| k.effect == x.suggested[0])
+        .unwrap();
+    let pair = ["g_O", "g_S"];
+    assert!(pair.contains(&k.effect.as_str()), "{}", k.effect);
+    assert!(
+        k.alternatives
+            .iter()
+            .any(|a| pair.contains(&a.as_str()) && *a != k.effect)
+    );
+    let sep = k.separation.as_ref().expect("separation advice");
+    assert_eq!(
+        sep.axis,
+        Some(nav_sensors::geometry::Axis::Y),
+        "{}",
+        sep.advice
+    );
+    // The record measures c_rep + κ·c_other with κ = 1 (both are −a_z/√2 here),
+    // which is the hidden 1.0 deg/h/g: the interval covers it.
+    assert!(
+        (sep.combination[0].1 - 1.0).abs() < 0.05,
+        "{:?}",
+        sep.combination
+    );
+    assert!(k.coef_ci95[0] < 1.0 && 1.0 < k.coef_ci95[1], "{k:?}");
+}
