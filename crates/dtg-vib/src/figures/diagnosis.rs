@@ -102,7 +102,7 @@ pub fn write_diagnosis_report(
     ));
     figs.push((
         per_channel(
-            "Whiteness beyond the model's memory (decimated residual, lags past a window plus the filter's reach)",
+            "Whiteness past the model's memory (a window plus the filter's reach)",
             diag,
             |c| match c.checks.iter().find(|k| k.name == "whiteness") {
                 Some(k) => {
@@ -126,6 +126,8 @@ pub fn write_diagnosis_report(
                         dev,
                         band,
                     )
+                    // The test's own per-lag level, not the panel's default.
+                    .band(band, band_label(k.check.confidence))
                 }
                 None => Panel::new(format!("Channel {}", c.channel), "lag", "ρ"),
             },
@@ -158,6 +160,7 @@ pub fn write_diagnosis_report(
                             k.check.values.clone(),
                             band,
                         )
+                        .band(band, band_label(k.check.confidence))
                     }
                     None => Panel::new(format!("Channel {}", c.channel), "lag", "ρ"),
                 }
@@ -314,4 +317,10 @@ pub fn write_diagnosis_report(
             .figure(f("diag_compare"), "Measured against predicted on the validation rows."),
     );
     Ok(page.write(dir)?)
+}
+
+/// The legend of a correlation test's band: its per-lag level (the verdict
+/// adds a Bonferroni correction over the lags).
+fn band_label(confidence: f64) -> String {
+    format!("{:.0} % band per lag", 100.0 * confidence)
 }
