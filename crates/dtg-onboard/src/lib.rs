@@ -43,8 +43,10 @@
 
 #![no_std]
 #![forbid(unsafe_code)]
-// No dependencies: the evaluator needs only `+ − × ÷`, comparisons and bit
-// operations (its own `exp` below).
+// One dependency, itself no_std and dependency-free: `fastexp`, the
+// exponential the desktop's kernels use, so both give the same bits. The rest
+// needs only `+ − × ÷`, comparisons and bit operations.
+use fastexp::exp_neg;
 
 /// The first four bytes of the tables.
 pub const MAGIC: [u8; 4] = *b"DTGO";
@@ -845,54 +847,6 @@ fn compensate_gyros(m: &Model, raw: &[f64; 6], f: &[f64; 3], cov: &[[f64; 3]; 3]
 #[inline(always)]
 fn abs(x: f64) -> f64 {
     f64::from_bits(x.to_bits() & !(1u64 << 63))
-}
-
-/// `exp(x)` for `x ≤ 0`, the Gaussian's only range: the routine of the `rbf`
-/// crate's kernels (Cody–Waite reduction x = n·ln 2 + r, |r| ≤ ln 2 / 2, a
-/// degree-13 Taylor polynomial by Estrin's scheme, 2ⁿ from bits), within a
-/// few ulps of the C library's `exp`. Copied because this crate cannot
-/// depend on `rbf` (std); the pure-Rust `libm` `exp` took 44% of a step
-/// (perf, the onboard_step bench). Arguments below −708 give 0.
-#[inline(always)]
-fn exp_neg(x: f64) -> f64 {
-    const LOG2E: f64 = core::f64::consts::LOG2_E;
-    // ln 2 split so that n·LN2_HI is exact for |n| < 2¹¹ (fdlibm's constants).
-    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
-    // 1.5·2⁵²: adding it rounds to an integer kept in the low mantissa bits.
-    const SHIFT: f64 = 6_755_399_441_055_744.0;
-    const C: [f64; 14] = [
-        1.0,
-        1.0,
-        1.0 / 2.0,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5040.0,
-        1.0 / 40320.0,
-        1.0 / 362_880.0,
-        1.0 / 3_628_800.0,
-        1.0 / 39_916_800.0,
-        1.0 / 479_001_600.0,
-        1.0 / 6_227_020_800.0,
-    ];
-    let xc = x.clamp(-708.0, 0.0);
-    let t = xc * LOG2E + SHIFT;
-    let n = t - SHIFT;
-    let r = (xc - n * LN2_HI) - n * LN2_LO;
-    let r2 = r * r;
-    let r4 = r2 * r2;
-    let r8 = r4 * r4;
-    let q0 = (C[0] + C[1] * r) + (C[2] + C[3] * r) * r2;
-    let q1 = (C[4] + C[5] * r) + (C[6] + C[7] * r) * r2;
-    let q2 = (C[8] + C[9] * r) + (C[10] + C[11] * r) * r2;
-    let q3 = C[12] + C[13] * r;
-    let p = (q0 + q1 * r4) + (q2 + q3 * r4) * r8;
-    // bits(t) − bits(SHIFT) = n (two's complement); 2ⁿ = bits((n + 1023) << 52).
-    let ni = t.to_bits().wrapping_sub(SHIFT.to_bits());
-    let scale = f64::from_bits(ni.wrapping_add(1023) << 52);
-    if x < -708.0 { 0.0 } else { p * scale }
 }
 
 /// Tables of a small model for the examples: no calibration, one centre,

@@ -297,7 +297,7 @@ fn apply_kernel_generic(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64],
     let inv = 1.0 / (width * width);
     match kernel {
         // exp(−r²/β²) in the vectorisable form; other kernels through `eval_squared`.
-        Kernel::Gaussian => each(col, xn, cn, |r2| crate::kernel::exp_neg(-r2 * inv)),
+        Kernel::Gaussian => each(col, xn, cn, |r2| fastexp::exp_neg(-r2 * inv)),
         Kernel::InverseQuadratic => each(col, xn, cn, |r2| 1.0 / (1.0 + r2 * inv)),
         Kernel::InverseMultiquadric => each(col, xn, cn, |r2| 1.0 / (1.0 + r2 * inv).sqrt()),
         Kernel::Multiquadric => each(col, xn, cn, |r2| (1.0 + r2 * inv).sqrt()),
