@@ -8,61 +8,24 @@
 //! byte-identical afterwards. The regression tests at the end pin the
 //! issue's cases to the messages that now replace them.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+#[path = "common/timed.rs"]
+mod timed;
 
 use nav_sensors::record::Record;
-
-/// The values every numeric input is tried with.
-const HOSTILE: &[&str] = &["1e308", "-1e308", "1e-308", "NaN", "inf", "-inf", "-0"];
-
-/// Longest any single run may take: the slowest honest run here is a 0.3-s
-/// diagnosis; a hang (NaN scores that never retire) would run forever.
-const LIMIT: Duration = Duration::from_secs(20);
+use std::path::Path;
+use std::path::PathBuf;
+use std::sync::OnceLock;
+use timed::{HOSTILE, Run};
 
 fn dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-hostile-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    })
+    timed::dir("dtg-vib-hostile")
 }
 
-struct Run {
-    code: i32,
-    stderr: String,
-}
-
-/// Runs `dtg-vib ARGS --quiet`, killing it past [`LIMIT`] (a failure).
+/// Runs `dtg-vib ARGS --quiet`, killing it past [`timed::LIMIT`] (a failure).
 fn run(args: &[&str]) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-        .args(args)
-        .arg("--quiet")
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > LIMIT {
-            child.kill().unwrap();
-            panic!("{args:?} still running after {LIMIT:?}");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    // A signal (an abort) has no code.
-    let code = status
-        .code()
-        .unwrap_or_else(|| panic!("{args:?} died: {status:?}: {stderr}"));
-    Run { code, stderr }
+    let mut all = args.to_vec();
+    all.push("--quiet");
+    timed::run(env!("CARGO_BIN_EXE_dtg-vib"), &all)
 }
 
 /// The contract of any run: exit 0, 1 or 2; a failure is one `error:` line.

@@ -8,61 +8,21 @@
 //! byte-identical afterwards. The regression tests at the end pin the
 //! issue's cases to the messages that now replace them.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+#[path = "common/timed.rs"]
+mod timed;
+
+use std::path::Path;
+use std::path::PathBuf;
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
-
-const HOSTILE: &[&str] = &["1e308", "-1e308", "1e-308", "NaN", "inf", "-inf", "-0"];
-
-/// Longest any single run may take (the honest ones here take milliseconds).
-const LIMIT: Duration = Duration::from_secs(20);
+use timed::{HOSTILE, Run};
 
 fn dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("rbf-hostile-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    })
+    timed::dir("rbf-hostile")
 }
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
+/// Runs `rbf ARGS`, killing it past [`timed::LIMIT`] (a failure).
 fn run(args: &[&str]) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rbf"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > LIMIT {
-            child.kill().unwrap();
-            panic!("{args:?} still running after {LIMIT:?}");
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    };
-    let mut stdout = String::new();
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut stdout).unwrap();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    let code = status
-        .code()
-        .unwrap_or_else(|| panic!("{args:?} died: {status:?}: {stderr}"));
-    Run {
-        code,
-        stdout,
-        stderr,
-    }
+    timed::run(env!("CARGO_BIN_EXE_rbf"), args)
 }
 
 /// Exit 0, 1 or 2; a failure is one `error:` line; no NaN or inf printed.
