@@ -15,7 +15,8 @@ use crate::model::CompensationModel;
 use nav_sensors::geometry::{Channel, Residue, ideal_outputs, residues};
 use nav_sensors::noise::{AllanCurve, NoiseTerm, NoiseTerms};
 use nav_sensors::record::Record;
-use serde_json::{Value, json};
+use serde::Serialize;
+use serde_json::Value;
 
 /// One series' curves and terms, before and (with a model) after.
 #[derive(Debug, Clone, PartialEq)]
@@ -170,64 +171,141 @@ impl AllanAnalysis {
 
     /// The JSON of `dtg-vib allan --json` (docs/formats.md).
     pub fn to_json(&self) -> Value {
-        let entry = |s: &SeriesAllan, key: &str| {
-            let mut o = serde_json::Map::new();
-            o.insert(key.into(), json!(s.name));
-            o.insert("tau_s".into(), json!(s.before.tau_s()));
-            o.insert("adev_before".into(), json!(s.before.adev()));
-            if let Some(a) = &s.after {
-                o.insert("adev_after".into(), json!(a.adev()));
-            }
-            let pick = |f: fn(&NoiseTerms) -> &NoiseTerm| {
-                let mut m = serde_json::Map::new();
-                m.insert("before".into(), value(f(&s.terms_before)));
-                if let Some(t) = &s.terms_after {
-                    m.insert("after".into(), value(f(t)));
-                }
-                Value::Object(m)
-            };
-            o.insert("arw_deg_per_sqrt_h".into(), pick(|t| &t.arw));
-            o.insert(
-                "bias_instability_deg_per_h".into(),
-                pick(|t| &t.bias_instability),
-            );
-            o.insert("rrw_deg_per_h_per_sqrt_h".into(), pick(|t| &t.rrw));
-            let curve = |c: &AllanCurve| {
-                json!({
-                    "low": c.points.iter().map(|p| p.low).collect::<Vec<_>>(),
-                    "high": c.points.iter().map(|p| p.high).collect::<Vec<_>>(),
-                    "edf": c.points.iter().map(|p| p.edf).collect::<Vec<_>>(),
-                    "noise": c.points.iter().map(|p| p.noise).collect::<Vec<_>>(),
-                    "noise_identified": c.points.iter().map(|p| p.noise_identified).collect::<Vec<_>>(),
-                })
-            };
-            o.insert("adev_before_detail".into(), curve(&s.before));
-            if let Some(a) = &s.after {
-                o.insert("adev_after_detail".into(), curve(a));
-            }
-            let mut terms = serde_json::Map::new();
-            terms.insert("before".into(), json!(s.terms_before));
-            if let Some(t) = &s.terms_after {
-                terms.insert("after".into(), json!(t));
-            }
-            o.insert("noise_terms".into(), Value::Object(terms));
-            Value::Object(o)
+        serde_json::to_value(self.report()).expect("plain data serialises")
+    }
+
+    /// The typed form of [`AllanAnalysis::to_json`].
+    pub fn report(&self) -> AllanReport<'_> {
+        AllanReport {
+            channels: self.channels.iter().map(|s| s.report(true)).collect(),
+            residues: self.residues.iter().map(|s| s.report(false)).collect(),
+            tau0_s: self.tau0_s,
+            first_sample: self.first_sample,
+            samples: self.samples,
+            confidence: self.confidence,
+            units: Units {
+                tau_s: "s",
+                adev: "deg/h",
+                arw: "deg/√h",
+                bias_instability: "deg/h",
+                rrw: "deg/h/√h",
+            },
+        }
+    }
+}
+
+impl SeriesAllan {
+    fn report(&self, is_channel: bool) -> SeriesReport<'_> {
+        let pick = |f: fn(&NoiseTerms) -> &NoiseTerm| BeforeAfter {
+            before: f(&self.terms_before).estimate().map(|e| e.value),
+            after: self
+                .terms_after
+                .as_ref()
+                .map(|t| f(t).estimate().map(|e| e.value)),
         };
-        json!({
-            "channels": self.channels.iter().map(|s| entry(s, "channel")).collect::<Vec<_>>(),
-            "residues": self.residues.iter().map(|s| entry(s, "residue")).collect::<Vec<_>>(),
-            "tau0_s": self.tau0_s,
-            "first_sample": self.first_sample,
-            "samples": self.samples,
-            "confidence": self.confidence,
-            "units": {
-                "tau_s": "s",
-                "adev": "deg/h",
-                "arw": "deg/√h",
-                "bias_instability": "deg/h",
-                "rrw": "deg/h/√h"
-            }
-        })
+        SeriesReport {
+            channel: is_channel.then_some(self.name),
+            residue: (!is_channel).then_some(self.name),
+            tau_s: self.before.tau_s(),
+            adev_before: self.before.adev(),
+            adev_after: self.after.as_ref().map(AllanCurve::adev),
+            arw_deg_per_sqrt_h: pick(|t| &t.arw),
+            bias_instability_deg_per_h: pick(|t| &t.bias_instability),
+            rrw_deg_per_h_per_sqrt_h: pick(|t| &t.rrw),
+            adev_before_detail: CurveDetail::of(&self.before),
+            adev_after_detail: self.after.as_ref().map(CurveDetail::of),
+            noise_terms: Terms {
+                before: &self.terms_before,
+                after: self.terms_after.as_ref(),
+            },
+        }
+    }
+}
+
+/// `dtg-vib allan --json`.
+#[derive(Debug, Serialize)]
+pub struct AllanReport<'a> {
+    /// Gyro channels.
+    pub channels: Vec<SeriesReport<'a>>,
+    /// Parity residues.
+    pub residues: Vec<SeriesReport<'a>>,
+    /// Sample interval τ₀, s.
+    pub tau0_s: f64,
+    /// First record sample used.
+    pub first_sample: usize,
+    /// Samples used.
+    pub samples: usize,
+    /// Two-sided confidence level of every interval.
+    pub confidence: f64,
+    /// Units of the numbers.
+    pub units: Units,
+}
+
+/// The units `allan --json` states.
+#[derive(Debug, Serialize)]
+pub struct Units {
+    tau_s: &'static str,
+    adev: &'static str,
+    arw: &'static str,
+    bias_instability: &'static str,
+    rrw: &'static str,
+}
+
+/// One series of `allan --json`: `channel` or `residue` names it.
+#[derive(Debug, Serialize)]
+pub struct SeriesReport<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    channel: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    residue: Option<&'static str>,
+    tau_s: Vec<f64>,
+    adev_before: Vec<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    adev_after: Option<Vec<f64>>,
+    arw_deg_per_sqrt_h: BeforeAfter<Option<f64>>,
+    bias_instability_deg_per_h: BeforeAfter<Option<f64>>,
+    rrw_deg_per_h_per_sqrt_h: BeforeAfter<Option<f64>>,
+    adev_before_detail: CurveDetail,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    adev_after_detail: Option<CurveDetail>,
+    noise_terms: Terms<'a>,
+}
+
+/// A term before and (with a model) after; null where unresolved.
+#[derive(Debug, Serialize)]
+struct BeforeAfter<T> {
+    before: T,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    after: Option<T>,
+}
+
+/// The noise terms read on the curves before and after.
+#[derive(Debug, Serialize)]
+struct Terms<'a> {
+    before: &'a NoiseTerms,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    after: Option<&'a NoiseTerms>,
+}
+
+/// Per-τ confidence intervals, degrees of freedom and noise types.
+#[derive(Debug, Serialize)]
+struct CurveDetail {
+    low: Vec<f64>,
+    high: Vec<f64>,
+    edf: Vec<f64>,
+    noise: Vec<nav_sensors::noise::PowerLaw>,
+    noise_identified: Vec<bool>,
+}
+
+impl CurveDetail {
+    fn of(c: &AllanCurve) -> Self {
+        Self {
+            low: c.points.iter().map(|p| p.low).collect(),
+            high: c.points.iter().map(|p| p.high).collect(),
+            edf: c.points.iter().map(|p| p.edf).collect(),
+            noise: c.points.iter().map(|p| p.noise).collect(),
+            noise_identified: c.points.iter().map(|p| p.noise_identified).collect(),
+        }
     }
 }
 
@@ -248,11 +326,6 @@ pub fn term_text(t: &NoiseTerm) -> String {
         } => format!("< {} (not resolved)", fmt(*b)),
         NoiseTerm::Unresolved { .. } => "not resolved".into(),
     }
-}
-
-/// A term's value, or null when the curve does not resolve it.
-fn value(t: &NoiseTerm) -> Value {
-    t.estimate().map_or(Value::Null, |e| json!(e.value))
 }
 
 #[cfg(test)]

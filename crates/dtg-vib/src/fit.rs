@@ -12,9 +12,10 @@
 use crate::effects::{ANISOINERTIA_MIN_RATE_DEG_S, ChannelEffect, Effect, rate_variation_deg_s};
 use crate::error::DtgVibError;
 use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
+pub use crate::model::{CentreMethod, FitSettings};
 use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::{Prepared, Preprocess};
-use crate::split::SplitKind;
+use crate::split::{SplitKind, leakage_gap, split_rows};
 use faer::{Mat, MatRef, Par};
 use linfa::ParamGuard;
 use nav_sensors::calibration::Calibration;
@@ -24,33 +25,6 @@ use rayon::prelude::*;
 use rbf::{
     Candidates, CentreSelection, Grid, KMeansSettings, Kernel, RbfParams, Sizes, Split, WidthRule,
 };
-use serde::{Deserialize, Serialize};
-
-/// How centres are chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CentreMethod {
-    /// OLS forward selection by error-reduction ratio (Chen, Cowan & Grant 1991).
-    Ols,
-    /// k-means centroids.
-    #[serde(rename = "kmeans")]
-    KMeans,
-}
-
-impl std::str::FromStr for CentreMethod {
-    type Err = DtgVibError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim() {
-            "ols" => Ok(CentreMethod::Ols),
-            "kmeans" => Ok(CentreMethod::KMeans),
-            other => Err(DtgVibError::InvalidOption {
-                name: "centers",
-                value: other.to_string(),
-                reason: "use ols or kmeans",
-            }),
-        }
-    }
-}
 
 /// Everything a fit can be told.
 ///
@@ -89,55 +63,21 @@ pub struct FitOptions {
 
 impl Default for FitOptions {
     fn default() -> Self {
+        let s = FitSettings::default();
         Self {
             preprocess: Preprocess::default(),
             effects: Vec::new(),
             add: Vec::new(),
-            centres: CentreMethod::Ols,
-            max_centres: 60,
-            candidates: 400,
-            width_scales: vec![0.5, 1.0, 2.0],
-            ridge: 1e-8,
+            centres: s.centres,
+            max_centres: s.max_centres,
+            candidates: s.candidates,
+            width_scales: s.width_scales,
+            ridge: s.ridge,
             split: SplitKind::default(),
-            inner_folds: 3,
-            kernel: Kernel::Gaussian,
-            seed: 1,
+            inner_folds: s.inner_folds,
+            kernel: s.kernel,
+            seed: s.seed,
         }
-    }
-}
-
-/// What a model keeps of its [`FitOptions`] besides the pre-processing,
-/// split and effects it stores anyway: enough to fit it again the same way
-/// (the diagnosis cross-fits and tries settings).
-///
-/// ```
-/// let s = dtg_vib::fit::FitOptions::default().settings();
-/// assert_eq!(s, dtg_vib::fit::FitSettings::default());
-/// ```
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct FitSettings {
-    /// Centre selection.
-    pub centres: CentreMethod,
-    /// Largest number of centres tried.
-    pub max_centres: usize,
-    /// OLS candidates.
-    pub candidates: usize,
-    /// Gaussian widths tried, as multiples of the median distance between windows.
-    pub width_scales: Vec<f64>,
-    /// Ridge λ on the output weights.
-    pub ridge: f64,
-    /// Folds of the inner cross-validation.
-    pub inner_folds: usize,
-    /// The kernel.
-    pub kernel: Kernel,
-    /// Seed.
-    pub seed: u64,
-}
-
-impl Default for FitSettings {
-    fn default() -> Self {
-        FitOptions::default().settings()
     }
 }
 
@@ -246,22 +186,6 @@ impl FitOptions {
         }
         Ok(())
     }
-}
-
-/// Rows closer than this to the other side of a split may share samples:
-/// a window length plus the filter's reach.
-pub fn leakage_gap(prepared: &Prepared) -> usize {
-    // Row 0's window ends at sample `first_sample()`: a window spans that many
-    // samples before its own.
-    prepared.first_sample() + prepared.filter_memory()
-}
-
-/// Training and validation rows of prepared data.
-pub fn split_rows(
-    prepared: &Prepared,
-    split: SplitKind,
-) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
-    split.rows(prepared.rows(), leakage_gap(prepared))
 }
 
 /// Numbers of centres tried: a roughly geometric ladder up to `max`.

@@ -659,7 +659,7 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         .iter()
         .map(|s| s.parse::<ChannelEffect>())
         .collect::<Result<Vec<_>, _>>()?;
-    let split = match a.split.parse::<SplitKind>()? {
+    let split = match dtg_vib::split::parse(&a.split)? {
         SplitKind::Blocked { .. } => SplitKind::Blocked {
             train_fraction: a.train_fraction,
         },

@@ -1,86 +1,103 @@
-//! Training and validation rows.
+//! Training and validation rows of a prepared record.
 //!
 //! Windows of 50 samples overlap by 49 with their neighbours, and the
 //! zero-phase filter spreads each sample over a few more. An interleaved
 //! split (the paper's: alternate windows) therefore validates on rows that
 //! are nearly copies of training rows and flatters a model; the blocked split
 //! trains on the first part and validates on the last, with a gap wide enough
-//! that no sample reaches both. Blocked is the default.
+//! that no sample reaches both ([`leakage_gap`]). Blocked is the default.
+//!
+//! The split itself is rbf's [`Holdout`]; this module adds what a record
+//! knows: the gap its windows and filter need, and the fewest rows a side
+//! may have.
 
 use crate::error::DtgVibError;
-use serde::{Deserialize, Serialize};
-use std::fmt;
-use std::str::FromStr;
-
-/// How rows are split into training and validation.
-///
-/// ```
-/// use dtg_vib::split::SplitKind;
-/// let s: SplitKind = "interleaved".parse().unwrap();
-/// let (train, val) = s.rows(100, 3).unwrap();
-/// assert_eq!(&train[..3], [0, 2, 4]);
-/// assert_eq!(&val[..3], [1, 3, 5]);
-/// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
-/// let (train, val) = SplitKind::Blocked { train_fraction: 0.5 }.rows(100, 3).unwrap();
-/// assert_eq!((train.len(), val[0]), (50, 53));
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", tag = "kind")]
-pub enum SplitKind {
-    /// The first `train_fraction` of the rows train; after a gap, the rest validate.
-    Blocked {
-        /// Fraction of rows that train, in (0, 1).
-        train_fraction: f64,
-    },
-    /// Even rows train, odd rows validate (the paper's alternate vectors).
-    Interleaved,
-}
-
-impl Default for SplitKind {
-    /// Blocked, half and half.
-    fn default() -> Self {
-        SplitKind::Blocked {
-            train_fraction: 0.5,
-        }
-    }
-}
+use crate::pipeline::Prepared;
+pub use rbf::Holdout as SplitKind;
 
 /// Fewest rows on either side of a split.
 pub const MIN_ROWS: usize = 20;
 
-impl SplitKind {
-    /// Training and validation rows of `n` rows; `gap` rows after the
-    /// training block are dropped (blocked only).
-    pub fn rows(&self, n: usize, gap: usize) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
-        let (train, val): (Vec<usize>, Vec<usize>) = match *self {
-            SplitKind::Interleaved => ((0..n).step_by(2).collect(), (1..n).step_by(2).collect()),
-            SplitKind::Blocked { train_fraction } => {
-                if !(train_fraction > 0.0 && train_fraction < 1.0) {
-                    return Err(DtgVibError::InvalidOption {
-                        name: "train fraction",
-                        value: train_fraction.to_string(),
-                        reason: "must lie strictly between 0 and 1",
-                    });
-                }
-                let n_train = (n as f64 * train_fraction).round() as usize;
-                (
-                    (0..n_train).collect(),
-                    ((n_train + gap).min(n)..n).collect(),
-                )
-            }
-        };
-        for (what, rows) in [("training rows", &train), ("validation rows", &val)] {
-            if rows.len() < MIN_ROWS {
-                return Err(DtgVibError::TooFewSamples {
-                    what,
-                    have: rows.len(),
-                    need: MIN_ROWS,
-                    hint: "use a longer record, a shorter --window, or another --train-fraction",
-                });
-            }
+/// Training and validation rows of `n` rows; `gap` rows after the training
+/// block are dropped (blocked only).
+///
+/// ```
+/// use dtg_vib::split::{rows, SplitKind};
+/// let (train, val) = rows(SplitKind::Interleaved, 100, 3).unwrap();
+/// assert_eq!((&train[..3], &val[..3]), (&[0, 2, 4][..], &[1, 3, 5][..]));
+/// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
+/// let (train, val) = rows(SplitKind::default(), 100, 3).unwrap();
+/// assert_eq!((train.len(), val[0]), (50, 53));
+/// ```
+pub fn rows(
+    split: SplitKind,
+    n: usize,
+    gap: usize,
+) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+    let (train, val) = match split.fold(n, gap) {
+        Ok(fold) => (fold.train, fold.validation),
+        Err(rbf::SplitError::Fraction { fraction }) => {
+            return Err(DtgVibError::InvalidOption {
+                name: "train fraction",
+                value: fraction.to_string(),
+                reason: "must lie strictly between 0 and 1",
+            });
         }
-        Ok((train, val))
+        // An empty side is a side with too few rows.
+        Err(rbf::SplitError::EmptyFold {
+            train, validation, ..
+        }) => return Err(too_few(train, validation)),
+        Err(other) => unreachable!("a hold-out fails only on its fraction or a side: {other}"),
+    };
+    if train.len() < MIN_ROWS || val.len() < MIN_ROWS {
+        return Err(too_few(train.len(), val.len()));
     }
+    Ok((train, val))
+}
+
+/// The error for a side with fewer than [`MIN_ROWS`] rows (training first).
+fn too_few(train: usize, validation: usize) -> DtgVibError {
+    let (what, have) = if train < MIN_ROWS {
+        ("training rows", train)
+    } else {
+        ("validation rows", validation)
+    };
+    DtgVibError::TooFewSamples {
+        what,
+        have,
+        need: MIN_ROWS,
+        hint: "use a longer record, a shorter --window, or another --train-fraction",
+    }
+}
+
+/// Rows closer than this to the other side of a split may share samples:
+/// a window length plus the filter's reach.
+pub fn leakage_gap(prepared: &Prepared) -> usize {
+    // Row 0's window ends at sample `first_sample()`: a window spans that many
+    // samples before its own.
+    prepared.first_sample() + prepared.filter_memory()
+}
+
+/// Training and validation rows of prepared data.
+pub fn split_rows(
+    prepared: &Prepared,
+    split: SplitKind,
+) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+    rows(split, prepared.rows(), leakage_gap(prepared))
+}
+
+/// Parses `--split`: `blocked` or `interleaved`.
+///
+/// ```
+/// assert!(dtg_vib::split::parse("interleaved").is_ok());
+/// assert!(dtg_vib::split::parse("random").is_err());
+/// ```
+pub fn parse(name: &str) -> Result<SplitKind, DtgVibError> {
+    name.parse().map_err(|_| DtgVibError::InvalidOption {
+        name: "split",
+        value: name.trim().to_string(),
+        reason: "use blocked or interleaved",
+    })
 }
 
 /// Record samples between consecutive rows of a split's part: 1 for a
@@ -89,10 +106,10 @@ impl SplitKind {
 /// it must use.
 ///
 /// ```
-/// use dtg_vib::split::{row_spacing, SplitKind};
-/// let (train, val) = SplitKind::Interleaved.rows(100, 0).unwrap();
+/// use dtg_vib::split::{row_spacing, rows, SplitKind};
+/// let (train, val) = rows(SplitKind::Interleaved, 100, 0).unwrap();
 /// assert_eq!((row_spacing(&train), row_spacing(&val)), (2, 2));
-/// let (_, val) = SplitKind::default().rows(100, 3).unwrap();
+/// let (_, val) = rows(SplitKind::default(), 100, 3).unwrap();
 /// assert_eq!(row_spacing(&val), 1);
 /// ```
 pub fn row_spacing(rows: &[usize]) -> usize {
@@ -103,43 +120,16 @@ pub fn row_spacing(rows: &[usize]) -> usize {
         .max(1)
 }
 
-impl fmt::Display for SplitKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SplitKind::Blocked { train_fraction } => {
-                write!(f, "blocked ({:.0}% train)", train_fraction * 100.0)
-            }
-            SplitKind::Interleaved => f.write_str("interleaved"),
-        }
-    }
-}
-
-impl FromStr for SplitKind {
-    type Err = DtgVibError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim() {
-            "blocked" => Ok(SplitKind::default()),
-            "interleaved" => Ok(SplitKind::Interleaved),
-            other => Err(DtgVibError::InvalidOption {
-                name: "split",
-                value: other.to_string(),
-                reason: "use blocked or interleaved",
-            }),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn blocked_rows_never_touch_across_the_gap() {
-        let (train, val) = SplitKind::Blocked {
+        let blocked = SplitKind::Blocked {
             train_fraction: 0.6,
-        }
-        .rows(1000, 70)
-        .unwrap();
+        };
+        let (train, val) = rows(blocked, 1000, 70).unwrap();
         assert_eq!(train.len(), 600);
         assert_eq!(val.first(), Some(&670));
         assert_eq!(val.len(), 330);
@@ -147,18 +137,18 @@ mod tests {
 
     #[test]
     fn too_few_rows_is_an_error_with_a_hint() {
-        let err = SplitKind::default().rows(60, 49).unwrap_err();
+        let err = rows(SplitKind::default(), 60, 49).unwrap_err();
         assert!(
             err.to_string().contains("validation rows: 0 windows"),
             "{err}"
         );
+        let whole = SplitKind::Blocked {
+            train_fraction: 1.0,
+        };
         assert!(matches!(
-            SplitKind::Blocked {
-                train_fraction: 1.0
-            }
-            .rows(100, 0),
+            rows(whole, 100, 0),
             Err(DtgVibError::InvalidOption { .. })
         ));
-        assert!("random".parse::<SplitKind>().is_err());
+        assert!(parse("random").is_err());
     }
 }

@@ -144,15 +144,16 @@ impl fmt::Display for WidthArg {
     }
 }
 
-/// `--split` of `rbf cv`.
+/// The scheme `rbf cv --split` names; with the fold count and gap it becomes
+/// an [`rbf::Split`] (the hold-out of one fit is [`rbf::Holdout`]).
 ///
 /// ```
-/// use rbf_cli::settings::SplitKind;
-/// assert_eq!(SplitKind::Blocked.split(5, 3, 0), rbf::Split::Blocked { k: 5, gap: 3 });
-/// assert_eq!("kfold".parse::<SplitKind>().unwrap(), SplitKind::Kfold);
+/// use rbf_cli::settings::CvScheme;
+/// assert_eq!(CvScheme::Blocked.split(5, 3, 0), rbf::Split::Blocked { k: 5, gap: 3 });
+/// assert_eq!("kfold".parse::<CvScheme>().unwrap(), CvScheme::Kfold);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SplitKind {
+pub enum CvScheme {
     /// Shuffled k-fold (seeded).
     Kfold,
     /// Fold f validates every k-th row (k = 2: the seed paper's alternate rows).
@@ -161,46 +162,46 @@ pub enum SplitKind {
     Blocked,
 }
 
-impl SplitKind {
+impl CvScheme {
     /// The names `--split` accepts.
     ///
     /// ```
-    /// assert_eq!(rbf_cli::settings::SplitKind::NAMES[2], "blocked");
+    /// assert_eq!(rbf_cli::settings::CvScheme::NAMES[2], "blocked");
     /// ```
     pub const NAMES: [&'static str; 3] = ["kfold", "interleaved", "blocked"];
 
     /// The library's split with `folds` folds.
     ///
     /// ```
-    /// use rbf_cli::settings::SplitKind;
-    /// assert_eq!(SplitKind::Kfold.split(4, 0, 9), rbf::Split::KFold { k: 4, seed: 9 });
+    /// use rbf_cli::settings::CvScheme;
+    /// assert_eq!(CvScheme::Kfold.split(4, 0, 9), rbf::Split::KFold { k: 4, seed: 9 });
     /// ```
     pub fn split(self, folds: usize, gap: usize, seed: u64) -> Split {
         match self {
-            SplitKind::Kfold => Split::KFold { k: folds, seed },
-            SplitKind::Interleaved => Split::Interleaved { k: folds },
-            SplitKind::Blocked => Split::Blocked { k: folds, gap },
+            CvScheme::Kfold => Split::KFold { k: folds, seed },
+            CvScheme::Interleaved => Split::Interleaved { k: folds },
+            CvScheme::Blocked => Split::Blocked { k: folds, gap },
         }
     }
 
     /// The flag value naming this split.
     ///
     /// ```
-    /// assert_eq!(rbf_cli::settings::SplitKind::Interleaved.name(), "interleaved");
+    /// assert_eq!(rbf_cli::settings::CvScheme::Interleaved.name(), "interleaved");
     /// ```
     pub fn name(self) -> &'static str {
         Self::NAMES[self as usize]
     }
 }
 
-impl FromStr for SplitKind {
+impl FromStr for CvScheme {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
-            "kfold" => Ok(SplitKind::Kfold),
-            "interleaved" => Ok(SplitKind::Interleaved),
-            "blocked" => Ok(SplitKind::Blocked),
+            "kfold" => Ok(CvScheme::Kfold),
+            "interleaved" => Ok(CvScheme::Interleaved),
+            "blocked" => Ok(CvScheme::Blocked),
             _ => Err(format!("valid names: {}", Self::NAMES.join(", "))),
         }
     }

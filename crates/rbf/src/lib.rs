@@ -11,7 +11,7 @@
 //! | structure selection | [`select`] | [`forward_select`] (OLS/ERR, generic over columns), k-means, random |
 //! | estimation | [`estimate`] | [`lstsq`] (pivoted QR, ridge, rank and condition checks), [`interpolate`] |
 //! | the model | [`model`] | [`RbfParams`] → [`RbfValidParams`] → [`RbfModel`]; linfa `Fit`/`Predict`; JSON |
-//! | validation | [`cv`], [`metrics`] | [`Split`], [`cross_validate`], [`grid_search`], [`metrics::Scores`] |
+//! | validation | [`split`], [`cv`], [`metrics`] | [`Split`], [`Holdout`], [`cross_validate`], [`grid_search`], [`metrics::Scores`] |
 //!
 //! Matrices are faer's (rows are samples); ndarray appears only at the linfa boundary
 //! ([`convert`]). Hot kernels take their parallelism as a [`faer::Par`] value. Bad data
@@ -55,6 +55,7 @@ pub mod model;
 pub mod neighbours;
 mod parallel;
 pub mod select;
+pub mod split;
 pub mod width;
 
 pub use faer;
@@ -63,7 +64,7 @@ pub use faer::Par;
 pub use select::ols;
 
 pub use cv::{
-    CvReport, Fold, FoldReport, Grid, GridPoint, GridReport, Sizes, Split, SplitError,
+    CvReport, Fold, FoldReport, Grid, GridPoint, GridReport, Holdout, Sizes, Split, SplitError,
     cross_validate, cross_validate_folds, cross_validate_with_linear, grid_search,
     grid_search_with_linear, holdout,
 };

@@ -4,12 +4,13 @@
 //! reference). Saved as versioned JSON.
 
 mod persist;
+mod settings;
 
 pub use persist::FORMAT_VERSION;
+pub use settings::{CentreMethod, FitSettings};
 
 use crate::effects::Effect;
 use crate::error::DtgVibError;
-use crate::fit::FitSettings;
 use crate::inference::Coefficient;
 use crate::pipeline::{Prepared, Preprocess};
 use crate::split::SplitKind;
@@ -276,6 +277,6 @@ impl CompensationModel {
 
     /// Training and validation rows of prepared data, as at fit time.
     pub fn rows(&self, prepared: &Prepared) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
-        crate::fit::split_rows(prepared, self.split)
+        crate::split::split_rows(prepared, self.split)
     }
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rbf::{KMeansAlgorithm, Kernel};
-use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
+use rbf_cli::settings::{Centers, CvScheme, FitSettings, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
 #[derive(Debug, Parser)]
@@ -236,7 +236,7 @@ pub struct CvArgs {
     /// kfold (shuffled, seeded), interleaved (fold f validates every k-th row) or
     /// blocked (contiguous blocks: the honest choice for overlapping windows).
     #[arg(long, value_name = "kfold|interleaved|blocked")]
-    pub split: SplitKind,
+    pub split: CvScheme,
     /// Number of folds.
     #[arg(
         long,

@@ -7,7 +7,7 @@ use rbf::{Grid, Sizes, grid_search};
 use rbf_cli::data;
 use rbf_cli::progress;
 use rbf_cli::report::{CvContext, CvOut};
-use rbf_cli::settings::{Centers, SplitKind};
+use rbf_cli::settings::{Centers, CvScheme};
 use tabular::Table;
 
 use super::args::CvArgs;
@@ -15,7 +15,7 @@ use super::fit::fit_failed;
 
 pub fn run(a: CvArgs) -> Result<()> {
     let mut settings = a.model.settings();
-    if a.gap.is_some() && a.split != SplitKind::Blocked {
+    if a.gap.is_some() && a.split != CvScheme::Blocked {
         bail!("--gap applies to --split blocked only");
     }
     if !a.sizes.is_empty() && settings.centers == Centers::All {
@@ -120,7 +120,7 @@ fn check_folds(a: &CvArgs, split: &rbf::Split, gap: usize, file: &str, n: usize)
     // The largest gap that leaves every fold rows on both sides: the split is
     // monotone in the gap, so bisect (log n splits of n indices each).
     let works = |g: usize| a.split.split(a.folds, g, 0).folds(n).is_ok();
-    let fix = if a.split == SplitKind::Blocked && works(0) {
+    let fix = if a.split == CvScheme::Blocked && works(0) {
         let (mut lo, mut hi) = (0, gap);
         while hi - lo > 1 {
             let mid = lo + (hi - lo) / 2;

@@ -7,9 +7,9 @@
 
 use faer::{Mat, MatRef};
 
-use super::split::Split;
 use super::validate::{CvReport, FoldReport, Part, fold_report};
 use crate::model::{CentreSelection, OlsStage, RbfError, RbfValidParams};
+use crate::split::Split;
 use crate::width::WidthRule;
 
 /// Model sizes to try.

@@ -7,11 +7,10 @@
 //! [`Split::Interleaved`] reproduces the seed paper's alternate-vector split.
 
 mod grid;
-mod split;
 mod validate;
 
+pub use crate::split::{Fold, Holdout, Split, SplitError, holdout};
 pub use grid::{Grid, GridPoint, GridReport, Sizes, grid_search, grid_search_with_linear};
-pub use split::{Fold, Split, SplitError, holdout};
 pub use validate::{
     CvReport, FoldReport, cross_validate, cross_validate_folds, cross_validate_with_linear,
 };

@@ -3,9 +3,9 @@
 use faer::{Mat, MatRef};
 use serde::{Deserialize, Serialize};
 
-use super::split::{Fold, Split};
 use crate::metrics::Scores;
 use crate::model::{RbfError, RbfModel, RbfValidParams};
+use crate::split::{Fold, Split};
 
 /// Scores of one fold.
 ///

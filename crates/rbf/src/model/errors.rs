@@ -2,9 +2,9 @@
 
 use linfa_clustering::KMeansError;
 
-use crate::cv::SplitError;
 use crate::estimate::SolveError;
 use crate::select::ols::OlsError;
+use crate::split::SplitError;
 use crate::width::WidthError;
 
 /// An invalid hyperparameter, one variant per validation rule.

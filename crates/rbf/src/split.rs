@@ -1,4 +1,5 @@
-//! Train/validation splits.
+//! Train/validation splits: the folds of cross-validation and the single
+//! hold-out of an application. Below both [`crate::cv`] and [`crate::model`].
 
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
@@ -98,6 +99,12 @@ pub enum SplitError {
         /// Value given.
         fraction: f64,
     },
+    /// A hold-out split's name that is not one of [`Holdout::NAMES`].
+    #[error("unknown split {name:?}: use blocked or interleaved")]
+    UnknownHoldout {
+        /// Name given.
+        name: String,
+    },
 }
 
 impl Split {
@@ -174,8 +181,111 @@ fn bounds(n: usize, k: usize, f: usize) -> (usize, usize) {
     (f * n / k, (f + 1) * n / k)
 }
 
-/// A single chronological split: the first `train_fraction` of the rows train, the rows
-/// after a `gap` validate.
+/// One train/validation partition of rows in time order: what an
+/// application holds out once, as opposed to the folds of a [`Split`].
+///
+/// The serialised form (`{"kind": "blocked", "train_fraction": 0.5}` or
+/// `{"kind": "interleaved"}`) is what model files store.
+///
+/// ```
+/// use rbf::Holdout;
+/// let s: Holdout = "interleaved".parse().unwrap();
+/// let f = s.fold(100, 3).unwrap();
+/// assert_eq!((&f.train[..3], &f.validation[..3]), (&[0, 2, 4][..], &[1, 3, 5][..]));
+/// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
+/// let f = Holdout::Blocked { train_fraction: 0.5 }.fold(100, 3).unwrap();
+/// assert_eq!((f.train.len(), f.validation[0]), (50, 53));
+/// assert_eq!(Holdout::default().to_string(), "blocked (50% train)");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum Holdout {
+    /// The first `train_fraction` of the rows (rounded to the nearest row)
+    /// train; after a gap, the rest validate.
+    Blocked {
+        /// Fraction of rows that train, in (0, 1).
+        train_fraction: f64,
+    },
+    /// Even rows train, odd rows validate (the seed paper's alternate vectors).
+    Interleaved,
+}
+
+impl Default for Holdout {
+    /// Blocked, half and half.
+    fn default() -> Self {
+        Holdout::Blocked {
+            train_fraction: 0.5,
+        }
+    }
+}
+
+impl Holdout {
+    /// The names [`FromStr`](std::str::FromStr) accepts.
+    pub const NAMES: [&'static str; 2] = ["blocked", "interleaved"];
+
+    /// Training and validation rows of `n` rows; `gap` rows after the
+    /// training block are dropped (blocked only).
+    ///
+    /// # Errors
+    /// [`SplitError::Fraction`] outside (0, 1), [`SplitError::EmptyFold`] if a side is empty.
+    pub fn fold(&self, n: usize, gap: usize) -> Result<Fold, SplitError> {
+        let fold = match *self {
+            Holdout::Interleaved => Fold {
+                train: (0..n).step_by(2).collect(),
+                validation: (1..n).step_by(2).collect(),
+            },
+            Holdout::Blocked { train_fraction } => {
+                if !(train_fraction > 0.0 && train_fraction < 1.0) {
+                    return Err(SplitError::Fraction {
+                        fraction: train_fraction,
+                    });
+                }
+                let t = ((n as f64) * train_fraction).round() as usize;
+                Fold {
+                    train: (0..t).collect(),
+                    validation: ((t + gap).min(n)..n).collect(),
+                }
+            }
+        };
+        if fold.train.is_empty() || fold.validation.is_empty() {
+            return Err(SplitError::EmptyFold {
+                fold: 0,
+                n,
+                train: fold.train.len(),
+                validation: fold.validation.len(),
+            });
+        }
+        Ok(fold)
+    }
+}
+
+impl std::fmt::Display for Holdout {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Holdout::Blocked { train_fraction } => {
+                write!(f, "blocked ({:.0}% train)", train_fraction * 100.0)
+            }
+            Holdout::Interleaved => f.write_str("interleaved"),
+        }
+    }
+}
+
+impl std::str::FromStr for Holdout {
+    type Err = SplitError;
+    /// `blocked` (half and half) or `interleaved`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "blocked" => Ok(Holdout::default()),
+            "interleaved" => Ok(Holdout::Interleaved),
+            other => Err(SplitError::UnknownHoldout {
+                name: other.to_string(),
+            }),
+        }
+    }
+}
+
+/// A blocked hold-out: the first `train_fraction` of `n` rows (rounded)
+/// train, `gap` rows are dropped, the rest validate.
 ///
 /// # Errors
 /// [`SplitError::Fraction`] outside (0, 1), [`SplitError::EmptyFold`] if a side is empty.
@@ -186,25 +296,7 @@ fn bounds(n: usize, k: usize, f: usize) -> (usize, usize) {
 /// assert_eq!(f.validation, vec![8, 9]);
 /// ```
 pub fn holdout(n: usize, train_fraction: f64, gap: usize) -> Result<Fold, SplitError> {
-    if !(train_fraction > 0.0 && train_fraction < 1.0) {
-        return Err(SplitError::Fraction {
-            fraction: train_fraction,
-        });
-    }
-    let t = ((n as f64) * train_fraction).floor() as usize;
-    let fold = Fold {
-        train: (0..t).collect(),
-        validation: ((t + gap).min(n)..n).collect(),
-    };
-    if fold.train.is_empty() || fold.validation.is_empty() {
-        return Err(SplitError::EmptyFold {
-            fold: 0,
-            n,
-            train: fold.train.len(),
-            validation: fold.validation.len(),
-        });
-    }
-    Ok(fold)
+    Holdout::Blocked { train_fraction }.fold(n, gap)
 }
 
 #[cfg(test)]
