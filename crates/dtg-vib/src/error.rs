@@ -7,6 +7,36 @@ use std::path::PathBuf;
 /// Everything the dtg-vib pipeline can refuse.
 #[derive(Debug, thiserror::Error)]
 pub enum DtgVibError {
+    /// The k-d tree of operating points cannot be built (non-finite
+    /// accelerations reach it only through a hand-edited model file).
+    #[error("operating points of the model: {0}; refit the model")]
+    OperatingPoints(String),
+    /// A command that takes records was given none.
+    #[error("no record given: pass --data FILE.csv")]
+    NoRecords,
+    /// Records fitted together must agree in how they were sampled and in
+    /// their extra columns.
+    #[error(
+        "records {first} and {other} cannot be fitted together: {what}; give records of one sampling rate and the same columns"
+    )]
+    RecordsDiffer {
+        first: String,
+        other: String,
+        what: String,
+    },
+    /// An error in one of several records.
+    #[error("{record}: {source}")]
+    InRecord {
+        record: String,
+        source: Box<DtgVibError>,
+    },
+    /// A record named by a flag is not among the records given.
+    #[error("{flag} {name}: not one of the --data records ({known}); name one of them")]
+    UnknownRecord {
+        flag: &'static str,
+        name: String,
+        known: String,
+    },
     /// The test record is unreadable or invalid (file:line:column inside).
     #[error(transparent)]
     Record(#[from] nav_sensors::record::RecordError),

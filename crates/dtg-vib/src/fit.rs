@@ -15,7 +15,7 @@ use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise}
 pub use crate::model::{CentreMethod, FitSettings};
 use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::{Prepared, Preprocess};
-use crate::split::{SplitKind, leakage_gap, split_rows};
+use crate::split::{SplitKind, by_record_rows, leakage_gap, split_rows};
 use faer::{Mat, MatRef, Par};
 use linfa::ParamGuard;
 use nav_sensors::calibration::Calibration;
@@ -25,6 +25,7 @@ use rayon::prelude::*;
 use rbf::{
     Candidates, CentreSelection, Grid, KMeansSettings, Kernel, RbfParams, Sizes, Split, WidthRule,
 };
+use serde::Serialize;
 
 /// Everything a fit can be told.
 ///
@@ -51,8 +52,11 @@ pub struct FitOptions {
     pub width_scales: Vec<f64>,
     /// Ridge λ on the output weights.
     pub ridge: f64,
-    /// Training/validation split.
+    /// Training/validation split (within each record of several).
     pub split: SplitKind,
+    /// Of several records, the one that only validates (the others only
+    /// train); `None`: [`FitOptions::split`] within each record.
+    pub validate_on: Option<String>,
     /// Folds of the blocked cross-validation inside the training rows.
     pub inner_folds: usize,
     /// The kernel (the paper's Gaussian by default).
@@ -74,6 +78,7 @@ impl Default for FitOptions {
             width_scales: s.width_scales,
             ridge: s.ridge,
             split: SplitKind::default(),
+            validate_on: None,
             inner_folds: s.inner_folds,
             kernel: s.kernel,
             seed: s.seed,
@@ -130,6 +135,7 @@ impl FitOptions {
             width_scales: s.width_scales.clone(),
             ridge: s.ridge,
             split: model.split(),
+            validate_on: None,
             inner_folds: s.inner_folds,
             kernel: s.kernel,
             seed: s.seed,
@@ -236,8 +242,103 @@ pub fn fit_prepared(
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<CompensationModel, DtgVibError> {
     options.check()?;
-    let (train, val) = split_rows(prepared, options.split)?;
+    let (train, val) = match &options.validate_on {
+        Some(name) => by_record_rows(prepared, name)?,
+        None => split_rows(prepared, options.split)?,
+    };
     fit_rows(prepared, calibration, options, &train, &val, progress)
+}
+
+/// [`fit`] on several records, each prepared on its own (filters and
+/// windows never cross a boundary) and named for errors and scores.
+///
+/// ```no_run
+/// use dtg_vib::fit::{fit_records, FitOptions};
+/// use nav_sensors::record::Record;
+/// let (x, z) = (Record::read_csv("x.csv")?, Record::read_csv("z.csv")?);
+/// let recs = [("x.csv".to_string(), &x), ("z.csv".to_string(), &z)];
+/// let (model, prepared) = fit_records(&recs, None, &FitOptions::default(), &|_| {})?;
+/// let per_record = dtg_vib::fit::record_scores(&model, &prepared)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fit_records(
+    records: &[(String, &Record)],
+    calibration: Option<&Calibration>,
+    options: &FitOptions,
+    progress: &(dyn Fn(FitStage) + Sync),
+) -> Result<(CompensationModel, Prepared), DtgVibError> {
+    options.check()?;
+    progress(FitStage::Preparing);
+    let prepared = Prepared::new_many(records, calibration, &options.preprocess)?;
+    let mut model = fit_prepared(&prepared, calibration, options, progress)?;
+    if records.len() > 1 {
+        model.records = records.iter().map(|(n, _)| n.clone()).collect();
+    }
+    Ok((model, prepared))
+}
+
+/// One record's validation rms of one channel, deg/h.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RecordScore {
+    /// The record's name (its file).
+    pub file: String,
+    /// Rms of target − model on the record's validation rows, deg/h.
+    pub val_rms: f64,
+}
+
+/// Each channel's validation rms on each record of `prepared`, for the
+/// validation rows the model was fitted with (X, X1, Y, Y1, Z, Z1 order); a
+/// record without validation rows (it only trained) is left out.
+pub fn record_scores(
+    model: &CompensationModel,
+    prepared: &Prepared,
+) -> Result<[Vec<RecordScore>; 6], DtgVibError> {
+    let val = match &model.validated_on {
+        // A by-record fit validated on one whole record.
+        Some(name) => by_record_rows(prepared, name)?.1,
+        None => model.rows(prepared)?.1,
+    };
+    let predicted = model.predict(prepared)?;
+    Ok(std::array::from_fn(|k| {
+        let y = prepared.target(Channel::ALL[k]);
+        prepared
+            .record_rows()
+            .into_iter()
+            .filter_map(|(name, range)| {
+                let rows: Vec<usize> = val.iter().copied().filter(|r| range.contains(r)).collect();
+                (!rows.is_empty()).then(|| RecordScore {
+                    file: name.to_string(),
+                    val_rms: rms(rows.iter().map(|&r| y[r] - predicted[k][r])),
+                })
+            })
+            .collect()
+    }))
+}
+
+/// Leave one record out (`fit --cv records`): each record validated, whole,
+/// by a model fitted on the others; each channel's rms per record.
+pub fn leave_one_record_out(
+    prepared: &Prepared,
+    calibration: Option<&Calibration>,
+    options: &FitOptions,
+) -> Result<[Vec<RecordScore>; 6], DtgVibError> {
+    let mut out: [Vec<RecordScore>; 6] = Default::default();
+    for (name, _) in prepared.record_rows() {
+        let (train, val) = by_record_rows(prepared, name)?;
+        let m = fit_rows(prepared, calibration, options, &train, &val, &|_| {}).map_err(|e| {
+            DtgVibError::InRecord {
+                record: format!("leaving out {name}"),
+                source: Box::new(e),
+            }
+        })?;
+        for (k, c) in m.channels().iter().enumerate() {
+            out[k].push(RecordScore {
+                file: name.to_string(),
+                val_rms: c.scores().val_rms,
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// [`fit_prepared`] on explicit training and validation rows (the
@@ -285,6 +386,14 @@ pub(crate) fn fit_rows(
         split: options.split,
         channels,
         fit: options.settings(),
+        records: Vec::new(),
+        validated_on: options.validate_on.clone(),
+        operating_points: Some(crate::operating::OperatingPoints::from_training(
+            prepared,
+            options.preprocess.window.length(),
+            &train,
+            &val,
+        )?),
     })
 }
 

@@ -3,6 +3,7 @@
 
 pub mod allan;
 pub mod apply;
+pub mod check;
 pub mod demo;
 pub mod diagnose;
 pub mod effects;
@@ -13,6 +14,7 @@ pub mod figures;
 pub mod fit;
 pub mod inference;
 pub mod model;
+pub mod operating;
 pub mod pipeline;
 pub mod report;
 pub mod residuals;

@@ -8,7 +8,7 @@ use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
 use dtg_vib::effects::{ChannelEffect, Effect};
 use dtg_vib::explain::ExplainStage;
 use dtg_vib::figures::{Baseline, write_diagnosis_report, write_report};
-use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit};
+use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit_records};
 use dtg_vib::model::CompensationModel;
 use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
 use dtg_vib::split::SplitKind;
@@ -95,6 +95,25 @@ enum Command {
         /// Output directory.
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Does a model hold on a record it was not fitted on? Rms before and
+    /// after, residues, and the share of windows outside the training range.
+    Check {
+        /// Model file from `fit`.
+        #[arg(long)]
+        model: PathBuf,
+        /// A record the model was not fitted on (CSV).
+        #[arg(long)]
+        data: PathBuf,
+        /// Warn when more than this share of the windows lies outside the training range.
+        #[arg(long = "outside-threshold", default_value_t = dtg_vib::check::DEFAULT_OUTSIDE_THRESHOLD, value_parser = parse_share, allow_hyphen_values = true)]
+        outside_threshold: f64,
+        /// Print one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Also write the model's report on this record (figures and index.html) here.
+        #[arg(long)]
+        report: Option<PathBuf>,
     },
     /// Find what a model is missing: compare, locate failures, rank candidate effects.
     Diagnose {
@@ -212,9 +231,11 @@ struct ExplainArgs {
 
 #[derive(Args)]
 struct FitArgs {
-    /// Test record (CSV: t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra columns]).
-    #[arg(long)]
-    data: PathBuf,
+    /// Test record (CSV: t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra columns]); repeat
+    /// to fit several records together (one calibration; filters and windows
+    /// run per record).
+    #[arg(long, required = true)]
+    data: Vec<PathBuf>,
     /// Ground-calibration file (JSON); without it nothing is compensated.
     #[arg(long)]
     calib: Option<PathBuf>,
@@ -233,9 +254,17 @@ struct FitArgs {
     /// Windowed signals, comma-separated (accelerometer axes or extra columns).
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
     window_signals: Vec<String>,
-    /// Training/validation split: blocked (honest) or interleaved (the paper's).
+    /// Training/validation split within each record: blocked (honest) or
+    /// interleaved (the paper's); or by-record, with --validate-on.
     #[arg(long, default_value = "blocked")]
     split: String,
+    /// With --split by-record: the --data record that only validates (the others only train).
+    #[arg(long = "validate-on")]
+    validate_on: Option<PathBuf>,
+    /// `records`: also validate each record, whole, by a model fitted on the
+    /// others (leave one record out); needs two or more --data.
+    #[arg(long, value_parser = ["records"])]
+    cv: Option<String>,
     /// Fraction of the rows that train in a blocked split.
     #[arg(long = "train-fraction", default_value_t = 0.5, value_parser = parse_fraction, allow_hyphen_values = true)]
     train_fraction: f64,
@@ -567,6 +596,47 @@ fn run(cli: Cli) -> Result<()> {
             print_residues(&summary.residues);
             println!("report: {}", summary.index.display());
         }
+        Command::Check {
+            model,
+            data,
+            outside_threshold,
+            json,
+            report,
+        } => {
+            if let Some(dir) = &report {
+                outfile::guard_dir(
+                    "--report",
+                    dir,
+                    &["index.html"],
+                    &[("--model", Some(&model)), ("--data", Some(&data))],
+                )?;
+            }
+            let m = CompensationModel::load(&model)?;
+            let record = Record::read_csv(&data)?;
+            progress.say("applying the model");
+            let c = dtg_vib::check::check(&m, &record, outside_threshold)?;
+            let page = match &report {
+                Some(dir) => {
+                    progress.say("drawing figures");
+                    let applied = Applied::new(&m, &record)?;
+                    let name = data.display().to_string();
+                    Some(write_report(&m, &applied, &record, &name, None, dir)?.index)
+                }
+                None => None,
+            };
+            progress.clear();
+            if json {
+                println!("{}", serde_json::to_string(&c)?);
+            } else {
+                print_check(&c);
+                if let Some(p) = page {
+                    println!("report: {}", p.display());
+                }
+            }
+            if let Some(w) = &c.warning {
+                eprintln!("warning: {w}");
+            }
+        }
         Command::Diagnose {
             model,
             data,
@@ -659,12 +729,36 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         .iter()
         .map(|s| s.parse::<ChannelEffect>())
         .collect::<Result<Vec<_>, _>>()?;
-    let split = match dtg_vib::split::parse(&a.split)? {
-        SplitKind::Blocked { .. } => SplitKind::Blocked {
+    let by_record = a.split.trim() == "by-record";
+    let split = match by_record {
+        true => SplitKind::Blocked {
             train_fraction: a.train_fraction,
         },
-        other => other,
+        false => match dtg_vib::split::parse(&a.split).map_err(|_| {
+            anyhow::anyhow!(
+                "--split {}: use blocked, interleaved or by-record (with --validate-on)",
+                a.split
+            )
+        })? {
+            SplitKind::Blocked { .. } => SplitKind::Blocked {
+                train_fraction: a.train_fraction,
+            },
+            other => other,
+        },
     };
+    let validate_on = match (by_record, &a.validate_on) {
+        (true, Some(v)) => Some(record_name(&a.data, v)?),
+        (true, None) => anyhow::bail!(
+            "--split by-record: say which record validates with --validate-on (one of the --data files)"
+        ),
+        (false, Some(v)) => {
+            anyhow::bail!("--validate-on {}: only with --split by-record", v.display())
+        }
+        (false, None) => None,
+    };
+    if a.cv.is_some() && a.data.len() < 2 {
+        anyhow::bail!("--cv records: leaving one record out needs two or more --data records");
+    }
     let filter = (!a.no_filter).then_some(FilterSpec {
         order: a.filter_order,
         cutoff_hz: a.cutoff,
@@ -698,9 +792,53 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         candidates: a.candidates,
         ridge: a.ridge,
         split,
+        validate_on,
         seed: a.seed,
         ..FitOptions::default()
     })
+}
+
+/// The name of the --data record that `path` names (the same file), for
+/// `--validate-on`.
+fn record_name(data: &[PathBuf], path: &std::path::Path) -> Result<String> {
+    let canonical = |p: &std::path::Path| std::fs::canonicalize(p).ok();
+    let same =
+        |d: &PathBuf| d == path || (canonical(d).is_some() && canonical(d) == canonical(path));
+    match data.iter().find(|d| same(d)) {
+        Some(d) if data.len() > 1 => Ok(d.display().to_string()),
+        Some(_) => anyhow::bail!(
+            "--split by-record: one --data record cannot both train and validate; give two or more"
+        ),
+        None => anyhow::bail!(
+            "--validate-on {}: not one of the --data records ({}); name one of them",
+            path.display(),
+            data.iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// The --data and --calib inputs, for the guards that keep outputs off them.
+fn fit_inputs(a: &FitArgs) -> Vec<(&'static str, Option<&std::path::Path>)> {
+    a.data
+        .iter()
+        .map(|d| ("--data", Some(d.as_path())))
+        .chain([("--calib", a.calib.as_deref())])
+        .collect()
+}
+
+/// Reads every --data record, checking the rate-dependent flags against each.
+fn read_records(a: &FitArgs) -> Result<Vec<(String, Record)>> {
+    a.data
+        .iter()
+        .map(|d| {
+            let r = Record::read_csv(d)?;
+            check_against_record(a, &r)?;
+            Ok((d.display().to_string(), r))
+        })
+        .collect()
 }
 
 /// The flags that depend on the record's rate, said with the flag.
@@ -718,19 +856,15 @@ fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
 }
 
 fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
-    outfile::guard_file(
-        "--out",
-        &a.out,
-        &[("--data", Some(&a.data)), ("--calib", a.calib.as_deref())],
-    )?;
+    outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
     let options = fit_options(&a)?;
-    let record = Record::read_csv(&a.data)?;
-    check_against_record(&a, &record)?;
+    let records = read_records(&a)?;
     let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let start = std::time::Instant::now();
-    let model = fit(
-        &record,
+    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
+    let (model, prepared) = fit_records(
+        &named,
         calibration.as_ref(),
         &options,
         &|stage| match stage {
@@ -741,6 +875,18 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
             }
         },
     )?;
+    let per_record = match a.cv.is_some() {
+        true => {
+            progress.say("leaving one record out");
+            Some(dtg_vib::fit::leave_one_record_out(
+                &prepared,
+                calibration.as_ref(),
+                &options,
+            )?)
+        }
+        false if records.len() > 1 => Some(dtg_vib::fit::record_scores(&model, &prepared)?),
+        false => None,
+    };
     let fit_seconds = start.elapsed().as_secs_f64();
     let n_train = model.channels()[0].scores().n_train;
     let stride = dtg_vib::fit::selection_stride(n_train);
@@ -753,15 +899,45 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
     model.save(&a.out)?;
     progress.clear();
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string(&FitReport::new(&model, fit_seconds))?
-        );
+        let mut report = FitReport::new(&model, fit_seconds);
+        if let Some(per) = &per_record {
+            for (c, r) in report.channels.iter_mut().zip(per) {
+                c.records = Some(r.clone());
+            }
+            report.cv = a.cv.clone();
+        }
+        println!("{}", serde_json::to_string(&report)?);
     } else {
         print_fit(&model);
+        if let Some(per) = &per_record {
+            print_record_scores(per, a.cv.is_some());
+        }
         println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
     }
     Ok(())
+}
+
+/// Validation rms of each channel on each record.
+fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
+    println!(
+        "validation rms per record, deg/h ({}):",
+        if loro {
+            "each record validated by a model fitted on the others"
+        } else {
+            "each record's validation rows"
+        }
+    );
+    for (k, scores) in per.iter().enumerate() {
+        let cells: Vec<String> = scores
+            .iter()
+            .map(|s| format!("{} {:.4}", s.file, s.val_rms))
+            .collect();
+        println!(
+            "{:>7}  {}",
+            nav_sensors::geometry::Channel::ALL[k].name(),
+            cells.join(", ")
+        );
+    }
 }
 
 fn print_fit(model: &CompensationModel) {
@@ -806,6 +982,9 @@ struct FitReport {
     channels: Vec<ChannelReport>,
     split: String,
     fit_seconds: f64,
+    /// `records` with `--cv records`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cv: Option<String>,
 }
 
 #[derive(serde::Serialize)]
@@ -820,6 +999,9 @@ struct ChannelReport {
     width: f64,
     bias: f64,
     effect_coefficients: std::collections::BTreeMap<String, CoefficientReport>,
+    /// Validation rms per record, with several records.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    records: Option<Vec<dtg_vib::fit::RecordScore>>,
 }
 
 #[derive(serde::Serialize)]
@@ -869,35 +1051,36 @@ impl FitReport {
                     width: c.width(),
                     bias: c.bias(),
                     effect_coefficients,
+                    records: None,
                 }
             })
             .collect();
+        let split = match model.validated_on() {
+            Some(name) => format!("by record (validated on {name})"),
+            None => model.split().to_string(),
+        };
         Self {
             channels,
-            split: model.split().to_string(),
+            split,
             fit_seconds,
+            cv: None,
         }
     }
 }
 
 fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
     let f = &a.fit;
-    outfile::guard_file(
-        "--out",
-        &f.out,
-        &[("--data", Some(&f.data)), ("--calib", f.calib.as_deref())],
-    )?;
+    outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
     if let Some(dir) = &a.report {
-        outfile::guard_dir(
-            "--report",
-            dir,
-            &["index.html"],
-            &[("--data", Some(&f.data)), ("--calib", f.calib.as_deref())],
-        )?;
+        outfile::guard_dir("--report", dir, &["index.html"], &fit_inputs(f))?;
+    }
+    if f.data.len() > 1 || f.cv.is_some() || f.validate_on.is_some() {
+        anyhow::bail!(
+            "explain works on one --data record; to use several, fit them together (dtg-vib fit --data A --data B) and diagnose each"
+        );
     }
     let options = fit_options(f)?;
-    let record = Record::read_csv(&f.data)?;
-    check_against_record(f, &record)?;
+    let (_, record) = read_records(f)?.remove(0);
     let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
@@ -1149,8 +1332,50 @@ fn parse_latitude(s: &str) -> Result<f64, String> {
     }
 }
 
+fn print_check(c: &dtg_vib::check::TransferCheck) {
+    let cell = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
+    println!(
+        "channel  rms before  rms after  mean after  fit %   inside  outside   (deg/h; before: about the record's mean)"
+    );
+    for ch in &c.channels {
+        println!(
+            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>5.1}  {:>7}  {:>7}",
+            ch.channel.name(),
+            ch.rms_before,
+            ch.rms_after,
+            ch.mean_after,
+            ch.fit_percent,
+            cell(ch.rms_inside),
+            cell(ch.rms_outside)
+        );
+    }
+    match c.outside_fraction {
+        Some(f) => println!(
+            "windows outside the training range: {:.1}% of {} (median distance {:.2} × the training points' own 99th-percentile spacing)",
+            100.0 * f,
+            c.windows,
+            c.median_relative_distance.unwrap_or(f64::NAN)
+        ),
+        None => {
+            println!("windows outside the training range: unknown (model without operating points)")
+        }
+    }
+    print_residues_on(&c.residues, "every row");
+}
+
+fn parse_share(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("{s:?} is not a share between 0 and 1 (e.g. 0.05)")),
+    }
+}
+
 fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {
-    println!("residue  rms before  rms after  (deg/h, validation rows)  reduction");
+    print_residues_on(stats, "validation rows");
+}
+
+fn print_residues_on(stats: &[dtg_vib::residue::ResidueStats], rows: &str) {
+    println!("residue  rms before  rms after  (deg/h, {rows:<15})  reduction");
     for s in stats {
         println!(
             "{:>7}  {:>10.4}  {:>9.4}  {:>35.2}×",

@@ -186,6 +186,9 @@ impl Default for Preprocess {
 #[derive(Debug, Clone)]
 pub struct Prepared {
     calibrated: Record,
+    /// The records of a multi-record preparation, each calibrated and
+    /// untrimmed, with their rows; empty for one record.
+    parts: Vec<Part>,
     filter: Option<LowPass>,
     causal: bool,
     /// Filtered gyro outputs minus the rate reference, deg/h, full length.
@@ -236,11 +239,148 @@ impl Prepared {
         let windows = pre.window.build(&refs)?;
         Ok(Self {
             calibrated,
+            parts: Vec::new(),
             filter,
             causal,
             targets,
             windows,
         })
+    }
+
+    /// Several records prepared one by one (calibration, filter and windows
+    /// never cross from one record to the next) and laid end to end, named
+    /// (by their file, say) for errors and per-record scores.
+    ///
+    /// Row `r` is still sample `first_sample() + r` of [`Prepared::calibrated`],
+    /// which holds the records one after another with each later record's
+    /// warm-up (the samples before its first full window) left out and its
+    /// time restamped to continue the first record's. The records must share
+    /// their sampling interval and their extra columns. One record gives
+    /// exactly [`Prepared::new`].
+    pub fn new_many(
+        records: &[(String, &Record)],
+        calibration: Option<&Calibration>,
+        pre: &Preprocess,
+    ) -> Result<Self, DtgVibError> {
+        let Some(((first_name, first_record), rest)) = records.split_first() else {
+            return Err(DtgVibError::NoRecords);
+        };
+        if rest.is_empty() {
+            return Self::new(first_record, calibration, pre);
+        }
+        let mut names: Vec<&str> = first_record.extra_names();
+        names.sort_unstable();
+        for (name, r) in rest {
+            let dt = (first_record.dt(), r.dt());
+            if (dt.0 - dt.1).abs() > 1e-9 * dt.0 {
+                return Err(DtgVibError::RecordsDiffer {
+                    first: first_name.clone(),
+                    other: name.clone(),
+                    what: format!("sampling interval {} s against {} s", dt.0, dt.1),
+                });
+            }
+            let mut other: Vec<&str> = r.extra_names();
+            other.sort_unstable();
+            if other != names {
+                return Err(DtgVibError::RecordsDiffer {
+                    first: first_name.clone(),
+                    other: name.clone(),
+                    what: format!(
+                        "extra columns [{}] against [{}]",
+                        names.join(", "),
+                        other.join(", ")
+                    ),
+                });
+            }
+        }
+        let prepared = records
+            .iter()
+            .map(|(name, r)| {
+                Self::new(r, calibration, pre).map_err(|e| DtgVibError::InRecord {
+                    record: name.clone(),
+                    source: Box::new(e),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let first = prepared[0].first_sample();
+        let trim = |k: usize| if k == 0 { 0 } else { first };
+        let mut parts = Vec::with_capacity(prepared.len());
+        let mut row = 0;
+        for (p, (name, _)) in prepared.iter().zip(records) {
+            let rows = p.rows();
+            parts.push(Part {
+                name: name.clone(),
+                calibrated: p.calibrated.clone(),
+                rows: row..row + rows,
+            });
+            row += rows;
+        }
+        let cat = |f: &dyn Fn(&Prepared) -> &[f64]| -> Vec<f64> {
+            prepared
+                .iter()
+                .enumerate()
+                .flat_map(|(k, p)| f(p)[trim(k)..].iter().copied())
+                .collect()
+        };
+        let targets: [Vec<f64>; 6] = std::array::from_fn(|k| cat(&|p| &p.targets[k]));
+        let calibrated = concat_records(&prepared, first)?;
+        let windows = Windows::concat(
+            &prepared
+                .iter()
+                .map(|p| p.windows.clone())
+                .collect::<Vec<_>>(),
+        );
+        let head = prepared.into_iter().next().expect("two or more records");
+        Ok(Self {
+            calibrated,
+            parts,
+            filter: head.filter,
+            causal: head.causal,
+            targets,
+            windows,
+        })
+    }
+
+    /// The records and their rows: one entry per record of
+    /// [`Prepared::new_many`], and one named `""` for [`Prepared::new`].
+    pub fn record_rows(&self) -> Vec<(&str, std::ops::Range<usize>)> {
+        if self.parts.is_empty() {
+            return vec![("", 0..self.rows())];
+        }
+        self.parts
+            .iter()
+            .map(|p| (p.name.as_str(), p.rows.clone()))
+            .collect()
+    }
+
+    /// The record (calibrated, whole) a row belongs to, and the sample of
+    /// that record its window ends at: a window's span `sample + 1 −
+    /// length ..= sample` then lies inside one record.
+    pub fn locate(&self, row: usize) -> (&Record, usize) {
+        let first = self.first_sample();
+        match self.parts.iter().find(|p| p.rows.contains(&row)) {
+            Some(p) => (&p.calibrated, first + row - p.rows.start),
+            None => (&self.calibrated, first + row),
+        }
+    }
+
+    /// A per-record series over the full (concatenated) sample range:
+    /// computed on each record alone, filtered on it alone, warm-up of each
+    /// later record left out.
+    fn per_record(
+        &self,
+        f: impl Fn(&Record) -> Result<Vec<f64>, DtgVibError>,
+    ) -> Result<Vec<f64>, DtgVibError> {
+        let first = self.first_sample();
+        let mut out = Vec::with_capacity(self.calibrated.len());
+        for (k, p) in self.parts.iter().enumerate() {
+            let v = f(&p.calibrated).map_err(|e| DtgVibError::InRecord {
+                record: p.name.clone(),
+                source: Box::new(e),
+            })?;
+            out.extend(v.into_iter().skip(if k == 0 { 0 } else { first }));
+        }
+        Ok(out)
     }
 
     /// The calibrated (not filtered) record.
@@ -285,15 +425,41 @@ impl Prepared {
         channel: Channel,
         effects: &[Effect],
     ) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        if self.parts.is_empty() {
+            return self.effect_columns_on(&self.calibrated, channel, effects);
+        }
+        let first = self.first_sample();
+        let mut out = vec![Vec::with_capacity(self.calibrated.len()); effects.len()];
+        for (k, p) in self.parts.iter().enumerate() {
+            let cols = self
+                .effect_columns_on(&p.calibrated, channel, effects)
+                .map_err(|e| DtgVibError::InRecord {
+                    record: p.name.clone(),
+                    source: Box::new(e),
+                })?;
+            for (o, c) in out.iter_mut().zip(cols) {
+                o.extend(c.into_iter().skip(if k == 0 { 0 } else { first }));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The filtered effect columns of one record.
+    fn effect_columns_on(
+        &self,
+        record: &Record,
+        channel: Channel,
+        effects: &[Effect],
+    ) -> Result<Vec<Vec<f64>>, DtgVibError> {
         // Regressors first, filter second: the gyro saw D·a_I·a_S, and the
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.
-        let cols = EffectColumns::new(&self.calibrated).evaluate(channel, effects)?;
+        let cols = EffectColumns::new(record).evaluate(channel, effects)?;
         for (e, c) in effects.iter().zip(&cols) {
             check_range(
                 || format!("channel {channel}'s effect {}", e.id()),
                 c,
-                self.calibrated.t(),
+                record.t(),
                 "the record's accelerations (g) or rates are too large for this effect's products: check their units, or drop the effect",
             )?;
         }
@@ -317,6 +483,9 @@ impl Prepared {
 
     /// A record signal (accelerometer axis or extra column), filtered, over the whole record.
     pub fn signal_full(&self, name: &str) -> Result<Vec<f64>, DtgVibError> {
+        if !self.parts.is_empty() {
+            return self.per_record(|r| apply(&self.filter, self.causal, signal(r, name)?));
+        }
         apply(&self.filter, self.causal, signal(&self.calibrated, name)?)
     }
 
@@ -358,6 +527,47 @@ impl Prepared {
             .find(|&k| h[half + k].abs() > 1e-3 * peak)
             .unwrap_or(0)
     }
+}
+
+/// One record of a multi-record preparation.
+#[derive(Debug, Clone)]
+struct Part {
+    name: String,
+    calibrated: Record,
+    rows: std::ops::Range<usize>,
+}
+
+/// The calibrated records laid end to end, each later one without its first
+/// `first` samples, time restamped on the first record's grid.
+fn concat_records(prepared: &[Prepared], first: usize) -> Result<Record, DtgVibError> {
+    let recs: Vec<&Record> = prepared.iter().map(|p| &p.calibrated).collect();
+    let skip = |k: usize| if k == 0 { 0 } else { first };
+    let cat = |f: &dyn Fn(&Record) -> &[f64]| -> Vec<f64> {
+        recs.iter()
+            .enumerate()
+            .flat_map(|(k, r)| f(r)[skip(k)..].iter().copied())
+            .collect()
+    };
+    let (t0, dt) = (recs[0].t()[0], recs[0].dt());
+    let n: usize = recs
+        .iter()
+        .enumerate()
+        .map(|(k, r)| r.len() - skip(k))
+        .sum();
+    let t: Vec<f64> = (0..n).map(|i| t0 + i as f64 * dt).collect();
+    let gyro = std::array::from_fn(|k| cat(&|r| r.gyro(Channel::ALL[k])));
+    let accel = std::array::from_fn(|k| cat(&|r| r.accel(Axis::ALL[k])));
+    let extra = recs[0]
+        .extra_names()
+        .into_iter()
+        .map(|name| {
+            (
+                name.to_string(),
+                cat(&|r| r.extra(name).expect("names checked")),
+            )
+        })
+        .collect();
+    Ok(Record::new(t, gyro, accel, extra)?)
 }
 
 /// The record's values are within ±1e150 (the reader refuses more), but a

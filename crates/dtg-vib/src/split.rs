@@ -78,12 +78,53 @@ pub fn leakage_gap(prepared: &Prepared) -> usize {
     prepared.first_sample() + prepared.filter_memory()
 }
 
-/// Training and validation rows of prepared data.
+/// Training and validation rows of prepared data: the split applied within
+/// each record of a multi-record preparation, so every record trains and
+/// validates and no side reaches across a record's boundary.
 pub fn split_rows(
     prepared: &Prepared,
     split: SplitKind,
 ) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
-    rows(split, prepared.rows(), leakage_gap(prepared))
+    let gap = leakage_gap(prepared);
+    let parts = prepared.record_rows();
+    if parts.len() == 1 {
+        return rows(split, prepared.rows(), gap);
+    }
+    let (mut train, mut val) = (Vec::new(), Vec::new());
+    for (name, range) in parts {
+        let (t, v) = rows(split, range.len(), gap).map_err(|e| DtgVibError::InRecord {
+            record: name.to_string(),
+            source: Box::new(e),
+        })?;
+        train.extend(t.into_iter().map(|r| r + range.start));
+        val.extend(v.into_iter().map(|r| r + range.start));
+    }
+    Ok((train, val))
+}
+
+/// Training rows of every record but `name`, validation rows of `name`
+/// (`--split by-record --validate-on NAME`): the question "does a model of
+/// these tests hold on that one?".
+pub fn by_record_rows(
+    prepared: &Prepared,
+    name: &str,
+) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+    let parts = prepared.record_rows();
+    if !parts.iter().any(|(n, _)| *n == name) || parts.len() < 2 {
+        return Err(DtgVibError::UnknownRecord {
+            flag: "--validate-on",
+            name: name.to_string(),
+            known: parts.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+        });
+    }
+    let (mut train, mut val) = (Vec::new(), Vec::new());
+    for (n, range) in parts {
+        if n == name { &mut val } else { &mut train }.extend(range);
+    }
+    if train.len() < MIN_ROWS || val.len() < MIN_ROWS {
+        return Err(too_few(train.len(), val.len()));
+    }
+    Ok((train, val))
 }
 
 /// Parses `--split`: `blocked` or `interleaved`.

@@ -164,6 +164,33 @@ impl Windows {
     pub fn as_slice(&self) -> &[f64] {
         &self.data
     }
+
+    /// The windows of several records of the same spec, one after another:
+    /// row `i` of the result is sample `first_sample() + i` of the records
+    /// laid end to end with each later record's first `first_sample()`
+    /// samples (its warm-up, which has no window) left out.
+    ///
+    /// ```
+    /// use dtg_vib::window::{WindowSpec, Windows};
+    /// let spec = WindowSpec::new(vec!["az".into()], 2).unwrap();
+    /// let a = spec.build(&[&[1.0, 2.0, 3.0]]).unwrap();
+    /// let b = spec.build(&[&[7.0, 8.0]]).unwrap();
+    /// let ab = Windows::concat(&[a, b]);
+    /// assert_eq!((ab.len(), ab.row(2)), (3, &[7.0, 8.0][..]));
+    /// ```
+    #[track_caller]
+    pub fn concat(parts: &[Windows]) -> Windows {
+        let (dim, first) = (parts[0].dim, parts[0].first);
+        assert!(
+            parts.iter().all(|w| w.dim == dim && w.first == first),
+            "windows of one spec"
+        );
+        Windows {
+            data: parts.iter().flat_map(|w| w.data.iter().copied()).collect(),
+            dim,
+            first,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -163,6 +163,16 @@ pub struct CompensationModel {
     /// How the networks were chosen (absent in older files: the defaults).
     #[serde(default)]
     pub(crate) fit: FitSettings,
+    /// The records fitted together, when there were several.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub(crate) records: Vec<String>,
+    /// Of several records, the one that only validated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) validated_on: Option<String>,
+    /// Where the training windows sat (absent in older files: `check` then
+    /// cannot say what is outside).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) operating_points: Option<crate::operating::OperatingPoints>,
 }
 
 /// Relative tolerance on a record's sample interval against the model's.
@@ -273,6 +283,21 @@ impl CompensationModel {
             out[c.channel.index()] = c.predict(prepared, &w)?;
         }
         Ok(out)
+    }
+
+    /// Of several records, the one that only validated (`--validate-on`).
+    pub fn validated_on(&self) -> Option<&str> {
+        self.validated_on.as_deref()
+    }
+
+    /// Where the training windows sat, for `check`'s extrapolation measure.
+    pub fn operating_points(&self) -> Option<&crate::operating::OperatingPoints> {
+        self.operating_points.as_ref()
+    }
+
+    /// The records fitted together (empty for a model of one record).
+    pub fn records(&self) -> &[String] {
+        &self.records
     }
 
     /// Training and validation rows of prepared data, as at fit time.

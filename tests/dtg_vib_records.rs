@@ -1,0 +1,308 @@
+//! Several records in one fit, and a model checked on a record it was not
+//! fitted on (data simulated here from fixed seeds).
+
+use dtg_vib::check::{DEFAULT_OUTSIDE_THRESHOLD, check};
+use dtg_vib::fit::{FitOptions, fit, fit_records, record_scores};
+use dtg_vib::pipeline::{Prepared, Preprocess};
+use nav_sensors::geometry::Channel;
+use nav_sensors::record::Record;
+use nav_sensors::sim::{Scenario, simulate};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+/// The paper's Z-axis random test (100 s) from `seed`.
+fn z_test(seed: u64) -> nav_sensors::sim::Simulation {
+    simulate(&Scenario {
+        seed,
+        ..Scenario::paper_z_random()
+    })
+    .unwrap()
+}
+
+/// A test whose vibration runs along all three axes.
+fn triaxial(seed: u64) -> nav_sensors::sim::Simulation {
+    simulate(&Scenario {
+        duration_s: 60.0,
+        seed,
+        ..Scenario::triaxial_clean()
+    })
+    .unwrap()
+}
+
+#[test]
+fn records_are_prepared_alone_and_laid_end_to_end() {
+    let (a, b) = (z_test(11).record, z_test(12).record);
+    let pre = Preprocess::default();
+    let pa = Prepared::new(&a, None, &pre).unwrap();
+    let pb = Prepared::new(&b, None, &pre).unwrap();
+    let named = [("a".to_string(), &a), ("b".to_string(), &b)];
+    let ab = Prepared::new_many(&named, None, &pre).unwrap();
+    assert_eq!(ab.rows(), pa.rows() + pb.rows());
+    let rows = ab.record_rows();
+    assert_eq!(rows[1], ("b", pa.rows()..pa.rows() + pb.rows()));
+    // B's rows are B prepared alone: its filter never saw A's samples.
+    let n = pa.rows();
+    for ch in Channel::ALL {
+        assert_eq!(&ab.target(ch)[n..], pb.target(ch), "{ch}");
+        assert_eq!(&ab.target(ch)[..n], pa.target(ch), "{ch}");
+    }
+    assert_eq!(ab.windows().row(n), pb.windows().row(0));
+    let az = ab.signal_full("az").unwrap();
+    let first = ab.first_sample();
+    assert_eq!(&az[first + n..], &pb.signal_full("az").unwrap()[first..]);
+    let effects = [dtg_vib::effects::Effect::parse_list("gg_IS").unwrap()[0].clone()];
+    let col = ab.effect_columns_full(Channel::Y1, &effects).unwrap();
+    let alone = pb.effect_columns_full(Channel::Y1, &effects).unwrap();
+    assert_eq!(&col[0][first + n..], &alone[0][first..]);
+}
+
+#[test]
+fn records_that_differ_are_refused_with_both_names() {
+    let a = z_test(11).record;
+    let mut cols = vec![];
+    let b = Record::new(
+        a.t().to_vec(),
+        std::array::from_fn(|k| a.gyro(Channel::ALL[k]).to_vec()),
+        std::array::from_fn(|k| a.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec()),
+        {
+            cols.push(("pressure_hpa".to_string(), vec![1013.0; a.len()]));
+            cols
+        },
+    )
+    .unwrap();
+    let named = [("a.csv".to_string(), &a), ("b.csv".to_string(), &b)];
+    let Err(err) = Prepared::new_many(&named, None, &Preprocess::default()) else {
+        panic!("records with other extra columns were prepared together");
+    };
+    let msg = err.to_string();
+    assert!(
+        msg.contains("a.csv") && msg.contains("b.csv") && msg.contains("extra columns"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn one_record_through_fit_records_is_fit() {
+    let sim = z_test(11);
+    let options = FitOptions::default();
+    let one = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    let named = [("a".to_string(), &sim.record)];
+    let (many, _) = fit_records(&named, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    assert_eq!(one, many);
+}
+
+#[test]
+fn each_record_validates_and_a_model_warns_outside_its_training_range() {
+    let (a, b) = (z_test(21), z_test(22));
+    let options = FitOptions::default();
+    let named = [("a".to_string(), &a.record), ("b".to_string(), &b.record)];
+    let (model, prepared) = fit_records(&named, Some(&a.calibration), &options, &|_| {}).unwrap();
+    assert_eq!(model.records(), ["a", "b"]);
+    let per = record_scores(&model, &prepared).unwrap();
+    for (k, scores) in per.iter().enumerate() {
+        let files: Vec<&str> = scores.iter().map(|s| s.file.as_str()).collect();
+        assert_eq!(files, ["a", "b"]);
+        // Same profile, same sensor: each record's rms near the pooled one.
+        let pooled = model.channels()[k].scores().val_rms;
+        for s in scores {
+            assert!((s.val_rms / pooled - 1.0).abs() < 0.3, "{s:?} vs {pooled}");
+        }
+    }
+    // Another run of the same test lies inside the training range of a
+    // model of one run …
+    let model = fit(&a.record, Some(&a.calibration), &options, &|_| {}).unwrap();
+    let same = check(&model, &z_test(23).record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
+    let inside = same.outside_fraction.unwrap();
+    assert!(inside < DEFAULT_OUTSIDE_THRESHOLD, "{inside}");
+    assert!(same.warning.is_none(), "{:?}", same.warning);
+    for c in &same.channels {
+        // The run's turn-on bias differs (mean_after); the vibration-induced
+        // part falls.
+        let varying = (c.rms_after.powi(2) - c.mean_after.powi(2)).sqrt();
+        assert!(varying < 0.8 * c.rms_before, "{c:?}");
+    }
+    // … a test that shakes along every axis does not, and is said to.
+    let other = check(&model, &triaxial(24).record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
+    let outside = other.outside_fraction.unwrap();
+    assert!(outside > 0.5, "{outside}");
+    assert!(other.warning.as_deref().unwrap().contains("outside"));
+}
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
+}
+
+fn dir() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("dtg-vib-records-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        for (name, seed) in [("a", 31), ("b", 32)] {
+            z_test(seed).write_dir(d.join(name)).unwrap();
+        }
+        d
+    })
+}
+
+fn dtg(args: &[&str]) -> std::process::Output {
+    bin().args(args).arg("--quiet").output().unwrap()
+}
+
+#[test]
+fn the_command_line_fits_several_records_and_names_them_in_json() {
+    let d = dir();
+    let (a, b) = (d.join("a/record.csv"), d.join("b/record.csv"));
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let model = d.join("ab.json");
+    let model = model.to_str().unwrap();
+    let json = |args: &[&str]| -> serde_json::Value {
+        let out = dtg(args);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let v = json(&[
+        "fit",
+        "--data",
+        a,
+        "--data",
+        b,
+        "--out",
+        model,
+        "--json",
+        "--max-centers",
+        "20",
+    ]);
+    let files = |v: &serde_json::Value| -> Vec<String> {
+        v["channels"][0]["records"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| {
+                assert!(r["val_rms"].as_f64().unwrap() > 0.0);
+                r["file"].as_str().unwrap().to_string()
+            })
+            .collect()
+    };
+    assert_eq!(files(&v), [a, b]);
+    let v = json(&[
+        "fit",
+        "--data",
+        a,
+        "--data",
+        b,
+        "--split",
+        "by-record",
+        "--validate-on",
+        b,
+        "--out",
+        model,
+        "--json",
+        "--max-centers",
+        "20",
+    ]);
+    assert_eq!(files(&v), [b]);
+    assert!(v["split"].as_str().unwrap().contains("by record"));
+    let v = json(&[
+        "fit",
+        "--data",
+        a,
+        "--data",
+        b,
+        "--cv",
+        "records",
+        "--out",
+        model,
+        "--json",
+        "--max-centers",
+        "20",
+    ]);
+    assert_eq!(files(&v), [a, b]);
+    assert_eq!(v["cv"], "records");
+    // check: the contract keys.
+    let v = json(&["check", "--model", model, "--data", a, "--json"]);
+    for key in [
+        "channel",
+        "rms_before",
+        "rms_after",
+        "fit_percent",
+        "rms_inside",
+        "rms_outside",
+    ] {
+        assert!(v["channels"][0].get(key).is_some(), "{key}");
+    }
+    assert!(v["outside_fraction"].as_f64().is_some());
+    assert!(v.get("warning").is_some());
+}
+
+#[test]
+fn bad_record_flags_say_what_to_do() {
+    let d = dir();
+    let (a, b) = (d.join("a/record.csv"), d.join("b/record.csv"));
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let refuses = |args: &[&str], want: &str| {
+        let out = dtg(args);
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    };
+    refuses(
+        &[
+            "fit",
+            "--data",
+            a,
+            "--data",
+            b,
+            "--split",
+            "by-record",
+            "--out",
+            "/dev/null",
+        ],
+        "--validate-on",
+    );
+    refuses(
+        &[
+            "fit",
+            "--data",
+            a,
+            "--data",
+            b,
+            "--split",
+            "by-record",
+            "--validate-on",
+            "c.csv",
+            "--out",
+            "/dev/null",
+        ],
+        "not one of the --data records",
+    );
+    refuses(
+        &["fit", "--data", a, "--validate-on", a, "--out", "/dev/null"],
+        "only with --split by-record",
+    );
+    refuses(
+        &["fit", "--data", a, "--cv", "records", "--out", "/dev/null"],
+        "two or more",
+    );
+    refuses(
+        &["check", "--model", "missing.json", "--data", a],
+        "missing.json",
+    );
+    refuses(
+        &[
+            "check",
+            "--model",
+            "m.json",
+            "--data",
+            a,
+            "--outside-threshold",
+            "2",
+        ],
+        "between 0 and 1",
+    );
+}
