@@ -1351,10 +1351,11 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
     }
     match c.outside_fraction {
         Some(f) => println!(
-            "windows outside the training range: {:.1}% of {} (median distance {:.2} × the training points' own 99th-percentile spacing)",
+            "windows outside the training range: {:.1}% of {} (median distance to the training points {:.2} × the reference, outside above {})",
             100.0 * f,
             c.windows,
-            c.median_relative_distance.unwrap_or(f64::NAN)
+            c.median_relative_distance.unwrap_or(f64::NAN),
+            dtg_vib::operating::OUTSIDE_FACTOR
         ),
         None => {
             println!("windows outside the training range: unknown (model without operating points)")
