@@ -1,5 +1,6 @@
 //! On-line DTG vibration-error compensation, one output period per step, in
-//! bounded time and memory: no standard library, no heap.
+//! bounded time and memory: no standard library, no heap. It does not fit
+//! or choose anything: it evaluates what `dtg-vib export` wrote.
 //!
 //! A model fitted by `dtg-vib fit --causal` is exported as flat tables (the
 //! versioned byte layout of docs/formats.md, "Onboard tables"). [`Model`]

@@ -2,7 +2,8 @@
 //! `rbf` library's design matrices and the `dtg-onboard` evaluator, so that
 //! a model evaluated on the desktop and onboard gives the same bits. It is
 //! `no_std` with no dependencies; the pure-Rust `libm` `exp` took 44% of an
-//! onboard step, and `f64::exp` needs std.
+//! onboard step, and `f64::exp` needs std. It is not a general `exp`
+//! (positive arguments are out of its contract).
 //!
 //! ```
 //! assert_eq!(fastexp::exp_neg(0.0), 1.0);

@@ -1,6 +1,7 @@
 //! Skewed DTG geometry and parity residues, IEEE-style DTG (Std 813) and
 //! accelerometer (Std 1293) error models, a vibration environment, and a
 //! vibration-test simulator with its record, calibration and truth files.
+//! It fits no model (that is `rbf` and `dtg-vib`) and knows no RBF.
 //!
 //! Layers, bottom up:
 //! - [`geometry`]: channels, frames, eqs. 1–6 of Malini, Mohanlal & Harikumar, FDI;

@@ -1,4 +1,5 @@
-//! Output files that never destroy an input.
+//! Output files that never destroy an input. It is not a format writer:
+//! callers bring the bytes (CSV, JSON, SVG, PNG).
 //!
 //! This crate is the one place where the workspace's tools put a file on disk:
 //! every output is written to a temporary file in the target's directory,

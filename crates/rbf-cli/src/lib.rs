@@ -1,4 +1,5 @@
-//! The reusable half of the `rbf` command line.
+//! The reusable half of the `rbf` command line: generic data in CSV, no
+//! gyros (the DTG application is `dtg-vib`), no numerics of its own (`rbf`).
 //!
 //! The binary (`src/main.rs`) only parses flags, reads files, calls the `rbf` library
 //! and prints. What it needs beyond that lives here, one idea per module:

@@ -2,7 +2,8 @@
 //!
 //! The network of the seed paper's eqs. 7–8, f(x) = λ0 + Σᵢ λᵢ φ(‖x − cᵢ‖) with the
 //! Gaussian φ(v) = exp(−v²/β²), plus six other kernels, an optional linear polynomial
-//! tail and exogenous linear regressors (a semi-parametric model).
+//! tail and exogenous linear regressors (a semi-parametric model). It knows
+//! nothing of gyros, sensors or files: matrices in, models and typed errors out.
 //!
 //! | concern | module | main items |
 //! |---|---|---|

@@ -1,4 +1,5 @@
 //! Numeric CSV tables whose every error says where: file, line and column.
+//! It is not a data-frame library: no types but text and `f64`, no joins.
 //!
 //! Both command lines of the workspace (`rbf` and `dtg-vib`) and the test-record
 //! format of `nav-sensors` read comma-separated files with a header row. This
