@@ -7,10 +7,10 @@ use dtg_vib::apply::{Applied, write_residues};
 use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
 use dtg_vib::effects::{ChannelEffect, Effect};
 use dtg_vib::explain::ExplainStage;
-use dtg_vib::figures::{Baseline, write_diagnosis_report, write_report};
 use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit};
 use dtg_vib::model::CompensationModel;
 use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
+use dtg_vib::report::{Baseline, write_diagnosis_report, write_report};
 use dtg_vib::split::SplitKind;
 use dtg_vib::window::WindowSpec;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -1024,7 +1024,7 @@ fn allan_command(
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            Some(dtg_vib::figures::write_allan_report(
+            Some(dtg_vib::report::write_allan_report(
                 &a,
                 &data.display().to_string(),
                 dir,

@@ -8,7 +8,7 @@ use super::Series;
 /// correlation test (±1.96/√N). Set with [`Panel::band`].
 ///
 /// ```
-/// use dtg_vib::report::{Band, Panel};
+/// use plot::{Band, Panel};
 /// let p = Panel::new("r", "lag (samples)", "r (–)").band(-0.028, "95 % band");
 /// assert_eq!(p.band_limit(), Some(0.028)); // a half-width: the sign is dropped
 /// let b = Band { limit: 0.028, label: "95 % band".into() };
@@ -26,7 +26,7 @@ pub struct Band {
 /// [`Panel::ref_line`].
 ///
 /// ```
-/// use dtg_vib::report::{Panel, RefLine};
+/// use plot::{Panel, RefLine};
 /// let p = Panel::psd("K0", "PSD (deg²/h²/Hz)").ref_line(4e-6, "noise floor");
 /// assert_eq!(p.ref_lines(), &[RefLine { y: 4e-6, label: "noise floor".into() }]);
 /// ```
@@ -49,7 +49,7 @@ pub struct RefLine {
 /// clamped, because a clamped point would look like data.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
 /// let az: Vec<f64> = t.iter().map(|t| 2.0 * (31.0 * t).sin()).collect();
@@ -61,7 +61,7 @@ pub struct RefLine {
 ///     .panel(Panel::new("Thrust acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
 /// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig3")?;
 /// assert!(files.png.exists() && files.svg.exists());
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Panel {
@@ -80,7 +80,7 @@ impl Panel {
     /// label: the report never guesses units.
     ///
     /// ```
-    /// use dtg_vib::report::Panel;
+    /// use plot::Panel;
     /// let p = Panel::new("Rate X", "time (s)", "rate (deg/h)");
     /// assert_eq!(p.title(), "Rate X");
     /// ```
@@ -106,7 +106,7 @@ impl Panel {
     /// log axis and is skipped with a warning.
     ///
     /// ```
-    /// use dtg_vib::report::{Panel, Series};
+    /// use plot::{Panel, Series};
     ///
     /// let f: Vec<f64> = (0..=1250).map(|k| k as f64 * 0.02).collect(); // 0..25 Hz
     /// let before: Vec<f64> = f.iter().map(|f| 1e-2 / (1.0 + f * f)).collect();
@@ -129,7 +129,7 @@ impl Panel {
     /// If `lags` and `r` differ in length.
     ///
     /// ```
-    /// use dtg_vib::report::Panel;
+    /// use plot::Panel;
     ///
     /// let n = 5000.0_f64;
     /// let lags: Vec<f64> = (0..=25).map(f64::from).collect();
@@ -154,7 +154,7 @@ impl Panel {
     /// Adds a series; it takes the next palette colour unless it has its own.
     ///
     /// ```
-    /// use dtg_vib::report::{Panel, Series};
+    /// use plot::{Panel, Series};
     /// let p = Panel::new("p", "t (s)", "y (g)").series(Series::sampled("a", 0.0, 1.0, vec![1.0]));
     /// assert_eq!(p.series_count(), 1);
     /// ```
@@ -166,7 +166,7 @@ impl Panel {
     /// Log scale (base 10) on x.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_x().is_log_x());
     /// ```
     pub fn log_x(mut self) -> Self {
@@ -177,7 +177,7 @@ impl Panel {
     /// Log scale (base 10) on y.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_y().is_log_y());
     /// ```
     pub fn log_y(mut self) -> Self {
@@ -190,7 +190,7 @@ impl Panel {
     /// fills from the bottom of the axis up to `limit`.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// let p = Panel::new("p", "lag (samples)", "r (–)").band(0.028, "95 % band");
     /// assert_eq!(p.band_limit(), Some(0.028));
     /// ```
@@ -205,7 +205,7 @@ impl Panel {
     /// A horizontal dashed reference line at `y` (noise floor, limit, …).
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// let p = Panel::psd("p", "PSD (g²/Hz)").ref_line(1e-6, "noise floor");
     /// assert_eq!(p.ref_lines()[0].y, 1e-6);
     /// ```
@@ -220,7 +220,7 @@ impl Panel {
     /// The panel title.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert_eq!(Panel::new("K5", "t (s)", "K5 (deg/h)").title(), "K5");
     /// ```
     pub fn title(&self) -> &str {
@@ -230,7 +230,7 @@ impl Panel {
     /// Number of series.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert_eq!(Panel::new("p", "t (s)", "y (g)").series_count(), 0);
     /// ```
     pub fn series_count(&self) -> usize {
@@ -240,7 +240,7 @@ impl Panel {
     /// Whether x is on a log scale.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(!Panel::new("p", "t (s)", "y (g)").is_log_x());
     /// ```
     pub fn is_log_x(&self) -> bool {
@@ -250,7 +250,7 @@ impl Panel {
     /// Whether y is on a log scale.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::psd("p", "PSD (g²/Hz)").is_log_y());
     /// ```
     pub fn is_log_y(&self) -> bool {
@@ -260,7 +260,7 @@ impl Panel {
     /// The band half-width, if a band is set.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert_eq!(Panel::new("p", "t (s)", "y (g)").band_limit(), None);
     /// ```
     pub fn band_limit(&self) -> Option<f64> {
@@ -270,7 +270,7 @@ impl Panel {
     /// The reference lines.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "t (s)", "y (g)").ref_lines().is_empty());
     /// ```
     pub fn ref_lines(&self) -> &[RefLine] {

@@ -40,7 +40,7 @@ struct Group {
 /// NaN values draw no bar and are labelled "n/a".
 ///
 /// ```
-/// use dtg_vib::report::{BarChart, Figure};
+/// use plot::{BarChart, Figure};
 ///
 /// // Per-channel rms before and after adding an effect.
 /// let channels = ["X", "X1", "Y", "Y1", "Z", "Z1"];
@@ -50,7 +50,7 @@ struct Group {
 /// let files = Figure::new("Adding gg_IS to Z").panel(chart)
 ///     .save(std::env::temp_dir().join("dtg-vib-doc"), "before_after_rms")?;
 /// assert!(files.warnings.is_empty());
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BarChart {
@@ -66,7 +66,7 @@ impl BarChart {
     /// `value_label` names the value axis, with its unit.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]);
     /// assert_eq!(c.categories(), &["K0", "K1"]);
     /// ```
@@ -88,7 +88,7 @@ impl BarChart {
     /// categories sorted by value, largest first (NaN last).
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::ranked("ERR of candidates, channel Z", "ERR (–)", "ERR",
     ///     [("g_I", 0.002), ("gg_IS", 0.41), ("col:temp", f64::NAN), ("g_S", 0.03)])
     ///     .threshold(0.01, "significance threshold");
@@ -117,7 +117,7 @@ impl BarChart {
     /// If `values` does not have one value per category.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]).group("before", vec![1.0, 2.0]);
     /// assert_eq!(c.group_count(), 1);
     /// ```
@@ -136,7 +136,7 @@ impl BarChart {
     /// If `values` does not have one value per category.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"])
     ///     .group_coloured("before", vec![1.0, 2.0], 1)
     ///     .group_coloured("after", vec![0.2, 0.3], 0);
@@ -169,7 +169,7 @@ impl BarChart {
     /// A vertical dashed line at `value` (e.g. the ERR significance level).
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::new("ERR", "ERR (–)", ["a"]).group("ERR", vec![0.5]).threshold(0.05, "5 % level");
     /// assert_eq!(c.threshold_value(), Some(0.05));
     /// ```
@@ -181,7 +181,7 @@ impl BarChart {
     /// The categories, top to bottom.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert!(BarChart::new("t", "v (g)", Vec::<String>::new()).categories().is_empty());
     /// ```
     pub fn categories(&self) -> &[String] {
@@ -191,7 +191,7 @@ impl BarChart {
     /// Number of groups.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert_eq!(BarChart::new("t", "v (g)", ["a"]).group_count(), 0);
     /// ```
     pub fn group_count(&self) -> usize {
@@ -201,7 +201,7 @@ impl BarChart {
     /// The threshold, if set.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert_eq!(BarChart::new("t", "v (g)", ["a"]).threshold_value(), None);
     /// ```
     pub fn threshold_value(&self) -> Option<f64> {

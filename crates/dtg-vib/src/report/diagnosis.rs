@@ -5,7 +5,7 @@
 use super::{fmt, save_all};
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
 use crate::error::DtgVibError;
-use crate::report::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
+use plot::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
 use std::path::{Path, PathBuf};
 
 fn per_channel(

@@ -23,7 +23,7 @@
 /// If `x` and `y` differ in length (a programmer error).
 ///
 /// ```
-/// use dtg_vib::report::decimate_m4;
+/// use plot::decimate_m4;
 ///
 /// let x: Vec<f64> = (0..100_000).map(|i| i as f64 * 0.02).collect();
 /// let mut y: Vec<f64> = x.iter().map(|t| (t * 3.0).sin()).collect();

@@ -5,10 +5,10 @@ use super::{fmt, save_all};
 use crate::apply::{Applied, raw_residues};
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
-use crate::report::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
 use crate::residue::ResidueStats;
 use nav_sensors::geometry::{Channel, Residue};
 use nav_sensors::record::Record;
+use plot::{BarChart, Figure, HtmlReport, Panel, Section, Series, Table};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 

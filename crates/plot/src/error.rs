@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// Why a figure or a report could not be written.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, ReportError, Series};
+/// use plot::{Figure, Panel, ReportError, Series};
 ///
 /// // A stem with a path separator would write outside the chosen directory.
 /// let fig = Figure::new("t").panel(Panel::new("p", "t (s)", "y (g)"));

@@ -29,7 +29,7 @@ const TITLE_HEIGHT: u32 = 48;
 /// Build it with `.into()` or pass either type to [`Figure::panel`].
 ///
 /// ```
-/// use dtg_vib::report::{BarChart, Chart, Panel};
+/// use plot::{BarChart, Chart, Panel};
 /// let a: Chart = Panel::new("p", "t (s)", "y (g)").into();
 /// let b: Chart = BarChart::new("b", "rms (deg/h)", ["X"]).into();
 /// assert!(matches!(a, Chart::Xy(_)) && matches!(b, Chart::Bars(_)));
@@ -62,7 +62,7 @@ impl From<BarChart> for Chart {
 /// is never mistaken for a property of the data.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
 /// let f = vec![0.0, 0.5, 1.0, 1.5];
 /// let psd = vec![1e-3, 5e-4, 2e-4, 1e-4];
@@ -72,7 +72,7 @@ impl From<BarChart> for Chart {
 /// // The 0 Hz bin has no place on a log axis, and the files say so.
 /// assert_eq!(files.warnings.len(), 1);
 /// assert!(files.warnings[0].contains("value ≤ 0 on a log axis"));
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct FigureFiles {
@@ -92,7 +92,7 @@ pub struct FigureFiles {
 /// the only one; bar charts as high as their number of bars needs).
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
 /// // The paper's Fig. 7: the six residues with and without compensation.
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
@@ -109,7 +109,7 @@ pub struct FigureFiles {
 /// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig7_residues")?;
 /// assert!(files.png.ends_with("fig7_residues.png"));
 /// assert!(files.svg.ends_with("fig7_residues.svg"));
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Figure {
@@ -123,7 +123,7 @@ impl Figure {
     /// An empty figure with a title.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// assert_eq!(Figure::new("Fig. 5").panel_count(), 0);
     /// ```
     pub fn new(title: impl Into<String>) -> Self {
@@ -138,7 +138,7 @@ impl Figure {
     /// Appends a panel or bar chart below the previous ones.
     ///
     /// ```
-    /// use dtg_vib::report::{BarChart, Figure, Panel};
+    /// use plot::{BarChart, Figure, Panel};
     /// let f = Figure::new("f")
     ///     .panel(Panel::new("p", "t (s)", "y (g)"))
     ///     .panel(BarChart::new("b", "rms (deg/h)", ["X"]));
@@ -154,7 +154,7 @@ impl Figure {
     /// axis share among themselves, linear ones among themselves.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// let f = Figure::new("f").share_x();
     /// # let _ = f;
     /// ```
@@ -170,7 +170,7 @@ impl Figure {
     /// would try to allocate gigabytes for the bitmap.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// assert_eq!(Figure::new("f").size(800, 600).pixel_size(), (800, 600));
     /// ```
     #[track_caller]
@@ -186,7 +186,7 @@ impl Figure {
     /// The size the figure will be drawn at.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel};
+    /// use plot::{Figure, Panel};
     /// let f = Figure::new("f").panel(Panel::new("a", "t (s)", "y (g)")).panel(Panel::new("b", "t (s)", "y (g)"));
     /// assert_eq!(f.pixel_size(), (1100, 48 + 2 * 270));
     /// ```
@@ -203,7 +203,7 @@ impl Figure {
     /// Number of panels and bar charts.
     ///
     /// ```
-    /// # use dtg_vib::report::Figure;
+    /// # use plot::Figure;
     /// assert_eq!(Figure::new("f").panel_count(), 0);
     /// ```
     pub fn panel_count(&self) -> usize {
@@ -217,7 +217,7 @@ impl Figure {
     /// since stems are often made from data such as channel names.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel, Series};
+    /// use plot::{Figure, Panel, Series};
     ///
     /// let lags: Vec<f64> = (0..=20).map(f64::from).collect();
     /// let r: Vec<f64> = lags.iter().map(|&k| 0.8_f64.powf(k)).collect();

@@ -4,8 +4,8 @@
 use super::{fmt, save_all};
 use crate::allan::{AllanAnalysis, SeriesAllan, term_text as cell};
 use crate::error::DtgVibError;
-use crate::report::{Figure, HtmlReport, Panel, Section, Series, Table};
 use nav_sensors::noise::{AllanCurve, FLICKER_FLOOR, NoiseTerm, NoiseTerms};
+use plot::{Figure, HtmlReport, Panel, Section, Series, Table};
 use std::path::{Path, PathBuf};
 
 /// The fitted lines of `terms`, each over its region widened by an octave

@@ -21,7 +21,7 @@ use super::{FigureFiles, ReportError};
 /// figures line up.
 ///
 /// ```
-/// use dtg_vib::report::Table;
+/// use plot::Table;
 /// let t = Table::new(["residue", "rms before (deg/h)", "rms after (deg/h)", "reduction"])
 ///     .row(["K0", "0.612", "0.118", "5.2×"])
 ///     .caption("Validation part of a blocked split");
@@ -38,7 +38,7 @@ impl Table {
     /// A table with these column headings and no rows.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
+    /// use plot::Table;
     /// assert_eq!(Table::new(["a", "b"]).row_count(), 0);
     /// ```
     pub fn new(header: impl IntoIterator<Item = impl Into<String>>) -> Self {
@@ -55,7 +55,7 @@ impl Table {
     /// If the row does not have one cell per column.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
+    /// use plot::Table;
     /// let t = Table::new(["channel", "rms (deg/h)"]).row(["X", &format!("{:.3}", 0.1234)]);
     /// assert_eq!(t.row_count(), 1);
     /// ```
@@ -76,7 +76,7 @@ impl Table {
     /// A caption shown above the table.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
+    /// use plot::Table;
     /// let t = Table::new(["a"]).caption("Residue rms");
     /// # let _ = t;
     /// ```
@@ -88,7 +88,7 @@ impl Table {
     /// Number of data rows.
     ///
     /// ```
-    /// # use dtg_vib::report::Table;
+    /// # use plot::Table;
     /// assert_eq!(Table::new(["a"]).row(["1"]).row(["2"]).row_count(), 2);
     /// ```
     pub fn row_count(&self) -> usize {
@@ -109,7 +109,7 @@ enum Block {
 /// in the order they were added.
 ///
 /// ```
-/// use dtg_vib::report::{Section, Table};
+/// use plot::{Section, Table};
 /// let s = Section::new("Residues before and after")
 ///     .text("Residue rms on the validation part.")
 ///     .table(Table::new(["residue", "rms (deg/h)"]).row(["K0", "0.118"]))
@@ -126,7 +126,7 @@ impl Section {
     /// An empty section with a heading.
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// assert_eq!(Section::new("Diagnosis").heading(), "Diagnosis");
     /// ```
     pub fn new(heading: impl Into<String>) -> Self {
@@ -139,7 +139,7 @@ impl Section {
     /// A paragraph of plain text (escaped; blank lines start new paragraphs).
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// let s = Section::new("s").text("First.\n\nSecond.");
     /// # let _ = s;
     /// ```
@@ -151,7 +151,7 @@ impl Section {
     /// Preformatted text in a monospace box (a command line, a JSON excerpt).
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// let s = Section::new("s").code("dtg-vib diagnose --model m.json --data d.csv");
     /// # let _ = s;
     /// ```
@@ -163,7 +163,7 @@ impl Section {
     /// A table.
     ///
     /// ```
-    /// # use dtg_vib::report::{Section, Table};
+    /// # use plot::{Section, Table};
     /// let s = Section::new("s").table(Table::new(["a"]).row(["1"]));
     /// # let _ = s;
     /// ```
@@ -179,14 +179,14 @@ impl Section {
     /// links are relative and the directory can be moved as a whole.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel, Section, Series};
+    /// use plot::{Figure, Panel, Section, Series};
     /// let dir = std::env::temp_dir().join("dtg-vib-doc");
     /// let files = Figure::new("Fig. 5")
     ///     .panel(Panel::new("az", "time (s)", "az (g)").series(Series::sampled("az", 0.0, 0.02, vec![0.1, 0.3, -0.2])))
     ///     .save(&dir, "fig5")?;
     /// let s = Section::new("Pre-processing").figure(&files, "Fig. 5: processed acceleration and rate.");
     /// # let _ = s;
-    /// # Ok::<(), dtg_vib::report::ReportError>(())
+    /// # Ok::<(), plot::ReportError>(())
     /// ```
     pub fn figure(mut self, files: &FigureFiles, caption: impl Into<String>) -> Self {
         self.blocks.push(Block::Figure {
@@ -199,7 +199,7 @@ impl Section {
     /// The heading.
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// assert_eq!(Section::new("h").heading(), "h");
     /// ```
     pub fn heading(&self) -> &str {
@@ -211,7 +211,7 @@ impl Section {
 /// of contents when there is more than one section.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, HtmlReport, Panel, Section, Series, Table};
+/// use plot::{Figure, HtmlReport, Panel, Section, Series, Table};
 ///
 /// let dir = std::env::temp_dir().join("dtg-vib-doc-report");
 /// let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.02).collect();
@@ -243,7 +243,7 @@ impl HtmlReport {
     /// An empty report with a title.
     ///
     /// ```
-    /// # use dtg_vib::report::HtmlReport;
+    /// # use plot::HtmlReport;
     /// let r = HtmlReport::new("Diagnosis of model.json");
     /// # let _ = r;
     /// ```
@@ -258,7 +258,7 @@ impl HtmlReport {
     /// A summary paragraph under the title (the numbers a reader wants first).
     ///
     /// ```
-    /// # use dtg_vib::report::HtmlReport;
+    /// # use plot::HtmlReport;
     /// let r = HtmlReport::new("r").summary("Suggested effect for Z: gg_IS (ERR 0.41).");
     /// # let _ = r;
     /// ```
@@ -270,7 +270,7 @@ impl HtmlReport {
     /// Appends a section.
     ///
     /// ```
-    /// # use dtg_vib::report::{HtmlReport, Section};
+    /// # use plot::{HtmlReport, Section};
     /// let r = HtmlReport::new("r").section(Section::new("Fit"));
     /// # let _ = r;
     /// ```
@@ -283,7 +283,7 @@ impl HtmlReport {
     /// directory the page will be written to.
     ///
     /// ```
-    /// use dtg_vib::report::{HtmlReport, Section};
+    /// use plot::{HtmlReport, Section};
     /// let html = HtmlReport::new("A <b>bold</b> claim")
     ///     .section(Section::new("x").text("1 < 2 & 3 > 2"))
     ///     .to_html(std::path::Path::new("."));
@@ -340,10 +340,10 @@ impl HtmlReport {
     /// Writes `dir/index.html` (creating `dir` if needed) and returns its path.
     ///
     /// ```
-    /// use dtg_vib::report::HtmlReport;
+    /// use plot::HtmlReport;
     /// let path = HtmlReport::new("Empty report").write(std::env::temp_dir().join("dtg-vib-doc-empty"))?;
     /// assert!(path.ends_with("index.html"));
-    /// # Ok::<(), dtg_vib::report::ReportError>(())
+    /// # Ok::<(), plot::ReportError>(())
     /// ```
     pub fn write(&self, dir: impl AsRef<Path>) -> Result<PathBuf, ReportError> {
         let dir = dir.as_ref();
@@ -363,7 +363,7 @@ impl HtmlReport {
 /// Escapes text for HTML content and for double- or single-quoted attributes.
 ///
 /// ```
-/// use dtg_vib::report::escape_html;
+/// use plot::escape_html;
 /// assert_eq!(escape_html(r#"<script>alert("x")</script> & 'y'"#),
 ///            "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &#39;y&#39;");
 /// ```
