@@ -1,8 +1,8 @@
-//! Horizontal bar charts: ranked ERR of candidate effects, and per-channel
+//! Horizontal bar charts: ranked ERR of candidate effects, and per-sensor
 //! rms before and after a change.
 //!
 //! Bars run horizontally so that category labels (effect ids such as
-//! `gg_IS`, `col:temp`, channel names) are written level and never collide,
+//! `u_sq`, `col:temp`, sensor names) are written level and never collide,
 //! however many candidates there are; the first category is at the top, which
 //! is where a ranking is read from. Each bar carries its value as text, since
 //! a report is read for numbers as much as for shapes.
@@ -42,13 +42,13 @@ struct Group {
 /// ```
 /// use plot::{BarChart, Figure};
 ///
-/// // Per-channel rms before and after adding an effect.
-/// let channels = ["X", "X1", "Y", "Y1", "Z", "Z1"];
-/// let chart = BarChart::new("Validation rms per channel", "rms (deg/h)", channels)
+/// // Per-sensor rms before and after adding an effect.
+/// let sensors = ["A", "B", "C", "D", "E", "F"];
+/// let chart = BarChart::new("Validation rms per sensor", "rms (mV)", sensors)
 ///     .group("before", vec![0.61, 0.58, 0.40, 0.42, 0.77, 0.35])
 ///     .group("after", vec![0.12, 0.11, 0.10, 0.13, 0.12, 0.10]);
-/// let files = Figure::new("Adding gg_IS to Z").panel(chart)
-///     .save(std::env::temp_dir().join("dtg-vib-doc"), "before_after_rms")?;
+/// let files = Figure::new("Adding u_sq to Z").panel(chart)
+///     .save(std::env::temp_dir().join("plot-doc"), "before_after_rms")?;
 /// assert!(files.warnings.is_empty());
 /// # Ok::<(), plot::ReportError>(())
 /// ```
@@ -67,8 +67,8 @@ impl BarChart {
     ///
     /// ```
     /// use plot::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]);
-    /// assert_eq!(c.categories(), &["K0", "K1"]);
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"]);
+    /// assert_eq!(c.categories(), &["s0", "s1"]);
     /// ```
     pub fn new(
         title: impl Into<String>,
@@ -89,10 +89,10 @@ impl BarChart {
     ///
     /// ```
     /// use plot::BarChart;
-    /// let c = BarChart::ranked("ERR of candidates, channel Z", "ERR (–)", "ERR",
-    ///     [("g_I", 0.002), ("gg_IS", 0.41), ("col:temp", f64::NAN), ("g_S", 0.03)])
+    /// let c = BarChart::ranked("ERR of candidates, sensor Z", "ERR (–)", "ERR",
+    ///     [("g_I", 0.002), ("u_sq", 0.41), ("col:temp", f64::NAN), ("v", 0.03)])
     ///     .threshold(0.01, "significance threshold");
-    /// assert_eq!(c.categories(), &["gg_IS", "g_S", "g_I", "col:temp"]);
+    /// assert_eq!(c.categories(), &["u_sq", "v", "g_I", "col:temp"]);
     /// ```
     pub fn ranked(
         title: impl Into<String>,
@@ -118,7 +118,7 @@ impl BarChart {
     ///
     /// ```
     /// use plot::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]).group("before", vec![1.0, 2.0]);
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"]).group("before", vec![1.0, 2.0]);
     /// assert_eq!(c.group_count(), 1);
     /// ```
     #[track_caller]
@@ -137,7 +137,7 @@ impl BarChart {
     ///
     /// ```
     /// use plot::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"])
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"])
     ///     .group_coloured("before", vec![1.0, 2.0], 1)
     ///     .group_coloured("after", vec![0.2, 0.3], 0);
     /// assert_eq!(c.group_count(), 2);

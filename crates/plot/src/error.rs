@@ -40,9 +40,9 @@ pub enum ReportError {
         message: String,
     },
     /// A file stem that is empty, has a path separator, or starts with a dot.
-    /// Stems often come from data (channel names), so this is an error, not a panic.
+    /// Stems often come from data (sensor names), so this is an error, not a panic.
     #[error(
-        "invalid file stem {stem:?}: use a plain name such as \"fig7_residues\" \
+        "invalid file stem {stem:?}: use a plain name such as \"fig7_signals\" \
          (no path separator, no leading dot, not empty)"
     )]
     InvalidStem {

@@ -31,7 +31,7 @@ const TITLE_HEIGHT: u32 = 48;
 /// ```
 /// use plot::{BarChart, Chart, Panel};
 /// let a: Chart = Panel::new("p", "t (s)", "y (g)").into();
-/// let b: Chart = BarChart::new("b", "rms (deg/h)", ["X"]).into();
+/// let b: Chart = BarChart::new("b", "rms (mV)", ["X"]).into();
 /// assert!(matches!(a, Chart::Xy(_)) && matches!(b, Chart::Bars(_)));
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -67,8 +67,8 @@ impl From<BarChart> for Chart {
 /// let f = vec![0.0, 0.5, 1.0, 1.5];
 /// let psd = vec![1e-3, 5e-4, 2e-4, 1e-4];
 /// let files = Figure::new("PSD")
-///     .panel(Panel::psd("K0", "PSD (deg²/h²/Hz)").series(Series::line("K0", f, psd)))
-///     .save(std::env::temp_dir().join("dtg-vib-doc"), "psd_k0")?;
+///     .panel(Panel::psd("s0", "PSD (V²/Hz)").series(Series::line("s0", f, psd)))
+///     .save(std::env::temp_dir().join("plot-doc"), "psd_k0")?;
 /// // The 0 Hz bin has no place on a log axis, and the files say so.
 /// assert_eq!(files.warnings.len(), 1);
 /// assert!(files.warnings[0].contains("value ≤ 0 on a log axis"));
@@ -94,21 +94,21 @@ pub struct FigureFiles {
 /// ```
 /// use plot::{Figure, Panel, Series};
 ///
-/// // The paper's Fig. 7: the six residues with and without compensation.
+/// // Fig. 7: the six signals with and without compensation.
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
-/// let mut fig = Figure::new("Fig. 7 — parity residues with and without compensation").share_x();
+/// let mut fig = Figure::new("Fig. 7 — signals with and without compensation").share_x();
 /// for k in 0..6 {
 ///     let before: Vec<f64> = t.iter().map(|t| 0.3 * (5.0 * t + k as f64).sin()).collect();
 ///     let after: Vec<f64> = before.iter().map(|v| 0.1 * v).collect();
 ///     fig = fig.panel(
-///         Panel::new(format!("K{k}"), "time (s)", format!("K{k} (deg/h)"))
+///         Panel::new(format!("s{k}"), "time (s)", format!("s{k} (mV)"))
 ///             .series(Series::line("without compensation", t.clone(), before).colour(1))
 ///             .series(Series::line("with compensation", t.clone(), after).colour(0)),
 ///     );
 /// }
-/// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig7_residues")?;
-/// assert!(files.png.ends_with("fig7_residues.png"));
-/// assert!(files.svg.ends_with("fig7_residues.svg"));
+/// let files = fig.save(std::env::temp_dir().join("plot-doc"), "fig7_signals")?;
+/// assert!(files.png.ends_with("fig7_signals.png"));
+/// assert!(files.svg.ends_with("fig7_signals.svg"));
 /// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -141,7 +141,7 @@ impl Figure {
     /// use plot::{BarChart, Figure, Panel};
     /// let f = Figure::new("f")
     ///     .panel(Panel::new("p", "t (s)", "y (g)"))
-    ///     .panel(BarChart::new("b", "rms (deg/h)", ["X"]));
+    ///     .panel(BarChart::new("b", "rms (mV)", ["X"]));
     /// assert_eq!(f.panel_count(), 2);
     /// ```
     pub fn panel(mut self, chart: impl Into<Chart>) -> Self {
@@ -214,7 +214,7 @@ impl Figure {
     ///
     /// `stem` is a plain file name without extension; one with a path
     /// separator or a leading dot is refused ([`ReportError::InvalidStem`]),
-    /// since stems are often made from data such as channel names.
+    /// since stems are often made from data such as sensor names.
     ///
     /// ```
     /// use plot::{Figure, Panel, Series};
@@ -223,7 +223,7 @@ impl Figure {
     /// let r: Vec<f64> = lags.iter().map(|&k| 0.8_f64.powf(k)).collect();
     /// let fig = Figure::new("Whiteness test")
     ///     .panel(Panel::correlation("Autocorrelation of the X residual", "lag (samples)", lags, r, 0.028));
-    /// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "whiteness_x")?;
+    /// let files = fig.save(std::env::temp_dir().join("plot-doc"), "whiteness_x")?;
     /// assert!(std::fs::metadata(&files.png)?.len() > 1000);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -472,6 +472,6 @@ mod tests {
         for bad in ["", ".hidden", "a/b", "a\\b", "x\ny"] {
             assert!(validate_stem(bad).is_err(), "{bad:?}");
         }
-        assert!(validate_stem("fig7_residues K0").is_ok());
+        assert!(validate_stem("fig7_signals s0").is_ok());
     }
 }

@@ -3,7 +3,7 @@
 //! The page uses inline CSS only — no JavaScript, no fonts or stylesheets from
 //! the network — so it opens the same from a CI artefact, an e-mail
 //! attachment or an air-gapped lab machine. Every piece of text is
-//! HTML-escaped: captions and table cells come from data (channel names,
+//! HTML-escaped: captions and table cells come from data (sensor names,
 //! column names of a record) and must never become markup.
 
 use std::fmt::Write as _;
@@ -22,8 +22,8 @@ use super::{FigureFiles, ReportError};
 ///
 /// ```
 /// use plot::Table;
-/// let t = Table::new(["residue", "rms before (deg/h)", "rms after (deg/h)", "reduction"])
-///     .row(["K0", "0.612", "0.118", "5.2×"])
+/// let t = Table::new(["signal", "rms before (mV)", "rms after (mV)", "reduction"])
+///     .row(["s0", "0.612", "0.118", "5.2×"])
 ///     .caption("Validation part of a blocked split");
 /// assert_eq!(t.row_count(), 1);
 /// ```
@@ -56,7 +56,7 @@ impl Table {
     ///
     /// ```
     /// use plot::Table;
-    /// let t = Table::new(["channel", "rms (deg/h)"]).row(["X", &format!("{:.3}", 0.1234)]);
+    /// let t = Table::new(["sensor", "rms (mV)"]).row(["X", &format!("{:.3}", 0.1234)]);
     /// assert_eq!(t.row_count(), 1);
     /// ```
     #[track_caller]
@@ -77,7 +77,7 @@ impl Table {
     ///
     /// ```
     /// use plot::Table;
-    /// let t = Table::new(["a"]).caption("Residue rms");
+    /// let t = Table::new(["a"]).caption("Signal rms");
     /// # let _ = t;
     /// ```
     pub fn caption(mut self, text: impl Into<String>) -> Self {
@@ -110,11 +110,11 @@ enum Block {
 ///
 /// ```
 /// use plot::{Section, Table};
-/// let s = Section::new("Residues before and after")
-///     .text("Residue rms on the validation part.")
-///     .table(Table::new(["residue", "rms (deg/h)"]).row(["K0", "0.118"]))
-///     .code("dtg-vib demo --out demo-out");
-/// assert_eq!(s.heading(), "Residues before and after");
+/// let s = Section::new("Signals before and after")
+///     .text("Signal rms on the validation part.")
+///     .table(Table::new(["signal", "rms (mV)"]).row(["s0", "0.118"]))
+///     .code("mytool demo --out demo-out");
+/// assert_eq!(s.heading(), "Signals before and after");
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Section {
@@ -127,7 +127,7 @@ impl Section {
     ///
     /// ```
     /// # use plot::Section;
-    /// assert_eq!(Section::new("Diagnosis").heading(), "Diagnosis");
+    /// assert_eq!(Section::new("Analysis").heading(), "Analysis");
     /// ```
     pub fn new(heading: impl Into<String>) -> Self {
         Section {
@@ -152,7 +152,7 @@ impl Section {
     ///
     /// ```
     /// # use plot::Section;
-    /// let s = Section::new("s").code("dtg-vib diagnose --model m.json --data d.csv");
+    /// let s = Section::new("s").code("mytool analyse --model m.json --data d.csv");
     /// # let _ = s;
     /// ```
     pub fn code(mut self, text: impl Into<String>) -> Self {
@@ -180,7 +180,7 @@ impl Section {
     ///
     /// ```
     /// use plot::{Figure, Panel, Section, Series};
-    /// let dir = std::env::temp_dir().join("dtg-vib-doc");
+    /// let dir = std::env::temp_dir().join("plot-doc");
     /// let files = Figure::new("Fig. 5")
     ///     .panel(Panel::new("az", "time (s)", "az (g)").series(Series::sampled("az", 0.0, 0.02, vec![0.1, 0.3, -0.2])))
     ///     .save(&dir, "fig5")?;
@@ -213,18 +213,18 @@ impl Section {
 /// ```
 /// use plot::{Figure, HtmlReport, Panel, Section, Series, Table};
 ///
-/// let dir = std::env::temp_dir().join("dtg-vib-doc-report");
+/// let dir = std::env::temp_dir().join("plot-doc-report");
 /// let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.02).collect();
 /// let k0: Vec<f64> = t.iter().map(|t| (3.0 * t).sin()).collect();
-/// let fig = Figure::new("Residue K0")
-///     .panel(Panel::new("K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t, k0)))
+/// let fig = Figure::new("Signal s0")
+///     .panel(Panel::new("s0", "time (s)", "s0 (mV)").series(Series::line("s0", t, k0)))
 ///     .save(&dir, "k0")?;
-/// let path = HtmlReport::new("DTG vibration compensation")
-///     .summary("Residue rms fell 5.2-fold on the validation part.")
+/// let path = HtmlReport::new("shaker-table test")
+///     .summary("Signal rms fell 5.2-fold on the validation part.")
 ///     .section(
-///         Section::new("Residues")
-///             .table(Table::new(["residue", "before (deg/h)", "after (deg/h)"]).row(["K0", "0.612", "0.118"]))
-///             .figure(&fig, "Residue K0 over the record."),
+///         Section::new("Signals")
+///             .table(Table::new(["signal", "before (mV)", "after (mV)"]).row(["s0", "0.612", "0.118"]))
+///             .figure(&fig, "Signal s0 over the record."),
 ///     )
 ///     .write(&dir)?;
 /// let html = std::fs::read_to_string(&path)?;
@@ -244,7 +244,7 @@ impl HtmlReport {
     ///
     /// ```
     /// # use plot::HtmlReport;
-    /// let r = HtmlReport::new("Diagnosis of model.json");
+    /// let r = HtmlReport::new("Analysis of model.json");
     /// # let _ = r;
     /// ```
     pub fn new(title: impl Into<String>) -> Self {
@@ -259,7 +259,7 @@ impl HtmlReport {
     ///
     /// ```
     /// # use plot::HtmlReport;
-    /// let r = HtmlReport::new("r").summary("Suggested effect for Z: gg_IS (ERR 0.41).");
+    /// let r = HtmlReport::new("r").summary("Suggested effect for Z: u_sq (ERR 0.41).");
     /// # let _ = r;
     /// ```
     pub fn summary(mut self, paragraph: impl Into<String>) -> Self {
@@ -341,7 +341,7 @@ impl HtmlReport {
     ///
     /// ```
     /// use plot::HtmlReport;
-    /// let path = HtmlReport::new("Empty report").write(std::env::temp_dir().join("dtg-vib-doc-empty"))?;
+    /// let path = HtmlReport::new("Empty report").write(std::env::temp_dir().join("plot-doc-empty"))?;
     /// assert!(path.ends_with("index.html"));
     /// # Ok::<(), plot::ReportError>(())
     /// ```
@@ -512,7 +512,7 @@ mod tests {
         FigureFiles {
             png: dir.join(format!("{stem}.png")),
             svg: dir.join(format!("{stem}.svg")),
-            warnings: vec!["panel \"<K0>\": skipped 1 point".to_string()],
+            warnings: vec!["panel \"<s0>\": skipped 1 point".to_string()],
         }
     }
 
@@ -539,7 +539,7 @@ mod tests {
         assert!(!html.contains("<script"), "{html}");
         assert!(!html.contains("\" onerror"), "attribute injection: {html}");
         assert!(html.contains("&lt;script&gt;alert(5)&lt;/script&gt;"));
-        assert!(html.contains("&lt;K0&gt;"));
+        assert!(html.contains("&lt;s0&gt;"));
         // Self-contained: no external resources, no JavaScript.
         assert!(!html.contains("http://") && !html.contains("https://"));
         assert!(!html.contains("<link") && !html.contains("javascript:"));
@@ -549,13 +549,13 @@ mod tests {
     fn figure_links_are_relative_and_encoded() {
         let dir = Path::new("/tmp/r");
         let html = HtmlReport::new("t")
-            .section(Section::new("s").figure(&files(&dir.join("figs"), "K0 before&after"), "c"))
+            .section(Section::new("s").figure(&files(&dir.join("figs"), "s0 before&after"), "c"))
             .to_html(dir);
         assert!(
-            html.contains("src=\"figs/K0%20before%26after.png\""),
+            html.contains("src=\"figs/s0%20before%26after.png\""),
             "{html}"
         );
-        assert!(html.contains("href=\"figs/K0%20before%26after.svg\""));
+        assert!(html.contains("href=\"figs/s0%20before%26after.svg\""));
         let outside = href(Path::new("/elsewhere/a b.png"), dir);
         assert_eq!(outside, "file:///elsewhere/a%20b.png");
     }
@@ -565,7 +565,7 @@ mod tests {
         assert!(looks_numeric("-1.5e-3"));
         assert!(looks_numeric("5.2×"));
         assert!(looks_numeric("12 %"));
-        assert!(!looks_numeric("gg_IS"));
+        assert!(!looks_numeric("u_sq"));
         assert!(!looks_numeric(""));
     }
 

@@ -27,7 +27,7 @@ pub struct Band {
 ///
 /// ```
 /// use plot::{Panel, RefLine};
-/// let p = Panel::psd("K0", "PSD (deg²/h²/Hz)").ref_line(4e-6, "noise floor");
+/// let p = Panel::psd("s0", "PSD (V²/Hz)").ref_line(4e-6, "noise floor");
 /// assert_eq!(p.ref_lines(), &[RefLine { y: 4e-6, label: "noise floor".into() }]);
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -39,7 +39,7 @@ pub struct RefLine {
 }
 
 /// One x–y panel of a [`Figure`](super::Figure): a title, axis labels (with
-/// units, e.g. `"time (s)"`, `"residue K0 (deg/h)"`, `"PSD (deg²/h²/Hz)"`),
+/// units, e.g. `"time (s)"`, `"signal s0 (mV)"`, `"PSD (V²/Hz)"`),
 /// any number of [`Series`], optional log axes, an optional ±band and
 /// horizontal reference lines.
 ///
@@ -54,12 +54,12 @@ pub struct RefLine {
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
 /// let az: Vec<f64> = t.iter().map(|t| 2.0 * (31.0 * t).sin()).collect();
 /// let k0: Vec<f64> = az.iter().map(|a| 0.05 * a * a).collect();
-/// // The paper's Fig. 3: a residue and the thrust acceleration.
-/// let fig = Figure::new("Fig. 3 — parity residue and thrust acceleration")
+/// // Fig. 3: a signal and the input acceleration.
+/// let fig = Figure::new("Fig. 3 — signal and input acceleration")
 ///     .share_x()
-///     .panel(Panel::new("Residue K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t.clone(), k0)))
-///     .panel(Panel::new("Thrust acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
-/// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig3")?;
+///     .panel(Panel::new("Signal s0", "time (s)", "s0 (mV)").series(Series::line("s0", t.clone(), k0)))
+///     .panel(Panel::new("Input acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
+/// let files = fig.save(std::env::temp_dir().join("plot-doc"), "fig3")?;
 /// assert!(files.png.exists() && files.svg.exists());
 /// # Ok::<(), plot::ReportError>(())
 /// ```
@@ -81,7 +81,7 @@ impl Panel {
     ///
     /// ```
     /// use plot::Panel;
-    /// let p = Panel::new("Rate X", "time (s)", "rate (deg/h)");
+    /// let p = Panel::new("Rate X", "time (s)", "rate (mV)");
     /// assert_eq!(p.title(), "Rate X");
     /// ```
     pub fn new(
@@ -111,7 +111,7 @@ impl Panel {
     /// let f: Vec<f64> = (0..=1250).map(|k| k as f64 * 0.02).collect(); // 0..25 Hz
     /// let before: Vec<f64> = f.iter().map(|f| 1e-2 / (1.0 + f * f)).collect();
     /// let after: Vec<f64> = f.iter().map(|f| 1e-4 + 1e-3 / (1.0 + f * f)).collect();
-    /// let p = Panel::psd("K0 spectrum", "PSD (deg²/h²/Hz)")
+    /// let p = Panel::psd("s0 spectrum", "PSD (V²/Hz)")
     ///     .series(Series::line("before", f.clone(), before).colour(1))
     ///     .series(Series::line("after", f, after).colour(0))
     ///     .ref_line(1e-4, "noise floor");
@@ -134,7 +134,7 @@ impl Panel {
     /// let n = 5000.0_f64;
     /// let lags: Vec<f64> = (0..=25).map(f64::from).collect();
     /// let r: Vec<f64> = lags.iter().map(|&k| if k == 0.0 { 1.0 } else { 0.3 * 0.7_f64.powf(k) }).collect();
-    /// let p = Panel::correlation("Autocorrelation of the K0 residual", "lag (samples)", lags, r, 1.96 / n.sqrt());
+    /// let p = Panel::correlation("Autocorrelation of the s0 residual", "lag (samples)", lags, r, 1.96 / n.sqrt());
     /// assert!(p.band_limit().unwrap() < 0.03);
     /// ```
     #[track_caller]
@@ -221,7 +221,7 @@ impl Panel {
     ///
     /// ```
     /// # use plot::Panel;
-    /// assert_eq!(Panel::new("K5", "t (s)", "K5 (deg/h)").title(), "K5");
+    /// assert_eq!(Panel::new("s5", "t (s)", "s5 (mV)").title(), "s5");
     /// ```
     pub fn title(&self) -> &str {
         &self.title

@@ -31,7 +31,7 @@ pub enum SeriesStyle {
 ///
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
 /// let k0: Vec<f64> = t.iter().map(|t| 0.1 * (7.0 * t).sin()).collect();
-/// let s = Series::line("K0 before", t, k0).colour(1);
+/// let s = Series::line("s0 before", t, k0).colour(1);
 /// assert_eq!(s.len(), 5000);
 /// assert_eq!(s.style(), SeriesStyle::Line);
 /// ```
@@ -98,7 +98,7 @@ impl Series {
     }
 
     /// A line of uniformly sampled values, `x[i] = t0 + i·dt` (a record's
-    /// channel against time in s without building the time vector).
+    /// sensor against time in s without building the time vector).
     ///
     /// ```
     /// use plot::Series;
@@ -147,7 +147,7 @@ impl Series {
     ///
     /// ```
     /// # use plot::Series;
-    /// assert_eq!(Series::sampled("K3", 0.0, 1.0, vec![]).label(), "K3");
+    /// assert_eq!(Series::sampled("s3", 0.0, 1.0, vec![]).label(), "s3");
     /// ```
     pub fn label(&self) -> &str {
         &self.label

@@ -1,7 +1,7 @@
 //! Colours, font and text sizes shared by every figure.
 //!
-//! One place decides how figures look, so that the paper's figures and the
-//! diagnosis figures read as one report.
+//! One place decides how figures look, so that the figures and the
+//! analysis figures read as one report.
 
 use std::sync::OnceLock;
 
@@ -136,7 +136,7 @@ mod tests {
     fn font_registers_and_measures() {
         ensure_font().unwrap();
         ensure_font().unwrap(); // idempotent
-        let (w, h) = text_size("residue K0 (deg/h)", LABEL_SIZE);
+        let (w, h) = text_size("signal s0 (mV)", LABEL_SIZE);
         assert!(w > 100 && w < 300, "width {w}");
         assert!(h > 5 && h < 40, "height {h}");
     }
