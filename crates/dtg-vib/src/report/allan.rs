@@ -148,8 +148,8 @@ pub fn write_allan_report(
             analysis.samples, analysis.first_sample, analysis.tau0_s
         ));
     for ((stem, files), rows, heading) in [
-        (&saved[0], &analysis.channels, "Gyro channels"),
-        (&saved[1], &analysis.residues, "Parity residues"),
+        (&saved.all()[0], &analysis.channels, "Gyro channels"),
+        (&saved.all()[1], &analysis.residues, "Parity residues"),
     ]
     .into_iter()
     .map(|(s, r, h)| ((s.0, &s.1), r, h))

@@ -1,5 +1,7 @@
-//! The application's figures and report pages, drawn with the [`plot`]
-//! vocabulary: the paper's figures for a fitted model, and the diagnosis.
+//! What writes the application's reports: the figures and pages of a fitted
+//! model (the paper's figures), of a diagnosis and of an Allan analysis,
+//! drawn with the [`plot`] crate. Each page is assembled from one writer per
+//! section, in a file of its own.
 
 mod allan;
 mod diagnosis;
@@ -14,15 +16,33 @@ use plot::{Figure, FigureFiles};
 use rayon::prelude::*;
 use std::path::Path;
 
+/// Figures once drawn, by file stem.
+pub(crate) struct Drawn(Vec<(&'static str, FigureFiles)>);
+
+impl Drawn {
+    /// The files of the figure saved as `stem`.
+    #[track_caller]
+    pub(crate) fn get(&self, stem: &str) -> &FigureFiles {
+        self.0
+            .iter()
+            .find(|(s, _)| *s == stem)
+            .map(|(_, f)| f)
+            .unwrap_or_else(|| panic!("figure {stem:?} was not drawn"))
+    }
+
+    /// `(stem, files)` in the order the figures were given.
+    pub(crate) fn all(&self) -> &[(&'static str, FigureFiles)] {
+        &self.0
+    }
+}
+
 /// Renders figures in parallel (each writes its own PNG and SVG), returning
 /// `(stem, files)` in the given order.
-fn save_all<'s>(
-    figs: Vec<(Figure, &'s str)>,
-    dir: &Path,
-) -> Result<Vec<(&'s str, FigureFiles)>, DtgVibError> {
+fn save_all(figs: Vec<(Figure, &'static str)>, dir: &Path) -> Result<Drawn, DtgVibError> {
     figs.into_par_iter()
         .map(|(fig, stem)| Ok((stem, fig.save(dir, stem)?)))
-        .collect()
+        .collect::<Result<Vec<_>, DtgVibError>>()
+        .map(Drawn)
 }
 
 /// A number for a table: four significant digits, no exponent for everyday sizes.
