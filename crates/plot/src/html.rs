@@ -103,6 +103,7 @@ enum Block {
     Code(String),
     Table(Table),
     Figure { files: FigureFiles, caption: String },
+    Link { path: PathBuf, text: String },
 }
 
 /// A section of the report: a heading and blocks of text, tables and figures
@@ -157,6 +158,25 @@ impl Section {
     /// ```
     pub fn code(mut self, text: impl Into<String>) -> Self {
         self.blocks.push(Block::Code(text.into()));
+        self
+    }
+
+    /// A link to another file (another report page, a data file), made
+    /// relative to the directory the page is written to, like figures.
+    ///
+    /// ```
+    /// use plot::{HtmlReport, Section};
+    /// let dir = std::path::Path::new("/out");
+    /// let html = HtmlReport::new("r")
+    ///     .section(Section::new("s").link("/out/other/index.html", "the other report"))
+    ///     .to_html(dir);
+    /// assert!(html.contains(r#"<a href="other/index.html">the other report</a>"#));
+    /// ```
+    pub fn link(mut self, path: impl Into<PathBuf>, text: impl Into<String>) -> Self {
+        self.blocks.push(Block::Link {
+            path: path.into(),
+            text: text.into(),
+        });
         self
     }
 
@@ -329,6 +349,14 @@ impl HtmlReport {
                     }
                     Block::Table(t) => table(&mut h, t),
                     Block::Figure { files, caption } => figure(&mut h, files, caption, dir),
+                    Block::Link { path, text } => {
+                        let _ = writeln!(
+                            h,
+                            "<p class=\"link\"><a href=\"{}\">{}</a></p>",
+                            href(path, dir),
+                            escape(text)
+                        );
+                    }
                 }
             }
             h.push_str("</section>\n");
@@ -439,11 +467,18 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
          <figcaption>{alt} <a class=\"svg\" href=\"{svg}\">SVG</a></figcaption>\n"
     );
     if !files.warnings.is_empty() {
+        // Folded: what was left out of a figure is there for whoever asks,
+        // without a list of lines between the figures.
+        let _ = write!(
+            h,
+            "<details class=\"warnings\"><summary>{} drawing note(s)</summary>\n",
+            files.warnings.len()
+        );
         h.push_str("<ul class=\"warnings\">\n");
         for w in &files.warnings {
             let _ = writeln!(h, "<li>{}</li>", escape(w));
         }
-        h.push_str("</ul>\n");
+        h.push_str("</ul></details>\n");
     }
     h.push_str("</figure>\n");
 }
@@ -500,7 +535,18 @@ figure { margin: 1.5rem 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #e3e3e3; }
 figcaption { font-size: 0.95rem; color: #333; }
 a.svg { font-size: 0.85rem; margin-left: 0.4rem; }
-ul.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
+details.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
+ul.warnings { margin: 0.2rem 0 0; }
+img, svg, video { max-width: 100%; height: auto; }
+table { max-width: 100%; }
+th, td { overflow-wrap: anywhere; }
+p, li, figcaption, caption { overflow-wrap: anywhere; }
+@media (max-width: 600px) {
+  main { padding: 0.8rem 0.7rem 3rem; }
+  h1 { font-size: 1.35rem; }
+  nav ol { columns: 1; }
+  th, td { padding: 0.2rem 0.35rem; font-size: 0.85rem; }
+}
 @media print { body { background: #fff; } main { padding: 0; } a.svg { display: none; } }
 ";
 

@@ -69,6 +69,6 @@ pub use decimate::decimate_m4;
 pub use error::ReportError;
 pub use figure::{Chart, Figure, FigureFiles};
 pub use html::{HtmlReport, Section, Table, escape_html};
-pub use panel::{Band, Panel, RefLine};
+pub use panel::{Band, Panel, RefLine, XSpan};
 pub use series::{Series, SeriesStyle};
 pub use style::{PALETTE, colour};

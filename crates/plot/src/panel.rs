@@ -73,6 +73,25 @@ pub struct Panel {
     pub(crate) log_y: bool,
     pub(crate) band: Option<Band>,
     pub(crate) ref_lines: Vec<RefLine>,
+    pub(crate) x_spans: Vec<XSpan>,
+}
+
+/// A shaded stretch of the x axis with a legend entry (e.g. the part of a
+/// record a model was fitted on), drawn under the series.
+///
+/// ```
+/// use plot::Panel;
+/// let p = Panel::new("p", "time (s)", "y (V)").x_span(0.0, 50.0, "training rows");
+/// assert_eq!(p.x_spans()[0].to, 50.0);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct XSpan {
+    /// Where the span starts, in x units.
+    pub from: f64,
+    /// Where it ends, in x units.
+    pub to: f64,
+    /// Its legend entry.
+    pub label: String,
 }
 
 impl Panel {
@@ -98,6 +117,7 @@ impl Panel {
             log_y: false,
             band: None,
             ref_lines: Vec::new(),
+            x_spans: Vec::new(),
         }
     }
 
@@ -215,6 +235,35 @@ impl Panel {
             label: label.into(),
         });
         self
+    }
+
+    /// Shades the x range `from..to` (in x units) under the series, with a
+    /// legend entry; several spans share one legend entry per distinct label.
+    ///
+    /// ```
+    /// # use plot::Panel;
+    /// let p = Panel::new("p", "time (s)", "y (V)")
+    ///     .x_span(0.0, 50.0, "training")
+    ///     .x_span(80.0, 90.0, "training");
+    /// assert_eq!(p.x_spans().len(), 2);
+    /// ```
+    pub fn x_span(mut self, from: f64, to: f64, label: impl Into<String>) -> Self {
+        self.x_spans.push(XSpan {
+            from: from.min(to),
+            to: from.max(to),
+            label: label.into(),
+        });
+        self
+    }
+
+    /// The shaded x ranges.
+    ///
+    /// ```
+    /// # use plot::Panel;
+    /// assert!(Panel::new("p", "t (s)", "y (V)").x_spans().is_empty());
+    /// ```
+    pub fn x_spans(&self) -> &[XSpan] {
+        &self.x_spans
     }
 
     /// The panel title.

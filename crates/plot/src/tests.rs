@@ -384,6 +384,10 @@ fn report_page_links_the_saved_figures() {
         html.contains("skipped 1 point(s)"),
         "warnings shown under the figure"
     );
+    assert!(
+        html.contains("<details class=\"warnings\"><summary>1 drawing note(s)</summary>"),
+        "folded, not a list between the figures"
+    );
 }
 
 /// Renders a gallery of typical figures and prints the time of the 6-panel
@@ -583,4 +587,29 @@ fn sample_gallery() {
         .write(&dir)
         .unwrap();
     assert!(index.exists());
+}
+
+#[test]
+fn x_span_shades_its_range_and_has_one_legend_entry_per_label() {
+    let dir = test_dir("x_span");
+    let t = time(1000);
+    let y: Vec<f64> = t.iter().map(|t| t.sin()).collect();
+    let plain = Figure::new("no span")
+        .panel(Panel::new("p", "time (s)", "y (V)").series(Series::line("y", t.clone(), y.clone())))
+        .save(&dir, "plain")
+        .unwrap();
+    let spanned = Figure::new("span")
+        .panel(
+            Panel::new("p", "time (s)", "y (V)")
+                .series(Series::line("y", t, y))
+                .x_span(0.0, 5.0, "training rows")
+                .x_span(15.0, 18.0, "training rows"),
+        )
+        .save(&dir, "spanned")
+        .unwrap();
+    let grey = "#6E6E6E";
+    let svg = std::fs::read_to_string(&spanned.svg).unwrap();
+    assert!(svg.matches(grey).count() >= 3, "two spans and one swatch");
+    assert_eq!(svg.matches("training rows").count(), 1, "one legend entry");
+    assert!(!std::fs::read_to_string(&plain.svg).unwrap().contains(grey));
 }
