@@ -304,7 +304,7 @@ pub(crate) fn prepare(chart: &BarChart, width: u32, warnings: &mut Vec<String>) 
     PreparedBars {
         header,
         value_label: chart.value_label.clone(),
-        x: Axis::new(lo, hi, false, plot_width, 110),
+        x: Axis::new(lo, hi, false, plot_width, crate::xy::X_TICK_SPACING_PX),
         categories: chart.categories.clone(),
         groups: chart
             .groups

@@ -613,3 +613,13 @@ fn x_span_shades_its_range_and_has_one_legend_entry_per_label() {
     assert_eq!(svg.matches("training rows").count(), 1, "one legend entry");
     assert!(!std::fs::read_to_string(&plain.svg).unwrap().contains(grey));
 }
+
+#[test]
+fn a_short_panel_still_gets_at_least_four_y_labels() {
+    // Six stacked panels of a tall figure leave about 150 px of plot each;
+    // a range of 11 units must not fall back to steps of 5 (two labels).
+    let y = crate::axis::Axis::new(13.5, 24.5, false, 150, crate::xy::Y_TICK_SPACING_PX);
+    assert!(y.ticks.len() >= 4, "{:?}", y.ticks);
+    let x = crate::axis::Axis::new(0.0, 100.0, false, 900, crate::xy::X_TICK_SPACING_PX);
+    assert!(x.ticks.len() >= 6, "{:?}", x.ticks);
+}

@@ -197,6 +197,12 @@ pub(crate) struct PreparedXy {
     empty: bool,
 }
 
+/// About one labelled y tick per this many pixels: a 150-pixel panel gets
+/// four or five, enough to read a value off without a ruler.
+pub(crate) const Y_TICK_SPACING_PX: u32 = 24;
+/// About one labelled x tick per this many pixels (labels are wider than tall).
+pub(crate) const X_TICK_SPACING_PX: u32 = 80;
+
 /// Vertical pixels the plot itself gets in a panel `height` tall with this header.
 fn plot_height(height: u32, header: &Header) -> u32 {
     height
@@ -245,7 +251,13 @@ pub(crate) fn layout_y(c: &Collected, width: u32, height: u32, y_pad: f64) -> (H
     }
     let header = Header::layout(&c.panel_title, entries, width);
     let (lo, hi) = axis::padded(c.y_extent, y_pad, c.log_y);
-    let y = Axis::new(lo, hi, c.log_y, plot_height(height, &header), 42);
+    let y = Axis::new(
+        lo,
+        hi,
+        c.log_y,
+        plot_height(height, &header),
+        Y_TICK_SPACING_PX,
+    );
     let tick_w = y
         .ticks
         .iter()
@@ -266,7 +278,7 @@ pub(crate) fn finish(
     plot_width: u32,
     height: u32,
 ) -> PreparedXy {
-    let x = Axis::new(x_range.0, x_range.1, c.log_x, plot_width, 110);
+    let x = Axis::new(x_range.0, x_range.1, c.log_x, plot_width, X_TICK_SPACING_PX);
     let columns = plot_width.max(1) as usize;
     let rows = plot_height(height, &header) as usize;
     let series = c

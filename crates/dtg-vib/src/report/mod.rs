@@ -6,10 +6,40 @@
 mod allan;
 mod diagnosis;
 mod paper;
+mod provenance;
 
 pub use allan::write_allan_report;
 pub use diagnosis::write_diagnosis_report;
-pub use paper::{Baseline, ReportSummary, write_report};
+pub use paper::{Baseline, ReportExtras, ReportSummary, build_report, write_report};
+pub use provenance::Provenance;
+
+/// One meaning per colour, in every figure of every report (indices into
+/// [`plot::PALETTE`]).
+pub(crate) mod colours {
+    /// Without compensation, measured, bias only: vermillion.
+    pub const BEFORE: usize = 1;
+    /// With compensation, the model's prediction, the residual after: blue.
+    pub const AFTER: usize = 0;
+    /// An acceleration (an input): bluish green.
+    pub const INPUT: usize = 2;
+    /// A baseline model compared against: reddish purple.
+    pub const BASELINE: usize = 3;
+    /// A reference curve (white floor, normal density, fitted noise line): black.
+    pub const REFERENCE: usize = 6;
+
+    /// The sentence that says so on every page.
+    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction; green = acceleration (input); purple = a baseline model; black = a reference (white floor, normal density, fitted noise line).";
+}
+
+/// A spectrum without its 0 Hz bin, which a log frequency axis cannot show
+/// (drawing it would only add a "skipped point" note).
+pub(crate) fn positive_freq(f: &[f64], d: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    f.iter()
+        .zip(d)
+        .filter(|(f, d)| **f > 0.0 && **d > 0.0)
+        .map(|(f, d)| (*f, *d))
+        .unzip()
+}
 
 use crate::error::DtgVibError;
 use plot::{Figure, FigureFiles};
@@ -28,11 +58,6 @@ impl Drawn {
             .find(|(s, _)| *s == stem)
             .map(|(_, f)| f)
             .unwrap_or_else(|| panic!("figure {stem:?} was not drawn"))
-    }
-
-    /// `(stem, files)` in the order the figures were given.
-    pub(crate) fn all(&self) -> &[(&'static str, FigureFiles)] {
-        &self.0
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::{Drawn, band_label, per_channel};
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::report::{colours, positive_freq};
 use plot::{BarChart, Figure, Panel, Section, Series};
 
 /// The section's figures, with their file stems.
@@ -29,7 +30,7 @@ pub(super) fn figures(diag: &Diagnosis, min_err: f64) -> Vec<(Figure, &'static s
         ),
         (
             per_channel(
-                "Independence test against the acceleration with the worst statistic",
+                "Independence: cross-correlation of the residual with every input",
                 diag,
                 independence_panel,
             ),
@@ -51,8 +52,8 @@ fn compare(diag: &Diagnosis) -> Figure {
             "time (s)",
             format!("{} (deg/h)", c.channel),
         )
-        .series(Series::line("measured", s.t.clone(), s.measured.clone()).colour(1))
-        .series(Series::line("predicted", s.t.clone(), s.predicted.clone()).colour(0))
+        .series(Series::line("measured", s.t.clone(), s.measured.clone()).colour(colours::BEFORE))
+        .series(Series::line("predicted", s.t.clone(), s.predicted.clone()).colour(colours::AFTER))
     })
     .share_x()
 }
@@ -64,8 +65,9 @@ fn top_candidates(diag: &Diagnosis) -> Figure {
         diag,
         |c| {
             let s = &c.series;
-            let mut p = Panel::new(format!("Channel {}", c.channel), "time (s)", "deg/h")
-                .series(Series::line("residual", s.t.clone(), s.residual.clone()).colour(1));
+            let mut p = Panel::new(format!("Channel {}", c.channel), "time (s)", "deg/h").series(
+                Series::line("residual", s.t.clone(), s.residual.clone()).colour(colours::AFTER),
+            );
             if let Some(top) = c.candidates.first()
                 && let Some((_, col)) = s.candidates.iter().find(|(id, _)| *id == top.effect)
             {
@@ -76,7 +78,7 @@ fn top_candidates(diag: &Diagnosis) -> Figure {
                         s.t.clone(),
                         scaled,
                     )
-                    .colour(0),
+                    .colour(colours::REFERENCE),
                 );
             }
             p
@@ -96,12 +98,13 @@ fn psd_panel(c: &ChannelDiagnosis) -> Panel {
             .frequency_hz
             .iter()
             .zip(&sp.floor)
-            .filter(|(_, v)| **v >= 1e-4 * peak)
+            .filter(|(f, v)| **f > 0.0 && **v >= 1e-4 * peak)
             .map(|(a, b)| (*a, *b))
             .unzip();
+        let (rf, rd) = positive_freq(&sp.frequency_hz, &sp.density);
         p = p
-            .series(Series::line("residual", sp.frequency_hz.clone(), sp.density.clone()).colour(0))
-            .series(Series::line("white floor", f, floor).colour(1));
+            .series(Series::line("residual", rf, rd).colour(colours::AFTER))
+            .series(Series::line("white floor", f, floor).colour(colours::REFERENCE));
     }
     p
 }
@@ -137,32 +140,53 @@ fn whiteness_panel(c: &ChannelDiagnosis) -> Panel {
     }
 }
 
-/// A channel's independence test against the acceleration with the worst statistic.
+/// Colours of the inputs' cross-correlations: green (the input colour)
+/// first, then colours no other meaning uses.
+const INPUT_COLOURS: [usize; 4] = [colours::INPUT, 4, 5, 7];
+
+/// A channel's independence tests against every input (each acceleration
+/// axis and each extra column) in one panel, lags in seconds.
 fn independence_panel(c: &ChannelDiagnosis) -> Panel {
-    let worst = c
+    let t = &c.series.t;
+    let dt = if t.len() > 1 { t[1] - t[0] } else { 1.0 };
+    let tests: Vec<_> = c
         .checks
         .iter()
         .filter(|k| k.name.starts_with("independence:"))
-        .max_by(|a, b| a.check.statistic.total_cmp(&b.check.statistic));
-    match worst {
-        Some(k) => {
-            let lags: Vec<f64> = k.check.lags.iter().map(|&l| l as f64).collect();
-            let band = k.check.band.first().copied().unwrap_or(0.0);
-            Panel::correlation(
-                format!(
-                    "Channel {}: {} {}",
-                    c.channel,
-                    k.name,
-                    if k.check.passed { "passes" } else { "FAILS" }
-                ),
-                "lag (samples)",
+        .collect();
+    let failing: Vec<&str> = tests
+        .iter()
+        .filter(|k| !k.check.passed)
+        .map(|k| k.name.trim_start_matches("independence:"))
+        .collect();
+    let verdict = if failing.is_empty() {
+        "all pass".to_string()
+    } else {
+        format!("FAILS against {}", failing.join(", "))
+    };
+    let band = tests
+        .iter()
+        .filter_map(|k| k.check.band.first().copied())
+        .fold(0.0, f64::max);
+    let mut p = Panel::new(
+        format!("Channel {}: {verdict}", c.channel),
+        "lag (s)",
+        "cross-correlation (–)",
+    );
+    for (i, k) in tests.iter().enumerate() {
+        let lags: Vec<f64> = k.check.lags.iter().map(|&l| l as f64 * dt).collect();
+        p = p.series(
+            Series::line(
+                k.name.trim_start_matches("independence:"),
                 lags,
                 k.check.values.clone(),
-                band,
             )
-            .band(band, band_label(k.check.confidence))
-        }
-        None => Panel::new(format!("Channel {}", c.channel), "lag", "ρ"),
+            .colour(INPUT_COLOURS[i % INPUT_COLOURS.len()]),
+        );
+    }
+    match tests.first() {
+        Some(k) => p.band(band, band_label(k.check.confidence)),
+        None => p,
     }
 }
 
@@ -197,6 +221,5 @@ pub(super) fn section(drawn: &Drawn) -> Section {
         .figure(drawn.get("diag_top_candidates"), "The residual and its top candidate, scaled by its estimated coefficient.")
         .figure(drawn.get("diag_residual_psd"), "Residual power spectral density.")
         .figure(drawn.get("diag_whiteness"), "Whiteness beyond the model's memory: the residual's autocorrelation at lags past one window plus the filter's reach, where a model that left nothing slow has none, with its band.")
-        .figure(drawn.get("diag_independence"), "Independence: residual–acceleration cross-correlation with its (Bartlett) band.")
-        .figure(drawn.get("diag_compare"), "Measured against predicted on the validation rows.")
+        .figure(drawn.get("diag_independence"), "Independence: the residual's cross-correlation with each acceleration axis (and each extra column) against lag in seconds, with the (Bartlett) band.")
 }

@@ -79,8 +79,14 @@ pub(super) fn section(diag: &Diagnosis, drawn: &Drawn) -> Section {
             c.failing.len().to_string(),
         ]);
     }
-    Section::new("Overview").table(overview).figure(
-        drawn.get("diag_before_after"),
-        "Validation residual rms: bias-only model against the fitted model.",
-    )
+    Section::new("Overview")
+        .table(overview)
+        .figure(
+            drawn.get("diag_compare"),
+            "Measured against predicted on the validation rows.",
+        )
+        .figure(
+            drawn.get("diag_before_after"),
+            "Validation residual rms: bias-only model against the fitted model.",
+        )
 }

@@ -17,4 +17,5 @@ pub(super) fn section(diag: &Diagnosis, min_err: f64) -> Section {
         diag.channels.first().map_or("—".to_string(), |c| fmt(c.p_threshold)),
         min_err
     ))
+    .text(crate::report::colours::LEGEND)
 }

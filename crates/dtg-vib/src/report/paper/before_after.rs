@@ -3,6 +3,7 @@
 
 use super::channels::effect_ids;
 use super::{Ctx, Drawn, fmt};
+use crate::report::colours;
 use nav_sensors::geometry::{Channel, Residue};
 use plot::{BarChart, Figure, Section, Table};
 
@@ -35,8 +36,11 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
             1,
         );
     if let Some((b, bs)) = ctx.baseline() {
-        ch_bars =
-            ch_bars.group_coloured(b.label, bs.iter().map(|s| s.val_rms).collect::<Vec<_>>(), 2);
+        ch_bars = ch_bars.group_coloured(
+            b.label,
+            bs.iter().map(|s| s.val_rms).collect::<Vec<_>>(),
+            colours::BASELINE,
+        );
     }
     ch_bars = ch_bars.group_coloured(
         "this model",

@@ -5,17 +5,21 @@
 
 mod before_after;
 mod channels;
+mod fit;
+mod histogram;
 mod paper_figures;
 mod residues;
+mod summary;
 
-use super::{Drawn, fmt, save_all};
+use super::{Drawn, Provenance, fmt, save_all};
+use crate::allan::AllanAnalysis;
 use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
 use crate::residue::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
-use plot::{Figure, HtmlReport};
+use plot::{Figure, HtmlReport, Section};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -39,6 +43,17 @@ pub struct Baseline<'a> {
     pub model: &'a CompensationModel,
     /// It applied to the same record.
     pub applied: &'a Applied,
+}
+
+/// What a report shows beyond the model and the record, when known.
+#[derive(Default)]
+pub struct ReportExtras<'a> {
+    /// Where the report came from (files with SHA-256, command line).
+    pub provenance: Option<&'a Provenance>,
+    /// The Allan deviation before and after, drawn and tabled on the page.
+    pub allan: Option<&'a AllanAnalysis>,
+    /// Other pages to link from the summary: `(path, text)`.
+    pub links: Vec<(PathBuf, String)>,
 }
 
 /// What every section of the page reads.
@@ -148,22 +163,61 @@ pub fn write_report(
     baseline: Option<Baseline<'_>>,
     dir: &Path,
 ) -> Result<ReportSummary, DtgVibError> {
+    let extras = ReportExtras::default();
+    let (summary, page) = build_report(model, applied, record, source, baseline, &extras, dir)?;
+    page.write(dir)?;
+    Ok(summary)
+}
+
+/// Draws the figures into `dir` and returns the page (not yet written:
+/// [`HtmlReport::write`] it into `dir`, or into a parent of `dir`, whence its
+/// figure links still resolve) with the summary; `index` is `dir/index.html`.
+pub fn build_report(
+    model: &CompensationModel,
+    applied: &Applied,
+    record: &Record,
+    source: &str,
+    baseline: Option<Baseline<'_>>,
+    extras: &ReportExtras<'_>,
+    dir: &Path,
+) -> Result<(ReportSummary, HtmlReport), DtgVibError> {
     let ctx = Ctx::new(model, applied, record, baseline);
     let mut figs: Vec<(Figure, &'static str)> = paper_figures::figures(&ctx)?;
     figs.extend(residues::figures(&ctx));
     figs.push(before_after::figure(&ctx));
+    figs.push(fit::figure(&ctx));
+    figs.push(histogram::figure(&ctx));
+    if let Some(a) = extras.allan {
+        figs.extend(super::allan::figures(a));
+    }
     let drawn: Drawn = save_all(figs, dir)?;
 
-    let page = HtmlReport::new("DTG vibration-error compensation")
+    let mut page = HtmlReport::new("DTG vibration-error compensation")
         .summary(summary(&ctx, source))
+        .section(summary::section(&ctx, extras))
+        .section(fit::section(&drawn))
         .section(residues::section(&ctx, &drawn))
+        .section(histogram::section(&drawn));
+    if let Some(a) = extras.allan {
+        page = page.section(
+            Section::new("Allan deviation before and after")
+                .text(super::allan::summary(a, source))
+                .text("The tables and figures follow: gyro channels, then parity residues."),
+        );
+        for sec in super::allan::sections(a, &drawn) {
+            page = page.section(sec);
+        }
+    }
+    page = page
         .section(channels::section(&ctx))
         .section(before_after::section(&ctx, &drawn))
         .section(paper_figures::section(&drawn));
-    let index = page.write(dir)?;
-    Ok(ReportSummary {
-        index,
-        residues: ctx.stats,
-        channels: ctx.scores,
-    })
+    Ok((
+        ReportSummary {
+            index: dir.join("index.html"),
+            residues: ctx.stats,
+            channels: ctx.scores,
+        },
+        page,
+    ))
 }

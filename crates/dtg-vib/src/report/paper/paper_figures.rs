@@ -5,6 +5,7 @@
 use super::{Ctx, pick};
 use crate::apply::raw_residues;
 use crate::error::DtgVibError;
+use crate::report::colours;
 use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series};
 
@@ -27,11 +28,9 @@ fn fig3(ctx: &Ctx<'_>) -> Result<Figure, DtgVibError> {
         Figure::new("Fig. 3 — residue K0 and thrust acceleration (record as given)")
             .share_x()
             .panel(
-                Panel::new("Residue K0", "time (s)", "K0 (deg/h)").series(Series::line(
-                    "K0",
-                    t_all.to_vec(),
-                    raw[0].clone(),
-                )),
+                Panel::new("Residue K0", "time (s)", "K0 (deg/h)").series(
+                    Series::line("K0", t_all.to_vec(), raw[0].clone()).colour(colours::BEFORE),
+                ),
             )
             .panel(
                 Panel::new(
@@ -45,7 +44,7 @@ fn fig3(ctx: &Ctx<'_>) -> Result<Figure, DtgVibError> {
                         t_all.to_vec(),
                         crate::pipeline::signal(ctx.record, thrust)?.to_vec(),
                     )
-                    .colour(2),
+                    .colour(colours::INPUT),
                 ),
             ),
     )
@@ -66,7 +65,7 @@ fn fig5(ctx: &Ctx<'_>) -> Result<Figure, DtgVibError> {
             "time (s)",
             format!("{thrust} (g)"),
         )
-        .series(Series::line(thrust.clone(), t_all.to_vec(), az_f).colour(2)),
+        .series(Series::line(thrust.clone(), t_all.to_vec(), az_f).colour(colours::INPUT)),
     )
     .panel(
         Panel::new(
@@ -74,11 +73,14 @@ fn fig5(ctx: &Ctx<'_>) -> Result<Figure, DtgVibError> {
             "time (s)",
             format!("{show} (deg/h)"),
         )
-        .series(Series::line(
-            show.name(),
-            t_all.to_vec(),
-            ctx.applied.prepared.target_full(show).to_vec(),
-        )),
+        .series(
+            Series::line(
+                show.name(),
+                t_all.to_vec(),
+                ctx.applied.prepared.target_full(show).to_vec(),
+            )
+            .colour(colours::BEFORE),
+        ),
     ))
 }
 
@@ -87,8 +89,10 @@ fn target_and_output(ctx: &Ctx<'_>, ch: Channel, rows: &[usize], panel: Panel) -
     let y = ctx.applied.prepared.target(ch);
     let p = &ctx.applied.predicted[ch.index()];
     panel
-        .series(Series::line("target", ctx.rows_t(rows), pick(y, rows)).colour(1))
-        .series(Series::line("network output", ctx.rows_t(rows), pick(p, rows)).colour(0))
+        .series(Series::line("target", ctx.rows_t(rows), pick(y, rows)).colour(colours::BEFORE))
+        .series(
+            Series::line("network output", ctx.rows_t(rows), pick(p, rows)).colour(colours::AFTER),
+        )
 }
 
 /// Fig. 6: target and network output, training and validation.
