@@ -539,7 +539,8 @@ details.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
 ul.warnings { margin: 0.2rem 0 0; }
 img, svg, video { max-width: 100%; height: auto; }
 table { max-width: 100%; }
-th, td { overflow-wrap: anywhere; }
+th { overflow-wrap: break-word; }
+td { overflow-wrap: anywhere; }
 p, li, figcaption, caption { overflow-wrap: anywhere; }
 @media (max-width: 600px) {
   main { padding: 0.8rem 0.7rem 3rem; }
