@@ -469,9 +469,9 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
     if !files.warnings.is_empty() {
         // Folded: what was left out of a figure is there for whoever asks,
         // without a list of lines between the figures.
-        let _ = write!(
+        let _ = writeln!(
             h,
-            "<details class=\"warnings\"><summary>{} drawing note(s)</summary>\n",
+            "<details class=\"warnings\"><summary>{} drawing note(s)</summary>",
             files.warnings.len()
         );
         h.push_str("<ul class=\"warnings\">\n");

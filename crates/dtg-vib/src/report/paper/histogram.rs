@@ -11,7 +11,7 @@ use plot::{Figure, Panel, Section, Series};
 fn histogram(v: &[f64], bins: usize) -> (Vec<f64>, Vec<f64>, f64) {
     let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if v.is_empty() || !(hi > lo) {
+    if v.is_empty() || hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return (Vec::new(), Vec::new(), 0.0);
     }
     let w = (hi - lo) / bins as f64;
