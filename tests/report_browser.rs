@@ -52,6 +52,19 @@ fn demo_index_is_the_final_report_and_renders_at_phone_and_desktop_width() {
     assert!(html.find("Measured against predicted") < html.find("Residues (eq. 6)"));
     assert!(!html.contains("<ul class=\"warnings\">") || html.contains("<details"));
 
+    // The spectra come with what they cannot show (the mean) and band powers.
+    assert!(html.contains("mean² before") && html.contains("How to read the spectra"));
+    // The diagnosis: every input's cross-correlation in one panel per
+    // channel, against lag in seconds.
+    let svg = std::fs::read_to_string(out.join("diagnosis/diag_independence.svg")).unwrap();
+    for label in ["lag (s)", "ax", "ay", "az"] {
+        assert_eq!(
+            svg.matches(&format!(">\n{label}\n</text>")).count(),
+            6,
+            "{label} in each of the six panels"
+        );
+    }
+
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/screenshot-report.sh");
     let shots = dir.path().join("shots");
     let run = Command::new("bash")
