@@ -858,3 +858,71 @@ fn allan_report_writes_its_figures_and_refuses_an_input_as_output() {
     let err = fails(&["allan", "--data", &record(), "--report", &record()]);
     assert!(err.contains("--report"), "{err}");
 }
+
+#[test]
+fn simulate_lists_every_file_it_writes() {
+    let d = dir().join("sim-listed");
+    let printed = ok(&[
+        "simulate",
+        "--builtin",
+        "demo",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    let wrote: Vec<&str> = printed
+        .lines()
+        .filter_map(|l| l.strip_prefix("wrote "))
+        .collect();
+    let on_disk = std::fs::read_dir(&d).unwrap().count();
+    assert_eq!(wrote.len(), on_disk, "{printed}");
+    for f in wrote {
+        assert!(Path::new(f).is_file(), "{f}");
+    }
+}
+
+#[test]
+fn report_with_a_baseline_prints_each_channel_before_and_after() {
+    let out = dir().join("report-baseline");
+    let printed = ok(&[
+        "report",
+        "--model",
+        model(),
+        "--baseline",
+        model(),
+        "--data",
+        &record(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(printed.contains("val rms baseline"), "{printed}");
+    for ch in ["X", "X1", "Y", "Y1", "Z", "Z1"] {
+        assert!(
+            printed
+                .lines()
+                .any(|l| l.trim_start().starts_with(&format!("{ch} ")) && l.ends_with("+0.0%")),
+            "{ch}: {printed}"
+        );
+    }
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("SHA-256") && html.contains("baseline model"));
+}
+
+#[test]
+fn compensate_says_which_rate_reference_it_removes() {
+    let out = dir().join("comp-ref.csv");
+    let o = run(&[
+        "compensate",
+        "--model",
+        model(),
+        "--data",
+        &record(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("rate reference removed: no rate reference") && err.contains("--earth-rate"),
+        "{err}"
+    );
+}

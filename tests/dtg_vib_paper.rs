@@ -80,7 +80,7 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
     let applied = Applied::new(&model, &other).unwrap();
     let dir = std::env::temp_dir().join(format!("dtg-vib-report-other-{}", std::process::id()));
     let summary =
-        dtg_vib::figures::write_report(&model, &applied, &other, "other", None, &dir).unwrap();
+        dtg_vib::report::write_report(&model, &applied, &other, "other", None, &dir).unwrap();
     for (c, shown) in model.channels().iter().zip(&summary.channels) {
         let y = applied.prepared.target(c.channel());
         let p = &applied.predicted[c.channel().index()];

@@ -6,9 +6,11 @@ use crate::apply::Applied;
 use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose};
 use crate::effects::ChannelEffect;
 use crate::error::DtgVibError;
-use crate::figures::{Baseline, write_diagnosis_report, write_report};
 use crate::fit::{FitOptions, FitStage, fit};
 use crate::model::CompensationModel;
+use crate::report::{
+    Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report, write_report,
+};
 use crate::residue::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, simulate};
@@ -62,6 +64,8 @@ pub struct DemoSummary {
     pub diagnosis_report: PathBuf,
     /// The final report page (after adding the suggested effects).
     pub final_report: PathBuf,
+    /// `out/index.html`: the final report, linking the others; the page to open first.
+    pub index: PathBuf,
     /// Residue rms before/after the baseline compensation, validation rows.
     pub baseline_residues: Vec<ResidueStats>,
     /// Residue rms before/after the final compensation, validation rows.
@@ -151,7 +155,33 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
     let applied_final = Applied::new(&fitted, &sim.record)?;
 
     progress(DemoStep::ReportFinal);
-    let final_report = write_report(
+    let final_dir = out.join("final").join("report");
+    let allan = crate::allan::AllanAnalysis::new(&sim.record, Some(&fitted), 0.683)?;
+    let provenance = Provenance::of_this_process([
+        ("data", record_path.clone()),
+        ("calibration", sim_dir.join("calibration.json")),
+        ("baseline model", out.join("baseline").join("model.json")),
+        ("model", out.join("final").join("model.json")),
+    ]);
+    let extras = ReportExtras {
+        provenance: Some(&provenance),
+        allan: Some(&allan),
+        links: vec![
+            (
+                base_report.index.clone(),
+                "The baseline report (the paper's procedure, before the diagnosis)".into(),
+            ),
+            (
+                diag_page.clone(),
+                "The diagnosis of the baseline (what the model was missing)".into(),
+            ),
+            (
+                final_dir.join("index.html"),
+                "This report, next to its figures".into(),
+            ),
+        ],
+    };
+    let (final_report, page) = build_report(
         &fitted,
         &applied_final,
         &sim.record,
@@ -161,8 +191,13 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
             model: &baseline,
             applied: &applied_base,
         }),
-        &out.join("final").join("report"),
+        &extras,
+        &final_dir,
     )?;
+    page.write(&final_dir)?;
+    // The final report again as `out/index.html`, its figures linked from
+    // final/report/: the page to open first.
+    let index = page.write(out)?;
 
     Ok(DemoSummary {
         out: out.to_path_buf(),
@@ -170,6 +205,7 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
         baseline_report: base_report.index,
         diagnosis_report: diag_page,
         final_report: final_report.index,
+        index,
         baseline_residues: base_report.residues,
         final_residues: final_report.residues,
         hidden: scenario

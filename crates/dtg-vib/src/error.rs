@@ -178,7 +178,7 @@ pub enum DtgVibError {
     },
     /// A figure or the report could not be written.
     #[error(transparent)]
-    Report(#[from] crate::report::ReportError),
+    Report(#[from] plot::ReportError),
     /// Writing an output file failed.
     #[error("{path}: {source}")]
     Output {

@@ -21,7 +21,6 @@ pub mod effects;
 pub mod error;
 pub mod explain;
 pub mod export;
-pub mod figures;
 pub mod fit;
 pub mod inference;
 pub mod model;

@@ -7,10 +7,10 @@ use dtg_vib::apply::{Applied, write_residues};
 use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
 use dtg_vib::effects::{ChannelEffect, Effect};
 use dtg_vib::explain::ExplainStage;
-use dtg_vib::figures::{Baseline, write_diagnosis_report, write_report};
 use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit_records};
 use dtg_vib::model::CompensationModel;
 use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
+use dtg_vib::report::{Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report};
 use dtg_vib::split::SplitKind;
 use dtg_vib::window::WindowSpec;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -497,7 +497,9 @@ fn run(cli: Cli) -> Result<()> {
                 )
             })?;
             drop(progress);
-            println!("wrote {}", out.join("record.csv").display());
+            for name in nav_sensors::sim::Simulation::FILES {
+                println!("wrote {}", out.join(name).display());
+            }
         }
         Command::Fit(args) => fit_command(*args, &progress)?,
         Command::Explain(args) => explain_command(*args, &progress)?,
@@ -517,6 +519,11 @@ fn run(cli: Cli) -> Result<()> {
             let record = Record::read_csv(&data)?;
             progress.say("compensating");
             let applied = Applied::unsplit(&model, &record)?;
+            progress.clear();
+            eprintln!(
+                "{}",
+                rate_reference_note(&model.preprocess().rate_reference)
+            );
             applied.compensated_record().write_csv(&out)?;
             drop(progress);
             eprintln!(
@@ -580,7 +587,14 @@ fn run(cli: Cli) -> Result<()> {
                 None => None,
             };
             progress.say("drawing figures");
-            let summary = write_report(
+            let mut files = vec![("model", model.clone()), ("data", data.clone())];
+            files.extend(baseline.clone().map(|b| ("baseline model", b)));
+            let provenance = Provenance::of_this_process(files);
+            let extras = ReportExtras {
+                provenance: Some(&provenance),
+                ..ReportExtras::default()
+            };
+            let (summary, page) = build_report(
                 &m,
                 &applied,
                 &record,
@@ -590,10 +604,15 @@ fn run(cli: Cli) -> Result<()> {
                     model,
                     applied,
                 }),
+                &extras,
                 &out,
             )?;
+            page.write(&out)?;
             drop(progress);
             print_residues(&summary.residues);
+            if let Some((_, ba)) = &base {
+                print_baseline_table(ba, &summary.channels);
+            }
             println!("report: {}", summary.index.display());
         }
         Command::Check {
@@ -620,7 +639,16 @@ fn run(cli: Cli) -> Result<()> {
                     progress.say("drawing figures");
                     let applied = Applied::new(&m, &record)?;
                     let name = data.display().to_string();
-                    Some(write_report(&m, &applied, &record, &name, None, dir)?.index)
+                    let files = vec![("model", model.clone()), ("data", data.clone())];
+                    let provenance = Provenance::of_this_process(files);
+                    let extras = ReportExtras {
+                        provenance: Some(&provenance),
+                        ..ReportExtras::default()
+                    };
+                    let (summary, page) =
+                        build_report(&m, &applied, &record, &name, None, &extras, dir)?;
+                    page.write(dir)?;
+                    Some(summary.index)
                 }
                 None => None,
             };
@@ -1207,7 +1235,7 @@ fn allan_command(
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            Some(dtg_vib::figures::write_allan_report(
+            Some(dtg_vib::report::write_allan_report(
                 &a,
                 &data.display().to_string(),
                 dir,
@@ -1371,6 +1399,40 @@ fn parse_share(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Each channel's validation rms under the baseline and this model.
+fn print_baseline_table(base: &Applied, this: &[dtg_vib::model::ChannelScores]) {
+    println!("channel  val rms baseline  val rms this model  (deg/h)  change");
+    for (c, s) in nav_sensors::geometry::Channel::ALL.into_iter().zip(this) {
+        let b = base.scores(c).val_rms;
+        println!(
+            "{:>7}  {:>16.4}  {:>18.4}  {:>15}",
+            c.name(),
+            b,
+            s.val_rms,
+            format!("{:+.1}%", 100.0 * (s.val_rms / b - 1.0))
+        );
+    }
+}
+
+/// What `compensate` removes as the rate reference, and how to change it.
+fn rate_reference_note(r: &dtg_vib::pipeline::RateReference) -> String {
+    use dtg_vib::pipeline::RateReference;
+    let what = match r {
+        RateReference::None => "no rate reference (the model was fitted without one)".to_string(),
+        RateReference::Earth { site } => format!(
+            "the Earth rate at latitude {}° (cluster x north, z up)",
+            site.latitude_deg
+        ),
+        RateReference::Table { rate_deg_s } => format!(
+            "a table rate of {}, {}, {} deg/s about cluster x, y, z",
+            rate_deg_s[0], rate_deg_s[1], rate_deg_s[2]
+        ),
+    };
+    format!(
+        "rate reference removed: {what}, as stored in the model; to change it, refit with --earth-rate LAT or --table-rate WX,WY,WZ"
+    )
+}
+
 fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {
     print_residues_on(stats, "validation rows");
 }
@@ -1449,7 +1511,7 @@ fn print_demo(s: &dtg_vib::demo::DemoSummary) {
     }
     print_residues(&s.final_residues);
     println!();
-    println!("reports:");
+    println!("reports (start with {}):", s.index.display());
     println!("  paper's procedure: {}", s.baseline_report.display());
     println!("  diagnosis:         {}", s.diagnosis_report.display());
     println!("  after the refit:   {}", s.final_report.display());

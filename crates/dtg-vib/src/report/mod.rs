@@ -1,74 +1,95 @@
-//! Figures and the HTML report, over plain data.
-//!
-//! A small plotting vocabulary for the paper's figures (Fig. 3 a parity
-//! residue and the thrust acceleration, Fig. 5 processed acceleration and
-//! rate, Fig. 6 target and network output, Fig. 7 residues with and without
-//! compensation, residue spectra) and for the diagnosis loop (residual
-//! against candidate effects, PSD against a noise floor, correlation tests
-//! with confidence bands, ERR rankings, before/after comparisons):
-//!
-//! - [`Series`]: labelled points drawn as a line, dots or stems;
-//! - [`Panel`]: axes with units, series, optional log axes, a ±band
-//!   ([`Panel::correlation`]) and reference lines ([`Panel::psd`] for spectra);
-//! - [`BarChart`]: horizontal bars, ranked ([`BarChart::ranked`], with a
-//!   threshold) or grouped (before/after);
-//! - [`Figure`]: a title over stacked panels, saved as PNG **and** SVG by one
-//!   drawing routine generic over the plotters backend;
-//! - [`HtmlReport`]: a single self-contained `index.html` with text, tables
-//!   and figures.
-//!
-//! The module knows nothing of gyros or RBF networks: it takes slices and
-//! strings, so the pipeline can change without touching the drawing.
-//!
-//! Robustness is part of the contract: empty, constant and NaN-laden series
-//! draw without panicking; long series are decimated per pixel column keeping
-//! peaks ([`decimate_m4`]); values a log axis cannot show are skipped and
-//! reported in [`FigureFiles::warnings`]. Programmer errors (x and y of
-//! different lengths, a table row of the wrong width) panic at the caller.
-//!
-//! ```
-//! use dtg_vib::report::{BarChart, Figure, HtmlReport, Panel, Section, Series};
-//!
-//! let dir = std::env::temp_dir().join("dtg-vib-doc-overview");
-//! let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
-//! let k0: Vec<f64> = t.iter().map(|t| 0.2 * (4.0 * t).sin()).collect();
-//! let residues = Figure::new("Residue K0")
-//!     .panel(Panel::new("K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t, k0)))
-//!     .save(&dir, "k0")?;
-//! let err = Figure::new("Candidate effects, channel Z")
-//!     .panel(BarChart::ranked("ERR", "ERR (–)", "ERR", [("gg_IS", 0.41), ("g_S", 0.004)])
-//!         .threshold(0.01, "significance threshold"))
-//!     .save(&dir, "err_z")?;
-//! let index = HtmlReport::new("Report")
-//!     .section(Section::new("Residues").figure(&residues, "K0 over the record"))
-//!     .section(Section::new("Diagnosis").figure(&err, "ERR of candidate effects"))
-//!     .write(&dir)?;
-//! assert!(index.exists());
-//! # Ok::<(), dtg_vib::report::ReportError>(())
-//! ```
+//! What writes the application's reports: the figures and pages of a fitted
+//! model (the paper's figures), of a diagnosis and of an Allan analysis,
+//! drawn with the [`plot`] crate. Each page is assembled from one writer per
+//! section, in a file of its own.
 
-#![warn(missing_docs)]
+mod allan;
+mod diagnosis;
+mod paper;
+mod provenance;
 
-mod axis;
-mod bars;
-mod decimate;
-mod error;
-mod figure;
-mod html;
-mod legend;
-mod panel;
-mod series;
-mod style;
-mod xy;
+pub use allan::write_allan_report;
+pub use diagnosis::write_diagnosis_report;
+pub use paper::{Baseline, ReportExtras, ReportSummary, build_report, write_report};
+pub use provenance::Provenance;
+
+/// One meaning per colour, in every figure of every report (indices into
+/// [`plot::PALETTE`]).
+pub(crate) mod colours {
+    /// Without compensation, measured, bias only: vermillion.
+    pub const BEFORE: usize = 1;
+    /// With compensation, the model's prediction, the residual after: blue.
+    pub const AFTER: usize = 0;
+    /// An acceleration (an input): bluish green.
+    pub const INPUT: usize = 2;
+    /// A baseline model compared against: reddish purple.
+    pub const BASELINE: usize = 3;
+    /// A reference curve (white floor, normal density, fitted noise line): black.
+    pub const REFERENCE: usize = 6;
+
+    /// The sentence that says so on every page.
+    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction; green = acceleration (input); purple = a baseline model; black = a reference (white floor, normal density, fitted noise line).";
+}
+
+/// A spectrum without its 0 Hz bin, which a log frequency axis cannot show
+/// (drawing it would only add a "skipped point" note).
+pub(crate) fn positive_freq(f: &[f64], d: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    f.iter()
+        .zip(d)
+        .filter(|(f, d)| **f > 0.0 && **d > 0.0)
+        .map(|(f, d)| (*f, *d))
+        .unzip()
+}
+
+use crate::error::DtgVibError;
+use plot::{Figure, FigureFiles};
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Figures once drawn, by file stem.
+pub(crate) struct Drawn(Vec<(&'static str, FigureFiles)>);
+
+impl Drawn {
+    /// The files of the figure saved as `stem`.
+    #[track_caller]
+    pub(crate) fn get(&self, stem: &str) -> &FigureFiles {
+        self.0
+            .iter()
+            .find(|(s, _)| *s == stem)
+            .map(|(_, f)| f)
+            .unwrap_or_else(|| panic!("figure {stem:?} was not drawn"))
+    }
+}
+
+/// Renders figures in parallel (each writes its own PNG and SVG), returning
+/// `(stem, files)` in the given order.
+fn save_all(figs: Vec<(Figure, &'static str)>, dir: &Path) -> Result<Drawn, DtgVibError> {
+    figs.into_par_iter()
+        .map(|(fig, stem)| Ok((stem, fig.save(dir, stem)?)))
+        .collect::<Result<Vec<_>, DtgVibError>>()
+        .map(Drawn)
+}
+
+/// A number for a table: four significant digits, no exponent for everyday sizes.
+pub(crate) fn fmt(v: f64) -> String {
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-3..1e5).contains(&v.abs()) {
+        let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
 
 #[cfg(test)]
-mod tests;
-
-pub use bars::BarChart;
-pub use decimate::decimate_m4;
-pub use error::ReportError;
-pub use figure::{Chart, Figure, FigureFiles};
-pub use html::{HtmlReport, Section, Table, escape_html};
-pub use panel::{Band, Panel, RefLine};
-pub use series::{Series, SeriesStyle};
-pub use style::{PALETTE, colour};
+mod tests {
+    #[test]
+    fn fmt_keeps_four_significant_digits() {
+        assert_eq!(super::fmt(1.23456), "1.235");
+        assert_eq!(super::fmt(123.456), "123.5");
+        assert_eq!(super::fmt(0.0123456), "0.01235");
+        assert_eq!(super::fmt(1.5e-7), "1.500e-7");
+        assert_eq!(super::fmt(0.0), "0");
+    }
+}

@@ -1,11 +1,11 @@
 //! The Allan-deviation page: log-log curves before and after compensation
 //! with the fitted noise-term lines, and a table of the terms.
 
-use super::{fmt, save_all};
+use super::{Drawn, colours, fmt, save_all};
 use crate::allan::{AllanAnalysis, SeriesAllan, term_text as cell};
 use crate::error::DtgVibError;
-use crate::report::{Figure, HtmlReport, Panel, Section, Series, Table};
 use nav_sensors::noise::{AllanCurve, FLICKER_FLOOR, NoiseTerm, NoiseTerms};
+use plot::{Figure, HtmlReport, Panel, Section, Series, Table};
 use std::path::{Path, PathBuf};
 
 /// The fitted lines of `terms`, each over its region widened by an octave
@@ -61,15 +61,15 @@ fn panel(s: &SeriesAllan) -> Panel {
     let mut p = Panel::new(s.name, "τ (s)", "Allan deviation (deg/h)")
         .log_x()
         .log_y()
-        .series(Series::line("before", s.before.tau_s(), s.before.adev()).colour(1));
+        .series(Series::line("before", s.before.tau_s(), s.before.adev()).colour(colours::BEFORE));
     if let Some(a) = &s.after {
-        p = p.series(Series::line("after", a.tau_s(), a.adev()).colour(0));
+        p = p.series(Series::line("after", a.tau_s(), a.adev()).colour(colours::AFTER));
     }
-    for line in term_lines(&s.before, &s.terms_before, "before", [4, 5, 7]) {
+    for line in term_lines(&s.before, &s.terms_before, "before", [colours::BEFORE; 3]) {
         p = p.series(line);
     }
     if let (Some(a), Some(t)) = (&s.after, &s.terms_after) {
-        for line in term_lines(a, t, "after", [2, 3, 6]) {
+        for line in term_lines(a, t, "after", [colours::AFTER; 3]) {
             p = p.series(line);
         }
     }
@@ -107,6 +107,66 @@ fn table(rows: &[SeriesAllan], confidence: f64) -> Table {
     t
 }
 
+/// The two Allan figures (channels, residues), with their file stems.
+pub(super) fn figures(analysis: &AllanAnalysis) -> Vec<(Figure, &'static str)> {
+    let figure = |title: &str, rows: &[SeriesAllan]| {
+        rows.iter()
+            .fold(Figure::new(title), |f, s| f.panel(panel(s)))
+    };
+    vec![
+        (
+            figure(
+                "Overlapping Allan deviation, gyro channels",
+                &analysis.channels,
+            ),
+            "allan_channels",
+        ),
+        (
+            figure(
+                "Overlapping Allan deviation, parity residues (eq. 6)",
+                &analysis.residues,
+            ),
+            "allan_residues",
+        ),
+    ]
+}
+
+/// One section per figure: its noise-term table, notes and figure.
+pub(super) fn sections(analysis: &AllanAnalysis, drawn: &Drawn) -> Vec<Section> {
+    [
+        ("allan_channels", &analysis.channels, "Gyro channels"),
+        ("allan_residues", &analysis.residues, "Parity residues"),
+    ]
+    .into_iter()
+    .map(|(stem, rows, heading)| {
+        let files = drawn.get(stem);
+        let mut sec = Section::new(heading).table(table(rows, analysis.confidence));
+        for w in &files.warnings {
+            sec = sec.text(w.clone());
+        }
+        sec.figure(
+            files,
+            format!(
+                "{stem}: Allan deviation against τ (log-log) with the fitted noise-term lines."
+            ),
+        )
+    })
+    .collect()
+}
+
+/// What the Allan page's summary says about the series analysed.
+pub(super) fn summary(analysis: &AllanAnalysis, data: &str) -> String {
+    let what = if analysis.compensated {
+        "before (calibrated output, rate reference removed) and after the model's compensation (what `compensate` writes)"
+    } else {
+        "of the record as given (no model)"
+    };
+    format!(
+        "{data}: {} samples from sample {} at τ₀ = {} s, {what}; octave-spaced τ up to a tenth of the record. Noise terms after IEEE Std 952: angle random walk on the τ^−½ region, bias instability at the minimum / 0.664, rate random walk on the τ^+½ region.",
+        analysis.samples, analysis.first_sample, analysis.tau0_s
+    )
+}
+
 /// Writes `allan_channels` and `allan_residues` (PNG and SVG) and
 /// `index.html` into `dir`; `data` names the record on the page.
 pub fn write_allan_report(
@@ -114,56 +174,10 @@ pub fn write_allan_report(
     data: &str,
     dir: &Path,
 ) -> Result<PathBuf, DtgVibError> {
-    let figure = |title: &str, rows: &[SeriesAllan]| {
-        rows.iter()
-            .fold(Figure::new(title), |f, s| f.panel(panel(s)))
-    };
-    let saved = save_all(
-        vec![
-            (
-                figure(
-                    "Overlapping Allan deviation, gyro channels",
-                    &analysis.channels,
-                ),
-                "allan_channels",
-            ),
-            (
-                figure(
-                    "Overlapping Allan deviation, parity residues (eq. 6)",
-                    &analysis.residues,
-                ),
-                "allan_residues",
-            ),
-        ],
-        dir,
-    )?;
-    let what = if analysis.compensated {
-        "before (calibrated output, rate reference removed) and after the model's compensation (what `compensate` writes)"
-    } else {
-        "of the record as given (no model)"
-    };
-    let mut page = HtmlReport::new("Allan deviation")
-        .summary(format!(
-            "{data}: {} samples from sample {} at τ₀ = {} s, {what}; octave-spaced τ up to a tenth of the record. Noise terms after IEEE Std 952: angle random walk on the τ^−½ region, bias instability at the minimum / 0.664, rate random walk on the τ^+½ region.",
-            analysis.samples, analysis.first_sample, analysis.tau0_s
-        ));
-    for ((stem, files), rows, heading) in [
-        (&saved[0], &analysis.channels, "Gyro channels"),
-        (&saved[1], &analysis.residues, "Parity residues"),
-    ]
-    .into_iter()
-    .map(|(s, r, h)| ((s.0, &s.1), r, h))
-    {
-        let mut sec = Section::new(heading).table(table(rows, analysis.confidence));
-        for w in &files.warnings {
-            sec = sec.text(w.clone());
-        }
-        page = page.section(sec.figure(
-            files,
-            format!(
-                "{stem}: Allan deviation against τ (log-log) with the fitted noise-term lines."
-            ),
-        ));
+    let drawn = save_all(figures(analysis), dir)?;
+    let mut page = HtmlReport::new("Allan deviation").summary(summary(analysis, data));
+    for sec in sections(analysis, &drawn) {
+        page = page.section(sec);
     }
     Ok(page.write(dir)?)
 }

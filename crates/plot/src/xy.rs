@@ -48,6 +48,8 @@ pub(crate) struct Collected {
     series: Vec<Cleaned>,
     band: Option<(f64, String)>,
     ref_lines: Vec<(f64, String)>,
+    /// Shaded x ranges in plot coordinates, with their labels.
+    x_spans: Vec<(f64, f64, String)>,
     pub x_extent: Extent,
     y_extent: Extent,
     /// Only lines: the x axis can be tight (time series end at the data).
@@ -142,6 +144,15 @@ pub(crate) fn collect(panel: &Panel, warnings: &mut Vec<String>) -> Collected {
             )),
         }
     }
+    let x_spans = panel
+        .x_spans
+        .iter()
+        .filter_map(|sp| {
+            let a = axis::to_plot(sp.from, panel.log_x)?;
+            let b = axis::to_plot(sp.to, panel.log_x)?;
+            Some((a, b, sp.label.clone()))
+        })
+        .collect();
     // Stems grow from zero, so zero belongs in a linear range.
     if !panel.log_y && series.iter().any(|s| s.style == SeriesStyle::Stems) {
         y_extent.add(0.0);
@@ -156,6 +167,7 @@ pub(crate) fn collect(panel: &Panel, warnings: &mut Vec<String>) -> Collected {
         series,
         band,
         ref_lines,
+        x_spans,
         x_extent,
         y_extent,
     }
@@ -181,8 +193,15 @@ pub(crate) struct PreparedXy {
     series: Vec<Drawn>,
     band: Option<(f64, f64)>,
     ref_lines: Vec<f64>,
+    x_spans: Vec<(f64, f64)>,
     empty: bool,
 }
+
+/// About one labelled y tick per this many pixels: a 150-pixel panel gets
+/// four or five, enough to read a value off without a ruler.
+pub(crate) const Y_TICK_SPACING_PX: u32 = 24;
+/// About one labelled x tick per this many pixels (labels are wider than tall).
+pub(crate) const X_TICK_SPACING_PX: u32 = 80;
 
 /// Vertical pixels the plot itself gets in a panel `height` tall with this header.
 fn plot_height(height: u32, header: &Header) -> u32 {
@@ -208,6 +227,16 @@ pub(crate) fn layout_y(c: &Collected, width: u32, height: u32, y_pad: f64) -> (H
             label: s.label.clone(),
         })
         .collect();
+    let mut span_labels: Vec<&str> = Vec::new();
+    for (_, _, label) in &c.x_spans {
+        if !span_labels.contains(&label.as_str()) {
+            span_labels.push(label);
+            entries.push(Entry {
+                swatch: Swatch::Fill(SPAN, SPAN_ALPHA * 2.0),
+                label: label.clone(),
+            });
+        }
+    }
     if let Some((_, label)) = &c.band {
         entries.push(Entry {
             swatch: Swatch::Fill(band_colour(), BAND_ALPHA * 2.0),
@@ -222,7 +251,13 @@ pub(crate) fn layout_y(c: &Collected, width: u32, height: u32, y_pad: f64) -> (H
     }
     let header = Header::layout(&c.panel_title, entries, width);
     let (lo, hi) = axis::padded(c.y_extent, y_pad, c.log_y);
-    let y = Axis::new(lo, hi, c.log_y, plot_height(height, &header), 42);
+    let y = Axis::new(
+        lo,
+        hi,
+        c.log_y,
+        plot_height(height, &header),
+        Y_TICK_SPACING_PX,
+    );
     let tick_w = y
         .ticks
         .iter()
@@ -243,7 +278,7 @@ pub(crate) fn finish(
     plot_width: u32,
     height: u32,
 ) -> PreparedXy {
-    let x = Axis::new(x_range.0, x_range.1, c.log_x, plot_width, 110);
+    let x = Axis::new(x_range.0, x_range.1, c.log_x, plot_width, X_TICK_SPACING_PX);
     let columns = plot_width.max(1) as usize;
     let rows = plot_height(height, &header) as usize;
     let series = c
@@ -292,8 +327,14 @@ pub(crate) fn finish(
         series,
         band,
         ref_lines: c.ref_lines.iter().map(|r| r.0).collect(),
+        x_spans: c.x_spans.iter().map(|r| (r.0, r.1)).collect(),
     }
 }
+
+/// The shade of an x span: grey, so it reads as background under any series.
+const SPAN: RGBColor = RGBColor(110, 110, 110);
+/// Opacity of an x span's fill.
+const SPAN_ALPHA: f64 = 0.12;
 
 fn band_colour() -> RGBColor {
     style::colour(5) // sky blue: visible, yet quieter than any series
@@ -332,6 +373,15 @@ pub(crate) fn draw<DB: DrawingBackend>(
         .draw()?;
 
     let (x0, x1) = (p.x.lo, p.x.hi);
+    for &(a, b) in &p.x_spans {
+        let (a, b) = (a.clamp(x0, x1), b.clamp(x0, x1));
+        if b > a {
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(a, p.y.lo), (b, p.y.hi)],
+                SPAN.mix(SPAN_ALPHA).filled(),
+            )))?;
+        }
+    }
     if let Some((lo, hi)) = p.band {
         let c = band_colour();
         chart.draw_series(std::iter::once(Rectangle::new(

@@ -4,7 +4,7 @@
 //! reasons: log axes are drawn as linear axes of log10(value) (plotters' own
 //! log axis puts few or no ticks on ranges shorter than a decade and prints
 //! long decimal labels), and labels must read well at every scale, from
-//! 1e-6 deg²/h²/Hz to 5000 s.
+//! 1e-6 V²/Hz to 5000 s.
 
 use std::ops::Range;
 

@@ -3,7 +3,7 @@
 //! The page uses inline CSS only — no JavaScript, no fonts or stylesheets from
 //! the network — so it opens the same from a CI artefact, an e-mail
 //! attachment or an air-gapped lab machine. Every piece of text is
-//! HTML-escaped: captions and table cells come from data (channel names,
+//! HTML-escaped: captions and table cells come from data (sensor names,
 //! column names of a record) and must never become markup.
 
 use std::fmt::Write as _;
@@ -21,9 +21,9 @@ use super::{FigureFiles, ReportError};
 /// figures line up.
 ///
 /// ```
-/// use dtg_vib::report::Table;
-/// let t = Table::new(["residue", "rms before (deg/h)", "rms after (deg/h)", "reduction"])
-///     .row(["K0", "0.612", "0.118", "5.2×"])
+/// use plot::Table;
+/// let t = Table::new(["signal", "rms before (mV)", "rms after (mV)", "reduction"])
+///     .row(["s0", "0.612", "0.118", "5.2×"])
 ///     .caption("Validation part of a blocked split");
 /// assert_eq!(t.row_count(), 1);
 /// ```
@@ -38,7 +38,7 @@ impl Table {
     /// A table with these column headings and no rows.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
+    /// use plot::Table;
     /// assert_eq!(Table::new(["a", "b"]).row_count(), 0);
     /// ```
     pub fn new(header: impl IntoIterator<Item = impl Into<String>>) -> Self {
@@ -55,8 +55,8 @@ impl Table {
     /// If the row does not have one cell per column.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
-    /// let t = Table::new(["channel", "rms (deg/h)"]).row(["X", &format!("{:.3}", 0.1234)]);
+    /// use plot::Table;
+    /// let t = Table::new(["sensor", "rms (mV)"]).row(["X", &format!("{:.3}", 0.1234)]);
     /// assert_eq!(t.row_count(), 1);
     /// ```
     #[track_caller]
@@ -76,8 +76,8 @@ impl Table {
     /// A caption shown above the table.
     ///
     /// ```
-    /// use dtg_vib::report::Table;
-    /// let t = Table::new(["a"]).caption("Residue rms");
+    /// use plot::Table;
+    /// let t = Table::new(["a"]).caption("Signal rms");
     /// # let _ = t;
     /// ```
     pub fn caption(mut self, text: impl Into<String>) -> Self {
@@ -88,7 +88,7 @@ impl Table {
     /// Number of data rows.
     ///
     /// ```
-    /// # use dtg_vib::report::Table;
+    /// # use plot::Table;
     /// assert_eq!(Table::new(["a"]).row(["1"]).row(["2"]).row_count(), 2);
     /// ```
     pub fn row_count(&self) -> usize {
@@ -103,18 +103,19 @@ enum Block {
     Code(String),
     Table(Table),
     Figure { files: FigureFiles, caption: String },
+    Link { path: PathBuf, text: String },
 }
 
 /// A section of the report: a heading and blocks of text, tables and figures
 /// in the order they were added.
 ///
 /// ```
-/// use dtg_vib::report::{Section, Table};
-/// let s = Section::new("Residues before and after")
-///     .text("Residue rms on the validation part.")
-///     .table(Table::new(["residue", "rms (deg/h)"]).row(["K0", "0.118"]))
-///     .code("dtg-vib demo --out demo-out");
-/// assert_eq!(s.heading(), "Residues before and after");
+/// use plot::{Section, Table};
+/// let s = Section::new("Signals before and after")
+///     .text("Signal rms on the validation part.")
+///     .table(Table::new(["signal", "rms (mV)"]).row(["s0", "0.118"]))
+///     .code("mytool demo --out demo-out");
+/// assert_eq!(s.heading(), "Signals before and after");
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Section {
@@ -126,8 +127,8 @@ impl Section {
     /// An empty section with a heading.
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
-    /// assert_eq!(Section::new("Diagnosis").heading(), "Diagnosis");
+    /// # use plot::Section;
+    /// assert_eq!(Section::new("Analysis").heading(), "Analysis");
     /// ```
     pub fn new(heading: impl Into<String>) -> Self {
         Section {
@@ -139,7 +140,7 @@ impl Section {
     /// A paragraph of plain text (escaped; blank lines start new paragraphs).
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// let s = Section::new("s").text("First.\n\nSecond.");
     /// # let _ = s;
     /// ```
@@ -151,8 +152,8 @@ impl Section {
     /// Preformatted text in a monospace box (a command line, a JSON excerpt).
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
-    /// let s = Section::new("s").code("dtg-vib diagnose --model m.json --data d.csv");
+    /// # use plot::Section;
+    /// let s = Section::new("s").code("mytool analyse --model m.json --data d.csv");
     /// # let _ = s;
     /// ```
     pub fn code(mut self, text: impl Into<String>) -> Self {
@@ -160,10 +161,29 @@ impl Section {
         self
     }
 
+    /// A link to another file (another report page, a data file), made
+    /// relative to the directory the page is written to, like figures.
+    ///
+    /// ```
+    /// use plot::{HtmlReport, Section};
+    /// let dir = std::path::Path::new("/out");
+    /// let html = HtmlReport::new("r")
+    ///     .section(Section::new("s").link("/out/other/index.html", "the other report"))
+    ///     .to_html(dir);
+    /// assert!(html.contains(r#"<a href="other/index.html">the other report</a>"#));
+    /// ```
+    pub fn link(mut self, path: impl Into<PathBuf>, text: impl Into<String>) -> Self {
+        self.blocks.push(Block::Link {
+            path: path.into(),
+            text: text.into(),
+        });
+        self
+    }
+
     /// A table.
     ///
     /// ```
-    /// # use dtg_vib::report::{Section, Table};
+    /// # use plot::{Section, Table};
     /// let s = Section::new("s").table(Table::new(["a"]).row(["1"]));
     /// # let _ = s;
     /// ```
@@ -179,14 +199,14 @@ impl Section {
     /// links are relative and the directory can be moved as a whole.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel, Section, Series};
-    /// let dir = std::env::temp_dir().join("dtg-vib-doc");
+    /// use plot::{Figure, Panel, Section, Series};
+    /// let dir = std::env::temp_dir().join("plot-doc");
     /// let files = Figure::new("Fig. 5")
     ///     .panel(Panel::new("az", "time (s)", "az (g)").series(Series::sampled("az", 0.0, 0.02, vec![0.1, 0.3, -0.2])))
     ///     .save(&dir, "fig5")?;
     /// let s = Section::new("Pre-processing").figure(&files, "Fig. 5: processed acceleration and rate.");
     /// # let _ = s;
-    /// # Ok::<(), dtg_vib::report::ReportError>(())
+    /// # Ok::<(), plot::ReportError>(())
     /// ```
     pub fn figure(mut self, files: &FigureFiles, caption: impl Into<String>) -> Self {
         self.blocks.push(Block::Figure {
@@ -199,7 +219,7 @@ impl Section {
     /// The heading.
     ///
     /// ```
-    /// # use dtg_vib::report::Section;
+    /// # use plot::Section;
     /// assert_eq!(Section::new("h").heading(), "h");
     /// ```
     pub fn heading(&self) -> &str {
@@ -211,20 +231,20 @@ impl Section {
 /// of contents when there is more than one section.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, HtmlReport, Panel, Section, Series, Table};
+/// use plot::{Figure, HtmlReport, Panel, Section, Series, Table};
 ///
-/// let dir = std::env::temp_dir().join("dtg-vib-doc-report");
+/// let dir = std::env::temp_dir().join("plot-doc-report");
 /// let t: Vec<f64> = (0..500).map(|i| i as f64 * 0.02).collect();
 /// let k0: Vec<f64> = t.iter().map(|t| (3.0 * t).sin()).collect();
-/// let fig = Figure::new("Residue K0")
-///     .panel(Panel::new("K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t, k0)))
+/// let fig = Figure::new("Signal s0")
+///     .panel(Panel::new("s0", "time (s)", "s0 (mV)").series(Series::line("s0", t, k0)))
 ///     .save(&dir, "k0")?;
-/// let path = HtmlReport::new("DTG vibration compensation")
-///     .summary("Residue rms fell 5.2-fold on the validation part.")
+/// let path = HtmlReport::new("shaker-table test")
+///     .summary("Signal rms fell 5.2-fold on the validation part.")
 ///     .section(
-///         Section::new("Residues")
-///             .table(Table::new(["residue", "before (deg/h)", "after (deg/h)"]).row(["K0", "0.612", "0.118"]))
-///             .figure(&fig, "Residue K0 over the record."),
+///         Section::new("Signals")
+///             .table(Table::new(["signal", "before (mV)", "after (mV)"]).row(["s0", "0.612", "0.118"]))
+///             .figure(&fig, "Signal s0 over the record."),
 ///     )
 ///     .write(&dir)?;
 /// let html = std::fs::read_to_string(&path)?;
@@ -243,8 +263,8 @@ impl HtmlReport {
     /// An empty report with a title.
     ///
     /// ```
-    /// # use dtg_vib::report::HtmlReport;
-    /// let r = HtmlReport::new("Diagnosis of model.json");
+    /// # use plot::HtmlReport;
+    /// let r = HtmlReport::new("Analysis of model.json");
     /// # let _ = r;
     /// ```
     pub fn new(title: impl Into<String>) -> Self {
@@ -258,8 +278,8 @@ impl HtmlReport {
     /// A summary paragraph under the title (the numbers a reader wants first).
     ///
     /// ```
-    /// # use dtg_vib::report::HtmlReport;
-    /// let r = HtmlReport::new("r").summary("Suggested effect for Z: gg_IS (ERR 0.41).");
+    /// # use plot::HtmlReport;
+    /// let r = HtmlReport::new("r").summary("Suggested effect for Z: u_sq (ERR 0.41).");
     /// # let _ = r;
     /// ```
     pub fn summary(mut self, paragraph: impl Into<String>) -> Self {
@@ -270,7 +290,7 @@ impl HtmlReport {
     /// Appends a section.
     ///
     /// ```
-    /// # use dtg_vib::report::{HtmlReport, Section};
+    /// # use plot::{HtmlReport, Section};
     /// let r = HtmlReport::new("r").section(Section::new("Fit"));
     /// # let _ = r;
     /// ```
@@ -283,7 +303,7 @@ impl HtmlReport {
     /// directory the page will be written to.
     ///
     /// ```
-    /// use dtg_vib::report::{HtmlReport, Section};
+    /// use plot::{HtmlReport, Section};
     /// let html = HtmlReport::new("A <b>bold</b> claim")
     ///     .section(Section::new("x").text("1 < 2 & 3 > 2"))
     ///     .to_html(std::path::Path::new("."));
@@ -329,6 +349,14 @@ impl HtmlReport {
                     }
                     Block::Table(t) => table(&mut h, t),
                     Block::Figure { files, caption } => figure(&mut h, files, caption, dir),
+                    Block::Link { path, text } => {
+                        let _ = writeln!(
+                            h,
+                            "<p class=\"link\"><a href=\"{}\">{}</a></p>",
+                            href(path, dir),
+                            escape(text)
+                        );
+                    }
                 }
             }
             h.push_str("</section>\n");
@@ -340,10 +368,10 @@ impl HtmlReport {
     /// Writes `dir/index.html` (creating `dir` if needed) and returns its path.
     ///
     /// ```
-    /// use dtg_vib::report::HtmlReport;
-    /// let path = HtmlReport::new("Empty report").write(std::env::temp_dir().join("dtg-vib-doc-empty"))?;
+    /// use plot::HtmlReport;
+    /// let path = HtmlReport::new("Empty report").write(std::env::temp_dir().join("plot-doc-empty"))?;
     /// assert!(path.ends_with("index.html"));
-    /// # Ok::<(), dtg_vib::report::ReportError>(())
+    /// # Ok::<(), plot::ReportError>(())
     /// ```
     pub fn write(&self, dir: impl AsRef<Path>) -> Result<PathBuf, ReportError> {
         let dir = dir.as_ref();
@@ -363,7 +391,7 @@ impl HtmlReport {
 /// Escapes text for HTML content and for double- or single-quoted attributes.
 ///
 /// ```
-/// use dtg_vib::report::escape_html;
+/// use plot::escape_html;
 /// assert_eq!(escape_html(r#"<script>alert("x")</script> & 'y'"#),
 ///            "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &#39;y&#39;");
 /// ```
@@ -439,11 +467,18 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
          <figcaption>{alt} <a class=\"svg\" href=\"{svg}\">SVG</a></figcaption>\n"
     );
     if !files.warnings.is_empty() {
+        // Folded: what was left out of a figure is there for whoever asks,
+        // without a list of lines between the figures.
+        let _ = writeln!(
+            h,
+            "<details class=\"warnings\"><summary>{} drawing note(s)</summary>",
+            files.warnings.len()
+        );
         h.push_str("<ul class=\"warnings\">\n");
         for w in &files.warnings {
             let _ = writeln!(h, "<li>{}</li>", escape(w));
         }
-        h.push_str("</ul>\n");
+        h.push_str("</ul></details>\n");
     }
     h.push_str("</figure>\n");
 }
@@ -500,7 +535,19 @@ figure { margin: 1.5rem 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #e3e3e3; }
 figcaption { font-size: 0.95rem; color: #333; }
 a.svg { font-size: 0.85rem; margin-left: 0.4rem; }
-ul.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
+details.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
+ul.warnings { margin: 0.2rem 0 0; }
+img, svg, video { max-width: 100%; height: auto; }
+table { max-width: 100%; }
+th { overflow-wrap: break-word; }
+td { overflow-wrap: anywhere; }
+p, li, figcaption, caption { overflow-wrap: anywhere; }
+@media (max-width: 600px) {
+  main { padding: 0.8rem 0.7rem 3rem; }
+  h1 { font-size: 1.35rem; }
+  nav ol { columns: 1; }
+  th, td { padding: 0.2rem 0.35rem; font-size: 0.85rem; }
+}
 @media print { body { background: #fff; } main { padding: 0; } a.svg { display: none; } }
 ";
 
@@ -512,7 +559,7 @@ mod tests {
         FigureFiles {
             png: dir.join(format!("{stem}.png")),
             svg: dir.join(format!("{stem}.svg")),
-            warnings: vec!["panel \"<K0>\": skipped 1 point".to_string()],
+            warnings: vec!["panel \"<s0>\": skipped 1 point".to_string()],
         }
     }
 
@@ -539,7 +586,7 @@ mod tests {
         assert!(!html.contains("<script"), "{html}");
         assert!(!html.contains("\" onerror"), "attribute injection: {html}");
         assert!(html.contains("&lt;script&gt;alert(5)&lt;/script&gt;"));
-        assert!(html.contains("&lt;K0&gt;"));
+        assert!(html.contains("&lt;s0&gt;"));
         // Self-contained: no external resources, no JavaScript.
         assert!(!html.contains("http://") && !html.contains("https://"));
         assert!(!html.contains("<link") && !html.contains("javascript:"));
@@ -549,13 +596,13 @@ mod tests {
     fn figure_links_are_relative_and_encoded() {
         let dir = Path::new("/tmp/r");
         let html = HtmlReport::new("t")
-            .section(Section::new("s").figure(&files(&dir.join("figs"), "K0 before&after"), "c"))
+            .section(Section::new("s").figure(&files(&dir.join("figs"), "s0 before&after"), "c"))
             .to_html(dir);
         assert!(
-            html.contains("src=\"figs/K0%20before%26after.png\""),
+            html.contains("src=\"figs/s0%20before%26after.png\""),
             "{html}"
         );
-        assert!(html.contains("href=\"figs/K0%20before%26after.svg\""));
+        assert!(html.contains("href=\"figs/s0%20before%26after.svg\""));
         let outside = href(Path::new("/elsewhere/a b.png"), dir);
         assert_eq!(outside, "file:///elsewhere/a%20b.png");
     }
@@ -565,7 +612,7 @@ mod tests {
         assert!(looks_numeric("-1.5e-3"));
         assert!(looks_numeric("5.2×"));
         assert!(looks_numeric("12 %"));
-        assert!(!looks_numeric("gg_IS"));
+        assert!(!looks_numeric("u_sq"));
         assert!(!looks_numeric(""));
     }
 

@@ -1,7 +1,7 @@
 //! Colours, font and text sizes shared by every figure.
 //!
-//! One place decides how figures look, so that the paper's figures and the
-//! diagnosis figures read as one report.
+//! One place decides how figures look, so that the figures and the
+//! analysis figures read as one report.
 
 use std::sync::OnceLock;
 
@@ -17,7 +17,7 @@ use super::ReportError;
 /// panel unless [`Series::colour`](super::Series::colour) sets it.
 ///
 /// ```
-/// use dtg_vib::report::PALETTE;
+/// use plot::PALETTE;
 /// assert_eq!(PALETTE.len(), 8);
 /// assert_eq!((PALETTE[0].0, PALETTE[0].1, PALETTE[0].2), (0, 114, 178)); // blue
 /// ```
@@ -35,7 +35,7 @@ pub const PALETTE: [RGBColor; 8] = [
 /// The palette colour for an index, wrapping around after eight.
 ///
 /// ```
-/// use dtg_vib::report::{colour, PALETTE};
+/// use plot::{colour, PALETTE};
 /// assert_eq!(colour(9), PALETTE[1]);
 /// ```
 pub fn colour(index: usize) -> RGBColor {
@@ -76,7 +76,7 @@ pub(crate) fn text(size: f64, colour: RGBColor) -> TextStyle<'static> {
 
 // Strictly, DejaVu Sans is Bitstream Vera-licensed; its licence sits next to
 // it in assets/.
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+static FONT_BYTES: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Registers the embedded DejaVu Sans as `sans-serif`, once per process.
 ///
@@ -136,7 +136,7 @@ mod tests {
     fn font_registers_and_measures() {
         ensure_font().unwrap();
         ensure_font().unwrap(); // idempotent
-        let (w, h) = text_size("residue K0 (deg/h)", LABEL_SIZE);
+        let (w, h) = text_size("signal s0 (mV)", LABEL_SIZE);
         assert!(w > 100 && w < 300, "width {w}");
         assert!(h > 5 && h < 40, "height {h}");
     }

@@ -1,8 +1,8 @@
-//! Horizontal bar charts: ranked ERR of candidate effects, and per-channel
+//! Horizontal bar charts: ranked ERR of candidate effects, and per-sensor
 //! rms before and after a change.
 //!
 //! Bars run horizontally so that category labels (effect ids such as
-//! `gg_IS`, `col:temp`, channel names) are written level and never collide,
+//! `u_sq`, `col:temp`, sensor names) are written level and never collide,
 //! however many candidates there are; the first category is at the top, which
 //! is where a ranking is read from. Each bar carries its value as text, since
 //! a report is read for numbers as much as for shapes.
@@ -40,17 +40,17 @@ struct Group {
 /// NaN values draw no bar and are labelled "n/a".
 ///
 /// ```
-/// use dtg_vib::report::{BarChart, Figure};
+/// use plot::{BarChart, Figure};
 ///
-/// // Per-channel rms before and after adding an effect.
-/// let channels = ["X", "X1", "Y", "Y1", "Z", "Z1"];
-/// let chart = BarChart::new("Validation rms per channel", "rms (deg/h)", channels)
+/// // Per-sensor rms before and after adding an effect.
+/// let sensors = ["A", "B", "C", "D", "E", "F"];
+/// let chart = BarChart::new("Validation rms per sensor", "rms (mV)", sensors)
 ///     .group("before", vec![0.61, 0.58, 0.40, 0.42, 0.77, 0.35])
 ///     .group("after", vec![0.12, 0.11, 0.10, 0.13, 0.12, 0.10]);
-/// let files = Figure::new("Adding gg_IS to Z").panel(chart)
-///     .save(std::env::temp_dir().join("dtg-vib-doc"), "before_after_rms")?;
+/// let files = Figure::new("Adding u_sq to Z").panel(chart)
+///     .save(std::env::temp_dir().join("plot-doc"), "before_after_rms")?;
 /// assert!(files.warnings.is_empty());
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BarChart {
@@ -66,9 +66,9 @@ impl BarChart {
     /// `value_label` names the value axis, with its unit.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]);
-    /// assert_eq!(c.categories(), &["K0", "K1"]);
+    /// use plot::BarChart;
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"]);
+    /// assert_eq!(c.categories(), &["s0", "s1"]);
     /// ```
     pub fn new(
         title: impl Into<String>,
@@ -88,11 +88,11 @@ impl BarChart {
     /// categories sorted by value, largest first (NaN last).
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
-    /// let c = BarChart::ranked("ERR of candidates, channel Z", "ERR (–)", "ERR",
-    ///     [("g_I", 0.002), ("gg_IS", 0.41), ("col:temp", f64::NAN), ("g_S", 0.03)])
+    /// use plot::BarChart;
+    /// let c = BarChart::ranked("ERR of candidates, sensor Z", "ERR (–)", "ERR",
+    ///     [("g_I", 0.002), ("u_sq", 0.41), ("col:temp", f64::NAN), ("v", 0.03)])
     ///     .threshold(0.01, "significance threshold");
-    /// assert_eq!(c.categories(), &["gg_IS", "g_S", "g_I", "col:temp"]);
+    /// assert_eq!(c.categories(), &["u_sq", "v", "g_I", "col:temp"]);
     /// ```
     pub fn ranked(
         title: impl Into<String>,
@@ -117,8 +117,8 @@ impl BarChart {
     /// If `values` does not have one value per category.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"]).group("before", vec![1.0, 2.0]);
+    /// use plot::BarChart;
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"]).group("before", vec![1.0, 2.0]);
     /// assert_eq!(c.group_count(), 1);
     /// ```
     #[track_caller]
@@ -136,8 +136,8 @@ impl BarChart {
     /// If `values` does not have one value per category.
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
-    /// let c = BarChart::new("rms", "rms (deg/h)", ["K0", "K1"])
+    /// use plot::BarChart;
+    /// let c = BarChart::new("rms", "rms (mV)", ["s0", "s1"])
     ///     .group_coloured("before", vec![1.0, 2.0], 1)
     ///     .group_coloured("after", vec![0.2, 0.3], 0);
     /// assert_eq!(c.group_count(), 2);
@@ -169,7 +169,7 @@ impl BarChart {
     /// A vertical dashed line at `value` (e.g. the ERR significance level).
     ///
     /// ```
-    /// use dtg_vib::report::BarChart;
+    /// use plot::BarChart;
     /// let c = BarChart::new("ERR", "ERR (–)", ["a"]).group("ERR", vec![0.5]).threshold(0.05, "5 % level");
     /// assert_eq!(c.threshold_value(), Some(0.05));
     /// ```
@@ -181,7 +181,7 @@ impl BarChart {
     /// The categories, top to bottom.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert!(BarChart::new("t", "v (g)", Vec::<String>::new()).categories().is_empty());
     /// ```
     pub fn categories(&self) -> &[String] {
@@ -191,7 +191,7 @@ impl BarChart {
     /// Number of groups.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert_eq!(BarChart::new("t", "v (g)", ["a"]).group_count(), 0);
     /// ```
     pub fn group_count(&self) -> usize {
@@ -201,7 +201,7 @@ impl BarChart {
     /// The threshold, if set.
     ///
     /// ```
-    /// # use dtg_vib::report::BarChart;
+    /// # use plot::BarChart;
     /// assert_eq!(BarChart::new("t", "v (g)", ["a"]).threshold_value(), None);
     /// ```
     pub fn threshold_value(&self) -> Option<f64> {
@@ -304,7 +304,7 @@ pub(crate) fn prepare(chart: &BarChart, width: u32, warnings: &mut Vec<String>) 
     PreparedBars {
         header,
         value_label: chart.value_label.clone(),
-        x: Axis::new(lo, hi, false, plot_width, 110),
+        x: Axis::new(lo, hi, false, plot_width, crate::xy::X_TICK_SPACING_PX),
         categories: chart.categories.clone(),
         groups: chart
             .groups

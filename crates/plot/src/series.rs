@@ -5,7 +5,7 @@ use serde::Serialize;
 /// How a series is marked; chosen by the [`Series`] constructor.
 ///
 /// ```
-/// use dtg_vib::report::{Series, SeriesStyle};
+/// use plot::{Series, SeriesStyle};
 /// assert_eq!(Series::points("r", vec![0.0], vec![1.0]).style(), SeriesStyle::Points);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -27,11 +27,11 @@ pub enum SeriesStyle {
 /// the legend.
 ///
 /// ```
-/// use dtg_vib::report::{Series, SeriesStyle};
+/// use plot::{Series, SeriesStyle};
 ///
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
 /// let k0: Vec<f64> = t.iter().map(|t| 0.1 * (7.0 * t).sin()).collect();
-/// let s = Series::line("K0 before", t, k0).colour(1);
+/// let s = Series::line("s0 before", t, k0).colour(1);
 /// assert_eq!(s.len(), 5000);
 /// assert_eq!(s.style(), SeriesStyle::Line);
 /// ```
@@ -52,7 +52,7 @@ impl Series {
     /// property of the data.
     ///
     /// ```
-    /// use dtg_vib::report::Series;
+    /// use plot::Series;
     /// let s = Series::line("az", vec![0.0, 0.02, 0.04], &[0.1, -0.3, 0.2][..]);
     /// assert_eq!(s.x(), &[0.0, 0.02, 0.04]);
     /// ```
@@ -67,7 +67,7 @@ impl Series {
     /// If `x` and `y` differ in length.
     ///
     /// ```
-    /// use dtg_vib::report::{Series, SeriesStyle};
+    /// use plot::{Series, SeriesStyle};
     /// let s = Series::points("residual", vec![0.1, 0.2], vec![1.0, 2.0]);
     /// assert_eq!(s.style(), SeriesStyle::Points);
     /// ```
@@ -86,7 +86,7 @@ impl Series {
     /// If `x` and `y` differ in length.
     ///
     /// ```
-    /// use dtg_vib::report::Series;
+    /// use plot::Series;
     /// let lags: Vec<f64> = (0..=20).map(f64::from).collect();
     /// let r: Vec<f64> = lags.iter().map(|&k| if k == 0.0 { 1.0 } else { 0.02 }).collect();
     /// let s = Series::stems("autocorrelation", lags, r);
@@ -98,10 +98,10 @@ impl Series {
     }
 
     /// A line of uniformly sampled values, `x[i] = t0 + i·dt` (a record's
-    /// channel against time in s without building the time vector).
+    /// sensor against time in s without building the time vector).
     ///
     /// ```
-    /// use dtg_vib::report::Series;
+    /// use plot::Series;
     /// let s = Series::sampled("X", 0.0, 0.02, vec![1.0, 2.0, 3.0]);
     /// assert_eq!(s.x(), &[0.0, 0.02, 0.04]);
     /// ```
@@ -134,7 +134,7 @@ impl Series {
     /// meaning per colour across panels (e.g. "before" always vermillion).
     ///
     /// ```
-    /// use dtg_vib::report::Series;
+    /// use plot::Series;
     /// let s = Series::sampled("after", 0.0, 1.0, vec![0.0]).colour(0);
     /// assert_eq!(s.colour_index(), Some(0));
     /// ```
@@ -146,8 +146,8 @@ impl Series {
     /// The legend label.
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
-    /// assert_eq!(Series::sampled("K3", 0.0, 1.0, vec![]).label(), "K3");
+    /// # use plot::Series;
+    /// assert_eq!(Series::sampled("s3", 0.0, 1.0, vec![]).label(), "s3");
     /// ```
     pub fn label(&self) -> &str {
         &self.label
@@ -156,7 +156,7 @@ impl Series {
     /// The x values.
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
+    /// # use plot::Series;
     /// assert_eq!(Series::sampled("a", 1.0, 1.0, vec![5.0]).x(), &[1.0]);
     /// ```
     pub fn x(&self) -> &[f64] {
@@ -166,7 +166,7 @@ impl Series {
     /// The y values.
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
+    /// # use plot::Series;
     /// assert_eq!(Series::sampled("a", 1.0, 1.0, vec![5.0]).y(), &[5.0]);
     /// ```
     pub fn y(&self) -> &[f64] {
@@ -176,7 +176,7 @@ impl Series {
     /// The marking style.
     ///
     /// ```
-    /// # use dtg_vib::report::{Series, SeriesStyle};
+    /// # use plot::{Series, SeriesStyle};
     /// assert_eq!(Series::stems("r", vec![0.0], vec![1.0]).style(), SeriesStyle::Stems);
     /// ```
     pub fn style(&self) -> SeriesStyle {
@@ -186,7 +186,7 @@ impl Series {
     /// The palette index set with [`Series::colour`], if any.
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
+    /// # use plot::Series;
     /// assert_eq!(Series::sampled("a", 0.0, 1.0, vec![]).colour_index(), None);
     /// ```
     pub fn colour_index(&self) -> Option<usize> {
@@ -196,7 +196,7 @@ impl Series {
     /// Number of points (including any NaN).
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
+    /// # use plot::Series;
     /// assert_eq!(Series::sampled("a", 0.0, 1.0, vec![f64::NAN, 1.0]).len(), 2);
     /// ```
     pub fn len(&self) -> usize {
@@ -206,7 +206,7 @@ impl Series {
     /// Whether the series has no points.
     ///
     /// ```
-    /// # use dtg_vib::report::Series;
+    /// # use plot::Series;
     /// assert!(Series::sampled("a", 0.0, 1.0, vec![]).is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {

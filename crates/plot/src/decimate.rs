@@ -3,7 +3,7 @@
 //! A 100 s record at 50 Hz is 5000 samples, a long one 500 000; a panel is
 //! about 1000 pixels wide. Drawing every sample makes SVG files of tens of
 //! megabytes and slow PNGs without changing a single pixel, while naive
-//! subsampling (every k-th sample) loses exactly the spikes a vibration
+//! subsampling (every k-th sample) loses exactly the spikes a shaker
 //! engineer is looking for. M4 decimation keeps, for each pixel column, the
 //! first, minimum, maximum and last sample, which draws the same picture as
 //! the full series (Jugel et al., "M4: a visualization-oriented time series
@@ -23,7 +23,7 @@
 /// If `x` and `y` differ in length (a programmer error).
 ///
 /// ```
-/// use dtg_vib::report::decimate_m4;
+/// use plot::decimate_m4;
 ///
 /// let x: Vec<f64> = (0..100_000).map(|i| i as f64 * 0.02).collect();
 /// let mut y: Vec<f64> = x.iter().map(|t| (t * 3.0).sin()).collect();

@@ -12,8 +12,7 @@ struct TestDir(PathBuf);
 
 impl TestDir {
     fn new(name: &str) -> Self {
-        let dir =
-            std::env::temp_dir().join(format!("dtg-vib-report-{}-{name}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!("plot-test-{}-{name}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         TestDir(dir)
     }
@@ -89,8 +88,8 @@ fn figure_writes_valid_png_and_svg_with_one_polyline_per_series() {
     let t = time(5000);
     let a: Vec<f64> = t.iter().map(|t| (2.0 * t).sin()).collect();
     let b: Vec<f64> = t.iter().map(|t| 0.5 * (3.0 * t).cos()).collect();
-    let fig = Figure::new("Residue check").panel(
-        Panel::new("K0", "time (s)", "K0 (deg/h)")
+    let fig = Figure::new("Signal check").panel(
+        Panel::new("s0", "time (s)", "s0 (mV)")
             .series(Series::line("before", t.clone(), a))
             .series(Series::line("after", t, b)),
     );
@@ -104,10 +103,10 @@ fn figure_writes_valid_png_and_svg_with_one_polyline_per_series() {
 
     let svg = std::fs::read_to_string(&files.svg).unwrap();
     assert!(svg.starts_with("<svg"));
-    assert!(svg.contains("Residue check"), "figure title");
-    assert!(svg.contains(">\nK0\n</text>"), "panel title");
+    assert!(svg.contains("Signal check"), "figure title");
+    assert!(svg.contains(">\ns0\n</text>"), "panel title");
     assert!(
-        svg.contains("time (s)") && svg.contains("K0 (deg/h)"),
+        svg.contains("time (s)") && svg.contains("s0 (mV)"),
         "axis labels"
     );
     assert_eq!(polylines(&svg, PALETTE[0], 10), 1);
@@ -170,16 +169,11 @@ fn hostile_data_does_not_panic_and_is_reported() {
             )),
         )
         .panel(
-            BarChart::new("bars with NaN", "rms (deg/h)", ["a", "b"])
-                .group("g", vec![f64::NAN, 1.0]),
+            BarChart::new("bars with NaN", "rms (mV)", ["a", "b"]).group("g", vec![f64::NAN, 1.0]),
         )
-        .panel(BarChart::new(
-            "no bars",
-            "rms (deg/h)",
-            Vec::<String>::new(),
-        ))
+        .panel(BarChart::new("no bars", "rms (mV)", Vec::<String>::new()))
         .panel(
-            BarChart::new("negative bars", "change (deg/h)", ["a", "b"])
+            BarChart::new("negative bars", "change (mV)", ["a", "b"])
                 .group("g", vec![-2.0, 1.0])
                 .threshold(f64::NAN, "nan threshold"),
         );
@@ -209,7 +203,7 @@ fn log_axes_with_zeros_and_negatives_skip_and_warn() {
     psd[11] = -1.0;
     let fig = Figure::new("Spectra")
         .panel(
-            Panel::psd("K0", "PSD (deg²/h²/Hz)")
+            Panel::psd("s0", "PSD (V²/Hz)")
                 .series(Series::line("before", f.clone(), psd))
                 .ref_line(1e-6, "noise floor")
                 .ref_line(0.0, "impossible floor"),
@@ -253,7 +247,7 @@ fn huge_series_is_decimated_and_keeps_its_spike() {
     let mut y: Vec<f64> = t.iter().map(|t| 0.01 * (50.0 * t).sin()).collect();
     y[250_000] = 5.0;
     let fig = Figure::new("Long record")
-        .panel(Panel::new("K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t, y)));
+        .panel(Panel::new("s0", "time (s)", "s0 (mV)").series(Series::line("s0", t, y)));
     let files = fig.save(&dir, "huge").unwrap();
     let svg = std::fs::read_to_string(&files.svg).unwrap();
     assert!(svg.len() < 300_000, "SVG is {} bytes", svg.len());
@@ -288,9 +282,9 @@ fn scatter_and_correlation_and_bars_render() {
         .iter()
         .map(|&k: &f64| 0.3 * (-k.abs() / 3.0).exp())
         .collect();
-    let fig = Figure::new("Diagnosis, channel Z")
+    let fig = Figure::new("Analysis, sensor Z")
         .panel(
-            Panel::new("Residual against gg_SS", "gg_SS (g²)", "residual (deg/h)")
+            Panel::new("Residual against v_sq", "v_sq (g²)", "residual (mV)")
                 .series(Series::points("residual", x, y)),
         )
         .panel(Panel::correlation(
@@ -305,7 +299,7 @@ fn scatter_and_correlation_and_bars_render() {
                 "ERR",
                 "ERR (–)",
                 "ERR",
-                [("gg_SS", 0.31), ("g_S", 0.02), ("col:temp", 0.001)],
+                [("v_sq", 0.31), ("v", 0.02), ("col:temp", 0.001)],
             )
             .threshold(0.01, "significance threshold"),
         );
@@ -318,7 +312,7 @@ fn scatter_and_correlation_and_bars_render() {
     let circles = svg.matches("<circle").count();
     assert!(circles > 100 && circles < 20_000, "{circles} circles");
     for label in [
-        "gg_SS",
+        "v_sq",
         "col:temp",
         "significance threshold",
         "95 % confidence band",
@@ -368,8 +362,8 @@ fn report_page_links_the_saved_figures() {
     let dir = test_dir("page");
     let files = Figure::new("Fig")
         .panel(
-            Panel::new("K0", "time (s)", "K0 (deg/h)").series(Series::sampled(
-                "K0",
+            Panel::new("s0", "time (s)", "s0 (mV)").series(Series::sampled(
+                "s0",
                 0.0,
                 0.02,
                 vec![f64::NAN, 1.0, 2.0],
@@ -378,7 +372,7 @@ fn report_page_links_the_saved_figures() {
         .save(dir.join("figures"), "k0")
         .unwrap();
     let path = HtmlReport::new("Report <1>")
-        .section(Section::new("Residues").figure(&files, "<script>alert('x')</script>"))
+        .section(Section::new("Signals").figure(&files, "<script>alert('x')</script>"))
         .write(&dir)
         .unwrap();
     let html = std::fs::read_to_string(path).unwrap();
@@ -389,6 +383,10 @@ fn report_page_links_the_saved_figures() {
     assert!(
         html.contains("skipped 1 point(s)"),
         "warnings shown under the figure"
+    );
+    assert!(
+        html.contains("<details class=\"warnings\"><summary>1 drawing note(s)</summary>"),
+        "folded, not a list between the figures"
     );
 }
 
@@ -416,20 +414,20 @@ fn sample_gallery() {
     let az: Vec<f64> = (0..t.len())
         .map(|i| 3.0 * noise(i, 1) + 2.0 * (0.3 * t[i]).sin())
         .collect();
-    let mut fig7 = Figure::new("Fig. 7 — parity residues with and without compensation").share_x();
+    let mut fig7 = Figure::new("Fig. 7 — signals with and without compensation").share_x();
     for k in 0..6 {
         let before: Vec<f64> = (0..t.len())
             .map(|i| 0.08 * az[i] * az[i] * (1.0 + 0.2 * k as f64) + 0.05 * noise(i, 10 + k))
             .collect();
         let after: Vec<f64> = (0..t.len()).map(|i| 0.06 * noise(i, 20 + k)).collect();
         fig7 = fig7.panel(
-            Panel::new(format!("K{k}"), "time (s)", format!("K{k} (deg/h)"))
+            Panel::new(format!("s{k}"), "time (s)", format!("s{k} (mV)"))
                 .series(Series::line("without compensation", t.clone(), before).colour(1))
                 .series(Series::line("with compensation", t.clone(), after).colour(0)),
         );
     }
     let start = std::time::Instant::now();
-    let files = fig7.save(&dir, "fig7_residues").unwrap();
+    let files = fig7.save(&dir, "fig7_signals").unwrap();
     let elapsed = start.elapsed();
     eprintln!(
         "6 panels × 2 series × 5000 points, PNG + SVG: {:.0} ms",
@@ -446,8 +444,8 @@ fn sample_gallery() {
         .iter()
         .map(|f| 4e-6 * (1.0 + noise((f * 100.0) as usize, 4)) + 1e-5 / (1.0 + (f / 3.0).powi(4)))
         .collect();
-    let psd = Figure::new("Residue spectra before and after compensation").panel(
-        Panel::psd("K0", "PSD (deg²/h²/Hz)")
+    let psd = Figure::new("Signal spectra before and after compensation").panel(
+        Panel::psd("s0", "PSD (V²/Hz)")
             .series(Series::line("before", f.clone(), before).colour(1))
             .series(Series::line("after", f, after).colour(0))
             .ref_line(4e-6, "noise floor"),
@@ -471,7 +469,7 @@ fn sample_gallery() {
         .iter()
         .map(|&k| 0.02 * noise((k + 40.0) as usize, 6))
         .collect();
-    let corr = Figure::new("Correlation tests, channel Z residual")
+    let corr = Figure::new("Correlation tests, sensor Z residual")
         .panel(Panel::correlation(
             "Autocorrelation φ_εε (fails: not white)",
             "lag (samples)",
@@ -488,19 +486,19 @@ fn sample_gallery() {
         ));
     corr.save(&dir, "correlation").unwrap();
 
-    let err = Figure::new("Candidate effects for channel Z").panel(
+    let err = Figure::new("Candidate effects for sensor Z").panel(
         BarChart::ranked(
             "Error-reduction ratio on the validation residual",
             "ERR (fraction of residual energy)",
             "ERR",
             [
                 ("gg_II", 0.012),
-                ("gg_IS", 0.412),
+                ("u_sq", 0.412),
                 ("g_I", 0.004),
                 ("g_O", 0.002),
-                ("g_S", 0.031),
+                ("v", 0.031),
                 ("gg_OO", 0.0015),
-                ("gg_SS", 0.0009),
+                ("v_sq", 0.0009),
                 ("gg_IO", 0.0004),
                 ("gg_OS", 0.0002),
                 ("col:temp", 0.0001),
@@ -510,45 +508,41 @@ fn sample_gallery() {
     );
     err.save(&dir, "err").unwrap();
 
-    let channels = ["X", "X1", "Y", "Y1", "Z", "Z1"];
-    let cmp = Figure::new("Adding gg_IS to channel Z")
+    let sensors = ["A", "B", "C", "D", "E", "F"];
+    let cmp = Figure::new("Adding u_sq to sensor Z")
         .panel(
-            BarChart::new("Validation rms per channel", "rms (deg/h)", channels)
+            BarChart::new("Validation rms per sensor", "rms (mV)", sensors)
                 .group_coloured(
                     "baseline",
                     vec![0.121, 0.118, 0.109, 0.131, 0.612, 0.115],
                     1,
                 )
                 .group_coloured(
-                    "with gg_IS on Z",
+                    "with u_sq on Z",
                     vec![0.121, 0.118, 0.109, 0.131, 0.124, 0.115],
                     0,
                 ),
         )
         .panel(
-            Panel::new(
-                "Channel Z validation residual",
-                "time (s)",
-                "residual (deg/h)",
-            )
-            .series(
-                Series::line(
-                    "baseline",
-                    t.clone(),
-                    (0..t.len())
-                        .map(|i| 0.5 * az[i] * 0.3 + 0.1 * noise(i, 7))
-                        .collect::<Vec<_>>(),
+            Panel::new("Sensor Z validation residual", "time (s)", "residual (mV)")
+                .series(
+                    Series::line(
+                        "baseline",
+                        t.clone(),
+                        (0..t.len())
+                            .map(|i| 0.5 * az[i] * 0.3 + 0.1 * noise(i, 7))
+                            .collect::<Vec<_>>(),
+                    )
+                    .colour(1),
                 )
-                .colour(1),
-            )
-            .series(
-                Series::line(
-                    "with gg_IS",
-                    t.clone(),
-                    (0..t.len()).map(|i| 0.1 * noise(i, 8)).collect::<Vec<_>>(),
-                )
-                .colour(0),
-            ),
+                .series(
+                    Series::line(
+                        "with u_sq",
+                        t.clone(),
+                        (0..t.len()).map(|i| 0.1 * noise(i, 8)).collect::<Vec<_>>(),
+                    )
+                    .colour(0),
+                ),
         );
     let cmp_files = cmp.save(&dir, "before_after").unwrap();
 
@@ -558,44 +552,74 @@ fn sample_gallery() {
         .map(|i| 0.3 * az[i] * az[i] / 9.0 + 0.05 * noise(i, 30))
         .collect();
     let output: Vec<f64> = (0..2500).map(|i| 0.3 * az[i] * az[i] / 9.0).collect();
-    let fig6 = Figure::new("Fig. 6 — target and network output, channel X")
+    let fig6 = Figure::new("Fig. 6 — target and network output, sensor X")
         .panel(
-            Panel::new("Training set", "window index (–)", "X error (deg/h)")
+            Panel::new("Training set", "window index (–)", "X error (mV)")
                 .series(Series::line("target", idx.clone(), target.clone()).colour(6))
                 .series(Series::line("network output", idx.clone(), output.clone()).colour(0)),
         )
         .panel(
-            Panel::new("Validation set", "window index (–)", "X error (deg/h)")
+            Panel::new("Validation set", "window index (–)", "X error (mV)")
                 .series(Series::line("target", idx.clone(), target).colour(6))
                 .series(Series::line("network output", idx, output).colour(0)),
         );
     let fig6_files = fig6.save(&dir, "fig6_network").unwrap();
 
-    let index = HtmlReport::new("Sample report: DTG vibration compensation")
-        .summary("Residue rms fell 5.0-fold on the validation part of a blocked split.")
+    let index = HtmlReport::new("Sample report: shaker-table test")
+        .summary("Signal rms fell 5.0-fold on the validation part of a blocked split.")
         .section(
-            Section::new("Residues before and after")
+            Section::new("Signals before and after")
                 .table(
-                    Table::new([
-                        "residue",
-                        "rms before (deg/h)",
-                        "rms after (deg/h)",
-                        "reduction",
-                    ])
-                    .caption("Validation part")
-                    .row(["K0", "0.612", "0.118", "5.2×"])
-                    .row(["K1", "0.580", "0.121", "4.8×"]),
+                    Table::new(["signal", "rms before (mV)", "rms after (mV)", "reduction"])
+                        .caption("Validation part")
+                        .row(["s0", "0.612", "0.118", "5.2×"])
+                        .row(["s1", "0.580", "0.121", "4.8×"]),
                 )
-                .figure(&files, "Fig. 7: residues with and without compensation."),
+                .figure(&files, "Fig. 7: signals with and without compensation."),
         )
         .section(Section::new("Network").figure(&fig6_files, "Fig. 6: target and network output."))
         .section(
-            Section::new("Diagnosis")
-                .text("Channel Z: gg_IS is significant (ERR 0.41).")
-                .code("dtg-vib fit --data test.csv --add-effect Z=gg_IS --out model.json")
-                .figure(&cmp_files, "Before and after adding gg_IS."),
+            Section::new("Analysis")
+                .text("Sensor Z: u_sq is significant (ERR 0.41).")
+                .code("mytool fit --data test.csv --add-effect Z=u_sq --out model.json")
+                .figure(&cmp_files, "Before and after adding u_sq."),
         )
         .write(&dir)
         .unwrap();
     assert!(index.exists());
+}
+
+#[test]
+fn x_span_shades_its_range_and_has_one_legend_entry_per_label() {
+    let dir = test_dir("x_span");
+    let t = time(1000);
+    let y: Vec<f64> = t.iter().map(|t| t.sin()).collect();
+    let plain = Figure::new("no span")
+        .panel(Panel::new("p", "time (s)", "y (V)").series(Series::line("y", t.clone(), y.clone())))
+        .save(&dir, "plain")
+        .unwrap();
+    let spanned = Figure::new("span")
+        .panel(
+            Panel::new("p", "time (s)", "y (V)")
+                .series(Series::line("y", t, y))
+                .x_span(0.0, 5.0, "training rows")
+                .x_span(15.0, 18.0, "training rows"),
+        )
+        .save(&dir, "spanned")
+        .unwrap();
+    let grey = "#6E6E6E";
+    let svg = std::fs::read_to_string(&spanned.svg).unwrap();
+    assert!(svg.matches(grey).count() >= 3, "two spans and one swatch");
+    assert_eq!(svg.matches("training rows").count(), 1, "one legend entry");
+    assert!(!std::fs::read_to_string(&plain.svg).unwrap().contains(grey));
+}
+
+#[test]
+fn a_short_panel_still_gets_at_least_four_y_labels() {
+    // Six stacked panels of a tall figure leave about 150 px of plot each;
+    // a range of 11 units must not fall back to steps of 5 (two labels).
+    let y = crate::axis::Axis::new(13.5, 24.5, false, 150, crate::xy::Y_TICK_SPACING_PX);
+    assert!(y.ticks.len() >= 4, "{:?}", y.ticks);
+    let x = crate::axis::Axis::new(0.0, 100.0, false, 900, crate::xy::X_TICK_SPACING_PX);
+    assert!(x.ticks.len() >= 6, "{:?}", x.ticks);
 }

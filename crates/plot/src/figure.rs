@@ -29,9 +29,9 @@ const TITLE_HEIGHT: u32 = 48;
 /// Build it with `.into()` or pass either type to [`Figure::panel`].
 ///
 /// ```
-/// use dtg_vib::report::{BarChart, Chart, Panel};
+/// use plot::{BarChart, Chart, Panel};
 /// let a: Chart = Panel::new("p", "t (s)", "y (g)").into();
-/// let b: Chart = BarChart::new("b", "rms (deg/h)", ["X"]).into();
+/// let b: Chart = BarChart::new("b", "rms (mV)", ["X"]).into();
 /// assert!(matches!(a, Chart::Xy(_)) && matches!(b, Chart::Bars(_)));
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -62,17 +62,17 @@ impl From<BarChart> for Chart {
 /// is never mistaken for a property of the data.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
 /// let f = vec![0.0, 0.5, 1.0, 1.5];
 /// let psd = vec![1e-3, 5e-4, 2e-4, 1e-4];
 /// let files = Figure::new("PSD")
-///     .panel(Panel::psd("K0", "PSD (deg²/h²/Hz)").series(Series::line("K0", f, psd)))
-///     .save(std::env::temp_dir().join("dtg-vib-doc"), "psd_k0")?;
+///     .panel(Panel::psd("s0", "PSD (V²/Hz)").series(Series::line("s0", f, psd)))
+///     .save(std::env::temp_dir().join("plot-doc"), "psd_k0")?;
 /// // The 0 Hz bin has no place on a log axis, and the files say so.
 /// assert_eq!(files.warnings.len(), 1);
 /// assert!(files.warnings[0].contains("value ≤ 0 on a log axis"));
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct FigureFiles {
@@ -92,24 +92,24 @@ pub struct FigureFiles {
 /// the only one; bar charts as high as their number of bars needs).
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
-/// // The paper's Fig. 7: the six residues with and without compensation.
+/// // Fig. 7: the six signals with and without compensation.
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
-/// let mut fig = Figure::new("Fig. 7 — parity residues with and without compensation").share_x();
+/// let mut fig = Figure::new("Fig. 7 — signals with and without compensation").share_x();
 /// for k in 0..6 {
 ///     let before: Vec<f64> = t.iter().map(|t| 0.3 * (5.0 * t + k as f64).sin()).collect();
 ///     let after: Vec<f64> = before.iter().map(|v| 0.1 * v).collect();
 ///     fig = fig.panel(
-///         Panel::new(format!("K{k}"), "time (s)", format!("K{k} (deg/h)"))
+///         Panel::new(format!("s{k}"), "time (s)", format!("s{k} (mV)"))
 ///             .series(Series::line("without compensation", t.clone(), before).colour(1))
 ///             .series(Series::line("with compensation", t.clone(), after).colour(0)),
 ///     );
 /// }
-/// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig7_residues")?;
-/// assert!(files.png.ends_with("fig7_residues.png"));
-/// assert!(files.svg.ends_with("fig7_residues.svg"));
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// let files = fig.save(std::env::temp_dir().join("plot-doc"), "fig7_signals")?;
+/// assert!(files.png.ends_with("fig7_signals.png"));
+/// assert!(files.svg.ends_with("fig7_signals.svg"));
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Figure {
@@ -123,7 +123,7 @@ impl Figure {
     /// An empty figure with a title.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// assert_eq!(Figure::new("Fig. 5").panel_count(), 0);
     /// ```
     pub fn new(title: impl Into<String>) -> Self {
@@ -138,10 +138,10 @@ impl Figure {
     /// Appends a panel or bar chart below the previous ones.
     ///
     /// ```
-    /// use dtg_vib::report::{BarChart, Figure, Panel};
+    /// use plot::{BarChart, Figure, Panel};
     /// let f = Figure::new("f")
     ///     .panel(Panel::new("p", "t (s)", "y (g)"))
-    ///     .panel(BarChart::new("b", "rms (deg/h)", ["X"]));
+    ///     .panel(BarChart::new("b", "rms (mV)", ["X"]));
     /// assert_eq!(f.panel_count(), 2);
     /// ```
     pub fn panel(mut self, chart: impl Into<Chart>) -> Self {
@@ -154,7 +154,7 @@ impl Figure {
     /// axis share among themselves, linear ones among themselves.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// let f = Figure::new("f").share_x();
     /// # let _ = f;
     /// ```
@@ -170,7 +170,7 @@ impl Figure {
     /// would try to allocate gigabytes for the bitmap.
     ///
     /// ```
-    /// use dtg_vib::report::Figure;
+    /// use plot::Figure;
     /// assert_eq!(Figure::new("f").size(800, 600).pixel_size(), (800, 600));
     /// ```
     #[track_caller]
@@ -186,7 +186,7 @@ impl Figure {
     /// The size the figure will be drawn at.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel};
+    /// use plot::{Figure, Panel};
     /// let f = Figure::new("f").panel(Panel::new("a", "t (s)", "y (g)")).panel(Panel::new("b", "t (s)", "y (g)"));
     /// assert_eq!(f.pixel_size(), (1100, 48 + 2 * 270));
     /// ```
@@ -203,7 +203,7 @@ impl Figure {
     /// Number of panels and bar charts.
     ///
     /// ```
-    /// # use dtg_vib::report::Figure;
+    /// # use plot::Figure;
     /// assert_eq!(Figure::new("f").panel_count(), 0);
     /// ```
     pub fn panel_count(&self) -> usize {
@@ -214,16 +214,16 @@ impl Figure {
     ///
     /// `stem` is a plain file name without extension; one with a path
     /// separator or a leading dot is refused ([`ReportError::InvalidStem`]),
-    /// since stems are often made from data such as channel names.
+    /// since stems are often made from data such as sensor names.
     ///
     /// ```
-    /// use dtg_vib::report::{Figure, Panel, Series};
+    /// use plot::{Figure, Panel, Series};
     ///
     /// let lags: Vec<f64> = (0..=20).map(f64::from).collect();
     /// let r: Vec<f64> = lags.iter().map(|&k| 0.8_f64.powf(k)).collect();
     /// let fig = Figure::new("Whiteness test")
     ///     .panel(Panel::correlation("Autocorrelation of the X residual", "lag (samples)", lags, r, 0.028));
-    /// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "whiteness_x")?;
+    /// let files = fig.save(std::env::temp_dir().join("plot-doc"), "whiteness_x")?;
     /// assert!(std::fs::metadata(&files.png)?.len() > 1000);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -472,6 +472,6 @@ mod tests {
         for bad in ["", ".hidden", "a/b", "a\\b", "x\ny"] {
             assert!(validate_stem(bad).is_err(), "{bad:?}");
         }
-        assert!(validate_stem("fig7_residues K0").is_ok());
+        assert!(validate_stem("fig7_signals s0").is_ok());
     }
 }

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// Why a figure or a report could not be written.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, ReportError, Series};
+/// use plot::{Figure, Panel, ReportError, Series};
 ///
 /// // A stem with a path separator would write outside the chosen directory.
 /// let fig = Figure::new("t").panel(Panel::new("p", "t (s)", "y (g)"));
@@ -40,9 +40,9 @@ pub enum ReportError {
         message: String,
     },
     /// A file stem that is empty, has a path separator, or starts with a dot.
-    /// Stems often come from data (channel names), so this is an error, not a panic.
+    /// Stems often come from data (sensor names), so this is an error, not a panic.
     #[error(
-        "invalid file stem {stem:?}: use a plain name such as \"fig7_residues\" \
+        "invalid file stem {stem:?}: use a plain name such as \"fig7_signals\" \
          (no path separator, no leading dot, not empty)"
     )]
     InvalidStem {

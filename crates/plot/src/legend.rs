@@ -2,7 +2,7 @@
 //! right, wrapping onto more lines when it does not fit.
 //!
 //! A legend inside the plot (plotters' default) sits on top of the data it
-//! explains, and with six stacked residues there is no corner that is always
+//! explains, and with six stacked signals there is no corner that is always
 //! empty; a strip above the plot never hides anything.
 
 use plotters::coord::Shift;
@@ -170,7 +170,7 @@ mod tests {
     #[test]
     fn short_legend_shares_the_title_row() {
         style::ensure_font().unwrap();
-        let h = Header::layout("K0", vec![entry("before"), entry("after")], 1000);
+        let h = Header::layout("s0", vec![entry("before"), entry("after")], 1000);
         assert_eq!(h.rows, 1);
         assert!(h.placed.iter().all(|p| p.2 == 0));
         // Right-aligned, and clear of the title.

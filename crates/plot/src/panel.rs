@@ -8,7 +8,7 @@ use super::Series;
 /// correlation test (±1.96/√N). Set with [`Panel::band`].
 ///
 /// ```
-/// use dtg_vib::report::{Band, Panel};
+/// use plot::{Band, Panel};
 /// let p = Panel::new("r", "lag (samples)", "r (–)").band(-0.028, "95 % band");
 /// assert_eq!(p.band_limit(), Some(0.028)); // a half-width: the sign is dropped
 /// let b = Band { limit: 0.028, label: "95 % band".into() };
@@ -26,8 +26,8 @@ pub struct Band {
 /// [`Panel::ref_line`].
 ///
 /// ```
-/// use dtg_vib::report::{Panel, RefLine};
-/// let p = Panel::psd("K0", "PSD (deg²/h²/Hz)").ref_line(4e-6, "noise floor");
+/// use plot::{Panel, RefLine};
+/// let p = Panel::psd("s0", "PSD (V²/Hz)").ref_line(4e-6, "noise floor");
 /// assert_eq!(p.ref_lines(), &[RefLine { y: 4e-6, label: "noise floor".into() }]);
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -39,7 +39,7 @@ pub struct RefLine {
 }
 
 /// One x–y panel of a [`Figure`](super::Figure): a title, axis labels (with
-/// units, e.g. `"time (s)"`, `"residue K0 (deg/h)"`, `"PSD (deg²/h²/Hz)"`),
+/// units, e.g. `"time (s)"`, `"signal s0 (mV)"`, `"PSD (V²/Hz)"`),
 /// any number of [`Series`], optional log axes, an optional ±band and
 /// horizontal reference lines.
 ///
@@ -49,19 +49,19 @@ pub struct RefLine {
 /// clamped, because a clamped point would look like data.
 ///
 /// ```
-/// use dtg_vib::report::{Figure, Panel, Series};
+/// use plot::{Figure, Panel, Series};
 ///
 /// let t: Vec<f64> = (0..5000).map(|i| i as f64 * 0.02).collect();
 /// let az: Vec<f64> = t.iter().map(|t| 2.0 * (31.0 * t).sin()).collect();
 /// let k0: Vec<f64> = az.iter().map(|a| 0.05 * a * a).collect();
-/// // The paper's Fig. 3: a residue and the thrust acceleration.
-/// let fig = Figure::new("Fig. 3 — parity residue and thrust acceleration")
+/// // Fig. 3: a signal and the input acceleration.
+/// let fig = Figure::new("Fig. 3 — signal and input acceleration")
 ///     .share_x()
-///     .panel(Panel::new("Residue K0", "time (s)", "K0 (deg/h)").series(Series::line("K0", t.clone(), k0)))
-///     .panel(Panel::new("Thrust acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
-/// let files = fig.save(std::env::temp_dir().join("dtg-vib-doc"), "fig3")?;
+///     .panel(Panel::new("Signal s0", "time (s)", "s0 (mV)").series(Series::line("s0", t.clone(), k0)))
+///     .panel(Panel::new("Input acceleration", "time (s)", "az (g)").series(Series::line("az", t, az)));
+/// let files = fig.save(std::env::temp_dir().join("plot-doc"), "fig3")?;
 /// assert!(files.png.exists() && files.svg.exists());
-/// # Ok::<(), dtg_vib::report::ReportError>(())
+/// # Ok::<(), plot::ReportError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Panel {
@@ -73,6 +73,25 @@ pub struct Panel {
     pub(crate) log_y: bool,
     pub(crate) band: Option<Band>,
     pub(crate) ref_lines: Vec<RefLine>,
+    pub(crate) x_spans: Vec<XSpan>,
+}
+
+/// A shaded stretch of the x axis with a legend entry (e.g. the part of a
+/// record a model was fitted on), drawn under the series.
+///
+/// ```
+/// use plot::Panel;
+/// let p = Panel::new("p", "time (s)", "y (V)").x_span(0.0, 50.0, "training rows");
+/// assert_eq!(p.x_spans()[0].to, 50.0);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct XSpan {
+    /// Where the span starts, in x units.
+    pub from: f64,
+    /// Where it ends, in x units.
+    pub to: f64,
+    /// Its legend entry.
+    pub label: String,
 }
 
 impl Panel {
@@ -80,8 +99,8 @@ impl Panel {
     /// label: the report never guesses units.
     ///
     /// ```
-    /// use dtg_vib::report::Panel;
-    /// let p = Panel::new("Rate X", "time (s)", "rate (deg/h)");
+    /// use plot::Panel;
+    /// let p = Panel::new("Rate X", "time (s)", "rate (mV)");
     /// assert_eq!(p.title(), "Rate X");
     /// ```
     pub fn new(
@@ -98,6 +117,7 @@ impl Panel {
             log_y: false,
             band: None,
             ref_lines: Vec::new(),
+            x_spans: Vec::new(),
         }
     }
 
@@ -106,12 +126,12 @@ impl Panel {
     /// log axis and is skipped with a warning.
     ///
     /// ```
-    /// use dtg_vib::report::{Panel, Series};
+    /// use plot::{Panel, Series};
     ///
     /// let f: Vec<f64> = (0..=1250).map(|k| k as f64 * 0.02).collect(); // 0..25 Hz
     /// let before: Vec<f64> = f.iter().map(|f| 1e-2 / (1.0 + f * f)).collect();
     /// let after: Vec<f64> = f.iter().map(|f| 1e-4 + 1e-3 / (1.0 + f * f)).collect();
-    /// let p = Panel::psd("K0 spectrum", "PSD (deg²/h²/Hz)")
+    /// let p = Panel::psd("s0 spectrum", "PSD (V²/Hz)")
     ///     .series(Series::line("before", f.clone(), before).colour(1))
     ///     .series(Series::line("after", f, after).colour(0))
     ///     .ref_line(1e-4, "noise floor");
@@ -129,12 +149,12 @@ impl Panel {
     /// If `lags` and `r` differ in length.
     ///
     /// ```
-    /// use dtg_vib::report::Panel;
+    /// use plot::Panel;
     ///
     /// let n = 5000.0_f64;
     /// let lags: Vec<f64> = (0..=25).map(f64::from).collect();
     /// let r: Vec<f64> = lags.iter().map(|&k| if k == 0.0 { 1.0 } else { 0.3 * 0.7_f64.powf(k) }).collect();
-    /// let p = Panel::correlation("Autocorrelation of the K0 residual", "lag (samples)", lags, r, 1.96 / n.sqrt());
+    /// let p = Panel::correlation("Autocorrelation of the s0 residual", "lag (samples)", lags, r, 1.96 / n.sqrt());
     /// assert!(p.band_limit().unwrap() < 0.03);
     /// ```
     #[track_caller]
@@ -154,7 +174,7 @@ impl Panel {
     /// Adds a series; it takes the next palette colour unless it has its own.
     ///
     /// ```
-    /// use dtg_vib::report::{Panel, Series};
+    /// use plot::{Panel, Series};
     /// let p = Panel::new("p", "t (s)", "y (g)").series(Series::sampled("a", 0.0, 1.0, vec![1.0]));
     /// assert_eq!(p.series_count(), 1);
     /// ```
@@ -166,7 +186,7 @@ impl Panel {
     /// Log scale (base 10) on x.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_x().is_log_x());
     /// ```
     pub fn log_x(mut self) -> Self {
@@ -177,7 +197,7 @@ impl Panel {
     /// Log scale (base 10) on y.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "f (Hz)", "y (g)").log_y().is_log_y());
     /// ```
     pub fn log_y(mut self) -> Self {
@@ -190,7 +210,7 @@ impl Panel {
     /// fills from the bottom of the axis up to `limit`.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// let p = Panel::new("p", "lag (samples)", "r (–)").band(0.028, "95 % band");
     /// assert_eq!(p.band_limit(), Some(0.028));
     /// ```
@@ -205,7 +225,7 @@ impl Panel {
     /// A horizontal dashed reference line at `y` (noise floor, limit, …).
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// let p = Panel::psd("p", "PSD (g²/Hz)").ref_line(1e-6, "noise floor");
     /// assert_eq!(p.ref_lines()[0].y, 1e-6);
     /// ```
@@ -217,11 +237,40 @@ impl Panel {
         self
     }
 
+    /// Shades the x range `from..to` (in x units) under the series, with a
+    /// legend entry; several spans share one legend entry per distinct label.
+    ///
+    /// ```
+    /// # use plot::Panel;
+    /// let p = Panel::new("p", "time (s)", "y (V)")
+    ///     .x_span(0.0, 50.0, "training")
+    ///     .x_span(80.0, 90.0, "training");
+    /// assert_eq!(p.x_spans().len(), 2);
+    /// ```
+    pub fn x_span(mut self, from: f64, to: f64, label: impl Into<String>) -> Self {
+        self.x_spans.push(XSpan {
+            from: from.min(to),
+            to: from.max(to),
+            label: label.into(),
+        });
+        self
+    }
+
+    /// The shaded x ranges.
+    ///
+    /// ```
+    /// # use plot::Panel;
+    /// assert!(Panel::new("p", "t (s)", "y (V)").x_spans().is_empty());
+    /// ```
+    pub fn x_spans(&self) -> &[XSpan] {
+        &self.x_spans
+    }
+
     /// The panel title.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
-    /// assert_eq!(Panel::new("K5", "t (s)", "K5 (deg/h)").title(), "K5");
+    /// # use plot::Panel;
+    /// assert_eq!(Panel::new("s5", "t (s)", "s5 (mV)").title(), "s5");
     /// ```
     pub fn title(&self) -> &str {
         &self.title
@@ -230,7 +279,7 @@ impl Panel {
     /// Number of series.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert_eq!(Panel::new("p", "t (s)", "y (g)").series_count(), 0);
     /// ```
     pub fn series_count(&self) -> usize {
@@ -240,7 +289,7 @@ impl Panel {
     /// Whether x is on a log scale.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(!Panel::new("p", "t (s)", "y (g)").is_log_x());
     /// ```
     pub fn is_log_x(&self) -> bool {
@@ -250,7 +299,7 @@ impl Panel {
     /// Whether y is on a log scale.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::psd("p", "PSD (g²/Hz)").is_log_y());
     /// ```
     pub fn is_log_y(&self) -> bool {
@@ -260,7 +309,7 @@ impl Panel {
     /// The band half-width, if a band is set.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert_eq!(Panel::new("p", "t (s)", "y (g)").band_limit(), None);
     /// ```
     pub fn band_limit(&self) -> Option<f64> {
@@ -270,7 +319,7 @@ impl Panel {
     /// The reference lines.
     ///
     /// ```
-    /// # use dtg_vib::report::Panel;
+    /// # use plot::Panel;
     /// assert!(Panel::new("p", "t (s)", "y (g)").ref_lines().is_empty());
     /// ```
     pub fn ref_lines(&self) -> &[RefLine] {

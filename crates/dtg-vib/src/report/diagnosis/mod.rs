@@ -1,0 +1,55 @@
+//! The diagnosis report: measured against predicted, the residual against
+//! its top candidates, residual spectra against a white floor, the
+//! correlation tests with their bands, and the ERR ranking. One file per
+//! section of the page; this one draws every figure in parallel and
+//! assembles the page.
+
+mod channel;
+mod figures;
+mod overview;
+mod reading;
+
+use super::{Drawn, fmt, save_all};
+use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::error::DtgVibError;
+use plot::{Figure, HtmlReport, Panel};
+use std::path::{Path, PathBuf};
+
+/// One panel per channel under `title`.
+fn per_channel(
+    title: &str,
+    diag: &Diagnosis,
+    panel: impl Fn(&ChannelDiagnosis) -> Panel,
+) -> Figure {
+    diag.channels
+        .iter()
+        .fold(Figure::new(title), |f, c| f.panel(panel(c)))
+}
+
+/// Writes the diagnosis figures and `index.html` into `dir`; `min_err` is
+/// the suggestion threshold drawn on the ERR charts.
+pub fn write_diagnosis_report(
+    diag: &Diagnosis,
+    min_err: f64,
+    dir: &Path,
+) -> Result<PathBuf, DtgVibError> {
+    let mut figs = figures::figures(diag, min_err);
+    figs.push(overview::figure(diag));
+    let drawn: Drawn = save_all(figs, dir)?;
+
+    let mut page = HtmlReport::new("Diagnosis: what the model is missing")
+        .summary(overview::summary(diag))
+        .section(overview::section(diag, &drawn))
+        .section(reading::section(diag, min_err));
+    for c in &diag.channels {
+        page = page.section(channel::section(c));
+    }
+    page = page.section(figures::section(&drawn));
+    Ok(page.write(dir)?)
+}
+
+/// The legend of a correlation test's band: its per-lag level (the verdict
+/// adds a Bonferroni correction over the lags).
+fn band_label(confidence: f64) -> String {
+    format!("{:.0} % band per lag", 100.0 * confidence)
+}

@@ -1,0 +1,82 @@
+//! Section "Measured against predicted": every channel's target and network
+//! output over the whole record, the training rows shaded.
+
+use super::{Ctx, Drawn};
+use crate::report::colours;
+use nav_sensors::geometry::Channel;
+use plot::{Figure, Panel, Section, Series};
+
+/// Contiguous runs of `rows` as `(first time, last time)` spans.
+fn spans(t: &[f64], rows: &[usize]) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    let mut start: Option<(usize, usize)> = None;
+    for &r in rows {
+        start = match start {
+            Some((a, b)) if r == b + 1 => Some((a, r)),
+            Some((a, b)) => {
+                out.push((t[a], t[b]));
+                Some((r, r))
+            }
+            None => Some((r, r)),
+        };
+    }
+    if let Some((a, b)) = start {
+        out.push((t[a], t[b]));
+    }
+    out
+}
+
+/// The figure, with its file stem.
+pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
+    let a = ctx.applied;
+    let t = &a.residues.t;
+    let train = spans(t, &a.train);
+    // An interleaved split has as many runs as rows: shading them would
+    // paint the whole axis, so it is said in the title instead.
+    let shade = train.len() <= 20;
+    let mut fig = Figure::new(if shade {
+        "Measured against predicted, all rows (shaded: training rows; the rest: validation)"
+    } else {
+        "Measured against predicted, all rows (interleaved split: alternate rows train and validate)"
+    })
+    .share_x();
+    for ch in Channel::ALL {
+        let mut p = Panel::new(format!("Channel {ch}"), "time (s)", format!("{ch} (deg/h)"))
+            .series(
+                Series::line("measured", t.clone(), a.prepared.target(ch).to_vec())
+                    .colour(colours::BEFORE),
+            )
+            .series(
+                Series::line("predicted", t.clone(), a.predicted[ch.index()].clone())
+                    .colour(colours::AFTER),
+            );
+        if shade {
+            for &(from, to) in &train {
+                p = p.x_span(from, to, "training rows");
+            }
+        }
+        fig = fig.panel(p);
+    }
+    (fig, "fit_all_channels")
+}
+
+/// The section, once its figure is drawn.
+pub(super) fn section(drawn: &Drawn) -> Section {
+    Section::new("Measured against predicted").figure(
+        drawn.get("fit_all_channels"),
+        "Each channel's measured rate error (target) and the model's prediction over the record; the shaded stretch is what the model was fitted on, the rest is validation.",
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn spans_are_the_contiguous_runs() {
+        let t: Vec<f64> = (0..10).map(f64::from).collect();
+        assert_eq!(
+            super::spans(&t, &[0, 1, 2, 5, 6, 9]),
+            vec![(0.0, 2.0), (5.0, 6.0), (9.0, 9.0)]
+        );
+        assert!(super::spans(&t, &[]).is_empty());
+    }
+}

@@ -1,0 +1,46 @@
+//! Section "Summary": the table a test engineer reads first — each
+//! channel's validation rms before and after, its fit and effects — then
+//! the provenance and the other pages.
+
+use super::channels::effect_ids;
+use super::{Ctx, ReportExtras, fmt};
+use plot::{Section, Table};
+
+/// The per-channel summary table: rms before (bias only) and after, on the
+/// validation rows.
+pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
+    let mut t = Table::new([
+        "channel",
+        "rms before (deg/h)",
+        "rms after (deg/h)",
+        "reduction",
+        "val fit %",
+        "effects",
+    ])
+    .caption(
+        "Per channel, validation rows: rms before (a bias-only model) and after compensation.",
+    );
+    for (c, s) in ctx.model.channels().iter().zip(&ctx.scores) {
+        t = t.row([
+            c.channel().name().to_string(),
+            fmt(s.val_rms_bias_only),
+            fmt(s.val_rms),
+            format!("{:.2}×", s.val_rms_bias_only / s.val_rms),
+            format!("{:.1}", s.val_fit_percent),
+            effect_ids(c),
+        ]);
+    }
+    t
+}
+
+/// The section.
+pub(super) fn section(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Section {
+    let mut sec = Section::new("Summary").table(channel_table(ctx));
+    if let Some(p) = extras.provenance {
+        sec = sec.table(p.table());
+    }
+    for (path, text) in &extras.links {
+        sec = sec.link(path.clone(), text.clone());
+    }
+    sec.text(crate::report::colours::LEGEND)
+}
