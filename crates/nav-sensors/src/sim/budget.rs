@@ -46,20 +46,7 @@ use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 /// The candidate pairs checked for collinearity: the specific-force terms.
 const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;
 
-fn mean(x: &[f64]) -> f64 {
-    x.iter().sum::<f64>() / x.len() as f64
-}
-
-/// Root mean square about the mean.
-pub(crate) fn std_dev(x: &[f64]) -> f64 {
-    let m = mean(x);
-    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
-}
-
-/// Root mean square about zero.
-pub(crate) fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
-}
+pub(crate) use stats::{mean, rms, std_dev};
 
 fn correlation(a: &[f64], b: &[f64]) -> f64 {
     let (ma, mb) = (mean(a), mean(b));

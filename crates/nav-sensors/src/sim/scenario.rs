@@ -10,6 +10,7 @@ use super::thermal::Thermal;
 use crate::accel::{AccelCoefficients, AccelNoise, ServoLoop};
 use crate::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
 use crate::geometry::{Axis, Channel};
+use crate::signal::num;
 use crate::vibration::{VibrationConfig, VibrationError};
 
 /// The three DTGs: shared dynamics and noise, coefficients per channel.
@@ -576,15 +577,5 @@ fn first_non_finite(v: &toml::Value, path: &str) -> Option<(String, f64)> {
             .find_map(|(i, x)| first_non_finite(x, &format!("{path}[{i}]"))),
         toml::Value::Table(t) => t.iter().find_map(|(k, x)| first_non_finite(x, &join(k))),
         _ => None,
-    }
-}
-
-/// A number as a reader would type it: exponent form far from 1 (1e308
-/// printed plainly is 309 digits).
-fn num(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
     }
 }
