@@ -29,7 +29,7 @@ use crate::vibration::PsdTable;
 
 /// Every built-in scenario: its name and its TOML text, embedded from
 /// `scenarios/NAME.toml`.
-const BUILTIN_TOML: [(&str, &str); 4] = [
+const BUILTIN_TOML: [(&str, &str); 9] = [
     (
         "paper_z_random",
         include_str!("../../../../scenarios/paper_z_random.toml"),
@@ -43,6 +43,16 @@ const BUILTIN_TOML: [(&str, &str); 4] = [
         include_str!("../../../../scenarios/triaxial_hidden.toml"),
     ),
     ("demo", include_str!("../../../../scenarios/demo.toml")),
+    // The test campaign (issue 12): the same unit and calibration along
+    // three shaker axes, a sine sweep and a flight.
+    ("x-axis", include_str!("../../../../scenarios/x-axis.toml")),
+    ("y-axis", include_str!("../../../../scenarios/y-axis.toml")),
+    ("z-axis", include_str!("../../../../scenarios/z-axis.toml")),
+    (
+        "sine-sweep",
+        include_str!("../../../../scenarios/sine-sweep.toml"),
+    ),
+    ("flight", include_str!("../../../../scenarios/flight.toml")),
 ];
 
 /// A low-frequency random profile for tri-axial tests (a long-stroke

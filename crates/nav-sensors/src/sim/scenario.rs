@@ -5,6 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::motion::MotionProfile;
 use super::site::Site;
 use super::thermal::Thermal;
 use crate::accel::{AccelCoefficients, AccelNoise, ServoLoop};
@@ -212,6 +213,10 @@ pub struct Scenario {
     pub site: Site,
     /// The shaker.
     pub vibration: VibrationConfig,
+    /// A flight-like motion of the unit (attitude, turns, speed; see
+    /// [`MotionProfile`]); absent for a unit fixed on the shaker table.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<MotionProfile>,
     /// Temperature.
     pub thermal: Thermal,
     /// The gyros.
@@ -419,17 +424,7 @@ impl Scenario {
     /// assert!(nav_sensors::sim::Scenario::default().validate().is_ok());
     /// ```
     pub fn validate(&self) -> Result<(), ScenarioError> {
-        let range = |field, value: f64, ok: bool, requirement| {
-            if ok && value.is_finite() {
-                Ok(())
-            } else {
-                Err(ScenarioError::OutOfRange {
-                    field,
-                    value,
-                    requirement,
-                })
-            }
-        };
+        let range = check_range;
         range(
             "output_rate_hz",
             self.output_rate_hz,
@@ -548,6 +543,9 @@ impl Scenario {
             });
         }
         self.vibration.validate(self.internal_rate_hz)?;
+        if let Some(m) = &self.motion {
+            m.validate()?;
+        }
         for h in &self.hidden {
             if self.gyro(h.channel).get(h.term) == 0.0 {
                 return Err(ScenarioError::HiddenIsZero {
@@ -557,6 +555,25 @@ impl Scenario {
             }
         }
         Ok(())
+    }
+}
+
+/// `Ok` when `ok` holds and `value` is finite, else the
+/// [`ScenarioError::OutOfRange`] that names the field and the requirement.
+pub(crate) fn check_range(
+    field: &'static str,
+    value: f64,
+    ok: bool,
+    requirement: &'static str,
+) -> Result<(), ScenarioError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(ScenarioError::OutOfRange {
+            field,
+            value,
+            requirement,
+        })
     }
 }
 
