@@ -42,12 +42,18 @@ enum Command {
         /// Scenario file (TOML, see docs/formats.md).
         #[arg(long, conflicts_with = "builtin")]
         scenario: Option<PathBuf>,
-        /// A built-in scenario: paper_z_random, triaxial_clean, triaxial_hidden, demo.
+        /// A built-in scenario (each is scenarios/NAME.toml): paper_z_random,
+        /// triaxial_clean, triaxial_hidden, demo; the campaign x-axis, y-axis,
+        /// z-axis, sine-sweep, flight.
         #[arg(long)]
         builtin: Option<String>,
         /// Override the scenario's seed.
         #[arg(long)]
         seed: Option<u64>,
+        /// Override the scenario's duration, s (a shorter run of a long
+        /// profile: the schedule and motion are cut, not compressed).
+        #[arg(long)]
+        duration: Option<f64>,
         /// Output directory (record.csv, calibration.json, truth.json, components.csv, scenario.toml).
         #[arg(long)]
         out: PathBuf,
@@ -461,6 +467,7 @@ fn run(cli: Cli) -> Result<()> {
             scenario,
             builtin,
             seed,
+            duration,
             out,
         } => {
             let scenario_path = scenario.clone();
@@ -476,6 +483,9 @@ fn run(cli: Cli) -> Result<()> {
             };
             if let Some(seed) = seed {
                 s.seed = seed;
+            }
+            if let Some(d) = duration {
+                s.duration_s = d;
             }
             if let Some(p) = &scenario_path {
                 // Named with the file, before anything is written.

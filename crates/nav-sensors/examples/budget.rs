@@ -11,14 +11,7 @@ use std::time::Instant;
 use nav_sensors::geometry::{Channel, Residue};
 use nav_sensors::sim::{Scenario, simulate};
 
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
-}
-
-fn std_dev(x: &[f64]) -> f64 {
-    let m = x.iter().sum::<f64>() / x.len() as f64;
-    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
-}
+use stats::{rms, std_dev};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let arg = std::env::args()

@@ -10,6 +10,8 @@
 //! - [`noise`]: Allan deviation and the IEEE Std 952 noise terms read from it;
 //! - [`sim`]: scenarios and the shaker-test simulator;
 //! - [`record`], [`calibration`], [`truth`]: the files a test produces;
+//! - [`regressors`]: what the physics makes of a record (frame accelerations,
+//!   DTG term regressors, parity residues);
 //! - [`signal`]: the second-order sections the sensor dynamics use.
 //!
 //! The paper's experiment in a few lines: simulate the Z-axis random test,
@@ -35,6 +37,7 @@ pub mod dtg;
 pub mod files;
 pub mod geometry;
 pub mod noise;
+pub mod regressors;
 pub mod signal;
 pub mod sim;
 pub mod vibration;

@@ -6,60 +6,17 @@
 use nalgebra::{DMatrix, DVector};
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Axis;
+use nav_sensors::signal::LowPass;
 use nav_sensors::sim::{Scenario, Simulation, simulate};
 
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
-}
+use stats::{rms, std_dev};
 
-fn std_dev(x: &[f64]) -> f64 {
-    let m = x.iter().sum::<f64>() / x.len() as f64;
-    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
-}
-
-/// 4th-order Butterworth low-pass at `fc` (bilinear transform, pre-warped;
-/// two biquads with damping cos(π/8), cos(3π/8)), run forward then backward
-/// (zero phase, 8th-order magnitude), the ends extended by odd reflection as
-/// `filtfilt` does.
+/// 4th-order Butterworth low-pass at `fc`, run forward then backward (zero
+/// phase, 8th-order magnitude), the ends extended by odd reflection.
 fn filtfilt(x: &[f64], fc: f64, fs: f64) -> Vec<f64> {
-    use std::f64::consts::PI;
-    let k = (PI * fc / fs).tan();
-    let sections: Vec<[f64; 5]> = [2.0 * (PI / 8.0).cos(), 2.0 * (3.0 * PI / 8.0).cos()]
-        .iter()
-        .map(|&a| {
-            let norm = 1.0 / (1.0 + a * k + k * k);
-            let b0 = k * k * norm;
-            [
-                b0,
-                2.0 * b0,
-                b0,
-                2.0 * (k * k - 1.0) * norm,
-                (1.0 - a * k + k * k) * norm,
-            ]
-        })
-        .collect();
-    let n = x.len();
-    let pad = 100.min(n - 1);
-    let mut y: Vec<f64> = (1..=pad).rev().map(|i| 2.0 * x[0] - x[i]).collect();
-    y.extend_from_slice(x);
-    y.extend((1..=pad).map(|i| 2.0 * x[n - 1] - x[n - 1 - i]));
-    let run = |v: &mut Vec<f64>| {
-        for s in &sections {
-            let (mut z1, mut z2) = (0.0, 0.0);
-            for v in v.iter_mut() {
-                let input = *v;
-                let out = s[0] * input + z1;
-                z1 = s[1] * input - s[3] * out + z2;
-                z2 = s[2] * input - s[4] * out;
-                *v = out;
-            }
-        }
-    };
-    run(&mut y);
-    y.reverse();
-    run(&mut y);
-    y.reverse();
-    y[pad..pad + n].to_vec()
+    LowPass::butterworth(4, fc, fs)
+        .and_then(|lp| lp.filtfilt(x))
+        .expect("a valid filter on a finite record")
 }
 
 #[test]

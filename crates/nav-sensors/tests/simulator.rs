@@ -8,6 +8,7 @@ use nav_sensors::sim::{
     CalibrationError, HiddenEffect, Scenario, ScenarioError, SimError, simulate,
 };
 use nav_sensors::vibration::{Drive, LevelSchedule, PsdTable, Segment, VibrationConfig};
+use stats::mean;
 
 /// The default site and rates with ideal, noiseless sensors, no vibration,
 /// constant temperature at the reference and an exact calibration.
@@ -43,10 +44,6 @@ fn sine_z(frequency_hz: f64, amplitude_g: f64) -> VibrationConfig {
         }],
         ..Default::default()
     }
-}
-
-fn mean(x: &[f64]) -> f64 {
-    x.iter().sum::<f64>() / x.len() as f64
 }
 
 #[test]

@@ -128,9 +128,11 @@ pub struct Truth {
     pub format_version: u32,
     /// The scenario simulated (every coefficient, noise and environment parameter).
     pub scenario: Scenario,
-    /// Earth rate in the cluster frame, deg/h.
+    /// Earth rate in the cluster frame, deg/h (at rest: at t = 0 when the
+    /// scenario has a motion profile).
     pub earth_rate_cluster_deg_h: [f64; 3],
-    /// Specific force of the stationary unit in the cluster frame, g.
+    /// Specific force of the stationary unit in the cluster frame, g (at
+    /// rest: at t = 0 when the scenario has a motion profile).
     pub gravity_cluster_g: [f64; 3],
     /// Effects present in the truth and zeroed in the calibration.
     pub hidden: Vec<HiddenTruth>,

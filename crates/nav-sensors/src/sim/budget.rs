@@ -46,20 +46,7 @@ use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 /// The candidate pairs checked for collinearity: the specific-force terms.
 const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;
 
-fn mean(x: &[f64]) -> f64 {
-    x.iter().sum::<f64>() / x.len() as f64
-}
-
-/// Root mean square about the mean.
-pub(crate) fn std_dev(x: &[f64]) -> f64 {
-    let m = mean(x);
-    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
-}
-
-/// Root mean square about zero.
-pub(crate) fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
-}
+pub(crate) use stats::{mean, rms, std_dev};
 
 fn correlation(a: &[f64], b: &[f64]) -> f64 {
     let (ma, mb) = (mean(a), mean(b));
@@ -94,12 +81,18 @@ pub(crate) fn budget(
     let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut components = Components::new(t.to_vec());
     components.push("level_squared", g2.clone());
-    let elementary = predictable::elementary(
-        &hr.force_moments,
-        &hr.accel_ideal_g,
-        [gravity.x, gravity.y, gravity.z],
-        g2,
-    );
+    // The unit's own specific force and rate per interval: the site's
+    // constants at rest, the motion's interval means in flight.
+    let static_force: Vec<[f64; 3]> = match &hr.motion_means {
+        None => vec![[gravity.x, gravity.y, gravity.z]; n_out],
+        Some(m) => m.force_g.clone(),
+    };
+    let static_rate = |n: usize| match &hr.motion_means {
+        None => earth,
+        Some(m) => nalgebra::Vector3::from(m.rate_deg_h[n]),
+    };
+    let elementary =
+        predictable::elementary(&hr.force_moments, &hr.accel_ideal_g, &static_force, g2);
     let mut channels = BTreeMap::new();
     let mut hidden = Vec::new();
     let mut floor_series: [Vec<f64>; 6] = Default::default();
@@ -115,13 +108,13 @@ pub(crate) fn budget(
             .filter(|h| h.channel == channel)
             .map(|h| h.term)
             .collect();
-        let e: Ios = frame.resolve(&earth);
         let mut d = vec![vec![0.0; n_out]; 18];
         let mut pred_all = vec![[0.0; 18]; n_out];
         let mut unmodelled = vec![0.0; n_out];
         let mut motion = vec![0.0; n_out];
         let mut cal_err = vec![0.0; n_out];
         for n in 0..n_out {
+            let e: Ios = frame.resolve(&static_rate(n));
             let a = hr.accel_ideal_g[n];
             let x = DtgInput {
                 rate_deg_h: e,

@@ -3,7 +3,9 @@
 //!
 //! At every internal sample (default 4 kHz) the specific force is gravity
 //! plus the shaker's vibration and the rate is Earth rate plus the fixture's
-//! rocking, both in the cluster frame. Each gyro channel resolves them into
+//! rocking, both in the cluster frame; a scenario with a motion profile
+//! (flight) turns gravity and Earth rate with the unit's attitude and adds
+//! its manoeuvre accelerations and body rates. Each gyro channel resolves them into
 //! its (I, O, S) frame and evaluates every DTG term's regressor there, the
 //! 2N detector runs on the rate about I, and each accelerometer applies its
 //! static error model and then its servo loop. Over each output interval
@@ -24,6 +26,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::budget::budget;
 use super::calibrate::ground_calibration;
 use super::error::SimError;
+use super::motion::MotionProfile;
 use super::output::Simulation;
 use super::scenario::Scenario;
 use crate::dtg::{DtgInput, DtgTerm, Rect2nDetector};
@@ -75,14 +78,44 @@ pub(crate) struct HighRate {
     /// f_x·f_y, f_x·f_z, f_y·f_z (every channel's g and g² regressor means
     /// are linear combinations of these).
     pub force_moments: Vec<[f64; 9]>,
+    /// With a motion profile only: the interval means of the specific
+    /// force without the vibration (gravity and manoeuvres), g, and of the
+    /// angular rate without the rocking (Earth and body rates), deg/h, in
+    /// the cluster frame. `None` at rest, where the site's constants hold.
+    pub motion_means: Option<MotionMeans>,
 }
 
-fn high_rate(
-    s: &Scenario,
-    vib: &VibrationHistory,
-    gravity: &Vector3<f64>,
-    earth: &Vector3<f64>,
-) -> HighRate {
+/// Interval means of a moving unit's specific force (g) and rate (deg/h).
+pub(crate) struct MotionMeans {
+    pub force_g: Vec<[f64; 3]>,
+    pub rate_deg_h: Vec<[f64; 3]>,
+}
+
+/// The specific force (g) and angular rate (deg/h) of the unit itself,
+/// before the shaker's vibration and rocking, at each internal sample: the
+/// site's constants at rest, the motion profile's values in motion.
+struct Kinematics<'a> {
+    gravity: Vector3<f64>,
+    earth: Vector3<f64>,
+    motion: Option<&'a MotionProfile>,
+    internal_rate_hz: f64,
+}
+
+impl Kinematics<'_> {
+    fn at(&self, idx: usize) -> (Vector3<f64>, Vector3<f64>) {
+        match self.motion {
+            None => (self.gravity, self.earth),
+            // Sample idx ends at (idx + 1)/fs, as output n ends at (n + 1)·dt.
+            Some(m) => m.at(
+                (idx + 1) as f64 / self.internal_rate_hz,
+                &self.gravity,
+                &self.earth,
+            ),
+        }
+    }
+}
+
+fn high_rate(s: &Scenario, vib: &VibrationHistory, kin: &Kinematics) -> HighRate {
     let fs = s.internal_rate_hz;
     let m = s.oversampling();
     let n_out = s.output_samples();
@@ -91,6 +124,8 @@ fn high_rate(
     let accel = Axis::ALL.map(|a| s.accel(a));
     let mut servo_out = Axis::ALL.map(|_| s.accels.servo.filter(fs));
     let mut servo_ideal = servo_out;
+    let (gravity, _) = kin.at(0);
+    let gravity = &gravity;
     for a in Axis::ALL {
         // Start settled on the stationary unit's outputs (no start-up transient).
         servo_out[a.index()].settle(accel[a.index()].output_g(a, gravity));
@@ -107,8 +142,14 @@ fn high_rate(
         accel_ideal_g: Vec::with_capacity(n_out),
         level_squared: Vec::with_capacity(n_out),
         force_moments: Vec::with_capacity(n_out),
+        motion_means: kin.motion.map(|_| MotionMeans {
+            force_g: Vec::with_capacity(n_out),
+            rate_deg_h: Vec::with_capacity(n_out),
+        }),
     };
     for j in 0..n_out {
+        let mut static_f = Vector3::zeros();
+        let mut static_w = Vector3::zeros();
         let mut reg = [[0.0; 18]; 6];
         let mut rate_i = [0.0; 6];
         let mut nl = [0.0; 6];
@@ -117,6 +158,11 @@ fn high_rate(
         let mut g2 = 0.0;
         let mut moments = [0.0; 9];
         for idx in j * m..(j + 1) * m {
+            let (gravity, earth) = kin.at(idx);
+            if kin.motion.is_some() {
+                static_f += gravity;
+                static_w += earth;
+            }
             let f = Vector3::new(
                 gravity.x + vib.accel_g[0][idx],
                 gravity.y + vib.accel_g[1][idx],
@@ -169,6 +215,10 @@ fn high_rate(
         out.accel_ideal_g.push(acc_ideal.map(|v| v * inv_m));
         out.level_squared.push(g2 * inv_m);
         out.force_moments.push(moments.map(|v| v * inv_m));
+        if let Some(mm) = &mut out.motion_means {
+            mm.force_g.push((static_f * inv_m).into());
+            mm.rate_deg_h.push((static_w * inv_m).into());
+        }
     }
     out
 }
@@ -257,7 +307,13 @@ pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
         s.internal_rate_hz,
         &mut stream(s.seed, Stream::Vibration),
     )?;
-    let hr = high_rate(s, &vib, &gravity, &earth);
+    let kin = Kinematics {
+        gravity,
+        earth,
+        motion: s.motion.as_ref(),
+        internal_rate_hz: s.internal_rate_hz,
+    };
+    let hr = high_rate(s, &vib, &kin);
     drop(vib);
 
     // Temperature: end-of-interval values for the record, the interval's

@@ -1,11 +1,15 @@
 //! The vibration-test simulator: scenarios (TOML, seeded), the simulation
-//! itself, the ground calibration it hands out and the truth it keeps.
+//! itself, the ground calibration it hands out and the truth it keeps. A
+//! scenario may move the unit (a flight-like [`MotionProfile`]): attitude
+//! changes move gravity among the sensor axes and body rates reach the
+//! gyros.
 
 mod budget;
 mod calibrate;
 mod engine;
 mod error;
 mod lsq;
+mod motion;
 mod output;
 mod predictable;
 mod presets;
@@ -15,6 +19,7 @@ mod thermal;
 
 pub use engine::simulate;
 pub use error::SimError;
+pub use motion::{MotionProfile, Phase};
 pub use output::{Components, Simulation};
 pub use presets::low_frequency_psd;
 pub use scenario::{AccelSet, CalibrationError, GyroSet, HiddenEffect, Scenario, ScenarioError};

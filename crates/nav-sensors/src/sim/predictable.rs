@@ -224,7 +224,8 @@ pub(crate) fn max_columns() -> usize {
 ///
 /// `moments[n]` are the interval's force moments (see
 /// `HighRate::force_moments`), `xbar[n]` the error-free accelerometer's
-/// interval means, `gravity` the stationary specific force g, `g2[n]` the
+/// interval means, `gravity[n]` the unit's specific force without the
+/// vibration (g; constant at rest, the interval mean in motion), `g2[n]` the
 /// squared level gain. With v = f − g and u = x̄ − g the vibration parts,
 /// `Q_ij = g_i·e_j + g_j·e_i + V_ij` where `V_ij = mean(v_i·v_j) − u_i·u_j`
 /// is a pure quadratic form of the vibration and `e_i` a pure linear one:
@@ -233,7 +234,7 @@ pub(crate) fn max_columns() -> usize {
 pub(crate) fn elementary(
     moments: &[[f64; 9]],
     xbar: &[[f64; 3]],
-    gravity: [f64; 3],
+    gravity: &[[f64; 3]],
     g2: &[f64],
 ) -> Elementary {
     let n = g2.len();
@@ -249,7 +250,8 @@ pub(crate) fn elementary(
         }
     }
     let predicted = if uses_features(n) {
-        let u: [Vec<f64>; 3] = std::array::from_fn(|i| xbar.iter().map(|x| x[i] - g[i]).collect());
+        let u: [Vec<f64>; 3] =
+            std::array::from_fn(|i| xbar.iter().zip(g).map(|(x, g)| x[i] - g[i]).collect());
         let e_hat: Vec<Vec<f64>> = (0..3)
             .map(|i| {
                 let (mut fit, _) = fitted(basis(&u, g2, &[i], Features::Linear), &[&actual[i]]);
@@ -260,14 +262,14 @@ pub(crate) fn elementary(
         for (k, &(i, j)) in PAIRS.iter().enumerate() {
             let e = &actual;
             let v: Vec<f64> = (0..n)
-                .map(|t| actual[3 + k][t] - g[i] * e[j][t] - g[j] * e[i][t])
+                .map(|t| actual[3 + k][t] - g[t][i] * e[j][t] - g[t][j] * e[i][t])
                 .collect();
             let axes: &[usize] = if i == j { &[i] } else { &[i, j] };
             let (mut fit, _) = fitted(basis(&u, g2, axes, Features::Quadratic), &[&v]);
             let v_hat = fit.pop().expect("one target");
             predicted.push(
                 (0..n)
-                    .map(|t| g[i] * e_hat[j][t] + g[j] * e_hat[i][t] + v_hat[t])
+                    .map(|t| g[t][i] * e_hat[j][t] + g[t][j] * e_hat[i][t] + v_hat[t])
                     .collect(),
             );
         }
@@ -372,7 +374,7 @@ mod tests {
         let e = elementary(
             &moments,
             &vec![[0.0, 0.0, 1.0]; m],
-            [0.0, 0.0, 1.0],
+            &vec![[0.0, 0.0, 1.0]; m],
             &vec![1.0; m],
         );
         let mean = e.actual[5].iter().sum::<f64>() / m as f64;

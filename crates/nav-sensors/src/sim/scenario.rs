@@ -5,11 +5,13 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::motion::MotionProfile;
 use super::site::Site;
 use super::thermal::Thermal;
 use crate::accel::{AccelCoefficients, AccelNoise, ServoLoop};
 use crate::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
 use crate::geometry::{Axis, Channel};
+use crate::signal::num;
 use crate::vibration::{VibrationConfig, VibrationError};
 
 /// The three DTGs: shared dynamics and noise, coefficients per channel.
@@ -211,6 +213,10 @@ pub struct Scenario {
     pub site: Site,
     /// The shaker.
     pub vibration: VibrationConfig,
+    /// A flight-like motion of the unit (attitude, turns, speed; see
+    /// [`MotionProfile`]); absent for a unit fixed on the shaker table.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<MotionProfile>,
     /// Temperature.
     pub thermal: Thermal,
     /// The gyros.
@@ -418,17 +424,7 @@ impl Scenario {
     /// assert!(nav_sensors::sim::Scenario::default().validate().is_ok());
     /// ```
     pub fn validate(&self) -> Result<(), ScenarioError> {
-        let range = |field, value: f64, ok: bool, requirement| {
-            if ok && value.is_finite() {
-                Ok(())
-            } else {
-                Err(ScenarioError::OutOfRange {
-                    field,
-                    value,
-                    requirement,
-                })
-            }
-        };
+        let range = check_range;
         range(
             "output_rate_hz",
             self.output_rate_hz,
@@ -547,6 +543,9 @@ impl Scenario {
             });
         }
         self.vibration.validate(self.internal_rate_hz)?;
+        if let Some(m) = &self.motion {
+            m.validate()?;
+        }
         for h in &self.hidden {
             if self.gyro(h.channel).get(h.term) == 0.0 {
                 return Err(ScenarioError::HiddenIsZero {
@@ -556,6 +555,25 @@ impl Scenario {
             }
         }
         Ok(())
+    }
+}
+
+/// `Ok` when `ok` holds and `value` is finite, else the
+/// [`ScenarioError::OutOfRange`] that names the field and the requirement.
+pub(crate) fn check_range(
+    field: &'static str,
+    value: f64,
+    ok: bool,
+    requirement: &'static str,
+) -> Result<(), ScenarioError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(ScenarioError::OutOfRange {
+            field,
+            value,
+            requirement,
+        })
     }
 }
 
@@ -576,15 +594,5 @@ fn first_non_finite(v: &toml::Value, path: &str) -> Option<(String, f64)> {
             .find_map(|(i, x)| first_non_finite(x, &format!("{path}[{i}]"))),
         toml::Value::Table(t) => t.iter().find_map(|(k, x)| first_non_finite(x, &join(k))),
         _ => None,
-    }
-}
-
-/// A number as a reader would type it: exponent form far from 1 (1e308
-/// printed plainly is 309 digits).
-fn num(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
     }
 }

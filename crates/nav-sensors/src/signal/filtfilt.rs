@@ -5,13 +5,13 @@
 //! the acceleration by the same group delay only if both went through it —
 //! filtering forward and backward removes the question.
 
-use super::{Biquad, FilterError, LowPass};
+use super::{FilterError, LowPass};
 
 impl LowPass {
     /// One causal pass from rest (zero initial state).
     ///
     /// ```
-    /// use dtg_vib::signal::LowPass;
+    /// use nav_sensors::signal::LowPass;
     /// let lp = LowPass::butterworth(2, 1.0, 50.0).unwrap();
     /// let y = lp.filter(&vec![1.0; 500]);
     /// assert!((y[499] - 1.0).abs() < 1e-9); // a step settles at the DC gain
@@ -20,7 +20,7 @@ impl LowPass {
     pub fn filter(&self, x: &[f64]) -> Vec<f64> {
         let mut y = x.to_vec();
         for s in self.sections() {
-            run_section(s, &mut y, [0.0, 0.0]);
+            s.run_from(&mut y, [0.0, 0.0]);
         }
         y
     }
@@ -33,7 +33,7 @@ impl LowPass {
     /// `≤ n` only.
     ///
     /// ```
-    /// use dtg_vib::signal::LowPass;
+    /// use nav_sensors::signal::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// let y = lp.filter_causal(&vec![3.0; 50]);
     /// assert!(y.iter().all(|v| (v - 3.0).abs() < 1e-12)); // no transient
@@ -56,7 +56,7 @@ impl LowPass {
     /// (−6 dB at the cut-off); the phase is zero.
     ///
     /// ```
-    /// use dtg_vib::signal::LowPass;
+    /// use nav_sensors::signal::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// // A 0.5 Hz sine passes with no delay.
     /// let x: Vec<f64> = (0..1000).map(|i| (2.0 * std::f64::consts::PI * 0.5 * i as f64 / 50.0).sin()).collect();
@@ -98,7 +98,7 @@ impl LowPass {
     /// test compares a filtered residual with.
     ///
     /// ```
-    /// use dtg_vib::signal::LowPass;
+    /// use nav_sensors::signal::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// let rho = lp.white_noise_acf(1, 30);
     /// assert_eq!(rho[0], 1.0);
@@ -132,7 +132,7 @@ impl LowPass {
     fn run_with_state(&self, y: &mut [f64], zi: &[[f64; 2]]) {
         let x0 = y[0];
         for (s, z) in self.sections().iter().zip(zi) {
-            run_section(s, y, [z[0] * x0, z[1] * x0]);
+            s.run_from(y, [z[0] * x0, z[1] * x0]);
         }
     }
 
@@ -154,18 +154,5 @@ impl LowPass {
                 z
             })
             .collect()
-    }
-}
-
-/// Filters `y` in place through one section in transposed direct form II.
-fn run_section(s: &Biquad, y: &mut [f64], mut z: [f64; 2]) {
-    let [b0, b1, b2] = s.b;
-    let [a1, a2] = s.a;
-    for v in y.iter_mut() {
-        let x = *v;
-        let out = b0 * x + z[0];
-        z[0] = b1 * x - a1 * out + z[1];
-        z[1] = b2 * x - a2 * out;
-        *v = out;
     }
 }

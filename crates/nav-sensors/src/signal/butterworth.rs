@@ -6,56 +6,25 @@
 //! and expanding them into a single denominator puts the response at the
 //! mercy of rounding. Each section here is exact to rounding on its own.
 
-use super::FilterError;
+//!
+//! Written here rather than taken from a crate: `sci-rs` (0.4, scipy's
+//! `butter`/`sosfilt`/`sosfiltfilt`) pulls a second nalgebra (0.33 beside
+//! the workspace's 0.35) with kalmanfilt, lstsq and gaussfilt, asserts
+//! (panics) on a record shorter than the edge extension instead of
+//! returning an error, and keeps the overall gain in the first section as
+//! scipy does, so the sections saved in a model's JSON would change in
+//! their last digits; `iir_filters` (0.1) designs the sections but has no
+//! zero-phase filtering and no steady-state initial conditions. The
+//! outputs here agree with scipy's to rounding (tests below).
+
+use super::{Biquad, FilterError};
 use serde::{Deserialize, Serialize};
-
-/// One second-order section `H(z) = (b0 + b1 z⁻¹ + b2 z⁻²) / (1 + a1 z⁻¹ + a2 z⁻²)`.
-///
-/// ```
-/// use dtg_vib::signal::Biquad;
-/// let s = Biquad { b: [0.25, 0.5, 0.25], a: [0.0, 0.0] };
-/// assert!((s.dc_gain() - 1.0).abs() < 1e-15);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Biquad {
-    /// Numerator `b0, b1, b2`.
-    pub b: [f64; 3],
-    /// Denominator `a1, a2` (a0 is 1).
-    pub a: [f64; 2],
-}
-
-impl Biquad {
-    /// The gain at zero frequency, `H(1)`.
-    pub fn dc_gain(&self) -> f64 {
-        (self.b[0] + self.b[1] + self.b[2]) / (1.0 + self.a[0] + self.a[1])
-    }
-
-    /// The complex response at `z = exp(iω)`, as `(re, im)`.
-    fn response(&self, omega: f64) -> (f64, f64) {
-        // Evaluate both polynomials in z⁻¹ = cos ω − i sin ω.
-        let (c1, s1) = (omega.cos(), -omega.sin());
-        let (c2, s2) = ((2.0 * omega).cos(), -(2.0 * omega).sin());
-        let num = (
-            self.b[0] + self.b[1] * c1 + self.b[2] * c2,
-            self.b[1] * s1 + self.b[2] * s2,
-        );
-        let den = (
-            1.0 + self.a[0] * c1 + self.a[1] * c2,
-            self.a[0] * s1 + self.a[1] * s2,
-        );
-        let d2 = den.0 * den.0 + den.1 * den.1;
-        (
-            (num.0 * den.0 + num.1 * den.1) / d2,
-            (num.1 * den.0 - num.0 * den.1) / d2,
-        )
-    }
-}
 
 /// A digital Butterworth low-pass filter: maximally flat pass band, −3 dB at
 /// the cut-off, roll-off of `20·order` dB/decade.
 ///
 /// ```
-/// use dtg_vib::signal::LowPass;
+/// use nav_sensors::signal::LowPass;
 /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap(); // 4th order, 5 Hz, 50 Hz sampling
 /// assert_eq!(lp.sections().len(), 2);
 /// assert!((lp.gain_at(0.0) - 1.0).abs() < 1e-12);
@@ -122,17 +91,14 @@ impl LowPass {
             let (zr, zi) = ((nr * dr + ni * di) / d2, (ni * dr - nr * di) / d2);
             let a = [-2.0 * zr, zr * zr + zi * zi];
             let g = (1.0 + a[0] + a[1]) / 4.0;
-            sections.push(Biquad {
-                b: [g, 2.0 * g, g],
-                a,
-            });
+            sections.push(Biquad::new([g, 2.0 * g, g], a));
         }
         if order % 2 == 1 {
             // The real pole p = −wc.
             let z = (fs2 - wc) / (fs2 + wc);
             let a = [-z, 0.0];
             let g = (1.0 + a[0]) / 2.0;
-            sections.push(Biquad { b: [g, g, 0.0], a });
+            sections.push(Biquad::new([g, g, 0.0], a));
         }
         Ok(Self {
             order,

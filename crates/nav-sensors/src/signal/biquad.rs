@@ -1,7 +1,15 @@
-//! Second-order IIR sections (biquads) used by the sensor dynamics: the
-//! accelerometer servo loop (low-pass) and the DTG 2N detector (band-pass).
+//! The second-order IIR section (biquad): the one filter building block of
+//! the workspace. The sensor dynamics run single sections (the accelerometer
+//! servo loop as a low-pass, the DTG 2N detector as a band-pass); the
+//! Butterworth [`LowPass`](super::LowPass) is a cascade of them.
 
-/// A biquad in transposed direct form II, coefficients normalised by a0.
+use serde::{Deserialize, Serialize};
+
+/// One second-order section `H(z) = (b0 + b1 z⁻¹ + b2 z⁻²) / (1 + a1 z⁻¹ + a2 z⁻²)`,
+/// run in transposed direct form II; it carries its own state, so a
+/// section is also a running filter ([`Biquad::step`]). The state is not
+/// part of a saved filter: serialisation writes the coefficients `b`, `a`
+/// only, and reading gives a section at rest.
 ///
 /// ```
 /// use nav_sensors::signal::Biquad;
@@ -11,14 +19,68 @@
 /// for _ in 0..2000 { y = f.step(1.0); }
 /// assert!((y - 1.0).abs() < 1e-12);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Biquad {
-    b: [f64; 3],
-    a: [f64; 2],
+    /// Numerator `b0, b1, b2`.
+    pub b: [f64; 3],
+    /// Denominator `a1, a2` (a0 is 1).
+    pub a: [f64; 2],
+    /// State `[z1, z2]` of transposed direct form II.
+    #[serde(skip)]
     z: [f64; 2],
 }
 
 impl Biquad {
+    /// A section at rest from its coefficients: numerator `b0, b1, b2`,
+    /// denominator `a1, a2` (a0 = 1).
+    ///
+    /// ```
+    /// use nav_sensors::signal::Biquad;
+    /// let s = Biquad::new([0.25, 0.5, 0.25], [0.0, 0.0]);
+    /// assert!((s.dc_gain() - 1.0).abs() < 1e-15);
+    /// ```
+    pub fn new(b: [f64; 3], a: [f64; 2]) -> Self {
+        Self { b, a, z: [0.0; 2] }
+    }
+
+    /// The gain at zero frequency, `H(1)`.
+    ///
+    /// ```
+    /// let f = nav_sensors::signal::Biquad::low_pass(100.0, 0.7, 4000.0);
+    /// assert!((f.dc_gain() - 1.0).abs() < 1e-12);
+    /// ```
+    pub fn dc_gain(&self) -> f64 {
+        (self.b[0] + self.b[1] + self.b[2]) / (1.0 + self.a[0] + self.a[1])
+    }
+
+    /// The complex response at `z = exp(iω)`, as `(re, im)`.
+    pub(crate) fn response(&self, omega: f64) -> (f64, f64) {
+        // Evaluate both polynomials in z⁻¹ = cos ω − i sin ω.
+        let (c1, s1) = (omega.cos(), -omega.sin());
+        let (c2, s2) = ((2.0 * omega).cos(), -(2.0 * omega).sin());
+        let num = (
+            self.b[0] + self.b[1] * c1 + self.b[2] * c2,
+            self.b[1] * s1 + self.b[2] * s2,
+        );
+        let den = (
+            1.0 + self.a[0] * c1 + self.a[1] * c2,
+            self.a[0] * s1 + self.a[1] * s2,
+        );
+        let d2 = den.0 * den.0 + den.1 * den.1;
+        (
+            (num.0 * den.0 + num.1 * den.1) / d2,
+            (num.1 * den.0 - num.0 * den.1) / d2,
+        )
+    }
+
+    /// Runs the section over `y` in place, starting from state `z`.
+    pub(crate) fn run_from(&self, y: &mut [f64], z: [f64; 2]) {
+        let mut s = Self { z, ..*self };
+        for v in y.iter_mut() {
+            *v = s.step(*v);
+        }
+    }
+
     /// Discretises `ωn² / (s² + 2ζωn s + ωn²)` by the bilinear transform
     /// pre-warped at the natural frequency. The bilinear transform maps the
     /// stable left half-plane into the unit disc, so the filter is stable for
@@ -109,8 +171,7 @@ impl Biquad {
     /// assert!((f.step(1.0) - 1.0).abs() < 1e-12);
     /// ```
     pub fn settle(&mut self, x: f64) {
-        let dc = (self.b.iter().sum::<f64>()) / (1.0 + self.a[0] + self.a[1]);
-        let y = dc * x;
+        let y = self.dc_gain() * x;
         self.z[1] = self.b[2] * x - self.a[1] * y;
         self.z[0] = self.b[1] * x - self.a[0] * y + self.z[1];
     }

@@ -1,0 +1,88 @@
+//! Everything that can be wrong with a record.
+
+use tabular::TableError;
+
+/// Everything that can be wrong with a record. File-based variants name the
+/// file, the 1-based line (the header is line 1) and the 1-based column.
+///
+/// ```
+/// use nav_sensors::record::{Record, RecordError};
+/// let err = Record::from_reader("t,X\n0,1\n".as_bytes(), "r.csv").unwrap_err();
+/// assert!(matches!(err, RecordError::MissingColumn { .. }));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum RecordError {
+    /// Reading the CSV failed: I/O, malformed CSV, a text cell or a
+    /// non-finite number (file:line:column), or a duplicate column.
+    #[error(transparent)]
+    Table(#[from] TableError),
+    /// A required column is missing from the header.
+    #[error("{file}:1: missing column '{name}' (the header has: {})", header.join(", "))]
+    MissingColumn {
+        /// File name.
+        file: String,
+        /// The missing column.
+        name: String,
+        /// The header as read.
+        header: Vec<String>,
+    },
+    /// Fewer than two data rows (no sample interval).
+    #[error("{file}: {rows} data row(s); a record needs at least 2")]
+    TooShort {
+        /// File name.
+        file: String,
+        /// Number of data rows.
+        rows: usize,
+    },
+    /// Time does not strictly increase.
+    #[error(
+        "{file}:{line}:{column}: time {t} s does not increase on the previous row's {previous} s"
+    )]
+    NotIncreasing {
+        /// File name.
+        file: String,
+        /// Line of the offending row.
+        line: u64,
+        /// Column of `t`.
+        column: usize,
+        /// The previous time, s.
+        previous: f64,
+        /// This row's time, s.
+        t: f64,
+    },
+    /// A sample interval differs from the median interval by more than
+    /// [`INTERVAL_TOLERANCE`](super::INTERVAL_TOLERANCE) (relative).
+    #[error(
+        "{file}:{line}:{column}: sample interval {interval} s differs from the record's {expected} s (relative tolerance {tolerance})"
+    )]
+    IrregularInterval {
+        /// File name.
+        file: String,
+        /// Line of the row that ends the interval.
+        line: u64,
+        /// Column of `t`.
+        column: usize,
+        /// This interval, s.
+        interval: f64,
+        /// The median interval, s.
+        expected: f64,
+        /// The relative tolerance used.
+        tolerance: f64,
+    },
+    /// Series of different lengths given to [`Record::new`](super::Record::new).
+    #[error("series '{name}' has {len} samples, expected {expected}")]
+    LengthMismatch {
+        /// Series name.
+        name: String,
+        /// Its length.
+        len: usize,
+        /// The time series' length.
+        expected: usize,
+    },
+    /// An extra column named like a sensor column or `t`, or twice.
+    #[error("extra column name '{name}' is reserved or repeated")]
+    BadExtraName {
+        /// The name.
+        name: String,
+    },
+}

@@ -1,0 +1,65 @@
+//! The summary statistics the workspace's crates share: [`mean`],
+//! [`variance`], [`std_dev`] and [`rms`] of a slice, in one place so that a
+//! figure printed by one crate and checked by another is computed the same
+//! way, to the bit.
+//!
+//! Population forms (divide by `n`, not `n − 1`): these summarise a record
+//! (an rms in deg/h, a spread in g), they do not estimate a parent variance.
+//! An empty slice gives NaN (0/0), never a panic. `no_std` without the
+//! default `std` feature: core has no square root yet, so [`std_dev`] and
+//! [`rms`] come with `std`, [`mean`] and [`variance`] always.
+//!
+//! ```
+//! let x = [1.0, 2.0, 3.0, 4.0];
+//! assert_eq!(stats::mean(&x), 2.5);
+//! assert_eq!(stats::variance(&x), 1.25);
+//! assert_eq!(stats::std_dev(&x), 1.25f64.sqrt());
+//! assert_eq!(stats::rms(&x), 7.5f64.sqrt());
+//! assert!(stats::mean(&[]).is_nan());
+//! ```
+
+#![cfg_attr(not(feature = "std"), no_std)]
+
+/// Arithmetic mean, `Σx / n`.
+///
+/// ```
+/// assert_eq!(stats::mean(&[2.0, 4.0]), 3.0);
+/// ```
+pub fn mean(x: &[f64]) -> f64 {
+    x.iter().sum::<f64>() / x.len() as f64
+}
+
+/// Population variance about the mean, `Σ(x − x̄)² / n`.
+///
+/// ```
+/// assert_eq!(stats::variance(&[1.0, 3.0]), 1.0);
+/// assert_eq!(stats::variance(&[5.0; 4]), 0.0);
+/// ```
+pub fn variance(x: &[f64]) -> f64 {
+    let m = mean(x);
+    x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64
+}
+
+/// Root mean square about the mean (population standard deviation),
+/// `√variance`.
+///
+/// ```
+/// assert_eq!(stats::std_dev(&[1.0, 3.0]), 1.0);
+/// // A constant offset does not count, unlike in `rms`.
+/// assert_eq!(stats::std_dev(&[10.0, 12.0]), 1.0);
+/// ```
+#[cfg(feature = "std")]
+pub fn std_dev(x: &[f64]) -> f64 {
+    variance(x).sqrt()
+}
+
+/// Root mean square about zero, `√(Σx² / n)`.
+///
+/// ```
+/// assert_eq!(stats::rms(&[3.0, -3.0]), 3.0);
+/// assert_eq!(stats::rms(&[10.0, 12.0]), 122.0f64.sqrt());
+/// ```
+#[cfg(feature = "std")]
+pub fn rms(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+}
