@@ -349,6 +349,13 @@ struct Context {
     /// Decimation of the whiteness test: to about twice the filter's cut-off
     /// (the lags in between carry no information).
     decimation: usize,
+    /// Positions of the validation rows the correlation tests use: those
+    /// whose window lies beyond the filter's reach of the record's ends. At
+    /// an end the zero-phase filter's reflected extension makes the filtered
+    /// input (and the residual with it) several times its usual size, and
+    /// the fourth-power Billings–Voon products of one such row can decide a
+    /// test on their own.
+    steady: std::ops::Range<usize>,
     band_edges: Vec<f64>,
     shape: Box<dyn Fn(f64) -> f64>,
 }
@@ -407,6 +414,19 @@ impl Context {
             .into_iter()
             .max_by(|a, b| variances[a.index()].total_cmp(&variances[b.index()]))
             .expect("three axes");
+        let fm = prepared.filter_memory();
+        let samples = rec.len();
+        let lo = val.iter().position(|&r| r >= fm).unwrap_or(val.len());
+        let hi = val
+            .iter()
+            .rposition(|&r| first + r + fm < samples)
+            .map_or(0, |i| i + 1);
+        // Too little left (a record barely longer than the filter): test all rows.
+        let steady = if hi > lo && hi - lo >= val.len() / 2 {
+            lo..hi
+        } else {
+            0..val.len()
+        };
         let reach = prepared.first_sample() + 1 + prepared.filter_memory();
         let memory = reach.div_ceil(spacing * decimation);
         Ok(Self {
@@ -420,6 +440,7 @@ impl Context {
             rate_std_deg_s,
             fs,
             decimation,
+            steady,
             band_edges,
             shape,
         })
@@ -523,7 +544,9 @@ fn diagnose_channel(
 
     // Correlation tests.
     let mut checks = Vec::new();
-    let dec: Vec<f64> = residual.iter().step_by(ctx.decimation).copied().collect();
+    let steady = |x: &[f64]| x[ctx.steady.clone()].to_vec();
+    let e = steady(&residual);
+    let dec: Vec<f64> = e.iter().step_by(ctx.decimation).copied().collect();
     let lag = opts
         .max_lag
         .min(dec.len().saturating_sub(ctx.memory + 2) / 4)
@@ -534,18 +557,22 @@ fn diagnose_channel(
             check: whiteness_beyond(&dec, ctx.memory, lag, opts.confidence),
         });
     }
-    let lag = opts.max_lag.min(residual.len() / 4).max(1);
+    let lag = opts.max_lag.min(e.len() / 4).max(1);
     let inputs = Axis::ALL
         .iter()
-        .map(|a| (a.column().to_string(), &ctx.accel[a.index()]))
-        .chain(ctx.extras.iter().map(|(n, v)| (format!("col:{n}"), v)));
+        .map(|a| (a.column().to_string(), steady(&ctx.accel[a.index()])))
+        .chain(
+            ctx.extras
+                .iter()
+                .map(|(n, v)| (format!("col:{n}"), steady(v))),
+        );
     for (name, u) in inputs {
         checks.push(NamedCheck {
             name: format!("independence:{name}"),
-            check: independence(&residual, u, lag, opts.confidence),
+            check: independence(&e, &u, lag, opts.confidence),
         });
         if name.starts_with('a') {
-            for c in billings_voon(&residual, u, lag.min(10), opts.confidence) {
+            for c in billings_voon(&e, &u, lag.min(10), opts.confidence) {
                 checks.push(NamedCheck {
                     name: format!("{}:{name}", c.kind.name()),
                     check: c,

@@ -150,3 +150,61 @@ pub fn bartlett_auto_variance(rho: &[f64], tau: usize, n: usize) -> f64 {
         .sum();
     s.max(0.0) / n as f64
 }
+
+/// Variance of the Billings–Voon correlation ρ_e(eu)(τ) = corr(e·u, e(t+τ))
+/// under its null hypothesis, the residual `e` independent of the input `u`
+/// (both centred, equal lengths, τ ≥ 0).
+///
+/// Bartlett's formula for two independent series does not apply: e·u and e
+/// share e. With p(t) = e(t)·e(t+τ) the correlation's numerator is Σ u(t)·p(t),
+/// and under the null u is independent of p, so its variance is
+/// (N−τ) Σ_k (1 − |k|/K) γ_u(k) M_p(k), with γ_u u's autocovariance and M_p
+/// p's *uncentred* second moment at lag k (K as in [`bartlett_truncation`]).
+/// Bartlett's formula misses M_p's mean part, γ_e(τ)²·Σγ_u(k), which
+/// dominates at the lags where the residual is correlated with itself.
+///
+/// ```
+/// use dtg_vib::residuals::residual_times_input_variance;
+/// // White, independent ±1 series: about 1/N at every lag.
+/// let mut s = 9u64;
+/// let mut sign = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); if s >> 63 == 0 { -1.0 } else { 1.0 } };
+/// let e: Vec<f64> = (0..4000).map(|_| sign()).collect();
+/// let u: Vec<f64> = (0..4000).map(|_| sign()).collect();
+/// let v = residual_times_input_variance(&e, &u, 1);
+/// assert!((v * 4000.0 - 1.0).abs() < 0.1, "{v}");
+/// ```
+#[track_caller]
+pub fn residual_times_input_variance(e: &[f64], u: &[f64], tau: usize) -> f64 {
+    assert_eq!(e.len(), u.len(), "series lengths differ");
+    let n = e.len();
+    assert!(tau < n, "lag {tau} must be below the series length {n}");
+    let p: Vec<f64> = e[..n - tau]
+        .iter()
+        .zip(&e[tau..])
+        .map(|(a, b)| a * b)
+        .collect();
+    let m = p.len();
+    let k_max = bartlett_truncation(n).min(m);
+    let lagged = |x: &[f64], k: usize, len: usize| {
+        x[..x.len() - k]
+            .iter()
+            .zip(&x[k..])
+            .map(|(a, b)| a * b)
+            .sum::<f64>()
+            / len as f64
+    };
+    let mut s = lagged(u, 0, n) * lagged(&p, 0, m);
+    for k in 1..k_max {
+        let taper = 1.0 - k as f64 / k_max as f64;
+        s += 2.0 * taper * lagged(u, k, n) * lagged(&p, k, m);
+    }
+    let eu = e.iter().zip(u).map(|(a, b)| a * b);
+    let mean_eu = eu.clone().sum::<f64>() / n as f64;
+    let ss_eu: f64 = eu.map(|v| (v - mean_eu).powi(2)).sum();
+    let ss_e: f64 = e.iter().map(|v| v * v).sum();
+    let denom = ss_eu * ss_e;
+    if !(denom > 0.0 && denom.is_finite()) {
+        return 0.0;
+    }
+    (m as f64 * s).max(0.0) / denom
+}

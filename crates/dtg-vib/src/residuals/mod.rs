@@ -7,7 +7,7 @@ mod validity;
 
 pub use correlation::{
     autocorrelation, bartlett_auto_variance, bartlett_cross_variance, bartlett_truncation,
-    cross_correlation,
+    cross_correlation, residual_times_input_variance,
 };
 pub use validity::{
     CorrelationCheck, CorrelationKind, billings_voon, independence, whiteness, whiteness_beyond,
@@ -136,6 +136,52 @@ mod tests {
             .find(|t| t.kind == CorrelationKind::SquaredInputSquaredResidual)
             .unwrap();
         assert!(!sq2.passed && sq2.worst_lag == 0);
+    }
+
+    /// A multiplicative error e = (1 + k·u²)·ε, the residual's scale rising
+    /// by 10% per unit u² (40% at two standard deviations of u), is caught
+    /// by ρ_u²'e² at lag 0; the same ε without it passes.
+    #[test]
+    fn squared_residual_test_catches_a_multiplicative_error() {
+        let u = noise(3000, 31);
+        let w = noise(3000, 32);
+        let find = |e: &[f64]| {
+            billings_voon(e, &u, 10, 0.99)
+                .into_iter()
+                .find(|t| t.kind == CorrelationKind::SquaredInputSquaredResidual)
+                .unwrap()
+        };
+        assert!(find(&w).passed);
+        let e: Vec<f64> = w
+            .iter()
+            .zip(&u)
+            .map(|(a, b)| (1.0 + 0.1 * b * b) * a)
+            .collect();
+        let t = find(&e);
+        assert!(!t.passed && t.worst_lag == 0, "{t:?}");
+    }
+
+    /// ρ_e(eu) on a residual and an input that are independent but both
+    /// low-pass filtered (so e is correlated with itself over the filter's
+    /// memory): the long-run variance of the products keeps the false-alarm
+    /// rate at its level. Bartlett's formula for independent series (e·u and
+    /// e are not) misses the term ρ_e(τ)²·Σρ_u: over 400 such records its
+    /// standardised values spread 1.33 at lag 1 instead of 1.
+    #[test]
+    fn false_alarm_rate_of_residual_times_input_on_filtered_noise_is_controlled() {
+        let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
+        let mut alarms = 0;
+        for seed in 0..100 {
+            let e = lp.filtfilt(&noise(2000, 4000 + 2 * seed)).unwrap();
+            let u = lp.filtfilt(&noise(2000, 4001 + 2 * seed)).unwrap();
+            let t = billings_voon(&e, &u, 10, 0.99);
+            alarms += t
+                .iter()
+                .filter(|t| t.kind == CorrelationKind::ResidualTimesInput && !t.passed)
+                .count();
+        }
+        // P(X ≥ 5 of 100 | p = 0.01) ≈ 0.003.
+        assert!(alarms <= 4, "{alarms} false alarms in 100 filtered records");
     }
 
     #[test]

@@ -5,11 +5,12 @@
 //! The decision is a max-statistic with a Bonferroni correction over the lags
 //! tested: a test with 50 lags at 99% would otherwise "fail" by chance on one
 //! lag in two records. Bands come from Bartlett's formula, so filtered
-//! (coloured) series are judged fairly.
+//! (coloured) series are judged fairly; ρ_e(eu)'s band is its own variance
+//! under the null, because e·u and e are not two independent series.
 
 use super::correlation::{
     autocorrelation, bartlett_auto_variance, bartlett_cross_variance, bartlett_truncation,
-    cross_correlation,
+    cross_correlation, residual_times_input_variance,
 };
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, Normal};
@@ -25,12 +26,19 @@ pub enum CorrelationKind {
     /// ρ_ue(τ) = 0 for all τ: nothing linear in u is left in e.
     Independence,
     /// Billings–Voon ρ_e(eu)(τ) = 0, τ ≥ 0: no product of past residual and
-    /// input is left (a missing cross term).
+    /// input is left (a missing cross term). Its band is the correlation's
+    /// variance under the null that e is independent of u, not Bartlett's
+    /// formula for two independent series: e·u and e share e, and a residual
+    /// correlated over the model's memory makes the spread at short lags
+    /// larger than Bartlett's formula says.
     ResidualTimesInput,
     /// Billings–Voon ρ_u²'e(τ) = 0: no even (squared) function of u is left in e.
     SquaredInput,
     /// Billings–Voon ρ_u²'e²(τ) = 0: the residual's variance does not follow u²
-    /// (a multiplicative or level-dependent error).
+    /// (a multiplicative or level-dependent error). Bartlett's band, whose
+    /// null is e independent of u: a band from the products' own spread
+    /// would widen with the very error it looks for and lose most of its
+    /// power.
     SquaredInputSquaredResidual,
 }
 
@@ -58,7 +66,9 @@ pub struct CorrelationCheck {
     pub values: Vec<f64>,
     /// What the correlation should be under the null hypothesis.
     pub expected: Vec<f64>,
-    /// Half-width of the per-lag band at `confidence` (Bartlett).
+    /// Half-width of the per-lag band at `confidence` (Bartlett's formula;
+    /// for `billings_voon_e_eu` the variance under e independent of u, see
+    /// [`residual_times_input_variance`](super::residual_times_input_variance)).
     pub band: Vec<f64>,
     /// Per-lag confidence of `band`, e.g. 0.99.
     pub confidence: f64,
@@ -247,6 +257,37 @@ fn cross_test(
     )
 }
 
+/// Billings–Voon ρ_e(eu)(τ) on τ = 0..=max_lag, reported as lags
+/// 1..=max_lag+1 of e·u against e (as before), with the variance under the
+/// null that e is independent of u ([`residual_times_input_variance`]), not
+/// Bartlett's formula for two independent series: e·u and e share e.
+fn residual_times_input_test(
+    ec: &[f64],
+    uc: &[f64],
+    max_lag: usize,
+    confidence: f64,
+) -> CorrelationCheck {
+    check_confidence(confidence);
+    let top = (max_lag + 1).min(ec.len().saturating_sub(1));
+    let eu: Vec<f64> = ec.iter().zip(uc).map(|(a, b)| a * b).collect();
+    let r = cross_correlation(&eu, ec, top);
+    let lags: Vec<i64> = (1..=top as i64).collect();
+    let values: Vec<f64> = lags.iter().map(|&l| r[top + l as usize]).collect();
+    let sigma: Vec<f64> = lags
+        .iter()
+        .map(|&l| residual_times_input_variance(ec, uc, l as usize).sqrt())
+        .collect();
+    let m = lags.len();
+    verdict(
+        CorrelationKind::ResidualTimesInput,
+        lags,
+        values,
+        vec![0.0; m],
+        sigma,
+        confidence,
+    )
+}
+
 /// Independence test: the residual `e` is uncorrelated with the input `u` at
 /// every lag in −max_lag..=max_lag.
 ///
@@ -271,6 +312,12 @@ pub fn independence(e: &[f64], u: &[f64], max_lag: usize, confidence: f64) -> Co
 /// residual `e` against an input `u`: ρ_e(eu)(τ) on τ = 0..max_lag (as lags
 /// 1..=max_lag+1 of e·u against e), ρ_u²'e(τ) and ρ_u²'e²(τ) on
 /// −max_lag..=max_lag.
+///
+/// The null of all three is e independent of u. ρ_u²'e and ρ_u²'e² have
+/// Bartlett's band (u² against e or e², independent series under the
+/// null); ρ_e(eu) has the variance of its own statistic under that null,
+/// [`residual_times_input_variance`](super::residual_times_input_variance),
+/// since e·u and e are never independent.
 ///
 /// ```
 /// use dtg_vib::residuals::{billings_voon, CorrelationKind};
@@ -299,15 +346,8 @@ pub fn billings_voon(
     let uc: Vec<f64> = u.iter().map(|v| v - mu).collect();
     let u2: Vec<f64> = uc.iter().map(|v| v * v).collect();
     let e2: Vec<f64> = ec.iter().map(|v| v * v).collect();
-    let eu: Vec<f64> = ec.iter().zip(&uc).map(|(a, b)| a * b).collect();
     vec![
-        cross_test(
-            CorrelationKind::ResidualTimesInput,
-            &eu,
-            &ec,
-            1..=l + 1,
-            confidence,
-        ),
+        residual_times_input_test(&ec, &uc, max_lag, confidence),
         cross_test(CorrelationKind::SquaredInput, &u2, &ec, -l..=l, confidence),
         cross_test(
             CorrelationKind::SquaredInputSquaredResidual,
