@@ -818,3 +818,37 @@ fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
     fails_with(&run, &["GiB", "use --candidates"]);
     assert!(!out.exists());
 }
+
+/// The code says `centres`; the command line keeps `--centers` and `--max-centers` and
+/// takes `--centres` and `--max-centres` as their aliases, with the same model.
+#[test]
+fn centres_spelling_is_an_alias_of_centers() {
+    let dir = scratch("centres-alias");
+    let csv = smooth_csv(60, None);
+    let data_path = write(&dir, "d.csv", &csv);
+    let model_path = dir.join("m.json").display().to_string();
+    let read = |spelling: [&str; 2]| {
+        let out = rbf(&[
+            "fit",
+            "--data",
+            &data_path,
+            "--target",
+            "y",
+            "--out",
+            &model_path,
+            spelling[0],
+            "kmeans",
+            spelling[1],
+            "5",
+            "--width",
+            "0.5",
+        ]);
+        succeeds(&out);
+        std::fs::read_to_string(&model_path).unwrap()
+    };
+    let american = read(["--centers", "--max-centers"]);
+    let british = read(["--centres", "--max-centres"]);
+    assert_eq!(american, british);
+    let help = stdout(&rbf(&["fit", "--help"]));
+    assert!(help.contains("--centres"), "{help}");
+}

@@ -7,7 +7,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use linfa::ParamGuard;
+use rbf::ParamGuard;
 use rbf::{
     Candidates, CentreSelection, KMeansAlgorithm, KMeansSettings, Kernel, RbfParams,
     RbfParamsError, RbfValidParams, Split, WidthRule,

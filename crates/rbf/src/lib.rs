@@ -20,8 +20,7 @@
 //!
 //! ```
 //! use faer::{Mat, Par};
-//! use linfa::ParamGuard;
-//! use rbf::{CentreSelection, Kernel, RbfParams, WidthRule};
+//! use rbf::{CentreSelection, Kernel, ParamGuard, RbfParams, WidthRule};
 //!
 //! // y = sin(x₀)·cos(x₁) on a 15 × 15 grid, 60 OLS-selected Gaussian centres
 //! let n = 225;
@@ -59,6 +58,12 @@ pub mod width;
 
 pub use faer;
 pub use faer::Par;
+#[doc(no_inline)]
+pub use linfa::ParamGuard;
+/// linfa's traits that rbf's types implement, re-exported so that dependants need not
+/// name linfa: [`ParamGuard`] checks an [`RbfParams`], [`Fit`] and [`Predict`] work on
+/// linfa datasets and ndarray arrays.
+pub use linfa::traits::{Fit, Predict};
 /// `rbf::ols` (the path docs/architecture.md uses) is `rbf::select::ols`.
 pub use select::ols;
 
@@ -77,7 +82,10 @@ pub use model::{
     Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, Progress, RbfError,
     RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
 };
-pub use select::kmeans::{KMeansAlgorithm, KMeansSettings, UnknownKMeansAlgorithm};
+pub use select::kmeans::{
+    KMeansAlgorithm, KMeansError, KMeansInit, KMeansSettings, UnknownKMeansAlgorithm,
+    UnknownKMeansInit,
+};
 pub use select::ols::{
     OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason, forward_select,
     forward_select_owned,

@@ -110,11 +110,11 @@ pub struct ModelArgs {
     /// Centre selection: ols (forward selection by error-reduction ratio over the
     /// training rows), kmeans (k-means++ seeded, QR weights), random (seeded subset, QR
     /// weights), all (every training row; interpolation, or smoothing with --ridge).
-    #[arg(long, value_name = "ols|kmeans|random|all")]
+    #[arg(long, visible_alias = "centres", value_name = "ols|kmeans|random|all")]
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
-    #[arg(long, value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
+    #[arg(long, visible_alias = "max-centres", value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
     pub max_centers: Option<usize>,
     /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
     /// (the library's: distances by faer products, scikit-learn's update and stopping

@@ -1,9 +1,8 @@
 //! Errors of the RBF model: invalid hyperparameters, bad data, numerical failure.
 
-use linfa_clustering::KMeansError;
-
 use crate::cv::SplitError;
 use crate::estimate::SolveError;
+use crate::select::kmeans::KMeansError;
 use crate::select::ols::OlsError;
 use crate::width::WidthError;
 
@@ -188,7 +187,20 @@ pub enum RbfError {
         /// The original error's message.
         reason: String,
     },
-    /// An error raised by linfa itself.
-    #[error(transparent)]
-    Linfa(#[from] linfa::error::Error),
+    /// An error raised by linfa itself (its message: no linfa type appears in rbf's
+    /// errors).
+    #[error("linfa: {0}")]
+    Linfa(String),
+}
+
+impl From<linfa::error::Error> for RbfError {
+    /// linfa's `Fit` needs this conversion; the error is kept as its message.
+    ///
+    /// ```
+    /// let e = rbf::RbfError::from(linfa::error::Error::NotConverged("x".into()));
+    /// assert!(matches!(e, rbf::RbfError::Linfa(_)));
+    /// ```
+    fn from(e: linfa::error::Error) -> Self {
+        RbfError::Linfa(e.to_string())
+    }
 }

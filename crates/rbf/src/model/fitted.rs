@@ -6,11 +6,12 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
 
 use super::algorithm::Design;
-use super::hyperparams::{RbfValidParams, Strategy};
+use super::hyperparams::{CentreSelection, RbfParams, RbfValidParams, Strategy};
 use super::matser;
 use crate::design::{Widths, kernel_matrix_into};
 use crate::kernel::Kernel;
 use crate::select::ols::{Pick, StopReason};
+use crate::width::WidthRule;
 
 /// Per-input standardisation x ↦ (x − mean)/scale (population standard deviation;
 /// constant inputs keep scale 1).
@@ -336,6 +337,38 @@ impl RbfModel {
     /// ```
     pub fn condition(&self) -> f64 {
         self.condition
+    }
+
+    /// The hyperparameters that refit this model's structure: its kernel, bias, tail and
+    /// standardisation, its centres as [`CentreSelection::Given`] (data units), and its
+    /// width as [`WidthRule::Fixed`] when it is one β for all centres. A model does not
+    /// record the rule that chose per-centre widths, nor the ridge, seed, parallelism or
+    /// condition limit of its fit: those keep [`RbfParams::new`]'s defaults and can be
+    /// set on the returned builder.
+    ///
+    /// ```
+    /// use rbf::ParamGuard;
+    /// let m = rbf::doc_model(); // OLS centres of sin on [0, 3], β = 1
+    /// let p = m.params().parallelism(faer::Par::Seq).check().unwrap();
+    /// assert_eq!(p.kernel(), m.kernel());
+    /// assert_eq!(p.width(), &rbf::WidthRule::Fixed(1.0));
+    /// // refitted on the same data, the given centres give the same network
+    /// let x = faer::Mat::from_fn(40, 1, |i, _| i as f64 * 3.0 / 39.0);
+    /// let y = faer::Mat::from_fn(40, 1, |i, _| x[(i, 0)].sin());
+    /// let again = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// assert!((again.predict(x.as_ref()) - m.predict(x.as_ref())).norm_max() < 1e-9);
+    /// ```
+    pub fn params(&self) -> RbfParams {
+        let mut p = RbfParams::new()
+            .kernel(self.kernel)
+            .centres(CentreSelection::Given(self.centres()))
+            .bias(self.bias.is_some())
+            .linear_tail(self.tail.is_some())
+            .standardise(self.scaling.is_some());
+        if let Widths::Uniform(b) = self.widths {
+            p = p.width(WidthRule::Fixed(b));
+        }
+        p
     }
 
     /// The input standardisation, if any.

@@ -8,7 +8,7 @@ use super::errors::RbfParamsError;
 use crate::check::{first_non_finite, non_negative, positive};
 use crate::estimate::DEFAULT_MAX_CONDITION;
 use crate::kernel::Kernel;
-use crate::select::kmeans::KMeansSettings;
+use crate::select::kmeans::{KMeansError, KMeansSettings};
 use crate::width::WidthRule;
 
 /// The candidate centres OLS chooses from.
@@ -346,18 +346,15 @@ impl RbfValidParams {
                 }
             }
             CentreSelection::KMeans(s) => {
-                if s.n_centres == 0 {
-                    return Err(RbfParamsError::KMeansCentres);
-                }
-                if s.n_runs == 0 {
-                    return Err(RbfParamsError::KMeansRuns);
-                }
-                if s.max_iterations == 0 {
-                    return Err(RbfParamsError::KMeansIterations);
-                }
-                if !positive(s.tolerance) {
-                    return Err(RbfParamsError::KMeansTolerance { value: s.tolerance });
-                }
+                // the k-means rules, each broken rule as this type's own variant
+                s.check().map_err(|e| match e {
+                    KMeansError::NoClusters => RbfParamsError::KMeansCentres,
+                    KMeansError::NoRuns => RbfParamsError::KMeansRuns,
+                    KMeansError::NoIterations => RbfParamsError::KMeansIterations,
+                    KMeansError::Tolerance { .. } | KMeansError::Linfa(_) => {
+                        RbfParamsError::KMeansTolerance { value: s.tolerance }
+                    }
+                })?;
             }
             CentreSelection::Random { n_centres } => {
                 if *n_centres == 0 {
