@@ -852,3 +852,56 @@ fn centres_spelling_is_an_alias_of_centers() {
     let help = stdout(&rbf(&["fit", "--help"]));
     assert!(help.contains("--centres"), "{help}");
 }
+
+/// `--degree` puts a unit-box polynomial tail in the saved model, for least-squares
+/// centres too; `--n-init` and `--kmeans-init` reach k-means and apply to it only; a
+/// degree below what the kernel needs to interpolate is refused.
+#[test]
+fn degree_and_kmeans_seeding_flags() {
+    let dir = scratch("degree");
+    let csv = smooth_csv(80, None);
+    let model_path = dir.join("m.json");
+    let fit = |extra: &[&str]| fit_on(&dir, &csv, extra);
+    let out = fit(&[
+        "--centers",
+        "kmeans",
+        "--max-centers",
+        "6",
+        "--width",
+        "0.5",
+        "--degree",
+        "2",
+        "--n-init",
+        "3",
+        "--kmeans-init",
+        "plusplus",
+    ]);
+    succeeds(&out);
+    let model = std::fs::read_to_string(&model_path).unwrap();
+    assert!(
+        model.contains("\"poly\"") && model.contains("\"quadratic\""),
+        "{model}"
+    );
+    let out = fit(&["--centers", "ols", "--n-init", "3"]);
+    fails_with(&out, &["--n-init applies to --centers kmeans only"]);
+    let out = fit(&[
+        "--centers",
+        "all",
+        "--kernel",
+        "thin-plate",
+        "--degree",
+        "0",
+    ]);
+    fails_with(&out, &["degree ≥ 1"]);
+    let out = fit(&[
+        "--centers",
+        "all",
+        "--kernel",
+        "thin-plate",
+        "--degree",
+        "-1",
+    ]);
+    fails_with(&out, &["degree ≥ 1"]);
+    let out = fit(&["--centers", "random", "--degree", "3"]);
+    fails_with(&out, &["valid degrees: -1 (none), 0, 1, 2"]);
+}

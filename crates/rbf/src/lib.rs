@@ -79,8 +79,9 @@ pub use estimate::{
 };
 pub use kernel::{Kernel, UnknownKernel};
 pub use model::{
-    Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, Progress, RbfError,
-    RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
+    Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, PolyTail, Progress,
+    RbfError, RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage,
+    Strategy, UnknownPolyTail,
 };
 pub use select::kmeans::{
     KMeansAlgorithm, KMeansError, KMeansInit, KMeansSettings, UnknownKMeansAlgorithm,

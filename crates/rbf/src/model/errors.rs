@@ -100,6 +100,19 @@ pub enum RbfParamsError {
         /// Column.
         col: usize,
     },
+    /// All-points interpolation with a polynomial tail below the kernel's minimum degree
+    /// has no unique solution.
+    #[error(
+        "the {kernel} kernel needs a polynomial of degree ≥ {minimum} to interpolate, got {degree}"
+    )]
+    DegreeTooLow {
+        /// The kernel.
+        kernel: crate::Kernel,
+        /// Degree given.
+        degree: i32,
+        /// The kernel's minimum degree.
+        minimum: i32,
+    },
 }
 
 /// Why a fit (or cross-validation) failed.

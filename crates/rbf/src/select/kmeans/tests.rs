@@ -7,6 +7,25 @@ use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256Plus;
 
 use super::*;
+
+/// Greedy k-means++ keeps, at each step, the candidate with the lowest potential, so its
+/// start has a potential no worse than plain k-means++'s on well-separated data, and both
+/// seedings are deterministic for a seed.
+#[test]
+fn greedy_seeding_is_deterministic_and_covers_separated_groups() {
+    let x = Mat::from_fn(300, 2, |i, j| {
+        (i % 6) as f64 * 50.0 * (j as f64 + 1.0) + ((i * 31 + j * 7) % 13) as f64 * 0.1
+    });
+    let mut a = Xoshiro256Plus::seed_from_u64(4);
+    let mut b = Xoshiro256Plus::seed_from_u64(4);
+    let ga = greedy_kmeans_plusplus(x.as_ref(), 6, &mut a);
+    assert_eq!(ga, greedy_kmeans_plusplus(x.as_ref(), 6, &mut b));
+    let mut groups: Vec<usize> = (0..6)
+        .map(|c| (ga[[c, 0]] / 50.0).round() as usize)
+        .collect();
+    groups.sort_unstable();
+    assert_eq!(groups, vec![0, 1, 2, 3, 4, 5]);
+}
 use crate::convert::as_array;
 
 /// The linear-time seeding draws what linfa's own k-means++ draws (same generator,
@@ -17,7 +36,9 @@ fn seeding_matches_linfas_kmeans_plusplus() {
         ((i * (j + 3)) as f64 * 0.731).sin() + (i % 7) as f64
     });
     for (k, seed) in [(5, 1), (20, 7), (60, 42)] {
-        let settings = KMeansSettings::new(k).algorithm(KMeansAlgorithm::Linfa);
+        let settings = KMeansSettings::new(k)
+            .algorithm(KMeansAlgorithm::Linfa)
+            .init(KMeansInit::KMeansPlusPlus);
         let ours = kmeans_centres(x.as_ref(), &settings, seed, Par::Seq).unwrap();
         let records = as_array(x.as_ref());
         let linfa = KMeans::params_with_rng(k, Xoshiro256Plus::seed_from_u64(seed))
@@ -50,7 +71,7 @@ fn both_algorithms_share_the_seeded_start() {
     let one = lloyd(x.as_ref(), start.as_ref(), 1, 1e-4, Par::Seq);
     let settings = KMeansSettings {
         max_iterations: 1,
-        ..KMeansSettings::new(6)
+        ..KMeansSettings::new(6).init(KMeansInit::KMeansPlusPlus)
     };
     let ours = kmeans_centres(x.as_ref(), &settings, 9, Par::Seq).unwrap();
     assert_eq!(ours.centres, one.centres);
