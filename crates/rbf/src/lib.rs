@@ -1,8 +1,9 @@
 //! Radial-basis-function networks for system identification.
 //!
 //! The network of the seed paper's eqs. 7–8, f(x) = λ0 + Σᵢ λᵢ φ(‖x − cᵢ‖) with the
-//! Gaussian φ(v) = exp(−v²/β²), plus six other kernels, an optional linear polynomial
-//! tail and exogenous linear regressors (a semi-parametric model).
+//! Gaussian φ(v) = exp(−v²/β²), plus six other kernels, an optional polynomial tail (of
+//! degree ≤ 2 on unit-box inputs, [`PolyTail`]) and exogenous linear regressors (a
+//! semi-parametric model).
 //!
 //! | concern | module | main items |
 //! |---|---|---|
