@@ -135,7 +135,7 @@ fn base() -> &'static Base {
         let y = Mat::from_fn(60, 1, |i, _| {
             (3.0 * x[(i, 0)]).sin() + x[(i, 1)] * x[(i, 1)]
         });
-        let params = linfa::ParamGuard::check(
+        let params = rbf::ParamGuard::check(
             rbf::RbfParams::new()
                 .kernel(rbf::Kernel::Cubic)
                 .centres(rbf::CentreSelection::random(6))

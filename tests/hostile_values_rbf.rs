@@ -130,6 +130,8 @@ fn numeric_flags() {
         "--width",
         "--ridge",
         "--seed",
+        "--n-init",
+        "--degree",
     ];
     let cv_flags = [
         "--folds", "--gap", "--widths", "--sizes", "--tols", "--ridges",

@@ -818,3 +818,90 @@ fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
     fails_with(&run, &["GiB", "use --candidates"]);
     assert!(!out.exists());
 }
+
+/// The code says `centres`; the command line keeps `--centers` and `--max-centers` and
+/// takes `--centres` and `--max-centres` as their aliases, with the same model.
+#[test]
+fn centres_spelling_is_an_alias_of_centers() {
+    let dir = scratch("centres-alias");
+    let csv = smooth_csv(60, None);
+    let data_path = write(&dir, "d.csv", &csv);
+    let model_path = dir.join("m.json").display().to_string();
+    let read = |spelling: [&str; 2]| {
+        let out = rbf(&[
+            "fit",
+            "--data",
+            &data_path,
+            "--target",
+            "y",
+            "--out",
+            &model_path,
+            spelling[0],
+            "kmeans",
+            spelling[1],
+            "5",
+            "--width",
+            "0.5",
+        ]);
+        succeeds(&out);
+        std::fs::read_to_string(&model_path).unwrap()
+    };
+    let american = read(["--centers", "--max-centers"]);
+    let british = read(["--centres", "--max-centres"]);
+    assert_eq!(american, british);
+    let help = stdout(&rbf(&["fit", "--help"]));
+    assert!(help.contains("--centres"), "{help}");
+}
+
+/// `--degree` puts a unit-box polynomial tail in the saved model, for least-squares
+/// centres too; `--n-init` and `--kmeans-init` reach k-means and apply to it only; a
+/// degree below what the kernel needs to interpolate is refused.
+#[test]
+fn degree_and_kmeans_seeding_flags() {
+    let dir = scratch("degree");
+    let csv = smooth_csv(80, None);
+    let model_path = dir.join("m.json");
+    let fit = |extra: &[&str]| fit_on(&dir, &csv, extra);
+    let out = fit(&[
+        "--centers",
+        "kmeans",
+        "--max-centers",
+        "6",
+        "--width",
+        "0.5",
+        "--degree",
+        "2",
+        "--n-init",
+        "3",
+        "--kmeans-init",
+        "plusplus",
+    ]);
+    succeeds(&out);
+    let model = std::fs::read_to_string(&model_path).unwrap();
+    assert!(
+        model.contains("\"poly\"") && model.contains("\"quadratic\""),
+        "{model}"
+    );
+    let out = fit(&["--centers", "ols", "--n-init", "3"]);
+    fails_with(&out, &["--n-init applies to --centers kmeans only"]);
+    let out = fit(&[
+        "--centers",
+        "all",
+        "--kernel",
+        "thin-plate",
+        "--degree",
+        "0",
+    ]);
+    fails_with(&out, &["degree ≥ 1"]);
+    let out = fit(&[
+        "--centers",
+        "all",
+        "--kernel",
+        "thin-plate",
+        "--degree",
+        "-1",
+    ]);
+    fails_with(&out, &["degree ≥ 1"]);
+    let out = fit(&["--centers", "random", "--degree", "3"]);
+    fails_with(&out, &["valid degrees: -1 (none), 0, 1, 2"]);
+}

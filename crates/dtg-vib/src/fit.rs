@@ -17,11 +17,11 @@ use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::{Prepared, Preprocess};
 use crate::split::{SplitKind, by_record_rows, leakage_gap, split_rows};
 use faer::{Mat, MatRef, Par};
-use linfa::ParamGuard;
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use rayon::prelude::*;
+use rbf::ParamGuard;
 use rbf::{
     Candidates, CentreSelection, Grid, KMeansSettings, Kernel, RbfParams, Sizes, Split, WidthRule,
 };

@@ -7,10 +7,10 @@
 use std::fmt;
 use std::str::FromStr;
 
-use linfa::ParamGuard;
+use rbf::ParamGuard;
 use rbf::{
-    Candidates, CentreSelection, KMeansAlgorithm, KMeansSettings, Kernel, RbfParams,
-    RbfParamsError, RbfValidParams, Split, WidthRule,
+    Candidates, CentreSelection, KMeansAlgorithm, KMeansInit, KMeansSettings, Kernel, PolyTail,
+    RbfParams, RbfParamsError, RbfValidParams, Split, WidthRule,
 };
 
 /// Centres when `--max-centers` is not given (the library's default OLS size).
@@ -270,6 +270,12 @@ pub struct FitSettings {
     /// `--kmeans-algorithm` (k-means: whose Lloyd iterations; the library's default if
     /// not given).
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
+    /// `--kmeans-init` (k-means: the seeding; the library's default if not given).
+    pub kmeans_init: Option<KMeansInit>,
+    /// `--n-init` (k-means: seeded starts, the lowest inertia kept).
+    pub n_init: Option<usize>,
+    /// `--degree` (the polynomial tail on unit-box inputs; unset: the bias).
+    pub degree: Option<PolyTail>,
     /// `--tol` (OLS ρ: stop once 1 − ΣERR < ρ).
     pub tol: Option<f64>,
     /// `--kernel`.
@@ -291,6 +297,9 @@ impl Default for FitSettings {
             max_centers: None,
             candidates: None,
             kmeans_algorithm: None,
+            kmeans_init: None,
+            n_init: None,
+            degree: None,
             tol: None,
             kernel: Kernel::Gaussian,
             width: WidthArg::Auto,
@@ -352,13 +361,25 @@ impl FitSettings {
                     None => Candidates::TrainingVectors,
                 },
             },
-            Centers::Kmeans => CentreSelection::KMeans(
-                KMeansSettings::new(k).algorithm(self.kmeans_algorithm.unwrap_or_default()),
-            ),
+            Centers::Kmeans => {
+                let mut s =
+                    KMeansSettings::new(k).algorithm(self.kmeans_algorithm.unwrap_or_default());
+                if let Some(init) = self.kmeans_init {
+                    s = s.init(init);
+                }
+                if let Some(n) = self.n_init {
+                    s = s.n_init(n);
+                }
+                CentreSelection::KMeans(s)
+            }
             Centers::Random => CentreSelection::random(k),
             Centers::All => CentreSelection::AllPoints,
         };
-        Ok(RbfParams::new()
+        let mut params = RbfParams::new();
+        if let Some(degree) = self.degree {
+            params = params.degree(degree);
+        }
+        Ok(params
             .kernel(self.kernel)
             .centres(centres)
             .width(self.width.rule())
@@ -388,6 +409,13 @@ impl FitSettings {
             "kmeans",
             self.centers == Centers::Kmeans || self.kmeans_algorithm.is_none(),
         )?;
+        let kmeans = self.centers == Centers::Kmeans;
+        only(
+            "--kmeans-init",
+            "kmeans",
+            kmeans || self.kmeans_init.is_none(),
+        )?;
+        only("--n-init", "kmeans", kmeans || self.n_init.is_none())?;
         only(
             "--max-centers",
             "ols, kmeans and random",

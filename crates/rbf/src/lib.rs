@@ -1,9 +1,10 @@
 //! Radial-basis-function networks for system identification.
 //!
 //! The network of the seed paper's eqs. 7–8, f(x) = λ0 + Σᵢ λᵢ φ(‖x − cᵢ‖) with the
-//! Gaussian φ(v) = exp(−v²/β²), plus six other kernels, an optional linear polynomial
-//! tail and exogenous linear regressors (a semi-parametric model). It knows
-//! nothing of gyros, sensors or files: matrices in, models and typed errors out.
+//! Gaussian φ(v) = exp(−v²/β²), plus six other kernels, an optional polynomial tail (of
+//! degree ≤ 2 on unit-box inputs, [`PolyTail`]) and exogenous linear regressors (a
+//! semi-parametric model). It knows nothing of gyros, sensors or files: matrices in,
+//! models and typed errors out.
 //!
 //! | concern | module | main items |
 //! |---|---|---|
@@ -21,8 +22,7 @@
 //!
 //! ```
 //! use faer::{Mat, Par};
-//! use linfa::ParamGuard;
-//! use rbf::{CentreSelection, Kernel, RbfParams, WidthRule};
+//! use rbf::{CentreSelection, Kernel, ParamGuard, RbfParams, WidthRule};
 //!
 //! // y = sin(x₀)·cos(x₁) on a 15 × 15 grid, 60 OLS-selected Gaussian centres
 //! let n = 225;
@@ -61,6 +61,12 @@ pub mod width;
 
 pub use faer;
 pub use faer::Par;
+#[doc(no_inline)]
+pub use linfa::ParamGuard;
+/// linfa's traits that rbf's types implement, re-exported so that dependants need not
+/// name linfa: [`ParamGuard`] checks an [`RbfParams`], [`Fit`] and [`Predict`] work on
+/// linfa datasets and ndarray arrays.
+pub use linfa::traits::{Fit, Predict};
 /// `rbf::ols` (the path docs/architecture.md uses) is `rbf::select::ols`.
 pub use select::ols;
 
@@ -76,10 +82,14 @@ pub use estimate::{
 };
 pub use kernel::{Kernel, UnknownKernel};
 pub use model::{
-    Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, Progress, RbfError,
-    RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage, Strategy,
+    Candidates, CentreSelection, FORMAT_VERSION, MAX_COEFFICIENT, PersistError, PolyTail, Progress,
+    RbfError, RbfModel, RbfParams, RbfParamsError, RbfValidParams, Scaling, Selection, Stage,
+    Strategy, UnknownPolyTail,
 };
-pub use select::kmeans::{KMeansAlgorithm, KMeansSettings, UnknownKMeansAlgorithm};
+pub use select::kmeans::{
+    KMeansAlgorithm, KMeansError, KMeansInit, KMeansSettings, UnknownKMeansAlgorithm,
+    UnknownKMeansInit,
+};
 pub use select::ols::{
     OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason, forward_select,
     forward_select_owned,

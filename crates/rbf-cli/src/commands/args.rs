@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use rbf::{KMeansAlgorithm, Kernel};
+use rbf::{KMeansAlgorithm, KMeansInit, Kernel, PolyTail};
 use rbf_cli::settings::{Centers, CvScheme, FitSettings, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
@@ -110,17 +110,36 @@ pub struct ModelArgs {
     /// Centre selection: ols (forward selection by error-reduction ratio over the
     /// training rows), kmeans (k-means++ seeded, QR weights), random (seeded subset, QR
     /// weights), all (every training row; interpolation, or smoothing with --ridge).
-    #[arg(long, value_name = "ols|kmeans|random|all")]
+    #[arg(long, visible_alias = "centres", value_name = "ols|kmeans|random|all")]
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
-    #[arg(long, value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
+    #[arg(long, visible_alias = "max-centres", value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
     pub max_centers: Option<usize>,
     /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
     /// (the library's: distances by faer products, scikit-learn's update and stopping
     /// rule) or linfa (linfa-clustering's KMeans) [default: lloyd].
     #[arg(long, value_name = "lloyd|linfa")]
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
+    /// kmeans only: how each start is seeded — greedy (scikit-learn's greedy k-means++,
+    /// 2 + ln K draws per centre, the best kept) or plusplus (one draw per centre, as
+    /// linfa) [default: greedy].
+    #[arg(long, value_name = "greedy|plusplus")]
+    pub kmeans_init: Option<KMeansInit>,
+    /// kmeans only: seeded starts, the lowest inertia kept (scikit-learn's n_init)
+    /// [default: 1].
+    #[arg(long, value_name = "N", value_parser = parse_count, allow_hyphen_values = true)]
+    pub n_init: Option<usize>,
+    /// Polynomial tail: -1 none, 0 constant, 1 linear, 2 quadratic, on the inputs mapped
+    /// to the unit box (scipy RBFInterpolator's degree); replaces the bias [default: a
+    /// constant on unscaled inputs; with --centers all the kernel's minimum degree].
+    #[arg(
+        long,
+        value_name = "D",
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
+    pub degree: Option<PolyTail>,
     /// ols only: choose among a seeded random subsample of M training rows instead of
     /// all of them (the way to large files: the candidate matrix is rows × M).
     #[arg(long, value_name = "M", value_parser = parse_count, allow_hyphen_values = true)]
@@ -175,6 +194,9 @@ impl ModelArgs {
             max_centers: self.max_centers,
             candidates: self.candidates,
             kmeans_algorithm: self.kmeans_algorithm,
+            kmeans_init: self.kmeans_init,
+            n_init: self.n_init,
+            degree: self.degree,
             tol: self.tol,
             kernel: self.kernel,
             width: self.width,

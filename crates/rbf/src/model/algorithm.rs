@@ -6,6 +6,7 @@ use faer::{Mat, MatRef};
 use super::errors::RbfError;
 use super::fitted::{RbfModel, Scaling, Selection};
 use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
+use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
 use super::{Progress, Stage};
 use crate::check::first_non_finite;
 use crate::design::{Widths, kernel_matrix};
@@ -22,7 +23,8 @@ fn report(progress: Observer<'_>, stage: Stage, done: usize, total: usize) {
     }
 }
 
-/// Standardised inputs and the fixed columns [1 | x | z] of a fit.
+/// Standardised inputs and the fixed columns [1 | x | z] (or [monomials | z] with a
+/// polynomial tail) of a fit.
 pub(crate) struct Design {
     pub(crate) scaling: Option<Scaling>,
     pub(crate) xs: Mat<f64>,
@@ -30,10 +32,15 @@ pub(crate) struct Design {
     pub(crate) bias: bool,
     pub(crate) tail: bool,
     pub(crate) n_linear: usize,
+    /// The polynomial tail's degree and unit-box map (shift, scale), when set.
+    pub(crate) poly: Option<(PolyTail, Vec<f64>, Vec<f64>)>,
 }
 
 impl Design {
     fn new(params: &RbfValidParams, x: MatRef<'_, f64>, z: MatRef<'_, f64>) -> Self {
+        if let Some(degree) = params.degree {
+            return Self::with_poly(params, degree, x, z);
+        }
         let (n, d) = (x.nrows(), x.ncols());
         let scaling = params.standardise.then(|| Scaling::from_data(x));
         let xs = match &scaling {
@@ -65,14 +72,48 @@ impl Design {
             bias,
             tail,
             n_linear: z.ncols(),
+            poly: None,
+        }
+    }
+
+    /// The design of a polynomial tail of `degree` on unit-box inputs; the kernel sees
+    /// the inputs standardised (if asked) or shifted by the unit box's shift.
+    fn with_poly(
+        params: &RbfValidParams,
+        degree: PolyTail,
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+    ) -> Self {
+        let (shift, scale) = unit_box(x);
+        let scaling = params.standardise.then(|| Scaling::from_data(x));
+        let xs = kernel_coordinates(scaling.as_ref(), Some(&shift), x);
+        let m = monomials(degree, x, &shift, &scale);
+        let mut forced = Mat::<f64>::zeros(x.nrows(), m.ncols() + z.ncols());
+        forced
+            .as_mut()
+            .subcols_mut(0, m.ncols())
+            .copy_from(m.as_ref());
+        forced
+            .as_mut()
+            .subcols_mut(m.ncols(), z.ncols())
+            .copy_from(z);
+        Self {
+            scaling,
+            xs,
+            forced,
+            bias: false,
+            tail: false,
+            n_linear: z.ncols(),
+            poly: Some((degree, shift, scale)),
         }
     }
 
     fn standardised(&self, points: MatRef<'_, f64>) -> Mat<f64> {
-        match &self.scaling {
-            Some(s) => s.apply(points),
-            None => points.to_owned(),
-        }
+        kernel_coordinates(
+            self.scaling.as_ref(),
+            self.poly.as_ref().map(|(_, shift, _)| shift.as_slice()),
+            points,
+        )
     }
 
     fn n(&self) -> usize {

@@ -1,10 +1,9 @@
 //! Errors of the RBF model: invalid hyperparameters, bad data, numerical failure.
 
-use linfa_clustering::KMeansError;
-
-use crate::estimate::SolveError;
-use crate::select::ols::OlsError;
 use crate::split::SplitError;
+use crate::estimate::SolveError;
+use crate::select::kmeans::KMeansError;
+use crate::select::ols::OlsError;
 use crate::width::WidthError;
 
 /// An invalid hyperparameter, one variant per validation rule.
@@ -101,6 +100,19 @@ pub enum RbfParamsError {
         /// Column.
         col: usize,
     },
+    /// All-points interpolation with a polynomial tail below the kernel's minimum degree
+    /// has no unique solution.
+    #[error(
+        "the {kernel} kernel needs a polynomial of degree ≥ {minimum} to interpolate, got {degree}"
+    )]
+    DegreeTooLow {
+        /// The kernel.
+        kernel: crate::Kernel,
+        /// Degree given.
+        degree: i32,
+        /// The kernel's minimum degree.
+        minimum: i32,
+    },
 }
 
 /// Why a fit (or cross-validation) failed.
@@ -188,7 +200,20 @@ pub enum RbfError {
         /// The original error's message.
         reason: String,
     },
-    /// An error raised by linfa itself.
-    #[error(transparent)]
-    Linfa(#[from] linfa::error::Error),
+    /// An error raised by linfa itself (its message: no linfa type appears in rbf's
+    /// errors).
+    #[error("linfa: {0}")]
+    Linfa(String),
+}
+
+impl From<linfa::error::Error> for RbfError {
+    /// linfa's `Fit` needs this conversion; the error is kept as its message.
+    ///
+    /// ```
+    /// let e = rbf::RbfError::from(linfa::error::Error::NotConverged("x".into()));
+    /// assert!(matches!(e, rbf::RbfError::Linfa(_)));
+    /// ```
+    fn from(e: linfa::error::Error) -> Self {
+        RbfError::Linfa(e.to_string())
+    }
 }

@@ -6,11 +6,13 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
 
 use super::algorithm::Design;
-use super::hyperparams::{RbfValidParams, Strategy};
+use super::hyperparams::{CentreSelection, RbfParams, RbfValidParams, Strategy};
 use super::matser;
+use super::poly::{PolyFit, PolyTail, kernel_coordinates, monomials, monomials_into};
 use crate::design::{Widths, kernel_matrix_into};
 use crate::kernel::Kernel;
 use crate::select::ols::{Pick, StopReason};
+use crate::width::WidthRule;
 
 /// Per-input standardisation x ↦ (x − mean)/scale (population standard deviation;
 /// constant inputs keep scale 1).
@@ -129,6 +131,10 @@ pub struct RbfModel {
     scaling: Option<Scaling>,
     selection: Option<Selection>,
     condition: f64,
+    /// The polynomial tail on unit-box inputs ([`crate::RbfParams::degree`]); absent
+    /// from files written without one, which load as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    poly: Option<PolyFit>,
 }
 
 impl RbfModel {
@@ -154,6 +160,16 @@ impl RbfModel {
             row += d;
             t
         });
+        let poly = design.poly.as_ref().map(|(degree, shift, scale)| {
+            let m = degree.n_terms(d);
+            row += m;
+            PolyFit {
+                degree: *degree,
+                shift: shift.clone(),
+                scale: scale.clone(),
+                coefficients: fixed.subrows(0, m).to_owned(),
+            }
+        });
         let linear = fixed.subrows(row, design.n_linear).to_owned();
         RbfModel {
             kernel: params.kernel,
@@ -169,6 +185,7 @@ impl RbfModel {
             scaling: design.scaling.clone(),
             selection,
             condition,
+            poly,
         }
     }
 
@@ -208,16 +225,20 @@ impl RbfModel {
     /// assert_eq!(m.centres().nrows(), m.n_centres());
     /// ```
     pub fn centres(&self) -> Mat<f64> {
-        match &self.scaling {
-            Some(s) => Mat::from_fn(self.centres.nrows(), self.dim, |i, k| {
+        match (&self.scaling, &self.poly) {
+            (Some(s), _) => Mat::from_fn(self.centres.nrows(), self.dim, |i, k| {
                 self.centres[(i, k)] * s.scale[k] + s.mean[k]
             }),
-            None => self.centres.clone(),
+            (None, Some(p)) => Mat::from_fn(self.centres.nrows(), self.dim, |i, k| {
+                self.centres[(i, k)] + p.shift[k]
+            }),
+            (None, None) => self.centres.clone(),
         }
     }
 
     /// The centres in the coordinates the kernel sees (standardised when the model
-    /// standardises; then equal to [`RbfModel::centres`] otherwise).
+    /// standardises, shifted by the unit-box shift with a [`RbfModel::degree`] tail;
+    /// equal to [`RbfModel::centres`] otherwise).
     ///
     /// ```
     /// # let m = rbf::doc_model();
@@ -338,6 +359,66 @@ impl RbfModel {
         self.condition
     }
 
+    /// The hyperparameters that refit this model's structure: its kernel, bias, tail and
+    /// standardisation, its centres as [`CentreSelection::Given`] (data units), and its
+    /// width as [`WidthRule::Fixed`] when it is one β for all centres. A model does not
+    /// record the rule that chose per-centre widths, nor the ridge, seed, parallelism or
+    /// condition limit of its fit: those keep [`RbfParams::new`]'s defaults and can be
+    /// set on the returned builder.
+    ///
+    /// ```
+    /// use rbf::ParamGuard;
+    /// let m = rbf::doc_model(); // OLS centres of sin on [0, 3], β = 1
+    /// let p = m.params().parallelism(faer::Par::Seq).check().unwrap();
+    /// assert_eq!(p.kernel(), m.kernel());
+    /// assert_eq!(p.width(), &rbf::WidthRule::Fixed(1.0));
+    /// // refitted on the same data, the given centres give the same network
+    /// let x = faer::Mat::from_fn(40, 1, |i, _| i as f64 * 3.0 / 39.0);
+    /// let y = faer::Mat::from_fn(40, 1, |i, _| x[(i, 0)].sin());
+    /// let again = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// assert!((again.predict(x.as_ref()) - m.predict(x.as_ref())).norm_max() < 1e-9);
+    /// ```
+    pub fn params(&self) -> RbfParams {
+        let mut p = RbfParams::new()
+            .kernel(self.kernel)
+            .centres(CentreSelection::Given(self.centres()))
+            .bias(self.bias.is_some())
+            .linear_tail(self.tail.is_some())
+            .standardise(self.scaling.is_some());
+        if let Some(tail) = &self.poly {
+            p = p.degree(tail.degree);
+        }
+        if let Widths::Uniform(b) = self.widths {
+            p = p.width(WidthRule::Fixed(b));
+        }
+        p
+    }
+
+    /// The degree of the polynomial tail on unit-box inputs, if the model was fitted
+    /// with [`crate::RbfParams::degree`] (`None`: [`RbfModel::bias`] and
+    /// [`RbfModel::tail`] are the polynomial, on unscaled inputs).
+    ///
+    /// ```
+    /// # let m = rbf::doc_model();
+    /// assert_eq!(m.degree(), None);
+    /// ```
+    pub fn degree(&self) -> Option<PolyTail> {
+        self.poly.as_ref().map(|p| p.degree)
+    }
+
+    /// The tail's monomial coefficients (n_terms × q, scipy's order: constant, inputs,
+    /// products x_i·x_j for i ≤ j) and its unit-box map (shift, scale per input), with a
+    /// [`RbfModel::degree`] tail.
+    pub fn poly_tail(&self) -> Option<(MatRef<'_, f64>, &[f64], &[f64])> {
+        self.poly.as_ref().map(|p| {
+            (
+                p.coefficients.as_ref(),
+                p.shift.as_slice(),
+                p.scale.as_slice(),
+            )
+        })
+    }
+
     /// The input standardisation, if any.
     ///
     /// ```
@@ -362,7 +443,14 @@ impl RbfModel {
             x.ncols(),
             self.dim
         );
-        self.scaling.as_ref().map(|s| s.apply(x))
+        match (&self.scaling, &self.poly) {
+            (None, None) => None,
+            (scaling, poly) => Some(kernel_coordinates(
+                scaling.as_ref(),
+                poly.as_ref().map(|p| p.shift.as_slice()),
+                x,
+            )),
+        }
     }
 
     /// The model's basis evaluated at `x` (n × d): a column of ones if the model
@@ -389,13 +477,24 @@ impl RbfModel {
     pub fn features(&self, x: MatRef<'_, f64>) -> Mat<f64> {
         let standardised = self.standardised(x);
         let xs = standardised.as_ref().map_or(x, Mat::as_ref);
-        let lead = usize::from(self.bias.is_some()) + self.tail.as_ref().map_or(0, |_| self.dim);
+        let n_poly = self.poly.as_ref().map_or(0, |p| p.degree.n_terms(self.dim));
+        let lead =
+            n_poly + usize::from(self.bias.is_some()) + self.tail.as_ref().map_or(0, |_| self.dim);
         let k = self.n_centres();
         let mut out = Mat::zeros(x.nrows(), lead + k);
-        let mut col = 0;
+        if let Some(p) = &self.poly {
+            monomials_into(
+                p.degree,
+                x,
+                &p.shift,
+                &p.scale,
+                out.as_mut().subcols_mut(0, n_poly),
+            );
+        }
+        let mut col = n_poly;
         if self.bias.is_some() {
-            out.as_mut().col_mut(0).fill(1.0);
-            col = 1;
+            out.as_mut().col_mut(col).fill(1.0);
+            col += 1;
         }
         if self.tail.is_some() {
             out.as_mut().subcols_mut(col, self.dim).copy_from(xs);
@@ -548,6 +647,17 @@ impl RbfModel {
         if let Some(t) = &self.tail {
             matmul(out.rb_mut(), Accum::Add, xs, t.as_ref(), 1.0, par);
         }
+        if let Some(p) = &self.poly {
+            let m = monomials(p.degree, x, &p.shift, &p.scale);
+            matmul(
+                out.rb_mut(),
+                Accum::Add,
+                m.as_ref(),
+                p.coefficients.as_ref(),
+                1.0,
+                par,
+            );
+        }
         if self.n_linear() > 0 {
             matmul(out.rb_mut(), Accum::Add, z, self.linear.as_ref(), 1.0, par);
         }
@@ -629,6 +739,22 @@ impl RbfModel {
         {
             return Err("scaling length differs from dim".into());
         }
+        if let Some(p) = &self.poly {
+            let m = p.degree.n_terms(d);
+            if (p.coefficients.nrows(), p.coefficients.ncols()) != (m, q) {
+                return Err(format!(
+                    "polynomial coefficients are {}×{}, expected {m}×{q}",
+                    p.coefficients.nrows(),
+                    p.coefficients.ncols()
+                ));
+            }
+            if p.shift.len() != d || p.scale.len() != d {
+                return Err("polynomial shift or scale length differs from dim".into());
+            }
+            if let Some(k) = p.scale.iter().position(|&v| v.is_nan() || v <= 0.0) {
+                return Err(format!("poly.scale[{k}] must be > 0"));
+            }
+        }
         // Every number, named with its field and place: a hand-edited weight
         // of 1e155 used to give NaN predictions, and a selection over NaN
         // scores that never ended.
@@ -639,6 +765,9 @@ impl RbfModel {
         ];
         if let Some(t) = &self.tail {
             fields.push(("tail", t.as_ref()));
+        }
+        if let Some(p) = &self.poly {
+            fields.push(("poly.coefficients", p.coefficients.as_ref()));
         }
         for (name, m) in fields {
             for i in 0..m.nrows() {
@@ -657,6 +786,8 @@ impl RbfModel {
                 "scaling.scale",
                 self.scaling.as_ref().map(|s| s.scale.as_slice()),
             ),
+            ("poly.shift", self.poly.as_ref().map(|p| p.shift.as_slice())),
+            ("poly.scale", self.poly.as_ref().map(|p| p.scale.as_slice())),
         ];
         for (name, v) in vectors {
             for (i, &x) in v.unwrap_or_default().iter().enumerate() {

@@ -5,10 +5,11 @@ use linfa::ParamGuard;
 use serde::{Deserialize, Serialize};
 
 use super::errors::RbfParamsError;
+use super::poly::PolyTail;
 use crate::check::{first_non_finite, non_negative, positive};
 use crate::estimate::DEFAULT_MAX_CONDITION;
 use crate::kernel::Kernel;
-use crate::select::kmeans::KMeansSettings;
+use crate::select::kmeans::{KMeansError, KMeansSettings};
 use crate::width::WidthRule;
 
 /// The candidate centres OLS chooses from.
@@ -159,6 +160,9 @@ pub struct RbfValidParams {
     pub(crate) seed: u64,
     pub(crate) par: Par,
     pub(crate) max_condition: f64,
+    /// The polynomial tail on unit-box inputs (`None`: `bias` and `linear_tail` decide,
+    /// on unscaled inputs, as before this option existed).
+    pub(crate) degree: Option<PolyTail>,
 }
 
 impl RbfValidParams {
@@ -264,6 +268,19 @@ impl RbfValidParams {
         self.max_condition
     }
 
+    /// The polynomial tail set by [`RbfParams::degree`] (`None`: the bias and linear-tail
+    /// switches decide).
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// let p = rbf::RbfParams::new().degree(rbf::PolyTail::Linear).check().unwrap();
+    /// assert_eq!(p.degree(), Some(rbf::PolyTail::Linear));
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().degree(), None);
+    /// ```
+    pub fn degree(&self) -> Option<PolyTail> {
+        self.degree
+    }
+
     pub(crate) fn with_width(&self, width: WidthRule) -> Self {
         Self {
             width,
@@ -286,6 +303,16 @@ impl RbfValidParams {
     }
 
     fn validate(&self) -> Result<(), RbfParamsError> {
+        if let Some(degree) = self.degree {
+            let minimum = PolyTail::minimum_for(self.kernel);
+            if matches!(self.centres, CentreSelection::AllPoints) && degree < minimum {
+                return Err(RbfParamsError::DegreeTooLow {
+                    kernel: self.kernel,
+                    degree: degree.degree(),
+                    minimum: minimum.degree(),
+                });
+            }
+        }
         match self.width {
             WidthRule::Fixed(b) if !positive(b) => return Err(RbfParamsError::Width { value: b }),
             WidthRule::Fixed(_) => {}
@@ -346,18 +373,15 @@ impl RbfValidParams {
                 }
             }
             CentreSelection::KMeans(s) => {
-                if s.n_centres == 0 {
-                    return Err(RbfParamsError::KMeansCentres);
-                }
-                if s.n_runs == 0 {
-                    return Err(RbfParamsError::KMeansRuns);
-                }
-                if s.max_iterations == 0 {
-                    return Err(RbfParamsError::KMeansIterations);
-                }
-                if !positive(s.tolerance) {
-                    return Err(RbfParamsError::KMeansTolerance { value: s.tolerance });
-                }
+                // the k-means rules, each broken rule as this type's own variant
+                s.check().map_err(|e| match e {
+                    KMeansError::NoClusters => RbfParamsError::KMeansCentres,
+                    KMeansError::NoRuns => RbfParamsError::KMeansRuns,
+                    KMeansError::NoIterations => RbfParamsError::KMeansIterations,
+                    KMeansError::Tolerance { .. } | KMeansError::Linfa(_) => {
+                        RbfParamsError::KMeansTolerance { value: s.tolerance }
+                    }
+                })?;
             }
             CentreSelection::Random { n_centres } => {
                 if *n_centres == 0 {
@@ -433,6 +457,7 @@ impl RbfParams {
             seed: 42,
             par: faer::get_global_parallelism(),
             max_condition: DEFAULT_MAX_CONDITION,
+            degree: None,
         })
     }
 
@@ -500,6 +525,25 @@ impl RbfParams {
     /// ```
     pub fn linear_tail(mut self, on: bool) -> Self {
         self.0.linear_tail = on;
+        self
+    }
+
+    /// Sets the polynomial tail, scipy `RBFInterpolator`'s `degree`: every monomial of
+    /// degree ≤ D of the inputs mapped to the unit box (shift = middle of the training
+    /// range, scale = half-range), for every centre selection — forced columns of OLS,
+    /// unpenalised columns of the QR solve, the polynomial block of all-points
+    /// interpolation. The kernel then sees the inputs shifted by the same amount (not
+    /// scaled: β stays in data units). It replaces the [`RbfParams::bias`] and
+    /// [`RbfParams::linear_tail`] switches; with [`CentreSelection::AllPoints`] a degree
+    /// below [`PolyTail::minimum_for`] the kernel is refused. Unset (the default), those
+    /// switches decide as before, and all-points fits get the kernel's minimum degree.
+    ///
+    /// ```
+    /// let p = rbf::RbfParams::new().degree(rbf::PolyTail::Quadratic);
+    /// # let _ = p;
+    /// ```
+    pub fn degree(mut self, degree: PolyTail) -> Self {
+        self.0.degree = Some(degree);
         self
     }
 

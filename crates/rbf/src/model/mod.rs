@@ -12,11 +12,13 @@ mod hyperparams;
 mod linfa_impl;
 mod matser;
 mod persist;
+mod poly;
 
 pub use errors::{RbfError, RbfParamsError};
 pub use fitted::{MAX_COEFFICIENT, RbfModel, Scaling, Selection};
 pub use hyperparams::{Candidates, CentreSelection, RbfParams, RbfValidParams, Strategy};
 pub use persist::{FORMAT_VERSION, PersistError};
+pub use poly::{PolyTail, UnknownPolyTail};
 
 pub(crate) use algorithm::OlsStage;
 

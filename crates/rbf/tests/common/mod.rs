@@ -2,6 +2,8 @@
 //! system, and reference forward-selection implementations to compare the engine with.
 #![allow(dead_code)]
 
+pub mod blobs;
+
 use faer::{Mat, MatRef};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
