@@ -249,6 +249,9 @@ impl FitReport {
         put("seed", json!(s.seed));
         put("max_centers", json!(s.n_centers()));
         put("candidates", json!(s.candidates));
+        let (sel_rows, ols_cands) = s.ols_rows(c.train_rows.len());
+        put("selection_rows", json!(sel_rows));
+        put("ols_candidates", json!(ols_cands));
         put("kmeans_algorithm", json!(kmeans_algorithm(s)));
         put("tol", json!(s.tol));
         let stages: Map<String, Value> = c

@@ -20,6 +20,23 @@ use rbf::{
 /// ```
 pub const DEFAULT_MAX_CENTERS: usize = 50;
 
+/// OLS on more training rows than this selects its centres on a seeded subsample of
+/// this many rows (unless `--selection-rows` says otherwise) and solves the weights on
+/// every row by a streaming row-block QR: memory then stops growing with N.
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::AUTO_SELECTION_ROWS, 20_000);
+/// ```
+pub const AUTO_SELECTION_ROWS: usize = 20_000;
+
+/// OLS candidates when the selection rows are subsampled and `--candidates` is not
+/// given: the candidate kernel matrix is then at most 20 000 × 2000 doubles (320 MB).
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::AUTO_CANDIDATES, 2000);
+/// ```
+pub const AUTO_CANDIDATES: usize = 2000;
+
 /// `--centers`: how the centres are chosen.
 ///
 /// ```
@@ -266,6 +283,9 @@ pub struct FitSettings {
     pub max_centers: Option<usize>,
     /// `--candidates` (OLS: a seeded subsample of this many training rows).
     pub candidates: Option<usize>,
+    /// `--selection-rows` (OLS: select on a seeded subsample of this many training
+    /// rows, weights on all; default [`AUTO_SELECTION_ROWS`] above that many rows).
+    pub selection_rows: Option<usize>,
     /// `--kmeans-algorithm` (k-means: whose Lloyd iterations; the library's default if
     /// not given).
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
@@ -289,6 +309,7 @@ impl Default for FitSettings {
             centers: Centers::Ols,
             max_centers: None,
             candidates: None,
+            selection_rows: None,
             kmeans_algorithm: None,
             tol: None,
             kernel: Kernel::Gaussian,
@@ -313,6 +334,29 @@ impl FitSettings {
         }
     }
 
+    /// OLS selection rows and candidates for `n_train` training rows: the flags, or on
+    /// more than [`AUTO_SELECTION_ROWS`] rows a subsample of that many rows and
+    /// [`AUTO_CANDIDATES`] candidates. `None` = every training row.
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings::default();
+    /// assert_eq!(s.ols_rows(5000), (None, None));
+    /// assert_eq!(s.ols_rows(500_000), (Some(20_000), Some(2000)));
+    /// let t = rbf_cli::settings::FitSettings { candidates: Some(300), ..s };
+    /// assert_eq!(t.ols_rows(500_000), (Some(20_000), Some(300)));
+    /// ```
+    pub fn ols_rows(&self, n_train: usize) -> (Option<usize>, Option<usize>) {
+        if self.centers != Centers::Ols {
+            return (None, None);
+        }
+        let sel = self
+            .selection_rows
+            .or((n_train > AUTO_SELECTION_ROWS).then_some(AUTO_SELECTION_ROWS))
+            .filter(|&s| s < n_train);
+        let cands = self.candidates.or(sel.map(|s| AUTO_CANDIDATES.min(s)));
+        (sel, cands)
+    }
+
     /// Checks the flag combination for `n_train` training rows and builds the params.
     ///
     /// # Errors
@@ -327,8 +371,9 @@ impl FitSettings {
     pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
         self.check_flags()?;
         let k = self.n_centers();
+        let (selection_rows, candidates) = self.ols_rows(n_train);
         if let Some(k) = k {
-            let (rows, what) = match self.candidates {
+            let (rows, what) = match candidates {
                 Some(m) if m < n_train => (m, "OLS candidates (--candidates)"),
                 _ => (n_train, "training rows"),
             };
@@ -346,7 +391,7 @@ impl FitSettings {
                 max_centres: k,
                 tol: self.tol.unwrap_or(0.0),
                 regularisation: 0.0,
-                candidates: match self.candidates {
+                candidates: match candidates {
                     Some(size) => Candidates::Subsample { size },
                     None => Candidates::TrainingVectors,
                 },
@@ -364,6 +409,7 @@ impl FitSettings {
             .ridge(self.ridge)
             .standardise(self.standardize)
             .seed(self.seed)
+            .selection_rows(selection_rows)
             .check()?)
     }
 
@@ -382,6 +428,11 @@ impl FitSettings {
         let ols = self.centers == Centers::Ols;
         only("--tol", "ols", ols || self.tol.is_none())?;
         only("--candidates", "ols", ols || self.candidates.is_none())?;
+        only(
+            "--selection-rows",
+            "ols",
+            ols || self.selection_rows.is_none(),
+        )?;
         only(
             "--kmeans-algorithm",
             "kmeans",

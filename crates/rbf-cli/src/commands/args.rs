@@ -125,6 +125,12 @@ pub struct ModelArgs {
     /// all of them (the way to large files: the candidate matrix is rows × M).
     #[arg(long, value_name = "M", value_parser = parse_count, allow_hyphen_values = true)]
     pub candidates: Option<usize>,
+    /// ols only: select centres on a seeded subsample of R training rows, then solve
+    /// the weights on every row by a streaming row-block QR (memory independent of the
+    /// number of rows) [default: every row up to 20000, else 20000, with --candidates
+    /// 2000 unless given].
+    #[arg(long, value_name = "R", value_parser = parse_count, allow_hyphen_values = true)]
+    pub selection_rows: Option<usize>,
     /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
     #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol, allow_hyphen_values = true)]
     pub tol: Option<f64>,
@@ -174,6 +180,7 @@ impl ModelArgs {
             centers: self.centers,
             max_centers: self.max_centers,
             candidates: self.candidates,
+            selection_rows: self.selection_rows,
             kmeans_algorithm: self.kmeans_algorithm,
             tol: self.tol,
             kernel: self.kernel,

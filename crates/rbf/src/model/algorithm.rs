@@ -1,6 +1,7 @@
 //! Fitting: inputs → design (standardisation, fixed columns) → centres and widths →
 //! output weights.
 
+use faer::prelude::ReborrowMut;
 use faer::{Mat, MatRef};
 
 use super::errors::RbfError;
@@ -8,8 +9,8 @@ use super::fitted::{RbfModel, Scaling, Selection};
 use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::{Progress, Stage};
 use crate::check::first_non_finite;
-use crate::design::{Widths, kernel_matrix};
-use crate::estimate::{InterpolationOptions, LstsqOptions, interpolate, lstsq};
+use crate::design::{Widths, kernel_matrix, kernel_matrix_into};
+use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
 use crate::select::kmeans::kmeans_centres;
 use crate::select::ols::{OlsOptions, OlsPath, OlsProgress, StopReason, forward_select_owned};
 use crate::select::random::random_subset;
@@ -181,8 +182,10 @@ pub(crate) struct OlsStage {
     /// What a candidate's index means to the user (training row or given row).
     labels: Vec<usize>,
     path: OlsPath,
-    /// Kernel columns of the picks, in pick order (n × K).
-    phi: Mat<f64>,
+    /// Kernel columns of the picks, in pick order (n × K); `None` when selection ran on
+    /// a row subsample: the weights are then solved over row blocks (memory
+    /// independent of n).
+    phi: Option<Mat<f64>>,
 }
 
 impl OlsStage {
@@ -212,8 +215,21 @@ impl OlsStage {
                 needed: p + 1,
             });
         }
+        // Selection rows: every row, or a seeded subsample (sorted, so the selection
+        // sees the rows in their order). Candidates are drawn from every row.
+        let sub: Option<Vec<usize>> = match params.selection_rows {
+            Some(s) if s.max(p + 1) < n => Some(random_subset(
+                n,
+                s.max(p + 1),
+                params.seed ^ SELECTION_ROWS_SEED,
+            )),
+            _ => None,
+        };
         let (cands, labels) = match candidates {
-            Candidates::TrainingVectors => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
+            Candidates::TrainingVectors => match &sub {
+                None => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
+                Some(idx) => (rows(design.xs.as_ref(), idx), idx.clone()),
+            },
             Candidates::Subsample { size } => {
                 let idx = random_subset(n, (*size).min(n), params.seed);
                 (rows(design.xs.as_ref(), &idx), idx)
@@ -223,8 +239,21 @@ impl OlsStage {
                 (design.standardised(c.as_ref()), (0..c.nrows()).collect())
             }
         };
+        let (xs_sel, forced_sel, y_sel) = match &sub {
+            None => (None, None, None),
+            Some(idx) => (
+                Some(rows(design.xs.as_ref(), idx)),
+                Some(rows(design.forced.as_ref(), idx)),
+                Some(rows(y, idx)),
+            ),
+        };
+        let xs_sel = xs_sel.as_ref().map_or(design.xs.as_ref(), |m| m.as_ref());
+        let forced_sel = forced_sel
+            .as_ref()
+            .map_or(design.forced.as_ref(), |m| m.as_ref());
+        let y_sel = y_sel.as_ref().map_or(y, |m| m.as_ref());
         crate::memory::check_matrix(
-            n,
+            xs_sel.nrows(),
             cands.nrows(),
             crate::memory::available_bytes(),
             "OLS candidate kernel matrix",
@@ -232,13 +261,7 @@ impl OlsStage {
         report(progress, Stage::Widths, 0, 1);
         let widths = params.width.widths(cands.as_ref(), params.par)?;
         report(progress, Stage::KernelMatrix, 0, 1);
-        let phi_all = kernel_matrix(
-            design.xs.as_ref(),
-            cands.as_ref(),
-            params.kernel,
-            &widths,
-            params.par,
-        );
+        let phi_all = kernel_matrix(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
         let forward = |pr: OlsProgress| report(progress, Stage::Selection, pr.picks, pr.max_terms);
         let mut opts = OlsOptions::new(max_terms)
             .tol(tol)
@@ -247,15 +270,17 @@ impl OlsStage {
         if progress.is_some() {
             opts = opts.progress(&forward);
         }
-        let path = forward_select_owned(phi_all, design.forced.as_ref(), y, &opts)?;
+        let path = forward_select_owned(phi_all, forced_sel, y_sel, &opts)?;
         let sel = path.selected();
-        let phi = kernel_matrix(
-            design.xs.as_ref(),
-            rows(cands.as_ref(), &sel).as_ref(),
-            params.kernel,
-            &widths.select(&sel),
-            params.par,
-        );
+        let phi = sub.is_none().then(|| {
+            kernel_matrix(
+                design.xs.as_ref(),
+                rows(cands.as_ref(), &sel).as_ref(),
+                params.kernel,
+                &widths.select(&sel),
+                params.par,
+            )
+        });
         Ok(Self {
             design,
             candidates: cands,
@@ -297,17 +322,95 @@ impl OlsStage {
                 StopReason::MaxTerms
             },
         };
-        solve_model(
-            params,
-            &self.design,
-            centres,
-            self.widths.select(&sel),
-            self.phi.as_ref().subcols(0, k),
-            y,
-            ridge,
-            Some(selection),
-        )
+        match &self.phi {
+            Some(phi) => solve_model(
+                params,
+                &self.design,
+                centres,
+                self.widths.select(&sel),
+                phi.as_ref().subcols(0, k),
+                y,
+                ridge,
+                Some(selection),
+            ),
+            None => solve_model_streaming(
+                params,
+                &self.design,
+                centres,
+                self.widths.select(&sel),
+                y,
+                ridge,
+                selection,
+            ),
+        }
     }
+}
+
+/// Seed offset of the selection-row subsample (distinct from the candidate subsample's
+/// draw with the same seed).
+const SELECTION_ROWS_SEED: u64 = 0x5e1e_c7ed_0000_0001;
+
+/// Rows per block of the streaming weight solve: the block's kernel columns and design
+/// rows stay within a few MB whatever n is.
+const WEIGHT_BLOCK_ROWS: usize = 4096;
+
+/// [`solve_model`] over row blocks: [fixed columns | kernel columns] of each block of
+/// rows is computed, reduced into a running triangular factor (Householder QR, never
+/// the normal equations) and dropped, so memory does not grow with n.
+fn solve_model_streaming(
+    params: &RbfValidParams,
+    design: &Design,
+    centres: Mat<f64>,
+    widths: Widths,
+    y: MatRef<'_, f64>,
+    ridge: f64,
+    selection: Selection,
+) -> Result<RbfModel, RbfError> {
+    let (n, p, k, q) = (
+        design.n(),
+        design.forced.ncols(),
+        centres.nrows(),
+        y.ncols(),
+    );
+    let mut acc = StreamingLstsq::new(p + k, q);
+    let block = WEIGHT_BLOCK_ROWS.max(p + k + q);
+    let mut a = Mat::<f64>::zeros(block, p + k);
+    for start in (0..n).step_by(block) {
+        let b = block.min(n - start);
+        let mut ab = a.as_mut().subrows_mut(0, b);
+        ab.rb_mut()
+            .subcols_mut(0, p)
+            .copy_from(design.forced.as_ref().subrows(start, b));
+        kernel_matrix_into(
+            design.xs.as_ref().subrows(start, b),
+            centres.as_ref(),
+            params.kernel,
+            &widths,
+            ab.subcols_mut(p, k),
+            params.par,
+        );
+        acc.push(a.as_ref().subrows(0, b), y.subrows(start, b))?;
+    }
+    let opts = LstsqOptions {
+        ridge,
+        unpenalised: p,
+        rank_tol: None,
+        max_condition: params.max_condition,
+        par: params.par,
+    };
+    let sol = acc.finish(&opts)?;
+    let coefficients = sol.coefficients;
+    RbfModel::assemble(
+        params,
+        design,
+        centres,
+        widths,
+        coefficients.as_ref().subrows(p, k),
+        coefficients.as_ref().subrows(0, p),
+        sol.condition,
+        Some(selection),
+    )
+    .usable()
 }
 
 /// Centres and widths for k-means, random and given centres.

@@ -159,6 +159,8 @@ pub struct RbfValidParams {
     pub(crate) seed: u64,
     pub(crate) par: Par,
     pub(crate) max_condition: f64,
+    /// OLS: select on a seeded subsample of this many rows, weights on all (None: all).
+    pub(crate) selection_rows: Option<usize>,
 }
 
 impl RbfValidParams {
@@ -262,6 +264,16 @@ impl RbfValidParams {
     /// ```
     pub fn max_condition(&self) -> f64 {
         self.max_condition
+    }
+
+    /// OLS: the rows centre selection runs on (`None`: every training row).
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().selection_rows(), None);
+    /// ```
+    pub fn selection_rows(&self) -> Option<usize> {
+        self.selection_rows
     }
 
     pub(crate) fn with_width(&self, width: WidthRule) -> Self {
@@ -433,7 +445,24 @@ impl RbfParams {
             seed: 42,
             par: faer::get_global_parallelism(),
             max_condition: DEFAULT_MAX_CONDITION,
+            selection_rows: None,
         })
+    }
+
+    /// OLS only: run centre selection on a seeded subsample of `rows` training rows
+    /// (the candidate kernel matrix is then `rows` × candidates, whatever N is), and
+    /// solve the weights of the chosen centres on every row by a streaming row-block QR
+    /// ([`crate::estimate::StreamingLstsq`]). `None` (the default) selects on every row.
+    /// At least the forced columns plus one row are used.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// let p = rbf::RbfParams::new().selection_rows(Some(20_000)).check().unwrap();
+    /// assert_eq!(p.selection_rows(), Some(20_000));
+    /// ```
+    pub fn selection_rows(mut self, rows: Option<usize>) -> Self {
+        self.0.selection_rows = rows;
+        self
     }
 
     /// Sets the kernel.
