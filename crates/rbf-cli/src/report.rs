@@ -172,6 +172,9 @@ impl FitReport {
         m.insert("n_centers".into(), json!(model.n_centres()));
         m.insert("dim".into(), json!(model.dim()));
         m.insert("bias".into(), json!(model.bias().map(|b| b[0])));
+        if let Some(sel) = model.selection().filter(|s| !s.criterion.is_empty()) {
+            m.insert("criterion".into(), json!(sel.criterion));
+        }
         let ols = model.selection().map(|s| OlsOut {
             forced_errs: s.forced_errs.clone(),
             sum_err: s
@@ -247,13 +250,14 @@ impl FitReport {
         put("ridge", json!(s.ridge));
         put("standardize", json!(s.standardize));
         put("seed", json!(s.seed));
-        put("max_centers", json!(s.n_centers()));
+        put("max_centers", json!(s.n_centers_for(c.train_rows.len())));
         put("candidates", json!(s.candidates));
         let (sel_rows, ols_cands) = s.ols_rows(c.train_rows.len());
         put("selection_rows", json!(sel_rows));
         put("ols_candidates", json!(ols_cands));
         put("kmeans_algorithm", json!(kmeans_algorithm(s)));
         put("tol", json!(s.tol));
+        put("stop", json!(s.stop.map(|v| v.name())));
         let stages: Map<String, Value> = c
             .times
             .stages

@@ -95,6 +95,87 @@ impl fmt::Display for Centers {
     }
 }
 
+/// `--stop`: how OLS chooses its number of centres.
+///
+/// ```
+/// use rbf_cli::settings::StopArg;
+/// assert_eq!("press".parse::<StopArg>().unwrap(), StopArg::Press);
+/// assert_eq!("err:0.01".parse::<StopArg>().unwrap(), StopArg::Err(0.01));
+/// assert_eq!("k:20".parse::<StopArg>().unwrap(), StopArg::K(20));
+/// assert!("k:0".parse::<StopArg>().is_err() && "err:1.5".parse::<StopArg>().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StopArg {
+    /// The size with the least leave-one-out error (PRESS) along the path.
+    Press,
+    /// The size with the least generalised cross-validation score.
+    Gcv,
+    /// Stop once 1 − ΣERR < ρ (`--tol ρ`).
+    Err(f64),
+    /// Exactly K picks, fewer only if the candidates run out (`--max-centers K`).
+    K(usize),
+}
+
+impl StopArg {
+    /// The flag value.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::StopArg::K(5).to_string(), "k:5");
+    /// ```
+    pub fn name(self) -> String {
+        match self {
+            StopArg::Press => "press".into(),
+            StopArg::Gcv => "gcv".into(),
+            StopArg::Err(r) => format!("err:{r}"),
+            StopArg::K(k) => format!("k:{k}"),
+        }
+    }
+}
+
+impl fmt::Display for StopArg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+impl FromStr for StopArg {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || "expected press, gcv, err:RHO (0 ≤ RHO < 1) or k:K (K ≥ 1)".to_string();
+        match s.trim() {
+            "press" => Ok(StopArg::Press),
+            "gcv" => Ok(StopArg::Gcv),
+            t => {
+                if let Some(r) = t.strip_prefix("err:") {
+                    match r.parse::<f64>() {
+                        Ok(v) if (0.0..1.0).contains(&v) => Ok(StopArg::Err(v)),
+                        _ => Err(bad()),
+                    }
+                } else if let Some(k) = t.strip_prefix("k:") {
+                    match k.parse::<usize>() {
+                        Ok(v) if v >= 1 => Ok(StopArg::K(v)),
+                        _ => Err(bad()),
+                    }
+                } else {
+                    Err(bad())
+                }
+            }
+        }
+    }
+}
+
+/// The most centres `--stop press|gcv` considers when `--max-centers` is not given:
+/// a tenth of the training rows, from 10 to 200 (and at most the candidates).
+///
+/// ```
+/// use rbf_cli::settings::auto_max_centers;
+/// assert_eq!((auto_max_centers(50), auto_max_centers(1000), auto_max_centers(1_000_000)), (10, 100, 200));
+/// ```
+pub fn auto_max_centers(n_train: usize) -> usize {
+    (n_train / 10).clamp(10, 200)
+}
+
 /// The narrowest fixed width `--width` takes: inputs (at most ±1e150, the
 /// readers' limit) divided by β stay finite, so kernel arguments never become
 /// NaN (a width of 1e-308 made every candidate non-finite).
@@ -241,6 +322,16 @@ pub enum SettingsError {
         /// The strategy given.
         centers: Centers,
     },
+    /// Two flags that say the same thing differently.
+    #[error("{a} and {b} both set the {what}: give one")]
+    Conflict {
+        /// One flag.
+        a: &'static str,
+        /// The other.
+        b: &'static str,
+        /// What both set.
+        what: &'static str,
+    },
     /// More centres than there are rows (or candidates) to choose them from.
     #[error("{centers} centres asked for but only {rows} {what}; use --max-centers ≤ {rows}")]
     TooManyCenters {
@@ -291,6 +382,8 @@ pub struct FitSettings {
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
     /// `--tol` (OLS ρ: stop once 1 − ΣERR < ρ).
     pub tol: Option<f64>,
+    /// `--stop` (OLS: press, gcv, err:ρ or k:K).
+    pub stop: Option<StopArg>,
     /// `--kernel`.
     pub kernel: Kernel,
     /// `--width`.
@@ -312,6 +405,7 @@ impl Default for FitSettings {
             selection_rows: None,
             kmeans_algorithm: None,
             tol: None,
+            stop: None,
             kernel: Kernel::Gaussian,
             width: WidthArg::Auto,
             ridge: 0.0,
@@ -331,6 +425,47 @@ impl FitSettings {
         match self.centers {
             Centers::All => None,
             _ => Some(self.max_centers.unwrap_or(DEFAULT_MAX_CENTERS)),
+        }
+    }
+
+    /// The most centres for `n_train` training rows: `--stop k:K`, `--max-centers`, or
+    /// with `--stop press|gcv` [`auto_max_centers`] (at most the OLS candidates), else
+    /// [`DEFAULT_MAX_CENTERS`].
+    ///
+    /// ```
+    /// use rbf_cli::settings::{FitSettings, StopArg};
+    /// let s = FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() };
+    /// assert_eq!(s.n_centers_for(2500), Some(200));
+    /// assert_eq!(FitSettings::default().n_centers_for(2500), Some(50));
+    /// ```
+    pub fn n_centers_for(&self, n_train: usize) -> Option<usize> {
+        match (self.centers, self.stop, self.max_centers) {
+            (Centers::All, ..) => None,
+            (_, Some(StopArg::K(k)), _) => Some(k),
+            (_, _, Some(k)) => Some(k),
+            (Centers::Ols, Some(StopArg::Press | StopArg::Gcv), None) => {
+                let (sel, cands) = self.ols_rows(n_train);
+                let m = cands.or(sel).unwrap_or(n_train).min(n_train);
+                Some(auto_max_centers(n_train).min(m.max(1)))
+            }
+            _ => Some(DEFAULT_MAX_CENTERS),
+        }
+    }
+
+    /// The OLS ρ: `--stop err:ρ` or `--tol`.
+    fn rho(&self) -> Option<f64> {
+        match self.stop {
+            Some(StopArg::Err(r)) => Some(r),
+            _ => self.tol,
+        }
+    }
+
+    /// The library's size rule for `--stop`.
+    fn size_rule(&self) -> rbf::ols::SizeRule {
+        match self.stop {
+            Some(StopArg::Press) => rbf::ols::SizeRule::Press,
+            Some(StopArg::Gcv) => rbf::ols::SizeRule::Gcv,
+            _ => rbf::ols::SizeRule::All,
         }
     }
 
@@ -370,7 +505,7 @@ impl FitSettings {
     /// ```
     pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
         self.check_flags()?;
-        let k = self.n_centers();
+        let k = self.n_centers_for(n_train);
         let (selection_rows, candidates) = self.ols_rows(n_train);
         if let Some(k) = k {
             let (rows, what) = match candidates {
@@ -389,7 +524,7 @@ impl FitSettings {
         let centres = match self.centers {
             Centers::Ols => CentreSelection::Ols {
                 max_centres: k,
-                tol: self.tol.unwrap_or(0.0),
+                tol: self.rho().unwrap_or(0.0),
                 regularisation: 0.0,
                 candidates: match candidates {
                     Some(size) => Candidates::Subsample { size },
@@ -410,6 +545,7 @@ impl FitSettings {
             .standardise(self.standardize)
             .seed(self.seed)
             .selection_rows(selection_rows)
+            .size_rule(self.size_rule())
             .check()?)
     }
 
@@ -427,6 +563,17 @@ impl FitSettings {
         };
         let ols = self.centers == Centers::Ols;
         only("--tol", "ols", ols || self.tol.is_none())?;
+        only("--stop", "ols", ols || self.stop.is_none())?;
+        let conflict = |a, b, what| Err(SettingsError::Conflict { a, b, what });
+        match self.stop {
+            Some(StopArg::Err(_)) if self.tol.is_some() => {
+                return conflict("--stop err:RHO", "--tol", "OLS tolerance");
+            }
+            Some(StopArg::K(_)) if self.max_centers.is_some() => {
+                return conflict("--stop k:K", "--max-centers", "number of centres");
+            }
+            _ => {}
+        }
         only("--candidates", "ols", ols || self.candidates.is_none())?;
         only(
             "--selection-rows",

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rbf::{KMeansAlgorithm, Kernel};
-use rbf_cli::settings::{Centers, FitSettings, SplitKind, WidthArg};
+use rbf_cli::settings::{Centers, FitSettings, SplitKind, StopArg, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
 #[derive(Debug, Parser)]
@@ -110,7 +110,8 @@ pub struct ModelArgs {
     /// Centre selection: ols (forward selection by error-reduction ratio over the
     /// training rows), kmeans (k-means++ seeded, QR weights), random (seeded subset, QR
     /// weights), all (every training row; interpolation, or smoothing with --ridge).
-    #[arg(long, value_name = "ols|kmeans|random|all")]
+    /// [default: ols]
+    #[arg(long, value_name = "ols|kmeans|random|all", default_value = "ols")]
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
@@ -131,6 +132,13 @@ pub struct ModelArgs {
     /// 2000 unless given].
     #[arg(long, value_name = "R", value_parser = parse_count, allow_hyphen_values = true)]
     pub selection_rows: Option<usize>,
+    /// ols only: how many centres to keep — press (the least leave-one-out error along
+    /// the selection path, from its orthogonal basis at no extra pass), gcv (the least
+    /// generalised cross-validation score), err:RHO (as --tol RHO) or k:K (as
+    /// --max-centers K). With press or gcv, --max-centers bounds the path [default: a
+    /// tenth of the training rows, 10 to 200] [default: run to --max-centers].
+    #[arg(long, value_name = "press|gcv|err:RHO|k:K")]
+    pub stop: Option<StopArg>,
     /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
     #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol, allow_hyphen_values = true)]
     pub tol: Option<f64>,
@@ -183,6 +191,7 @@ impl ModelArgs {
             selection_rows: self.selection_rows,
             kmeans_algorithm: self.kmeans_algorithm,
             tol: self.tol,
+            stop: self.stop,
             kernel: self.kernel,
             width: self.width,
             ridge: self.ridge,

@@ -12,7 +12,9 @@ use crate::check::first_non_finite;
 use crate::design::{Widths, kernel_matrix, kernel_matrix_into};
 use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
 use crate::select::kmeans::kmeans_centres;
-use crate::select::ols::{OlsOptions, OlsPath, OlsProgress, StopReason, forward_select_owned};
+use crate::select::ols::{
+    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, forward_select_owned,
+};
 use crate::select::random::random_subset;
 
 type Observer<'a> = Option<&'a (dyn Fn(Progress) + Sync)>;
@@ -316,11 +318,13 @@ impl OlsStage {
                     ..*p
                 })
                 .collect(),
-            stop: if k == self.path.len() {
-                self.path.stop_reason()
-            } else {
-                StopReason::MaxTerms
+            stop: match params.size_rule {
+                SizeRule::Press if k == self.path.best_by_press() => StopReason::Press,
+                SizeRule::Gcv if k == self.path.best_by_gcv() => StopReason::Gcv,
+                _ if k == self.path.len() => self.path.stop_reason(),
+                _ => StopReason::MaxTerms,
             },
+            criterion: self.path.criterion(),
         };
         match &self.phi {
             Some(phi) => solve_model(
@@ -579,7 +583,8 @@ impl RbfValidParams {
             } => {
                 let stage = OlsStage::run(self, x, z, y, *max_centres, *tol, progress)?;
                 report(progress, Stage::Weights, 0, 1);
-                stage.model(self, stage.path.len(), self.ridge, y)
+                let k = stage.path.size_for(self.size_rule);
+                stage.model(self, k, self.ridge, y)
             }
             CentreSelection::AllPoints => {
                 check_inputs(x, z, y)?;

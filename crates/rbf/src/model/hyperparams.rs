@@ -161,6 +161,8 @@ pub struct RbfValidParams {
     pub(crate) max_condition: f64,
     /// OLS: select on a seeded subsample of this many rows, weights on all (None: all).
     pub(crate) selection_rows: Option<usize>,
+    /// OLS: how many of the path's picks the model keeps.
+    pub(crate) size_rule: crate::ols::SizeRule,
 }
 
 impl RbfValidParams {
@@ -274,6 +276,16 @@ impl RbfValidParams {
     /// ```
     pub fn selection_rows(&self) -> Option<usize> {
         self.selection_rows
+    }
+
+    /// OLS: how many of the path's picks the model keeps.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().size_rule(), rbf::ols::SizeRule::All);
+    /// ```
+    pub fn size_rule(&self) -> crate::ols::SizeRule {
+        self.size_rule
     }
 
     pub(crate) fn with_width(&self, width: WidthRule) -> Self {
@@ -446,6 +458,7 @@ impl RbfParams {
             par: faer::get_global_parallelism(),
             max_condition: DEFAULT_MAX_CONDITION,
             selection_rows: None,
+            size_rule: crate::ols::SizeRule::All,
         })
     }
 
@@ -462,6 +475,21 @@ impl RbfParams {
     /// ```
     pub fn selection_rows(mut self, rows: Option<usize>) -> Self {
         self.0.selection_rows = rows;
+        self
+    }
+
+    /// OLS only: keep every pick ([`crate::ols::SizeRule::All`], the default: the run
+    /// stops at the most centres or by ρ), or the size with the least leave-one-out
+    /// error (PRESS) or GCV along the path, computed from the selection's orthogonal
+    /// basis at no extra pass over the candidates.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// let p = rbf::RbfParams::new().size_rule(rbf::ols::SizeRule::Press).check().unwrap();
+    /// assert_eq!(p.size_rule(), rbf::ols::SizeRule::Press);
+    /// ```
+    pub fn size_rule(mut self, rule: crate::ols::SizeRule) -> Self {
+        self.0.size_rule = rule;
         self
     }
 
