@@ -793,16 +793,21 @@ fn overflowing_cells_are_refused_with_their_position() {
 /// OLS over every training row as a candidate needs an N × N kernel matrix:
 /// on 200,000 rows (320 GB) it is refused before the allocation, with the
 /// `--candidates` that fits (it used to abort in the allocator).
-#[test]
-fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
-    let dir = scratch("memory");
+/// `rows` rows of y = sin(3a) + b on a grid of (a, b).
+fn two_inputs(rows: u64) -> String {
     let mut text = String::from("a,b,y\n");
-    for i in 0..200_000u64 {
+    for i in 0..rows {
         let a = (i % 997) as f64 / 997.0;
         let b = (i % 1009) as f64 / 1009.0;
         text.push_str(&format!("{a},{b},{}\n", (3.0 * a).sin() + b));
     }
-    let data = write(&dir, "big.csv", &text);
+    text
+}
+
+#[test]
+fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
+    let dir = scratch("memory");
+    let data = write(&dir, "big.csv", &two_inputs(200_000));
     let out = dir.join("m.json");
     let run = rbf(&[
         "fit",
@@ -826,13 +831,7 @@ fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
 #[test]
 fn large_files_select_on_a_row_subsample_and_fit_every_row_by_default() {
     let dir = scratch("subsample");
-    let mut text = String::from("a,b,y\n");
-    for i in 0..60_000u64 {
-        let a = (i % 997) as f64 / 997.0;
-        let b = (i % 1009) as f64 / 1009.0;
-        text.push_str(&format!("{a},{b},{}\n", (3.0 * a).sin() + b));
-    }
-    let data = write(&dir, "big.csv", &text);
+    let data = write(&dir, "big.csv", &two_inputs(60_000));
     let out = dir.join("m.json");
     let run = rbf(&[
         "fit",

@@ -99,6 +99,20 @@ def gaussian(a, c, beta):
     return np.exp(-cdist(a, c, "sqeuclidean") / beta**2)
 
 
+def take_best(alive, wd, ww, floor, dd, picks, errs):
+    """Appends the live candidate of largest ERR = (wᵀd)²/(wᵀw·dᵀd) among those with
+    energy wᵀw above `floor`, marks it taken; False when none is left."""
+    ok = alive & (ww > floor)
+    err = np.where(ok, wd**2 / np.where(ok, ww, 1.0) / dd, -1.0)
+    j = int(np.argmax(err))
+    if err[j] <= 0:
+        return False
+    picks.append(j)
+    errs.append(float(err[j]))
+    alive[j] = False
+    return True
+
+
 def ols_chen(p, d, k, collinear=1e-12):
     """Chen's OLS with the bias forced: returns picks (column indices) and their ERRs."""
     n, m = p.shape
@@ -114,14 +128,9 @@ def ols_chen(p, d, k, collinear=1e-12):
     for _ in range(k):
         ww = np.einsum("ij,ij->j", w, w)
         wd = r @ w  # = wᵀd: the deflated columns are orthogonal to the span already fitted
-        ok = alive & (ww > collinear * norms)
-        err = np.where(ok, wd**2 / np.where(ok, ww, 1.0) / dd, -1.0)
-        j = int(np.argmax(err))
-        if err[j] <= 0:
+        if not take_best(alive, wd, ww, norms * collinear, dd, picks, errs):
             break
-        picks.append(j)
-        errs.append(float(err[j]))
-        alive[j] = False
+        j = picks[-1]
         q = w[:, j].copy()
         qq = q @ q
         r -= q * ((q @ r) / qq)
@@ -144,14 +153,9 @@ def ols_cgs(p, d, k, collinear=1e-12):
     picks, errs = [], []
     alive = norms > 0
     for _ in range(k):
-        ok = alive & (energy > collinear * norms)
-        err = np.where(ok, pr**2 / np.where(ok, energy, 1.0) / dd, -1.0)
-        j = int(np.argmax(err))
-        if err[j] <= 0:
+        if not take_best(alive, pr, energy, norms * collinear, dd, picks, errs):
             break
-        picks.append(j)
-        errs.append(float(err[j]))
-        alive[j] = False
+        j = picks[-1]
         qs = np.column_stack(basis)
         w = p[:, j].copy()
         for _ in range(2):        # CGS2: the winner, explicitly
@@ -166,17 +170,9 @@ def ols_cgs(p, d, k, collinear=1e-12):
     return picks, errs
 
 
-def fit_cgs(xt, yt, beta, k):
+def fit_ols(xt, yt, beta, k, select=ols_chen):
     phi = gaussian(xt, xt, beta)
-    picks, errs = ols_cgs(phi, yt, k)
-    a = np.column_stack([np.ones(len(yt)), phi[:, picks]])
-    coef = np.linalg.lstsq(a, yt, rcond=None)[0]
-    return xt[picks], coef, picks, errs
-
-
-def fit_ols(xt, yt, beta, k):
-    phi = gaussian(xt, xt, beta)
-    picks, errs = ols_chen(phi, yt, k)
+    picks, errs = select(phi, yt, k)
     a = np.column_stack([np.ones(len(yt)), phi[:, picks]])
     coef = np.linalg.lstsq(a, yt, rcond=None)[0]
     return xt[picks], coef, picks, errs
@@ -210,15 +206,11 @@ def cmd_run(a):
     methods = a.methods.split(",")
     base = {"side": "python", "n_train": len(yt), "n_val": len(yv)}
     for _ in range(a.reps):
-        if "cgs" in methods:
-            (c, coef, picks, errs), secs = timed(lambda: fit_cgs(xt, yt, a.beta, a.k))
-            rec = dict(base, method="cgs", fit_seconds=secs, n_centers=len(picks),
-                       picks=[int(train_rows[j]) for j in picks], errs=errs,
-                       **scores(yv, predict(xv, c, coef, a.beta)))
-            print(json.dumps(rec), flush=True)
-        if "ols" in methods:
-            (c, coef, picks, errs), secs = timed(lambda: fit_ols(xt, yt, a.beta, a.k))
-            rec = dict(base, method="ols", fit_seconds=secs, n_centers=len(picks),
+        for name, select in (("cgs", ols_cgs), ("ols", ols_chen)):
+            if name not in methods:
+                continue
+            (c, coef, picks, errs), secs = timed(lambda: fit_ols(xt, yt, a.beta, a.k, select))
+            rec = dict(base, method=name, fit_seconds=secs, n_centers=len(picks),
                        picks=[int(train_rows[j]) for j in picks], errs=errs,
                        **scores(yv, predict(xv, c, coef, a.beta)))
             print(json.dumps(rec), flush=True)

@@ -152,22 +152,39 @@ fn solve_model(
         .subcols_mut(0, p)
         .copy_from(design.forced.as_ref());
     a.as_mut().subcols_mut(p, k).copy_from(phi);
-    let opts = LstsqOptions {
+    let sol = lstsq(a.as_ref(), y, &weight_options(params, p, ridge))?;
+    model_from(params, design, centres, widths, sol, selection)
+}
+
+/// Options of the weight solve: the `p` fixed columns unpenalised.
+fn weight_options(params: &RbfValidParams, p: usize, ridge: f64) -> LstsqOptions {
+    LstsqOptions {
         ridge,
         unpenalised: p,
         rank_tol: None,
         max_condition: params.max_condition,
         par: params.par,
-    };
-    let sol = lstsq(a.as_ref(), y, &opts)?;
-    let coefficients = sol.coefficients;
+    }
+}
+
+/// The model from a weight solve on [fixed columns | kernel columns].
+fn model_from(
+    params: &RbfValidParams,
+    design: &Design,
+    centres: Mat<f64>,
+    widths: Widths,
+    sol: crate::Solution,
+    selection: Option<Selection>,
+) -> Result<RbfModel, RbfError> {
+    let (p, k) = (design.forced.ncols(), centres.nrows());
+    let c = sol.coefficients;
     RbfModel::assemble(
         params,
         design,
         centres,
         widths,
-        coefficients.as_ref().subrows(p, k),
-        coefficients.as_ref().subrows(0, p),
+        c.as_ref().subrows(p, k),
+        c.as_ref().subrows(0, p),
         sol.condition,
         selection,
     )
@@ -395,26 +412,8 @@ fn solve_model_streaming(
         );
         acc.push(a.as_ref().subrows(0, b), y.subrows(start, b))?;
     }
-    let opts = LstsqOptions {
-        ridge,
-        unpenalised: p,
-        rank_tol: None,
-        max_condition: params.max_condition,
-        par: params.par,
-    };
-    let sol = acc.finish(&opts)?;
-    let coefficients = sol.coefficients;
-    RbfModel::assemble(
-        params,
-        design,
-        centres,
-        widths,
-        coefficients.as_ref().subrows(p, k),
-        coefficients.as_ref().subrows(0, p),
-        sol.condition,
-        Some(selection),
-    )
-    .usable()
+    let sol = acc.finish(&weight_options(params, p, ridge))?;
+    model_from(params, design, centres, widths, sol, Some(selection))
 }
 
 /// Centres and widths for k-means, random and given centres.
