@@ -906,6 +906,21 @@ fn stop_press_keeps_the_size_with_the_least_leave_one_out_error() {
         assert_eq!(j["n_centers"], best["k"], "{rule}");
         assert_eq!(j["ols"]["stop"], rule);
         assert_eq!(j["stop"], rule);
+        // --width auto searched five widths and kept the least PRESS
+        let trials = j["width_search"].as_array().unwrap();
+        assert_eq!(trials.len(), 5);
+        let won = trials
+            .iter()
+            .min_by(|a, b| {
+                let (a, b) = (
+                    a["criterion"].as_f64().unwrap(),
+                    b["criterion"].as_f64().unwrap(),
+                );
+                a.total_cmp(&b)
+            })
+            .unwrap();
+        assert_eq!(j["width"], won["width"]);
+        assert_eq!(j["n_centers"], won["k"]);
     }
     let run = fit("k:7");
     let j: Value = serde_json::from_str(&stdout(&run)).unwrap();

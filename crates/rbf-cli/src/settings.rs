@@ -95,6 +95,14 @@ impl fmt::Display for Centers {
     }
 }
 
+/// The width grid of `--width auto` with `--stop press|gcv`: these multiples of the
+/// median pairwise distance between the candidates.
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::WIDTH_GRID, [0.25, 0.5, 1.0, 2.0, 4.0]);
+/// ```
+pub const WIDTH_GRID: [f64; 5] = [0.25, 0.5, 1.0, 2.0, 4.0];
+
 /// `--stop`: how OLS chooses its number of centres.
 ///
 /// ```
@@ -504,6 +512,39 @@ impl FitSettings {
     /// assert_eq!(s.params(10).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
     /// ```
     pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
+        self.params_with_width(n_train, self.width.rule())
+    }
+
+    /// Whether `--width auto` is a search: with `--stop press|gcv` (and OLS) the width
+    /// is chosen on the grid [`WIDTH_GRID`] × the median pairwise distance by the least
+    /// criterion; otherwise `auto` is the median rule alone.
+    ///
+    /// ```
+    /// use rbf_cli::settings::{FitSettings, StopArg};
+    /// assert!(!FitSettings::default().searches_width());
+    /// assert!(FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() }.searches_width());
+    /// ```
+    pub fn searches_width(&self) -> bool {
+        self.centers == Centers::Ols
+            && self.width == WidthArg::Auto
+            && matches!(self.stop, Some(StopArg::Press | StopArg::Gcv))
+    }
+
+    /// [`FitSettings::params`] with the width rule `width` instead of `--width`'s.
+    ///
+    /// # Errors
+    /// As [`FitSettings::params`].
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings::default();
+    /// let p = s.params_with_width(100, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
+    /// assert_eq!(p.width(), &rbf::WidthRule::MedianPairwise { scale: 2.0 });
+    /// ```
+    pub fn params_with_width(
+        &self,
+        n_train: usize,
+        width: WidthRule,
+    ) -> Result<RbfValidParams, SettingsError> {
         self.check_flags()?;
         let k = self.n_centers_for(n_train);
         let (selection_rows, candidates) = self.ols_rows(n_train);
@@ -540,7 +581,7 @@ impl FitSettings {
         Ok(RbfParams::new()
             .kernel(self.kernel)
             .centres(centres)
-            .width(self.width.rule())
+            .width(width)
             .ridge(self.ridge)
             .standardise(self.standardize)
             .seed(self.seed)

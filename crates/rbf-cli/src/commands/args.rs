@@ -149,6 +149,8 @@ pub struct ModelArgs {
     /// Width β in input units, or auto: β = the median pairwise distance between the
     /// candidate centres (training rows for ols and all, the centres for kmeans and
     /// random; a seeded 1000-point subsample above that).
+    /// With --stop press|gcv (ols), auto is a search: 0.25, 0.5, 1, 2 and 4 times that
+    /// median, the width with the least PRESS wins (JSON: width_search).
     #[arg(
         allow_negative_numbers = true,
         long,
