@@ -793,16 +793,21 @@ fn overflowing_cells_are_refused_with_their_position() {
 /// OLS over every training row as a candidate needs an N × N kernel matrix:
 /// on 200,000 rows (320 GB) it is refused before the allocation, with the
 /// `--candidates` that fits (it used to abort in the allocator).
-#[test]
-fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
-    let dir = scratch("memory");
+/// `rows` rows of y = sin(3a) + b on a grid of (a, b).
+fn two_inputs(rows: u64) -> String {
     let mut text = String::from("a,b,y\n");
-    for i in 0..200_000u64 {
+    for i in 0..rows {
         let a = (i % 997) as f64 / 997.0;
         let b = (i % 1009) as f64 / 1009.0;
         text.push_str(&format!("{a},{b},{}\n", (3.0 * a).sin() + b));
     }
-    let data = write(&dir, "big.csv", &text);
+    text
+}
+
+#[test]
+fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
+    let dir = scratch("memory");
+    let data = write(&dir, "big.csv", &two_inputs(200_000));
     let out = dir.join("m.json");
     let run = rbf(&[
         "fit",
@@ -812,11 +817,131 @@ fn a_candidate_matrix_beyond_memory_is_refused_with_the_flag_that_fits() {
         "y",
         "--centers",
         "ols",
+        // Selection on all 100 000 training rows, as before issue 15; by default
+        // rbf fit now selects on 20 000 of them (see the next test).
+        "--selection-rows",
+        "100000",
         "--out",
         out.to_str().unwrap(),
     ]);
     fails_with(&run, &["GiB", "use --candidates"]);
     assert!(!out.exists());
+}
+
+#[test]
+fn large_files_select_on_a_row_subsample_and_fit_every_row_by_default() {
+    let dir = scratch("subsample");
+    let data = write(&dir, "big.csv", &two_inputs(60_000));
+    let out = dir.join("m.json");
+    let run = rbf(&[
+        "fit",
+        "--data",
+        &data,
+        "--target",
+        "y",
+        "--max-centers",
+        "20",
+        "--json",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let j: serde_json::Value = serde_json::from_str(&stdout(&run)).unwrap();
+    assert_eq!(j["n_train"], 30_000);
+    assert_eq!(j["selection_rows"], 20_000);
+    assert_eq!(j["ols_candidates"], 2000);
+    assert_eq!(j["centers"], "ols");
+    assert!(j["val_rmse"].as_f64().unwrap() < 0.05, "{j}");
+    let crit = j["criterion"].as_array().unwrap();
+    assert_eq!(crit.len(), 21);
+    assert!(crit[20]["press"].as_f64().unwrap() < crit[0]["press"].as_f64().unwrap());
+}
+
+#[test]
+fn stop_press_keeps_the_size_with_the_least_leave_one_out_error() {
+    let dir = scratch("press");
+    let data = "bench/data/sunspots/sunspots_lags9.csv";
+    let data = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(data);
+    let data = data.to_str().unwrap();
+    let out = dir.join("m.json");
+    let inputs = "lag1,lag2,lag3,lag4,lag5,lag6,lag7,lag8,lag9";
+    let fit = |stop: &str| {
+        rbf(&[
+            "fit",
+            "--data",
+            data,
+            "--target",
+            "y",
+            "--inputs",
+            inputs,
+            "--split-column",
+            "split",
+            "--stop",
+            stop,
+            "--json",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    for rule in ["press", "gcv"] {
+        let run = fit(rule);
+        assert!(run.status.success(), "{}", stderr(&run));
+        let j: Value = serde_json::from_str(&stdout(&run)).unwrap();
+        let crit = j["criterion"].as_array().unwrap();
+        // --max-centers defaults to a tenth of the 212 training rows
+        assert_eq!(crit.len(), 22);
+        let best = crit
+            .iter()
+            .min_by(|a, b| {
+                a[rule]
+                    .as_f64()
+                    .unwrap()
+                    .total_cmp(&b[rule].as_f64().unwrap())
+            })
+            .unwrap();
+        assert_eq!(j["n_centers"], best["k"], "{rule}");
+        assert_eq!(j["ols"]["stop"], rule);
+        assert_eq!(j["stop"], rule);
+        // --width auto searched five widths and kept the least PRESS
+        let trials = j["width_search"].as_array().unwrap();
+        assert_eq!(trials.len(), 5);
+        let won = trials
+            .iter()
+            .min_by(|a, b| {
+                let (a, b) = (
+                    a["criterion"].as_f64().unwrap(),
+                    b["criterion"].as_f64().unwrap(),
+                );
+                a.total_cmp(&b)
+            })
+            .unwrap();
+        assert_eq!(j["width"], won["width"]);
+        assert_eq!(j["n_centers"], won["k"]);
+    }
+    let run = fit("k:7");
+    let j: Value = serde_json::from_str(&stdout(&run)).unwrap();
+    assert_eq!(j["n_centers"], 7);
+    fails_with(&fit("k:0"), &["--stop"]);
+    let both = rbf(&[
+        "fit",
+        "--data",
+        data,
+        "--target",
+        "y",
+        "--inputs",
+        inputs,
+        "--stop",
+        "err:0.1",
+        "--tol",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    fails_with(&both, &["--stop err:RHO and --tol"]);
 }
 
 /// The code says `centres`; the command line keeps `--centers` and `--max-centers` and

@@ -61,7 +61,7 @@ peer() {
             "$RBF" fit --threads "$t" "${common[@]}" --centers all --ridge 1e-8 >>"$OUT/rust.jsonl"
         done
         "$PY" "$here/peer.py" run --data "$data" --beta "$beta" --k 100 --smoothing 1e-8 \
-            --methods ols,kmeans,rbfi >>"$OUT/python.jsonl"
+            --methods cgs,ols,kmeans,rbfi >>"$OUT/python.jsonl"
     done
     for t in $THREADS; do
         RBF_THREADS=$t "$BOUND" "$data" "$beta" >>"$OUT/rust.jsonl"

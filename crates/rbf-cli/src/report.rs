@@ -88,6 +88,27 @@ pub struct FitContext {
     pub out: String,
     /// Threads the fit ran on.
     pub threads: usize,
+    /// `--width auto` with `--stop press|gcv`: every width tried, with the size it kept
+    /// and the criterion there (empty otherwise).
+    pub width_search: Vec<WidthTrial>,
+}
+
+/// One width of the `--width auto` search.
+///
+/// ```
+/// let t = rbf_cli::report::WidthTrial { scale: 1.0, width: 2.5, k: 10, criterion: 3.0 };
+/// assert_eq!(t.k, 10);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WidthTrial {
+    /// Multiple of the median pairwise distance.
+    pub scale: f64,
+    /// The width β it gave.
+    pub width: f64,
+    /// Centres kept (the least PRESS or GCV along the path, as `--stop` says).
+    pub k: usize,
+    /// PRESS there (the widths are compared by it).
+    pub criterion: f64,
 }
 
 /// The report of `rbf fit`.
@@ -172,6 +193,9 @@ impl FitReport {
         m.insert("n_centers".into(), json!(model.n_centres()));
         m.insert("dim".into(), json!(model.dim()));
         m.insert("bias".into(), json!(model.bias().map(|b| b[0])));
+        if let Some(sel) = model.selection().filter(|s| !s.criterion.is_empty()) {
+            m.insert("criterion".into(), json!(sel.criterion));
+        }
         let ols = model.selection().map(|s| OlsOut {
             forced_errs: s.forced_errs.clone(),
             sum_err: s
@@ -247,10 +271,17 @@ impl FitReport {
         put("ridge", json!(s.ridge));
         put("standardize", json!(s.standardize));
         put("seed", json!(s.seed));
-        put("max_centers", json!(s.n_centers()));
+        put("max_centers", json!(s.n_centers_for(c.train_rows.len())));
         put("candidates", json!(s.candidates));
+        let (sel_rows, ols_cands) = s.ols_rows(c.train_rows.len());
+        put("selection_rows", json!(sel_rows));
+        put("ols_candidates", json!(ols_cands));
         put("kmeans_algorithm", json!(kmeans_algorithm(s)));
         put("tol", json!(s.tol));
+        put("stop", json!(s.stop.map(|v| v.name())));
+        if !c.width_search.is_empty() {
+            put("width_search", json!(c.width_search));
+        }
         let stages: Map<String, Value> = c
             .times
             .stages

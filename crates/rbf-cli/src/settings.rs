@@ -20,6 +20,23 @@ use rbf::{
 /// ```
 pub const DEFAULT_MAX_CENTERS: usize = 50;
 
+/// OLS on more training rows than this selects its centres on a seeded subsample of
+/// this many rows (unless `--selection-rows` says otherwise) and solves the weights on
+/// every row by a streaming row-block QR: memory then stops growing with N.
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::AUTO_SELECTION_ROWS, 20_000);
+/// ```
+pub const AUTO_SELECTION_ROWS: usize = 20_000;
+
+/// OLS candidates when the selection rows are subsampled and `--candidates` is not
+/// given: the candidate kernel matrix is then at most 20 000 × 2000 doubles (320 MB).
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::AUTO_CANDIDATES, 2000);
+/// ```
+pub const AUTO_CANDIDATES: usize = 2000;
+
 /// `--centers`: how the centres are chosen.
 ///
 /// ```
@@ -76,6 +93,95 @@ impl fmt::Display for Centers {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
+}
+
+/// The width grid of `--width auto` with `--stop press|gcv`: these multiples of the
+/// median pairwise distance between the candidates.
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::WIDTH_GRID, [0.25, 0.5, 1.0, 2.0, 4.0]);
+/// ```
+pub const WIDTH_GRID: [f64; 5] = [0.25, 0.5, 1.0, 2.0, 4.0];
+
+/// `--stop`: how OLS chooses its number of centres.
+///
+/// ```
+/// use rbf_cli::settings::StopArg;
+/// assert_eq!("press".parse::<StopArg>().unwrap(), StopArg::Press);
+/// assert_eq!("err:0.01".parse::<StopArg>().unwrap(), StopArg::Err(0.01));
+/// assert_eq!("k:20".parse::<StopArg>().unwrap(), StopArg::K(20));
+/// assert!("k:0".parse::<StopArg>().is_err() && "err:1.5".parse::<StopArg>().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StopArg {
+    /// The size with the least leave-one-out error (PRESS) along the path.
+    Press,
+    /// The size with the least generalised cross-validation score.
+    Gcv,
+    /// Stop once 1 − ΣERR < ρ (`--tol ρ`).
+    Err(f64),
+    /// Exactly K picks, fewer only if the candidates run out (`--max-centers K`).
+    K(usize),
+}
+
+impl StopArg {
+    /// The flag value.
+    ///
+    /// ```
+    /// assert_eq!(rbf_cli::settings::StopArg::K(5).to_string(), "k:5");
+    /// ```
+    pub fn name(self) -> String {
+        match self {
+            StopArg::Press => "press".into(),
+            StopArg::Gcv => "gcv".into(),
+            StopArg::Err(r) => format!("err:{r}"),
+            StopArg::K(k) => format!("k:{k}"),
+        }
+    }
+}
+
+impl fmt::Display for StopArg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+impl FromStr for StopArg {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || "expected press, gcv, err:RHO (0 ≤ RHO < 1) or k:K (K ≥ 1)".to_string();
+        match s.trim() {
+            "press" => Ok(StopArg::Press),
+            "gcv" => Ok(StopArg::Gcv),
+            t => {
+                if let Some(r) = t.strip_prefix("err:") {
+                    match r.parse::<f64>() {
+                        Ok(v) if (0.0..1.0).contains(&v) => Ok(StopArg::Err(v)),
+                        _ => Err(bad()),
+                    }
+                } else if let Some(k) = t.strip_prefix("k:") {
+                    match k.parse::<usize>() {
+                        Ok(v) if v >= 1 => Ok(StopArg::K(v)),
+                        _ => Err(bad()),
+                    }
+                } else {
+                    Err(bad())
+                }
+            }
+        }
+    }
+}
+
+/// The most centres `--stop press|gcv` considers when `--max-centers` is not given:
+/// a tenth of the training rows, from 10 to 200 (and at most the candidates).
+///
+/// ```
+/// use rbf_cli::settings::auto_max_centers;
+/// assert_eq!((auto_max_centers(50), auto_max_centers(1000), auto_max_centers(1_000_000)), (10, 100, 200));
+/// ```
+pub fn auto_max_centers(n_train: usize) -> usize {
+    (n_train / 10).clamp(10, 200)
 }
 
 /// The narrowest fixed width `--width` takes: inputs (at most ±1e150, the
@@ -225,6 +331,16 @@ pub enum SettingsError {
         /// The strategy given.
         centers: Centers,
     },
+    /// Two flags that say the same thing differently.
+    #[error("{a} and {b} both set the {what}: give one")]
+    Conflict {
+        /// One flag.
+        a: &'static str,
+        /// The other.
+        b: &'static str,
+        /// What both set.
+        what: &'static str,
+    },
     /// More centres than there are rows (or candidates) to choose them from.
     #[error("{centers} centres asked for but only {rows} {what}; use --max-centers ≤ {rows}")]
     TooManyCenters {
@@ -267,6 +383,9 @@ pub struct FitSettings {
     pub max_centers: Option<usize>,
     /// `--candidates` (OLS: a seeded subsample of this many training rows).
     pub candidates: Option<usize>,
+    /// `--selection-rows` (OLS: select on a seeded subsample of this many training
+    /// rows, weights on all; default [`AUTO_SELECTION_ROWS`] above that many rows).
+    pub selection_rows: Option<usize>,
     /// `--kmeans-algorithm` (k-means: whose Lloyd iterations; the library's default if
     /// not given).
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
@@ -278,6 +397,8 @@ pub struct FitSettings {
     pub degree: Option<PolyTail>,
     /// `--tol` (OLS ρ: stop once 1 − ΣERR < ρ).
     pub tol: Option<f64>,
+    /// `--stop` (OLS: press, gcv, err:ρ or k:K).
+    pub stop: Option<StopArg>,
     /// `--kernel`.
     pub kernel: Kernel,
     /// `--width`.
@@ -296,11 +417,13 @@ impl Default for FitSettings {
             centers: Centers::Ols,
             max_centers: None,
             candidates: None,
+            selection_rows: None,
             kmeans_algorithm: None,
             kmeans_init: None,
             n_init: None,
             degree: None,
             tol: None,
+            stop: None,
             kernel: Kernel::Gaussian,
             width: WidthArg::Auto,
             ridge: 0.0,
@@ -323,6 +446,70 @@ impl FitSettings {
         }
     }
 
+    /// The most centres for `n_train` training rows: `--stop k:K`, `--max-centers`, or
+    /// with `--stop press|gcv` [`auto_max_centers`] (at most the OLS candidates), else
+    /// [`DEFAULT_MAX_CENTERS`].
+    ///
+    /// ```
+    /// use rbf_cli::settings::{FitSettings, StopArg};
+    /// let s = FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() };
+    /// assert_eq!(s.n_centers_for(2500), Some(200));
+    /// assert_eq!(FitSettings::default().n_centers_for(2500), Some(50));
+    /// ```
+    pub fn n_centers_for(&self, n_train: usize) -> Option<usize> {
+        match (self.centers, self.stop, self.max_centers) {
+            (Centers::All, ..) => None,
+            (_, Some(StopArg::K(k)), _) => Some(k),
+            (_, _, Some(k)) => Some(k),
+            (Centers::Ols, Some(StopArg::Press | StopArg::Gcv), None) => {
+                let (sel, cands) = self.ols_rows(n_train);
+                let m = cands.or(sel).unwrap_or(n_train).min(n_train);
+                Some(auto_max_centers(n_train).min(m.max(1)))
+            }
+            _ => Some(DEFAULT_MAX_CENTERS),
+        }
+    }
+
+    /// The OLS ρ: `--stop err:ρ` or `--tol`.
+    fn rho(&self) -> Option<f64> {
+        match self.stop {
+            Some(StopArg::Err(r)) => Some(r),
+            _ => self.tol,
+        }
+    }
+
+    /// The library's size rule for `--stop`.
+    fn size_rule(&self) -> rbf::ols::SizeRule {
+        match self.stop {
+            Some(StopArg::Press) => rbf::ols::SizeRule::Press,
+            Some(StopArg::Gcv) => rbf::ols::SizeRule::Gcv,
+            _ => rbf::ols::SizeRule::All,
+        }
+    }
+
+    /// OLS selection rows and candidates for `n_train` training rows: the flags, or on
+    /// more than [`AUTO_SELECTION_ROWS`] rows a subsample of that many rows and
+    /// [`AUTO_CANDIDATES`] candidates. `None` = every training row.
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings::default();
+    /// assert_eq!(s.ols_rows(5000), (None, None));
+    /// assert_eq!(s.ols_rows(500_000), (Some(20_000), Some(2000)));
+    /// let t = rbf_cli::settings::FitSettings { candidates: Some(300), ..s };
+    /// assert_eq!(t.ols_rows(500_000), (Some(20_000), Some(300)));
+    /// ```
+    pub fn ols_rows(&self, n_train: usize) -> (Option<usize>, Option<usize>) {
+        if self.centers != Centers::Ols {
+            return (None, None);
+        }
+        let sel = self
+            .selection_rows
+            .or((n_train > AUTO_SELECTION_ROWS).then_some(AUTO_SELECTION_ROWS))
+            .filter(|&s| s < n_train);
+        let cands = self.candidates.or(sel.map(|s| AUTO_CANDIDATES.min(s)));
+        (sel, cands)
+    }
+
     /// Checks the flag combination for `n_train` training rows and builds the params.
     ///
     /// # Errors
@@ -335,10 +522,44 @@ impl FitSettings {
     /// assert_eq!(s.params(10).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
     /// ```
     pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
+        self.params_with_width(n_train, self.width.rule())
+    }
+
+    /// Whether `--width auto` is a search: with `--stop press|gcv` (and OLS) the width
+    /// is chosen on the grid [`WIDTH_GRID`] × the median pairwise distance by the least
+    /// criterion; otherwise `auto` is the median rule alone.
+    ///
+    /// ```
+    /// use rbf_cli::settings::{FitSettings, StopArg};
+    /// assert!(!FitSettings::default().searches_width());
+    /// assert!(FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() }.searches_width());
+    /// ```
+    pub fn searches_width(&self) -> bool {
+        self.centers == Centers::Ols
+            && self.width == WidthArg::Auto
+            && matches!(self.stop, Some(StopArg::Press | StopArg::Gcv))
+    }
+
+    /// [`FitSettings::params`] with the width rule `width` instead of `--width`'s.
+    ///
+    /// # Errors
+    /// As [`FitSettings::params`].
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings::default();
+    /// let p = s.params_with_width(100, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
+    /// assert_eq!(p.width(), &rbf::WidthRule::MedianPairwise { scale: 2.0 });
+    /// ```
+    pub fn params_with_width(
+        &self,
+        n_train: usize,
+        width: WidthRule,
+    ) -> Result<RbfValidParams, SettingsError> {
         self.check_flags()?;
-        let k = self.n_centers();
+        let k = self.n_centers_for(n_train);
+        let (selection_rows, candidates) = self.ols_rows(n_train);
         if let Some(k) = k {
-            let (rows, what) = match self.candidates {
+            let (rows, what) = match candidates {
                 Some(m) if m < n_train => (m, "OLS candidates (--candidates)"),
                 _ => (n_train, "training rows"),
             };
@@ -354,9 +575,9 @@ impl FitSettings {
         let centres = match self.centers {
             Centers::Ols => CentreSelection::Ols {
                 max_centres: k,
-                tol: self.tol.unwrap_or(0.0),
+                tol: self.rho().unwrap_or(0.0),
                 regularisation: 0.0,
-                candidates: match self.candidates {
+                candidates: match candidates {
                     Some(size) => Candidates::Subsample { size },
                     None => Candidates::TrainingVectors,
                 },
@@ -382,10 +603,12 @@ impl FitSettings {
         Ok(params
             .kernel(self.kernel)
             .centres(centres)
-            .width(self.width.rule())
+            .width(width)
             .ridge(self.ridge)
             .standardise(self.standardize)
             .seed(self.seed)
+            .selection_rows(selection_rows)
+            .size_rule(self.size_rule())
             .check()?)
     }
 
@@ -403,7 +626,23 @@ impl FitSettings {
         };
         let ols = self.centers == Centers::Ols;
         only("--tol", "ols", ols || self.tol.is_none())?;
+        only("--stop", "ols", ols || self.stop.is_none())?;
+        let conflict = |a, b, what| Err(SettingsError::Conflict { a, b, what });
+        match self.stop {
+            Some(StopArg::Err(_)) if self.tol.is_some() => {
+                return conflict("--stop err:RHO", "--tol", "OLS tolerance");
+            }
+            Some(StopArg::K(_)) if self.max_centers.is_some() => {
+                return conflict("--stop k:K", "--max-centers", "number of centres");
+            }
+            _ => {}
+        }
         only("--candidates", "ols", ols || self.candidates.is_none())?;
+        only(
+            "--selection-rows",
+            "ols",
+            ols || self.selection_rows.is_none(),
+        )?;
         only(
             "--kmeans-algorithm",
             "kmeans",

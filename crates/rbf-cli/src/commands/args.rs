@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rbf::{KMeansAlgorithm, KMeansInit, Kernel, PolyTail};
-use rbf_cli::settings::{Centers, CvScheme, FitSettings, WidthArg};
+use rbf_cli::settings::{Centers, CvScheme, FitSettings, StopArg, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
 #[derive(Debug, Parser)]
@@ -110,7 +110,13 @@ pub struct ModelArgs {
     /// Centre selection: ols (forward selection by error-reduction ratio over the
     /// training rows), kmeans (k-means++ seeded, QR weights), random (seeded subset, QR
     /// weights), all (every training row; interpolation, or smoothing with --ridge).
-    #[arg(long, visible_alias = "centres", value_name = "ols|kmeans|random|all")]
+    /// [default: ols]
+    #[arg(
+        long,
+        visible_alias = "centres",
+        value_name = "ols|kmeans|random|all",
+        default_value = "ols"
+    )]
     pub centers: Centers,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
@@ -144,6 +150,19 @@ pub struct ModelArgs {
     /// all of them (the way to large files: the candidate matrix is rows × M).
     #[arg(long, value_name = "M", value_parser = parse_count, allow_hyphen_values = true)]
     pub candidates: Option<usize>,
+    /// ols only: select centres on a seeded subsample of R training rows, then solve
+    /// the weights on every row by a streaming row-block QR (memory independent of the
+    /// number of rows) [default: every row up to 20000, else 20000, with --candidates
+    /// 2000 unless given].
+    #[arg(long, value_name = "R", value_parser = parse_count, allow_hyphen_values = true)]
+    pub selection_rows: Option<usize>,
+    /// ols only: how many centres to keep — press (the least leave-one-out error along
+    /// the selection path, from its orthogonal basis at no extra pass), gcv (the least
+    /// generalised cross-validation score), err:RHO (as --tol RHO) or k:K (as
+    /// --max-centers K). With press or gcv, --max-centers bounds the path [default: a
+    /// tenth of the training rows, 10 to 200] [default: run to --max-centers].
+    #[arg(long, value_name = "press|gcv|err:RHO|k:K")]
+    pub stop: Option<StopArg>,
     /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
     #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol, allow_hyphen_values = true)]
     pub tol: Option<f64>,
@@ -154,6 +173,8 @@ pub struct ModelArgs {
     /// Width β in input units, or auto: β = the median pairwise distance between the
     /// candidate centres (training rows for ols and all, the centres for kmeans and
     /// random; a seeded 1000-point subsample above that).
+    /// With --stop press|gcv (ols), auto is a search: 0.25, 0.5, 1, 2 and 4 times that
+    /// median, the width with the least PRESS wins (JSON: width_search).
     #[arg(
         allow_negative_numbers = true,
         long,
@@ -193,11 +214,13 @@ impl ModelArgs {
             centers: self.centers,
             max_centers: self.max_centers,
             candidates: self.candidates,
+            selection_rows: self.selection_rows,
             kmeans_algorithm: self.kmeans_algorithm,
             kmeans_init: self.kmeans_init,
             n_init: self.n_init,
             degree: self.degree,
             tol: self.tol,
+            stop: self.stop,
             kernel: self.kernel,
             width: self.width,
             ridge: self.ridge,

@@ -6,7 +6,9 @@ mod condition;
 mod errors;
 mod interpolate;
 mod lstsq;
+mod stream;
 
 pub use errors::SolveError;
 pub use interpolate::{Interpolation, InterpolationOptions, interpolate};
 pub use lstsq::{DEFAULT_MAX_CONDITION, LstsqOptions, Solution, lstsq};
+pub use stream::StreamingLstsq;

@@ -1,6 +1,7 @@
 //! Fitting: inputs → design (standardisation, fixed columns) → centres and widths →
 //! output weights.
 
+use faer::prelude::ReborrowMut;
 use faer::{Mat, MatRef};
 
 use super::errors::RbfError;
@@ -9,10 +10,12 @@ use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
 use super::{Progress, Stage};
 use crate::check::first_non_finite;
-use crate::design::{Widths, kernel_matrix};
-use crate::estimate::{InterpolationOptions, LstsqOptions, interpolate, lstsq};
+use crate::design::{Widths, kernel_matrix, kernel_matrix_into};
+use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
 use crate::select::kmeans::kmeans_centres;
-use crate::select::ols::{OlsOptions, OlsPath, OlsProgress, StopReason, forward_select_owned};
+use crate::select::ols::{
+    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, forward_select_owned,
+};
 use crate::select::random::random_subset;
 
 type Observer<'a> = Option<&'a (dyn Fn(Progress) + Sync)>;
@@ -190,22 +193,39 @@ fn solve_model(
         .subcols_mut(0, p)
         .copy_from(design.forced.as_ref());
     a.as_mut().subcols_mut(p, k).copy_from(phi);
-    let opts = LstsqOptions {
+    let sol = lstsq(a.as_ref(), y, &weight_options(params, p, ridge))?;
+    model_from(params, design, centres, widths, sol, selection)
+}
+
+/// Options of the weight solve: the `p` fixed columns unpenalised.
+fn weight_options(params: &RbfValidParams, p: usize, ridge: f64) -> LstsqOptions {
+    LstsqOptions {
         ridge,
         unpenalised: p,
         rank_tol: None,
         max_condition: params.max_condition,
         par: params.par,
-    };
-    let sol = lstsq(a.as_ref(), y, &opts)?;
-    let coefficients = sol.coefficients;
+    }
+}
+
+/// The model from a weight solve on [fixed columns | kernel columns].
+fn model_from(
+    params: &RbfValidParams,
+    design: &Design,
+    centres: Mat<f64>,
+    widths: Widths,
+    sol: crate::Solution,
+    selection: Option<Selection>,
+) -> Result<RbfModel, RbfError> {
+    let (p, k) = (design.forced.ncols(), centres.nrows());
+    let c = sol.coefficients;
     RbfModel::assemble(
         params,
         design,
         centres,
         widths,
-        coefficients.as_ref().subrows(p, k),
-        coefficients.as_ref().subrows(0, p),
+        c.as_ref().subrows(p, k),
+        c.as_ref().subrows(0, p),
         sol.condition,
         selection,
     )
@@ -222,8 +242,10 @@ pub(crate) struct OlsStage {
     /// What a candidate's index means to the user (training row or given row).
     labels: Vec<usize>,
     path: OlsPath,
-    /// Kernel columns of the picks, in pick order (n × K).
-    phi: Mat<f64>,
+    /// Kernel columns of the picks, in pick order (n × K); `None` when selection ran on
+    /// a row subsample: the weights are then solved over row blocks (memory
+    /// independent of n).
+    phi: Option<Mat<f64>>,
 }
 
 impl OlsStage {
@@ -253,8 +275,21 @@ impl OlsStage {
                 needed: p + 1,
             });
         }
+        // Selection rows: every row, or a seeded subsample (sorted, so the selection
+        // sees the rows in their order). Candidates are drawn from every row.
+        let sub: Option<Vec<usize>> = match params.selection_rows {
+            Some(s) if s.max(p + 1) < n => Some(random_subset(
+                n,
+                s.max(p + 1),
+                params.seed ^ SELECTION_ROWS_SEED,
+            )),
+            _ => None,
+        };
         let (cands, labels) = match candidates {
-            Candidates::TrainingVectors => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
+            Candidates::TrainingVectors => match &sub {
+                None => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
+                Some(idx) => (rows(design.xs.as_ref(), idx), idx.clone()),
+            },
             Candidates::Subsample { size } => {
                 let idx = random_subset(n, (*size).min(n), params.seed);
                 (rows(design.xs.as_ref(), &idx), idx)
@@ -264,8 +299,21 @@ impl OlsStage {
                 (design.standardised(c.as_ref()), (0..c.nrows()).collect())
             }
         };
+        let (xs_sel, forced_sel, y_sel) = match &sub {
+            None => (None, None, None),
+            Some(idx) => (
+                Some(rows(design.xs.as_ref(), idx)),
+                Some(rows(design.forced.as_ref(), idx)),
+                Some(rows(y, idx)),
+            ),
+        };
+        let xs_sel = xs_sel.as_ref().map_or(design.xs.as_ref(), |m| m.as_ref());
+        let forced_sel = forced_sel
+            .as_ref()
+            .map_or(design.forced.as_ref(), |m| m.as_ref());
+        let y_sel = y_sel.as_ref().map_or(y, |m| m.as_ref());
         crate::memory::check_matrix(
-            n,
+            xs_sel.nrows(),
             cands.nrows(),
             crate::memory::available_bytes(),
             "OLS candidate kernel matrix",
@@ -273,13 +321,7 @@ impl OlsStage {
         report(progress, Stage::Widths, 0, 1);
         let widths = params.width.widths(cands.as_ref(), params.par)?;
         report(progress, Stage::KernelMatrix, 0, 1);
-        let phi_all = kernel_matrix(
-            design.xs.as_ref(),
-            cands.as_ref(),
-            params.kernel,
-            &widths,
-            params.par,
-        );
+        let phi_all = kernel_matrix(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
         let forward = |pr: OlsProgress| report(progress, Stage::Selection, pr.picks, pr.max_terms);
         let mut opts = OlsOptions::new(max_terms)
             .tol(tol)
@@ -288,15 +330,17 @@ impl OlsStage {
         if progress.is_some() {
             opts = opts.progress(&forward);
         }
-        let path = forward_select_owned(phi_all, design.forced.as_ref(), y, &opts)?;
+        let path = forward_select_owned(phi_all, forced_sel, y_sel, &opts)?;
         let sel = path.selected();
-        let phi = kernel_matrix(
-            design.xs.as_ref(),
-            rows(cands.as_ref(), &sel).as_ref(),
-            params.kernel,
-            &widths.select(&sel),
-            params.par,
-        );
+        let phi = sub.is_none().then(|| {
+            kernel_matrix(
+                design.xs.as_ref(),
+                rows(cands.as_ref(), &sel).as_ref(),
+                params.kernel,
+                &widths.select(&sel),
+                params.par,
+            )
+        });
         Ok(Self {
             design,
             candidates: cands,
@@ -332,23 +376,85 @@ impl OlsStage {
                     ..*p
                 })
                 .collect(),
-            stop: if k == self.path.len() {
-                self.path.stop_reason()
-            } else {
-                StopReason::MaxTerms
+            stop: match params.size_rule {
+                SizeRule::Press if k == self.path.best_by_press() => StopReason::Press,
+                SizeRule::Gcv if k == self.path.best_by_gcv() => StopReason::Gcv,
+                _ if k == self.path.len() => self.path.stop_reason(),
+                _ => StopReason::MaxTerms,
             },
+            criterion: self.path.criterion(),
         };
-        solve_model(
-            params,
-            &self.design,
-            centres,
-            self.widths.select(&sel),
-            self.phi.as_ref().subcols(0, k),
-            y,
-            ridge,
-            Some(selection),
-        )
+        match &self.phi {
+            Some(phi) => solve_model(
+                params,
+                &self.design,
+                centres,
+                self.widths.select(&sel),
+                phi.as_ref().subcols(0, k),
+                y,
+                ridge,
+                Some(selection),
+            ),
+            None => solve_model_streaming(
+                params,
+                &self.design,
+                centres,
+                self.widths.select(&sel),
+                y,
+                ridge,
+                selection,
+            ),
+        }
     }
+}
+
+/// Seed offset of the selection-row subsample (distinct from the candidate subsample's
+/// draw with the same seed).
+const SELECTION_ROWS_SEED: u64 = 0x5e1e_c7ed_0000_0001;
+
+/// Rows per block of the streaming weight solve: the block's kernel columns and design
+/// rows stay within a few MB whatever n is.
+const WEIGHT_BLOCK_ROWS: usize = 4096;
+
+/// [`solve_model`] over row blocks: [fixed columns | kernel columns] of each block of
+/// rows is computed, reduced into a running triangular factor (Householder QR, never
+/// the normal equations) and dropped, so memory does not grow with n.
+fn solve_model_streaming(
+    params: &RbfValidParams,
+    design: &Design,
+    centres: Mat<f64>,
+    widths: Widths,
+    y: MatRef<'_, f64>,
+    ridge: f64,
+    selection: Selection,
+) -> Result<RbfModel, RbfError> {
+    let (n, p, k, q) = (
+        design.n(),
+        design.forced.ncols(),
+        centres.nrows(),
+        y.ncols(),
+    );
+    let mut acc = StreamingLstsq::new(p + k, q);
+    let block = WEIGHT_BLOCK_ROWS.max(p + k + q);
+    let mut a = Mat::<f64>::zeros(block, p + k);
+    for start in (0..n).step_by(block) {
+        let b = block.min(n - start);
+        let mut ab = a.as_mut().subrows_mut(0, b);
+        ab.rb_mut()
+            .subcols_mut(0, p)
+            .copy_from(design.forced.as_ref().subrows(start, b));
+        kernel_matrix_into(
+            design.xs.as_ref().subrows(start, b),
+            centres.as_ref(),
+            params.kernel,
+            &widths,
+            ab.subcols_mut(p, k),
+            params.par,
+        );
+        acc.push(a.as_ref().subrows(0, b), y.subrows(start, b))?;
+    }
+    let sol = acc.finish(&weight_options(params, p, ridge))?;
+    model_from(params, design, centres, widths, sol, Some(selection))
 }
 
 /// Centres and widths for k-means, random and given centres.
@@ -517,7 +623,8 @@ impl RbfValidParams {
             } => {
                 let stage = OlsStage::run(self, x, z, y, *max_centres, *tol, progress)?;
                 report(progress, Stage::Weights, 0, 1);
-                stage.model(self, stage.path.len(), self.ridge, y)
+                let k = stage.path.size_for(self.size_rule);
+                stage.model(self, k, self.ridge, y)
             }
             CentreSelection::AllPoints => {
                 check_inputs(x, z, y)?;

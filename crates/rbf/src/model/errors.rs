@@ -1,9 +1,9 @@
 //! Errors of the RBF model: invalid hyperparameters, bad data, numerical failure.
 
-use crate::split::SplitError;
 use crate::estimate::SolveError;
 use crate::select::kmeans::KMeansError;
 use crate::select::ols::OlsError;
+use crate::split::SplitError;
 use crate::width::WidthError;
 
 /// An invalid hyperparameter, one variant per validation rule.

@@ -72,7 +72,7 @@ impl Scaling {
 /// The OLS selection record of a model.
 ///
 /// ```
-/// let s = rbf::Selection { n_candidates: 10, forced_errs: vec![0.5], picks: vec![], stop: rbf::StopReason::Tolerance };
+/// let s = rbf::Selection { n_candidates: 10, forced_errs: vec![0.5], picks: vec![], stop: rbf::StopReason::Tolerance, criterion: vec![] };
 /// assert!(s.picks.is_empty());
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -87,6 +87,10 @@ pub struct Selection {
     pub picks: Vec<Pick>,
     /// Why the selection stopped.
     pub stop: StopReason,
+    /// PRESS and GCV at every size of the selection run (k = 0 … its picks, while
+    /// finite); empty in models saved before it was recorded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub criterion: Vec<crate::ols::Criterion>,
 }
 
 /// A fitted RBF network f(x, z) = λ0 + aᵀx + zᵀθ + Σᵢ λᵢ φ(‖x − cᵢ‖; βᵢ).

@@ -163,6 +163,10 @@ pub struct RbfValidParams {
     /// The polynomial tail on unit-box inputs (`None`: `bias` and `linear_tail` decide,
     /// on unscaled inputs, as before this option existed).
     pub(crate) degree: Option<PolyTail>,
+    /// OLS: select on a seeded subsample of this many rows, weights on all (None: all).
+    pub(crate) selection_rows: Option<usize>,
+    /// OLS: how many of the path's picks the model keeps.
+    pub(crate) size_rule: crate::ols::SizeRule,
 }
 
 impl RbfValidParams {
@@ -279,6 +283,26 @@ impl RbfValidParams {
     /// ```
     pub fn degree(&self) -> Option<PolyTail> {
         self.degree
+    }
+
+    /// OLS: the rows centre selection runs on (`None`: every training row).
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().selection_rows(), None);
+    /// ```
+    pub fn selection_rows(&self) -> Option<usize> {
+        self.selection_rows
+    }
+
+    /// OLS: how many of the path's picks the model keeps.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().size_rule(), rbf::ols::SizeRule::All);
+    /// ```
+    pub fn size_rule(&self) -> crate::ols::SizeRule {
+        self.size_rule
     }
 
     pub(crate) fn with_width(&self, width: WidthRule) -> Self {
@@ -458,7 +482,40 @@ impl RbfParams {
             par: faer::get_global_parallelism(),
             max_condition: DEFAULT_MAX_CONDITION,
             degree: None,
+            selection_rows: None,
+            size_rule: crate::ols::SizeRule::All,
         })
+    }
+
+    /// OLS only: run centre selection on a seeded subsample of `rows` training rows
+    /// (the candidate kernel matrix is then `rows` × candidates, whatever N is), and
+    /// solve the weights of the chosen centres on every row by a streaming row-block QR
+    /// ([`crate::estimate::StreamingLstsq`]). `None` (the default) selects on every row.
+    /// At least the forced columns plus one row are used.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// let p = rbf::RbfParams::new().selection_rows(Some(20_000)).check().unwrap();
+    /// assert_eq!(p.selection_rows(), Some(20_000));
+    /// ```
+    pub fn selection_rows(mut self, rows: Option<usize>) -> Self {
+        self.0.selection_rows = rows;
+        self
+    }
+
+    /// OLS only: keep every pick ([`crate::ols::SizeRule::All`], the default: the run
+    /// stops at the most centres or by ρ), or the size with the least leave-one-out
+    /// error (PRESS) or GCV along the path, computed from the selection's orthogonal
+    /// basis at no extra pass over the candidates.
+    ///
+    /// ```
+    /// # use linfa::ParamGuard;
+    /// let p = rbf::RbfParams::new().size_rule(rbf::ols::SizeRule::Press).check().unwrap();
+    /// assert_eq!(p.size_rule(), rbf::ols::SizeRule::Press);
+    /// ```
+    pub fn size_rule(mut self, rule: crate::ols::SizeRule) -> Self {
+        self.0.size_rule = rule;
+        self
     }
 
     /// Sets the kernel.

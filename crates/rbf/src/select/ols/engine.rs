@@ -226,6 +226,8 @@ struct Engine<'s, 'o> {
     q: usize,
     target_energy: f64,
     options: &'o OlsOptions<'o>,
+    /// Leverages hᵢᵢ = Σ_k q_ik² of the basis so far (for PRESS).
+    lev: Vec<f64>,
 }
 
 impl Engine<'_, '_> {
@@ -422,6 +424,9 @@ impl Engine<'_, '_> {
             *v /= norm;
         }
         coefs.push(norm);
+        for (h, v) in self.lev.iter_mut().zip(&w) {
+            *h += v * v;
+        }
         let mut gk = Vec::with_capacity(self.q);
         for o in 0..self.q {
             let r = self.resid.col_as_slice_mut(o);
@@ -433,6 +438,23 @@ impl Engine<'_, '_> {
         let explained: f64 = gk.iter().map(|g| g * g).sum();
         self.basis.push(&w, coefs, gk, norm2);
         explained * (norm2 / (norm2 + lam)) / self.target_energy
+    }
+
+    /// PRESS of the current basis: Σ (rᵢ/(1 − hᵢᵢ))² over samples and outputs, from the
+    /// residuals and leverages already at hand (O(nq), no pass over the candidates).
+    /// +∞ once a leverage reaches 1 (to rounding): that sample is interpolated.
+    fn press(&self) -> f64 {
+        let mut total = 0.0;
+        for (i, &h) in self.lev.iter().enumerate() {
+            let m = 1.0 - h;
+            if m <= 1e-10 {
+                return f64::INFINITY;
+            }
+            for o in 0..self.q {
+                total += (self.resid[(i, o)] / m).powi(2);
+            }
+        }
+        total
     }
 }
 
@@ -512,6 +534,7 @@ fn run(
         q,
         target_energy,
         options,
+        lev: vec![0.0; n],
     };
 
     // Forced columns, in order.
@@ -569,6 +592,7 @@ fn run(
     eng.pass(0, p);
     eng.settle();
     let first_step_errs = eng.err.clone();
+    let mut press = vec![eng.press()];
 
     let max_picks = options.max_terms.min(m);
     let mut cum: f64 = forced_errs.iter().sum();
@@ -588,6 +612,7 @@ fn run(
         eng.cands[j].status = Status::Selected;
         eng.err[j] = 0.0;
         cum += err;
+        press.push(eng.press());
         picks.push(Pick {
             index: j,
             err,
@@ -621,5 +646,7 @@ fn run(
         regularisation: options.regularisation,
         target_energy,
         stop,
+        press,
+        n_samples: n,
     })
 }

@@ -56,4 +56,4 @@ mod store;
 pub use engine::{forward_select, forward_select_owned};
 pub use errors::OlsError;
 pub use options::{OlsOptions, OlsProgress};
-pub use path::{OlsPath, Pick, StopReason};
+pub use path::{Criterion, OlsPath, Pick, SizeRule, StopReason};

@@ -34,6 +34,43 @@ pub enum StopReason {
     Tolerance,
     /// No candidate had energy left outside the selected span.
     Exhausted,
+    /// The size with the least PRESS on the path was kept ([`SizeRule::Press`]).
+    Press,
+    /// The size with the least GCV on the path was kept ([`SizeRule::Gcv`]).
+    Gcv,
+}
+
+/// How many of a path's picks a model keeps.
+///
+/// ```
+/// assert_eq!(rbf::ols::SizeRule::default(), rbf::ols::SizeRule::All);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SizeRule {
+    /// Every pick (the run stops at `max_terms` or by ρ).
+    #[default]
+    All,
+    /// The size with the least leave-one-out error sum (PRESS), [`OlsPath::best_by_press`].
+    Press,
+    /// The size with the least generalised cross-validation score, [`OlsPath::best_by_gcv`].
+    Gcv,
+}
+
+/// A model-selection criterion at one size of the path.
+///
+/// ```
+/// let c = rbf::ols::Criterion { k: 3, press: 1.5, gcv: 0.01 };
+/// assert_eq!(c.k, 3);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Criterion {
+    /// Picks (forced columns not counted).
+    pub k: usize,
+    /// PRESS: Σ over samples and outputs of the leave-one-out residual² (eᵢ/(1 − hᵢᵢ))².
+    pub press: f64,
+    /// GCV: n·RSS/(n − t)², t = forced columns + k.
+    pub gcv: f64,
 }
 
 /// The path of a forward selection: forced columns, then picks in order.
@@ -70,6 +107,11 @@ pub struct OlsPath {
     pub(crate) regularisation: f64,
     pub(crate) target_energy: f64,
     pub(crate) stop: StopReason,
+    /// PRESS after the forced columns and after each pick (len + 1 entries; +∞ where a
+    /// sample's leverage reached 1).
+    pub(crate) press: Vec<f64>,
+    /// Rows of the candidate matrix.
+    pub(crate) n_samples: usize,
 }
 
 impl OlsPath {
@@ -307,4 +349,128 @@ impl OlsPath {
         );
         x
     }
+
+    /// PRESS of the forced columns plus the first `k` picks: Σ (eᵢ/(1 − hᵢᵢ))² over
+    /// samples and outputs, the leave-one-out residuals of the least-squares fit
+    /// (λ = 0), from the orthonormal basis the selection builds anyway (hᵢᵢ = Σⱼ qᵢⱼ²):
+    /// O(n) per pick, no pass over the candidates. +∞ once a sample's leverage reaches 1.
+    ///
+    /// # Panics
+    /// If `k > self.len()`.
+    ///
+    /// ```
+    /// use faer::Mat;
+    /// let n = 40;
+    /// let x = Mat::from_fn(n, 3, |i, j| ((i * (j + 2)) as f64 * 0.37).sin());
+    /// let y = Mat::from_fn(n, 1, |i, _| 2.0 * x[(i, 1)] + 0.1 * ((i * 7 % 5) as f64 - 2.0));
+    /// let path = rbf::forward_select(x.as_ref(), Mat::<f64>::ones(n, 1).as_ref(), y.as_ref(), &Default::default()).unwrap();
+    /// // brute-force leave-one-out of the bias + first pick
+    /// let sel = path.selected()[0];
+    /// let mut press = 0.0;
+    /// for out in 0..n {
+    ///     let keep: Vec<usize> = (0..n).filter(|&i| i != out).collect();
+    ///     let a = Mat::from_fn(n - 1, 2, |i, j| if j == 0 { 1.0 } else { x[(keep[i], sel)] });
+    ///     let b = Mat::from_fn(n - 1, 1, |i, _| y[(keep[i], 0)]);
+    ///     let w = rbf::lstsq(a.as_ref(), b.as_ref(), &Default::default()).unwrap().coefficients;
+    ///     press += (y[(out, 0)] - w[(0, 0)] - w[(1, 0)] * x[(out, sel)]).powi(2);
+    /// }
+    /// assert!((path.press(1) - press).abs() < 1e-10 * press);
+    /// ```
+    #[track_caller]
+    pub fn press(&self, k: usize) -> f64 {
+        assert!(
+            k <= self.picks.len(),
+            "k = {k} exceeds the {} picks",
+            self.picks.len()
+        );
+        self.press[k]
+    }
+
+    /// Generalised cross-validation n·RSS(k)/(n − t)², t = forced columns + k
+    /// (+∞ when t ≥ n).
+    ///
+    /// # Panics
+    /// If `k > self.len()`.
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]].as_ref(), Mat::<f64>::zeros(3, 0).as_ref(), mat![[1.0], [3.0], [1.0]].as_ref(), &Default::default()).unwrap();
+    /// assert!((path.gcv(1) - 3.0 * 2.0 / 4.0).abs() < 1e-12);
+    /// ```
+    #[track_caller]
+    pub fn gcv(&self, k: usize) -> f64 {
+        let rss = self.residual_sum_squares(k);
+        let t = self.n_forced() + k;
+        if t >= self.n_samples {
+            return f64::INFINITY;
+        }
+        let dof = (self.n_samples - t) as f64;
+        self.n_samples as f64 * rss / (dof * dof)
+    }
+
+    /// PRESS and GCV at every size 0 ..= len while they are finite.
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]].as_ref(), Mat::<f64>::zeros(3, 0).as_ref(), mat![[1.0], [3.0], [1.0]].as_ref(), &Default::default()).unwrap();
+    /// assert_eq!(path.criterion()[0].k, 0);
+    /// ```
+    pub fn criterion(&self) -> Vec<Criterion> {
+        (0..=self.picks.len())
+            .map(|k| Criterion {
+                k,
+                press: self.press(k),
+                gcv: self.gcv(k),
+            })
+            .take_while(|c| c.press.is_finite() && c.gcv.is_finite())
+            .collect()
+    }
+
+    /// The number of picks with the least PRESS (the smallest such k on ties).
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]].as_ref(), Mat::<f64>::zeros(3, 0).as_ref(), mat![[1.0], [3.0], [1.0]].as_ref(), &Default::default()).unwrap();
+    /// assert!(path.best_by_press() <= path.len());
+    /// ```
+    pub fn best_by_press(&self) -> usize {
+        argmin((0..=self.picks.len()).map(|k| self.press(k)))
+    }
+
+    /// The number of picks with the least GCV (the smallest such k on ties).
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]].as_ref(), Mat::<f64>::zeros(3, 0).as_ref(), mat![[1.0], [3.0], [1.0]].as_ref(), &Default::default()).unwrap();
+    /// assert!(path.best_by_gcv() <= path.len());
+    /// ```
+    pub fn best_by_gcv(&self) -> usize {
+        argmin((0..=self.picks.len()).map(|k| self.gcv(k)))
+    }
+
+    /// The number of picks `rule` keeps.
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]].as_ref(), Mat::<f64>::zeros(3, 0).as_ref(), mat![[1.0], [3.0], [1.0]].as_ref(), &Default::default()).unwrap();
+    /// assert_eq!(path.size_for(rbf::ols::SizeRule::All), path.len());
+    /// ```
+    pub fn size_for(&self, rule: SizeRule) -> usize {
+        match rule {
+            SizeRule::All => self.picks.len(),
+            SizeRule::Press => self.best_by_press(),
+            SizeRule::Gcv => self.best_by_gcv(),
+        }
+    }
+}
+
+/// Index of the least value (first on ties; NaN never wins).
+fn argmin(values: impl Iterator<Item = f64>) -> usize {
+    let mut best = (0, f64::INFINITY);
+    for (k, v) in values.enumerate() {
+        if v < best.1 {
+            best = (k, v);
+        }
+    }
+    best.0
 }
