@@ -1,4 +1,4 @@
-//! k-means on the 8 blob data sets of `bench/peer/kmeans_blobs.py` (generated in-tree,
+//! k-means on the 8 blob data sets of `peers/scripts/kmeans_blobs.py` (generated in-tree,
 //! the same numbers): prints each set's inertia (sum of squared distances, scikit-learn's
 //! definition) and whether every blob is one cluster, then the median time of fitting
 //! all 8 sets over `REPS` repetitions (default 5), on one thread.

@@ -861,7 +861,7 @@ fn large_files_select_on_a_row_subsample_and_fit_every_row_by_default() {
 #[test]
 fn stop_press_keeps_the_size_with_the_least_leave_one_out_error() {
     let dir = scratch("press");
-    let data = "bench/data/sunspots/sunspots_lags9.csv";
+    let data = "peers/data/sunspots/sunspots_lags9.csv";
     let data = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .join(data);

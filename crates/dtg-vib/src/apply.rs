@@ -3,8 +3,8 @@
 
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
+use crate::parity::{ResidueSeries, ResidueStats};
 use crate::pipeline::Prepared;
-use crate::residue::{ResidueSeries, ResidueStats};
 use nav_sensors::geometry::{Channel, residues};
 use nav_sensors::record::Record;
 

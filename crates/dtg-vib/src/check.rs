@@ -7,7 +7,7 @@ use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::CompensationModel;
 use crate::operating;
-use crate::residue::ResidueStats;
+use crate::parity::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use serde::Serialize;
@@ -110,7 +110,7 @@ pub fn check(
                 .collect();
             let mean_y = y.iter().sum::<f64>() / n as f64;
             let dev: Vec<f64> = y.iter().map(|v| v - mean_y).collect();
-            let (before, after) = (rms(&dev), rms(&e));
+            let (before, after) = (stats::rms(&dev), stats::rms(&e));
             let pick = |want: bool| -> Option<f64> {
                 let o = outside.as_ref()?;
                 let sel: Vec<f64> = e
@@ -119,7 +119,7 @@ pub fn check(
                     .filter(|(_, out)| **out == want)
                     .map(|(v, _)| *v)
                     .collect();
-                (!sel.is_empty()).then(|| rms(&sel))
+                (!sel.is_empty()).then(|| stats::rms(&sel))
             };
             ChannelTransfer {
                 channel: ch,
@@ -153,8 +153,4 @@ pub fn check(
         warning,
         windows: n,
     })
-}
-
-fn rms(v: &[f64]) -> f64 {
-    (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt()
 }

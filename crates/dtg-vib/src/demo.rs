@@ -8,10 +8,10 @@ use crate::effects::ChannelEffect;
 use crate::error::DtgVibError;
 use crate::fit::{FitOptions, FitStage, fit};
 use crate::model::CompensationModel;
+use crate::parity::ResidueStats;
 use crate::report::{
     Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report, write_report,
 };
-use crate::residue::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, simulate};
 use std::path::{Path, PathBuf};

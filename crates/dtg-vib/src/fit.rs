@@ -859,9 +859,10 @@ fn gather(m: MatRef<'_, f64>, rows: &[usize]) -> Mat<f64> {
     Mat::from_fn(rows.len(), m.ncols(), |i, j| m[(rows[i], j)])
 }
 
+/// [`stats::rms`] of rows picked by an iterator (never empty here: a split
+/// side has at least [`crate::split::MIN_ROWS`] rows).
 fn rms(v: impl Iterator<Item = f64>) -> f64 {
-    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x * x, n + 1));
-    (s / n.max(1) as f64).sqrt()
+    stats::rms(&v.collect::<Vec<_>>())
 }
 
 /// Scores of a prediction on training and validation rows.

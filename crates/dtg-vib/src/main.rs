@@ -1443,11 +1443,11 @@ fn rate_reference_note(r: &dtg_vib::pipeline::RateReference) -> String {
     )
 }
 
-fn print_residues(stats: &[dtg_vib::residue::ResidueStats]) {
+fn print_residues(stats: &[dtg_vib::parity::ResidueStats]) {
     print_residues_on(stats, "validation rows");
 }
 
-fn print_residues_on(stats: &[dtg_vib::residue::ResidueStats], rows: &str) {
+fn print_residues_on(stats: &[dtg_vib::parity::ResidueStats], rows: &str) {
     println!("residue  rms before  rms after  (deg/h, {rows:<15})  reduction");
     for s in stats {
         println!(

@@ -144,7 +144,7 @@ fn gauss_markov_bias_peaks_where_the_closed_form_says() {
 /// allantools 2024.6 (`allantools.oadev(y, rate=50, data_type="freq",
 /// taus=m·0.02)`) on a fixed series: 1000 values of a linear congruential
 /// generator, x ← (1103515245·x + 12345) mod 2³¹ from x = 12345, as
-/// x/2³¹ − 0.5 + 1e-4·k. Printed by `bench/peer/allan.py fixture`.
+/// x/2³¹ − 0.5 + 1e-4·k. Printed by `peers/scripts/allan.py fixture`.
 #[test]
 fn agrees_with_allantools_on_a_fixed_series() {
     const ALLANTOOLS: [(usize, f64); 7] = [

@@ -1,4 +1,4 @@
-//! The memory-bandwidth bound of one OLS pick, for `bench/peer/run.sh`.
+//! The memory-bandwidth bound of one OLS pick, for `peers/scripts/run.sh`.
 //!
 //! An OLS pick streams the N × M candidate matrix once, like one matrix–vector
 //! product. This times that product — vᵀP (one row) and [q r]ᵀP (the two rows the

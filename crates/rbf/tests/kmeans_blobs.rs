@@ -5,7 +5,7 @@
 //! The reference inertias (scikit-learn 1.9.1, numpy 2.4.6, Python 3.11.7) were printed by
 //!
 //! ```sh
-//! python3 bench/peer/kmeans_blobs.py
+//! python3 peers/scripts/kmeans_blobs.py
 //! ```
 //!
 //! which generates the same numbers by the same integer recipe (it found every blob on

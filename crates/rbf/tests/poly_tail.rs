@@ -6,7 +6,7 @@
 //! The scipy reference values (scipy 1.17.1, numpy 2.4.6) were printed by
 //!
 //! ```sh
-//! python3 bench/peer/rbf_offset.py
+//! python3 peers/scripts/rbf_offset.py
 //! ```
 //!
 //! which builds the same data by the same formula.

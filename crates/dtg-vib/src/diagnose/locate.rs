@@ -11,7 +11,7 @@ pub struct Segment {
     pub t_start: f64,
     /// End, s.
     pub t_end: f64,
-    /// RMS of the acceleration deviation from its record mean over the segment,
+    /// RMS of the (pre-processed, so low-passed) acceleration deviation from its record mean over the segment,
     /// summed over the three axes (the vibration level), g.
     pub vibration_rms_g: f64,
     /// Mean of the residual, deg/h.
@@ -62,13 +62,16 @@ pub struct Regime {
     pub mean_spread_sigma: f64,
 }
 
+/// [`stats::mean`] of an iterator's values (0 for none).
 fn mean(x: impl Iterator<Item = f64> + Clone) -> f64 {
-    let n = x.clone().count().max(1) as f64;
-    x.sum::<f64>() / n
+    let v: Vec<f64> = x.collect();
+    if v.is_empty() { 0.0 } else { stats::mean(&v) }
 }
 
+/// [`stats::rms`] of an iterator's values (0 for none).
 fn rms(x: impl Iterator<Item = f64> + Clone) -> f64 {
-    mean(x.map(|v| v * v)).sqrt()
+    let v: Vec<f64> = x.collect();
+    if v.is_empty() { 0.0 } else { stats::rms(&v) }
 }
 
 /// Splits rows into `count` contiguous segments of (nearly) equal length.

@@ -736,7 +736,7 @@ fn findings(
         rms.sort_by(f64::total_cmp);
         let median = rms[rms.len() / 2];
         for s in segs.iter().filter(|s| s.residual_rms > 2.0 * median) {
-            out.push(format!("{:.1}–{:.1} s: residual rms {:.3} deg/h, {:.1}× the median segment (vibration {:.2} g rms)", s.t_start, s.t_end, s.residual_rms, s.residual_rms / median, s.vibration_rms_g));
+            out.push(format!("{:.1}–{:.1} s: residual rms {:.3} deg/h, {:.1}× the median segment (low-passed specific force, rms about its record mean: {:.2} g)", s.t_start, s.t_end, s.residual_rms, s.residual_rms / median, s.vibration_rms_g));
         }
     }
     if !failing.is_empty() {

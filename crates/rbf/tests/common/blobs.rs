@@ -1,5 +1,5 @@
 //! The k-means quality data sets, generated in-tree by the integer recipe that
-//! `bench/peer/kmeans_blobs.py` repeats in Python (SplitMix64 → uniforms → Box–Muller
+//! `peers/scripts/kmeans_blobs.py` repeats in Python (SplitMix64 → uniforms → Box–Muller
 //! normals), so that scikit-learn's reference inertias are for the same numbers.
 //!
 //! Set `s` (seed 1000 + s): K = 10 blob centres uniform in [−15, 15]⁵, each redrawn

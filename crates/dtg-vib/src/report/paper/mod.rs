@@ -16,7 +16,7 @@ use crate::allan::AllanAnalysis;
 use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
-use crate::residue::ResidueStats;
+use crate::parity::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use plot::{Figure, HtmlReport, Section};

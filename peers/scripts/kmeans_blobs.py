@@ -15,8 +15,8 @@ runs. With --rust BIN (the `kmeans_blobs` example of crate rbf, built with
 `cargo build --release -p rbf --example kmeans_blobs`), runs it in the same process
 tree, alternating with sklearn rep by rep, and prints the medians and their ratio.
 
-  python3 bench/peer/kmeans_blobs.py                  # the reference inertias
-  python3 bench/peer/kmeans_blobs.py --rust target/release/examples/kmeans_blobs --reps 7
+  python3 peers/scripts/kmeans_blobs.py                  # the reference inertias
+  python3 peers/scripts/kmeans_blobs.py --rust target/release/examples/kmeans_blobs --reps 7
 """
 
 import argparse

@@ -9,7 +9,7 @@ are t_j = (0.05 + 0.13 j, 0.9 − 0.11 j) + OFFSET for j = 0..7.
 Prints scipy's predictions at the test points for each case as a JSON line; the Rust test
 holds them as its reference values.
 
-  python3 bench/peer/rbf_offset.py
+  python3 peers/scripts/rbf_offset.py
 """
 
 import json

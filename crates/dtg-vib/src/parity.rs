@@ -36,7 +36,7 @@ impl ResidueSeries {
     /// after subtracting `predicted` errors.
     ///
     /// ```
-    /// use dtg_vib::residue::ResidueSeries;
+    /// use dtg_vib::parity::ResidueSeries;
     /// // An error of 1 deg/h on channel X only: K0 = x0 − x1 and K1 = x0 − x2 see it.
     /// let outputs: [Vec<f64>; 6] = std::array::from_fn(|k| vec![if k == 0 { 1.0 } else { 0.0 }; 3]);
     /// let predicted: [Vec<f64>; 6] = std::array::from_fn(|k| vec![if k == 0 { 1.0 } else { 0.0 }; 3]);

@@ -2,11 +2,11 @@
 # Peer comparison of the rbf library (through the `rbf` CLI, which times the fit
 # in-process as `fit_seconds`) with numpy / scikit-learn / scipy, on the same data file.
 #
-#   bench/peer/run.sh peer    # OLS, k-means, all points vs the Python peers (default)
-#   bench/peer/run.sh large   # fit time and peak memory against N, M = 5000 candidates
-#   bench/peer/run.sh allan   # `dtg-vib allan` against allantools.oadev on the demo's record
+#   peers/scripts/run.sh peer    # OLS, k-means, all points vs the Python peers (default)
+#   peers/scripts/run.sh large   # fit time and peak memory against N, M = 5000 candidates
+#   peers/scripts/run.sh allan   # `dtg-vib allan` against allantools.oadev on the demo's record
 #
-# Environment: PYTHON (a Python with bench/peer/requirements.txt; default python3),
+# Environment: PYTHON (a Python with peers/scripts/requirements.txt; default python3),
 # REPS (repetitions per side, default 5), OUT (work directory, default /tmp/rbf-peer),
 # THREADS (the thread counts our side runs with, default "<cores> 1"), PY_THREADS
 # (if set, OpenBLAS and OpenMP threads of the Python side),
