@@ -42,4 +42,5 @@ pub mod signal;
 pub mod sim;
 pub mod vibration;
 
-pub use files::{calibration, record, truth};
+pub use files::{calibration, record};
+pub use sim::truth;

@@ -1,8 +1,7 @@
 //! The files a vibration test produces: the record (CSV), the ground
-//! calibration handed to the user (JSON) and the simulator's truth (JSON).
-//! Re-exported at the crate root as [`crate::record`], [`crate::calibration`]
-//! and [`crate::truth`].
+//! calibration handed to the user (JSON); the simulator's truth file is
+//! [`crate::sim::truth`], beside the scenario it records. Re-exported at the
+//! crate root as [`crate::record`] and [`crate::calibration`].
 
 pub mod calibration;
 pub mod record;
-pub mod truth;

@@ -16,6 +16,7 @@ mod presets;
 mod scenario;
 mod site;
 mod thermal;
+pub mod truth;
 
 pub use engine::simulate;
 pub use error::SimError;
