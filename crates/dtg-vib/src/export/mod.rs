@@ -249,7 +249,10 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
                 "unscaled windows (dtg-vib fit does not scale)",
             ));
         }
-        if rbf.tail().is_some() {
+        // A unit-box tail (rbf's `degree`) has its own map and terms that
+        // the onboard layout does not carry; dtg-vib fit never sets one, but
+        // a model file may come from elsewhere.
+        if rbf.tail().is_some() || rbf.degree().is_some() {
             return Err(unsupported("a polynomial tail".into(), "no tail"));
         }
         f.push(c.bias());
