@@ -74,6 +74,16 @@ pub fn check(
     record: &Record,
     threshold: f64,
 ) -> Result<TransferCheck, DtgVibError> {
+    check_applied(model, &Applied::unsplit(model, record)?, threshold)
+}
+
+/// [`check`] of a model already applied to the record (a report of the same
+/// record needs the application too: predict once).
+pub fn check_applied(
+    model: &CompensationModel,
+    applied: &Applied,
+    threshold: f64,
+) -> Result<TransferCheck, DtgVibError> {
     if !(0.0..=1.0).contains(&threshold) {
         return Err(DtgVibError::InvalidOption {
             name: "outside threshold",
@@ -81,7 +91,6 @@ pub fn check(
             reason: "a share of windows, between 0 and 1",
         });
     }
-    let applied = Applied::unsplit(model, record)?;
     let prepared = &applied.prepared;
     let n = prepared.rows();
     let rows: Vec<usize> = (0..n).collect();

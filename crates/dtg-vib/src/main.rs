@@ -592,35 +592,21 @@ fn run(cli: Cli) -> Result<()> {
                 Some(b) => {
                     let bm = CompensationModel::load(b)?;
                     let ba = Applied::new(&bm, &record)?;
-                    Some((bm, ba))
+                    Some((bm, ba, b.as_path()))
                 }
                 None => None,
             };
             progress.say("drawing figures");
-            let mut files = vec![("model", model.clone()), ("data", data.clone())];
-            files.extend(baseline.clone().map(|b| ("baseline model", b)));
-            let provenance = Provenance::of_this_process(files);
-            let extras = ReportExtras {
-                provenance: Some(&provenance),
-                ..ReportExtras::default()
-            };
-            let (summary, page) = build_report(
-                &m,
+            let summary = model_report(
+                (&m, &model),
+                (&record, &data),
                 &applied,
-                &record,
-                &data.display().to_string(),
-                base.as_ref().map(|(model, applied)| Baseline {
-                    label: "baseline",
-                    model,
-                    applied,
-                }),
-                &extras,
+                base.as_ref().map(|(bm, ba, path)| (bm, ba, *path)),
                 &out,
             )?;
-            page.write(&out)?;
             drop(progress);
             print_residues(&summary.residues);
-            if let Some((_, ba)) = &base {
+            if let Some((_, ba, _)) = &base {
                 print_baseline_table(ba, &summary.channels);
             }
             println!("report: {}", summary.index.display());
@@ -643,24 +629,17 @@ fn run(cli: Cli) -> Result<()> {
             let m = CompensationModel::load(&model)?;
             let record = Record::read_csv(&data)?;
             progress.say("applying the model");
-            let c = dtg_vib::check::check(&m, &record, outside_threshold)?;
-            let page = match &report {
+            let (c, page) = match &report {
+                // The report needs the split rows too: apply once, with them.
                 Some(dir) => {
-                    progress.say("drawing figures");
                     let applied = Applied::new(&m, &record)?;
-                    let name = data.display().to_string();
-                    let files = vec![("model", model.clone()), ("data", data.clone())];
-                    let provenance = Provenance::of_this_process(files);
-                    let extras = ReportExtras {
-                        provenance: Some(&provenance),
-                        ..ReportExtras::default()
-                    };
-                    let (summary, page) =
-                        build_report(&m, &applied, &record, &name, None, &extras, dir)?;
-                    page.write(dir)?;
-                    Some(summary.index)
+                    let c = dtg_vib::check::check_applied(&m, &applied, outside_threshold)?;
+                    progress.say("drawing figures");
+                    let summary =
+                        model_report((&m, &model), (&record, &data), &applied, None, dir)?;
+                    (c, Some(summary.index))
                 }
-                None => None,
+                None => (dtg_vib::check::check(&m, &record, outside_threshold)?, None),
             };
             progress.clear();
             if json {
@@ -1368,6 +1347,39 @@ fn parse_latitude(s: &str) -> Result<f64, String> {
             "'{s}': a latitude must be a number from -90 to 90 (deg)"
         )),
     }
+}
+
+/// The report of a model on a record, with the files' provenance: `report`
+/// and `check --report`.
+fn model_report(
+    (m, model): (&CompensationModel, &PathBuf),
+    (record, data): (&Record, &PathBuf),
+    applied: &Applied,
+    baseline: Option<(&CompensationModel, &Applied, &std::path::Path)>,
+    dir: &std::path::Path,
+) -> Result<dtg_vib::report::ReportSummary> {
+    let mut files = vec![("model", model.clone()), ("data", data.clone())];
+    files.extend(baseline.map(|(_, _, b)| ("baseline model", b.to_path_buf())));
+    let provenance = Provenance::of_this_process(files);
+    let extras = ReportExtras {
+        provenance: Some(&provenance),
+        ..ReportExtras::default()
+    };
+    let (summary, page) = build_report(
+        m,
+        applied,
+        record,
+        &data.display().to_string(),
+        baseline.map(|(model, applied, _)| Baseline {
+            label: "baseline",
+            model,
+            applied,
+        }),
+        &extras,
+        dir,
+    )?;
+    page.write(dir)?;
+    Ok(summary)
 }
 
 fn print_check(c: &dtg_vib::check::TransferCheck) {
