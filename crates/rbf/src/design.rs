@@ -81,6 +81,93 @@ impl Widths {
     }
 }
 
+/// The kernel columns φ(‖x − c_j‖; β_j) of candidate centres, computed on demand for
+/// OLS ([`crate::forward_select_columns`]) instead of being held as an n × m matrix.
+///
+/// # Panics
+/// [`KernelColumns::new`] panics if `x` and `centres` have different numbers of
+/// columns, or per-centre widths do not number `centres.nrows()`.
+///
+/// ```
+/// use faer::{mat, Mat, Par};
+/// use rbf::{kernel_matrix, CandidateColumns, Kernel, KernelColumns, Widths};
+/// let x = mat![[0.0], [1.0], [2.5]];
+/// let w = Widths::Uniform(1.0);
+/// let cols = KernelColumns::new(x.as_ref(), x.as_ref(), Kernel::Gaussian, &w, Par::Seq);
+/// let mut out = Mat::zeros(3, 1);
+/// cols.columns_into(&[2], out.as_mut());
+/// let phi = kernel_matrix(x.as_ref(), x.as_ref(), Kernel::Gaussian, &w, Par::Seq);
+/// assert!((out[(0, 0)] - phi[(0, 2)]).abs() < 1e-15);
+/// ```
+pub struct KernelColumns<'a> {
+    /// The samples shifted by the mean of all the centres, once: a column comes out
+    /// the same whichever other columns are asked for with it.
+    samples: Shifted,
+    centres: MatRef<'a, f64>,
+    kernel: Kernel,
+    widths: &'a Widths,
+    par: Par,
+}
+
+impl<'a> KernelColumns<'a> {
+    /// The columns of `centres` (one candidate per row) against samples `x`; `par` is
+    /// the parallelism of a request for many columns at once.
+    #[track_caller]
+    pub fn new(
+        x: MatRef<'a, f64>,
+        centres: MatRef<'a, f64>,
+        kernel: Kernel,
+        widths: &'a Widths,
+        par: Par,
+    ) -> Self {
+        check_shapes(x, centres, (x.nrows(), centres.nrows()));
+        widths.assert_len(centres.nrows());
+        let m = centres.nrows().max(1);
+        let shift: Vec<f64> = (0..centres.ncols())
+            .map(|k| (0..centres.nrows()).map(|j| centres[(j, k)]).sum::<f64>() / m as f64)
+            .collect();
+        Self {
+            samples: Shifted::new(x, shift),
+            centres,
+            kernel,
+            widths,
+            par,
+        }
+    }
+}
+
+impl crate::CandidateColumns for KernelColumns<'_> {
+    fn nrows(&self) -> usize {
+        self.samples.xs.nrows()
+    }
+
+    fn ncols(&self) -> usize {
+        self.centres.nrows()
+    }
+
+    #[track_caller]
+    fn columns_into(&self, cols: &[usize], out: MatMut<'_, f64>) {
+        assert_eq!(
+            (out.nrows(), out.ncols()),
+            (self.samples.xs.nrows(), cols.len()),
+            "output must be samples × requested columns"
+        );
+        let c = Mat::from_fn(cols.len(), self.centres.ncols(), |k, t| {
+            self.centres[(cols[k], t)]
+        });
+        let (cs, cn) = self.samples.centres(c.as_ref());
+        let widths = self.widths.select(cols);
+        // Many columns at once (a whole matrix) may use the threads; the engine's blocks
+        // and single columns are already one thread's work.
+        let par = if cols.len() > 256 { self.par } else { Par::Seq };
+        let kernel = self.kernel;
+        self.samples
+            .tiles(cs.as_ref(), &cn, out, par, |j, col, xn, cn| {
+                apply_kernel(kernel, widths.get(j), col, xn, cn)
+            });
+    }
+}
+
 /// The kernel matrix Φ (n × m) of samples `x` (n × d) against `centres` (m × d).
 ///
 /// Squared distances come from ‖x‖² + ‖c‖² − 2 x·c through one faer matrix product
@@ -192,75 +279,112 @@ fn product_tiles(
     par: Par,
     finish: impl Fn(usize, &mut [f64], &[f64], f64) + Sync,
 ) {
-    let (n, m, d) = (x.nrows(), centres.nrows(), x.ncols());
-    let mut out = out;
-    if n == 0 || m == 0 {
+    if x.nrows() == 0 || centres.nrows() == 0 {
         return;
     }
-
     // Shift both point sets by the centres' mean (see the doc comment: accuracy).
-    let mut shift = vec![0.0; d];
-    for (k, s) in shift.iter_mut().enumerate() {
-        *s = (0..m).map(|j| centres[(j, k)]).sum::<f64>() / m as f64;
-    }
-    let xs = Mat::from_fn(n, d, |i, k| x[(i, k)] - shift[k]);
-    let cs = Mat::from_fn(m, d, |j, k| centres[(j, k)] - shift[k]);
-    let xn: Vec<f64> = (0..n)
-        .map(|i| (0..d).map(|k| xs[(i, k)].powi(2)).sum())
+    let d = x.ncols();
+    let m = centres.nrows();
+    let shift: Vec<f64> = (0..d)
+        .map(|k| (0..m).map(|j| centres[(j, k)]).sum::<f64>() / m as f64)
         .collect();
-    let cn: Vec<f64> = (0..m)
-        .map(|j| (0..d).map(|k| cs[(j, k)].powi(2)).sum())
-        .collect();
+    let samples = Shifted::new(x, shift);
+    let (cs, cn) = samples.centres(centres);
+    samples.tiles(cs.as_ref(), &cn, out, par, finish);
+}
 
-    // Tiles of TILE_ROWS × TILE_COLS: the product of a tile is written and turned into
-    // kernel values while it is still in cache (one write pass over the output instead
-    // of three), and tiles of different column blocks run in parallel. Writing a fresh
-    // multi-GB output with one big product was also ~20× slower here than a prefaulted
-    // one (first-touch page faults inside the product's blocked writes).
-    const TILE_ROWS: usize = 2048;
-    const TILE_COLS: usize = 64;
-    let tile = |c0: usize, mut block: MatMut<'_, f64>| {
-        let cols = block.ncols();
-        for r0 in (0..n).step_by(TILE_ROWS) {
-            let rows = TILE_ROWS.min(n - r0);
-            let mut t = block.rb_mut().subrows_mut(r0, rows);
-            if d > 0 {
-                matmul(
-                    t.rb_mut(),
-                    Accum::Replace,
-                    xs.as_ref().subrows(r0, rows),
-                    cs.as_ref().subrows(c0, cols).transpose(),
-                    -2.0,
-                    Par::Seq,
-                );
-            } else {
-                t.fill(0.0);
-            }
-            let xr = &xn[r0..r0 + rows];
-            for jj in 0..cols {
-                let j = c0 + jj;
-                let cj = cn[j];
-                let mut col = t.rb_mut().col_mut(jj);
-                match col.rb_mut().try_as_col_major_mut() {
-                    Some(c) => finish(j, c.as_slice_mut(), xr, cj),
-                    None => {
-                        let mut buf: Vec<f64> = (0..rows).map(|ii| col[ii]).collect();
-                        finish(j, &mut buf, xr, cj);
-                        (0..rows).for_each(|ii| col[ii] = buf[ii]);
+/// Samples shifted by a fixed point (the centres' mean), with their squared norms: the
+/// half of the product formula that does not depend on the centres.
+struct Shifted {
+    xs: Mat<f64>,
+    xn: Vec<f64>,
+    shift: Vec<f64>,
+}
+
+impl Shifted {
+    fn new(x: MatRef<'_, f64>, shift: Vec<f64>) -> Self {
+        let (n, d) = (x.nrows(), x.ncols());
+        let xs = Mat::from_fn(n, d, |i, k| x[(i, k)] - shift[k]);
+        let xn: Vec<f64> = (0..n)
+            .map(|i| (0..d).map(|k| xs[(i, k)].powi(2)).sum())
+            .collect();
+        Self { xs, xn, shift }
+    }
+
+    /// Centres shifted the same way, and their squared norms.
+    fn centres(&self, centres: MatRef<'_, f64>) -> (Mat<f64>, Vec<f64>) {
+        let (m, d) = (centres.nrows(), centres.ncols());
+        let cs = Mat::from_fn(m, d, |j, k| centres[(j, k)] - self.shift[k]);
+        let cn: Vec<f64> = (0..m)
+            .map(|j| (0..d).map(|k| cs[(j, k)].powi(2)).sum())
+            .collect();
+        (cs, cn)
+    }
+
+    fn tiles(
+        &self,
+        cs: MatRef<'_, f64>,
+        cn: &[f64],
+        out: MatMut<'_, f64>,
+        par: Par,
+        finish: impl Fn(usize, &mut [f64], &[f64], f64) + Sync,
+    ) {
+        let (xs, xn) = (&self.xs, &self.xn);
+        let (n, m, d) = (xs.nrows(), cs.nrows(), xs.ncols());
+        let mut out = out;
+        if n == 0 || m == 0 {
+            return;
+        }
+        // Tiles of TILE_ROWS × TILE_COLS: the product of a tile is written and turned into
+        // kernel values while it is still in cache (one write pass over the output instead
+        // of three), and tiles of different column blocks run in parallel. Writing a fresh
+        // multi-GB output with one big product was also ~20× slower here than a prefaulted
+        // one (first-touch page faults inside the product's blocked writes).
+        const TILE_ROWS: usize = 2048;
+        const TILE_COLS: usize = 64;
+        let tile = |c0: usize, mut block: MatMut<'_, f64>| {
+            let cols = block.ncols();
+            for r0 in (0..n).step_by(TILE_ROWS) {
+                let rows = TILE_ROWS.min(n - r0);
+                let mut t = block.rb_mut().subrows_mut(r0, rows);
+                if d > 0 {
+                    matmul(
+                        t.rb_mut(),
+                        Accum::Replace,
+                        xs.as_ref().subrows(r0, rows),
+                        cs.subrows(c0, cols).transpose(),
+                        -2.0,
+                        Par::Seq,
+                    );
+                } else {
+                    t.fill(0.0);
+                }
+                let xr = &xn[r0..r0 + rows];
+                for jj in 0..cols {
+                    let j = c0 + jj;
+                    let cj = cn[j];
+                    let mut col = t.rb_mut().col_mut(jj);
+                    match col.rb_mut().try_as_col_major_mut() {
+                        Some(c) => finish(j, c.as_slice_mut(), xr, cj),
+                        None => {
+                            let mut buf: Vec<f64> = (0..rows).map(|ii| col[ii]).collect();
+                            finish(j, &mut buf, xr, cj);
+                            (0..rows).for_each(|ii| col[ii] = buf[ii]);
+                        }
                     }
                 }
             }
-        }
-    };
-    if par.degree() > 1 && m > TILE_COLS {
-        use rayon::prelude::*;
-        out.par_col_chunks_mut(TILE_COLS)
-            .enumerate()
-            .for_each(|(c, block)| tile(c * TILE_COLS, block));
-    } else {
-        for c0 in (0..m).step_by(TILE_COLS) {
-            let cols = TILE_COLS.min(m - c0);
-            tile(c0, out.rb_mut().subcols_mut(c0, cols));
+        };
+        if par.degree() > 1 && m > TILE_COLS {
+            use rayon::prelude::*;
+            out.par_col_chunks_mut(TILE_COLS)
+                .enumerate()
+                .for_each(|(c, block)| tile(c * TILE_COLS, block));
+        } else {
+            for c0 in (0..m).step_by(TILE_COLS) {
+                let cols = TILE_COLS.min(m - c0);
+                tile(c0, out.rb_mut().subcols_mut(c0, cols));
+            }
         }
     }
 }

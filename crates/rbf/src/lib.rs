@@ -75,7 +75,7 @@ pub use cv::{
     cross_validate, cross_validate_folds, cross_validate_with_linear, grid_search,
     grid_search_with_linear, holdout,
 };
-pub use design::{Widths, kernel_matrix, kernel_matrix_into};
+pub use design::{KernelColumns, Widths, kernel_matrix, kernel_matrix_into};
 pub use estimate::{
     DEFAULT_MAX_CONDITION, Interpolation, InterpolationOptions, LstsqOptions, Solution, SolveError,
     interpolate, lstsq,
@@ -91,7 +91,8 @@ pub use select::kmeans::{
     UnknownKMeansInit,
 };
 pub use select::ols::{
-    OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason, forward_select,
+    CandidateColumns, OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason,
+    StreamPrecision, UnknownStreamPrecision, forward_select, forward_select_columns,
     forward_select_owned,
 };
 pub use width::{WidthError, WidthRule};

@@ -31,10 +31,28 @@ pub fn check_matrix(
     available: Option<u64>,
     what: &'static str,
 ) -> Result<(), MemoryError> {
+    check_entries(n, m, 8, available, what)
+}
+
+/// [`check_matrix`] for a matrix of `entry_bytes` bytes an entry (4 for the f32 copy
+/// of OLS candidates).
+///
+/// ```
+/// let e = rbf::memory::check_entries(1_000_000, 1_000_000, 4, Some(16 << 30), "f32 candidate copy").unwrap_err();
+/// assert_eq!(e.max_columns, 2147);
+/// ```
+pub fn check_entries(
+    n: usize,
+    m: usize,
+    entry_bytes: usize,
+    available: Option<u64>,
+    what: &'static str,
+) -> Result<(), MemoryError> {
     let Some(available) = available else {
         return Ok(());
     };
-    let bytes = (n as f64) * (m as f64) * 8.0;
+    let per = entry_bytes as f64;
+    let bytes = (n as f64) * (m as f64) * per;
     let budget = available as f64 * SHARE;
     if bytes <= budget {
         return Ok(());
@@ -45,14 +63,15 @@ pub fn check_matrix(
         columns: m,
         bytes,
         available: available as f64,
-        max_columns: (budget / (8.0 * n.max(1) as f64)).floor() as usize,
+        max_columns: (budget / (per * n.max(1) as f64)).floor() as usize,
+        entry_bytes,
     })
 }
 
 /// A matrix that would not fit in memory.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "the {what} would take {:.1} GiB ({rows} rows × {columns} columns × 8 bytes) but {:.1} GiB of memory are available; at most {max_columns} columns fit in half of it",
+    "the {what} would take {:.1} GiB ({rows} rows × {columns} columns × {entry_bytes} bytes) but {:.1} GiB of memory are available; at most {max_columns} columns fit in half of it",
     bytes / GIB,
     available / GIB
 )]
@@ -69,6 +88,8 @@ pub struct MemoryError {
     pub available: f64,
     /// The most columns that fit the budget.
     pub max_columns: usize,
+    /// Bytes an entry.
+    pub entry_bytes: usize,
 }
 
 const GIB: f64 = (1u64 << 30) as f64;

@@ -10,11 +10,12 @@ use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
 use super::{Progress, Stage};
 use crate::check::first_non_finite;
-use crate::design::{Widths, kernel_matrix, kernel_matrix_into};
+use crate::design::{KernelColumns, Widths, kernel_matrix, kernel_matrix_into};
 use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
 use crate::select::kmeans::kmeans_centres;
 use crate::select::ols::{
-    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, forward_select_owned,
+    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, StreamPrecision,
+    forward_select_columns, forward_select_owned,
 };
 use crate::select::random::random_subset;
 
@@ -312,25 +313,43 @@ impl OlsStage {
             .as_ref()
             .map_or(design.forced.as_ref(), |m| m.as_ref());
         let y_sel = y_sel.as_ref().map_or(y, |m| m.as_ref());
-        crate::memory::check_matrix(
+        let (entry_bytes, what) = match params.ols_stream {
+            StreamPrecision::F32 => (4, "f32 copy of the OLS candidate kernel columns"),
+            StreamPrecision::F64 => (8, "OLS candidate kernel matrix"),
+        };
+        crate::memory::check_entries(
             xs_sel.nrows(),
             cands.nrows(),
+            entry_bytes,
             crate::memory::available_bytes(),
-            "OLS candidate kernel matrix",
+            what,
         )?;
         report(progress, Stage::Widths, 0, 1);
         let widths = params.width.widths(cands.as_ref(), params.par)?;
         report(progress, Stage::KernelMatrix, 0, 1);
-        let phi_all = kernel_matrix(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
         let forward = |pr: OlsProgress| report(progress, Stage::Selection, pr.picks, pr.max_terms);
         let mut opts = OlsOptions::new(max_terms)
             .tol(tol)
             .regularisation(*regularisation)
-            .par(params.par);
+            .par(params.par)
+            .stream(params.ols_stream);
         if progress.is_some() {
             opts = opts.progress(&forward);
         }
-        let path = forward_select_owned(phi_all, forced_sel, y_sel, &opts)?;
+        // f32 streaming generates the kernel columns block by block into their f32 copy
+        // and again for the few evaluated exactly: no f64 candidate matrix is held.
+        let path = match params.ols_stream {
+            StreamPrecision::F32 => {
+                let columns =
+                    KernelColumns::new(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
+                forward_select_columns(&columns, forced_sel, y_sel, &opts)?
+            }
+            StreamPrecision::F64 => {
+                let phi_all =
+                    kernel_matrix(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
+                forward_select_owned(phi_all, forced_sel, y_sel, &opts)?
+            }
+        };
         let sel = path.selected();
         let phi = sub.is_none().then(|| {
             kernel_matrix(

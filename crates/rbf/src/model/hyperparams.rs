@@ -167,6 +167,8 @@ pub struct RbfValidParams {
     pub(crate) selection_rows: Option<usize>,
     /// OLS: how many of the path's picks the model keeps.
     pub(crate) size_rule: crate::ols::SizeRule,
+    /// OLS: precision of the streaming passes (the picks do not depend on it).
+    pub(crate) ols_stream: crate::StreamPrecision,
 }
 
 impl RbfValidParams {
@@ -303,6 +305,16 @@ impl RbfValidParams {
     /// ```
     pub fn size_rule(&self) -> crate::ols::SizeRule {
         self.size_rule
+    }
+
+    /// OLS: the precision of the streaming passes.
+    ///
+    /// ```
+    /// # use rbf::ParamGuard;
+    /// assert_eq!(rbf::RbfParams::new().check().unwrap().ols_stream(), rbf::StreamPrecision::F32);
+    /// ```
+    pub fn ols_stream(&self) -> crate::StreamPrecision {
+        self.ols_stream
     }
 
     pub(crate) fn with_width(&self, width: WidthRule) -> Self {
@@ -484,6 +496,7 @@ impl RbfParams {
             degree: None,
             selection_rows: None,
             size_rule: crate::ols::SizeRule::All,
+            ols_stream: crate::StreamPrecision::default(),
         })
     }
 
@@ -515,6 +528,20 @@ impl RbfParams {
     /// ```
     pub fn size_rule(mut self, rule: crate::ols::SizeRule) -> Self {
         self.0.size_rule = rule;
+        self
+    }
+
+    /// OLS only: stream the candidates as an f32 copy with f64 accumulation
+    /// ([`crate::StreamPrecision::F32`], the default: half the bytes a pick, no f64
+    /// candidate matrix held, the same picks) or as f64 columns.
+    ///
+    /// ```
+    /// # use rbf::ParamGuard;
+    /// let p = rbf::RbfParams::new().ols_stream(rbf::StreamPrecision::F64).check().unwrap();
+    /// assert_eq!(p.ols_stream(), rbf::StreamPrecision::F64);
+    /// ```
+    pub fn ols_stream(mut self, precision: crate::StreamPrecision) -> Self {
+        self.0.ols_stream = precision;
         self
     }
 

@@ -5,11 +5,12 @@ use faer::prelude::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 use super::errors::OlsError;
-use super::options::{OlsOptions, OlsProgress};
+use super::options::{OlsOptions, OlsProgress, StreamPrecision};
 use super::path::{OlsPath, Pick, StopReason};
-use super::store::Store;
+use super::store::{CandidateColumns, Store};
+use super::stream::{Columns, Compact, fill_slice, products};
 use crate::check::first_non_finite;
-use crate::parallel::{axpy, dot, for_each_chunk_mut};
+use crate::parallel::{axpy, dot};
 
 /// A candidate is refreshed (deflated in place) once its running energy estimate falls
 /// to this fraction of its stored column's energy: at most 3 of 16 digits are lost to
@@ -19,6 +20,13 @@ const REFRESH: f64 = 1e-3;
 /// re-evaluated exactly before a pick is committed. The estimates' relative error is
 /// below ~10⁻¹⁰ (k·ε/REFRESH), so the true best is always among them.
 const TIE: f64 = 1e-8;
+/// With f32 streaming, a candidate is also refreshed once the error bound of its energy
+/// estimate reaches this fraction of the estimate: its ERR interval stays narrow, so few
+/// candidates need an exact evaluation before a pick.
+const F32_ENERGY_REL: f64 = 0.5;
+/// With f32 streaming, contenders are evaluated exactly in batches of this many, best
+/// upper bound first, until no remaining upper bound can beat the best exact ERR.
+const EXACT_BATCH: usize = 8;
 /// Refreshed columns are deflated in blocks (matrix products) of at most this many
 /// columns, or fewer so that a block stays below 2²¹ doubles (16 MB).
 const REFRESH_BATCH: usize = 256;
@@ -113,6 +121,59 @@ pub fn forward_select_owned(
     run(Store::Owned(candidates), m, forced, targets, options)
 }
 
+/// [`forward_select`] on candidate columns generated on demand ([`CandidateColumns`]),
+/// e.g. kernel columns of candidate centres: with [`StreamPrecision::F32`] (the default)
+/// no f64 candidate matrix is ever held, only the f32 copy the passes stream (4 bytes an
+/// entry) and the few columns evaluated exactly at each pick, generated again. With
+/// [`StreamPrecision::F64`] the columns are generated once into a matrix.
+///
+/// # Errors
+/// As [`forward_select`]; a non-finite generated entry is [`OlsError::NonFinite`].
+///
+/// # Panics
+/// As [`forward_select`].
+///
+/// ```
+/// use faer::{Mat, MatMut};
+/// // The columns of a stored matrix, generated: the same picks as `forward_select`.
+/// struct Cols(Mat<f64>);
+/// impl rbf::CandidateColumns for Cols {
+///     fn nrows(&self) -> usize { self.0.nrows() }
+///     fn ncols(&self) -> usize { self.0.ncols() }
+///     fn columns_into(&self, cols: &[usize], mut out: MatMut<'_, f64>) {
+///         for (k, &j) in cols.iter().enumerate() {
+///             out.rb_mut().col_mut(k).copy_from(self.0.col(j));
+///         }
+///     }
+/// }
+/// use faer::prelude::ReborrowMut;
+/// let x = Mat::from_fn(60, 8, |i, j| ((i * (j + 3)) as f64 * 0.29).cos());
+/// let y = Mat::from_fn(60, 1, |i, _| x[(i, 5)] - 2.0 * x[(i, 1)]);
+/// let none = Mat::<f64>::zeros(60, 0);
+/// let opts = rbf::OlsOptions::new(2);
+/// let a = rbf::forward_select_columns(&Cols(x.clone()), none.as_ref(), y.as_ref(), &opts).unwrap();
+/// let b = rbf::forward_select(x.as_ref(), none.as_ref(), y.as_ref(), &opts).unwrap();
+/// assert_eq!(a.selected(), b.selected());
+/// ```
+#[track_caller]
+pub fn forward_select_columns(
+    candidates: &dyn CandidateColumns,
+    forced: MatRef<'_, f64>,
+    targets: MatRef<'_, f64>,
+    options: &OlsOptions<'_>,
+) -> Result<OlsPath, OlsError> {
+    let (n, m) = (candidates.nrows(), candidates.ncols());
+    check_shapes(n, forced, targets);
+    match options.stream {
+        StreamPrecision::F32 => run(Store::Generated(candidates), m, forced, targets, options),
+        StreamPrecision::F64 => {
+            let all: Vec<usize> = (0..m).collect();
+            let mat = Store::Generated(candidates).gather(n, &all);
+            forward_select_owned(mat, forced, targets, options)
+        }
+    }
+}
+
 #[track_caller]
 fn check_shapes(n: usize, forced: MatRef<'_, f64>, targets: MatRef<'_, f64>) {
     assert_eq!(
@@ -150,6 +211,8 @@ struct Cand {
     since: usize,
     /// p_j = p̃_j + Σ_{i<since} coef[i] qᵢ (`coef.len() == since`).
     coef: Vec<f64>,
+    /// Σ |qᵢᵀp̃_j| over the same basis columns as `proj2` (for the f32 error bound).
+    abs_proj: f64,
     status: Status,
 }
 
@@ -212,6 +275,8 @@ struct Exact {
     coefs: Vec<f64>,
     norm2: f64,
     err: f64,
+    /// wᵀr_o per output.
+    cd: Vec<f64>,
 }
 
 struct Engine<'s, 'o> {
@@ -223,6 +288,16 @@ struct Engine<'s, 'o> {
     /// p̃_jᵀr_o, m × q.
     cdot: Vec<f64>,
     err: Vec<f64>,
+    /// With f32 streaming: the f32 copy of the stored columns, and every live
+    /// candidate's ERR interval [lo, hi] (the true ERR lies within it).
+    compact: Option<Compact>,
+    err_lo: Vec<f64>,
+    err_hi: Vec<f64>,
+    /// Whether refreshed columns are written to the f64 store (then a column read back
+    /// is the refreshed one), or only to the f32 copy (a column read back is the
+    /// original candidate): with f32 streaming a borrowed matrix is never copied and a
+    /// generated one never stored.
+    keeps_refreshed: bool,
     q: usize,
     target_energy: f64,
     options: &'o OlsOptions<'o>,
@@ -230,48 +305,192 @@ struct Engine<'s, 'o> {
     lev: Vec<f64>,
 }
 
+/// Candidates per block of the initial scan: a block of f64 columns stays in cache
+/// while its energies, f32 copy and first products are taken.
+const SCAN_BLOCK: usize = 32;
+
+/// What the initial scan learns of one block of candidates.
+struct ScanBlock {
+    energies: Vec<f64>,
+    /// Products with the forced basis columns and the residuals, `s` per candidate.
+    products: Vec<f64>,
+    non_finite: Option<(usize, usize)>,
+}
+
 impl Engine<'_, '_> {
+    /// Reads every candidate once, block by block and in parallel where allowed: its
+    /// energy ‖p‖², its f32 copy (f32 streaming), and its products with the `p` forced
+    /// basis columns and the residuals (in f64). Sets up the candidates' state.
+    fn scan(&mut self, p: usize) -> Result<(), OlsError> {
+        let (n, q, m) = (self.resid.nrows(), self.q, self.cdot.len() / self.q);
+        let s = p + q;
+        let mut vecs: Vec<&[f64]> = (0..p).map(|k| self.basis.q.col_as_slice(k)).collect();
+        vecs.extend((0..q).map(|o| self.resid.col_as_slice(o)));
+        let store = &self.store;
+        let read = |j0: usize, cols: usize, dst: Option<(&mut [f32], &mut [f64])>| {
+            let idx: Vec<usize> = (j0..j0 + cols).collect();
+            let block = match store.mat() {
+                Some(mat) => BlockCols::View(mat.subcols(j0, cols)),
+                None => BlockCols::Owned(store.gather(n, &idx)),
+            };
+            let b = block.as_ref();
+            let non_finite = if store.mat().is_some() {
+                None // checked before the run
+            } else {
+                first_non_finite(b).map(|(i, k)| (i, j0 + k))
+            };
+            let energies: Vec<f64> = (0..cols).map(|k| b.col(k).squared_norm_l2()).collect();
+            if let Some((data, scale)) = dst {
+                for k in 0..cols {
+                    let col = b.col(k);
+                    scale[k] = match col.try_as_col_major() {
+                        Some(c) => fill_slice(c.as_slice(), &mut data[k * n..(k + 1) * n]),
+                        None => {
+                            let v: Vec<f64> = (0..n).map(|i| col[i]).collect();
+                            fill_slice(&v, &mut data[k * n..(k + 1) * n])
+                        }
+                    };
+                }
+            }
+            let local: Vec<usize> = (0..cols).collect();
+            let mut products_out = vec![0.0; cols * s];
+            products(&Columns::F64(b), &local, &vecs, &mut products_out, Par::Seq);
+            ScanBlock {
+                energies,
+                products: products_out,
+                non_finite,
+            }
+        };
+        let parallel = self.options.par.degree() > 1 && m > SCAN_BLOCK;
+        let mut compact =
+            (self.options.stream == StreamPrecision::F32).then(|| Compact::zeroed(n, m));
+        let blocks: Vec<ScanBlock> = match compact.as_mut() {
+            Some(c) => {
+                let per = SCAN_BLOCK * n.max(1);
+                let work = |(b, (data, scale)): (usize, (&mut [f32], &mut [f64]))| {
+                    read(b * SCAN_BLOCK, scale.len(), Some((data, scale)))
+                };
+                let (data, scale) = (&mut c.data, &mut c.scale);
+                if parallel {
+                    use rayon::prelude::*;
+                    data.par_chunks_mut(per)
+                        .zip(scale.par_chunks_mut(SCAN_BLOCK))
+                        .enumerate()
+                        .map(work)
+                        .collect()
+                } else {
+                    data.chunks_mut(per)
+                        .zip(scale.chunks_mut(SCAN_BLOCK))
+                        .enumerate()
+                        .map(work)
+                        .collect()
+                }
+            }
+            None => {
+                let starts: Vec<usize> = (0..m).step_by(SCAN_BLOCK).collect();
+                let work = |&j0: &usize| read(j0, SCAN_BLOCK.min(m - j0), None);
+                if parallel {
+                    use rayon::prelude::*;
+                    starts.par_iter().map(work).collect()
+                } else {
+                    starts.iter().map(work).collect()
+                }
+            }
+        };
+        let mut cands = Vec::with_capacity(m);
+        for (b, blk) in blocks.iter().enumerate() {
+            if let Some((row, col)) = blk.non_finite {
+                return Err(OlsError::NonFinite {
+                    matrix: "candidates",
+                    row,
+                    col,
+                });
+            }
+            for (k, &e) in blk.energies.iter().enumerate() {
+                if !e.is_finite() {
+                    return Err(OlsError::Overflow {
+                        what: "candidates",
+                        value: e,
+                    });
+                }
+                let j = b * SCAN_BLOCK + k;
+                let o = &blk.products[k * s..(k + 1) * s];
+                self.cdot[j * q..(j + 1) * q].copy_from_slice(&o[p..]);
+                cands.push(Cand {
+                    orig2: e,
+                    base2: e,
+                    proj2: o[..p].iter().map(|v| v * v).sum(),
+                    since: 0,
+                    coef: Vec::new(),
+                    abs_proj: o[..p].iter().map(|v| v.abs()).sum(),
+                    status: if e > 0.0 {
+                        Status::Live
+                    } else {
+                        Status::Collinear
+                    },
+                });
+            }
+        }
+        self.cands = cands;
+        self.compact = compact;
+        Ok(())
+    }
+
+    /// The live candidates, once every one has a finite score (a non-finite one is an
+    /// error, never compared).
+    fn live_scored(&self) -> Result<Vec<usize>, OlsError> {
+        let live = self.live();
+        match live.iter().find(|&&j| !self.err[j].is_finite()) {
+            Some(&j) => Err(OlsError::Overflow {
+                what: "candidates",
+                value: self.err[j],
+            }),
+            None => Ok(live),
+        }
+    }
+
     fn live(&self) -> Vec<usize> {
         (0..self.cands.len())
             .filter(|&j| self.cands[j].status == Status::Live)
             .collect()
     }
 
-    /// One streaming pass over the candidate matrix: its products with basis columns
-    /// `from..to` (accumulated into the energy estimates) and with the residuals, as one
-    /// faer product [q_from … q_to, r]ᵀP (s × m). Written with the small factor on the
-    /// left: faer then streams P without repacking it, which measured 2.5 ms per pass
-    /// for a 2500 × 2500 P against 3–4 ms for PᵀV and 4.5–6 ms for hand-written
-    /// column-dot loops (AVX2) on one core.
+    /// One streaming pass over the live candidates: their products with basis columns
+    /// `from..to` (accumulated into the energy estimates) and with the residuals, read
+    /// from the f64 columns, or from their f32 copy where there is one (`stream.rs`).
     fn pass(&mut self, from: usize, to: usize) {
         let (q, nb) = (self.q, to - from);
-        let n = self.resid.nrows();
-        let mut vt = Mat::<f64>::zeros(nb + q, n);
-        vt.as_mut()
-            .subrows_mut(0, nb)
-            .copy_from(self.basis.q.as_ref().subcols(from, nb).transpose());
-        vt.as_mut()
-            .subrows_mut(nb, q)
-            .copy_from(self.resid.transpose());
-        let p = self.store.mat();
-        let mut out = Mat::<f64>::zeros(nb + q, p.ncols());
-        matmul(
-            out.as_mut(),
-            Accum::Replace,
-            vt.as_ref(),
-            p,
-            1.0,
-            self.options.par,
-        );
-        for (j, c) in self.cands.iter_mut().enumerate() {
-            if c.status != Status::Live {
-                continue;
-            }
-            c.proj2 += (0..nb).map(|k| out[(k, j)].powi(2)).sum::<f64>();
-            for o in 0..q {
-                self.cdot[j * q + o] = out[(nb + o, j)];
-            }
+        let s = nb + q;
+        let live = self.live();
+        let mut vecs: Vec<&[f64]> = (from..to).map(|k| self.basis.q.col_as_slice(k)).collect();
+        vecs.extend((0..q).map(|o| self.resid.col_as_slice(o)));
+        let mut out = vec![0.0; live.len() * s];
+        let columns = match (&self.compact, self.store.mat()) {
+            (Some(c), _) => Columns::F32(c),
+            (None, Some(p)) => Columns::F64(p),
+            (None, None) => unreachable!("generated columns always stream their f32 copy"),
+        };
+        products(&columns, &live, &vecs, &mut out, self.options.par);
+        for (t, &j) in live.iter().enumerate() {
+            let o = &out[t * s..(t + 1) * s];
+            let c = &mut self.cands[j];
+            c.proj2 += o[..nb].iter().map(|v| v * v).sum::<f64>();
+            c.abs_proj += o[..nb].iter().map(|v| v.abs()).sum::<f64>();
+            self.cdot[j * q..(j + 1) * q].copy_from_slice(&o[nb..]);
         }
+    }
+
+    /// A bound on the error of candidate `j`'s energy estimate base2 − proj2 when the
+    /// passes read the f32 copy: each projection ĉᵢ is within e of the exact one, so
+    /// |Σĉᵢ² − Σcᵢ²| ≤ 2e·Σ|ĉᵢ| + k·e², plus the f64 rounding of the sums.
+    fn energy_error(&self, j: usize, compact: &Compact) -> f64 {
+        let c = &self.cands[j];
+        let k = (self.basis.len - c.since) as f64;
+        if k == 0.0 {
+            return 0.0;
+        }
+        let e = compact.error_bound(j, c.base2.sqrt(), 1.0 + 1e-12);
+        2.0 * e * c.abs_proj + k * e * e + 4.0 * (k + 2.0) * f64::EPSILON * c.base2
     }
 
     /// Refreshes candidates whose estimate lost too many digits, then updates
@@ -280,28 +499,46 @@ impl Engine<'_, '_> {
         let live = self.live();
         let nb = self.basis.len;
         let (n, q, par) = (self.resid.nrows(), self.q, self.options.par);
+        let ctol = self.options.collinearity_tol;
         let mut need: Vec<usize> = live
             .iter()
             .copied()
             .filter(|&j| {
                 let c = &self.cands[j];
-                c.since < nb && c.base2 - c.proj2 <= REFRESH * c.base2
+                let energy = c.base2 - c.proj2;
+                if c.since >= nb {
+                    return false;
+                }
+                // With f32 streaming the ERR intervals carry the cancellation's error
+                // too; a candidate is refreshed when it contends for a pick
+                // (`write_back`), or when its interval has grown useless.
+                match &self.compact {
+                    None => energy <= REFRESH * c.base2,
+                    Some(cm) => self.energy_error(j, cm) > F32_ENERGY_REL * energy,
+                }
             })
             .collect();
         // Batches of similar `since` deflate against (almost) only the columns they need.
         need.sort_by_key(|&j| self.cands[j].since);
         let batch = REFRESH_BATCH.min((1usize << 21) / n.max(1)).max(1);
+        let keeps = self.keeps_refreshed;
         for chunk in need.chunks(batch) {
-            let from = self.cands[chunk[0]].since;
-            let p = self.store.mat();
-            let mut w = Mat::from_fn(n, chunk.len(), |i, k| p[(i, chunk[k])]);
+            // A stored column is already deflated up to its `since`; a generated one is
+            // the original and is deflated against the whole basis.
+            let from = if keeps { self.cands[chunk[0]].since } else { 0 };
+            let mut w = self.store.gather(n, chunk);
             let c = self.basis.project_out(w.as_mut(), from, par);
             let cd = self.resid.transpose() * &w;
             for (k, &j) in chunk.iter().enumerate() {
-                self.store.replace(j, w.col_as_slice(k));
+                if keeps {
+                    self.store.replace(j, w.col_as_slice(k));
+                }
                 let cand = &mut self.cands[j];
                 // Coefficients on columns before the candidate's own `since` are ~ε
                 // (those directions were already removed) and are added all the same.
+                if !keeps {
+                    cand.coef.clear();
+                }
                 cand.coef.resize(nb, 0.0);
                 for i in from..nb {
                     cand.coef[i] += c[(i - from, k)];
@@ -309,26 +546,53 @@ impl Engine<'_, '_> {
                 cand.since = nb;
                 cand.base2 = w.col_as_slice(k).iter().map(|v| v * v).sum();
                 cand.proj2 = 0.0;
+                cand.abs_proj = 0.0;
                 for o in 0..q {
                     self.cdot[j * q + o] = cd[(o, k)];
                 }
+                if let Some(cm) = self.compact.as_mut() {
+                    cm.set(j, w.col_as_slice(k));
+                }
             }
         }
-        let (lam, ctol, d) = (
-            self.options.regularisation,
-            self.options.collinearity_tol,
-            self.target_energy,
-        );
+        let (lam, d) = (self.options.regularisation, self.target_energy);
+        let resid_norms: Vec<f64> = (0..q).map(|o| self.resid.col(o).norm_l2()).collect();
         for &j in &live {
-            let c = &mut self.cands[j];
+            let de = match &self.compact {
+                Some(cm) => self.energy_error(j, cm),
+                None => 0.0,
+            };
+            let c = &self.cands[j];
             let energy = c.base2 - c.proj2;
-            if !(energy > ctol * c.orig2 && energy > 0.0) {
-                c.status = Status::Collinear;
+            let collinear = match self.compact {
+                // f32: only when certainly at or below the limit (else refreshed above)
+                Some(_) => !(energy + de > ctol * c.orig2 && energy + de > 0.0),
+                None => !(energy > ctol * c.orig2 && energy > 0.0),
+            };
+            if collinear {
+                self.cands[j].status = Status::Collinear;
                 self.err[j] = 0.0;
                 continue;
             }
-            let num: f64 = self.cdot[j * q..(j + 1) * q].iter().map(|v| v * v).sum();
+            let cd = &self.cdot[j * q..(j + 1) * q];
+            let num: f64 = cd.iter().map(|v| v * v).sum();
             self.err[j] = num / ((energy + lam) * d);
+            if let Some(cm) = &self.compact {
+                let pn = c.base2.sqrt();
+                let (mut lo, mut hi) = (0.0, 0.0);
+                for (v, rn) in cd.iter().zip(&resid_norms) {
+                    let f = cm.error_bound(j, pn, rn * (1.0 + 1e-12));
+                    lo += (v.abs() - f).max(0.0).powi(2);
+                    hi += (v.abs() + f).powi(2);
+                }
+                let (e_lo, e_hi) = (energy - de, energy + de);
+                self.err_lo[j] = lo / ((e_hi + lam) * d);
+                self.err_hi[j] = if e_lo + lam > 0.0 {
+                    hi / ((e_lo + lam) * d)
+                } else {
+                    f64::INFINITY
+                };
+            }
         }
     }
 
@@ -336,15 +600,17 @@ impl Engine<'_, '_> {
     fn exact(&self, js: &[usize]) -> Vec<Exact> {
         let nb = self.basis.len;
         let n = self.resid.nrows();
-        let p = self.store.mat();
-        let mut w = Mat::from_fn(n, js.len(), |i, k| p[(i, js[k])]);
+        let mut w = self.store.gather(n, js);
         let c = self.basis.project_out(w.as_mut(), 0, self.options.par);
         let cd = self.resid.transpose() * &w;
+        let keeps = self.keeps_refreshed;
         js.iter()
             .enumerate()
             .map(|(k, &j)| {
                 let mut coefs = vec![0.0; nb];
-                coefs[..self.cands[j].coef.len()].copy_from_slice(&self.cands[j].coef);
+                if keeps {
+                    coefs[..self.cands[j].coef.len()].copy_from_slice(&self.cands[j].coef);
+                }
                 for (i, v) in coefs.iter_mut().enumerate() {
                     *v += c[(i, k)];
                 }
@@ -358,6 +624,7 @@ impl Engine<'_, '_> {
                     coefs,
                     norm2,
                     err,
+                    cd: (0..self.q).map(|o| cd[(o, k)]).collect(),
                 }
             })
             .collect()
@@ -368,14 +635,11 @@ impl Engine<'_, '_> {
     /// candidate (the best one is always a contender), so it ends; a
     /// non-finite score is an error, never compared.
     fn choose(&mut self) -> Result<Option<Exact>, OlsError> {
+        if self.compact.is_some() {
+            return self.choose_bounded();
+        }
         loop {
-            let live = self.live();
-            if let Some(&j) = live.iter().find(|&&j| !self.err[j].is_finite()) {
-                return Err(OlsError::Overflow {
-                    what: "candidates",
-                    value: self.err[j],
-                });
-            }
+            let live = self.live_scored()?;
             let mut best: Option<usize> = None;
             for &j in &live {
                 if best.is_none_or(|b| self.err[j] > self.err[b]) {
@@ -392,17 +656,7 @@ impl Engine<'_, '_> {
                 .collect();
             let mut chosen: Option<Exact> = None;
             for e in self.exact(&contenders) {
-                if !(e.err.is_finite() && e.norm2.is_finite()) {
-                    return Err(OlsError::Overflow {
-                        what: "candidates",
-                        value: if e.err.is_finite() { e.norm2 } else { e.err },
-                    });
-                }
-                if !(e.norm2 > self.options.collinearity_tol * self.cands[e.j].orig2
-                    && e.norm2 > 0.0)
-                {
-                    self.cands[e.j].status = Status::Collinear;
-                    self.err[e.j] = 0.0;
+                if !self.eligible(&e)? {
                     continue;
                 }
                 // contenders are in ascending index order: ties keep the lowest index
@@ -414,6 +668,91 @@ impl Engine<'_, '_> {
                 return Ok(chosen);
             }
         }
+    }
+
+    /// Whether an exactly evaluated contender may be picked: a non-finite score is an
+    /// error, never compared; one with no energy left beyond the collinearity limit is
+    /// retired.
+    fn eligible(&mut self, e: &Exact) -> Result<bool, OlsError> {
+        if !(e.err.is_finite() && e.norm2.is_finite()) {
+            return Err(OlsError::Overflow {
+                what: "candidates",
+                value: if e.err.is_finite() { e.norm2 } else { e.err },
+            });
+        }
+        if !(e.norm2 > self.options.collinearity_tol * self.cands[e.j].orig2 && e.norm2 > 0.0) {
+            self.cands[e.j].status = Status::Collinear;
+            self.err[e.j] = 0.0;
+            return Ok(false);
+        }
+        Ok(true)
+    }
+
+    /// [`Self::choose`] with f32 streaming: every candidate whose ERR interval reaches
+    /// the best lower bound is a contender; contenders are evaluated exactly, highest
+    /// upper bound first, until no upper bound left can beat the best exact ERR. The
+    /// result is the candidate of largest exact ERR, as with f64 streaming.
+    fn choose_bounded(&mut self) -> Result<Option<Exact>, OlsError> {
+        // Every turn either returns or retires at least one live candidate.
+        loop {
+            let live = self.live_scored()?;
+            let Some(best_lo) = live.iter().map(|&j| self.err_lo[j]).reduce(f64::max) else {
+                return Ok(None);
+            };
+            let mut order: Vec<usize> = live
+                .into_iter()
+                .filter(|&j| self.err_hi[j] >= best_lo * (1.0 - TIE))
+                .collect();
+            // highest upper bound first; equal bounds in ascending index order
+            order.sort_by(|&a, &b| self.err_hi[b].total_cmp(&self.err_hi[a]).then(a.cmp(&b)));
+            let mut chosen: Option<Exact> = None;
+            for batch in order.chunks(EXACT_BATCH) {
+                if let Some(c) = &chosen
+                    && self.err_hi[batch[0]] < c.err * (1.0 - TIE)
+                {
+                    break;
+                }
+                for e in self.exact(batch) {
+                    if !self.eligible(&e)? {
+                        continue;
+                    }
+                    self.write_back(&e);
+                    // ties keep the lowest index, as with f64 streaming
+                    if chosen
+                        .as_ref()
+                        .is_none_or(|c| e.err > c.err || (e.err == c.err && e.j < c.j))
+                    {
+                        chosen = Some(e);
+                    }
+                }
+            }
+            if chosen.is_some() {
+                return Ok(chosen);
+            }
+        }
+    }
+
+    /// Stores a candidate's exact orthogonalisation as its column (a refresh): its
+    /// estimates restart exact, so its ERR interval is narrow again at the next picks.
+    fn write_back(&mut self, e: &Exact) {
+        let nb = self.basis.len;
+        if self.keeps_refreshed {
+            self.store.replace(e.j, &e.w);
+        }
+        if let Some(cm) = self.compact.as_mut() {
+            cm.set(e.j, &e.w);
+        }
+        let c = &mut self.cands[e.j];
+        c.coef.clone_from(&e.coefs);
+        c.since = nb;
+        c.base2 = e.norm2;
+        c.proj2 = 0.0;
+        c.abs_proj = 0.0;
+        let q = self.q;
+        self.cdot[e.j * q..(e.j + 1) * q].copy_from_slice(&e.cd);
+        self.err[e.j] = e.err;
+        self.err_lo[e.j] = e.err * (1.0 - TIE);
+        self.err_hi[e.j] = e.err * (1.0 + TIE);
     }
 
     /// Appends the orthogonal column `w` (with R-column `coefs`), deflates the residuals
@@ -518,6 +857,11 @@ fn run(
         return Err(OlsError::ZeroTarget);
     }
 
+    let keeps_refreshed = match &store {
+        Store::Owned(_) => true,
+        Store::Borrowed(_) => options.stream == StreamPrecision::F64,
+        Store::Generated(_) => false,
+    };
     let mut eng = Engine {
         store,
         basis: Basis {
@@ -531,6 +875,10 @@ fn run(
         cands: Vec::new(),
         cdot: vec![0.0; m * q],
         err: vec![0.0; m],
+        compact: None,
+        err_lo: vec![0.0; m],
+        err_hi: vec![0.0; m],
+        keeps_refreshed,
         q,
         target_energy,
         options,
@@ -558,38 +906,11 @@ fn run(
         forced_errs.push(eng.commit(w, coefs, norm2));
     }
 
-    // Candidates: energies, then one pass against the forced basis and the residuals.
-    let mut norms = vec![0.0; m];
-    {
-        let p = eng.store.mat();
-        for_each_chunk_mut(&mut norms, options.par, 64, |start, chunk| {
-            for (k, v) in chunk.iter_mut().enumerate() {
-                *v = p.col(start + k).squared_norm_l2();
-            }
-        });
-    }
-    if let Some(&e) = norms.iter().find(|e| !e.is_finite()) {
-        return Err(OlsError::Overflow {
-            what: "candidates",
-            value: e,
-        });
-    }
-    eng.cands = norms
-        .iter()
-        .map(|&e| Cand {
-            orig2: e,
-            base2: e,
-            proj2: 0.0,
-            since: 0,
-            coef: Vec::new(),
-            status: if e > 0.0 {
-                Status::Live
-            } else {
-                Status::Collinear
-            },
-        })
-        .collect();
-    eng.pass(0, p);
+    // Candidates: their energies, their f32 copy, and the first pass against the forced
+    // basis and the residuals, all from one read of the candidates block by block. The
+    // first pass is in f64: it makes the first-step ERRs (each candidate's own ERR after
+    // the forced columns) exact.
+    eng.scan(p)?;
     eng.settle();
     let first_step_errs = eng.err.clone();
     let mut press = vec![eng.press()];
@@ -649,4 +970,19 @@ fn run(
         press,
         n_samples: n,
     })
+}
+
+/// A block of candidate columns: a view of a stored matrix, or generated columns.
+enum BlockCols<'a> {
+    View(MatRef<'a, f64>),
+    Owned(Mat<f64>),
+}
+
+impl BlockCols<'_> {
+    fn as_ref(&self) -> MatRef<'_, f64> {
+        match self {
+            BlockCols::View(m) => *m,
+            BlockCols::Owned(m) => m.as_ref(),
+        }
+    }
 }

@@ -21,39 +21,52 @@
 //!
 //! # Numerics and cost
 //! The candidate matrix is never deflated wholesale (that is a read and a write of n·m
-//! doubles per pick, plus a read for the products). Instead each pick streams P once:
-//! one faer product [q r]ᵀP ((1 + q) × m) gives every candidate's projection on the
-//! newest orthonormal column q and on the residual(s) r, and per-candidate running sums
-//! give the remaining energy ‖p‖² − Σ(qᵢᵀp)² and wᵀd = pᵀr. Downdating an energy that
-//! has fallen to a small fraction of the column's own loses digits to cancellation — the
-//! failure of classical Gram–Schmidt on wide Gaussian kernels — so a candidate whose
-//! energy drops below 10⁻³ of its stored column's is *refreshed*: that column is deflated
-//! in place against the basis columns added since its last refresh, by classical
-//! Gram–Schmidt applied twice (CGS2: "twice is enough", as accurate as modified
-//! Gram–Schmidt with re-orthogonalisation, and it runs as block matrix products), and its
-//! energy restarts exactly. The running estimates thus always carry a relative error
-//! below ~k·ε·10³ ≈ 10⁻¹⁰. Before a pick is committed, the best candidate and every
-//! candidate within a relative 10⁻⁸ of it are orthogonalised explicitly against the whole
-//! basis (CGS2) and compared on exact ERRs, so the engine picks what modified
-//! Gram–Schmidt with re-orthogonalisation picks, up to genuine ties (the tests check it
-//! against a Householder reference, on ill-conditioned Gaussian kernels too).
+//! entries per pick, plus a read for the products). Instead each pick streams the
+//! candidates once: the products with the newest orthonormal column q and with the
+//! residual(s) r give every candidate's projection on q and its wᵀd = pᵀr, and running
+//! sums per candidate give the remaining energy ‖p‖² − Σ(qᵢᵀp)².
 //!
-//! Cost per pick: one pass over the n·m candidate doubles (memory-bound: 8nm bytes, the
-//! same as a matrix–vector product), O(nk) for the pick's explicit orthogonalisation,
-//! plus the refreshes, O(n·(basis columns since the last refresh)) per refreshed
-//! candidate in blocks — amortised, every candidate is deflated against each basis column
-//! at most about twice over a run. Measured on N = M = 2500 Gaussian columns of
-//! 50-sample windows, K = 100, on the shared 2-core machine: one bare [q r]ᵀP product
-//! 2.5–2.8 ms; the whole selection 0.46 s on one core (4.6 ms per pick) and 0.31 s on
-//! two (3.1 ms per pick), i.e. within 1.2–1.8× of streaming the matrix once per pick.
+//! **What is streamed.** By default ([`StreamPrecision::F32`]) an f32 copy of the
+//! candidates, each column scaled by a power of two, with the products summed in f64:
+//! half the bytes of the f64 columns. Its rounding is bounded per candidate and product
+//! (u‖p‖‖v‖ with u = 2⁻²⁴, plus the f64 sums), so each candidate carries an interval
+//! [ERR_lo, ERR_hi] that holds its exact ERR. Every candidate whose interval reaches the
+//! best lower bound is a contender; contenders are orthogonalised explicitly in f64
+//! against the whole basis (classical Gram–Schmidt applied twice, CGS2, as accurate as
+//! modified Gram–Schmidt with re-orthogonalisation), highest upper bound first, until no
+//! upper bound left can beat the best exact ERR. So the pick is the candidate of largest
+//! exact ERR — what [`StreamPrecision::F64`] picks — and the tests check it on the peer
+//! bench's kind of data, on Chen's series with ill-conditioned widths, on columns scaled
+//! beyond f32's range and on random kernels. An exact evaluation is stored back as the
+//! candidate's column (its estimates restart exact), so the intervals of the candidates
+//! that matter stay narrow: on the peer bench (N = M = 2500, K = 100) a pick evaluates
+//! one contender. With [`crate::forward_select_columns`] (what `RbfParams` fits use) the
+//! candidates are generated on demand: only their f32 copy is held (4 bytes an entry),
+//! and the contenders are generated again in f64.
+//!
+//! With [`StreamPrecision::F64`] the f64 columns are streamed and the estimates carry
+//! only the cancellation in ‖p‖² − Σ(qᵢᵀp)²: a candidate whose energy drops below 10⁻³
+//! of its stored column's is *refreshed* (deflated in place against the basis columns
+//! added since, by CGS2) and its energy restarts exactly, which keeps the estimates
+//! within ~10⁻¹⁰; the best estimate and every candidate within a relative 10⁻⁸ of it are
+//! evaluated exactly before a pick is committed (the tests check the picks against a
+//! Householder reference, on ill-conditioned Gaussian kernels too).
+//!
+//! **Cost per pick:** one pass over the live candidates (4 or 8 bytes an entry: a
+//! memory-bound product of two vectors with the candidate matrix, four columns at a
+//! time on AVX2 + FMA where the processor has them), plus O(n·k) for each exact
+//! evaluation. Measured figures, against a numpy classical Gram–Schmidt peer doing one
+//! matrix–vector product a pick, are in `docs/performance.md`.
 
 mod engine;
 mod errors;
 mod options;
 mod path;
 mod store;
+mod stream;
 
-pub use engine::{forward_select, forward_select_owned};
+pub use engine::{forward_select, forward_select_columns, forward_select_owned};
 pub use errors::OlsError;
-pub use options::{OlsOptions, OlsProgress};
+pub use options::{OlsOptions, OlsProgress, StreamPrecision, UnknownStreamPrecision};
 pub use path::{Criterion, OlsPath, Pick, SizeRule, StopReason};
+pub use store::CandidateColumns;

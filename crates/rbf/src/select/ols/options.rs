@@ -1,6 +1,7 @@
 //! Options of the OLS engine.
 
 use std::fmt;
+use std::str::FromStr;
 
 use faer::Par;
 
@@ -18,6 +19,68 @@ pub struct OlsProgress {
     pub max_terms: usize,
     /// ΣERR so far, forced columns included.
     pub cumulative_err: f64,
+}
+
+/// How the engine streams the candidate matrix once per pick.
+///
+/// ```
+/// assert_eq!(rbf::StreamPrecision::default(), rbf::StreamPrecision::F32);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum StreamPrecision {
+    /// The f64 columns themselves: 8 bytes a candidate entry and pick.
+    F64,
+    /// A copy of the columns in f32 (each scaled by a power of two), products
+    /// accumulated in f64: half the bytes a pick. Every candidate's ERR then carries a
+    /// rigorous error interval, and every candidate whose interval reaches the best one's
+    /// is re-evaluated exactly in f64 before a pick is committed, so the picks are those
+    /// of [`StreamPrecision::F64`]. Costs a further 4 bytes per candidate entry of memory.
+    #[default]
+    F32,
+}
+
+impl StreamPrecision {
+    /// Every precision, in the order of [`StreamPrecision::NAMES`].
+    pub const ALL: [StreamPrecision; 2] = [StreamPrecision::F32, StreamPrecision::F64];
+    /// The names [`FromStr`] accepts.
+    pub const NAMES: [&'static str; 2] = ["f32", "f64"];
+
+    /// Its name (`f32`, `f64`).
+    ///
+    /// ```
+    /// assert_eq!(rbf::StreamPrecision::F64.name(), "f64");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            StreamPrecision::F32 => "f32",
+            StreamPrecision::F64 => "f64",
+        }
+    }
+}
+
+/// A precision name that [`StreamPrecision::from_str`] does not know.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown streaming precision {name:?}; valid names: {}", StreamPrecision::NAMES.join(", "))]
+pub struct UnknownStreamPrecision {
+    /// The name given.
+    pub name: String,
+}
+
+impl FromStr for StreamPrecision {
+    type Err = UnknownStreamPrecision;
+
+    /// ```
+    /// assert_eq!("f32".parse::<rbf::StreamPrecision>().unwrap(), rbf::StreamPrecision::F32);
+    /// assert!("f16".parse::<rbf::StreamPrecision>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| UnknownStreamPrecision {
+                name: s.to_string(),
+            })
+    }
 }
 
 /// Options of [`crate::forward_select`].
@@ -44,6 +107,8 @@ pub struct OlsOptions<'a> {
     pub collinearity_tol: f64,
     /// Parallelism of the streaming passes.
     pub par: Par,
+    /// Precision of the streaming passes (the picks do not depend on it).
+    pub stream: StreamPrecision,
     /// Called after every pick.
     pub progress: Option<&'a (dyn Fn(OlsProgress) + Sync)>,
 }
@@ -56,6 +121,7 @@ impl Default for OlsOptions<'_> {
             regularisation: 0.0,
             collinearity_tol: 1e-12,
             par: faer::get_global_parallelism(),
+            stream: StreamPrecision::default(),
             progress: None,
         }
     }
@@ -114,6 +180,17 @@ impl<'a> OlsOptions<'a> {
         self
     }
 
+    /// Sets the precision of the streaming passes.
+    ///
+    /// ```
+    /// use rbf::{OlsOptions, StreamPrecision};
+    /// assert_eq!(OlsOptions::new(5).stream(StreamPrecision::F64).stream, StreamPrecision::F64);
+    /// ```
+    pub fn stream(mut self, precision: StreamPrecision) -> Self {
+        self.stream = precision;
+        self
+    }
+
     /// Sets the progress callback.
     ///
     /// ```
@@ -134,6 +211,7 @@ impl fmt::Debug for OlsOptions<'_> {
             .field("regularisation", &self.regularisation)
             .field("collinearity_tol", &self.collinearity_tol)
             .field("par", &self.par)
+            .field("stream", &self.stream)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
     }
