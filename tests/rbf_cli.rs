@@ -1030,3 +1030,45 @@ fn degree_and_kmeans_seeding_flags() {
     let out = fit(&["--centers", "random", "--degree", "3"]);
     fails_with(&out, &["valid degrees: -1 (none), 0, 1, 2"]);
 }
+
+/// `--ols-stream f32` (the default) and `f64` save the same centres: the streaming
+/// precision changes the bytes read a pick, never the picks. Unknown names and other
+/// centre selections are refused with the valid values.
+#[test]
+fn ols_stream_precision_keeps_the_picks() {
+    let dir = scratch("ols-stream");
+    let csv = smooth_csv(300, None);
+    let model_path = dir.join("m.json");
+    let centres = |extra: &[&str]| {
+        let mut args = vec!["--centers", "ols", "--max-centers", "25", "--width", "0.6"];
+        args.extend_from_slice(extra);
+        succeeds(&fit_on(&dir, &csv, &args));
+        let model: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&model_path).unwrap()).unwrap();
+        model["rbf"]["model"]["centres"].clone()
+    };
+    let default = centres(&[]);
+    assert!(default.is_array() || default.is_object(), "{default}");
+    assert_eq!(default, centres(&["--ols-stream", "f32"]));
+    assert_eq!(default, centres(&["--ols-stream", "f64"]));
+    let out = fit_on(&dir, &csv, &["--ols-stream", "f16"]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("f32") && stderr(&out).contains("f64"),
+        "{}",
+        stderr(&out)
+    );
+    let out = fit_on(
+        &dir,
+        &csv,
+        &[
+            "--centers",
+            "kmeans",
+            "--max-centers",
+            "5",
+            "--ols-stream",
+            "f64",
+        ],
+    );
+    fails_with(&out, &["--ols-stream applies to --centers ols only"]);
+}

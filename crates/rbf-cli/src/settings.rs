@@ -386,6 +386,9 @@ pub struct FitSettings {
     /// `--selection-rows` (OLS: select on a seeded subsample of this many training
     /// rows, weights on all; default [`AUTO_SELECTION_ROWS`] above that many rows).
     pub selection_rows: Option<usize>,
+    /// `--ols-stream` (OLS: precision of the streaming passes; the library's default,
+    /// f32, if not given).
+    pub ols_stream: Option<rbf::StreamPrecision>,
     /// `--kmeans-algorithm` (k-means: whose Lloyd iterations; the library's default if
     /// not given).
     pub kmeans_algorithm: Option<KMeansAlgorithm>,
@@ -418,6 +421,7 @@ impl Default for FitSettings {
             max_centers: None,
             candidates: None,
             selection_rows: None,
+            ols_stream: None,
             kmeans_algorithm: None,
             kmeans_init: None,
             n_init: None,
@@ -609,6 +613,7 @@ impl FitSettings {
             .seed(self.seed)
             .selection_rows(selection_rows)
             .size_rule(self.size_rule())
+            .ols_stream(self.ols_stream.unwrap_or_default())
             .check()?)
     }
 
@@ -643,6 +648,7 @@ impl FitSettings {
             "ols",
             ols || self.selection_rows.is_none(),
         )?;
+        only("--ols-stream", "ols", ols || self.ols_stream.is_none())?;
         only(
             "--kmeans-algorithm",
             "kmeans",

@@ -156,6 +156,11 @@ pub struct ModelArgs {
     /// 2000 unless given].
     #[arg(long, value_name = "R", value_parser = parse_count, allow_hyphen_values = true)]
     pub selection_rows: Option<usize>,
+    /// ols only: stream the candidates as an f32 copy with f64 sums, every pick decided
+    /// on exact f64 ERRs (f32: half the bytes a pick, the same picks), or as f64
+    /// columns [default: f32].
+    #[arg(long, value_name = "f32|f64")]
+    pub ols_stream: Option<rbf::StreamPrecision>,
     /// ols only: how many centres to keep — press (the least leave-one-out error along
     /// the selection path, from its orthogonal basis at no extra pass), gcv (the least
     /// generalised cross-validation score), err:RHO (as --tol RHO) or k:K (as
@@ -215,6 +220,7 @@ impl ModelArgs {
             max_centers: self.max_centers,
             candidates: self.candidates,
             selection_rows: self.selection_rows,
+            ols_stream: self.ols_stream,
             kmeans_algorithm: self.kmeans_algorithm,
             kmeans_init: self.kmeans_init,
             n_init: self.n_init,
