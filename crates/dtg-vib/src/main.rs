@@ -905,6 +905,8 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         false => None,
     };
     let fit_seconds = start.elapsed().as_secs_f64();
+    model.save(&a.out)?;
+    progress.clear();
     let n_train = model.channels()[0].scores().n_train;
     let stride = dtg_vib::fit::selection_stride(n_train);
     if stride > 1 {
@@ -913,8 +915,6 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
             n_train.div_ceil(stride)
         );
     }
-    model.save(&a.out)?;
-    progress.clear();
     if a.json {
         let mut report = FitReport::new(&model, fit_seconds);
         if let Some(per) = &per_record {
@@ -1255,6 +1255,7 @@ fn allan_command(
             "ARW (deg/√h)",
             (|t| &t.arw) as fn(&nav_sensors::noise::NoiseTerms) -> &nav_sensors::noise::NoiseTerm,
         ),
+    progress.clear();
         ("bias instability (deg/h)", |t| &t.bias_instability),
         ("RRW (deg/h/√h)", |t| &t.rrw),
     ] {
