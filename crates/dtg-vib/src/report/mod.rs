@@ -24,11 +24,12 @@ pub(crate) mod colours {
     pub const INPUT: usize = 2;
     /// A baseline model compared against: reddish purple.
     pub const BASELINE: usize = 3;
-    /// A reference curve (white floor, normal density, fitted noise line): black.
+    /// A reference or fitted curve (white floor, noise floor, fitted noise
+    /// line, a candidate effect scaled by its coefficient): black.
     pub const REFERENCE: usize = 6;
 
     /// The sentence that says so on every page.
-    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction; green = acceleration (input); purple = a baseline model; black = a reference (white floor, normal density, fitted noise line).";
+    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction / the residual after; green = an input (acceleration or extra column; where several share a panel: ax solid, ay dashed, az dotted, extra columns as dots); purple = a baseline model; black = a reference or fitted line (white floor, noise floor, a candidate effect scaled by its coefficient, and the Allan noise-term lines: dashed when read on the curve before compensation, dotted after).";
 }
 
 /// A spectrum without its 0 Hz bin, which a log frequency axis cannot show
