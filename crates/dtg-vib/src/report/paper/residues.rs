@@ -14,23 +14,29 @@ pub(super) fn figures(ctx: &Ctx<'_>) -> Vec<(Figure, &'static str)> {
     ]
 }
 
-/// Fig. 7: residues with and without compensation.
+/// Fig. 7: residues with and without compensation, the training rows shaded
+/// as in "Measured against predicted".
 fn fig7(ctx: &Ctx<'_>) -> Figure {
     let res = &ctx.applied.residues;
-    let mut fig7 = Figure::new("Fig. 7 — residues with and without compensation").share_x();
+    let train = super::fit::training_spans(ctx);
+    let mut fig7 = Figure::new(if train.is_some() {
+        "Fig. 7 — residues with and without compensation (shaded: training rows; the rest: validation)"
+    } else {
+        "Fig. 7 — residues with and without compensation (interleaved split: alternate rows train and validate)"
+    })
+    .share_x();
     for r in Residue::ALL {
         let k = r.index();
-        fig7 = fig7.panel(
-            Panel::new(r.name(), "time (s)", format!("{} (deg/h)", r.name()))
-                .series(
-                    Series::line("without compensation", res.t.clone(), res.before[k].clone())
-                        .colour(1),
-                )
-                .series(
-                    Series::line("with compensation", res.t.clone(), res.after[k].clone())
-                        .colour(colours::AFTER),
-                ),
-        );
+        let p = Panel::new(r.name(), "time (s)", format!("{} (deg/h)", r.name()))
+            .series(
+                Series::line("without compensation", res.t.clone(), res.before[k].clone())
+                    .colour(colours::BEFORE),
+            )
+            .series(
+                Series::line("with compensation", res.t.clone(), res.after[k].clone())
+                    .colour(colours::AFTER),
+            );
+        fig7 = fig7.panel(super::fit::shade_training(p, train.as_deref()));
     }
     fig7
 }
@@ -151,7 +157,7 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
         .table(residue_table)
         .figure(
             drawn.get("fig7_residues"),
-            "Fig. 7: residues with and without compensation.",
+            "Fig. 7: residues with and without compensation over the whole record; the shaded stretch is what the model was fitted on, the rest is validation.",
         )
         .table(power_table(ctx))
         .figure(
