@@ -85,8 +85,28 @@ pub(crate) fn fmt(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+/// A number as a person writes it: at most four decimals, no trailing
+/// zeros (0.19, 0.1, 2, 0.2): for settings and band edges, where "0.1000"
+/// would claim a precision nobody set.
+pub(crate) fn short(v: f64) -> String {
+    let s = format!("{v:.4}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
     #[test]
     fn fmt_keeps_four_significant_digits() {
+    #[test]
+    fn short_drops_trailing_zeros() {
+        assert_eq!(super::short(0.19), "0.19");
+        assert_eq!(super::short(0.1), "0.1");
+        assert_eq!(super::short(2.0), "2");
+        assert_eq!(super::short(20.0), "20");
+    }
+
         assert_eq!(super::fmt(1.23456), "1.235");
         assert_eq!(super::fmt(123.456), "123.5");
         assert_eq!(super::fmt(0.0123456), "0.01235");

@@ -223,9 +223,9 @@ fn err(diag: &Diagnosis, min_err: f64) -> Figure {
 }
 
 /// The section, once its figures are drawn.
-pub(super) fn section(drawn: &Drawn) -> Section {
+pub(super) fn section(drawn: &Drawn, min_err: f64) -> Section {
     Section::new("Figures")
-        .figure(drawn.get("diag_err"), "ERR of each candidate effect on the cross-fitted residual of the whole record; the dashed line is the worth threshold (--min-gain).")
+        .figure(drawn.get("diag_err"), format!("ERR of each candidate effect on the cross-fitted residual of the whole record; the dashed line is the worth threshold, {}.", super::reading::worth_text(min_err)))
         .figure(drawn.get("diag_top_candidates"), "The residual and its top candidate, scaled by its estimated coefficient.")
         .figure(drawn.get("diag_residual_psd"), "Residual power spectral density.")
         .figure(drawn.get("diag_whiteness"), "Whiteness beyond the model's memory: the residual's autocorrelation at lags past one window plus the filter's reach, where a model that left nothing slow has none, with its band.")

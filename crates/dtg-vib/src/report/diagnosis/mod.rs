@@ -6,8 +6,8 @@
 
 mod channel;
 mod figures;
-mod overview;
-mod reading;
+pub(in crate::report) mod overview;
+pub(in crate::report) mod reading;
 
 use super::{Drawn, fmt, save_all};
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
@@ -44,7 +44,7 @@ pub fn write_diagnosis_report(
     for c in &diag.channels {
         page = page.section(channel::section(c));
     }
-    page = page.section(figures::section(&drawn));
+    page = page.section(figures::section(&drawn, min_err));
     Ok(page.write(dir)?)
 }
 
