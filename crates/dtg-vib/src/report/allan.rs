@@ -127,8 +127,16 @@ pub(super) fn figures(analysis: &AllanAnalysis) -> Vec<(Figure, &'static str)> {
 /// One section per figure: its noise-term table, notes and figure.
 pub(super) fn sections(analysis: &AllanAnalysis, drawn: &Drawn) -> Vec<Section> {
     [
-        ("allan_channels", &analysis.channels, "Gyro channels"),
-        ("allan_residues", &analysis.residues, "Parity residues"),
+        (
+            "allan_channels",
+            &analysis.channels,
+            "Allan deviation: gyro channels",
+        ),
+        (
+            "allan_residues",
+            &analysis.residues,
+            "Allan deviation: parity residues",
+        ),
     ]
     .into_iter()
     .map(|(stem, rows, heading)| {

@@ -10,7 +10,9 @@ mod provenance;
 
 pub use allan::write_allan_report;
 pub use diagnosis::write_diagnosis_report;
-pub use paper::{Baseline, ReportExtras, ReportSummary, build_report, write_report};
+pub use paper::{
+    Baseline, DiagnosisExtra, NoiseFloor, ReportExtras, ReportSummary, build_report, write_report,
+};
 pub use provenance::Provenance;
 
 /// One meaning per colour, in every figure of every report (indices into
@@ -83,8 +85,6 @@ pub(crate) fn fmt(v: f64) -> String {
     }
 }
 
-#[cfg(test)]
-mod tests {
 /// A number as a person writes it: at most four decimals, no trailing
 /// zeros (0.19, 0.1, 2, 0.2): for settings and band edges, where "0.1000"
 /// would claim a precision nobody set.
@@ -97,8 +97,8 @@ pub(crate) fn short(v: f64) -> String {
     }
 }
 
-    #[test]
-    fn fmt_keeps_four_significant_digits() {
+#[cfg(test)]
+mod tests {
     #[test]
     fn short_drops_trailing_zeros() {
         assert_eq!(super::short(0.19), "0.19");
@@ -107,6 +107,8 @@ pub(crate) fn short(v: f64) -> String {
         assert_eq!(super::short(20.0), "20");
     }
 
+    #[test]
+    fn fmt_keeps_four_significant_digits() {
         assert_eq!(super::fmt(1.23456), "1.235");
         assert_eq!(super::fmt(123.456), "123.5");
         assert_eq!(super::fmt(0.0123456), "0.01235");
