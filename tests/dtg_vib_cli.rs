@@ -1008,3 +1008,32 @@ fn no_spinner_is_left_on_a_terminal() {
     assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
     assert!(lines[0].starts_with("channel") || lines[0].starts_with("note:"), "{lines:#?}");
 }
+
+#[test]
+fn explain_refuses_the_several_record_flags_saying_why() {
+    let r = record();
+    let out = dir().join("explain-refused.json").display().to_string();
+    let err = fails(&["explain", "--data", &r, "--data", &r, "--out", &out]);
+    assert!(
+        err.contains("explain takes one --data record") && err.contains("dtg-vib diagnose"),
+        "{err}"
+    );
+    let err = fails(&["explain", "--data", &r, "--cv", "records", "--out", &out]);
+    assert!(
+        err.contains("does not take --cv") && err.contains("fit --cv records"),
+        "{err}"
+    );
+    let err = fails(&[
+        "explain",
+        "--data",
+        &r,
+        "--split",
+        "by-record",
+        "--validate-on",
+        &r,
+        "--out",
+        &out,
+    ]);
+    assert!(err.contains("does not take --validate-on"), "{err}");
+    assert!(!Path::new(&out).exists());
+}
