@@ -1002,11 +1002,22 @@ fn no_spinner_is_left_on_a_terminal() {
     assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
     // fit prints its note on stderr after the spinner is gone too.
     let out = dir().join("terminal-fit.json").display().to_string();
-    let raw = on_terminal(&["fit", "--data", &record(), "--max-centers", "5", "--out", &out])
-        .expect("script ran once");
+    let raw = on_terminal(&[
+        "fit",
+        "--data",
+        &record(),
+        "--max-centers",
+        "5",
+        "--out",
+        &out,
+    ])
+    .expect("script ran once");
     let lines = screen_lines(&raw);
     assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
-    assert!(lines[0].starts_with("channel") || lines[0].starts_with("note:"), "{lines:#?}");
+    assert!(
+        lines[0].starts_with("channel") || lines[0].starts_with("note:"),
+        "{lines:#?}"
+    );
 }
 
 #[test]

@@ -46,7 +46,9 @@ fn term_lines(curve: &AllanCurve, terms: &NoiseTerms, when: &str) -> Vec<Series>
     add(&terms.bias_instability, "BI", "deg/h", &|b, _| {
         FLICKER_FLOOR * b
     });
-    add(&terms.rrw, "RRW", "deg/h/√h", &|k, t| k * (t / 10_800.0).sqrt());
+    add(&terms.rrw, "RRW", "deg/h/√h", &|k, t| {
+        k * (t / 10_800.0).sqrt()
+    });
     out
 }
 

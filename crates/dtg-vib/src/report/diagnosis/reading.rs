@@ -5,8 +5,8 @@
 //! diagnosis reads the same sentences.
 
 use super::fmt;
-use crate::report::short;
 use crate::diagnose::{Diagnosis, RankOptions};
+use crate::report::short;
 use plot::Section;
 
 /// `--min-gain` (the cut of the residual rms a suggestion must make) from

@@ -5,10 +5,10 @@
 //! diagnosis page for the figures and the findings in full.
 
 use super::fmt;
-use crate::report::short;
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
 use crate::report::diagnosis::overview::failing_cell;
 use crate::report::diagnosis::reading::candidate_columns;
+use crate::report::short;
 use plot::{Section, Table};
 use std::path::PathBuf;
 

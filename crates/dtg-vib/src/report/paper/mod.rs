@@ -195,7 +195,13 @@ pub fn build_report(
     extras: &ReportExtras<'_>,
     dir: &Path,
 ) -> Result<(ReportSummary, HtmlReport), DtgVibError> {
-    let ctx = Ctx::new(model, applied, record, baseline, extras.noise_floor.as_ref());
+    let ctx = Ctx::new(
+        model,
+        applied,
+        record,
+        baseline,
+        extras.noise_floor.as_ref(),
+    );
     let mut figs: Vec<(Figure, &'static str)> = paper_figures::figures(&ctx)?;
     figs.extend(residues::figures(&ctx));
     figs.push(before_after::figure(&ctx));

@@ -180,7 +180,14 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
     }
     let removed: Vec<String> = p
         .iter()
-        .map(|p| format!("{} {} → {}", p.residue.name(), fmt(low(p, 0)), fmt(low(p, 1))))
+        .map(|p| {
+            format!(
+                "{} {} → {}",
+                p.residue.name(),
+                fmt(low(p, 0)),
+                fmt(low(p, 1))
+            )
+        })
         .collect();
     let high: Vec<String> = p
         .iter()
