@@ -4,7 +4,7 @@
 //! section of the page; this one draws every figure in parallel and
 //! assembles the page.
 
-mod channel;
+pub(in crate::report) mod channel;
 mod figures;
 pub(in crate::report) mod overview;
 pub(in crate::report) mod reading;

@@ -39,8 +39,8 @@ pub(in crate::report) fn candidate_columns(min_err: f64, p_threshold: &str) -> S
         "Candidate columns. effect: the candidate's id (IEEE Std 813 names for DTG terms, col:NAME for an extra column of the record); ✓ marks a suggestion. \
          ERR (error-reduction ratio): the share of the channel's residual mean square that the candidate explains on its own, on the cross-fitted residual of the whole record \
          (each half predicted by a model fitted on the other half, with the model's bias, effects and network projected out of the candidate too); 0.25 means a quarter of the residual power. \
-         coefficient ± standard error: the candidate's coefficient on that residual in its unit, given the candidates picked before it if it was picked, alone otherwise, ± its Newey–West standard error (valid for a coloured, autocorrelated residual). \
-         95% interval: the coefficient's 95% confidence interval. unit: the coefficient's unit. \
+         coefficient ± standard error (unit): the candidate's coefficient on that residual with its unit, given the candidates picked before it if it was picked, alone otherwise, ± its Newey–West standard error (valid for a coloured, autocorrelated residual). \
+         95% interval: the coefficient's 95% confidence interval, in the same unit. \
          p (forward step): the two-sided p-value of its coefficient given the candidates picked before it. \
          collinear with: other candidates whose columns correlate with this one at |r| ≥ {} on this record, so that the record cannot tell them apart: the coefficient is then that of a combination, and the findings name the run that would separate them. \
          description: the effect's physical name.",

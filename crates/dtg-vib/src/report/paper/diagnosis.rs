@@ -6,6 +6,7 @@
 
 use super::fmt;
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::report::diagnosis::channel::candidate_cells;
 use crate::report::diagnosis::overview::failing_cell;
 use crate::report::diagnosis::reading::candidate_columns;
 use crate::report::short;
@@ -106,7 +107,7 @@ fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
         "suggested",
         "top candidate",
         "ERR",
-        "coefficient ± standard error",
+        "coefficient ± standard error (unit)",
         "95% interval",
         "p (forward step)",
         "collinear with",
@@ -135,26 +136,16 @@ fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
             ]);
         }
         for k in shown {
-            t = t.row([
-                c.channel.name().to_string(),
-                if c.suggested.is_empty() {
-                    "nothing".into()
-                } else {
-                    c.suggested.join(", ")
-                },
-                format!("{}{}", k.effect, if k.significant { " ✓" } else { "" }),
-                format!("{:.4}", k.err),
-                format!("{} ± {} {}", fmt(k.coef), fmt(k.coef_se), k.unit),
-                format!("[{}, {}]", fmt(k.coef_ci95[0]), fmt(k.coef_ci95[1])),
-                k.p_value.map_or("—".into(), |p| {
-                    crate::diagnose::p_text(p).replace("= ", "")
-                }),
-                if k.collinear_with.is_empty() {
-                    "—".into()
-                } else {
-                    k.collinear_with.join(", ")
-                },
-            ]);
+            let suggested = if c.suggested.is_empty() {
+                "nothing".into()
+            } else {
+                c.suggested.join(", ")
+            };
+            t = t.row(
+                [c.channel.name().to_string(), suggested]
+                    .into_iter()
+                    .chain(candidate_cells(k)),
+            );
             if let Some(s) = &k.separation {
                 advice.push(format!("{} {}: {}", c.channel, k.effect, s.advice));
             }
