@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Renders a report page with headless Chromium at phone (390 px) and desktop
-# (1440 px) width: a full-page screenshot of each, and one line per width of
-# what can be checked mechanically:
+# (1440 px) width: a screenshot of the top of the page at each width
+# (SHOT_HEIGHT px, 2400 by default: the summary, measured against predicted
+# and what follows them, not the whole page, which runs to tens of thousands
+# of pixels), and one line per width of what is checked mechanically over the
+# whole page:
 #
 #   width=390 inner=390 scroll=390 overflow=0 images=24 broken=0 first_table=channel
 #
@@ -9,7 +12,7 @@
 # broken counts images that did not load; first_table is the first header
 # cell of the first table on the page.
 #
-# Usage: scripts/screenshot-report.sh REPORT_DIR/index.html [OUT_DIR]
+# Usage: [SHOT_HEIGHT=PX] scripts/screenshot-report.sh REPORT_DIR/index.html [OUT_DIR]
 # Needs Chromium (Debian: apt-get install chromium). Exit status 2 when absent.
 set -euo pipefail
 
@@ -25,6 +28,7 @@ if [[ -z $browser ]] || ! command -v "$browser" >/dev/null 2>&1; then
     echo "chromium not found: install it (Debian: apt-get install chromium) or set CHROMIUM" >&2
     exit 2
 fi
+height=${SHOT_HEIGHT:-2400}
 mkdir -p "$out"
 dir=$(cd "$(dirname "$page")" && pwd)
 name=$(basename "$page")
@@ -59,14 +63,14 @@ flags=(--headless=new --no-sandbox --disable-gpu --hide-scrollbars --disable-dev
 for width in 390 1440; do
     cat > "$probe" <<HTML
 <!DOCTYPE html><html><head><meta charset="utf-8"><style>body{margin:0}iframe{border:0;display:block}</style></head>
-<body><iframe id="f" src="$name" style="width:${width}px;height:2400px"></iframe>
+<body><iframe id="f" src="$name" style="width:${width}px;height:${height}px"></iframe>
 <script src="$(basename "$probe_js")"></script></body></html>
 HTML
-    dom=$("$browser" "${flags[@]}" --window-size="$(( width < 500 ? 500 : width )),2400" --dump-dom "file://$probe" 2>/dev/null || true)
+    dom=$("$browser" "${flags[@]}" --window-size="$(( width < 500 ? 500 : width )),$height" --dump-dom "file://$probe" 2>/dev/null || true)
     result=$(grep -o 'data-check="[^"]*"' <<<"$dom" | sed -e 's/^data-check="//' -e 's/"$//' || true)
     echo "width=$width ${result:-check=missing}"
-    # The top 2400 px of the page at this width.
-    "$browser" "${flags[@]}" --window-size="$width,2400" \
+    # The top $height px of the page at this width.
+    "$browser" "${flags[@]}" --window-size="$width,$height" \
         --screenshot="$out/report-$width.png" "file://$probe" >/dev/null 2>&1 || true
 done
 echo "screenshots: $out/report-390.png $out/report-1440.png"

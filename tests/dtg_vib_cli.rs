@@ -926,3 +926,125 @@ fn compensate_says_which_rate_reference_it_removes() {
         "{err}"
     );
 }
+
+/// Runs `dtg-vib ARGS…` on a pseudo-terminal (util-linux `script`), as a
+/// user at a terminal would see it: stdout and stderr together, the spinner
+/// drawn. `None` where `script` is absent.
+fn on_terminal(args: &[&str]) -> Option<String> {
+    let quote = |s: &str| format!("'{}'", s.replace('\'', r"'\''"));
+    let mut cmd = quote(env!("CARGO_BIN_EXE_dtg-vib"));
+    for a in args {
+        cmd.push(' ');
+        cmd.push_str(&quote(a));
+    }
+    let out = Command::new("script")
+        .args(["-qec", &cmd, "/dev/null"])
+        .env("TERM", "xterm")
+        .output()
+        .ok()?;
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    Some(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// The lines a terminal shows for `raw`: a carriage return starts the line
+/// again (the pty ends lines with "\r\n") and escape sequences (cursor
+/// moves, line clears) draw nothing.
+fn screen_lines(raw: &str) -> Vec<String> {
+    raw.split('\n')
+        .map(|line| {
+            let line = line.strip_suffix('\r').unwrap_or(line);
+            let shown = line.rsplit('\r').next().unwrap_or("");
+            let mut out = String::new();
+            let mut chars = shown.chars().peekable();
+            while let Some(c) = chars.next() {
+                if c == '\x1b' {
+                    // CSI: ESC [ parameters… final byte in @..~
+                    if chars.peek() == Some(&'[') {
+                        chars.next();
+                        for d in chars.by_ref() {
+                            if ('@'..='~').contains(&d) {
+                                break;
+                            }
+                        }
+                    } else {
+                        chars.next();
+                    }
+                } else {
+                    out.push(c);
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// The spinner's glyphs (indicatif's default tick strings are braille).
+fn has_spinner(line: &str) -> bool {
+    line.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c))
+}
+
+#[test]
+fn no_spinner_is_left_on_a_terminal() {
+    let Some(raw) = on_terminal(&["allan", "--data", &record(), "--model", model()]) else {
+        eprintln!("notice: util-linux `script` not found, the terminal check is skipped");
+        return;
+    };
+    let lines = screen_lines(&raw);
+    assert!(
+        lines[0].starts_with("Overlapping Allan deviation"),
+        "first line: {:?}",
+        lines[0]
+    );
+    assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
+    // fit prints its note on stderr after the spinner is gone too.
+    let out = dir().join("terminal-fit.json").display().to_string();
+    let raw = on_terminal(&[
+        "fit",
+        "--data",
+        &record(),
+        "--max-centers",
+        "5",
+        "--out",
+        &out,
+    ])
+    .expect("script ran once");
+    let lines = screen_lines(&raw);
+    assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
+    assert!(
+        lines[0].starts_with("channel") || lines[0].starts_with("note:"),
+        "{lines:#?}"
+    );
+}
+
+#[test]
+fn explain_refuses_the_several_record_flags_saying_why() {
+    let r = record();
+    let out = dir().join("explain-refused.json").display().to_string();
+    let err = fails(&["explain", "--data", &r, "--data", &r, "--out", &out]);
+    assert!(
+        err.contains("explain takes one --data record") && err.contains("dtg-vib diagnose"),
+        "{err}"
+    );
+    let err = fails(&["explain", "--data", &r, "--cv", "records", "--out", &out]);
+    assert!(
+        err.contains("does not take --cv") && err.contains("fit --cv records"),
+        "{err}"
+    );
+    let err = fails(&[
+        "explain",
+        "--data",
+        &r,
+        "--split",
+        "by-record",
+        "--validate-on",
+        &r,
+        "--out",
+        &out,
+    ]);
+    assert!(err.contains("does not take --validate-on"), "{err}");
+    assert!(!Path::new(&out).exists());
+}

@@ -308,29 +308,48 @@ fn power_on_the_two_effect_record() {
 
 /// The command line's contract: `explain --json` and `diagnose --json` keys,
 /// and `fit --json`'s coefficients with their standard errors and intervals.
-#[test]
-fn explain_and_diagnose_json_keep_their_keys() {
-    use std::process::Command;
-    let dir = tempfile::tempdir().unwrap();
-    let mut s = Scenario::triaxial_hidden();
-    s.duration_s = 60.0;
-    let scenario = dir.path().join("short.toml");
-    s.save(&scenario).unwrap();
-    let bin = env!("CARGO_BIN_EXE_dtg-vib");
-    let run = |args: &[&str]| {
-        let out = Command::new(bin)
+/// `dtg-vib` run in a temporary directory that holds a 60-s tri-axial
+/// record with hidden effects (`sim/record.csv`, `sim/calibration.json`),
+/// simulated through the command line.
+struct ShortRecord {
+    dir: tempfile::TempDir,
+}
+
+impl ShortRecord {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        let mut s = Scenario::triaxial_hidden();
+        s.duration_s = 60.0;
+        s.save(dir.path().join("short.toml")).unwrap();
+        let r = ShortRecord { dir };
+        r.run(&["simulate", "--scenario", "short.toml", "--out", "sim"]);
+        r
+    }
+
+    fn output(&self, args: &[&str]) -> std::process::Output {
+        std::process::Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
             .args(args)
-            .current_dir(dir.path())
+            .current_dir(self.dir.path())
             .output()
-            .unwrap();
+            .unwrap()
+    }
+
+    /// Runs a command that must succeed; its stdout as JSON, if it is.
+    fn run(&self, args: &[&str]) -> Option<serde_json::Value> {
+        let out = self.output(args);
         assert!(
             out.status.success(),
             "{args:?}: {}",
             String::from_utf8_lossy(&out.stderr)
         );
         serde_json::from_slice::<serde_json::Value>(&out.stdout).ok()
-    };
-    run(&["simulate", "--scenario", "short.toml", "--out", "sim"]);
+    }
+}
+
+#[test]
+fn explain_and_diagnose_json_keep_their_keys() {
+    let r = ShortRecord::new();
+    let run = |args: &[&str]| r.run(args);
     let e = run(&[
         "explain",
         "--data",
@@ -401,19 +420,15 @@ fn explain_and_diagnose_json_keep_their_keys() {
         assert!(!k[key].is_null(), "{key} in {k}");
     }
     // Thresholds out of range are usage errors naming the range.
-    let out = Command::new(bin)
-        .args([
-            "diagnose",
-            "--model",
-            "final.json",
-            "--data",
-            "sim/record.csv",
-            "--alpha",
-            "1.5",
-        ])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
+    let out = r.output(&[
+        "diagnose",
+        "--model",
+        "final.json",
+        "--data",
+        "sim/record.csv",
+        "--alpha",
+        "1.5",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("between 0 and 1"));
 }
@@ -473,4 +488,133 @@ fn a_collinear_pair_is_reported_with_the_run_that_splits_it() {
         sep.combination
     );
     assert!(k.coef_ci95[0] < 1.0 && 1.0 < k.coef_ci95[1], "{k:?}");
+}
+
+/// One round of `explain` is `diagnose` and `fit --add-effect` by hand,
+/// with the same answer (issue 10 §1). `--max-rounds` counts fits, so the
+/// first round that adds anything is the second fit: `--max-rounds 2` is
+/// fit → diagnose → refit with the suggestions, and by hand that is
+/// `fit`, `diagnose --json`, then `fit --add-effect CHANNEL=ID` for every
+/// suggestion. Both paths run the same deterministic code on the same
+/// record and options (the model file round-trips its floats exactly), so
+/// the effects added must be the same and the final coefficients and
+/// validation rms equal; the tolerance is 1e-12 relative, i.e. equal to
+/// the last few bits, not a statistical allowance.
+#[test]
+fn one_explain_round_is_diagnose_and_fit_add_effect_by_hand() {
+    let r = ShortRecord::new();
+    let run = |args: &[&str]| r.run(args).unwrap_or(serde_json::Value::Null);
+    let data = [
+        "--data",
+        "sim/record.csv",
+        "--calib",
+        "sim/calibration.json",
+    ];
+    let with = |rest: &[&'static str]| -> Vec<String> {
+        data.iter().chain(rest).map(|s| s.to_string()).collect()
+    };
+    fn args(v: &[String]) -> Vec<&str> {
+        v.iter().map(String::as_str).collect()
+    }
+
+    let mut e_args = vec!["explain".to_string()];
+    e_args.extend(with(&[
+        "--out",
+        "explained.json",
+        "--json",
+        "--max-rounds",
+        "2",
+    ]));
+    let e = run(&args(&e_args));
+
+    // By hand: fit, diagnose, refit with every suggestion.
+    let mut f0 = vec!["fit".to_string()];
+    f0.extend(with(&["--out", "m0.json"]));
+    run(&args(&f0));
+    let d = run(&[
+        "diagnose",
+        "--model",
+        "m0.json",
+        "--data",
+        "sim/record.csv",
+        "--json",
+    ]);
+    let mut suggested: Vec<String> = d["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|c| {
+            let ch = c["channel"].as_str().unwrap().to_string();
+            c["suggested"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(move |id| format!("{ch}={}", id.as_str().unwrap()))
+        })
+        .collect();
+    assert!(!suggested.is_empty(), "the record hides effects: {d}");
+    let mut f1 = vec!["fit".to_string()];
+    f1.extend(with(&["--out", "m1.json", "--json"]));
+    for s in &suggested {
+        f1.push("--add-effect".into());
+        f1.push(s.clone());
+    }
+    let by_hand = run(&args(&f1));
+
+    // The same effects added, with the evidence diagnose gave.
+    let rounds = e["rounds"].as_array().unwrap();
+    assert_eq!(rounds.len(), 2, "{e}");
+    let mut added: Vec<String> = rounds[1]["added"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            format!(
+                "{}={}",
+                a["channel"].as_str().unwrap(),
+                a["effect"].as_str().unwrap()
+            )
+        })
+        .collect();
+    added.sort();
+    suggested.sort();
+    assert_eq!(added, suggested);
+
+    // The same final model: coefficients and validation rms.
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
+    let (ours, theirs) = (
+        e["final"]["channels"].as_array().unwrap(),
+        by_hand["channels"].as_array().unwrap(),
+    );
+    assert_eq!(ours.len(), 6);
+    for (a, b) in ours.iter().zip(theirs) {
+        assert_eq!(a["channel"], b["channel"]);
+        assert_eq!(a["effects"], b["effects"], "{}", a["channel"]);
+        let (va, vb) = (
+            a["val_rms"].as_f64().unwrap(),
+            b["val_rms"].as_f64().unwrap(),
+        );
+        assert!(close(va, vb), "{}: val rms {va} vs {vb}", a["channel"]);
+        let (ka, kb) = (
+            a["effect_coefficients"].as_object().unwrap(),
+            b["effect_coefficients"].as_object().unwrap(),
+        );
+        assert_eq!(ka.len(), kb.len());
+        for (id, x) in ka {
+            let y = &kb[id];
+            for key in ["value", "se"] {
+                let (p, q) = (x[key].as_f64().unwrap(), y[key].as_f64().unwrap());
+                assert!(close(p, q), "{} {id} {key}: {p} vs {q}", a["channel"]);
+            }
+            assert_eq!(x["unit"], y["unit"]);
+        }
+    }
+    // And the explain round's rms is the by-hand fit's.
+    for (c, b) in rounds[1]["channels"].as_array().unwrap().iter().zip(theirs) {
+        let (p, q) = (
+            c["val_rms"].as_f64().unwrap(),
+            b["val_rms"].as_f64().unwrap(),
+        );
+        assert!(close(p, q), "{}: {p} vs {q}", c["channel"]);
+    }
 }

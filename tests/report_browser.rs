@@ -48,8 +48,32 @@ fn demo_index_is_the_final_report_and_renders_at_phone_and_desktop_width() {
     for key in ["SHA-256", "date (UTC)", "command", "dtg-vib 0."] {
         assert!(html.contains(key), "provenance: {key}");
     }
-    // Measured against predicted comes before the residues.
-    assert!(html.find("Measured against predicted") < html.find("Residues (eq. 6)"));
+    // Top to bottom as issue 14 §2 orders it: summary, measured against
+    // predicted, where it fails, the diagnosis, Allan deviation, the
+    // residues' spectra, the residual against the noise floor.
+    let at = |heading: &str| {
+        html.find(&format!("<h2>{heading}</h2>"))
+            .unwrap_or_else(|| panic!("section {heading:?}"))
+    };
+    let order = [
+        "Summary",
+        "Measured against predicted",
+        "Where it fails",
+        "Diagnosis",
+        "Allan deviation before and after",
+        "Residues (eq. 6)",
+        "Residual distribution against the noise floor",
+    ];
+    for w in order.windows(2) {
+        assert!(at(w[0]) < at(w[1]), "{} before {}", w[0], w[1]);
+    }
+    assert!(html.contains("href=\"final/diagnosis/index.html\""));
+    // The floor is the simulator's, said where it comes from.
+    assert!(html.contains("noise floor σ (deg/h)") && html.contains("X_floor"));
+    // Every effect with its coefficient, interval and unit.
+    assert!(html.contains("col:temp = ") && html.contains("deg/h/°C (95% CI "));
+    // A phone gets figures laid out for its width.
+    assert!(html.contains("srcset=\"final/report/fit_all_channels.narrow.png\""));
     assert!(!html.contains("<ul class=\"warnings\">") || html.contains("<details"));
 
     // The spectra come with what they cannot show (the mean) and band powers.

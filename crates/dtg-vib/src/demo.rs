@@ -10,7 +10,8 @@ use crate::fit::{FitOptions, FitStage, fit};
 use crate::model::CompensationModel;
 use crate::parity::ResidueStats;
 use crate::report::{
-    Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report, write_report,
+    Baseline, DiagnosisExtra, NoiseFloor, Provenance, ReportExtras, build_report,
+    write_diagnosis_report, write_report,
 };
 use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, simulate};
@@ -29,6 +30,8 @@ pub enum DemoStep {
     Diagnose,
     /// Refitting with the suggested effects.
     Refit,
+    /// Diagnosing the refit (where it still fails, for the final report).
+    DiagnoseFinal,
     /// Writing the final report.
     ReportFinal,
 }
@@ -46,6 +49,7 @@ impl std::fmt::Display for DemoStep {
             DemoStep::ReportBaseline => "writing the baseline report",
             DemoStep::Diagnose => "diagnosing the baseline",
             DemoStep::Refit => "refitting with the suggested effects",
+            DemoStep::DiagnoseFinal => "diagnosing the refit",
             DemoStep::ReportFinal => "writing the final report",
         })
     }
@@ -154,6 +158,16 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
     fitted.save(out.join("final").join("model.json"))?;
     let applied_final = Applied::new(&fitted, &sim.record)?;
 
+    progress(DemoStep::DiagnoseFinal);
+    // Where the final model still fails, for the final page: a diagnosis of
+    // the refit, with a page of its own.
+    let final_diagnosis = diagnose(&fitted, &sim.record, &diag_options)?;
+    let final_diag_page = write_diagnosis_report(
+        &final_diagnosis,
+        diag_options.rank.min_err(),
+        &out.join("final").join("diagnosis"),
+    )?;
+
     progress(DemoStep::ReportFinal);
     let final_dir = out.join("final").join("report");
     let allan = crate::allan::AllanAnalysis::new(&sim.record, Some(&fitted), 0.683)?;
@@ -176,10 +190,24 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
                 "The diagnosis of the baseline (what the model was missing)".into(),
             ),
             (
+                final_diag_page.clone(),
+                "The diagnosis of this model (what is left after the refit)".into(),
+            ),
+            (
                 final_dir.join("index.html"),
                 "This report, next to its figures".into(),
             ),
         ],
+        diagnosis: Some(DiagnosisExtra {
+            diagnosis: &final_diagnosis,
+            of: "this model (the refit)".into(),
+            min_err: diag_options.rank.min_err(),
+            page: final_diag_page.clone(),
+        }),
+        noise_floor: floor_series(&sim.components).map(|per_sample| NoiseFloor {
+            per_sample,
+            source: "the simulator's per-sample noise floor (the X_floor … Z1_floor series of simulation/components.csv; truth.json's noise_floor_deg_h is their rms at the output rate): sensor noise, the fixture's true rocking, and what no function of the 50-Hz accelerations can predict of the high-rate effects".into(),
+        }),
     };
     let (final_report, page) = build_report(
         &fitted,
@@ -217,6 +245,15 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
         channel_rms: channel_rms(&baseline, &fitted),
         diagnosis,
     })
+}
+
+/// The simulator's per-sample noise floor of each channel (`X_floor` …).
+fn floor_series(c: &nav_sensors::sim::Components) -> Option<[&[f64]; 6]> {
+    let mut out: [&[f64]; 6] = [&[]; 6];
+    for ch in Channel::ALL {
+        out[ch.index()] = c.get(&format!("{}_floor", ch.name()))?;
+    }
+    Some(out)
 }
 
 fn channel_rms(before: &CompensationModel, after: &CompensationModel) -> Vec<(Channel, f64, f64)> {

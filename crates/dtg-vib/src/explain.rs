@@ -37,6 +37,10 @@ pub struct Added {
     pub err: f64,
     /// Candidates it cannot be told apart from on this record.
     pub alternatives: Vec<String>,
+    /// With alternatives: the combination this record identifies and the
+    /// run that would separate the group, as `diagnose --json` gives it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separation: Option<crate::diagnose::Separation>,
 }
 
 /// One channel's validation rms after a round's fit.
@@ -166,6 +170,7 @@ fn suggestions(d: &Diagnosis, options: &FitOptions) -> Vec<Added> {
                     p: k.p_value.unwrap_or(f64::NAN),
                     err: k.conditional_err.unwrap_or(k.err),
                     alternatives: k.alternatives.clone(),
+                    separation: k.separation.clone(),
                 });
             }
         }

@@ -905,6 +905,8 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
         false => None,
     };
     let fit_seconds = start.elapsed().as_secs_f64();
+    model.save(&a.out)?;
+    progress.clear();
     let n_train = model.channels()[0].scores().n_train;
     let stride = dtg_vib::fit::selection_stride(n_train);
     if stride > 1 {
@@ -913,8 +915,6 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
             n_train.div_ceil(stride)
         );
     }
-    model.save(&a.out)?;
-    progress.clear();
     if a.json {
         let mut report = FitReport::new(&model, fit_seconds);
         if let Some(per) = &per_record {
@@ -1085,17 +1085,37 @@ impl FitReport {
     }
 }
 
+/// The fit flags `explain` cannot honour, each refused with why and what to
+/// do instead: every round diagnoses the model on one record (`diagnose`
+/// ranks candidates on one record), so the several-record flags have no
+/// round to go into.
+fn explain_takes(f: &FitArgs) -> Result<()> {
+    if f.data.len() > 1 {
+        anyhow::bail!(
+            "explain takes one --data record (got {}): its diagnosis ranks candidates on one record; for several, fit them together (dtg-vib fit --data A --data B …), run dtg-vib diagnose on the model with each record, and refit with --add-effect",
+            f.data.len()
+        );
+    }
+    if f.cv.is_some() {
+        anyhow::bail!(
+            "explain does not take --cv: leaving one record out needs several records and explain takes one; run dtg-vib fit --cv records with the effects explain added (--add-effect CHANNEL=ID) instead"
+        );
+    }
+    if f.validate_on.is_some() {
+        anyhow::bail!(
+            "explain does not take --validate-on: a by-record split needs several records and explain takes one; use --split blocked or interleaved, or fit the records with dtg-vib fit --split by-record --validate-on FILE"
+        );
+    }
+    Ok(())
+}
+
 fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
     let f = &a.fit;
     outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
     if let Some(dir) = &a.report {
         outfile::guard_dir("--report", dir, &["index.html"], &fit_inputs(f))?;
     }
-    if f.data.len() > 1 || f.cv.is_some() || f.validate_on.is_some() {
-        anyhow::bail!(
-            "explain works on one --data record; to use several, fit them together (dtg-vib fit --data A --data B) and diagnose each"
-        );
-    }
+    explain_takes(f)?;
     let options = fit_options(f)?;
     let (_, record) = read_records(f)?.remove(0);
     let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
@@ -1175,6 +1195,9 @@ fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
                 }
             );
         }
+        for x in r.added.iter().filter_map(|x| x.separation.as_ref()) {
+            println!("    {}", x.advice);
+        }
         let rms: Vec<String> = r
             .channels
             .iter()
@@ -1232,6 +1255,7 @@ fn allan_command(
         }
         None => None,
     };
+    progress.clear();
     if json {
         println!("{}", serde_json::to_string(&a.to_json())?);
         if let Some(p) = &page {

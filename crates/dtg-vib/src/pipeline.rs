@@ -489,6 +489,15 @@ impl Prepared {
         apply(&self.filter, self.causal, signal(&self.calibrated, name)?)
     }
 
+    /// A series over the whole record (one sample per record sample)
+    /// through the filter the targets went through, zero-phase or causal:
+    /// e.g. a simulator's per-sample noise floor as the model's target sees
+    /// it. For a preparation of one record (a series over several would be
+    /// filtered across their boundaries).
+    pub fn filter_like_targets(&self, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
+        apply(&self.filter, self.causal, x)
+    }
+
     /// True when prepared in causal mode ([`Preprocess::causal`]).
     pub fn causal(&self) -> bool {
         self.causal

@@ -22,8 +22,14 @@ const DEFAULT_WIDTH: u32 = 1100;
 const XY_HEIGHT: u32 = 270;
 /// Height of a figure's only x–y panel: a lone plot gets more room.
 const SINGLE_XY_HEIGHT: u32 = 400;
-/// Height of the figure title strip.
+/// Height of the figure title strip (one line of title).
 const TITLE_HEIGHT: u32 = 48;
+/// Height each further line of a wrapped title adds.
+const TITLE_LINE: u32 = 32;
+/// Width of the phone rendering ([`FigureFiles::narrow_png`]): drawn with the
+/// same text sizes, so that scaled to a 390-px screen (≈ 370 px of figure)
+/// its text is about three quarters of its size instead of a third.
+pub const NARROW_WIDTH: u32 = 500;
 
 /// Anything a [`Figure`] can stack: an x–y [`Panel`] or a [`BarChart`].
 /// Build it with `.into()` or pass either type to [`Figure::panel`].
@@ -80,6 +86,10 @@ pub struct FigureFiles {
     pub png: PathBuf,
     /// The SVG file.
     pub svg: PathBuf,
+    /// The same figure laid out for a phone ([`NARROW_WIDTH`] px wide, the
+    /// same text sizes, legends and titles wrapped): `stem.narrow.png`.
+    /// `None` for a figure given its own [`Figure::size`].
+    pub narrow_png: Option<PathBuf>,
     /// Data left out of the drawing, in words.
     pub warnings: Vec<String>,
 }
@@ -191,13 +201,19 @@ impl Figure {
     /// assert_eq!(f.pixel_size(), (1100, 48 + 2 * 270));
     /// ```
     pub fn pixel_size(&self) -> (u32, u32) {
-        self.size.unwrap_or_else(|| {
-            let panels: u32 = match self.charts.as_slice() {
-                [Chart::Xy(_)] => SINGLE_XY_HEIGHT,
-                charts => charts.iter().map(natural_height).sum(),
-            };
-            (DEFAULT_WIDTH, (TITLE_HEIGHT + panels).clamp(200, 8000))
-        })
+        self.size
+            .unwrap_or_else(|| self.natural_size(DEFAULT_WIDTH))
+    }
+
+    /// The size at `width` when no size is set: the title (wrapped to the
+    /// width) over the panels' natural heights.
+    fn natural_size(&self, width: u32) -> (u32, u32) {
+        let panels: u32 = match self.charts.as_slice() {
+            [Chart::Xy(_)] => SINGLE_XY_HEIGHT,
+            charts => charts.iter().map(natural_height).sum(),
+        };
+        let title = title_height(wrap_title(&self.title, width).len());
+        (width, (title + panels).clamp(200, 8000))
     }
 
     /// Number of panels and bar charts.
@@ -237,42 +253,24 @@ impl Figure {
         style::ensure_font()?;
 
         let mut warnings = Vec::new();
-        let prepared = self.prepare(&mut warnings);
-        let size = prepared.size;
+        let prepared = self.prepare(self.pixel_size(), &mut warnings);
 
         let png = dir.join(format!("{stem}.png"));
-        // plotters writes the PNG itself: drawn under a temporary name and
-        // renamed, so an interrupted run leaves no half-drawn figure. It opens
-        // the file only when it presents and reports a failure as text;
-        // opening it first gives a typed I/O error with the path.
-        // (the image encoder picks the format from the extension, so it stays .png)
-        let png_part = dir.join(format!(".{stem}.part.png"));
-        fs::File::create(&png_part).map_err(|source| ReportError::Io {
-            path: png.clone(),
-            source,
-        })?;
-        {
-            let root = BitMapBackend::new(&png_part, size).into_drawing_area();
-            prepared
-                .draw(&root)
-                .and_then(|()| root.present())
-                .map_err(|e| {
-                    let _ = fs::remove_file(&png_part);
-                    ReportError::Draw {
-                        path: png.clone(),
-                        message: e.to_string(),
-                    }
-                })?;
-        }
-        fs::rename(&png_part, &png).map_err(|source| ReportError::Io {
-            path: png.clone(),
-            source,
-        })?;
+        write_png(&prepared, dir, stem, &png)?;
+        let narrow_png = match self.size {
+            Some(_) => None,
+            None => {
+                let narrow = self.prepare(self.natural_size(NARROW_WIDTH), &mut Vec::new());
+                let path = dir.join(format!("{stem}.narrow.png"));
+                write_png(&narrow, dir, &format!("{stem}.narrow"), &path)?;
+                Some(path)
+            }
+        };
 
         let svg = dir.join(format!("{stem}.svg"));
         let mut text = String::new();
         {
-            let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+            let root = SVGBackend::with_string(&mut text, prepared.size).into_drawing_area();
             prepared
                 .draw(&root)
                 .and_then(|()| root.present())
@@ -285,16 +283,22 @@ impl Figure {
             path: svg.clone(),
             source,
         })?;
-        Ok(FigureFiles { png, svg, warnings })
+        Ok(FigureFiles {
+            png,
+            svg,
+            narrow_png,
+            warnings,
+        })
     }
 
     /// Everything that does not depend on the backend: cleaned data, ranges,
     /// ticks, legend layout, decimated points.
-    fn prepare(&self, warnings: &mut Vec<String>) -> Prepared {
-        let (width, height) = self.pixel_size();
+    fn prepare(&self, (width, height): (u32, u32), warnings: &mut Vec<String>) -> Prepared {
+        let title = wrap_title(&self.title, width);
+        let title_h = title_height(title.len());
         let heights = split_heights(
             &self.charts.iter().map(natural_height).collect::<Vec<_>>(),
-            height.saturating_sub(TITLE_HEIGHT),
+            height.saturating_sub(title_h),
         );
 
         // Data pass.
@@ -365,11 +369,69 @@ impl Figure {
             .collect();
         Prepared {
             size: (width, height),
-            title: self.title.clone(),
+            title,
+            title_height: title_h,
             parts,
             y_label_area,
         }
     }
+}
+
+/// Writes a prepared figure as a PNG at `png`: drawn under a temporary name
+/// and renamed, so an interrupted run leaves no half-drawn figure.
+fn write_png(prepared: &Prepared, dir: &Path, stem: &str, png: &Path) -> Result<(), ReportError> {
+    // plotters writes the PNG itself and reports a failure as text; opening
+    // the file first gives a typed I/O error with the path. (The image
+    // encoder picks the format from the extension, so it stays .png.)
+    let png_part = dir.join(format!(".{stem}.part.png"));
+    fs::File::create(&png_part).map_err(|source| ReportError::Io {
+        path: png.to_path_buf(),
+        source,
+    })?;
+    {
+        let root = BitMapBackend::new(&png_part, prepared.size).into_drawing_area();
+        prepared
+            .draw(&root)
+            .and_then(|()| root.present())
+            .map_err(|e| {
+                let _ = fs::remove_file(&png_part);
+                ReportError::Draw {
+                    path: png.to_path_buf(),
+                    message: e.to_string(),
+                }
+            })?;
+    }
+    fs::rename(&png_part, png).map_err(|source| ReportError::Io {
+        path: png.to_path_buf(),
+        source,
+    })
+}
+
+/// The title's lines: words wrapped so that each line fits `width` less a
+/// margin either side (a phone-width figure would cut a long title off).
+fn wrap_title(title: &str, width: u32) -> Vec<String> {
+    let room = width.saturating_sub(40).max(100);
+    let mut lines: Vec<String> = Vec::new();
+    for word in title.split_whitespace() {
+        match lines.last_mut() {
+            Some(line)
+                if style::text_size(&format!("{line} {word}"), FIGURE_TITLE_SIZE).0 <= room =>
+            {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    if lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines
+}
+
+/// Height of a title of `lines` lines.
+fn title_height(lines: usize) -> u32 {
+    TITLE_HEIGHT + lines.saturating_sub(1) as u32 * TITLE_LINE
 }
 
 fn natural_height(c: &Chart) -> u32 {
@@ -419,7 +481,9 @@ enum Part {
 
 struct Prepared {
     size: (u32, u32),
-    title: String,
+    /// The title's lines, wrapped to the width.
+    title: Vec<String>,
+    title_height: u32,
     parts: Vec<(Part, u32)>,
     y_label_area: u32,
 }
@@ -431,12 +495,17 @@ impl Prepared {
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         root.fill(&WHITE)?;
-        let (title_area, mut rest) = root.split_vertically(TITLE_HEIGHT);
-        title_area.draw_text(
-            &self.title,
-            &style::text(FIGURE_TITLE_SIZE, INK).pos(Pos::new(HPos::Center, VPos::Center)),
-            (self.size.0 as i32 / 2, TITLE_HEIGHT as i32 / 2),
-        )?;
+        let (title_area, mut rest) = root.split_vertically(self.title_height);
+        for (k, line) in self.title.iter().enumerate() {
+            title_area.draw_text(
+                line,
+                &style::text(FIGURE_TITLE_SIZE, INK).pos(Pos::new(HPos::Center, VPos::Center)),
+                (
+                    self.size.0 as i32 / 2,
+                    (TITLE_HEIGHT / 2 + k as u32 * TITLE_LINE) as i32,
+                ),
+            )?;
+        }
         for (i, (part, h)) in self.parts.iter().enumerate() {
             let (area, below) = rest.split_vertically(*h);
             rest = below;

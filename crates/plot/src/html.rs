@@ -441,6 +441,8 @@ fn table(h: &mut String, t: &Table) {
         for c in row {
             if looks_numeric(c) {
                 let _ = write!(h, "<td class=\"num\">{}</td>", escape(c));
+            } else if c.chars().count() > LONG_CELL {
+                let _ = write!(h, "<td class=\"long\">{}</td>", escape(c));
             } else {
                 let _ = write!(h, "<td>{}</td>", escape(c));
             }
@@ -449,6 +451,12 @@ fn table(h: &mut String, t: &Table) {
     }
     h.push_str("</tbody>\n</table></div>\n");
 }
+
+/// A cell longer than this many characters is prose (an effect with its
+/// interval, a file path): it gets a column wide enough to read as a
+/// paragraph (`td.long`), and a narrow screen scrolls the table sideways
+/// inside its box rather than breaking it into a letter per line.
+const LONG_CELL: usize = 24;
 
 /// A number, possibly signed, with an exponent, a percent sign or a "×"
 /// suffix: right-aligned in tables.
@@ -461,9 +469,17 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
     let png = href(&files.png, dir);
     let svg = href(&files.svg, dir);
     let alt = escape(caption);
+    // On a phone the figure laid out for its width, whose text stays
+    // legible; elsewhere the full-width one.
+    let narrow = files.narrow_png.as_ref().map_or(String::new(), |n| {
+        format!(
+            "<source media=\"(max-width: {NARROW_SCREEN}px)\" srcset=\"{}\">",
+            href(n, dir)
+        )
+    });
     let _ = write!(
         h,
-        "<figure>\n<a href=\"{svg}\"><img src=\"{png}\" alt=\"{alt}\" loading=\"lazy\"></a>\n\
+        "<figure>\n<a href=\"{svg}\"><picture>{narrow}<img src=\"{png}\" alt=\"{alt}\" loading=\"lazy\"></picture></a>\n\
          <figcaption>{alt} <a class=\"svg\" href=\"{svg}\">SVG</a></figcaption>\n"
     );
     if !files.warnings.is_empty() {
@@ -482,6 +498,9 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
     }
     h.push_str("</figure>\n");
 }
+
+/// Widest screen (CSS px) that gets a figure's phone rendering.
+const NARROW_SCREEN: u32 = 600;
 
 /// A relative, percent-encoded, HTML-escaped link from the page in `dir` to `path`.
 fn href(path: &Path, dir: &Path) -> String {
@@ -538,15 +557,30 @@ a.svg { font-size: 0.85rem; margin-left: 0.4rem; }
 details.warnings { font-size: 0.85rem; color: #8a4b00; margin: 0.3rem 0 0; }
 ul.warnings { margin: 0.2rem 0 0; }
 img, svg, video { max-width: 100%; height: auto; }
-table { max-width: 100%; }
 th { overflow-wrap: break-word; }
 td { overflow-wrap: anywhere; }
+td.num { white-space: nowrap; }
+td.long { min-width: 16em; overflow-wrap: break-word; }
 p, li, figcaption, caption { overflow-wrap: anywhere; }
+caption { position: sticky; left: 0; max-width: calc(100vw - 2rem); }
 @media (max-width: 600px) {
   main { padding: 0.8rem 0.7rem 3rem; }
   h1 { font-size: 1.35rem; }
   nav ol { columns: 1; }
   th, td { padding: 0.2rem 0.35rem; font-size: 0.85rem; }
+  td.long { min-width: 13em; }
+  /* A table wider than the screen scrolls inside its box with its first
+     column (the row's name) kept in view. */
+  th:first-child, td:first-child { position: sticky; left: 0; z-index: 1;
+       background: #fff; box-shadow: 1px 0 0 #e3e3e3; }
+  th:first-child { background: #f0f0f0; min-width: 4.5em; }
+  td:first-child { min-width: 4.5em; }
+  /* Scroll shadows: a shade at the edge that has more table behind it. */
+  div.table {
+    background:
+      linear-gradient(to left, #fff 30%, rgba(255,255,255,0)) right / 40px 100% no-repeat local,
+      radial-gradient(farthest-side at 100% 50%, rgba(0,0,0,0.25), rgba(0,0,0,0)) right / 14px 100% no-repeat scroll;
+  }
 }
 @media print { body { background: #fff; } main { padding: 0; } a.svg { display: none; } }
 ";
@@ -559,6 +593,7 @@ mod tests {
         FigureFiles {
             png: dir.join(format!("{stem}.png")),
             svg: dir.join(format!("{stem}.svg")),
+            narrow_png: Some(dir.join(format!("{stem}.narrow.png"))),
             warnings: vec!["panel \"<s0>\": skipped 1 point".to_string()],
         }
     }
@@ -603,6 +638,13 @@ mod tests {
             "{html}"
         );
         assert!(html.contains("href=\"figs/s0%20before%26after.svg\""));
+        // A phone gets the figure laid out for its width.
+        assert!(
+            html.contains(
+                "<source media=\"(max-width: 600px)\" srcset=\"figs/s0%20before%26after.narrow.png\">"
+            ),
+            "{html}"
+        );
         let outside = href(Path::new("/elsewhere/a b.png"), dir);
         assert_eq!(outside, "file:///elsewhere/a%20b.png");
     }

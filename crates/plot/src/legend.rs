@@ -23,6 +23,7 @@ pub(crate) enum Swatch {
     /// A filled box (bars, bands), with opacity.
     Fill(RGBColor, f64),
     Dashed(RGBColor),
+    Dotted(RGBColor),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -151,6 +152,12 @@ fn draw_swatch<DB: DrawingBackend>(
             vec![(x0, y), (x1, y)],
             6,
             4,
+            c.stroke_width(2),
+        )),
+        Swatch::Dotted(c) => area.draw(&DashedPathElement::new(
+            vec![(x0, y), (x1, y)],
+            super::xy::DOT,
+            super::xy::DOT_GAP,
             c.stroke_width(2),
         )),
     }

@@ -16,6 +16,25 @@ pub enum SeriesStyle {
     Points,
     /// A vertical stem from zero with a dot on top, for correlations at lags.
     Stems,
+    /// A dashed line (a fitted or reference line over the data it describes).
+    Dashed,
+    /// A dotted line (a third line of one colour, after a solid and a dashed one).
+    Dotted,
+}
+
+impl SeriesStyle {
+    /// A connected line of any pattern (solid, dashed, dotted).
+    ///
+    /// ```
+    /// use plot::SeriesStyle;
+    /// assert!(SeriesStyle::Dashed.is_line() && !SeriesStyle::Stems.is_line());
+    /// ```
+    pub fn is_line(self) -> bool {
+        matches!(
+            self,
+            SeriesStyle::Line | SeriesStyle::Dashed | SeriesStyle::Dotted
+        )
+    }
 }
 
 /// A labelled series of points, owned, so figures can be built from any
@@ -59,6 +78,47 @@ impl Series {
     #[track_caller]
     pub fn line(label: impl Into<String>, x: impl Into<Vec<f64>>, y: impl Into<Vec<f64>>) -> Self {
         Self::with_style(label.into(), x.into(), y.into(), SeriesStyle::Line)
+    }
+
+    /// A dashed line through `(x[i], y[i])`: a fitted line drawn over the
+    /// curve it was fitted to, or a second series of the same meaning (and
+    /// colour) as a solid one.
+    ///
+    /// # Panics
+    /// If `x` and `y` differ in length.
+    ///
+    /// ```
+    /// use plot::{Series, SeriesStyle};
+    /// let s = Series::dashed("fitted", vec![1.0, 10.0], vec![3.0, 1.0]).colour(6);
+    /// assert_eq!(s.style(), SeriesStyle::Dashed);
+    /// ```
+    #[track_caller]
+    pub fn dashed(
+        label: impl Into<String>,
+        x: impl Into<Vec<f64>>,
+        y: impl Into<Vec<f64>>,
+    ) -> Self {
+        Self::with_style(label.into(), x.into(), y.into(), SeriesStyle::Dashed)
+    }
+
+    /// A dotted line through `(x[i], y[i])`: a third series of one colour
+    /// after [`Series::line`] and [`Series::dashed`].
+    ///
+    /// # Panics
+    /// If `x` and `y` differ in length.
+    ///
+    /// ```
+    /// use plot::{Series, SeriesStyle};
+    /// let s = Series::dotted("az", vec![0.0, 1.0], vec![0.1, 0.0]);
+    /// assert_eq!(s.style(), SeriesStyle::Dotted);
+    /// ```
+    #[track_caller]
+    pub fn dotted(
+        label: impl Into<String>,
+        x: impl Into<Vec<f64>>,
+        y: impl Into<Vec<f64>>,
+    ) -> Self {
+        Self::with_style(label.into(), x.into(), y.into(), SeriesStyle::Dotted)
     }
 
     /// Unconnected dots, e.g. the residual against a candidate regressor.

@@ -163,7 +163,7 @@ pub(crate) fn collect(panel: &Panel, warnings: &mut Vec<String>) -> Collected {
         y_label: panel.y_label.clone(),
         log_x: panel.log_x,
         log_y: panel.log_y,
-        lines_only: panel.series.iter().all(|s| s.style() == SeriesStyle::Line),
+        lines_only: panel.series.iter().all(|s| s.style().is_line()),
         series,
         band,
         ref_lines,
@@ -223,6 +223,8 @@ pub(crate) fn layout_y(c: &Collected, width: u32, height: u32, y_pad: f64) -> (H
                 SeriesStyle::Line => Swatch::Line(s.colour),
                 SeriesStyle::Points => Swatch::Dot(s.colour),
                 SeriesStyle::Stems => Swatch::Stem(s.colour),
+                SeriesStyle::Dashed => Swatch::Dashed(s.colour),
+                SeriesStyle::Dotted => Swatch::Dotted(s.colour),
             },
             label: s.label.clone(),
         })
@@ -289,7 +291,10 @@ pub(crate) fn finish(
                 .segments
                 .iter()
                 .map(|seg| match s.style {
-                    SeriesStyle::Line | SeriesStyle::Stems => decimate::m4(seg, columns),
+                    SeriesStyle::Line
+                    | SeriesStyle::Dashed
+                    | SeriesStyle::Dotted
+                    | SeriesStyle::Stems => decimate::m4(seg, columns),
                     SeriesStyle::Points => {
                         decimate::thin_points(seg, (x.lo, x.hi), (y.lo, y.hi), (columns, rows))
                     }
@@ -330,6 +335,12 @@ pub(crate) fn finish(
         x_spans: c.x_spans.iter().map(|r| (r.0, r.1)).collect(),
     }
 }
+
+/// Dash and gap lengths (px) of a dashed series, and of a dotted one.
+pub(crate) const DASH: u32 = 8;
+pub(crate) const DASH_GAP: u32 = 5;
+pub(crate) const DOT: u32 = 2;
+pub(crate) const DOT_GAP: u32 = 4;
 
 /// The shade of an x span: grey, so it reads as background under any series.
 const SPAN: RGBColor = RGBColor(110, 110, 110);
@@ -422,6 +433,21 @@ pub(crate) fn draw<DB: DrawingBackend>(
                             s.colour.stroke_width(s.stroke),
                         )))?;
                     }
+                }
+            }
+            SeriesStyle::Dashed | SeriesStyle::Dotted => {
+                let (dash, gap) = if s.style == SeriesStyle::Dashed {
+                    (DASH, DASH_GAP)
+                } else {
+                    (DOT, DOT_GAP)
+                };
+                for seg in &s.segments {
+                    chart.draw_series(std::iter::once(DashedPathElement::new(
+                        seg.clone(),
+                        dash,
+                        gap,
+                        s.colour.stroke_width(2),
+                    )))?;
                 }
             }
             SeriesStyle::Points => {

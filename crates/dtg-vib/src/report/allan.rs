@@ -10,13 +10,10 @@ use std::path::{Path, PathBuf};
 
 /// The fitted lines of `terms`, each over its region widened by an octave
 /// either side (within the curve's τ): a line far from where it was read
-/// would only stretch the axis and hide the curves.
-fn term_lines(
-    curve: &AllanCurve,
-    terms: &NoiseTerms,
-    when: &str,
-    colours: [usize; 3],
-) -> Vec<Series> {
+/// would only stretch the axis and hide the curves. Black, the colour of a
+/// reference line on every page: dashed when read on the curve before
+/// compensation, dotted after.
+fn term_lines(curve: &AllanCurve, terms: &NoiseTerms, when: &str) -> Vec<Series> {
     let (Some(first), Some(last)) = (curve.points.first(), curve.points.last()) else {
         return Vec::new();
     };
@@ -30,28 +27,26 @@ fn term_lines(
             .collect()
     };
     let mut out = Vec::new();
-    let mut add =
-        |term: &NoiseTerm, name: &str, unit: &str, colour: usize, f: &dyn Fn(f64, f64) -> f64| {
-            if let Some(e) = term.estimate() {
-                let tau = span(e.tau_from_s, e.tau_to_s);
-                let y: Vec<f64> = tau.iter().map(|&t| f(e.value, t)).collect();
-                out.push(
-                    Series::line(format!("{name} {} {unit} ({when})", fmt(e.value)), tau, y)
-                        .colour(colour),
-                );
-            }
-        };
-    add(&terms.arw, "ARW", "deg/√h", colours[0], &|n, t| {
-        60.0 * n / t.sqrt()
+    let line = if when == "before" {
+        Series::dashed
+    } else {
+        Series::dotted
+    };
+    let mut add = |term: &NoiseTerm, name: &str, unit: &str, f: &dyn Fn(f64, f64) -> f64| {
+        if let Some(e) = term.estimate() {
+            let tau = span(e.tau_from_s, e.tau_to_s);
+            let y: Vec<f64> = tau.iter().map(|&t| f(e.value, t)).collect();
+            out.push(
+                line(format!("{name} {} {unit} ({when})", fmt(e.value)), tau, y)
+                    .colour(colours::REFERENCE),
+            );
+        }
+    };
+    add(&terms.arw, "ARW", "deg/√h", &|n, t| 60.0 * n / t.sqrt());
+    add(&terms.bias_instability, "BI", "deg/h", &|b, _| {
+        FLICKER_FLOOR * b
     });
-    add(
-        &terms.bias_instability,
-        "BI",
-        "deg/h",
-        colours[1],
-        &|b, _| FLICKER_FLOOR * b,
-    );
-    add(&terms.rrw, "RRW", "deg/h/√h", colours[2], &|k, t| {
+    add(&terms.rrw, "RRW", "deg/h/√h", &|k, t| {
         k * (t / 10_800.0).sqrt()
     });
     out
@@ -65,11 +60,11 @@ fn panel(s: &SeriesAllan) -> Panel {
     if let Some(a) = &s.after {
         p = p.series(Series::line("after", a.tau_s(), a.adev()).colour(colours::AFTER));
     }
-    for line in term_lines(&s.before, &s.terms_before, "before", [colours::BEFORE; 3]) {
+    for line in term_lines(&s.before, &s.terms_before, "before") {
         p = p.series(line);
     }
     if let (Some(a), Some(t)) = (&s.after, &s.terms_after) {
-        for line in term_lines(a, t, "after", [colours::AFTER; 3]) {
+        for line in term_lines(a, t, "after") {
             p = p.series(line);
         }
     }
@@ -134,8 +129,16 @@ pub(super) fn figures(analysis: &AllanAnalysis) -> Vec<(Figure, &'static str)> {
 /// One section per figure: its noise-term table, notes and figure.
 pub(super) fn sections(analysis: &AllanAnalysis, drawn: &Drawn) -> Vec<Section> {
     [
-        ("allan_channels", &analysis.channels, "Gyro channels"),
-        ("allan_residues", &analysis.residues, "Parity residues"),
+        (
+            "allan_channels",
+            &analysis.channels,
+            "Allan deviation: gyro channels",
+        ),
+        (
+            "allan_residues",
+            &analysis.residues,
+            "Allan deviation: parity residues",
+        ),
     ]
     .into_iter()
     .map(|(stem, rows, heading)| {
@@ -147,7 +150,7 @@ pub(super) fn sections(analysis: &AllanAnalysis, drawn: &Drawn) -> Vec<Section> 
         sec.figure(
             files,
             format!(
-                "{stem}: Allan deviation against τ (log-log) with the fitted noise-term lines."
+                "{stem}: Allan deviation against τ (log-log), before (vermillion) and after (blue), with the fitted noise-term lines in black (dashed: read on the curve before; dotted: after)."
             ),
         )
     })

@@ -10,7 +10,9 @@ mod provenance;
 
 pub use allan::write_allan_report;
 pub use diagnosis::write_diagnosis_report;
-pub use paper::{Baseline, ReportExtras, ReportSummary, build_report, write_report};
+pub use paper::{
+    Baseline, DiagnosisExtra, NoiseFloor, ReportExtras, ReportSummary, build_report, write_report,
+};
 pub use provenance::Provenance;
 
 /// One meaning per colour, in every figure of every report (indices into
@@ -24,11 +26,12 @@ pub(crate) mod colours {
     pub const INPUT: usize = 2;
     /// A baseline model compared against: reddish purple.
     pub const BASELINE: usize = 3;
-    /// A reference curve (white floor, normal density, fitted noise line): black.
+    /// A reference or fitted curve (white floor, noise floor, fitted noise
+    /// line, a candidate effect scaled by its coefficient): black.
     pub const REFERENCE: usize = 6;
 
     /// The sentence that says so on every page.
-    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction; green = acceleration (input); purple = a baseline model; black = a reference (white floor, normal density, fitted noise line).";
+    pub const LEGEND: &str = "Colours mean the same in every figure: vermillion = without compensation / measured / bias only; blue = with compensation / the model's prediction / the residual after; green = an input (acceleration or extra column; where several share a panel: ax solid, ay dashed, az dotted, extra columns as dots); purple = a baseline model; black = a reference or fitted line (white floor, noise floor, a candidate effect scaled by its coefficient, and the Allan noise-term lines: dashed when read on the curve before compensation, dotted after).";
 }
 
 /// A spectrum without its 0 Hz bin, which a log frequency axis cannot show
@@ -82,8 +85,28 @@ pub(crate) fn fmt(v: f64) -> String {
     }
 }
 
+/// A number as a person writes it: at most four decimals, no trailing
+/// zeros (0.19, 0.1, 2, 0.2): for settings and band edges, where "0.1000"
+/// would claim a precision nobody set.
+pub(crate) fn short(v: f64) -> String {
+    let s = format!("{v:.4}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn short_drops_trailing_zeros() {
+        assert_eq!(super::short(0.19), "0.19");
+        assert_eq!(super::short(0.1), "0.1");
+        assert_eq!(super::short(2.0), "2");
+        assert_eq!(super::short(20.0), "20");
+    }
+
     #[test]
     fn fmt_keeps_four_significant_digits() {
         assert_eq!(super::fmt(1.23456), "1.235");

@@ -14,30 +14,38 @@ pub(super) fn section(c: &ChannelDiagnosis) -> Section {
     let mut t = Table::new([
         "effect",
         "ERR",
-        "coefficient ± standard error",
+        "coefficient ± standard error (unit)",
         "95% interval",
-        "unit",
         "p (forward step)",
         "collinear with",
         "description",
     ]);
     for k in c.candidates.iter().take(8) {
-        t = t.row([
-            format!("{}{}", k.effect, if k.significant { " ✓" } else { "" }),
-            format!("{:.4}", k.err),
-            format!("{} ± {}", fmt(k.coef), fmt(k.coef_se)),
-            format!("[{}, {}]", fmt(k.coef_ci95[0]), fmt(k.coef_ci95[1])),
-            k.unit.clone(),
-            k.p_value.map_or("—".into(), |p| {
-                crate::diagnose::p_text(p).replace("= ", "")
-            }),
-            if k.collinear_with.is_empty() {
-                "—".into()
-            } else {
-                k.collinear_with.join(", ")
-            },
-            k.description.clone(),
-        ]);
+        t = t.row(
+            candidate_cells(k)
+                .into_iter()
+                .chain([k.description.clone()]),
+        );
     }
     sec.table(t)
+}
+
+/// A candidate's cells as the diagnosis tables print them: the id (✓ for a
+/// suggestion), ERR, coefficient ± standard error with its unit, 95%
+/// interval, p-value and the candidates it is collinear with.
+pub(in crate::report) fn candidate_cells(k: &crate::diagnose::Candidate) -> [String; 6] {
+    [
+        format!("{}{}", k.effect, if k.significant { " ✓" } else { "" }),
+        format!("{:.4}", k.err),
+        format!("{} ± {} {}", fmt(k.coef), fmt(k.coef_se), k.unit),
+        format!("[{}, {}]", fmt(k.coef_ci95[0]), fmt(k.coef_ci95[1])),
+        k.p_value.map_or("—".into(), |p| {
+            crate::diagnose::p_text(p).replace("= ", "")
+        }),
+        if k.collinear_with.is_empty() {
+            "—".into()
+        } else {
+            k.collinear_with.join(", ")
+        },
+    ]
 }

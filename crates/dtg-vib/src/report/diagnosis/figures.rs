@@ -140,9 +140,19 @@ fn whiteness_panel(c: &ChannelDiagnosis) -> Panel {
     }
 }
 
-/// Colours of the inputs' cross-correlations: green (the input colour)
-/// first, then colours no other meaning uses.
-const INPUT_COLOURS: [usize; 4] = [colours::INPUT, 4, 5, 7];
+/// An input's cross-correlation line: green, the input colour, told apart
+/// by its pattern (ax solid, ay dashed, az dotted, extra columns as dots),
+/// so that no colour that means something else on the page (vermillion,
+/// blue) or a near twin of one (orange, sky blue) stands for an input.
+fn input_series(i: usize, label: &str, lags: Vec<f64>, values: Vec<f64>) -> Series {
+    let s = match i {
+        0 => Series::line(label, lags, values),
+        1 => Series::dashed(label, lags, values),
+        2 => Series::dotted(label, lags, values),
+        _ => Series::points(label, lags, values),
+    };
+    s.colour(colours::INPUT)
+}
 
 /// A channel's independence tests against every input (each acceleration
 /// axis and each extra column) in one panel, lags in seconds.
@@ -175,14 +185,12 @@ fn independence_panel(c: &ChannelDiagnosis) -> Panel {
     );
     for (i, k) in tests.iter().enumerate() {
         let lags: Vec<f64> = k.check.lags.iter().map(|&l| l as f64 * dt).collect();
-        p = p.series(
-            Series::line(
-                k.name.trim_start_matches("independence:"),
-                lags,
-                k.check.values.clone(),
-            )
-            .colour(INPUT_COLOURS[i % INPUT_COLOURS.len()]),
-        );
+        p = p.series(input_series(
+            i,
+            k.name.trim_start_matches("independence:"),
+            lags,
+            k.check.values.clone(),
+        ));
     }
     match tests.first() {
         Some(k) => p.band(band, band_label(k.check.confidence)),
@@ -215,11 +223,11 @@ fn err(diag: &Diagnosis, min_err: f64) -> Figure {
 }
 
 /// The section, once its figures are drawn.
-pub(super) fn section(drawn: &Drawn) -> Section {
+pub(super) fn section(drawn: &Drawn, min_err: f64) -> Section {
     Section::new("Figures")
-        .figure(drawn.get("diag_err"), "ERR of each candidate effect on the cross-fitted residual of the whole record; the dashed line is the worth threshold (--min-gain).")
+        .figure(drawn.get("diag_err"), format!("ERR of each candidate effect on the cross-fitted residual of the whole record; the dashed line is the worth threshold, {}.", super::reading::worth_text(min_err)))
         .figure(drawn.get("diag_top_candidates"), "The residual and its top candidate, scaled by its estimated coefficient.")
         .figure(drawn.get("diag_residual_psd"), "Residual power spectral density.")
         .figure(drawn.get("diag_whiteness"), "Whiteness beyond the model's memory: the residual's autocorrelation at lags past one window plus the filter's reach, where a model that left nothing slow has none, with its band.")
-        .figure(drawn.get("diag_independence"), "Independence: the residual's cross-correlation with each acceleration axis (and each extra column) against lag in seconds, with the (Bartlett) band.")
+        .figure(drawn.get("diag_independence"), "Independence: the residual's cross-correlation with each acceleration axis (and each extra column) against lag in seconds, with the (Bartlett) band; all inputs are green, ax solid, ay dashed, az dotted, extra columns as dots.")
 }

@@ -4,10 +4,10 @@
 //! section of the page; this one draws every figure in parallel and
 //! assembles the page.
 
-mod channel;
+pub(in crate::report) mod channel;
 mod figures;
-mod overview;
-mod reading;
+pub(in crate::report) mod overview;
+pub(in crate::report) mod reading;
 
 use super::{Drawn, fmt, save_all};
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
@@ -44,7 +44,7 @@ pub fn write_diagnosis_report(
     for c in &diag.channels {
         page = page.section(channel::section(c));
     }
-    page = page.section(figures::section(&drawn));
+    page = page.section(figures::section(&drawn, min_err));
     Ok(page.write(dir)?)
 }
 

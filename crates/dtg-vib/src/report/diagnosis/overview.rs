@@ -59,6 +59,15 @@ fn list(items: &[String]) -> String {
     }
 }
 
+/// The failing tests: "none", or how many and which.
+pub(in crate::report) fn failing_cell(failing: &[String]) -> String {
+    if failing.is_empty() {
+        "none".into()
+    } else {
+        format!("{}: {}", failing.len(), failing.join(", "))
+    }
+}
+
 /// The section, once its figure is drawn.
 pub(super) fn section(diag: &Diagnosis, drawn: &Drawn) -> Section {
     let mut overview = Table::new([
@@ -76,11 +85,12 @@ pub(super) fn section(diag: &Diagnosis, drawn: &Drawn) -> Section {
             fmt(c.rms),
             format!("{:.1}", c.compare.val_fit_percent),
             list(&c.suggested),
-            c.failing.len().to_string(),
+            failing_cell(&c.failing),
         ]);
     }
     Section::new("Overview")
         .table(overview)
+        .text("Every column is explained under \"How to read the tables\" below.")
         .figure(
             drawn.get("diag_compare"),
             "Measured against predicted on the validation rows.",

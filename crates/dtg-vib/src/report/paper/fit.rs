@@ -26,14 +26,28 @@ fn spans(t: &[f64], rows: &[usize]) -> Vec<(f64, f64)> {
     out
 }
 
+/// The training rows as time spans to shade, or `None` for an interleaved
+/// split: it has as many runs as rows, and shading them would paint the
+/// whole axis, so the figures say it in their title instead.
+pub(super) fn training_spans(ctx: &Ctx<'_>) -> Option<Vec<(f64, f64)>> {
+    let train = spans(&ctx.applied.residues.t, &ctx.applied.train);
+    (train.len() <= 20).then_some(train)
+}
+
+/// Shades `spans` (the training rows) on `p`.
+pub(super) fn shade_training(mut p: Panel, spans: Option<&[(f64, f64)]>) -> Panel {
+    for &(from, to) in spans.unwrap_or_default() {
+        p = p.x_span(from, to, "training rows");
+    }
+    p
+}
+
 /// The figure, with its file stem.
 pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
     let a = ctx.applied;
     let t = &a.residues.t;
-    let train = spans(t, &a.train);
-    // An interleaved split has as many runs as rows: shading them would
-    // paint the whole axis, so it is said in the title instead.
-    let shade = train.len() <= 20;
+    let train = training_spans(ctx);
+    let shade = train.is_some();
     let mut fig = Figure::new(if shade {
         "Measured against predicted, all rows (shaded: training rows; the rest: validation)"
     } else {
@@ -41,7 +55,7 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
     })
     .share_x();
     for ch in Channel::ALL {
-        let mut p = Panel::new(format!("Channel {ch}"), "time (s)", format!("{ch} (deg/h)"))
+        let p = Panel::new(format!("Channel {ch}"), "time (s)", format!("{ch} (deg/h)"))
             .series(
                 Series::line("measured", t.clone(), a.prepared.target(ch).to_vec())
                     .colour(colours::BEFORE),
@@ -50,12 +64,7 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
                 Series::line("predicted", t.clone(), a.predicted[ch.index()].clone())
                     .colour(colours::AFTER),
             );
-        if shade {
-            for &(from, to) in &train {
-                p = p.x_span(from, to, "training rows");
-            }
-        }
-        fig = fig.panel(p);
+        fig = fig.panel(shade_training(p, train.as_deref()));
     }
     (fig, "fit_all_channels")
 }

@@ -5,6 +5,7 @@
 
 mod before_after;
 mod channels;
+mod diagnosis;
 mod fit;
 mod histogram;
 mod paper_figures;
@@ -22,6 +23,9 @@ use nav_sensors::record::Record;
 use plot::{Figure, HtmlReport, Section};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+
+pub use diagnosis::DiagnosisExtra;
+pub use histogram::NoiseFloor;
 
 /// What a report wrote and the numbers it shows.
 #[derive(Debug, Clone, Serialize)]
@@ -54,6 +58,12 @@ pub struct ReportExtras<'a> {
     pub allan: Option<&'a AllanAnalysis>,
     /// Other pages to link from the summary: `(path, text)`.
     pub links: Vec<(PathBuf, String)>,
+    /// A diagnosis of the model: where it fails and what it misses, in
+    /// short on the page, linking its own page.
+    pub diagnosis: Option<DiagnosisExtra<'a>>,
+    /// The record's noise floor, when known (a simulation's truth): the
+    /// residual histogram is drawn against it.
+    pub noise_floor: Option<NoiseFloor<'a>>,
 }
 
 /// What every section of the page reads.
@@ -72,6 +82,8 @@ struct Ctx<'a> {
     show: Channel,
     /// The thrust-axis acceleration's column name.
     thrust: String,
+    /// The record's noise floor, when known.
+    noise_floor: Option<&'a NoiseFloor<'a>>,
 }
 
 impl<'a> Ctx<'a> {
@@ -80,6 +92,7 @@ impl<'a> Ctx<'a> {
         applied: &'a Applied,
         record: &'a Record,
         baseline: Option<Baseline<'a>>,
+        noise_floor: Option<&'a NoiseFloor<'a>>,
     ) -> Self {
         let scores: Vec<ChannelScores> = Channel::ALL.map(|c| applied.scores(c)).to_vec();
         let base_scores = baseline
@@ -103,6 +116,7 @@ impl<'a> Ctx<'a> {
             stats: applied.validation_residues(),
             show,
             thrust,
+            noise_floor,
         }
     }
 
@@ -181,7 +195,13 @@ pub fn build_report(
     extras: &ReportExtras<'_>,
     dir: &Path,
 ) -> Result<(ReportSummary, HtmlReport), DtgVibError> {
-    let ctx = Ctx::new(model, applied, record, baseline);
+    let ctx = Ctx::new(
+        model,
+        applied,
+        record,
+        baseline,
+        extras.noise_floor.as_ref(),
+    );
     let mut figs: Vec<(Figure, &'static str)> = paper_figures::figures(&ctx)?;
     figs.extend(residues::figures(&ctx));
     figs.push(before_after::figure(&ctx));
@@ -192,12 +212,19 @@ pub fn build_report(
     }
     let drawn: Drawn = save_all(figs, dir)?;
 
+    // Top to bottom as a test engineer reads it (issue 14 §2): the summary,
+    // measured against predicted, where it fails and the diagnosis, Allan
+    // deviation, the spectra, the residual against the noise floor; then the
+    // channel models, the before/after bars and the paper's figures.
     let mut page = HtmlReport::new("DTG vibration-error compensation")
         .summary(summary(&ctx, source))
         .section(summary::section(&ctx, extras))
-        .section(fit::section(&drawn))
-        .section(residues::section(&ctx, &drawn))
-        .section(histogram::section(&drawn));
+        .section(fit::section(&drawn));
+    if let Some(d) = &extras.diagnosis {
+        for sec in diagnosis::sections(d) {
+            page = page.section(sec);
+        }
+    }
     if let Some(a) = extras.allan {
         page = page.section(
             Section::new("Allan deviation before and after")
@@ -209,6 +236,8 @@ pub fn build_report(
         }
     }
     page = page
+        .section(residues::section(&ctx, &drawn))
+        .section(histogram::section(&ctx, &drawn))
         .section(channels::section(&ctx))
         .section(before_after::section(&ctx, &drawn))
         .section(paper_figures::section(&drawn));

@@ -2,7 +2,7 @@
 //! channel's validation rms before and after, its fit and effects — then
 //! the provenance and the other pages.
 
-use super::channels::effect_ids;
+use super::channels::effect_cells;
 use super::{Ctx, ReportExtras, fmt};
 use plot::{Section, Table};
 
@@ -15,10 +15,10 @@ pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
         "rms after (deg/h)",
         "reduction",
         "val fit %",
-        "effects",
+        "effects: coefficient ± standard error (95% interval)",
     ])
     .caption(
-        "Per channel, validation rows: rms before (a bias-only model) and after compensation.",
+        "Per channel, validation rows: rms before (a bias-only model) and after compensation; each fitted effect with its coefficient ± standard error, 95% interval and unit.",
     );
     for (c, s) in ctx.model.channels().iter().zip(&ctx.scores) {
         t = t.row([
@@ -27,7 +27,7 @@ pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
             fmt(s.val_rms),
             format!("{:.2}×", s.val_rms_bias_only / s.val_rms),
             format!("{:.1}", s.val_fit_percent),
-            effect_ids(c),
+            effect_cells(c),
         ]);
     }
     t
