@@ -1,5 +1,6 @@
 //! The summary statistics the workspace's crates share: [`mean`],
-//! [`variance`], [`std_dev`] and [`rms`] of a slice, in one place so that a
+//! [`variance`], [`std_dev`] and [`rms`] of a slice, and the [`correlation`]
+//! of two, in one place so that a
 //! figure printed by one crate and checked by another is computed the same
 //! way, to the bit.
 //!
@@ -62,4 +63,31 @@ pub fn std_dev(x: &[f64]) -> f64 {
 #[cfg(feature = "std")]
 pub fn rms(x: &[f64]) -> f64 {
     (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+/// Pearson correlation of two equally long slices, `Σ(a − ā)(b − b̄) /
+/// √(Σ(a − ā)² Σ(b − b̄)²)`; 0 where either is constant (a constant says
+/// nothing of shape, and 0/0 would poison a comparison with a threshold).
+///
+/// ```
+/// assert_eq!(stats::correlation(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]), 1.0);
+/// assert_eq!(stats::correlation(&[1.0, 2.0, 3.0], &[3.0, 2.0, 1.0]), -1.0);
+/// assert_eq!(stats::correlation(&[1.0, 2.0], &[5.0, 5.0]), 0.0);
+/// ```
+#[cfg(feature = "std")]
+#[track_caller]
+pub fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len(), "correlation of slices of unequal length");
+    let (ma, mb) = (mean(a), mean(b));
+    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        sab += (x - ma) * (y - mb);
+        saa += (x - ma) * (x - ma);
+        sbb += (y - mb) * (y - mb);
+    }
+    if saa == 0.0 || sbb == 0.0 {
+        0.0
+    } else {
+        sab / (saa * sbb).sqrt()
+    }
 }

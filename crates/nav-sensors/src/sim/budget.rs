@@ -46,22 +46,7 @@ use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 /// The candidate pairs checked for collinearity: the specific-force terms.
 const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;
 
-pub(crate) use stats::{mean, rms, std_dev};
-
-fn correlation(a: &[f64], b: &[f64]) -> f64 {
-    let (ma, mb) = (mean(a), mean(b));
-    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        sab += (x - ma) * (y - mb);
-        saa += (x - ma) * (x - ma);
-        sbb += (y - mb) * (y - mb);
-    }
-    if saa == 0.0 || sbb == 0.0 {
-        0.0
-    } else {
-        sab / (saa * sbb).sqrt()
-    }
-}
+pub(crate) use stats::{correlation, rms, std_dev};
 
 /// Computes the truth file and the component series.
 #[allow(clippy::too_many_arguments)]
