@@ -1021,14 +1021,16 @@ fn no_spinner_is_left_on_a_terminal() {
 }
 
 #[test]
-fn explain_refuses_the_several_record_flags_saying_why() {
+fn explain_refuses_cv_and_a_record_given_twice_saying_why() {
     let r = record();
     let out = dir().join("explain-refused.json").display().to_string();
     let err = fails(&["explain", "--data", &r, "--data", &r, "--out", &out]);
     assert!(
-        err.contains("explain takes one --data record") && err.contains("dtg-vib diagnose"),
+        err.contains("is the same file as") && err.contains("give each record once"),
         "{err}"
     );
+    let err = fails(&["diagnose", "--model", &out, "--data", &r, "--data", &r]);
+    assert!(err.contains("give each record once"), "{err}");
     let err = fails(&["explain", "--data", &r, "--cv", "records", "--out", &out]);
     assert!(
         err.contains("does not take --cv") && err.contains("fit --cv records"),
@@ -1045,6 +1047,7 @@ fn explain_refuses_the_several_record_flags_saying_why() {
         "--out",
         &out,
     ]);
-    assert!(err.contains("does not take --validate-on"), "{err}");
+    // A by-record split needs a second record to train on.
+    assert!(err.contains("cannot both train and validate"), "{err}");
     assert!(!Path::new(&out).exists());
 }

@@ -12,6 +12,11 @@ use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use serde::Serialize;
 
+/// Standard deviation of the unit's rate (deg/s, any axis) above which a
+/// record is taken as moving: the anisoinertia candidates' threshold, the
+/// rate a vibration table does not reach.
+pub const MOVING_RATE_DEG_S: f64 = crate::effects::ANISOINERTIA_MIN_RATE_DEG_S;
+
 /// Share of windows outside the training range above which `check` warns.
 pub const DEFAULT_OUTSIDE_THRESHOLD: f64 = 0.05;
 
@@ -54,6 +59,12 @@ pub struct TransferCheck {
     pub threshold: f64,
     /// Why the comparison should not be trusted as is, if it should not.
     pub warning: Option<String>,
+    /// Largest standard deviation of the unit's least-squares rate over the
+    /// record (any axis), deg/s: above [`MOVING_RATE_DEG_S`] the unit moves.
+    pub rate_std_deg_s: f64,
+    /// What the figures mean on this record, if they need saying: on a
+    /// moving unit each channel's rms holds the motion itself.
+    pub note: Option<String>,
     /// Windows compared.
     pub windows: usize,
 }
@@ -153,6 +164,16 @@ pub fn check_applied(
         )),
         Some(_) => None,
     };
+    // A gyro channel reads the unit's own rate as well as its errors; only a
+    // fixed rate reference is removed, so on a moving unit (a flight) the
+    // channel rms is mostly motion, while the parity residues cancel any rate.
+    let rec = prepared.calibrated();
+    let rate_std_deg_s = crate::effects::rate_variation_deg_s(rec, 0..rec.len());
+    let note = (rate_std_deg_s > MOVING_RATE_DEG_S).then(|| {
+        format!(
+            "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): each channel's rms before and after holds that motion, which no fixed rate reference removes; the parity residues cancel any rate, judge the model on this record by them"
+        )
+    });
     Ok(TransferCheck {
         channels,
         residues: applied.all_residues(),
@@ -160,6 +181,8 @@ pub fn check_applied(
         median_relative_distance,
         threshold,
         warning,
+        rate_std_deg_s,
+        note,
         windows: n,
     })
 }

@@ -6,10 +6,10 @@
 //! refit of round k is `fit` with the options of round k − 1 plus the
 //! additions, and its diagnosis is `diagnose` of that model.
 
-use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose};
+use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose_records};
 use crate::effects::ChannelEffect;
 use crate::error::DtgVibError;
-use crate::fit::{FitOptions, FitStage, fit};
+use crate::fit::{FitOptions, FitStage, fit_records};
 use crate::model::CompensationModel;
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
@@ -41,6 +41,10 @@ pub struct Added {
     /// run that would separate the group, as `diagnose --json` gives it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub separation: Option<crate::diagnose::Separation>,
+    /// Diagnosed on several records: the candidates it was collinear with
+    /// on some record alone, and the records that told them apart.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub record_separations: Vec<crate::diagnose::RecordSeparation>,
 }
 
 /// One channel's validation rms after a round's fit.
@@ -106,6 +110,28 @@ pub fn explain(
     max_rounds: usize,
     progress: &(dyn Fn(ExplainStage) + Sync),
 ) -> Result<Explanation, DtgVibError> {
+    explain_records(
+        &[(String::new(), record)],
+        calibration,
+        options,
+        diagnose_options,
+        max_rounds,
+        progress,
+    )
+}
+
+/// [`explain`] on several records fitted together ([`fit_records`]) and
+/// diagnosed together ([`diagnose_records`]): candidates are ranked on all
+/// of them, so a pair one record cannot tell apart is named when another
+/// record excites it differently. One record gives exactly [`explain`].
+pub fn explain_records(
+    records: &[(String, &Record)],
+    calibration: Option<&Calibration>,
+    options: &FitOptions,
+    diagnose_options: &DiagnoseOptions,
+    max_rounds: usize,
+    progress: &(dyn Fn(ExplainStage) + Sync),
+) -> Result<Explanation, DtgVibError> {
     let max_rounds = max_rounds.max(1);
     let mut options = options.clone();
     let mut rounds: Vec<Round> = Vec::new();
@@ -113,9 +139,9 @@ pub fn explain(
     loop {
         let n = rounds.len() + 1;
         progress(ExplainStage::Fitting(n));
-        let model = fit(record, calibration, &options, &|_: FitStage| {})?;
+        let (model, _) = fit_records(records, calibration, &options, &|_: FitStage| {})?;
         progress(ExplainStage::Diagnosing(n));
-        let diagnosis = diagnose(&model, record, diagnose_options)?;
+        let diagnosis = diagnose_records(&model, records, diagnose_options)?;
         let next = suggestions(&diagnosis, &options);
         let channels = model
             .channels()
@@ -171,6 +197,7 @@ fn suggestions(d: &Diagnosis, options: &FitOptions) -> Vec<Added> {
                     err: k.conditional_err.unwrap_or(k.err),
                     alternatives: k.alternatives.clone(),
                     separation: k.separation.clone(),
+                    record_separations: k.record_separations.clone(),
                 });
             }
         }

@@ -294,7 +294,8 @@ pub fn record_scores(
     prepared: &Prepared,
 ) -> Result<[Vec<RecordScore>; 6], DtgVibError> {
     let val = match &model.validated_on {
-        // A by-record fit validated on one whole record.
+        // A by-record fit validated on one whole record: asked of data without
+        // it, that is an error naming the record, not another split.
         Some(name) => by_record_rows(prepared, name)?.1,
         None => model.rows(prepared)?.1,
     };

@@ -4,7 +4,7 @@
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use dtg_vib::apply::{Applied, write_residues};
-use dtg_vib::diagnose::{DiagnoseOptions, diagnose};
+use dtg_vib::diagnose::{DiagnoseOptions, diagnose_records};
 use dtg_vib::effects::{ChannelEffect, Effect};
 use dtg_vib::explain::ExplainStage;
 use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit_records};
@@ -18,7 +18,7 @@ use nav_sensors::calibration::Calibration;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{Scenario, Site, simulate};
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 #[derive(Parser)]
@@ -126,9 +126,10 @@ enum Command {
         /// Model file from `fit`.
         #[arg(long)]
         model: PathBuf,
-        /// The test record it was fitted on.
-        #[arg(long)]
-        data: PathBuf,
+        /// The test record it was fitted on; repeat for the records of a
+        /// model fitted on several (candidates are ranked on all of them).
+        #[arg(long, required = true)]
+        data: Vec<PathBuf>,
         /// Print one JSON object on stdout.
         #[arg(long)]
         json: bool,
@@ -653,6 +654,9 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(w) = &c.warning {
                 eprintln!("warning: {w}");
             }
+            if let Some(n) = &c.note {
+                eprintln!("note: {n}");
+            }
         }
         Command::Diagnose {
             model,
@@ -662,18 +666,23 @@ fn run(cli: Cli) -> Result<()> {
             thresholds,
         } => {
             if let Some(dir) = &report {
-                outfile::guard_dir(
-                    "--report",
-                    dir,
-                    &["index.html"],
-                    &[("--model", Some(&model)), ("--data", Some(&data))],
-                )?;
+                let inputs: Vec<(&str, Option<&Path>)> =
+                    std::iter::once(("--model", Some(model.as_path())))
+                        .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
+                        .collect();
+                outfile::guard_dir("--report", dir, &["index.html"], &inputs)?;
             }
+            once_each(&data)?;
             let m = CompensationModel::load(&model)?;
-            let record = Record::read_csv(&data)?;
+            let records = data
+                .iter()
+                .map(|d| Ok((d.display().to_string(), Record::read_csv(d)?)))
+                .collect::<Result<Vec<(String, Record)>>>()?;
+            let named: Vec<(String, &Record)> =
+                records.iter().map(|(n, r)| (n.clone(), r)).collect();
             progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
             let options = thresholds.options();
-            let d = diagnose(&m, &record, &options)?;
+            let d = diagnose_records(&m, &named, &options)?;
             let page = match &report {
                 Some(dir) => {
                     progress.say("drawing figures");
@@ -846,8 +855,25 @@ fn fit_inputs(a: &FitArgs) -> Vec<(&'static str, Option<&std::path::Path>)> {
         .collect()
 }
 
+/// Refuses a record given twice: fitted twice it would weigh double, and a
+/// split by record could not tell its two copies apart.
+fn once_each(data: &[PathBuf]) -> Result<()> {
+    let canonical = |p: &PathBuf| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone());
+    for (i, d) in data.iter().enumerate() {
+        if let Some(e) = data[..i].iter().find(|e| canonical(e) == canonical(d)) {
+            anyhow::bail!(
+                "--data {} is the same file as --data {}: give each record once",
+                d.display(),
+                e.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 /// Reads every --data record, checking the rate-dependent flags against each.
 fn read_records(a: &FitArgs) -> Result<Vec<(String, Record)>> {
+    once_each(&a.data)?;
     a.data
         .iter()
         .map(|d| {
@@ -1085,25 +1111,12 @@ impl FitReport {
     }
 }
 
-/// The fit flags `explain` cannot honour, each refused with why and what to
-/// do instead: every round diagnoses the model on one record (`diagnose`
-/// ranks candidates on one record), so the several-record flags have no
-/// round to go into.
+/// The fit flag `explain` cannot honour, refused with why and what to do
+/// instead: its rounds judge effects on the model's own split.
 fn explain_takes(f: &FitArgs) -> Result<()> {
-    if f.data.len() > 1 {
-        anyhow::bail!(
-            "explain takes one --data record (got {}): its diagnosis ranks candidates on one record; for several, fit them together (dtg-vib fit --data A --data B …), run dtg-vib diagnose on the model with each record, and refit with --add-effect",
-            f.data.len()
-        );
-    }
     if f.cv.is_some() {
         anyhow::bail!(
-            "explain does not take --cv: leaving one record out needs several records and explain takes one; run dtg-vib fit --cv records with the effects explain added (--add-effect CHANNEL=ID) instead"
-        );
-    }
-    if f.validate_on.is_some() {
-        anyhow::bail!(
-            "explain does not take --validate-on: a by-record split needs several records and explain takes one; use --split blocked or interleaved, or fit the records with dtg-vib fit --split by-record --validate-on FILE"
+            "explain does not take --cv: each round judges effects on the model's own split; run dtg-vib fit --cv records with the effects explain added (--add-effect CHANNEL=ID) to see each record predicted by a model of the others"
         );
     }
     Ok(())
@@ -1117,12 +1130,13 @@ fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
     }
     explain_takes(f)?;
     let options = fit_options(f)?;
-    let (_, record) = read_records(f)?.remove(0);
+    let records = read_records(f)?;
+    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
     let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
-    let e = dtg_vib::explain::explain(
-        &record,
+    let e = dtg_vib::explain::explain_records(
+        &named,
         calibration.as_ref(),
         &options,
         &diagnose_options,
@@ -1197,6 +1211,21 @@ fn explain_command(a: ExplainArgs, progress: &Progress) -> Result<()> {
         }
         for x in r.added.iter().filter_map(|x| x.separation.as_ref()) {
             println!("    {}", x.advice);
+        }
+        for x in &r.added {
+            for sep in &x.record_separations {
+                println!(
+                    "    {} and {} are collinear on {} alone; {}",
+                    x.effect,
+                    sep.effect,
+                    sep.collinear_on.join(", "),
+                    if sep.separated_by.is_empty() {
+                        "the records together tell them apart".to_string()
+                    } else {
+                        format!("{} told them apart", sep.separated_by.join(", "))
+                    }
+                );
+            }
         }
         let rms: Vec<String> = r
             .channels

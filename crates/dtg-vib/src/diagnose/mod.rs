@@ -6,10 +6,12 @@
 
 mod locate;
 mod rank;
+mod records;
 mod separate;
 
 pub use locate::{Band, Regime, RegimeBin, ResidualSpectrum, Segment, regime, segments};
 pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
+pub use records::{MIN_ENERGY_SHARE, RecordCorrelation, RecordSeparation, record_separations};
 pub use separate::{Response, Separation, response, separation};
 
 use crate::effects::{Effect, TERM_EFFECTS};
@@ -125,6 +127,9 @@ pub struct ChannelDiagnosis {
 /// The diagnosis of all six channels.
 #[derive(Debug, Clone, Serialize)]
 pub struct Diagnosis {
+    /// The records diagnosed together, by name (absent for one record).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub records: Vec<String>,
     /// Per channel, in X, X1, Y, Y1, Z, Z1 order.
     pub channels: Vec<ChannelDiagnosis>,
 }
@@ -136,7 +141,34 @@ pub fn diagnose(
     record: &Record,
     options: &DiagnoseOptions,
 ) -> Result<Diagnosis, DtgVibError> {
-    let prepared = model.prepare(record)?;
+    diagnose_records(model, &[(String::new(), record)], options)
+}
+
+/// Diagnoses a fitted model on several records at once (normally those it
+/// was fitted on, named by their files as at the fit): each record prepared
+/// on its own, the model's split applied as at fit time, and every
+/// candidate ranked on the rows of all of them. A pair of candidates that
+/// one record cannot tell apart is separated by another that excites them
+/// differently, and [`Candidate::separated_by`] says which. One record gives
+/// exactly [`diagnose`].
+///
+/// ```no_run
+/// use dtg_vib::diagnose::diagnose_records;
+/// use dtg_vib::model::CompensationModel;
+/// use nav_sensors::record::Record;
+/// let model = CompensationModel::load("xyz.json")?;
+/// let (x, z) = (Record::read_csv("x.csv")?, Record::read_csv("z.csv")?);
+/// let recs = [("x.csv".to_string(), &x), ("z.csv".to_string(), &z)];
+/// let d = diagnose_records(&model, &recs, &Default::default())?;
+/// for c in &d.channels { println!("{}: {:?}", c.channel, c.suggested); }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn diagnose_records(
+    model: &CompensationModel,
+    records: &[(String, &Record)],
+    options: &DiagnoseOptions,
+) -> Result<Diagnosis, DtgVibError> {
+    let prepared = model.prepare_many(records)?;
     let predictions = model.predict(&prepared)?;
     let (train, val) = model.rows(&prepared)?;
     // The mirror of the model: the same settings trained on its validation
@@ -189,9 +221,15 @@ pub fn diagnose(
         .collect::<Result<Vec<ChannelDiagnosis>, _>>()?;
     let mut channels = channels;
     if options.try_settings {
-        try_longer_window(model, record, &mut channels);
+        try_longer_window(model, records, &mut channels);
     }
-    Ok(Diagnosis { channels })
+    Ok(Diagnosis {
+        records: match records.len() {
+            1 => Vec::new(),
+            _ => records.iter().map(|(n, _)| n.clone()).collect(),
+        },
+        channels,
+    })
 }
 
 /// Where a residual stays correlated beyond the model's window, a longer
@@ -199,7 +237,7 @@ pub fn diagnose(
 /// validation rms it gave on this record, before and after.
 fn try_longer_window(
     model: &CompensationModel,
-    record: &Record,
+    records: &[(String, &Record)],
     channels: &mut [ChannelDiagnosis],
 ) {
     let slow: Vec<usize> = channels
@@ -219,8 +257,14 @@ fn try_longer_window(
     };
     options.preprocess.window = window;
     // A record too short for the longer window has nothing to say about it.
-    let Ok(trial) = crate::fit::fit(record, model.calibration(), &options, &|_| {}) else {
+    let Ok((trial, _)) = crate::fit::fit_records(records, model.calibration(), &options, &|_| {})
+    else {
         return;
+    };
+    let on = if records.len() > 1 {
+        "these records"
+    } else {
+        "this record"
     };
     for i in slow {
         let c = &mut channels[i];
@@ -228,12 +272,12 @@ fn try_longer_window(
         let after = trial.channels()[c.channel.index()].scores().val_rms;
         c.findings.push(if after < 0.95 * before {
             format!(
-                "tried --window {longer} on this record: validation rms {before:.4} → {after:.4} deg/h ({:+.0}%): refit with --window {longer}",
+                "tried --window {longer} on {on}: validation rms {before:.4} → {after:.4} deg/h ({:+.0}%): refit with --window {longer}",
                 100.0 * (after / before - 1.0)
             )
         } else {
             format!(
-                "tried --window {longer} on this record: validation rms {before:.4} → {after:.4} deg/h, no better: the slow error is not the window's"
+                "tried --window {longer} on {on}: validation rms {before:.4} → {after:.4} deg/h, no better: the slow error is not the window's"
             )
         });
     }
@@ -354,8 +398,8 @@ struct Context {
     /// an end the zero-phase filter's reflected extension makes the filtered
     /// input (and the residual with it) several times its usual size, and
     /// the fourth-power Billings–Voon products of one such row can decide a
-    /// test on their own.
-    steady: std::ops::Range<usize>,
+    /// test on their own. With several records, the ends of each record.
+    steady: Vec<usize>,
     band_edges: Vec<f64>,
     shape: Box<dyn Fn(f64) -> f64>,
 }
@@ -415,17 +459,21 @@ impl Context {
             .max_by(|a, b| variances[a.index()].total_cmp(&variances[b.index()]))
             .expect("three axes");
         let fm = prepared.filter_memory();
-        let samples = rec.len();
-        let lo = val.iter().position(|&r| r >= fm).unwrap_or(val.len());
-        let hi = val
+        // A row's window starts `first` samples before the sample it ends at.
+        let steady: Vec<usize> = val
             .iter()
-            .rposition(|&r| first + r + fm < samples)
-            .map_or(0, |i| i + 1);
+            .enumerate()
+            .filter(|&(_, &r)| {
+                let (record, sample) = prepared.locate(r);
+                sample >= first + fm && sample + fm < record.len()
+            })
+            .map(|(i, _)| i)
+            .collect();
         // Too little left (a record barely longer than the filter): test all rows.
-        let steady = if hi > lo && hi - lo >= val.len() / 2 {
-            lo..hi
+        let steady = if steady.len() >= val.len() / 2 {
+            steady
         } else {
-            0..val.len()
+            (0..val.len()).collect()
         };
         let reach = prepared.first_sample() + 1 + prepared.filter_memory();
         let memory = reach.div_ceil(spacing * decimation);
@@ -540,11 +588,38 @@ fn diagnose_channel(
             ctx.vibration_axis,
         ));
     }
+    // Several records: which candidates a suggestion was collinear with on
+    // some record alone, and which records told them apart.
+    let rows = cross.rows();
+    let positions: Vec<(String, Vec<usize>)> = prepared
+        .record_rows()
+        .into_iter()
+        .map(|(name, range)| {
+            let at = rows
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| range.contains(r))
+                .map(|(i, _)| i);
+            (name.to_string(), at.collect())
+        })
+        .collect();
+    for c in ranking.candidates.iter_mut().filter(|c| c.significant) {
+        let Some((_, column)) = ranked.iter().find(|(e, _)| e.id() == c.effect) else {
+            continue;
+        };
+        let others: Vec<(String, &[f64])> = ranked
+            .iter()
+            .filter(|(e, _)| e.id() != c.effect)
+            .map(|(e, v)| (e.id(), v.as_slice()))
+            .collect();
+        c.record_separations =
+            record_separations(column, &others, &positions, opts.rank.collinearity);
+    }
     ranking.unexcited.extend(unexcited_ai);
 
     // Correlation tests.
     let mut checks = Vec::new();
-    let steady = |x: &[f64]| x[ctx.steady.clone()].to_vec();
+    let steady = |x: &[f64]| -> Vec<f64> { ctx.steady.iter().map(|&i| x[i]).collect() };
     let e = steady(&residual);
     let dec: Vec<f64> = e.iter().step_by(ctx.decimation).copied().collect();
     let lag = opts
@@ -684,6 +759,26 @@ fn findings(
                     c.collinear_with.join(", ")
                 )),
                 None => {}
+            }
+            for r in &c.record_separations {
+                let on = |names: &[String]| {
+                    names
+                        .iter()
+                        .filter_map(|n| r.records.iter().find(|x| &x.file == n))
+                        .map(|x| format!("{} (|r| {:.2})", x.file, x.correlation.abs()))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                s.push_str(&format!(
+                    "; told apart from {} only by the records together: collinear on {} alone{}",
+                    r.effect,
+                    on(&r.collinear_on),
+                    if r.separated_by.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", separated by {}", on(&r.separated_by))
+                    }
+                ));
             }
             out.push(s);
         }

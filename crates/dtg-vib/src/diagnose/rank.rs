@@ -53,6 +53,11 @@ pub struct Candidate {
     /// For a suggestion with alternatives: the combination this record
     /// identifies and the run that would split the group.
     pub separation: Option<super::Separation>,
+    /// For a suggestion diagnosed on several records: the candidates it is
+    /// collinear with on some record alone, and the records that told them
+    /// apart (absent for one record).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub record_separations: Vec<super::RecordSeparation>,
 }
 
 /// A candidate the record does not excite (no variation on the validation rows).
@@ -127,11 +132,6 @@ pub struct Ranking {
     pub effective_samples: f64,
     /// The p-value a suggestion must fall below.
     pub p_threshold: f64,
-}
-
-fn centre(v: &[f64]) -> Vec<f64> {
-    let m = v.iter().sum::<f64>() / v.len() as f64;
-    v.iter().map(|x| x - m).collect()
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -222,11 +222,8 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
         Ok(p) => (p.first_step_errs().to_vec(), p.picks().to_vec()),
         Err(_) => (vec![0.0; m], Vec::new()),
     };
-    let corr = |a: &[f64], b: &[f64]| {
-        // Collinearity is about shape: compare the centred columns.
-        let (a, b) = (centre(a), centre(b));
-        dot(&a, &b) / (dot(&a, &a) * dot(&b, &b)).sqrt()
-    };
+    // Collinearity is about shape: the correlation compares centred columns.
+    let corr = stats::correlation;
     let ci = |f: &HacFit, j: usize| f.interval(j, 0.95);
 
     let mut effective_samples = n as f64;
@@ -260,6 +257,7 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
                 significant: false,
                 alternatives: Vec::new(),
                 separation: None,
+                record_separations: Vec::new(),
                 collinear_with,
             }
         })

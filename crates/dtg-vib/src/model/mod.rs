@@ -259,14 +259,31 @@ impl CompensationModel {
     /// Prepares a record as the training data were, checking it can be: same
     /// sample interval, and every column the effects and windows need.
     pub fn prepare(&self, record: &Record) -> Result<Prepared, DtgVibError> {
-        let dt = record.dt();
-        if ((dt - self.dt_s) / self.dt_s).abs() > INTERVAL_TOLERANCE {
-            return Err(DtgVibError::SampleInterval {
-                record_dt_s: dt,
-                model_dt_s: self.dt_s,
-            });
+        self.prepare_many(&[(String::new(), record)])
+    }
+
+    /// [`CompensationModel::prepare`] for several records, each prepared on
+    /// its own and named (by its file) for errors and per-record results, as
+    /// [`Prepared::new_many`] lays them end to end. One record gives exactly
+    /// [`CompensationModel::prepare`].
+    pub fn prepare_many(&self, records: &[(String, &Record)]) -> Result<Prepared, DtgVibError> {
+        for (name, record) in records {
+            let dt = record.dt();
+            if ((dt - self.dt_s) / self.dt_s).abs() > INTERVAL_TOLERANCE {
+                let e = DtgVibError::SampleInterval {
+                    record_dt_s: dt,
+                    model_dt_s: self.dt_s,
+                };
+                return Err(match records.len() {
+                    1 => e,
+                    _ => DtgVibError::InRecord {
+                        record: name.clone(),
+                        source: Box::new(e),
+                    },
+                });
+            }
         }
-        let prepared = Prepared::new(record, self.calibration.as_ref(), &self.preprocess)?;
+        let prepared = Prepared::new_many(records, self.calibration.as_ref(), &self.preprocess)?;
         for c in &self.channels {
             // Fails early, naming the missing column, for a model fitted on other columns.
             crate::effects::EffectColumns::new(prepared.calibrated())
@@ -300,8 +317,20 @@ impl CompensationModel {
         &self.records
     }
 
-    /// Training and validation rows of prepared data, as at fit time.
+    /// Training and validation rows of prepared data, as at fit time: the
+    /// model's split within each record, or, for a model validated on one
+    /// whole record (`--split by-record --validate-on`) and data that hold
+    /// that record among others, every other record training and that one
+    /// validating.
     pub fn rows(&self, prepared: &Prepared) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
-        crate::split::split_rows(prepared, self.split)
+        match &self.validated_on {
+            Some(name)
+                if prepared.record_rows().len() > 1
+                    && prepared.record_rows().iter().any(|(n, _)| n == name) =>
+            {
+                crate::split::by_record_rows(prepared, name)
+            }
+            _ => crate::split::split_rows(prepared, self.split),
+        }
     }
 }
