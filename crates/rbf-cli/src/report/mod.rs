@@ -7,24 +7,31 @@
 //! validation targets). Undefined scores (no validation rows) are `null`.
 //!
 //! Each `--json` object is a `#[derive(Serialize)]` struct that borrows from the report
-//! ([`FitJson`], [`CvJson`]; that of `predict` is still built by hand), so its keys are spelled once, as fields.
-//! The fields of these structs, and of every struct nested in them, are declared in
-//! alphabetical order: serde writes keys in field order, and sorted keys are what
-//! `serde_json::Value` prints, so the output is byte for byte what scripts have already
-//! seen. The tests below check that every object is sorted.
+//! ([`FitJson`], [`CvJson`], [`PredictJson`]), so its keys are spelled once, as fields,
+//! and a key that is sometimes left out says so with `skip_serializing_if`.
+//!
+//! Keys are printed in alphabetical order at every level, the order a
+//! `serde_json::Value` object (a sorted map) prints them in, which is what saved outputs
+//! hold. serde writes a struct's keys in field order, so the fields of these structs,
+//! and of every struct nested in them, are declared alphabetically; where a library
+//! type's fields are not (`rbf::FoldReport`, `rbf::ols::Criterion`) a small copy here
+//! reorders them. The tests below check every object.
 //!
 //! | module | what |
 //! |---|---|
 //! | [`fit`] | `rbf fit`: the context of a fit, its OLS record, [`FitJson`] |
 //! | [`cv`] | `rbf cv`: the grid of points and their folds, [`CvJson`] |
+//! | [`predict`] | `rbf predict`: [`PredictJson`] |
 
 pub mod cv;
 pub mod fit;
+pub mod predict;
 
 pub use cv::{CvContext, CvJson, CvOut, FoldJson, PointJson, ScoresJson, WidthJson, width_label};
 pub use fit::{
     CriterionOut, FitContext, FitJson, FitReport, OlsOut, PickOut, WidthTrial, width_rule_text,
 };
+pub use predict::PredictJson;
 
 use crate::settings::{Centers, FitSettings};
 
@@ -42,7 +49,12 @@ pub fn kmeans_algorithm(s: &FitSettings) -> Option<&'static str> {
 }
 
 /// A score as JSON: `None` (printed `null`) when it is undefined (NaN) or infinite.
-pub(crate) fn finite(v: f64) -> Option<f64> {
+///
+/// ```
+/// assert_eq!(rbf_cli::report::finite(f64::NAN), None);
+/// assert_eq!(rbf_cli::report::finite(0.5), Some(0.5));
+/// ```
+pub fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
 }
 
@@ -127,5 +139,23 @@ mod tests {
         };
         let out = CvOut::new(&grid, CvContext::default());
         assert_keys_sorted(&out.json());
+    }
+
+    #[test]
+    fn predict_json_keys_are_sorted() {
+        let inputs = vec!["a".to_string()];
+        let p = PredictJson {
+            command: "predict",
+            data: "d.csv",
+            inputs: &inputs,
+            model: "m.json",
+            n_rows: 3,
+            nmse: Some(0.5),
+            out: "p.csv",
+            predict_seconds: 0.1,
+            rmse: None,
+            target: "y",
+        };
+        assert_keys_sorted(&p);
     }
 }
