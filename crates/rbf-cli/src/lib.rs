@@ -9,7 +9,7 @@
 //! | [`data`] | a `tabular::Table` → named columns as faer matrices; train/validation rows |
 //! | [`settings`] | command-line choices (`--centers`, `--width`, …) → checked `rbf` params |
 //! | [`saved`] | the model file: the library's model plus the column names it was fitted on |
-//! | [`report`] | the `--json` objects and the human summaries of `fit` and `cv` |
+//! | [`report`] | the `--json` objects of `fit`, `cv` and `predict` (typed, serialised by serde), and the human summaries |
 //! | [`progress`] | the indicatif bar fed by the library's progress callback, and stage timings |
 //! | [`hint`] | how to fix a failed fit, as a flag to change |
 //!

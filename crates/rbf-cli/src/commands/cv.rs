@@ -84,7 +84,7 @@ pub fn run(a: CvArgs) -> Result<()> {
     };
     let out = CvOut::new(&report, ctx);
     if a.json {
-        println!("{}", out.json());
+        println!("{}", serde_json::to_string(&out.json())?);
     } else {
         println!("{}", out.summary());
     }

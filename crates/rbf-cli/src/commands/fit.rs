@@ -97,7 +97,7 @@ pub fn run(a: FitArgs) -> Result<()> {
     };
     let report = FitReport::new(&saved.model, ctx);
     if a.json {
-        println!("{}", report.json());
+        println!("{}", serde_json::to_string(&report.json())?);
     } else if !a.quiet {
         println!("{}", report.summary());
     }

@@ -5,8 +5,8 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use rbf::metrics::Scores;
 use rbf_cli::data;
+use rbf_cli::report::{PredictJson, finite};
 use rbf_cli::saved::SavedModel;
-use serde_json::json;
 use tabular::Table;
 
 use super::args::PredictArgs;
@@ -76,21 +76,21 @@ pub fn run(a: PredictArgs) -> Result<()> {
             None
         }
     };
-    let finite = |v: f64| v.is_finite().then_some(v);
     if a.json {
-        let v = json!({
-            "command": "predict",
-            "model": a.model.display().to_string(),
-            "data": table.file(),
-            "target": saved.target,
-            "inputs": saved.inputs,
-            "n_rows": table.len(),
-            "predict_seconds": predict_seconds,
-            "rmse": scores.as_ref().and_then(|s| finite(s.rmse)),
-            "nmse": scores.as_ref().and_then(|s| finite(s.nmse)),
-            "out": out,
-        });
-        println!("{v}");
+        let model = a.model.display().to_string();
+        let v = PredictJson {
+            command: "predict",
+            data: table.file(),
+            inputs: &saved.inputs,
+            model: &model,
+            n_rows: table.len(),
+            nmse: scores.as_ref().and_then(|s| finite(s.nmse)),
+            out: &out,
+            predict_seconds,
+            rmse: scores.as_ref().and_then(|s| finite(s.rmse)),
+            target: &saved.target,
+        };
+        println!("{}", serde_json::to_string(&v)?);
     } else if !a.quiet {
         match &scores {
             Some(s) => println!(
