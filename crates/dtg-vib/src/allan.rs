@@ -317,7 +317,7 @@ impl CurveDetail {
 /// assert_eq!(dtg_vib::allan::term_text(&t), "< 0.01235 (not resolved)");
 /// ```
 pub fn term_text(t: &NoiseTerm) -> String {
-    use crate::report::fmt;
+    use crate::numfmt::fmt;
     match t {
         NoiseTerm::Resolved(e) => format!("{} [{}, {}]", fmt(e.value), fmt(e.low), fmt(e.high)),
         NoiseTerm::Unresolved {

@@ -24,6 +24,7 @@ pub mod export;
 pub mod fit;
 pub mod inference;
 pub mod model;
+mod numfmt;
 pub mod operating;
 pub mod parity;
 pub mod pipeline;

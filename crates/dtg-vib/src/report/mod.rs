@@ -45,6 +45,7 @@ pub(crate) fn positive_freq(f: &[f64], d: &[f64]) -> (Vec<f64>, Vec<f64>) {
 }
 
 use crate::error::DtgVibError;
+pub(crate) use crate::numfmt::{fmt, short};
 use plot::{Figure, FigureFiles};
 use rayon::prelude::*;
 use std::path::Path;
@@ -71,30 +72,6 @@ fn save_all(figs: Vec<(Figure, &'static str)>, dir: &Path) -> Result<Drawn, DtgV
         .map(|(fig, stem)| Ok((stem, fig.save(dir, stem)?)))
         .collect::<Result<Vec<_>, DtgVibError>>()
         .map(Drawn)
-}
-
-/// A number for a table: four significant digits, no exponent for everyday sizes.
-pub(crate) fn fmt(v: f64) -> String {
-    if v == 0.0 {
-        "0".to_string()
-    } else if (1e-3..1e5).contains(&v.abs()) {
-        let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{v:.digits$}")
-    } else {
-        format!("{v:.3e}")
-    }
-}
-
-/// A number as a person writes it: at most four decimals, no trailing
-/// zeros (0.19, 0.1, 2, 0.2): for settings and band edges, where "0.1000"
-/// would claim a precision nobody set.
-pub(crate) fn short(v: f64) -> String {
-    let s = format!("{v:.4}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
 }
 
 #[cfg(test)]
