@@ -405,9 +405,9 @@ impl Prepared {
     }
 
     /// The windows as an `rows × dim` matrix view of the prepared windows
-    /// themselves (row-major; nothing is copied): what [`Prepared::window_matrix`]
-    /// holds, without a second copy (400 MB for a 1M-row record of 50-sample
-    /// windows).
+    /// themselves ([`Windows::matrix`]; nothing is copied): what
+    /// [`Prepared::window_matrix`] holds, without its copy (400 MB for a
+    /// 1M-row record of 50-sample windows).
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new((1..=60).map(|i| i as f64 * 0.02).collect(),
@@ -418,8 +418,7 @@ impl Prepared {
     /// assert_eq!(p.window_view(), p.window_matrix().as_ref());
     /// ```
     pub fn window_view(&self) -> MatRef<'_, f64> {
-        let w = &self.windows;
-        MatRef::from_row_major_slice(w.as_slice(), w.len(), w.dim())
+        self.windows.matrix()
     }
 
     /// The windows.
@@ -469,6 +468,11 @@ impl Prepared {
         channel: Channel,
         effects: &[Effect],
     ) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        // No effects, no columns: the record's rates and covariances (0.5 GB
+        // for a 1M-sample record) are not worked out for nothing.
+        if effects.is_empty() {
+            return Ok(Vec::new());
+        }
         // Regressors first, filter second: the gyro saw D·a_I·a_S, and the
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.
