@@ -422,6 +422,8 @@ pub fn selection_stride(n_train: usize) -> usize {
 struct ChannelFit {
     channel: Channel,
     effects: Vec<Effect>,
+    /// The effects' columns on every row (worked out once per channel).
+    z: Mat<f64>,
     width: f64,
     model: rbf::RbfModel,
     coefficients: Vec<Coefficient>,
@@ -444,9 +446,8 @@ fn scored(
     val: &[usize],
     f: ChannelFit,
 ) -> Result<ChannelModel, DtgVibError> {
-    let z = prepared.effect_matrix(f.channel, &f.effects)?;
     let y = prepared.target(f.channel);
-    let yhat = f.model.predict_with_linear(x, z.as_ref());
+    let yhat = f.model.predict_with_linear(x, f.z.as_ref());
     let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
     let scores = score(y, &yhat, train, val);
     Ok(
@@ -467,8 +468,7 @@ fn refit_weights(
     f: ChannelFit,
     options: &FitOptions,
 ) -> Result<ChannelFit, DtgVibError> {
-    let channel = f.channel;
-    let z = prepared.effect_matrix(channel, &f.effects)?;
+    let (channel, z) = (f.channel, &f.z);
     let y = prepared.target(channel);
     let fail = |source| DtgVibError::Fit { channel, source };
     let params = RbfParams::new()
@@ -626,6 +626,7 @@ fn fit_channel(
     Ok(ChannelFit {
         channel,
         effects,
+        z,
         width,
         model,
         coefficients,
@@ -970,6 +971,7 @@ mod tests {
                 let f = ChannelFit {
                     channel: m.channel(),
                     effects: m.effects().to_vec(),
+                    z: prepared.effect_matrix(m.channel(), m.effects()).unwrap(),
                     width: m.width(),
                     model: m.rbf().clone(),
                     coefficients: m.coefficients().map(<[_]>::to_vec).unwrap_or_default(),
