@@ -353,33 +353,35 @@ pub(crate) fn fit_rows(
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<CompensationModel, DtgVibError> {
     let (train, val) = (train.to_vec(), val.to_vec());
-    let x = prepared.window_matrix();
-    let x_train = gather(x.as_ref(), &train);
-    windows_vary(&x_train, options.preprocess.window.signals())?;
+    // A view of the prepared windows, not a copy: only the rows a fit works
+    // on are gathered (all training rows, or the selection subsample).
+    let x = prepared.window_view();
+    windows_vary(x, &train, options.preprocess.window.signals())?;
     let stride = selection_stride(train.len());
     let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
     inner_folds_fit(prepared, sel.len(), options.inner_folds)?;
-    let x_sel = (stride > 1).then(|| gather(x.as_ref(), &sel));
-    let channels: Vec<ChannelModel> = Channel::ALL
+    let fit_on = if stride > 1 { &sel } else { &train };
+    let x_fit = gather(x, fit_on);
+    let fits: Vec<ChannelFit> = Channel::ALL
         .par_iter()
         .map(|&ch| {
-            let m = match &x_sel {
-                None => fit_channel(prepared, &x, &x_train, &train, &val, ch, options),
-                Some(x_sel) => fit_channel(prepared, &x, x_sel, &sel, &val, ch, options),
-            };
+            let m = fit_channel(prepared, x, &x_fit, fit_on, ch, options);
             progress(FitStage::ChannelDone(ch));
             m
         })
         .collect::<Result<_, _>>()?;
-    // One channel at a time: each refit holds an n × (1 + effects + K)
-    // design and its QR copy (0.5 GB at 500,000 training rows).
-    let channels = match &x_sel {
-        None => channels,
-        Some(_) => channels
-            .into_iter()
-            .map(|m| refit_weights(prepared, &x, &x_train, &train, &val, m, options))
-            .collect::<Result<_, _>>()?,
-    };
+    drop(x_fit);
+    // On a subsample, the weights are solved again on every training row,
+    // over row blocks (memory independent of the number of rows), before
+    // the channel is scored.
+    let channels: Vec<ChannelModel> = fits
+        .into_par_iter()
+        .map(|f| match stride {
+            1 => scored(prepared, x, &train, &val, f),
+            _ => refit_weights(prepared, x, &train, f, options)
+                .and_then(|f| scored(prepared, x, &train, &val, f)),
+        })
+        .collect::<Result<_, _>>()?;
     Ok(CompensationModel {
         preprocess: options.preprocess.clone(),
         calibration: calibration.cloned(),
@@ -416,29 +418,64 @@ pub fn selection_stride(n_train: usize) -> usize {
     n_train.div_ceil(MAX_SELECTION_ROWS).max(1)
 }
 
-/// A channel model whose centres and width were chosen on a subsample, with
-/// its bias, effect coefficients and weights solved again by QR on every
-/// training row, and scored on all rows.
-fn refit_weights(
+/// One channel's fitted network and effect coefficients, not yet scored.
+#[derive(Debug, Clone)]
+struct ChannelFit {
+    channel: Channel,
+    effects: Vec<Effect>,
+    /// The effects' columns on every row (worked out once per channel).
+    z: Mat<f64>,
+    width: f64,
+    model: rbf::RbfModel,
+    coefficients: Vec<Coefficient>,
+}
+
+impl ChannelFit {
+    /// True when the effects' coefficients were estimated (by partialling
+    /// out) and stay fixed in the network's refit; as
+    /// [`ChannelModel::coefficients`] tells.
+    fn theta_fixed(&self) -> bool {
+        self.coefficients.len() == self.effects.len() && !self.effects.is_empty()
+    }
+}
+
+/// The channel model of a fit, scored on the training and validation rows.
+fn scored(
     prepared: &Prepared,
-    x: &Mat<f64>,
-    x_train: &Mat<f64>,
+    x: MatRef<'_, f64>,
     train: &[usize],
     val: &[usize],
-    m: ChannelModel,
-    options: &FitOptions,
+    f: ChannelFit,
 ) -> Result<ChannelModel, DtgVibError> {
-    let channel = m.channel();
-    let effects = m.effects().to_vec();
-    let z = prepared.effect_matrix(channel, &effects)?;
+    let y = prepared.target(f.channel);
+    let yhat = f.model.predict_with_linear(x, f.z.as_ref());
+    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
+    let scores = score(y, &yhat, train, val);
+    Ok(
+        ChannelModel::new(f.channel, f.effects, f.width, f.model, scores)
+            .with_coefficients(f.coefficients),
+    )
+}
+
+/// A channel fit whose centres and width were chosen on a subsample, with
+/// its bias, effect coefficients and weights solved again on every training
+/// row by a row-block QR ([`rbf::RbfValidParams::fit_given_streaming`]: the
+/// rows are copied from the prepared windows block by block, so neither the
+/// training windows nor their n × (1 + effects + K) design are ever held).
+fn refit_weights(
+    prepared: &Prepared,
+    x: MatRef<'_, f64>,
+    train: &[usize],
+    f: ChannelFit,
+    options: &FitOptions,
+) -> Result<ChannelFit, DtgVibError> {
+    let (channel, z) = (f.channel, &f.z);
     let y = prepared.target(channel);
-    let z_train = gather(z.as_ref(), train);
-    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
     let fail = |source| DtgVibError::Fit { channel, source };
     let params = RbfParams::new()
         .kernel(options.kernel)
-        .centres(CentreSelection::Given(m.rbf().centres()))
-        .width(WidthRule::Fixed(m.width()))
+        .centres(CentreSelection::Given(f.model.centres()))
+        .width(WidthRule::Fixed(f.width))
         .ridge(options.ridge)
         .seed(options.seed)
         .parallelism(Par::Seq)
@@ -446,39 +483,53 @@ fn refit_weights(
         .map_err(|e| fail(e.into()))?;
     // Effect coefficients estimated by partialling out stay as they are
     // (with their intervals); the network is solved on what they leave.
-    let model = match m.coefficients() {
-        Some(_) => {
-            let theta = m.rbf().linear_coefficients().to_owned();
-            let y_adj = &y_train - &z_train * &theta;
-            let no_z = Mat::<f64>::zeros(train.len(), 0);
-            params
-                .fit_with_linear(x_train.as_ref(), no_z.as_ref(), y_adj.as_ref())
-                .map_err(fail)?
-                .with_linear(theta.as_ref())
-        }
-        None => params
-            .fit_with_linear(x_train.as_ref(), z_train.as_ref(), y_train.as_ref())
-            .map_err(fail)?,
+    let theta = f
+        .theta_fixed()
+        .then(|| f.model.linear_coefficients().to_owned());
+    let r = if theta.is_some() { 0 } else { z.ncols() };
+    let (n, d) = (train.len(), x.ncols());
+    let model = params
+        .fit_given_streaming(n, d, r, 1, |start, mut xb, mut zb, mut yb| {
+            for i in 0..xb.nrows() {
+                let row = train[start + i];
+                for j in 0..d {
+                    xb[(i, j)] = x[(row, j)];
+                }
+                for j in 0..r {
+                    zb[(i, j)] = z[(row, j)];
+                }
+                yb[(i, 0)] = match &theta {
+                    Some(t) => {
+                        y[row] - (0..t.nrows()).map(|j| z[(row, j)] * t[(j, 0)]).sum::<f64>()
+                    }
+                    None => y[row],
+                };
+            }
+        })
+        .map_err(fail)?;
+    let model = match &theta {
+        Some(t) => model.with_linear(t.as_ref()),
+        None => model,
     };
-    let yhat = model.predict_with_linear(x.as_ref(), z.as_ref());
-    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
-    let scores = score(y, &yhat, train, val);
-    let coefficients = m.coefficients().map(<[_]>::to_vec).unwrap_or_default();
-    Ok(
-        ChannelModel::new(channel, effects, m.width(), model, scores)
-            .with_coefficients(coefficients),
-    )
+    Ok(ChannelFit { model, ..f })
 }
 
 /// Windows that are all the same point leave the network nothing to tell
 /// apart, and the library's width rule would say "use a fixed width", which
 /// no flag here sets: say which signals do not vary instead.
-fn windows_vary(x_train: &Mat<f64>, signals: &[String]) -> Result<(), DtgVibError> {
-    let same = (0..x_train.ncols()).all(|j| {
-        let first = x_train[(0, j)];
-        (0..x_train.nrows()).all(|i| x_train[(i, j)] == first)
+fn windows_vary(
+    x: MatRef<'_, f64>,
+    train: &[usize],
+    signals: &[String],
+) -> Result<(), DtgVibError> {
+    let Some(&first) = train.first() else {
+        return Ok(());
+    };
+    let same = (0..x.ncols()).all(|j| {
+        let v = x[(first, j)];
+        train.iter().all(|&i| x[(i, j)] == v)
     });
-    if x_train.nrows() > 0 && same {
+    if same {
         return Err(DtgVibError::WindowsConstant {
             signals: signals.to_vec(),
         });
@@ -504,15 +555,16 @@ fn inner_folds_fit(prepared: &Prepared, n_train: usize, folds: usize) -> Result<
     }
 }
 
+/// One channel's network and effects, chosen and fitted on the windows
+/// `x_train` (rows `train` of the prepared windows `x`).
 fn fit_channel(
     prepared: &Prepared,
-    x: &Mat<f64>,
+    x: MatRef<'_, f64>,
     x_train: &Mat<f64>,
     train: &[usize],
-    val: &[usize],
     channel: Channel,
     options: &FitOptions,
-) -> Result<ChannelModel, DtgVibError> {
+) -> Result<ChannelFit, DtgVibError> {
     let effects = options.effects_of(channel);
     let z = prepared.effect_matrix(channel, &effects)?;
     let y = prepared.target(channel);
@@ -572,11 +624,14 @@ fn fit_channel(
         fit_partially_linear(x, &z, y, train, &effects, options, gap).map_err(fail)?
     };
     let width = model.widths().get(0);
-
-    let yhat = model.predict_with_linear(x.as_ref(), z.as_ref());
-    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
-    let scores = score(y, &yhat, train, val);
-    Ok(ChannelModel::new(channel, effects, width, model, scores).with_coefficients(coefficients))
+    Ok(ChannelFit {
+        channel,
+        effects,
+        z,
+        width,
+        model,
+        coefficients,
+    })
 }
 
 /// How the training rows are cut for cross-fitting: into this many spans of
@@ -627,7 +682,7 @@ pub const MIN_BLOCK_ROWS: usize = 200;
 /// and the network in one solve) and θ's standard errors come from the same
 /// regression in-sample (Frisch–Waugh–Lovell), which is optimistic.
 fn fit_partially_linear(
-    x: &Mat<f64>,
+    x: MatRef<'_, f64>,
     z: &Mat<f64>,
     y: &[f64],
     train: &[usize],
@@ -651,7 +706,7 @@ fn fit_partially_linear(
     let cross_fit = |b: &Blocks| -> Result<Option<HacFit>, rbf::RbfError> {
         let mut by_row: Vec<(usize, Vec<f64>)> = Vec::with_capacity(b.first.len() + b.second.len());
         for (fit_rows, test_rows) in [(&b.second, &b.first), (&b.first, &b.second)] {
-            let xf = gather(x.as_ref(), fit_rows);
+            let xf = gather(x, fit_rows);
             let yf = Mat::from_fn(fit_rows.len(), 1, |i, _| y[fit_rows[i]]);
             let net = fit_network(
                 options,
@@ -660,7 +715,7 @@ fn fit_partially_linear(
                 yf.as_ref(),
                 gap,
             )?;
-            let xt = gather(x.as_ref(), test_rows);
+            let xt = gather(x, test_rows);
             let r = residualise(
                 net.features(xf.as_ref()).as_ref(),
                 targets(fit_rows).as_ref(),
@@ -695,7 +750,7 @@ fn fit_partially_linear(
         }
     }
     let inference = combine_splits(&fits);
-    let x_train = gather(x.as_ref(), train);
+    let x_train = gather(x, train);
     let z_train = gather(z.as_ref(), train);
     let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
     let (model, fit) = match inference {
@@ -884,5 +939,67 @@ pub(crate) fn score(y: &[f64], yhat: &[f64], train: &[usize], val: &[usize]) -> 
         val_rms_bias_only: rms(val.iter().map(|&i| y[i] - train_mean)),
         train_fit_percent: fit(train),
         val_fit_percent: fit(val),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nav_sensors::sim::{Scenario, simulate};
+
+    /// The row-block solve of a large record's final weights gives the
+    /// weights the whole-matrix QR gives on the same rows and centres, with
+    /// and without effects (partialled out: θ kept, the network refitted).
+    #[test]
+    fn streamed_final_weights_equal_the_whole_matrix_solve() {
+        let sim = simulate(&Scenario {
+            duration_s: 60.0,
+            ..Scenario::default()
+        })
+        .unwrap();
+        for effects in [vec![], vec!["g_I".parse().unwrap()]] {
+            let options = FitOptions {
+                effects,
+                max_centres: 12,
+                width_scales: vec![1.0],
+                ..FitOptions::default()
+            };
+            let prepared =
+                Prepared::new(&sim.record, Some(&sim.calibration), &options.preprocess).unwrap();
+            let (train, val) = split_rows(&prepared, options.split).unwrap();
+            let model = fit_rows(&prepared, None, &options, &train, &val, &|_| {}).unwrap();
+            for m in model.channels() {
+                let f = ChannelFit {
+                    channel: m.channel(),
+                    effects: m.effects().to_vec(),
+                    z: prepared.effect_matrix(m.channel(), m.effects()).unwrap(),
+                    width: m.width(),
+                    model: m.rbf().clone(),
+                    coefficients: m.coefficients().map(<[_]>::to_vec).unwrap_or_default(),
+                };
+                let x = prepared.window_view();
+                let f = refit_weights(&prepared, x, &train, f, &options).unwrap();
+                let again = scored(&prepared, x, &train, &val, f).unwrap();
+                let (a, b) = (m.rbf(), again.rbf());
+                assert_eq!(a.centres(), b.centres());
+                assert_eq!(a.linear_coefficients(), b.linear_coefficients());
+                let scale = a.weights().norm_max();
+                assert!(
+                    (&a.weights() - &b.weights()).norm_max() <= 1e-7 * scale,
+                    "{}: weights {:?} against {:?}",
+                    m.channel(),
+                    a.weights(),
+                    b.weights()
+                );
+                let (sa, sb) = (m.scores(), again.scores());
+                assert!((sa.val_rms - sb.val_rms).abs() <= 1e-9 * sa.val_rms);
+                assert_eq!(
+                    (sa.n_train, sa.n_val),
+                    (sb.n_train, sb.n_val),
+                    "{}",
+                    m.channel()
+                );
+            }
+        }
     }
 }

@@ -9,7 +9,7 @@ use crate::effects::{Effect, EffectColumns};
 use crate::error::DtgVibError;
 use crate::signal::LowPass;
 use crate::window::{WindowSpec, Windows};
-use faer::Mat;
+use faer::{Mat, MatRef};
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::{Axis, Channel, ideal_outputs};
 use nav_sensors::record::Record;
@@ -404,6 +404,23 @@ impl Prepared {
         Mat::from_fn(w.len(), w.dim(), |i, j| w.row(i)[j])
     }
 
+    /// The windows as an `rows × dim` matrix view of the prepared windows
+    /// themselves ([`Windows::matrix`]; nothing is copied): what
+    /// [`Prepared::window_matrix`] holds, without its copy (400 MB for a
+    /// 1M-row record of 50-sample windows).
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new((1..=60).map(|i| i as f64 * 0.02).collect(),
+    ///     std::array::from_fn(|_| vec![0.0; 60]), [vec![0.0; 60], vec![0.0; 60], (0..60).map(f64::from).collect()],
+    ///     vec![]).unwrap();
+    /// let pre = dtg_vib::pipeline::Preprocess { filter: None, ..Default::default() };
+    /// let p = dtg_vib::pipeline::Prepared::new(&rec, None, &pre).unwrap();
+    /// assert_eq!(p.window_view(), p.window_matrix().as_ref());
+    /// ```
+    pub fn window_view(&self) -> MatRef<'_, f64> {
+        self.windows.matrix()
+    }
+
     /// The windows.
     pub fn windows(&self) -> &Windows {
         &self.windows
@@ -451,6 +468,11 @@ impl Prepared {
         channel: Channel,
         effects: &[Effect],
     ) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        // No effects, no columns: the record's rates and covariances (0.5 GB
+        // for a 1M-sample record) are not worked out for nothing.
+        if effects.is_empty() {
+            return Ok(Vec::new());
+        }
         // Regressors first, filter second: the gyro saw D·a_I·a_S, and the
         // filtered output holds the filtered product, not the product of
         // filtered accelerations.

@@ -5,6 +5,7 @@
 //! Windows end at the sample they belong to (causal), so a fitted model can
 //! run on-line: the compensation of sample t uses accelerations up to t only.
 
+use faer::MatRef;
 use serde::{Deserialize, Serialize};
 
 /// Why windows could not be formed.
@@ -101,17 +102,38 @@ impl WindowSpec {
         let first = self.length - 1;
         let rows = n - first;
         let dim = self.dim();
+        if let [one] = signals {
+            // One signal: window i is samples i ..= i + length − 1 of it, so
+            // the windows are read from the samples themselves (a 1M-sample
+            // record's 50-sample windows: 8 MB, not 400 MB).
+            return Ok(Windows {
+                data: one.to_vec(),
+                dim,
+                first,
+                step: 1,
+                rows,
+            });
+        }
         let mut data = Vec::with_capacity(rows * dim);
         for end in first..n {
             for s in signals {
                 data.extend_from_slice(&s[end + 1 - self.length..=end]);
             }
         }
-        Ok(Windows { data, dim, first })
+        Ok(Windows {
+            data,
+            dim,
+            first,
+            step: dim,
+            rows,
+        })
     }
 }
 
-/// Row-major windows: row `i` belongs to record sample `first_sample() + i`.
+/// Windows by rows: row `i` belongs to record sample `first_sample() + i`.
+///
+/// The windows of one signal overlap and are read from its samples (nothing
+/// is copied); those of several signals are written out row by row.
 ///
 /// ```
 /// use dtg_vib::window::WindowSpec;
@@ -121,22 +143,35 @@ impl WindowSpec {
 /// assert_eq!(w.row(1), &[2.0, 3.0, 20.0, 30.0]);
 /// assert_eq!(w.sample_of_row(1), 2);
 /// ```
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Windows {
+    /// One signal's samples, or every window written out.
     data: Vec<f64>,
     dim: usize,
     first: usize,
+    /// Offset in `data` from one row's start to the next: 1 (one signal,
+    /// overlapping rows) or `dim`.
+    step: usize,
+    rows: usize,
+}
+
+impl PartialEq for Windows {
+    /// The same windows, however they are stored.
+    fn eq(&self, other: &Self) -> bool {
+        (self.dim, self.first, self.rows) == (other.dim, other.first, other.rows)
+            && (0..self.rows).all(|i| self.row(i) == other.row(i))
+    }
 }
 
 impl Windows {
     /// Number of windows.
     pub fn len(&self) -> usize {
-        self.data.len() / self.dim
+        self.rows
     }
 
     /// True when there are no windows.
     pub fn is_empty(&self) -> bool {
-        self.data.is_empty()
+        self.rows == 0
     }
 
     /// Input dimension.
@@ -155,14 +190,46 @@ impl Windows {
     }
 
     /// One window.
+    ///
+    /// # Panics
+    /// If `i` is not below [`Windows::len`].
     #[track_caller]
     pub fn row(&self, i: usize) -> &[f64] {
-        &self.data[i * self.dim..(i + 1) * self.dim]
+        assert!(i < self.rows, "window {i} of {}", self.rows);
+        &self.data[i * self.step..i * self.step + self.dim]
     }
 
-    /// All windows, row-major (`len() × dim()`).
-    pub fn as_slice(&self) -> &[f64] {
-        &self.data
+    /// The windows as a `len() × dim()` matrix view of what they are read
+    /// from: nothing is copied.
+    ///
+    /// ```
+    /// use dtg_vib::window::WindowSpec;
+    /// let one = WindowSpec::new(vec!["az".into()], 3).unwrap().build(&[&[0.0, 1.0, 2.0, 3.0, 4.0]]).unwrap();
+    /// let m = one.matrix();
+    /// assert_eq!((m.nrows(), m.ncols(), m[(2, 0)], m[(2, 2)]), (3, 3, 2.0, 4.0));
+    /// let two = WindowSpec::new(vec!["ax".into(), "az".into()], 2).unwrap()
+    ///     .build(&[&[1.0, 2.0, 3.0], &[10.0, 20.0, 30.0]]).unwrap();
+    /// assert_eq!(two.matrix()[(1, 3)], 30.0);
+    /// ```
+    pub fn matrix(&self) -> MatRef<'_, f64> {
+        if self.rows == 0 {
+            return MatRef::from_row_major_slice(&[], 0, self.dim);
+        }
+        // Element (i, j) is data[i·step + j]; the largest index read is
+        // (rows − 1)·step + dim − 1 = data.len() − 1 for both layouts.
+        assert!((self.rows - 1) * self.step + self.dim <= self.data.len());
+        // SAFETY: every element the view reaches lies inside `data` (the
+        // assertion above), `data` outlives the view, and the view is
+        // read-only: overlapping rows (step 1) alias no mutable access.
+        unsafe {
+            MatRef::from_raw_parts(
+                self.data.as_ptr(),
+                self.rows,
+                self.dim,
+                self.step as isize,
+                1,
+            )
+        }
     }
 
     /// The windows of several records of the same spec, one after another:
@@ -185,10 +252,18 @@ impl Windows {
             parts.iter().all(|w| w.dim == dim && w.first == first),
             "windows of one spec"
         );
+        // Written out: overlapping rows of different records cannot share
+        // one run of samples (the rows across a boundary are not windows).
+        let rows = parts.iter().map(Windows::len).sum();
         Windows {
-            data: parts.iter().flat_map(|w| w.data.iter().copied()).collect(),
+            data: parts
+                .iter()
+                .flat_map(|w| (0..w.len()).flat_map(move |i| w.row(i).iter().copied()))
+                .collect(),
             dim,
             first,
+            step: dim,
+            rows,
         }
     }
 }

@@ -74,3 +74,118 @@ fn a_subsample_larger_than_the_data_selects_on_every_row() {
     let b = ols(None).fit(x.as_ref(), y.as_ref()).unwrap();
     assert_eq!(a.weights().to_owned(), b.weights().to_owned());
 }
+
+/// Given centres fitted over row blocks handed over by the caller equal the
+/// whole-matrix fit (bias, linear tail, linear regressors, ridge), and refuse
+/// what they cannot stream with a typed error.
+#[test]
+fn given_centres_over_caller_row_blocks_equal_the_whole_matrix_fit() {
+    let (x, y) = data(9_000);
+    let z = Mat::from_fn(x.nrows(), 2, |i, j| ((i * (j + 2)) as f64 * 0.001).cos());
+    let y = Mat::from_fn(x.nrows(), 1, |i, _| {
+        y[(i, 0)] + 0.3 * z[(i, 0)] - 0.2 * z[(i, 1)]
+    });
+    let centres = Mat::from_fn(20, 2, |k, j| x[(k * 449, j)]);
+    for (tail, ridge) in [(false, 0.0), (true, 1e-6)] {
+        let p = RbfParams::new()
+            .centres(CentreSelection::Given(centres.clone()))
+            .width(WidthRule::Fixed(1.5))
+            .linear_tail(tail)
+            .ridge(ridge)
+            .parallelism(Par::Seq)
+            .check()
+            .unwrap();
+        let whole = p
+            .fit_with_linear(x.as_ref(), z.as_ref(), y.as_ref())
+            .unwrap();
+        let blocks = p
+            .fit_given_streaming(x.nrows(), 2, 2, 1, |start, mut xb, mut zb, mut yb| {
+                let b = xb.nrows();
+                xb.copy_from(x.as_ref().subrows(start, b));
+                zb.copy_from(z.as_ref().subrows(start, b));
+                yb.copy_from(y.as_ref().subrows(start, b));
+            })
+            .unwrap();
+        // Equal up to rounding amplified by the conditioning of the design.
+        let scale = whole.weights().norm_max();
+        let tol = 1e3 * f64::EPSILON * whole.condition();
+        let dw = (&whole.weights() - &blocks.weights()).norm_max() / scale;
+        assert!(
+            dw < tol,
+            "weights differ by {dw:e} (relative), condition {:e}",
+            whole.condition()
+        );
+        let dl = (&whole.linear_coefficients() - &blocks.linear_coefficients()).norm_max();
+        assert!(
+            dl < tol * whole.linear_coefficients().norm_max().max(1.0),
+            "{dl:e}"
+        );
+        let db = (whole.bias().unwrap()[0] - blocks.bias().unwrap()[0]).abs();
+        assert!(db < tol * whole.bias().unwrap()[0].abs().max(1.0), "{db:e}");
+        assert_eq!(whole.tail().is_some(), blocks.tail().is_some());
+        let (a, b) = (
+            whole.predict_with_linear(x.as_ref(), z.as_ref()),
+            blocks.predict_with_linear(x.as_ref(), z.as_ref()),
+        );
+        // |Δf| ≤ Σ|Δλ|·|φ| with φ ≤ 1: at most (K + 3) weights' differences.
+        let dp = (&a - &b).norm_max();
+        assert!(
+            dp < 23.0 * tol * scale.max(1.0),
+            "predictions differ by {dp:e}"
+        );
+    }
+    // A non-finite input is reported at its row of the whole data.
+    let p = RbfParams::new()
+        .centres(CentreSelection::Given(centres.clone()))
+        .width(WidthRule::Fixed(1.5))
+        .parallelism(Par::Seq)
+        .check()
+        .unwrap();
+    let err = p
+        .fit_given_streaming(9_000, 2, 0, 1, |start, mut xb, _, mut yb| {
+            let b = xb.nrows();
+            xb.copy_from(x.as_ref().subrows(start, b));
+            yb.copy_from(y.as_ref().subrows(start, b));
+            if (start..start + b).contains(&5_000) {
+                xb[(5_000 - start, 1)] = f64::NAN;
+            }
+        })
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            rbf::RbfError::NonFinite {
+                matrix: "x",
+                row: 5_000,
+                col: 1
+            }
+        ),
+        "{err}"
+    );
+    // Selection and data-dependent transforms need every row at once.
+    let unused =
+        |_: usize, _: faer::MatMut<'_, f64>, _: faer::MatMut<'_, f64>, _: faer::MatMut<'_, f64>| {};
+    for p in [
+        ols(None),
+        RbfParams::new()
+            .centres(CentreSelection::Given(centres.clone()))
+            .width(WidthRule::Fixed(1.5))
+            .standardise(true)
+            .check()
+            .unwrap(),
+    ] {
+        let err = p.fit_given_streaming(100, 2, 0, 1, unused).unwrap_err();
+        assert!(matches!(err, rbf::RbfError::NotStreamable { .. }), "{err}");
+    }
+    let err = p.fit_given_streaming(10, 2, 0, 1, unused).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            rbf::RbfError::FewerRowsThanCentres {
+                rows: 10,
+                centres: 20
+            }
+        ),
+        "{err}"
+    );
+}

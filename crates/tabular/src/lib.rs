@@ -192,68 +192,24 @@ impl Table {
     }
 
     /// Reads CSV text from any reader; `file` names the source in errors.
-    pub fn from_reader<R: Read>(mut reader: R, file: &str) -> Result<Self, TableError> {
-        // The csv crate counts lines by '\n' only after the first record, so a
-        // CRLF file's lines came out one low and a CR-only file's all as 1:
-        // lines are counted here from the bytes, for every convention.
-        let mut bytes = Vec::new();
-        reader
-            .read_to_end(&mut bytes)
-            .map_err(|source| TableError::Io {
-                path: file.to_string(),
-                source,
-            })?;
-        let lines_at = LineIndex::new(&bytes);
-        let line_of = |p: Option<&csv::Position>| p.map_or(0, |p| lines_at.line_of(p.byte()));
-        let mut rdr = csv::ReaderBuilder::new()
-            .has_headers(true)
-            .trim(csv::Trim::All)
-            .comment(Some(b'#'))
-            .from_reader(bytes.as_slice());
-        let malformed = |e: csv::Error| match e.kind() {
-            csv::ErrorKind::Io(_) => TableError::Io {
-                path: file.to_string(),
-                source: std::io::Error::other(e.to_string()),
-            },
-            _ => TableError::Malformed {
-                file: file.to_string(),
-                line: line_of(e.position()),
-                message: describe_csv_error(&e),
-            },
-        };
-        let header: Vec<String> = rdr
-            .headers()
-            .map_err(malformed)?
-            .iter()
-            .map(str::to_string)
-            .collect();
-        if header.is_empty() || header.iter().all(String::is_empty) {
-            return Err(TableError::NoHeader {
-                file: file.to_string(),
-            });
-        }
-        for (i, name) in header.iter().enumerate() {
-            if header[..i].contains(name) {
-                return Err(TableError::DuplicateColumn {
-                    file: file.to_string(),
-                    column: i + 1,
-                    name: name.clone(),
-                });
-            }
-        }
-        let mut rows = Vec::new();
-        let mut lines = Vec::new();
-        for rec in rdr.records() {
-            let rec = rec.map_err(malformed)?;
-            lines.push(line_of(rec.position()));
-            rows.push(rec);
-        }
-        Ok(Self {
+    pub fn from_reader<R: Read>(reader: R, file: &str) -> Result<Self, TableError> {
+        let mut t = Self {
             file: file.to_string(),
-            header,
-            rows,
-            lines,
-        })
+            header: Vec::new(),
+            rows: Vec::new(),
+            lines: Vec::new(),
+        };
+        scan(
+            reader,
+            file,
+            &mut t,
+            |t, h, _| t.header = h.to_vec(),
+            |t, rec, line| {
+                t.lines.push(line);
+                t.rows.push(rec.clone());
+            },
+        )?;
+        Ok(t)
     }
 
     /// The name the table was read from, as used in error messages.
@@ -332,48 +288,281 @@ impl Table {
     }
 
     fn parse_cell(&self, row: usize, col: usize, cell: &str) -> Result<f64, TableError> {
-        let located = |value: &str| {
-            (
+        parse_number(cell).map_err(|kind| {
+            kind.error(
                 self.file.clone(),
                 self.lines[row],
                 col + 1,
                 self.header[col].clone(),
-                value.to_string(),
+                cell.to_string(),
             )
-        };
-        match cell.parse::<f64>() {
-            Ok(v) if v.is_finite() && v.abs() <= MAX_MAGNITUDE => Ok(v),
-            Ok(v) if v.is_finite() => {
-                let (file, line, column, name, value) = located(cell);
-                Err(TableError::TooLarge {
-                    file,
-                    line,
-                    column,
-                    name,
-                    value,
-                })
-            }
-            Ok(_) => {
-                let (file, line, column, name, value) = located(cell);
-                Err(TableError::NotFinite {
-                    file,
-                    line,
-                    column,
-                    name,
-                    value,
-                })
-            }
-            Err(_) => {
-                let (file, line, column, name, value) = located(cell);
-                Err(TableError::NotANumber {
-                    file,
-                    line,
-                    column,
-                    name,
-                    value,
-                })
-            }
+        })
+    }
+}
+
+/// Why a cell is not a number the tables take.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum CellFault {
+    NotANumber,
+    NotFinite,
+    TooLarge,
+}
+
+impl CellFault {
+    fn error(
+        self,
+        file: String,
+        line: u64,
+        column: usize,
+        name: String,
+        value: String,
+    ) -> TableError {
+        match self {
+            CellFault::NotANumber => TableError::NotANumber {
+                file,
+                line,
+                column,
+                name,
+                value,
+            },
+            CellFault::NotFinite => TableError::NotFinite {
+                file,
+                line,
+                column,
+                name,
+                value,
+            },
+            CellFault::TooLarge => TableError::TooLarge {
+                file,
+                line,
+                column,
+                name,
+                value,
+            },
         }
+    }
+}
+
+/// A cell as a finite `f64` within [`MAX_MAGNITUDE`], or why not.
+fn parse_number(cell: &str) -> Result<f64, CellFault> {
+    match cell.parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() <= MAX_MAGNITUDE => Ok(v),
+        Ok(v) if v.is_finite() => Err(CellFault::TooLarge),
+        Ok(_) => Err(CellFault::NotFinite),
+        Err(_) => Err(CellFault::NotANumber),
+    }
+}
+
+/// Reads CSV text with a header row, calling `header` once with `state`, the
+/// checked column names and an upper bound on the number of data rows, then
+/// `row` with `state`, every data record and its 1-based file line.
+fn scan<R: Read, S>(
+    mut reader: R,
+    file: &str,
+    state: &mut S,
+    header: impl FnOnce(&mut S, &[String], usize),
+    mut row: impl FnMut(&mut S, &csv::StringRecord, u64),
+) -> Result<(), TableError> {
+    // The csv crate counts lines by '\n' only after the first record, so a
+    // CRLF file's lines came out one low and a CR-only file's all as 1:
+    // lines are counted here from the bytes, for every convention.
+    let mut bytes = Vec::new();
+    reader
+        .read_to_end(&mut bytes)
+        .map_err(|source| TableError::Io {
+            path: file.to_string(),
+            source,
+        })?;
+    let lines_at = LineIndex::new(&bytes);
+    let line_of = |p: Option<&csv::Position>| p.map_or(0, |p| lines_at.line_of(p.byte()));
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(bytes.as_slice());
+    let malformed = |e: csv::Error| match e.kind() {
+        csv::ErrorKind::Io(_) => TableError::Io {
+            path: file.to_string(),
+            source: std::io::Error::other(e.to_string()),
+        },
+        _ => TableError::Malformed {
+            file: file.to_string(),
+            line: line_of(e.position()),
+            message: describe_csv_error(&e),
+        },
+    };
+    let names: Vec<String> = rdr
+        .headers()
+        .map_err(malformed)?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    if names.is_empty() || names.iter().all(String::is_empty) {
+        return Err(TableError::NoHeader {
+            file: file.to_string(),
+        });
+    }
+    for (i, name) in names.iter().enumerate() {
+        if names[..i].contains(name) {
+            return Err(TableError::DuplicateColumn {
+                file: file.to_string(),
+                column: i + 1,
+                name: name.clone(),
+            });
+        }
+    }
+    // Every data row ends a line, bar perhaps the last.
+    header(state, &names, lines_at.ends.len() + 1);
+    let mut rec = csv::StringRecord::new();
+    while rdr.read_record(&mut rec).map_err(malformed)? {
+        row(state, &rec, line_of(rec.position()));
+    }
+    Ok(())
+}
+
+/// A CSV table of numbers, parsed cell by cell as it is read: the memory of
+/// its `f64` columns (and one line number a row), not of its text, which a
+/// [`Table`] keeps (several times the columns' size for a long record). Every
+/// cell must be a number; the first bad cell of each column is remembered
+/// and reported, with its file, line and column, when the column is asked
+/// for, exactly as [`Table::numeric`] reports it.
+///
+/// ```
+/// use tabular::NumericTable;
+/// let t = NumericTable::from_reader("t,az\n0.00,0.5\n0.02,-0.25\n".as_bytes(), "in.csv").unwrap();
+/// assert_eq!(t.len(), 2);
+/// assert_eq!(t.column("az").unwrap(), &[0.5, -0.25]);
+/// let bad = NumericTable::from_reader("t,az\n0.0,oops\n".as_bytes(), "bad.csv").unwrap();
+/// assert_eq!(bad.column("az").unwrap_err().to_string(), "bad.csv:2:2: column 'az': 'oops' is not a number");
+/// assert_eq!(bad.column("t").unwrap(), &[0.0]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct NumericTable {
+    file: String,
+    header: Vec<String>,
+    columns: Vec<Vec<f64>>,
+    /// The first bad cell of each column: its row, fault and text.
+    faults: Vec<Option<(usize, CellFault, String)>>,
+    lines: Vec<u64>,
+}
+
+impl NumericTable {
+    /// Reads a CSV file with a header row.
+    pub fn read(path: impl AsRef<Path>) -> Result<Self, TableError> {
+        let path = path.as_ref();
+        let file = std::fs::File::open(path).map_err(|source| TableError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::from_reader(std::io::BufReader::new(file), &path.display().to_string())
+    }
+
+    /// Reads CSV text from any reader; `file` names the source in errors.
+    /// Malformed CSV is an error here; a cell that is not a number only when
+    /// its column is asked for.
+    pub fn from_reader<R: Read>(reader: R, file: &str) -> Result<Self, TableError> {
+        let mut t = Self {
+            file: file.to_string(),
+            header: Vec::new(),
+            columns: Vec::new(),
+            faults: Vec::new(),
+            lines: Vec::new(),
+        };
+        scan(
+            reader,
+            file,
+            &mut t,
+            |t, h, rows| {
+                t.header = h.to_vec();
+                t.columns = (0..h.len()).map(|_| Vec::with_capacity(rows)).collect();
+                t.faults = vec![None; h.len()];
+                t.lines.reserve_exact(rows);
+            },
+            |t, rec, line| {
+                let row = t.lines.len();
+                t.lines.push(line);
+                for (j, (col, fault)) in t.columns.iter_mut().zip(t.faults.iter_mut()).enumerate() {
+                    let cell = rec.get(j).unwrap_or("");
+                    match parse_number(cell) {
+                        Ok(v) => col.push(v),
+                        Err(kind) => {
+                            col.push(f64::NAN);
+                            if fault.is_none() {
+                                *fault = Some((row, kind, cell.to_string()));
+                            }
+                        }
+                    }
+                }
+            },
+        )?;
+        Ok(t)
+    }
+
+    /// The name the table was read from, as used in error messages.
+    pub fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// The column names, in file order.
+    pub fn header(&self) -> &[String] {
+        &self.header
+    }
+
+    /// Number of data rows (the header excluded).
+    pub fn len(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// True when the file has a header but no data rows.
+    pub fn is_empty(&self) -> bool {
+        self.lines.is_empty()
+    }
+
+    /// The 1-based file line of data row `row` (0-based).
+    #[track_caller]
+    pub fn line_of_row(&self, row: usize) -> u64 {
+        self.lines[row]
+    }
+
+    /// Whether a column of that name exists.
+    pub fn has_column(&self, name: &str) -> bool {
+        self.header.iter().any(|h| h == name)
+    }
+
+    /// The 0-based index of a column, or [`TableError::MissingColumn`].
+    pub fn column_index(&self, name: &str) -> Result<usize, TableError> {
+        self.header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| TableError::MissingColumn {
+                file: self.file.clone(),
+                name: name.to_string(),
+                available: self.header.clone(),
+            })
+    }
+
+    /// A column of finite `f64`, or its first bad cell with its file, line
+    /// and column (the error [`Table::numeric`] gives).
+    pub fn column(&self, name: &str) -> Result<&[f64], TableError> {
+        let j = self.column_index(name)?;
+        match &self.faults[j] {
+            None => Ok(&self.columns[j]),
+            Some((row, kind, value)) => Err(kind.error(
+                self.file.clone(),
+                self.lines[*row],
+                j + 1,
+                self.header[j].clone(),
+                value.clone(),
+            )),
+        }
+    }
+
+    /// Moves a column out (an empty one is left behind), or gives its first
+    /// bad cell as [`NumericTable::column`] does.
+    pub fn take_column(&mut self, name: &str) -> Result<Vec<f64>, TableError> {
+        self.column(name)?;
+        let j = self.column_index(name)?;
+        Ok(std::mem::take(&mut self.columns[j]))
     }
 }
 
@@ -538,6 +727,43 @@ mod tests {
                 e => panic!("{e}"),
             }
         }
+    }
+
+    /// The numeric reader says what the text table says: the same numbers,
+    /// lines and errors, for every line ending, comment and bad cell.
+    #[test]
+    fn numeric_table_agrees_with_the_text_table() {
+        let texts = [
+            "t,x,y\n0,1,2\n1,2,3\n".to_string(),
+            "t,x,y\r\n# c\r\n0,1,oops\r\n1,NaN,3\r\n2,3,1e200\r\n".to_string(),
+            "t,x\r0,1\r1,-2.5e-3\r".to_string(),
+            " t , x \n 0 , 1 \n\n1,inf\n".to_string(),
+            "t,x\n".to_string(),
+        ];
+        for text in &texts {
+            let a = Table::from_reader(text.as_bytes(), "f.csv").unwrap();
+            let b = NumericTable::from_reader(text.as_bytes(), "f.csv").unwrap();
+            assert_eq!(a.header(), b.header(), "{text:?}");
+            assert_eq!(a.len(), b.len(), "{text:?}");
+            for r in 0..a.len() {
+                assert_eq!(a.line_of_row(r), b.line_of_row(r), "{text:?}");
+            }
+            for name in a.header().iter().map(String::as_str).chain(["absent"]) {
+                match (a.numeric(name), b.column(name)) {
+                    (Ok(x), Ok(y)) => assert_eq!(x, y, "{text:?} {name}"),
+                    (Err(x), Err(y)) => assert_eq!(x.to_string(), y.to_string(), "{text:?}"),
+                    (x, y) => panic!("{text:?} {name}: {x:?} against {y:?}"),
+                }
+            }
+        }
+        for bad in ["a,b\n1,2\n3\n", "", "a,b,a\n1,2,3\n"] {
+            let a = Table::from_reader(bad.as_bytes(), "f.csv").unwrap_err();
+            let b = NumericTable::from_reader(bad.as_bytes(), "f.csv").unwrap_err();
+            assert_eq!(a.to_string(), b.to_string());
+        }
+        let mut t = NumericTable::from_reader("a,b\n1,x\n".as_bytes(), "f.csv").unwrap();
+        assert_eq!(t.take_column("a").unwrap(), vec![1.0]);
+        assert!(t.take_column("b").is_err());
     }
 
     #[test]

@@ -476,6 +476,143 @@ fn solve_model_streaming(
     model_from(params, design, centres, widths, sol, Some(selection))
 }
 
+impl RbfValidParams {
+    /// Fits the weights of [`CentreSelection::Given`] centres (and the
+    /// coefficients of `r` linear regressors) on `n` rows handed over in
+    /// blocks, with memory independent of `n`: `fill(start, x, z, y)` copies
+    /// rows `start .. start + x.nrows()` of the inputs (d columns), the linear
+    /// regressors (r) and the targets (q) into the blocks. Each block's
+    /// [fixed columns | kernel columns] is reduced into a running triangular
+    /// factor by Householder QR ([`StreamingLstsq`], never the normal
+    /// equations), so the model equals
+    /// [`RbfValidParams::fit_with_linear`] on the whole matrices up to
+    /// rounding, with the same errors.
+    ///
+    /// # Errors
+    /// [`RbfError::NotStreamable`] for centres other than given ones, or
+    /// settings whose input transform depends on all rows (standardised
+    /// inputs, a polynomial tail); otherwise as
+    /// [`RbfValidParams::fit_with_linear`].
+    ///
+    /// ```
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// use rbf::{CentreSelection, RbfParams, WidthRule};
+    /// let x = Mat::from_fn(500, 1, |i, _| i as f64 / 50.0);
+    /// let y = Mat::from_fn(500, 1, |i, _| x[(i, 0)].sin());
+    /// let c = Mat::from_fn(8, 1, |k, _| k as f64 * 10.0 / 7.0);
+    /// let p = RbfParams::new().centres(CentreSelection::Given(c)).width(WidthRule::Fixed(1.5))
+    ///     .parallelism(Par::Seq).check().unwrap();
+    /// let whole = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// let blocks = p.fit_given_streaming(500, 1, 0, 1, |start, mut xb, _, mut yb| {
+    ///     xb.copy_from(x.as_ref().subrows(start, xb.nrows()));
+    ///     yb.copy_from(y.as_ref().subrows(start, yb.nrows()));
+    /// }).unwrap();
+    /// assert!((&whole.weights() - &blocks.weights()).norm_max() < 1e-8);
+    /// ```
+    pub fn fit_given_streaming(
+        &self,
+        n: usize,
+        d: usize,
+        r: usize,
+        q: usize,
+        mut fill: impl FnMut(usize, faer::MatMut<'_, f64>, faer::MatMut<'_, f64>, faer::MatMut<'_, f64>),
+    ) -> Result<RbfModel, RbfError> {
+        let CentreSelection::Given(given) = &self.centres else {
+            return Err(RbfError::NotStreamable {
+                needs: "given centres",
+            });
+        };
+        if self.standardise || self.degree.is_some() {
+            return Err(RbfError::NotStreamable {
+                needs: "inputs used as they are (no standardisation, no polynomial tail)",
+            });
+        }
+        if n == 0 {
+            return Err(RbfError::TooFewSamples {
+                samples: 0,
+                needed: 1,
+            });
+        }
+        assert!(q >= 1, "y needs at least one column");
+        check_dim("centres", given.as_ref(), d)?;
+        if n < given.nrows() {
+            return Err(RbfError::FewerRowsThanCentres {
+                rows: n,
+                centres: given.nrows(),
+            });
+        }
+        // The design of Design::new without its n-row matrices: [1 | x | z].
+        let (bias, tail) = (self.bias, self.linear_tail);
+        let p = usize::from(bias) + if tail { d } else { 0 } + r;
+        let design = Design {
+            scaling: None,
+            xs: Mat::zeros(0, d),
+            forced: Mat::zeros(0, p),
+            bias,
+            tail,
+            n_linear: r,
+            poly: None,
+        };
+        let centres = design.standardised(given.as_ref());
+        let widths = self.width.widths(centres.as_ref(), self.par)?;
+        let k = centres.nrows();
+        let mut acc = StreamingLstsq::new(p + k, q);
+        let block = WEIGHT_BLOCK_ROWS.max(p + k + q);
+        let (mut xb, mut zb, mut yb) = (
+            Mat::<f64>::zeros(block, d),
+            Mat::<f64>::zeros(block, r),
+            Mat::<f64>::zeros(block, q),
+        );
+        let mut a = Mat::<f64>::zeros(block, p + k);
+        for start in (0..n).step_by(block) {
+            let b = block.min(n - start);
+            fill(
+                start,
+                xb.as_mut().subrows_mut(0, b),
+                zb.as_mut().subrows_mut(0, b),
+                yb.as_mut().subrows_mut(0, b),
+            );
+            let (x, z, y) = (
+                xb.as_ref().subrows(0, b),
+                zb.as_ref().subrows(0, b),
+                yb.as_ref().subrows(0, b),
+            );
+            for (matrix, m) in [("x", x), ("z", z), ("y", y)] {
+                if let Some((row, col)) = first_non_finite(m) {
+                    return Err(RbfError::NonFinite {
+                        matrix,
+                        row: start + row,
+                        col,
+                    });
+                }
+            }
+            let mut ab = a.as_mut().subrows_mut(0, b);
+            let mut c = 0;
+            if bias {
+                ab.rb_mut().col_mut(0).fill(1.0);
+                c = 1;
+            }
+            if tail {
+                ab.rb_mut().subcols_mut(c, d).copy_from(x);
+                c += d;
+            }
+            ab.rb_mut().subcols_mut(c, r).copy_from(z);
+            kernel_matrix_into(
+                x,
+                centres.as_ref(),
+                self.kernel,
+                &widths,
+                ab.subcols_mut(p, k),
+                self.par,
+            );
+            acc.push(a.as_ref().subrows(0, b), y)?;
+        }
+        let sol = acc.finish(&weight_options(self, p, self.ridge))?;
+        model_from(self, &design, centres, widths, sol, None)
+    }
+}
+
 /// Centres and widths for k-means, random and given centres.
 fn fixed_centres(
     params: &RbfValidParams,

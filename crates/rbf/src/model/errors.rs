@@ -137,6 +137,13 @@ pub enum RbfError {
     /// [`crate::MAX_COEFFICIENT`]): the data's scale overflowed the solve.
     #[error("the fit produced an unusable model ({0}); rescale the inputs or the target")]
     UnusableModel(String),
+    /// [`crate::RbfValidParams::fit_given_streaming`] was asked for a fit it
+    /// cannot do over row blocks.
+    #[error("a fit over row blocks needs {needs}")]
+    NotStreamable {
+        /// What the settings lack.
+        needs: &'static str,
+    },
     /// A NaN or infinite input.
     #[error("non-finite value in {matrix} at row {row}, column {col}")]
     NonFinite {

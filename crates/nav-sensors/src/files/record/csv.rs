@@ -8,7 +8,7 @@
 use std::io::{Read, Write};
 use std::path::Path;
 
-use tabular::Table;
+use tabular::NumericTable;
 
 use super::{Record, RecordError, SENSOR_COLUMNS, check_time};
 use crate::geometry::{Axis, Channel};
@@ -24,7 +24,7 @@ impl Record {
     /// assert_eq!(rec.len(), 50);
     /// ```
     pub fn read_csv(path: impl AsRef<Path>) -> Result<Self, RecordError> {
-        Self::from_table(&Table::read(path)?)
+        Self::from_table(NumericTable::read(path)?)
     }
 
     /// Reads and validates record CSV text; `name` labels errors.
@@ -35,10 +35,12 @@ impl Record {
     /// assert!(rec.extra_names().is_empty());
     /// ```
     pub fn from_reader<R: Read>(reader: R, name: &str) -> Result<Self, RecordError> {
-        Self::from_table(&Table::from_reader(reader, name)?)
+        Self::from_table(NumericTable::from_reader(reader, name)?)
     }
 
-    fn from_table(table: &Table) -> Result<Self, RecordError> {
+    /// The record of a table parsed straight into numbers (a 1M-row record
+    /// holds its 88 MB of columns, not 600 MB of cell text).
+    fn from_table(mut table: NumericTable) -> Result<Self, RecordError> {
         let file = table.file().to_string();
         for name in std::iter::once("t").chain(SENSOR_COLUMNS) {
             if !table.has_column(name) {
@@ -55,11 +57,16 @@ impl Record {
                 rows: table.len(),
             });
         }
-        // Parse in header order so the first bad cell reported is the
-        // leftmost bad column.
-        let mut columns: Vec<(String, Vec<f64>)> = Vec::with_capacity(table.header().len());
-        for name in table.header() {
-            columns.push((name.clone(), table.numeric(name)?));
+        // Check in header order so the first bad cell reported is the
+        // leftmost bad column's.
+        let header = table.header().to_vec();
+        for name in &header {
+            table.column(name)?;
+        }
+        let mut columns: Vec<(String, Vec<f64>)> = Vec::with_capacity(header.len());
+        for name in header {
+            let c = table.take_column(&name)?;
+            columns.push((name, c));
         }
         let mut take = |name: &str| -> Vec<f64> {
             let k = columns
