@@ -985,7 +985,7 @@ mod tests {
                 assert_eq!(a.linear_coefficients(), b.linear_coefficients());
                 let scale = a.weights().norm_max();
                 assert!(
-                    (&a.weights() - &b.weights()).norm_max() <= 1e-7 * scale,
+                    (a.weights() - b.weights()).norm_max() <= 1e-7 * scale,
                     "{}: weights {:?} against {:?}",
                     m.channel(),
                     a.weights(),

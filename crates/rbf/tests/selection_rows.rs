@@ -109,13 +109,13 @@ fn given_centres_over_caller_row_blocks_equal_the_whole_matrix_fit() {
         // Equal up to rounding amplified by the conditioning of the design.
         let scale = whole.weights().norm_max();
         let tol = 1e3 * f64::EPSILON * whole.condition();
-        let dw = (&whole.weights() - &blocks.weights()).norm_max() / scale;
+        let dw = (whole.weights() - blocks.weights()).norm_max() / scale;
         assert!(
             dw < tol,
             "weights differ by {dw:e} (relative), condition {:e}",
             whole.condition()
         );
-        let dl = (&whole.linear_coefficients() - &blocks.linear_coefficients()).norm_max();
+        let dl = (whole.linear_coefficients() - blocks.linear_coefficients()).norm_max();
         assert!(
             dl < tol * whole.linear_coefficients().norm_max().max(1.0),
             "{dl:e}"
