@@ -7,7 +7,7 @@
 //! trains on the first part and validates on the last, with a gap wide enough
 //! that no sample reaches both ([`leakage_gap`]). Blocked is the default.
 //!
-//! The split itself is rbf's [`Holdout`]; this module adds what a record
+//! The split itself is rbf's [`Holdout`](rbf::Holdout); this module adds what a record
 //! knows: the gap its windows and filter need, and the fewest rows a side
 //! may have.
 

@@ -149,7 +149,7 @@ pub fn diagnose(
 /// on its own, the model's split applied as at fit time, and every
 /// candidate ranked on the rows of all of them. A pair of candidates that
 /// one record cannot tell apart is separated by another that excites them
-/// differently, and [`Candidate::separated_by`] says which. One record gives
+/// differently, and [`Candidate::record_separations`] says which. One record gives
 /// exactly [`diagnose`].
 ///
 /// ```no_run

@@ -30,7 +30,7 @@ impl std::str::FromStr for CentreMethod {
     }
 }
 
-/// What a model keeps of its [`FitOptions`] besides the pre-processing,
+/// What a model keeps of its [`FitOptions`](crate::fit::FitOptions) besides the pre-processing,
 /// split and effects it stores anyway: enough to fit it again the same way
 /// (the diagnosis cross-fits and tries settings).
 ///
