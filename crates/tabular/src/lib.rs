@@ -180,15 +180,34 @@ impl<'a> LineIndex<'a> {
     }
 }
 
+/// Opens a CSV file for [`Table::read`] and [`NumericTable::read`], with the
+/// name errors give it.
+fn open(path: &Path) -> Result<(std::io::BufReader<std::fs::File>, String), TableError> {
+    let name = path.display().to_string();
+    match std::fs::File::open(path) {
+        Ok(file) => Ok((std::io::BufReader::new(file), name)),
+        Err(source) => Err(TableError::Io { path: name, source }),
+    }
+}
+
+/// The 0-based index of column `name` in `header`, or
+/// [`TableError::MissingColumn`] naming `file` and the columns it has.
+fn column_index(file: &str, header: &[String], name: &str) -> Result<usize, TableError> {
+    header
+        .iter()
+        .position(|h| h == name)
+        .ok_or_else(|| TableError::MissingColumn {
+            file: file.to_string(),
+            name: name.to_string(),
+            available: header.to_vec(),
+        })
+}
+
 impl Table {
     /// Reads a CSV file with a header row.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, TableError> {
-        let path = path.as_ref();
-        let file = std::fs::File::open(path).map_err(|source| TableError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_reader(std::io::BufReader::new(file), &path.display().to_string())
+        let (reader, name) = open(path.as_ref())?;
+        Self::from_reader(reader, &name)
     }
 
     /// Reads CSV text from any reader; `file` names the source in errors.
@@ -245,14 +264,7 @@ impl Table {
 
     /// The 0-based index of a column, or [`TableError::MissingColumn`].
     pub fn column_index(&self, name: &str) -> Result<usize, TableError> {
-        self.header
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| TableError::MissingColumn {
-                file: self.file.clone(),
-                name: name.to_string(),
-                available: self.header.clone(),
-            })
+        column_index(&self.file, &self.header, name)
     }
 
     /// A column's cells as text.
@@ -449,12 +461,8 @@ pub struct NumericTable {
 impl NumericTable {
     /// Reads a CSV file with a header row.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, TableError> {
-        let path = path.as_ref();
-        let file = std::fs::File::open(path).map_err(|source| TableError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_reader(std::io::BufReader::new(file), &path.display().to_string())
+        let (reader, name) = open(path.as_ref())?;
+        Self::from_reader(reader, &name)
     }
 
     /// Reads CSV text from any reader; `file` names the source in errors.
@@ -531,14 +539,7 @@ impl NumericTable {
 
     /// The 0-based index of a column, or [`TableError::MissingColumn`].
     pub fn column_index(&self, name: &str) -> Result<usize, TableError> {
-        self.header
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| TableError::MissingColumn {
-                file: self.file.clone(),
-                name: name.to_string(),
-                available: self.header.clone(),
-            })
+        column_index(&self.file, &self.header, name)
     }
 
     /// A column of finite `f64`, or its first bad cell with its file, line
