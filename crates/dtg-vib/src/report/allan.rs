@@ -1,7 +1,7 @@
 //! The Allan-deviation page: log-log curves before and after compensation
 //! with the fitted noise-term lines, and a table of the terms.
 
-use super::{Drawn, colours, fmt, save_all};
+use super::common::{Drawn, colours, fmt, save_all};
 use crate::allan::{AllanAnalysis, SeriesAllan, term_text as cell};
 use crate::error::DtgVibError;
 use nav_sensors::noise::{AllanCurve, FLICKER_FLOOR, NoiseTerm, NoiseTerms};

@@ -1,8 +1,8 @@
 //! One section per channel: the findings and the ranked candidate effects
 //! with their coefficients, intervals and p-values.
 
-use super::fmt;
 use crate::diagnose::ChannelDiagnosis;
+use crate::report::common::fmt;
 use plot::{Section, Table};
 
 /// The section of channel `c`.

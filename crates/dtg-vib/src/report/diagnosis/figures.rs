@@ -2,9 +2,9 @@
 //! its top candidate, residual spectra, whiteness and independence tests,
 //! and measured against predicted.
 
-use super::{Drawn, band_label, per_channel};
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
-use crate::report::{colours, positive_freq};
+use crate::report::common::Drawn;
+use crate::report::common::{colours, positive_freq};
 use plot::{BarChart, Figure, Panel, Section, Series};
 
 /// The section's figures, with their file stems.
@@ -230,4 +230,21 @@ pub(super) fn section(drawn: &Drawn, min_err: f64) -> Section {
         .figure(drawn.get("diag_residual_psd"), "Residual power spectral density.")
         .figure(drawn.get("diag_whiteness"), "Whiteness beyond the model's memory: the residual's autocorrelation at lags past one window plus the filter's reach, where a model that left nothing slow has none, with its band.")
         .figure(drawn.get("diag_independence"), "Independence: the residual's cross-correlation with each acceleration axis (and each extra column) against lag in seconds, with the (Bartlett) band; all inputs are green, ax solid, ay dashed, az dotted, extra columns as dots.")
+}
+
+/// One panel per channel under `title`.
+fn per_channel(
+    title: &str,
+    diag: &Diagnosis,
+    panel: impl Fn(&ChannelDiagnosis) -> Panel,
+) -> Figure {
+    diag.channels
+        .iter()
+        .fold(Figure::new(title), |f, c| f.panel(panel(c)))
+}
+
+/// The legend of a correlation test's band: its per-lag level (the verdict
+/// adds a Bonferroni correction over the lags).
+fn band_label(confidence: f64) -> String {
+    format!("{:.0} % band per lag", 100.0 * confidence)
 }

@@ -9,22 +9,11 @@ mod figures;
 pub(in crate::report) mod overview;
 pub(in crate::report) mod reading;
 
-use super::{Drawn, fmt, save_all};
-use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::diagnose::Diagnosis;
 use crate::error::DtgVibError;
-use plot::{Figure, HtmlReport, Panel};
+use crate::report::common::{Drawn, save_all};
+use plot::HtmlReport;
 use std::path::{Path, PathBuf};
-
-/// One panel per channel under `title`.
-fn per_channel(
-    title: &str,
-    diag: &Diagnosis,
-    panel: impl Fn(&ChannelDiagnosis) -> Panel,
-) -> Figure {
-    diag.channels
-        .iter()
-        .fold(Figure::new(title), |f, c| f.panel(panel(c)))
-}
 
 /// Writes the diagnosis figures and `index.html` into `dir`; `min_err` is
 /// the suggestion threshold drawn on the ERR charts.
@@ -46,10 +35,4 @@ pub fn write_diagnosis_report(
     }
     page = page.section(figures::section(&drawn, min_err));
     Ok(page.write(dir)?)
-}
-
-/// The legend of a correlation test's band: its per-lag level (the verdict
-/// adds a Bonferroni correction over the lags).
-fn band_label(confidence: f64) -> String {
-    format!("{:.0} % band per lag", 100.0 * confidence)
 }

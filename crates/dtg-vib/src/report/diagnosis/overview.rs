@@ -1,8 +1,8 @@
 //! Section "Overview": the page's summary (what to refit with), each
 //! channel's effects, rms, fit and suggestions, and the rms bars.
 
-use super::{Drawn, fmt};
 use crate::diagnose::Diagnosis;
+use crate::report::common::{Drawn, fmt};
 use plot::{BarChart, Figure, Section, Table};
 
 /// The validation rms bars (bias only against the model), with their stem.

@@ -4,9 +4,8 @@
 //! candidate's coefficient can be large. The final report's compact
 //! diagnosis reads the same sentences.
 
-use super::fmt;
 use crate::diagnose::{Diagnosis, RankOptions};
-use crate::report::short;
+use crate::report::common::{fmt, short};
 use plot::Section;
 
 /// `--min-gain` (the cut of the residual rms a suggestion must make) from
@@ -65,7 +64,7 @@ pub(super) fn section(diag: &Diagnosis, min_err: f64) -> Section {
     Section::new("How to read the tables")
         .text(OVERVIEW_COLUMNS)
         .text(candidate_columns(min_err, &p))
-        .text(crate::report::colours::LEGEND)
+        .text(crate::report::common::colours::LEGEND)
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! rows without and with compensation (and against a baseline model).
 
 use super::channels::effect_ids;
-use super::{Ctx, Drawn, fmt};
-use crate::report::colours;
+use super::ctx::Ctx;
+use crate::report::common::colours;
+use crate::report::common::{Drawn, fmt};
 use nav_sensors::geometry::{Channel, Residue};
 use plot::{BarChart, Figure, Section, Table};
 

@@ -1,7 +1,8 @@
 //! Section "Channel models": each channel's effects, centres, width and
 //! scores on this record.
 
-use super::{Ctx, fmt};
+use super::ctx::Ctx;
+use crate::report::common::fmt;
 use plot::{Section, Table};
 
 /// The section.

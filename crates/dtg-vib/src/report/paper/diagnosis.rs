@@ -4,12 +4,11 @@
 //! with their coefficients), every column explained, and a link to the
 //! diagnosis page for the figures and the findings in full.
 
-use super::fmt;
 use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::report::common::{fmt, short};
 use crate::report::diagnosis::channel::candidate_cells;
 use crate::report::diagnosis::overview::failing_cell;
 use crate::report::diagnosis::reading::candidate_columns;
-use crate::report::short;
 use plot::{Section, Table};
 use std::path::PathBuf;
 

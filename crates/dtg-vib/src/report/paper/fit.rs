@@ -1,8 +1,9 @@
 //! Section "Measured against predicted": every channel's target and network
 //! output over the whole record, the training rows shaded.
 
-use super::{Ctx, Drawn};
-use crate::report::colours;
+use super::ctx::Ctx;
+use crate::report::common::Drawn;
+use crate::report::common::colours;
 use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series};
 

@@ -4,8 +4,9 @@
 //! record's truth), and against the normal density of the residual's own
 //! mean and standard deviation.
 
-use super::{Ctx, Drawn, fmt, pick};
-use crate::report::colours;
+use super::ctx::{Ctx, pick};
+use crate::report::common::colours;
+use crate::report::common::{Drawn, fmt};
 use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series, Table};
 

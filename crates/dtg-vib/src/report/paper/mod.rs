@@ -5,6 +5,7 @@
 
 mod before_after;
 mod channels;
+mod ctx;
 mod diagnosis;
 mod fit;
 mod histogram;
@@ -12,18 +13,18 @@ mod paper_figures;
 mod residues;
 mod summary;
 
-use super::{Drawn, Provenance, fmt, save_all};
-use crate::allan::AllanAnalysis;
+use super::common::{Drawn, fmt, save_all};
 use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
 use crate::parity::ResidueStats;
-use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use plot::{Figure, HtmlReport, Section};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+use ctx::Ctx;
+pub use ctx::{Baseline, ReportExtras};
 pub use diagnosis::DiagnosisExtra;
 pub use histogram::NoiseFloor;
 
@@ -36,116 +37,6 @@ pub struct ReportSummary {
     pub residues: Vec<ResidueStats>,
     /// Each channel's scores on this record, in X, X1, Y, Y1, Z, Z1 order.
     pub channels: Vec<ChannelScores>,
-}
-
-/// A previous model of the same record, to show each channel's error before
-/// and after (e.g. before and after adding an effect).
-pub struct Baseline<'a> {
-    /// Its name in the report (e.g. "baseline").
-    pub label: &'a str,
-    /// The model.
-    pub model: &'a CompensationModel,
-    /// It applied to the same record.
-    pub applied: &'a Applied,
-}
-
-/// What a report shows beyond the model and the record, when known.
-#[derive(Default)]
-pub struct ReportExtras<'a> {
-    /// Where the report came from (files with SHA-256, command line).
-    pub provenance: Option<&'a Provenance>,
-    /// The Allan deviation before and after, drawn and tabled on the page.
-    pub allan: Option<&'a AllanAnalysis>,
-    /// Other pages to link from the summary: `(path, text)`.
-    pub links: Vec<(PathBuf, String)>,
-    /// A diagnosis of the model: where it fails and what it misses, in
-    /// short on the page, linking its own page.
-    pub diagnosis: Option<DiagnosisExtra<'a>>,
-    /// The record's noise floor, when known (a simulation's truth): the
-    /// residual histogram is drawn against it.
-    pub noise_floor: Option<NoiseFloor<'a>>,
-}
-
-/// What every section of the page reads.
-struct Ctx<'a> {
-    model: &'a CompensationModel,
-    applied: &'a Applied,
-    record: &'a Record,
-    baseline: Option<Baseline<'a>>,
-    /// Scores on this record (not the fit-time ones: the record may be another).
-    scores: Vec<ChannelScores>,
-    /// The baseline's scores on this record.
-    base_scores: Option<Vec<ChannelScores>>,
-    /// Residue rms before/after on the validation rows.
-    stats: Vec<ResidueStats>,
-    /// The channel the single-channel figures show.
-    show: Channel,
-    /// The thrust-axis acceleration's column name.
-    thrust: String,
-    /// The record's noise floor, when known.
-    noise_floor: Option<&'a NoiseFloor<'a>>,
-}
-
-impl<'a> Ctx<'a> {
-    fn new(
-        model: &'a CompensationModel,
-        applied: &'a Applied,
-        record: &'a Record,
-        baseline: Option<Baseline<'a>>,
-        noise_floor: Option<&'a NoiseFloor<'a>>,
-    ) -> Self {
-        let scores: Vec<ChannelScores> = Channel::ALL.map(|c| applied.scores(c)).to_vec();
-        let base_scores = baseline
-            .as_ref()
-            .map(|b| Channel::ALL.map(|c| b.applied.scores(c)).to_vec());
-        let show = showcase(&scores);
-        let thrust = model
-            .preprocess()
-            .window
-            .signals()
-            .first()
-            .cloned()
-            .unwrap_or_else(|| "az".into());
-        Ctx {
-            model,
-            applied,
-            record,
-            baseline,
-            scores,
-            base_scores,
-            stats: applied.validation_residues(),
-            show,
-            thrust,
-            noise_floor,
-        }
-    }
-
-    /// The baseline with its scores, when there is one.
-    fn baseline(&self) -> Option<(&Baseline<'a>, &[ChannelScores])> {
-        self.baseline.as_ref().zip(self.base_scores.as_deref())
-    }
-
-    /// The times of `rows`.
-    fn rows_t(&self, rows: &[usize]) -> Vec<f64> {
-        rows.iter().map(|&r| self.applied.residues.t[r]).collect()
-    }
-}
-
-fn pick(v: &[f64], rows: &[usize]) -> Vec<f64> {
-    rows.iter().map(|&r| v[r]).collect()
-}
-
-/// The channel whose validation residual fell most against a bias-only model:
-/// the one the paper's single-channel figures show.
-fn showcase(scores: &[ChannelScores]) -> Channel {
-    Channel::ALL
-        .into_iter()
-        .zip(scores)
-        .max_by(|(_, a), (_, b)| {
-            let g = |s: &ChannelScores| s.val_rms_bias_only / s.val_rms;
-            g(a).total_cmp(&g(b))
-        })
-        .map_or(Channel::X, |(c, _)| c)
 }
 
 /// The page's summary line: the record, the split and the reduction.

@@ -2,10 +2,10 @@
 //! acceleration), Fig. 5 (processed acceleration and rate), Fig. 6 (target
 //! and network output) for the showcase channel and for all channels.
 
-use super::{Ctx, pick};
+use super::ctx::{Ctx, pick};
 use crate::apply::raw_residues;
 use crate::error::DtgVibError;
-use crate::report::colours;
+use crate::report::common::colours;
 use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series};
 
@@ -120,7 +120,7 @@ fn fig6_all(ctx: &Ctx<'_>) -> Figure {
 }
 
 /// The section, once its figures are drawn.
-pub(super) fn section(drawn: &super::Drawn) -> Section {
+pub(super) fn section(drawn: &crate::report::common::Drawn) -> Section {
     Section::new("The paper's figures")
         .figure(
             drawn.get("fig3_residue_accel"),

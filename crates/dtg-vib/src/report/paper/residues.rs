@@ -1,8 +1,9 @@
 //! Section "Residues (eq. 6)": the residue table on the validation rows,
 //! Fig. 7 (residues with and without compensation) and the residue spectra.
 
-use super::{Ctx, Drawn, fmt, pick};
-use crate::report::{colours, positive_freq};
+use super::ctx::{Ctx, pick};
+use crate::report::common::{Drawn, fmt};
+use crate::report::common::{colours, positive_freq};
 use nav_sensors::geometry::Residue;
 use plot::{Figure, Panel, Section, Series, Table};
 
@@ -211,7 +212,7 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
         text.push_str(&format!(
             " It added power at 0.2–2 Hz, where the compensated curve lies above the uncompensated one: {}. The reason: the model predicts the error from the vibration level it estimates over each {} s acceleration window, and that estimate wanders from one window to the next (about 20% for a 50-sample window); the wander is at the window's rate and below, so it lands at 0.2–2 Hz as prediction error while the mean it corrects is right on average. A longer --window estimates the level better and moves the wander lower (measured on the demo record: 2.9–3.4× with a 1-s window, 1.2–1.3× with a 5-s one; docs/dtg-vib.md, \"Why the compensated residue spectrum can lie above the uncompensated one\").",
             rises.join("; "),
-            crate::report::short(window_s)
+            crate::report::common::short(window_s)
         ));
     }
     if !high.is_empty() {

@@ -3,7 +3,8 @@
 //! the provenance and the other pages.
 
 use super::channels::effect_cells;
-use super::{Ctx, ReportExtras, fmt};
+use super::ctx::{Ctx, ReportExtras};
+use crate::report::common::fmt;
 use plot::{Section, Table};
 
 /// The per-channel summary table: rms before (bias only) and after, on the
@@ -42,5 +43,5 @@ pub(super) fn section(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Section {
     for (path, text) in &extras.links {
         sec = sec.link(path.clone(), text.clone());
     }
-    sec.text(crate::report::colours::LEGEND)
+    sec.text(crate::report::common::colours::LEGEND)
 }
