@@ -16,7 +16,7 @@
 
 use dtg_vib::apply::Applied;
 use dtg_vib::fit::{FitOptions, fit};
-use dtg_vib::split::SplitKind;
+use dtg_vib::split::Holdout;
 use nav_sensors::sim::{Scenario, simulate};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -33,8 +33,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         1.0 / sim.record.dt()
     );
     for (name, split) in [
-        ("interleaved (the paper's)", SplitKind::Interleaved),
-        ("blocked (first half trains)", SplitKind::default()),
+        ("interleaved (the paper's)", Holdout::Interleaved),
+        ("blocked (first half trains)", Holdout::default()),
     ] {
         let options = FitOptions {
             split,

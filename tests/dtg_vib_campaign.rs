@@ -10,7 +10,8 @@
 //!   model of the three runs holds better on the flight than the z-only one.
 
 use dtg_vib::check::{DEFAULT_OUTSIDE_THRESHOLD, check};
-use dtg_vib::diagnose::{DiagnoseOptions, diagnose, diagnose_records};
+use dtg_vib::diagnose::DiagnoseOptions;
+use dtg_vib::explain::{diagnose, diagnose_records};
 use dtg_vib::fit::{FitOptions, fit, fit_records};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::{Axis, Channel};

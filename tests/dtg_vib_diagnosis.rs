@@ -4,9 +4,10 @@
 //! adding what it suggests the validation rms comes within 20% of the
 //! simulated noise floor.
 
-use dtg_vib::diagnose::{DiagnoseOptions, Diagnosis, diagnose};
+use dtg_vib::diagnose::{DiagnoseOptions, Diagnosis};
 use dtg_vib::effects::ChannelEffect;
-use dtg_vib::fit::{FitOptions, fit};
+use dtg_vib::explain::diagnose;
+use dtg_vib::fit::{FitOptions, FitSettings, fit};
 use dtg_vib::model::CompensationModel;
 use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, Simulation, simulate};
@@ -151,8 +152,11 @@ fn an_interleaved_split_is_analysed_at_the_rate_of_its_validation_rows() {
     })
     .unwrap();
     let options = FitOptions {
-        split: dtg_vib::split::SplitKind::Interleaved,
-        max_centres: 10,
+        split: dtg_vib::split::Holdout::Interleaved,
+        settings: FitSettings {
+            max_centres: 10,
+            ..FitSettings::default()
+        },
         ..FitOptions::default()
     };
     let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();

@@ -245,7 +245,7 @@ fn false_alarm_rate_per_record_over_50_clean_records() {
             &|_| {},
         )
         .unwrap();
-        let d = dtg_vib::diagnose::diagnose(&m, &sim.record, &options).unwrap();
+        let d = dtg_vib::explain::diagnose(&m, &sim.record, &options).unwrap();
         let found: Vec<String> = d
             .channels
             .iter()
@@ -458,7 +458,7 @@ fn a_collinear_pair_is_reported_with_the_run_that_splits_it() {
         &|_| {},
     )
     .unwrap();
-    let d = dtg_vib::diagnose::diagnose(&m, &sim.record, &DiagnoseOptions::default()).unwrap();
+    let d = dtg_vib::explain::diagnose(&m, &sim.record, &DiagnoseOptions::default()).unwrap();
     let x = &d.channels[Channel::X.index()];
     assert_eq!(x.suggested.len(), 1, "{:?}", x.findings);
     let k = x

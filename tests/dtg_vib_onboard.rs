@@ -109,7 +109,7 @@ fn step_against_batch(model_path: &Path) -> f64 {
     let rec = record();
     let prepared = model.prepare(&rec).unwrap();
     let batch = model.predict(&prepared).unwrap();
-    let stepped = dtg_vib::export::step_record(&model, &rec).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     assert_eq!(stepped.first_sample, prepared.first_sample());
     let first = prepared.first_sample();
     let mut worst = 0.0f64;
@@ -338,7 +338,7 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
     // kind of the tables (linear, quadratic with covariance, rate product)
     // against the batch effect columns.
     use dtg_vib::effects::Effect;
-    use dtg_vib::fit::{FitOptions, fit};
+    use dtg_vib::fit::{FitOptions, FitSettings, fit};
     use dtg_vib::pipeline::Preprocess;
     use dtg_vib::window::WindowSpec;
     let n = 1200;
@@ -380,13 +380,16 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
             ..Preprocess::default()
         },
         effects: Effect::parse_list("g_O,gg_IS,gg_OO,ai_IO,ai_OS").unwrap(),
-        max_centres: 5,
+        settings: FitSettings {
+            max_centres: 5,
+            ..FitSettings::default()
+        },
         ..FitOptions::default()
     };
     let model = fit(&rec, None, &options, &|_| {}).unwrap();
     let prepared = model.prepare(&rec).unwrap();
     let batch = model.predict(&prepared).unwrap();
-    let stepped = dtg_vib::export::step_record(&model, &rec).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     let mut worst = 0.0f64;
     for (k, b) in batch.iter().enumerate() {
         for (s, b) in stepped.error_deg_h[k].iter().zip(b) {

@@ -3,7 +3,7 @@
 //! part of a blocked split.
 
 use dtg_vib::apply::Applied;
-use dtg_vib::fit::{FitOptions, fit};
+use dtg_vib::fit::{FitOptions, FitSettings, fit};
 use nav_sensors::sim::{Scenario, simulate};
 
 #[test]
@@ -47,7 +47,10 @@ fn a_saved_model_compensates_identically_after_loading() {
     })
     .unwrap();
     let options = FitOptions {
-        max_centres: 10,
+        settings: FitSettings {
+            max_centres: 10,
+            ..FitSettings::default()
+        },
         ..FitOptions::default()
     };
     let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
@@ -72,7 +75,10 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
     };
     let sim = simulate(&short(1)).unwrap();
     let options = FitOptions {
-        max_centres: 10,
+        settings: FitSettings {
+            max_centres: 10,
+            ..FitSettings::default()
+        },
         ..FitOptions::default()
     };
     let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();

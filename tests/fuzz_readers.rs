@@ -17,7 +17,7 @@
 use std::sync::OnceLock;
 
 use dtg_vib::apply::Applied;
-use dtg_vib::fit::{FitOptions, fit};
+use dtg_vib::fit::{FitOptions, FitSettings, fit};
 use dtg_vib::model::CompensationModel;
 use dtg_vib::pipeline::{Prepared, Preprocess};
 use nav_sensors::calibration::Calibration;
@@ -113,8 +113,11 @@ fn base() -> &'static Base {
         sim.record.write_to(&mut buf, "record.csv").unwrap();
         let record_csv = String::from_utf8(buf).unwrap();
         let options = FitOptions {
-            max_centres: 4,
-            candidates: 40,
+            settings: FitSettings {
+                max_centres: 4,
+                candidates: 40,
+                ..FitSettings::default()
+            },
             ..FitOptions::default()
         };
         let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();

@@ -24,7 +24,7 @@ pub struct Applied {
     pub val: Vec<usize>,
     /// A causal model's run through the onboard evaluator, which gives its
     /// predictions and compensated record.
-    onboard: Option<crate::export::Stepped>,
+    onboard: Option<crate::onboard::Stepped>,
 }
 
 impl Applied {
@@ -54,9 +54,9 @@ impl Applied {
         // A model the onboard layout cannot carry (another kernel, input
         // scaling: only from the library) is still compensated, as a batch.
         let stepped = if model.preprocess().causal {
-            match crate::export::step_record(model, record) {
+            match crate::onboard::step_record(model, record) {
                 Ok(s) => Some(s),
-                Err(DtgVibError::Export(crate::export::ExportError::Unsupported { .. })) => None,
+                Err(DtgVibError::Export(crate::onboard::ExportError::Unsupported { .. })) => None,
                 Err(e) => return Err(e),
             }
         } else {

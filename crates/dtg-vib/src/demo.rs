@@ -3,9 +3,10 @@
 //! diagnose, add what it names, refit — and show the error fall.
 
 use crate::apply::Applied;
-use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose};
+use crate::diagnose::{DiagnoseOptions, Diagnosis};
 use crate::effects::ChannelEffect;
 use crate::error::DtgVibError;
+use crate::explain::diagnose;
 use crate::fit::{FitOptions, FitStage, fit};
 use crate::model::CompensationModel;
 use crate::parity::ResidueStats;

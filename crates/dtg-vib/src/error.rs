@@ -51,7 +51,7 @@ pub enum DtgVibError {
     Simulation(#[from] nav_sensors::sim::SimError),
     /// A model cannot be exported or run on-line.
     #[error("export: {0}")]
-    Export(#[from] crate::export::ExportError),
+    Export(#[from] crate::onboard::error::ExportError),
     /// The pre-processing filter cannot be designed or applied.
     #[error("pre-processing filter: {0}")]
     Filter(#[from] crate::signal::FilterError),

@@ -5,8 +5,12 @@
 //! `dtg-vib fit --add-effect CHANNEL=ID`, and gives the same answer: the
 //! refit of round k is `fit` with the options of round k − 1 plus the
 //! additions, and its diagnosis is `diagnose` of that model.
+//!
+//! This is the loop layer: it fits what the diagnosis asks for (the model's
+//! mirror, a longer window) and hands the diagnosis the predictions, so the
+//! diagnosis only reads.
 
-use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose_records};
+use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose_prepared};
 use crate::effects::ChannelEffect;
 use crate::error::DtgVibError;
 use crate::fit::{FitOptions, FitStage, fit_records};
@@ -15,6 +19,62 @@ use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use serde::Serialize;
+
+/// Diagnoses a fitted model on a record (normally the one it was fitted on:
+/// the validation rows of the model's split are used).
+///
+/// ```no_run
+/// let model = dtg_vib::model::CompensationModel::load("model.json")?;
+/// let rec = nav_sensors::record::Record::read_csv("record.csv")?;
+/// let d = dtg_vib::explain::diagnose(&model, &rec, &Default::default())?;
+/// for c in &d.channels { println!("{}: {:?}", c.channel, c.suggested); }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn diagnose(
+    model: &CompensationModel,
+    record: &Record,
+    options: &DiagnoseOptions,
+) -> Result<Diagnosis, DtgVibError> {
+    diagnose_records(model, &[(String::new(), record)], options)
+}
+
+/// Diagnoses a fitted model on several records at once (normally those it
+/// was fitted on, named by their files as at the fit): each record prepared
+/// on its own, the model's split applied as at fit time, the mirror fitted
+/// ([`crate::fit::mirror`]) and the diagnosis read from both
+/// ([`diagnose_prepared`]). Where a residual stays correlated beyond the
+/// model's window and `options.try_settings` is on, the recipe is refitted
+/// with a three times longer window and the diagnosis told what it gained
+/// ([`Diagnosis::note_window_trial`]); a record too short for it says
+/// nothing about it. One record gives exactly [`diagnose`].
+///
+/// ```no_run
+/// use dtg_vib::explain::diagnose_records;
+/// use dtg_vib::model::CompensationModel;
+/// use nav_sensors::record::Record;
+/// let model = CompensationModel::load("xyz.json")?;
+/// let (x, z) = (Record::read_csv("x.csv")?, Record::read_csv("z.csv")?);
+/// let recs = [("x.csv".to_string(), &x), ("z.csv".to_string(), &z)];
+/// let d = diagnose_records(&model, &recs, &Default::default())?;
+/// for c in &d.channels { println!("{}: {:?}", c.channel, c.suggested); }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn diagnose_records(
+    model: &CompensationModel,
+    records: &[(String, &Record)],
+    options: &DiagnoseOptions,
+) -> Result<Diagnosis, DtgVibError> {
+    let prepared = model.prepare_many(records)?;
+    let mirror = crate::fit::mirror(model, &prepared)?;
+    let mut diagnosis = diagnose_prepared(model, &prepared, &mirror, options)?;
+    if options.try_settings && !diagnosis.slow_channels().is_empty() {
+        let longer = model.preprocess().window.length() * 3;
+        if let Ok(trial) = crate::fit::refit_with_window(model, records, longer) {
+            diagnosis.note_window_trial(longer, &trial);
+        }
+    }
+    Ok(diagnosis)
+}
 
 /// An effect a round added, with the evidence for it.
 #[derive(Debug, Clone, Serialize)]

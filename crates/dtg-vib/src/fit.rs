@@ -12,29 +12,29 @@
 use crate::effects::{ANISOINERTIA_MIN_RATE_DEG_S, ChannelEffect, Effect, rate_variation_deg_s};
 use crate::error::DtgVibError;
 use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
-pub use crate::model::{CentreMethod, FitSettings};
+pub use crate::model::{CentreMethod, FitSettings, Recipe};
 use crate::model::{ChannelModel, ChannelScores, CompensationModel};
 use crate::pipeline::{Prepared, Preprocess};
-use crate::split::{SplitKind, by_record_rows, leakage_gap, split_rows};
+use crate::split::{Holdout, by_record_rows, leakage_gap, split_rows};
 use faer::{Mat, MatRef, Par};
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use rayon::prelude::*;
 use rbf::ParamGuard;
-use rbf::{
-    Candidates, CentreSelection, Grid, KMeansSettings, Kernel, RbfParams, Sizes, Split, WidthRule,
-};
+use rbf::{Candidates, CentreSelection, Grid, KMeansSettings, RbfParams, Sizes, Split, WidthRule};
 use serde::Serialize;
 
-/// Everything a fit can be told.
+/// Everything a fit can be told: the recipe in the command line's words
+/// (effects of every channel, additions to one channel) and, of several
+/// records, the one that only validates.
 ///
 /// ```
 /// let o = dtg_vib::fit::FitOptions::default();
-/// assert_eq!(o.max_centres, 60);
+/// assert_eq!(o.settings.max_centres, 60);
 /// assert!(o.effects.is_empty());
 /// ```
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct FitOptions {
     /// Pre-processing (filter, window, rate reference).
     pub preprocess: Preprocess,
@@ -42,103 +42,24 @@ pub struct FitOptions {
     pub effects: Vec<Effect>,
     /// Effects added to one channel each.
     pub add: Vec<ChannelEffect>,
-    /// Centre selection.
-    pub centres: CentreMethod,
-    /// Largest number of centres tried.
-    pub max_centres: usize,
-    /// OLS candidates: a seeded subsample of this many training windows.
-    pub candidates: usize,
-    /// Gaussian widths tried, as multiples of the median distance between windows.
-    pub width_scales: Vec<f64>,
-    /// Ridge λ on the output weights.
-    pub ridge: f64,
     /// Training/validation split (within each record of several).
-    pub split: SplitKind,
+    pub split: Holdout,
     /// Of several records, the one that only validates (the others only
     /// train); `None`: [`FitOptions::split`] within each record.
     pub validate_on: Option<String>,
-    /// Folds of the blocked cross-validation inside the training rows.
-    pub inner_folds: usize,
-    /// The kernel (the paper's Gaussian by default).
-    pub kernel: Kernel,
-    /// Seed of every random choice (candidate subsample, k-means).
-    pub seed: u64,
-}
-
-impl Default for FitOptions {
-    fn default() -> Self {
-        let s = FitSettings::default();
-        Self {
-            preprocess: Preprocess::default(),
-            effects: Vec::new(),
-            add: Vec::new(),
-            centres: s.centres,
-            max_centres: s.max_centres,
-            candidates: s.candidates,
-            width_scales: s.width_scales,
-            ridge: s.ridge,
-            split: SplitKind::default(),
-            validate_on: None,
-            inner_folds: s.inner_folds,
-            kernel: s.kernel,
-            seed: s.seed,
-        }
-    }
+    /// How the networks are chosen (what the model keeps).
+    pub settings: FitSettings,
 }
 
 impl FitOptions {
-    /// The settings a model keeps.
-    pub fn settings(&self) -> FitSettings {
-        FitSettings {
-            centres: self.centres,
-            max_centres: self.max_centres,
-            candidates: self.candidates,
-            width_scales: self.width_scales.clone(),
-            ridge: self.ridge,
-            inner_folds: self.inner_folds,
-            kernel: self.kernel,
-            seed: self.seed,
-        }
-    }
-
-    /// The options that fit `model` again: its pre-processing, split, effects
-    /// and settings.
-    pub fn of_model(model: &CompensationModel) -> Self {
-        let s = model.fit_settings();
-        let common = model
-            .channels()
-            .iter()
-            .map(|c| c.effects().to_vec())
-            .reduce(|a, b| a.into_iter().filter(|e| b.contains(e)).collect())
-            .unwrap_or_default();
-        let add = model
-            .channels()
-            .iter()
-            .flat_map(|c| {
-                c.effects()
-                    .iter()
-                    .filter(|e| !common.contains(e))
-                    .map(|e| ChannelEffect {
-                        channel: c.channel(),
-                        effect: e.clone(),
-                    })
-                    .collect::<Vec<_>>()
-            })
-            .collect();
-        Self {
-            preprocess: model.preprocess().clone(),
-            effects: common,
-            add,
-            centres: s.centres,
-            max_centres: s.max_centres,
-            candidates: s.candidates,
-            width_scales: s.width_scales.clone(),
-            ridge: s.ridge,
-            split: model.split(),
-            validate_on: None,
-            inner_folds: s.inner_folds,
-            kernel: s.kernel,
-            seed: s.seed,
+    /// The recipe these options describe: each channel's effects resolved
+    /// (the common ones, then its additions, each once).
+    pub fn recipe(&self) -> Recipe {
+        Recipe {
+            preprocess: self.preprocess.clone(),
+            split: self.split,
+            effects: std::array::from_fn(|k| self.effects_of(Channel::ALL[k])),
+            settings: self.settings.clone(),
         }
     }
 
@@ -152,7 +73,10 @@ impl FitOptions {
         }
         e
     }
+}
 
+impl FitSettings {
+    /// Refuses settings no fit can use, naming the setting.
     fn check(&self) -> Result<(), DtgVibError> {
         let bad = |name, value: String, reason| {
             Err(DtgVibError::InvalidOption {
@@ -228,25 +152,27 @@ pub fn fit(
     options: &FitOptions,
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<CompensationModel, DtgVibError> {
-    options.check()?;
+    options.settings.check()?;
     progress(FitStage::Preparing);
     let prepared = Prepared::new(record, calibration, &options.preprocess)?;
-    fit_prepared(&prepared, calibration, options, progress)
+    fit_prepared(&prepared, options, progress)
 }
 
-/// [`fit`] on data already prepared with `options.preprocess`.
+/// [`fit`] on data already prepared (with `options.preprocess`, after the
+/// calibration the model is to keep: both come from `prepared`).
 pub fn fit_prepared(
     prepared: &Prepared,
-    calibration: Option<&Calibration>,
     options: &FitOptions,
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<CompensationModel, DtgVibError> {
-    options.check()?;
+    options.settings.check()?;
     let (train, val) = match &options.validate_on {
         Some(name) => by_record_rows(prepared, name)?,
         None => split_rows(prepared, options.split)?,
     };
-    fit_rows(prepared, calibration, options, &train, &val, progress)
+    let mut model = fit_rows(prepared, &options.recipe(), &train, &val, progress)?;
+    model.validated_on = options.validate_on.clone();
+    Ok(model)
 }
 
 /// [`fit`] on several records, each prepared on its own (filters and
@@ -267,14 +193,52 @@ pub fn fit_records(
     options: &FitOptions,
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<(CompensationModel, Prepared), DtgVibError> {
-    options.check()?;
+    options.settings.check()?;
     progress(FitStage::Preparing);
     let prepared = Prepared::new_many(records, calibration, &options.preprocess)?;
-    let mut model = fit_prepared(&prepared, calibration, options, progress)?;
-    if records.len() > 1 {
-        model.records = records.iter().map(|(n, _)| n.clone()).collect();
-    }
+    let mut model = fit_prepared(&prepared, options, progress)?;
+    model.records = record_names(records);
     Ok((model, prepared))
+}
+
+/// The names a model or diagnosis keeps of its records: none for one
+/// record (its file is said where it is given), every one of several.
+pub(crate) fn record_names(records: &[(String, &Record)]) -> Vec<String> {
+    match records.len() {
+        1 => Vec::new(),
+        _ => records.iter().map(|(n, _)| n.clone()).collect(),
+    }
+}
+
+/// The model's mirror, which the diagnosis's cross-fit reads: its recipe
+/// trained on its validation rows of `prepared` (the record(s) it was
+/// fitted on, prepared by [`CompensationModel::prepare_many`]) and
+/// validated on its training rows, so that between the model and its
+/// mirror every row has a prediction from a model that did not see it.
+pub fn mirror(
+    model: &CompensationModel,
+    prepared: &Prepared,
+) -> Result<CompensationModel, DtgVibError> {
+    let (train, val) = model.rows(prepared)?;
+    fit_rows(prepared, &model.recipe(), &val, &train, &|_| {})
+}
+
+/// `model`'s recipe fitted again on `records` with windows of `length`
+/// samples, split within each record: the trial the diagnosis's advice on a
+/// slow residual rests on.
+pub fn refit_with_window(
+    model: &CompensationModel,
+    records: &[(String, &Record)],
+    length: usize,
+) -> Result<CompensationModel, DtgVibError> {
+    let mut recipe = model.recipe();
+    let signals = recipe.preprocess.window.signals().to_vec();
+    recipe.preprocess.window = crate::window::WindowSpec::new(signals, length)?;
+    let prepared = Prepared::new_many(records, model.calibration(), &recipe.preprocess)?;
+    let (train, val) = split_rows(&prepared, recipe.split)?;
+    let mut trial = fit_rows(&prepared, &recipe, &train, &val, &|_| {})?;
+    trial.records = record_names(records);
+    Ok(trial)
 }
 
 /// One record's validation rms of one channel, deg/h.
@@ -320,13 +284,13 @@ pub fn record_scores(
 /// by a model fitted on the others; each channel's rms per record.
 pub fn leave_one_record_out(
     prepared: &Prepared,
-    calibration: Option<&Calibration>,
     options: &FitOptions,
 ) -> Result<[Vec<RecordScore>; 6], DtgVibError> {
+    let recipe = options.recipe();
     let mut out: [Vec<RecordScore>; 6] = Default::default();
     for (name, _) in prepared.record_rows() {
         let (train, val) = by_record_rows(prepared, name)?;
-        let m = fit_rows(prepared, calibration, options, &train, &val, &|_| {}).map_err(|e| {
+        let m = fit_rows(prepared, &recipe, &train, &val, &|_| {}).map_err(|e| {
             DtgVibError::InRecord {
                 record: format!("leaving out {name}"),
                 source: Box::new(e),
@@ -342,30 +306,33 @@ pub fn leave_one_record_out(
     Ok(out)
 }
 
-/// [`fit_prepared`] on explicit training and validation rows (the
-/// diagnosis's cross-fit trains on the model's validation rows).
-pub(crate) fn fit_rows(
+/// A recipe fitted on explicit training and validation rows of data
+/// prepared with its pre-processing (the mirror trains on a model's
+/// validation rows; leaving a record out trains on the others).
+fn fit_rows(
     prepared: &Prepared,
-    calibration: Option<&Calibration>,
-    options: &FitOptions,
+    recipe: &Recipe,
     train: &[usize],
     val: &[usize],
     progress: &(dyn Fn(FitStage) + Sync),
 ) -> Result<CompensationModel, DtgVibError> {
+    debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
+    let settings = &recipe.settings;
     let (train, val) = (train.to_vec(), val.to_vec());
     // A view of the prepared windows, not a copy: only the rows a fit works
     // on are gathered (all training rows, or the selection subsample).
     let x = prepared.window_view();
-    windows_vary(x, &train, options.preprocess.window.signals())?;
+    windows_vary(x, &train, recipe.preprocess.window.signals())?;
     let stride = selection_stride(train.len());
     let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
-    inner_folds_fit(prepared, sel.len(), options.inner_folds)?;
+    inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
     let fit_on = if stride > 1 { &sel } else { &train };
     let x_fit = gather(x, fit_on);
     let fits: Vec<ChannelFit> = Channel::ALL
         .par_iter()
         .map(|&ch| {
-            let m = fit_channel(prepared, x, &x_fit, fit_on, ch, options);
+            let effects = recipe.effects_of(ch);
+            let m = fit_channel(prepared, x, &x_fit, fit_on, ch, effects, settings);
             progress(FitStage::ChannelDone(ch));
             m
         })
@@ -378,22 +345,22 @@ pub(crate) fn fit_rows(
         .into_par_iter()
         .map(|f| match stride {
             1 => scored(prepared, x, &train, &val, f),
-            _ => refit_weights(prepared, x, &train, f, options)
+            _ => refit_weights(prepared, x, &train, f, settings)
                 .and_then(|f| scored(prepared, x, &train, &val, f)),
         })
         .collect::<Result<_, _>>()?;
     Ok(CompensationModel {
-        preprocess: options.preprocess.clone(),
-        calibration: calibration.cloned(),
+        preprocess: recipe.preprocess.clone(),
+        calibration: prepared.calibration().cloned(),
         dt_s: prepared.calibrated().dt(),
-        split: options.split,
+        split: recipe.split,
         channels,
-        fit: options.settings(),
+        fit: settings.clone(),
         records: Vec::new(),
-        validated_on: options.validate_on.clone(),
+        validated_on: None,
         operating_points: Some(crate::operating::OperatingPoints::from_training(
             prepared,
-            options.preprocess.window.length(),
+            recipe.preprocess.window.length(),
             &train,
             &val,
         )?),
@@ -467,17 +434,17 @@ fn refit_weights(
     x: MatRef<'_, f64>,
     train: &[usize],
     f: ChannelFit,
-    options: &FitOptions,
+    settings: &FitSettings,
 ) -> Result<ChannelFit, DtgVibError> {
     let (channel, z) = (f.channel, &f.z);
     let y = prepared.target(channel);
     let fail = |source| DtgVibError::Fit { channel, source };
     let params = RbfParams::new()
-        .kernel(options.kernel)
+        .kernel(settings.kernel)
         .centres(CentreSelection::Given(f.model.centres()))
         .width(WidthRule::Fixed(f.width))
-        .ridge(options.ridge)
-        .seed(options.seed)
+        .ridge(settings.ridge)
+        .seed(settings.seed)
         .parallelism(Par::Seq)
         .check()
         .map_err(|e| fail(e.into()))?;
@@ -563,9 +530,10 @@ fn fit_channel(
     x_train: &Mat<f64>,
     train: &[usize],
     channel: Channel,
-    options: &FitOptions,
+    effects: &[Effect],
+    settings: &FitSettings,
 ) -> Result<ChannelFit, DtgVibError> {
-    let effects = options.effects_of(channel);
+    let effects = effects.to_vec();
     let z = prepared.effect_matrix(channel, &effects)?;
     let y = prepared.target(channel);
     let z_train = gather(z.as_ref(), train);
@@ -612,7 +580,7 @@ fn fit_channel(
     let gap = leakage_gap(prepared);
     let (model, coefficients) = if effects.is_empty() {
         let net = fit_network(
-            options,
+            settings,
             x_train.as_ref(),
             z_train.as_ref(),
             y_train.as_ref(),
@@ -621,7 +589,7 @@ fn fit_channel(
         .map_err(fail)?;
         (net, Vec::new())
     } else {
-        fit_partially_linear(x, &z, y, train, &effects, options, gap).map_err(fail)?
+        fit_partially_linear(x, &z, y, train, &effects, settings, gap).map_err(fail)?
     };
     let width = model.widths().get(0);
     Ok(ChannelFit {
@@ -687,7 +655,7 @@ fn fit_partially_linear(
     y: &[f64],
     train: &[usize],
     effects: &[Effect],
-    options: &FitOptions,
+    settings: &FitSettings,
     gap: usize,
 ) -> Result<(rbf::RbfModel, Vec<Coefficient>), rbf::RbfError> {
     let p = effects.len();
@@ -709,7 +677,7 @@ fn fit_partially_linear(
             let xf = gather(x, fit_rows);
             let yf = Mat::from_fn(fit_rows.len(), 1, |i, _| y[fit_rows[i]]);
             let net = fit_network(
-                options,
+                settings,
                 xf.as_ref(),
                 no_z(fit_rows.len()).as_ref(),
                 yf.as_ref(),
@@ -722,7 +690,7 @@ fn fit_partially_linear(
                 net.features(xt.as_ref()).as_ref(),
                 targets(test_rows).as_ref(),
                 1,
-                options.ridge,
+                settings.ridge,
             )
             .map_err(rbf::RbfError::from)?;
             by_row.extend(
@@ -758,7 +726,7 @@ fn fit_partially_linear(
             let theta = Mat::from_fn(p, 1, |j, _| f.coef[j]);
             let y_adj = &y_train - &z_train * &theta;
             let net = fit_network(
-                options,
+                settings,
                 x_train.as_ref(),
                 no_z(train.len()).as_ref(),
                 y_adj.as_ref(),
@@ -769,7 +737,7 @@ fn fit_partially_linear(
         None => {
             // Joint fit; θ's uncertainty from the same projection in-sample.
             let joint = fit_network(
-                options,
+                settings,
                 x_train.as_ref(),
                 z_train.as_ref(),
                 y_train.as_ref(),
@@ -782,7 +750,7 @@ fn fit_partially_linear(
                 phi.as_ref(),
                 targets(train).as_ref(),
                 1,
-                options.ridge,
+                settings.ridge,
             )
             .map_err(rbf::RbfError::from)?;
             let ry: Vec<f64> = (0..r.nrows()).map(|i| r[(i, 0)]).collect();
@@ -817,40 +785,40 @@ fn fit_partially_linear(
 /// columns) chosen by blocked cross-validation over widths and numbers of
 /// centres, refitted on all the given rows.
 fn fit_network(
-    options: &FitOptions,
+    settings: &FitSettings,
     x: MatRef<'_, f64>,
     z: MatRef<'_, f64>,
     y: MatRef<'_, f64>,
     gap: usize,
 ) -> Result<rbf::RbfModel, rbf::RbfError> {
-    let selection = |k: usize| match options.centres {
+    let selection = |k: usize| match settings.centres {
         CentreMethod::Ols => CentreSelection::Ols {
             max_centres: k,
             tol: 0.0,
             regularisation: 0.0,
             candidates: Candidates::Subsample {
-                size: options.candidates,
+                size: settings.candidates,
             },
         },
         CentreMethod::KMeans => CentreSelection::KMeans(KMeansSettings::new(k)),
     };
     let params = |k: usize, width: WidthRule| {
         RbfParams::new()
-            .kernel(options.kernel)
+            .kernel(settings.kernel)
             .centres(selection(k))
             .width(width)
-            .ridge(options.ridge)
-            .seed(options.seed)
+            .ridge(settings.ridge)
+            .seed(settings.seed)
             .parallelism(Par::Seq)
             .check()
             .map_err(rbf::RbfError::from)
     };
-    let widths: Vec<WidthRule> = options
+    let widths: Vec<WidthRule> = settings
         .width_scales
         .iter()
         .map(|&s| WidthRule::MedianPairwise { scale: s })
         .collect();
-    let max_k = options.max_centres.min(x.nrows() / 2).max(1);
+    let max_k = settings.max_centres.min(x.nrows() / 2).max(1);
     let grid = Grid {
         widths: widths.clone(),
         sizes: Sizes::Centres(size_ladder(max_k)),
@@ -862,7 +830,7 @@ fn fit_network(
         z,
         y,
         &Split::Blocked {
-            k: options.inner_folds,
+            k: settings.inner_folds,
             gap,
         },
         &grid,
@@ -960,14 +928,17 @@ mod tests {
         for effects in [vec![], vec!["g_I".parse().unwrap()]] {
             let options = FitOptions {
                 effects,
-                max_centres: 12,
-                width_scales: vec![1.0],
+                settings: FitSettings {
+                    max_centres: 12,
+                    width_scales: vec![1.0],
+                    ..FitSettings::default()
+                },
                 ..FitOptions::default()
             };
             let prepared =
                 Prepared::new(&sim.record, Some(&sim.calibration), &options.preprocess).unwrap();
             let (train, val) = split_rows(&prepared, options.split).unwrap();
-            let model = fit_rows(&prepared, None, &options, &train, &val, &|_| {}).unwrap();
+            let model = fit_rows(&prepared, &options.recipe(), &train, &val, &|_| {}).unwrap();
             for m in model.channels() {
                 let f = ChannelFit {
                     channel: m.channel(),
@@ -978,7 +949,7 @@ mod tests {
                     coefficients: m.coefficients().map(<[_]>::to_vec).unwrap_or_default(),
                 };
                 let x = prepared.window_view();
-                let f = refit_weights(&prepared, x, &train, f, &options).unwrap();
+                let f = refit_weights(&prepared, x, &train, f, &options.settings).unwrap();
                 let again = scored(&prepared, x, &train, &val, f).unwrap();
                 let (a, b) = (m.rbf(), again.rbf());
                 assert_eq!(a.centres(), b.centres());

@@ -25,6 +25,7 @@ pub mod fit;
 pub mod inference;
 pub mod model;
 mod numfmt;
+pub mod onboard;
 pub mod operating;
 pub mod parity;
 pub mod pipeline;

@@ -4,14 +4,15 @@
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use dtg_vib::apply::{Applied, write_residues};
-use dtg_vib::diagnose::{DiagnoseOptions, diagnose_records};
+use dtg_vib::diagnose::DiagnoseOptions;
 use dtg_vib::effects::{ChannelEffect, Effect};
 use dtg_vib::explain::ExplainStage;
-use dtg_vib::fit::{CentreMethod, FitOptions, FitStage, fit_records};
+use dtg_vib::explain::diagnose_records;
+use dtg_vib::fit::{CentreMethod, FitOptions, FitSettings, FitStage, fit_records};
 use dtg_vib::model::CompensationModel;
 use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
 use dtg_vib::report::{Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report};
-use dtg_vib::split::SplitKind;
+use dtg_vib::split::Holdout;
 use dtg_vib::window::WindowSpec;
 use indicatif::{ProgressBar, ProgressStyle};
 use nav_sensors::calibration::Calibration;
@@ -757,7 +758,7 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         .collect::<Result<Vec<_>, _>>()?;
     let by_record = a.split.trim() == "by-record";
     let split = match by_record {
-        true => SplitKind::Blocked {
+        true => Holdout::Blocked {
             train_fraction: a.train_fraction,
         },
         false => match dtg_vib::split::parse(&a.split).map_err(|_| {
@@ -766,7 +767,7 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
                 a.split
             )
         })? {
-            SplitKind::Blocked { .. } => SplitKind::Blocked {
+            Holdout::Blocked { .. } => Holdout::Blocked {
                 train_fraction: a.train_fraction,
             },
             other => other,
@@ -813,14 +814,16 @@ fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         },
         effects,
         add,
-        centres,
-        max_centres: a.max_centers,
-        candidates: a.candidates,
-        ridge: a.ridge,
         split,
         validate_on,
-        seed: a.seed,
-        ..FitOptions::default()
+        settings: FitSettings {
+            centres,
+            max_centres: a.max_centers,
+            candidates: a.candidates,
+            ridge: a.ridge,
+            seed: a.seed,
+            ..FitSettings::default()
+        },
     })
 }
 
@@ -921,11 +924,7 @@ fn fit_command(a: FitArgs, progress: &Progress) -> Result<()> {
     let per_record = match a.cv.is_some() {
         true => {
             progress.say("leaving one record out");
-            Some(dtg_vib::fit::leave_one_record_out(
-                &prepared,
-                calibration.as_ref(),
-                &options,
-            )?)
+            Some(dtg_vib::fit::leave_one_record_out(&prepared, &options)?)
         }
         false if records.len() > 1 => Some(dtg_vib::fit::record_scores(&model, &prepared)?),
         false => None,

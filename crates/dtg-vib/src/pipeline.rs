@@ -179,18 +179,23 @@ impl Default for Preprocess {
     }
 }
 
-/// A record prepared for fitting, compensation or diagnosis.
+/// A record prepared for fitting, compensation or diagnosis, with the
+/// calibration and pre-processing it was prepared with (a fit on it keeps
+/// them: nothing prepared one way is fitted as if it were another).
 ///
 /// Row `r` of the windows (and of every per-row quantity) is record sample
 /// `first_sample() + r`.
 #[derive(Debug, Clone)]
 pub struct Prepared {
+    /// The ground calibration compensated, if any.
+    calibration: Option<Calibration>,
+    /// How the record was prepared.
+    preprocess: Preprocess,
     calibrated: Record,
     /// The records of a multi-record preparation, each calibrated and
     /// untrimmed, with their rows; empty for one record.
     parts: Vec<Part>,
     filter: Option<LowPass>,
-    causal: bool,
     /// Filtered gyro outputs minus the rate reference, deg/h, full length.
     targets: [Vec<f64>; 6],
     windows: Windows,
@@ -238,10 +243,11 @@ impl Prepared {
         let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
         let windows = pre.window.build(&refs)?;
         Ok(Self {
+            calibration: calibration.cloned(),
+            preprocess: pre.clone(),
             calibrated,
             parts: Vec::new(),
             filter,
-            causal,
             targets,
             windows,
         })
@@ -332,10 +338,11 @@ impl Prepared {
         );
         let head = prepared.into_iter().next().expect("two or more records");
         Ok(Self {
+            calibration: head.calibration,
+            preprocess: head.preprocess,
             calibrated,
             parts,
             filter: head.filter,
-            causal: head.causal,
             targets,
             windows,
         })
@@ -381,6 +388,16 @@ impl Prepared {
             out.extend(v.into_iter().skip(if k == 0 { 0 } else { first }));
         }
         Ok(out)
+    }
+
+    /// The ground calibration the record was compensated with, if any.
+    pub fn calibration(&self) -> Option<&Calibration> {
+        self.calibration.as_ref()
+    }
+
+    /// How the record was prepared.
+    pub fn preprocess(&self) -> &Preprocess {
+        &self.preprocess
     }
 
     /// The calibrated (not filtered) record.
@@ -486,7 +503,7 @@ impl Prepared {
             )?;
         }
         cols.iter()
-            .map(|c| apply(&self.filter, self.causal, c))
+            .map(|c| apply(&self.filter, self.preprocess.causal, c))
             .collect()
     }
 
@@ -506,9 +523,14 @@ impl Prepared {
     /// A record signal (accelerometer axis or extra column), filtered, over the whole record.
     pub fn signal_full(&self, name: &str) -> Result<Vec<f64>, DtgVibError> {
         if !self.parts.is_empty() {
-            return self.per_record(|r| apply(&self.filter, self.causal, signal(r, name)?));
+            return self
+                .per_record(|r| apply(&self.filter, self.preprocess.causal, signal(r, name)?));
         }
-        apply(&self.filter, self.causal, signal(&self.calibrated, name)?)
+        apply(
+            &self.filter,
+            self.preprocess.causal,
+            signal(&self.calibrated, name)?,
+        )
     }
 
     /// A series over the whole record (one sample per record sample)
@@ -517,12 +539,12 @@ impl Prepared {
     /// it. For a preparation of one record (a series over several would be
     /// filtered across their boundaries).
     pub fn filter_like_targets(&self, x: &[f64]) -> Result<Vec<f64>, DtgVibError> {
-        apply(&self.filter, self.causal, x)
+        apply(&self.filter, self.preprocess.causal, x)
     }
 
     /// True when prepared in causal mode ([`Preprocess::causal`]).
     pub fn causal(&self) -> bool {
-        self.causal
+        self.preprocess.causal
     }
 
     /// The designed filter, if any.
@@ -536,7 +558,7 @@ impl Prepared {
     /// kept this far apart, plus a window length, so nothing leaks across.
     pub fn filter_memory(&self) -> usize {
         let Some(f) = &self.filter else { return 0 };
-        if self.causal {
+        if self.preprocess.causal {
             let mut impulse = vec![0.0; 4000];
             impulse[0] = 1.0;
             let h = f.filter(&impulse);

@@ -13,7 +13,7 @@
 
 use crate::error::DtgVibError;
 use crate::pipeline::Prepared;
-pub use rbf::Holdout as SplitKind;
+pub use rbf::Holdout;
 
 /// Fewest rows on either side of a split.
 pub const MIN_ROWS: usize = 20;
@@ -22,18 +22,14 @@ pub const MIN_ROWS: usize = 20;
 /// block are dropped (blocked only).
 ///
 /// ```
-/// use dtg_vib::split::{rows, SplitKind};
-/// let (train, val) = rows(SplitKind::Interleaved, 100, 3).unwrap();
+/// use dtg_vib::split::{rows, Holdout};
+/// let (train, val) = rows(Holdout::Interleaved, 100, 3).unwrap();
 /// assert_eq!((&train[..3], &val[..3]), (&[0, 2, 4][..], &[1, 3, 5][..]));
 /// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
-/// let (train, val) = rows(SplitKind::default(), 100, 3).unwrap();
+/// let (train, val) = rows(Holdout::default(), 100, 3).unwrap();
 /// assert_eq!((train.len(), val[0]), (50, 53));
 /// ```
-pub fn rows(
-    split: SplitKind,
-    n: usize,
-    gap: usize,
-) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+pub fn rows(split: Holdout, n: usize, gap: usize) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
     let (train, val) = match split.fold(n, gap) {
         Ok(fold) => (fold.train, fold.validation),
         Err(rbf::SplitError::Fraction { fraction }) => {
@@ -83,7 +79,7 @@ pub fn leakage_gap(prepared: &Prepared) -> usize {
 /// validates and no side reaches across a record's boundary.
 pub fn split_rows(
     prepared: &Prepared,
-    split: SplitKind,
+    split: Holdout,
 ) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
     let gap = leakage_gap(prepared);
     let parts = prepared.record_rows();
@@ -133,7 +129,7 @@ pub fn by_record_rows(
 /// assert!(dtg_vib::split::parse("interleaved").is_ok());
 /// assert!(dtg_vib::split::parse("random").is_err());
 /// ```
-pub fn parse(name: &str) -> Result<SplitKind, DtgVibError> {
+pub fn parse(name: &str) -> Result<Holdout, DtgVibError> {
     name.parse().map_err(|_| DtgVibError::InvalidOption {
         name: "split",
         value: name.trim().to_string(),
@@ -147,10 +143,10 @@ pub fn parse(name: &str) -> Result<SplitKind, DtgVibError> {
 /// it must use.
 ///
 /// ```
-/// use dtg_vib::split::{row_spacing, rows, SplitKind};
-/// let (train, val) = rows(SplitKind::Interleaved, 100, 0).unwrap();
+/// use dtg_vib::split::{row_spacing, rows, Holdout};
+/// let (train, val) = rows(Holdout::Interleaved, 100, 0).unwrap();
 /// assert_eq!((row_spacing(&train), row_spacing(&val)), (2, 2));
-/// let (_, val) = rows(SplitKind::default(), 100, 3).unwrap();
+/// let (_, val) = rows(Holdout::default(), 100, 3).unwrap();
 /// assert_eq!(row_spacing(&val), 1);
 /// ```
 pub fn row_spacing(rows: &[usize]) -> usize {
@@ -167,7 +163,7 @@ mod tests {
 
     #[test]
     fn blocked_rows_never_touch_across_the_gap() {
-        let blocked = SplitKind::Blocked {
+        let blocked = Holdout::Blocked {
             train_fraction: 0.6,
         };
         let (train, val) = rows(blocked, 1000, 70).unwrap();
@@ -178,12 +174,12 @@ mod tests {
 
     #[test]
     fn too_few_rows_is_an_error_with_a_hint() {
-        let err = rows(SplitKind::default(), 60, 49).unwrap_err();
+        let err = rows(Holdout::default(), 60, 49).unwrap_err();
         assert!(
             err.to_string().contains("validation rows: 0 windows"),
             "{err}"
         );
-        let whole = SplitKind::Blocked {
+        let whole = Holdout::Blocked {
             train_fraction: 1.0,
         };
         assert!(matches!(

@@ -5,8 +5,8 @@
 //! Only `math.h` (`exp`, `fabs`); no dynamic memory, no globals but the
 //! tables.
 
-use super::{ExportError, Tables, tables};
 use crate::model::CompensationModel;
+use crate::onboard::{ExportError, Tables, tables};
 use dtg_onboard::{Model, kind_params};
 use std::fmt::Write;
 

@@ -7,13 +7,13 @@ mod persist;
 mod settings;
 
 pub use persist::FORMAT_VERSION;
-pub use settings::{CentreMethod, FitSettings};
+pub use settings::{CentreMethod, FitSettings, Recipe};
 
 use crate::effects::Effect;
 use crate::error::DtgVibError;
 use crate::inference::Coefficient;
 use crate::pipeline::{Prepared, Preprocess};
-use crate::split::SplitKind;
+use crate::split::Holdout;
 use faer::Mat;
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
@@ -158,7 +158,7 @@ pub struct CompensationModel {
     pub(crate) preprocess: Preprocess,
     pub(crate) calibration: Option<Calibration>,
     pub(crate) dt_s: f64,
-    pub(crate) split: SplitKind,
+    pub(crate) split: Holdout,
     pub(crate) channels: Vec<ChannelModel>,
     /// How the networks were chosen (absent in older files: the defaults).
     #[serde(default)]
@@ -241,8 +241,20 @@ impl CompensationModel {
         &self.fit
     }
 
+    /// The recipe the model was fitted with (its pre-processing, split,
+    /// each channel's effects and network settings), to fit it again the
+    /// same way.
+    pub fn recipe(&self) -> Recipe {
+        Recipe {
+            preprocess: self.preprocess.clone(),
+            split: self.split,
+            effects: std::array::from_fn(|k| self.channels[k].effects.clone()),
+            settings: self.fit.clone(),
+        }
+    }
+
     /// The split used at fit time.
-    pub fn split(&self) -> SplitKind {
+    pub fn split(&self) -> Holdout {
         self.split
     }
 

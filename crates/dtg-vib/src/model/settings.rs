@@ -1,6 +1,11 @@
-//! What a model keeps of the options that fitted it.
+//! What a model keeps of the options that fitted it: the network settings
+//! and the whole recipe it hands back to be fitted again the same way.
 
+use crate::effects::Effect;
 use crate::error::DtgVibError;
+use crate::pipeline::Preprocess;
+use crate::split::Holdout;
+use nav_sensors::geometry::Channel;
 use rbf::Kernel;
 use serde::{Deserialize, Serialize};
 
@@ -30,13 +35,14 @@ impl std::str::FromStr for CentreMethod {
     }
 }
 
-/// What a model keeps of its [`FitOptions`](crate::fit::FitOptions) besides the pre-processing,
-/// split and effects it stores anyway: enough to fit it again the same way
-/// (the diagnosis cross-fits and tries settings).
+/// How the networks are chosen: the part of [`FitOptions`](crate::fit::FitOptions)
+/// a model keeps besides the pre-processing, split and effects of its
+/// [`Recipe`].
 ///
 /// ```
-/// let s = dtg_vib::fit::FitOptions::default().settings();
-/// assert_eq!(s, dtg_vib::fit::FitSettings::default());
+/// let o = dtg_vib::fit::FitOptions::default();
+/// assert_eq!(o.settings, dtg_vib::fit::FitSettings::default());
+/// assert_eq!(o.settings.max_centres, 60);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
@@ -72,5 +78,43 @@ impl Default for FitSettings {
             kernel: Kernel::Gaussian,
             seed: 1,
         }
+    }
+}
+
+/// Everything that decides a fit besides the data: the pre-processing, the
+/// split, each channel's effects and the network settings. A model stores
+/// its recipe and hands it back
+/// ([`CompensationModel::recipe`](crate::model::CompensationModel::recipe)),
+/// so the loop fits it again the same way (the diagnosis's mirror, a longer
+/// window) without rebuilding it from the model's parts.
+///
+/// ```
+/// use dtg_vib::fit::FitOptions;
+/// use nav_sensors::geometry::Channel;
+/// let o = FitOptions {
+///     effects: vec!["g_I".parse().unwrap()],
+///     add: vec!["Y1=gg_IS".parse().unwrap()],
+///     ..FitOptions::default()
+/// };
+/// let r = o.recipe();
+/// assert_eq!(r.effects_of(Channel::X).len(), 1);
+/// assert_eq!(r.effects_of(Channel::Y1)[1].id(), "gg_IS");
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recipe {
+    /// Pre-processing (filter, window, rate reference).
+    pub preprocess: Preprocess,
+    /// Training/validation split within each record.
+    pub split: Holdout,
+    /// Each channel's effects, in X, X1, Y, Y1, Z, Z1 order.
+    pub effects: [Vec<Effect>; 6],
+    /// How the networks are chosen.
+    pub settings: FitSettings,
+}
+
+impl Recipe {
+    /// The effects of one channel's linear part.
+    pub fn effects_of(&self, channel: Channel) -> &[Effect] {
+        &self.effects[channel.index()]
     }
 }

@@ -1,0 +1,27 @@
+//! Why a model cannot be laid out as onboard tables (and so be exported or
+//! run on-line).
+
+use nav_sensors::geometry::Channel;
+
+/// Why a model cannot be exported.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExportError {
+    /// A zero-phase model needs future samples.
+    #[error(
+        "the model is zero-phase (its low-pass runs forward and backward, over future samples), so it cannot run on-line: fit it again with `dtg-vib fit --causal`"
+    )]
+    NotCausal,
+    /// Something the onboard layout does not carry.
+    #[error("channel {channel}: {what} cannot be exported (the onboard evaluator has {supported})")]
+    Unsupported {
+        /// The channel.
+        channel: Channel,
+        /// What the model has.
+        what: String,
+        /// What is supported instead.
+        supported: &'static str,
+    },
+    /// The tables were refused by the evaluator (an exporter bug).
+    #[error("the exported tables do not read back: {0}")]
+    Tables(String),
+}
