@@ -87,12 +87,6 @@ pub struct DemoSummary {
 
 /// Runs the demo into `out` (created if needed).
 pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSummary, DtgVibError> {
-    let mkdir = |p: &Path| {
-        std::fs::create_dir_all(p).map_err(|source| DtgVibError::Output {
-            path: p.to_path_buf(),
-            source,
-        })
-    };
     mkdir(out)?;
 
     progress(DemoStep::Simulate);
@@ -104,15 +98,7 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
 
     progress(DemoStep::FitBaseline);
     let options = FitOptions::default();
-    let baseline = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &options,
-        &|_: FitStage| {},
-    )?;
-    mkdir(&out.join("baseline"))?;
-    baseline.save(out.join("baseline").join("model.json"))?;
-    let applied_base = Applied::new(&baseline, &sim.record)?;
+    let (baseline, applied_base) = fit_and_save(&sim, &options, &out.join("baseline"))?;
 
     progress(DemoStep::ReportBaseline);
     let base_report = write_report(
@@ -132,32 +118,14 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
         diag_options.rank.min_err(),
         &out.join("diagnosis"),
     )?;
-    let suggested: Vec<ChannelEffect> = diagnosis
-        .channels
-        .iter()
-        .flat_map(|c| c.suggested.iter().map(move |id| (c.channel, id)))
-        .map(|(channel, id)| {
-            Ok(ChannelEffect {
-                channel,
-                effect: id.parse()?,
-            })
-        })
-        .collect::<Result<_, DtgVibError>>()?;
+    let suggested = suggestions(&diagnosis)?;
 
     progress(DemoStep::Refit);
     let refit_options = FitOptions {
         add: suggested.clone(),
         ..options
     };
-    let fitted = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &refit_options,
-        &|_: FitStage| {},
-    )?;
-    mkdir(&out.join("final"))?;
-    fitted.save(out.join("final").join("model.json"))?;
-    let applied_final = Applied::new(&fitted, &sim.record)?;
+    let (fitted, applied_final) = fit_and_save(&sim, &refit_options, &out.join("final"))?;
 
     progress(DemoStep::DiagnoseFinal);
     // Where the final model still fails, for the final page: a diagnosis of
@@ -178,38 +146,20 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
         ("baseline model", out.join("baseline").join("model.json")),
         ("model", out.join("final").join("model.json")),
     ]);
-    let extras = ReportExtras {
-        provenance: Some(&provenance),
-        allan: Some(&allan),
-        links: vec![
-            (
-                base_report.index.clone(),
-                "The baseline report (the paper's procedure, before the diagnosis)".into(),
-            ),
-            (
-                diag_page.clone(),
-                "The diagnosis of the baseline (what the model was missing)".into(),
-            ),
-            (
-                final_diag_page.clone(),
-                "The diagnosis of this model (what is left after the refit)".into(),
-            ),
-            (
-                final_dir.join("index.html"),
-                "This report, next to its figures".into(),
-            ),
-        ],
-        diagnosis: Some(DiagnosisExtra {
-            diagnosis: &final_diagnosis,
-            of: "this model (the refit)".into(),
-            min_err: diag_options.rank.min_err(),
-            page: final_diag_page.clone(),
-        }),
-        noise_floor: floor_series(&sim.components).map(|per_sample| NoiseFloor {
-            per_sample,
-            source: "the simulator's per-sample noise floor (the X_floor … Z1_floor series of simulation/components.csv; truth.json's noise_floor_deg_h is their rms at the output rate): sensor noise, the fixture's true rocking, and what no function of the 50-Hz accelerations can predict of the high-rate effects".into(),
-        }),
+    let links = Links {
+        baseline_report: base_report.index.clone(),
+        diagnosis: diag_page.clone(),
+        final_diagnosis: final_diag_page.clone(),
+        final_report: final_dir.join("index.html"),
     };
+    let extras = final_extras(
+        &links,
+        &provenance,
+        &allan,
+        &final_diagnosis,
+        diag_options.rank.min_err(),
+        &sim.components,
+    );
     let (final_report, page) = build_report(
         &fitted,
         &applied_final,
@@ -246,6 +196,101 @@ pub fn run(out: &Path, progress: &(dyn Fn(DemoStep) + Sync)) -> Result<DemoSumma
         channel_rms: channel_rms(&baseline, &fitted),
         diagnosis,
     })
+}
+
+/// Creates a directory (and its parents), naming it on failure.
+fn mkdir(p: &Path) -> Result<(), DtgVibError> {
+    std::fs::create_dir_all(p).map_err(|source| DtgVibError::Output {
+        path: p.to_path_buf(),
+        source,
+    })
+}
+
+/// Fits the simulated record, saves the model as `dir/model.json` and
+/// applies it to the record.
+fn fit_and_save(
+    sim: &nav_sensors::sim::Simulation,
+    options: &FitOptions,
+    dir: &Path,
+) -> Result<(CompensationModel, Applied), DtgVibError> {
+    let model = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        options,
+        &|_: FitStage| {},
+    )?;
+    mkdir(dir)?;
+    model.save(dir.join("model.json"))?;
+    let applied = Applied::new(&model, &sim.record)?;
+    Ok((model, applied))
+}
+
+/// Every effect a diagnosis suggests, on its channel.
+fn suggestions(diagnosis: &Diagnosis) -> Result<Vec<ChannelEffect>, DtgVibError> {
+    diagnosis
+        .channels
+        .iter()
+        .flat_map(|c| c.suggested.iter().map(move |id| (c.channel, id)))
+        .map(|(channel, id)| {
+            Ok(ChannelEffect {
+                channel,
+                effect: id.parse()?,
+            })
+        })
+        .collect()
+}
+
+/// The pages the final report links to.
+struct Links {
+    baseline_report: PathBuf,
+    diagnosis: PathBuf,
+    final_diagnosis: PathBuf,
+    final_report: PathBuf,
+}
+
+/// What the final page shows beyond the model and the record: where it came
+/// from, the Allan analysis, the other pages, the refit's own diagnosis and
+/// the simulator's noise floor.
+fn final_extras<'a>(
+    links: &Links,
+    provenance: &'a Provenance,
+    allan: &'a crate::allan::AllanAnalysis,
+    final_diagnosis: &'a Diagnosis,
+    min_err: f64,
+    components: &'a nav_sensors::sim::Components,
+) -> ReportExtras<'a> {
+    ReportExtras {
+        provenance: Some(provenance),
+        allan: Some(allan),
+        links: vec![
+            (
+                links.baseline_report.clone(),
+                "The baseline report (the paper's procedure, before the diagnosis)".into(),
+            ),
+            (
+                links.diagnosis.clone(),
+                "The diagnosis of the baseline (what the model was missing)".into(),
+            ),
+            (
+                links.final_diagnosis.clone(),
+                "The diagnosis of this model (what is left after the refit)".into(),
+            ),
+            (
+                links.final_report.clone(),
+                "This report, next to its figures".into(),
+            ),
+        ],
+        diagnosis: Some(DiagnosisExtra {
+            diagnosis: final_diagnosis,
+            of: "this model (the refit)".into(),
+            min_err,
+            page: links.final_diagnosis.clone(),
+        }),
+        noise_floor: floor_series(components).map(|per_sample| NoiseFloor {
+            per_sample,
+            source: "the simulator's per-sample noise floor (the X_floor … Z1_floor series of simulation/components.csv; truth.json's noise_floor_deg_h is their rms at the output rate): sensor noise, the fixture's true rocking, and what no function of the 50-Hz accelerations can predict of the high-rate effects".into(),
+        }),
+    }
 }
 
 /// The simulator's per-sample noise floor of each channel (`X_floor` …).

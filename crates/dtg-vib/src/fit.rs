@@ -659,53 +659,6 @@ fn fit_partially_linear(
     gap: usize,
 ) -> Result<(rbf::RbfModel, Vec<Coefficient>), rbf::RbfError> {
     let p = effects.len();
-    let no_z = |n: usize| Mat::<f64>::zeros(n, 0);
-    let targets = |rows: &[usize]| {
-        Mat::from_fn(rows.len(), 1 + p, |i, j| {
-            if j == 0 {
-                y[rows[i]]
-            } else {
-                z[(rows[i], j - 1)]
-            }
-        })
-    };
-    // One cross-fit: residuals of [y, Z] on each block from the other
-    // block's basis, put back in time order, and θ with its HAC errors.
-    let cross_fit = |b: &Blocks| -> Result<Option<HacFit>, rbf::RbfError> {
-        let mut by_row: Vec<(usize, Vec<f64>)> = Vec::with_capacity(b.first.len() + b.second.len());
-        for (fit_rows, test_rows) in [(&b.second, &b.first), (&b.first, &b.second)] {
-            let xf = gather(x, fit_rows);
-            let yf = Mat::from_fn(fit_rows.len(), 1, |i, _| y[fit_rows[i]]);
-            let net = fit_network(
-                settings,
-                xf.as_ref(),
-                no_z(fit_rows.len()).as_ref(),
-                yf.as_ref(),
-                gap,
-            )?;
-            let xt = gather(x, test_rows);
-            let r = residualise(
-                net.features(xf.as_ref()).as_ref(),
-                targets(fit_rows).as_ref(),
-                net.features(xt.as_ref()).as_ref(),
-                targets(test_rows).as_ref(),
-                1,
-                settings.ridge,
-            )
-            .map_err(rbf::RbfError::from)?;
-            by_row.extend(
-                test_rows
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &row)| (row, (0..=p).map(|j| r[(i, j)]).collect())),
-            );
-        }
-        by_row.sort_by_key(|(row, _)| *row);
-        let column = |j: usize| -> Vec<f64> { by_row.iter().map(|(_, v)| v[j]).collect() };
-        let rz: Vec<Vec<f64>> = (1..=p).map(column).collect();
-        let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
-        Ok(hac_regression(&column(0), &cols).ok())
-    };
     let cuts: Vec<Blocks> = CROSS_FIT_CHUNKS
         .iter()
         .filter_map(|&k| Blocks::alternating(train, gap, k))
@@ -713,7 +666,7 @@ fn fit_partially_linear(
         .collect();
     let mut fits = Vec::with_capacity(cuts.len());
     for b in &cuts {
-        if let Some(f) = cross_fit(b)? {
+        if let Some(f) = cross_fit(x, z, y, b, settings, gap)? {
             fits.push(f);
         }
     }
@@ -728,39 +681,13 @@ fn fit_partially_linear(
             let net = fit_network(
                 settings,
                 x_train.as_ref(),
-                no_z(train.len()).as_ref(),
+                Mat::<f64>::zeros(train.len(), 0).as_ref(),
                 y_adj.as_ref(),
                 gap,
             )?;
             (net.with_linear(theta.as_ref()), Some(f))
         }
-        None => {
-            // Joint fit; θ's uncertainty from the same projection in-sample.
-            let joint = fit_network(
-                settings,
-                x_train.as_ref(),
-                z_train.as_ref(),
-                y_train.as_ref(),
-                gap,
-            )?;
-            let phi = joint.features(x_train.as_ref());
-            let r = residualise(
-                phi.as_ref(),
-                targets(train).as_ref(),
-                phi.as_ref(),
-                targets(train).as_ref(),
-                1,
-                settings.ridge,
-            )
-            .map_err(rbf::RbfError::from)?;
-            let ry: Vec<f64> = (0..r.nrows()).map(|i| r[(i, 0)]).collect();
-            let rz: Vec<Vec<f64>> = (1..=p)
-                .map(|j| (0..r.nrows()).map(|i| r[(i, j)]).collect())
-                .collect();
-            let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
-            let f = hac_regression(&ry, &cols).ok();
-            (joint, f)
-        }
+        None => joint_fit(x, z, y, train, settings, gap)?,
     };
     let theta = model.linear_coefficients();
     // No interval rather than a made-up one when the regression of the
@@ -779,6 +706,101 @@ fn fit_partially_linear(
         None => Vec::new(),
     };
     Ok((model, coefficients))
+}
+
+/// `[y, Z]` on `rows`: the targets whose residuals on a network's basis
+/// the partialling out regresses.
+fn y_and_z(y: &[f64], z: &Mat<f64>, rows: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), 1 + z.ncols(), |i, j| {
+        if j == 0 {
+            y[rows[i]]
+        } else {
+            z[(rows[i], j - 1)]
+        }
+    })
+}
+
+/// One cross-fit: residuals of `[y, Z]` on each block from the other
+/// block's basis (a network alone fitted there), put back in time order,
+/// and θ with its HAC errors.
+fn cross_fit(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    b: &Blocks,
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Option<HacFit>, rbf::RbfError> {
+    let p = z.ncols();
+    let mut by_row: Vec<(usize, Vec<f64>)> = Vec::with_capacity(b.first.len() + b.second.len());
+    for (fit_rows, test_rows) in [(&b.second, &b.first), (&b.first, &b.second)] {
+        let xf = gather(x, fit_rows);
+        let yf = Mat::from_fn(fit_rows.len(), 1, |i, _| y[fit_rows[i]]);
+        let no_z = Mat::<f64>::zeros(fit_rows.len(), 0);
+        let net = fit_network(settings, xf.as_ref(), no_z.as_ref(), yf.as_ref(), gap)?;
+        let xt = gather(x, test_rows);
+        let r = residualise(
+            net.features(xf.as_ref()).as_ref(),
+            y_and_z(y, z, fit_rows).as_ref(),
+            net.features(xt.as_ref()).as_ref(),
+            y_and_z(y, z, test_rows).as_ref(),
+            1,
+            settings.ridge,
+        )
+        .map_err(rbf::RbfError::from)?;
+        by_row.extend(
+            test_rows
+                .iter()
+                .enumerate()
+                .map(|(i, &row)| (row, (0..=p).map(|j| r[(i, j)]).collect())),
+        );
+    }
+    by_row.sort_by_key(|(row, _)| *row);
+    let column = |j: usize| -> Vec<f64> { by_row.iter().map(|(_, v)| v[j]).collect() };
+    let rz: Vec<Vec<f64>> = (1..=p).map(column).collect();
+    let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
+    Ok(hac_regression(&column(0), &cols).ok())
+}
+
+/// The joint fit of blocks too short to cross-fit: θ and the network in one
+/// solve, θ's uncertainty from the same projection in-sample.
+fn joint_fit(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    train: &[usize],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<(rbf::RbfModel, Option<HacFit>), rbf::RbfError> {
+    let p = z.ncols();
+    let x_train = gather(x, train);
+    let z_train = gather(z.as_ref(), train);
+    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
+    let joint = fit_network(
+        settings,
+        x_train.as_ref(),
+        z_train.as_ref(),
+        y_train.as_ref(),
+        gap,
+    )?;
+    let phi = joint.features(x_train.as_ref());
+    let targets = y_and_z(y, z, train);
+    let r = residualise(
+        phi.as_ref(),
+        targets.as_ref(),
+        phi.as_ref(),
+        targets.as_ref(),
+        1,
+        settings.ridge,
+    )
+    .map_err(rbf::RbfError::from)?;
+    let ry: Vec<f64> = (0..r.nrows()).map(|i| r[(i, 0)]).collect();
+    let rz: Vec<Vec<f64>> = (1..=p)
+        .map(|j| (0..r.nrows()).map(|i| r[(i, j)]).collect())
+        .collect();
+    let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
+    let f = hac_regression(&ry, &cols).ok();
+    Ok((joint, f))
 }
 
 /// The network (with `z` as forced linear columns, none if it has no

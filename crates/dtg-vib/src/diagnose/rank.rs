@@ -177,25 +177,7 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
     );
     let r = residual;
     let r_energy = dot(r, r);
-    let mut unexcited = Vec::new();
-    let mut live: Vec<(&Effect, &[f64])> = Vec::new();
-    for (e, c) in candidates {
-        let energy = dot(c, c);
-        let scale: f64 = r_energy.max(f64::MIN_POSITIVE);
-        // A column the model's own function space explains entirely (it does
-        // not vary, or only as the bias and window do) has nothing left to
-        // offer: relative to the residual's size, its energy is nil.
-        if !(energy.is_finite() && energy > 1e-20 * scale && energy > 0.0) {
-            unexcited.push(Unexcited {
-                effect: e.id(),
-                reason:
-                    "does not vary once the model's bias, effects and network are projected out"
-                        .into(),
-            });
-        } else {
-            live.push((e, c.as_slice()));
-        }
-    }
+    let (live, unexcited) = screen(r_energy, candidates);
     let m = live.len();
     let p_threshold = opts.alpha / (opts.channels.max(1) * m.max(1)) as f64;
     if m == 0 || !(r_energy > 0.0 && r_energy.is_finite()) {
@@ -222,20 +204,70 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
         Ok(p) => (p.first_step_errs().to_vec(), p.picks().to_vec()),
         Err(_) => (vec![0.0; m], Vec::new()),
     };
+    let mut effective_samples = n as f64;
+    let mut out = single_candidates(r, &live, &first_errs, opts, &mut effective_samples);
+    let suggested = walk_path(r, &live, &picks, &mut out, opts, p_threshold);
+    out.sort_by(|a, b| b.err.total_cmp(&a.err));
+    Ranking {
+        candidates: out,
+        suggested,
+        unexcited,
+        effective_samples,
+        p_threshold,
+    }
+}
+
+/// The candidates with something left once the model's function space is
+/// projected out, and those without (with why).
+fn screen(
+    r_energy: f64,
+    candidates: &[(Effect, Vec<f64>)],
+) -> (Vec<(&Effect, &[f64])>, Vec<Unexcited>) {
+    let mut unexcited = Vec::new();
+    let mut live: Vec<(&Effect, &[f64])> = Vec::new();
+    for (e, c) in candidates {
+        let energy = dot(c, c);
+        let scale: f64 = r_energy.max(f64::MIN_POSITIVE);
+        // A column the model's own function space explains entirely (it does
+        // not vary, or only as the bias and window do) has nothing left to
+        // offer: relative to the residual's size, its energy is nil.
+        if !(energy.is_finite() && energy > 1e-20 * scale && energy > 0.0) {
+            unexcited.push(Unexcited {
+                effect: e.id(),
+                reason:
+                    "does not vary once the model's bias, effects and network are projected out"
+                        .into(),
+            });
+        } else {
+            live.push((e, c.as_slice()));
+        }
+    }
+    (live, unexcited)
+}
+
+/// Each live candidate alone against the residual (coefficient, HAC
+/// interval, first-step ERR) and the candidates it is collinear with;
+/// `effective_samples` from the first one's HAC bandwidth.
+fn single_candidates(
+    r: &[f64],
+    live: &[(&Effect, &[f64])],
+    first_errs: &[f64],
+    opts: RankOptions,
+    effective_samples: &mut f64,
+) -> Vec<Candidate> {
+    let n = r.len();
     // Collinearity is about shape: the correlation compares centred columns.
     let corr = stats::correlation;
     let ci = |f: &HacFit, j: usize| f.interval(j, 0.95);
 
-    let mut effective_samples = n as f64;
-    let mut out: Vec<Candidate> = live
-        .iter()
+    live.iter()
         .enumerate()
         .map(|(j, (e, c))| {
             let alone = hac_regression(r, &[c]).ok();
             if j == 0
                 && let Some(f) = &alone
             {
-                effective_samples = n as f64 / f.bandwidth as f64;
+                *effective_samples = n as f64 / f.bandwidth as f64;
             }
             let collinear_with: Vec<String> = live
                 .iter()
@@ -261,10 +293,21 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
                 collinear_with,
             }
         })
-        .collect();
+        .collect()
+}
 
-    // Walk the forward path: each pick's ERR relative to what is left, and
-    // its coefficient's t given the picks before it; stop at the first failure.
+/// Walks the forward path: each pick's ERR relative to what is left, and
+/// its coefficient's t given the picks before it; the suggestions end at
+/// the first pick that fails.
+fn walk_path(
+    r: &[f64],
+    live: &[(&Effect, &[f64])],
+    picks: &[rbf::Pick],
+    out: &mut [Candidate],
+    opts: RankOptions,
+    p_threshold: f64,
+) -> Vec<String> {
+    let ci = |f: &HacFit, j: usize| f.interval(j, 0.95);
     let mut suggested = Vec::new();
     let mut explained = 0.0_f64;
     let mut still_suggesting = true;
@@ -305,12 +348,5 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
         }
         explained += p.err;
     }
-    out.sort_by(|a, b| b.err.total_cmp(&a.err));
-    Ranking {
-        candidates: out,
-        suggested,
-        unexcited,
-        effective_samples,
-        p_threshold,
-    }
+    suggested
 }

@@ -103,77 +103,163 @@ pub fn c_sources(model: &CompensationModel, precision: Precision) -> Result<CSou
     c_sources_from_tables(&tables(model)?, precision)
 }
 
+/// The numbers of onboard tables, read back as the evaluator reads them.
+struct Layout {
+    calibrated: bool,
+    n_sections: usize,
+    n_in_sections: usize,
+    /// Window length, samples.
+    l: usize,
+    n_signals: usize,
+    n_effects: Vec<usize>,
+    n_centres: Vec<usize>,
+    signal_codes: Vec<usize>,
+    total_effects: usize,
+    kinds: Vec<usize>,
+    indices: Vec<usize>,
+    dim: usize,
+    dt: f64,
+    frames: Vec<f64>,
+    ls: Vec<f64>,
+    gyro_cal: Vec<f64>,
+    accel_cal: Vec<f64>,
+    out_sos: Vec<f64>,
+    in_sos: Vec<f64>,
+    bias: Vec<f64>,
+    coeff: Vec<f64>,
+    params: Vec<f64>,
+    param_offset: Vec<usize>,
+    widths: Vec<f64>,
+    weights: Vec<f64>,
+    centres: Vec<f64>,
+}
+
+impl Layout {
+    /// Reads the header words, then walks the payload as the evaluator does.
+    fn read(bytes: &[u8]) -> Result<Self, ExportError> {
+        let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
+        let b = bytes;
+        let hw = words(b, 2, 1)[0];
+        let calibrated = words(b, 3, 1)[0] & dtg_onboard::FLAG_CALIBRATION as usize != 0;
+        let n_sections = words(b, 5, 1)[0];
+        let n_in_sections = words(b, 6, 1)[0];
+        let l = m.window_len();
+        let n_signals = words(b, 8, 1)[0];
+        let n_effects = words(b, 9, 6);
+        let n_centres = words(b, 15, 6);
+        let signal_codes = words(b, dtg_onboard::FIXED_HEADER_WORDS, n_signals);
+        let total_effects: usize = n_effects.iter().sum();
+        let pairs = words(
+            b,
+            dtg_onboard::FIXED_HEADER_WORDS + n_signals,
+            2 * total_effects,
+        );
+        let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
+        let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
+        let dim = l * n_signals;
+        let mut at = 4 * hw;
+        let mut take = |n: usize| {
+            let v = floats(b, at, n);
+            at += 8 * n;
+            v
+        };
+        let dt = take(1)[0];
+        let frames = take(54);
+        let ls = take(18);
+        let (gyro_cal, accel_cal) = if calibrated {
+            (take(6 * 19), take(24))
+        } else {
+            (vec![], vec![])
+        };
+        let out_sos = take(7 * n_sections);
+        let in_sos = take(7 * n_in_sections);
+        let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
+            (vec![], vec![], vec![], vec![], vec![], vec![]);
+        let mut param_offset = Vec::new();
+        let mut e0 = 0;
+        for c in 0..6 {
+            bias.push(take(1)[0]);
+            coeff.extend(take(n_effects[c]));
+            let np: usize = kinds[e0..e0 + n_effects[c]]
+                .iter()
+                .map(|&k| kind_params(k as u32).unwrap_or(0))
+                .sum();
+            let mut off = params.len();
+            for &k in &kinds[e0..e0 + n_effects[c]] {
+                param_offset.push(off);
+                off += kind_params(k as u32).unwrap_or(0);
+            }
+            params.extend(take(np));
+            widths.extend(take(n_centres[c]));
+            weights.extend(take(n_centres[c]));
+            centres.extend(take(n_centres[c] * dim));
+            e0 += n_effects[c];
+        }
+        Ok(Self {
+            calibrated,
+            n_sections,
+            n_in_sections,
+            l,
+            n_signals,
+            n_effects,
+            n_centres,
+            signal_codes,
+            total_effects,
+            kinds,
+            indices,
+            dim,
+            dt,
+            frames,
+            ls,
+            gyro_cal,
+            accel_cal,
+            out_sos,
+            in_sos,
+            bias,
+            coeff,
+            params,
+            param_offset,
+            widths,
+            weights,
+            centres,
+        })
+    }
+}
+
 /// The C sources of any onboard tables (those of [`tables`], or tables built
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
-    let Tables { bytes, extra } = t;
-    let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-    let b = &bytes[..];
-    let hw = words(b, 2, 1)[0];
-    let calibrated = words(b, 3, 1)[0] & dtg_onboard::FLAG_CALIBRATION as usize != 0;
-    let n_sections = words(b, 5, 1)[0];
-    let n_in_sections = words(b, 6, 1)[0];
-    let l = m.window_len();
-    let n_signals = words(b, 8, 1)[0];
-    let n_effects = words(b, 9, 6);
-    let n_centres = words(b, 15, 6);
-    let signal_codes = words(b, dtg_onboard::FIXED_HEADER_WORDS, n_signals);
-    let total_effects: usize = n_effects.iter().sum();
-    let pairs = words(
-        b,
-        dtg_onboard::FIXED_HEADER_WORDS + n_signals,
-        2 * total_effects,
-    );
-    let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
-    let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-    let dim = l * n_signals;
-
-    // Walk the payload as the evaluator does.
-    let mut at = 4 * hw;
-    let mut take = |n: usize| {
-        let v = floats(b, at, n);
-        at += 8 * n;
-        v
-    };
-    let dt = take(1)[0];
-    let frames = take(54);
-    let ls = take(18);
-    let (gyro_cal, accel_cal) = if calibrated {
-        (take(6 * 19), take(24))
-    } else {
-        (vec![], vec![])
-    };
-    let out_sos = take(7 * n_sections);
-    let in_sos = take(7 * n_in_sections);
-    let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
-        (vec![], vec![], vec![], vec![], vec![], vec![]);
-    let mut param_offset = Vec::new();
-    let mut e0 = 0;
-    for c in 0..6 {
-        bias.push(take(1)[0]);
-        coeff.extend(take(n_effects[c]));
-        let np: usize = kinds[e0..e0 + n_effects[c]]
-            .iter()
-            .map(|&k| kind_params(k as u32).unwrap_or(0))
-            .sum();
-        let mut off = params.len();
-        for &k in &kinds[e0..e0 + n_effects[c]] {
-            param_offset.push(off);
-            off += kind_params(k as u32).unwrap_or(0);
-        }
-        params.extend(take(np));
-        widths.extend(take(n_centres[c]));
-        weights.extend(take(n_centres[c]));
-        centres.extend(take(n_centres[c] * dim));
-        e0 += n_effects[c];
-    }
+    let layout = Layout::read(&t.bytes)?;
     let (real, exp, fabs) = match precision {
         Precision::F64 => ("double", "exp", "fabs"),
         Precision::F32 => ("float", "expf", "fabsf"),
     };
-    let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
+    let mut source = tables_c(&layout);
+    source.push_str(
+        &STEP_C
+            .replace("EXP(", &format!("{exp}("))
+            .replace("FABS(", &format!("{fabs}(")),
+    );
+    Ok(CSources {
+        header: header_h(&layout, &t.extra, real),
+        source,
+        main: MAIN_C.to_string(),
+    })
+}
 
-    let header = format!(
+/// `dtg_model.h`: the sizes, the state and the three calls.
+fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
+    let Layout {
+        dt,
+        l,
+        n_signals,
+        n_sections,
+        n_in_sections,
+        total_effects,
+        ..
+    } = layout;
+    let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
+    format!(
         r#"/* DTG vibration-error compensator, exported by `dtg-vib export --lang c`.
  * C99, needs only <math.h>. Layout: docs/formats.md ("Onboard tables").
  * One call of dtg_step per output period ({dt} s) with sample n: raw gyro
@@ -227,11 +313,37 @@ int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]);
         } else {
             names.join(", ")
         },
-    );
+    )
+}
 
+/// The tables as C arrays, before the step code.
+fn tables_c(layout: &Layout) -> String {
+    let Layout {
+        calibrated,
+        dim,
+        frames,
+        ls,
+        gyro_cal,
+        accel_cal,
+        out_sos,
+        in_sos,
+        signal_codes,
+        n_effects,
+        kinds,
+        indices,
+        param_offset,
+        params,
+        bias,
+        coeff,
+        n_centres,
+        widths,
+        weights,
+        centres,
+        ..
+    } = layout;
     let c_offsets: Vec<usize> = (0..6).map(|c| n_centres[..c].iter().sum()).collect();
     let e_offsets: Vec<usize> = (0..6).map(|c| n_effects[..c].iter().sum()).collect();
-    let mut source = format!(
+    format!(
         r#"/* Generated by `dtg-vib export --lang c`; the same step as the dtg-onboard
  * Rust evaluator (crates/dtg-onboard/src/lib.rs), which documents each stage. */
 #include <math.h>
@@ -262,7 +374,7 @@ static const dtg_real WIDTH[{nk}] = {widths};
 static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
 "#,
-        cal = calibrated as i32,
+        cal = *calibrated as i32,
         frames = arr(&frames),
         ls = arr(&ls),
         gyro_cal = arr(&gyro_cal),
@@ -286,19 +398,7 @@ static const dtg_real CENTRES[{nc}] = {centres};
         weights = arr(&weights),
         nc = centres.len().max(1),
         centres = arr(&centres),
-    );
-    source.push_str(
-        &STEP_C
-            .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}(")),
-    );
-
-    let main = MAIN_C.to_string();
-    Ok(CSources {
-        header,
-        source,
-        main,
-    })
+    )
 }
 
 const STEP_C: &str = r#"

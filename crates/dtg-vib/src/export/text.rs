@@ -28,6 +28,31 @@ pub fn equations(model: &CompensationModel) -> String {
             "zero-phase (forward-backward low-pass; needs the whole record)"
         }
     );
+    calibration_text(w, model);
+    let _ = writeln!(
+        w,
+        "\n## Low-pass of the effect terms (and of the fit targets)"
+    );
+    filter_text(w, &pre.filter, pre.causal, model.dt_s());
+    let _ = writeln!(w, "\n## Low-pass of the windowed signals");
+    filter_text(w, &pre.input_filter, pre.causal, model.dt_s());
+    let win = &pre.window;
+    let _ = writeln!(
+        w,
+        "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
+        win.length(),
+        win.signals().join(", then "),
+        win.dim()
+    );
+    for c in model.channels() {
+        channel_text(w, c);
+    }
+    s
+}
+
+/// The ground calibration, as the inverse models the preparation applies.
+fn calibration_text(w: &mut String, model: &CompensationModel) {
+    let causal = model.preprocess().causal;
     let _ = writeln!(w, "\n## Ground calibration");
     match model.calibration() {
         None => {
@@ -57,7 +82,7 @@ pub fn equations(model: &CompensationModel) -> String {
             let _ = writeln!(
                 w,
                 "gyros (inverse of output = ω_I + Σ coefficient·term, Newton on the scale-factor nonlinearity; g² terms with the {} within-interval covariance):",
-                if pre.causal {
+                if causal {
                     "previous interval's"
                 } else {
                     "centred"
@@ -80,11 +105,11 @@ pub fn equations(model: &CompensationModel) -> String {
             }
         }
     }
-    let _ = writeln!(
-        w,
-        "\n## Low-pass of the effect terms (and of the fit targets)"
-    );
-    let filt = |w: &mut String, f: &Option<crate::pipeline::FilterSpec>| match f {
+}
+
+/// One low-pass as its sections' difference equations.
+fn filter_text(w: &mut String, f: &Option<crate::pipeline::FilterSpec>, causal: bool, dt_s: f64) {
+    match f {
         None => {
             let _ = writeln!(w, "none");
         }
@@ -94,15 +119,13 @@ pub fn equations(model: &CompensationModel) -> String {
                 "Butterworth, order {}, −3 dB at {} Hz, {}",
                 f.order,
                 f.cutoff_hz,
-                if pre.causal {
+                if causal {
                     "one forward pass started in the steady state of the first sample"
                 } else {
                     "forward and backward (zero phase)"
                 }
             );
-            if let Ok(lp) =
-                crate::signal::LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / model.dt_s())
-            {
+            if let Ok(lp) = crate::signal::LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / dt_s) {
                 let _ = writeln!(
                     w,
                     "  each section: y[n] = b0·x[n] + b1·x[n−1] + b2·x[n−2] − a1·y[n−1] − a2·y[n−2], in order"
@@ -116,49 +139,40 @@ pub fn equations(model: &CompensationModel) -> String {
                 }
             }
         }
-    };
-    filt(w, &pre.filter);
-    let _ = writeln!(w, "\n## Low-pass of the windowed signals");
-    filt(w, &pre.input_filter);
-    let win = &pre.window;
-    let _ = writeln!(
-        w,
-        "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
-        win.length(),
-        win.signals().join(", then "),
-        win.dim()
-    );
-    for c in model.channels() {
-        let ch = c.channel();
-        let rbf = c.rbf();
-        let _ = writeln!(w, "\n## Channel {ch}");
-        let mut eq = format!("error_{ch} [deg/h] = {:e}", c.bias());
-        for (e, th) in c.effects().iter().zip(c.effect_coefficients()) {
-            let _ = write!(eq, " + ({th:e} {})·LP[{}]", e.unit(), e.id());
-        }
-        let _ = write!(
-            eq,
-            " + Σ_k w_k·exp(−‖x − c_k‖²/β_k²), {} centres",
-            rbf.n_centres()
-        );
-        let _ = writeln!(w, "{eq}");
-        let _ = writeln!(w, "compensated_{ch} [deg/h] = calibrated_{ch} − error_{ch}");
-        for e in c.effects() {
-            let _ = writeln!(w, "  {}: {}", e.id(), e.description());
-        }
-        let centres = rbf.centres();
-        for k in 0..rbf.n_centres() {
-            let row: Vec<String> = (0..centres.ncols())
-                .map(|d| format!("{:e}", centres[(k, d)]))
-                .collect();
-            let _ = writeln!(
-                w,
-                "  k = {k}: w = {:e} deg/h, β = {:e} g, c = [{}] g",
-                rbf.weights()[(k, 0)],
-                rbf.widths().get(k),
-                row.join(", ")
-            );
-        }
     }
-    s
+}
+
+/// One channel's equation: its effects with their coefficients and the
+/// RBF sum with every centre, width and weight.
+fn channel_text(w: &mut String, c: &crate::model::ChannelModel) {
+    let ch = c.channel();
+    let rbf = c.rbf();
+    let _ = writeln!(w, "\n## Channel {ch}");
+    let mut eq = format!("error_{ch} [deg/h] = {:e}", c.bias());
+    for (e, th) in c.effects().iter().zip(c.effect_coefficients()) {
+        let _ = write!(eq, " + ({th:e} {})·LP[{}]", e.unit(), e.id());
+    }
+    let _ = write!(
+        eq,
+        " + Σ_k w_k·exp(−‖x − c_k‖²/β_k²), {} centres",
+        rbf.n_centres()
+    );
+    let _ = writeln!(w, "{eq}");
+    let _ = writeln!(w, "compensated_{ch} [deg/h] = calibrated_{ch} − error_{ch}");
+    for e in c.effects() {
+        let _ = writeln!(w, "  {}: {}", e.id(), e.description());
+    }
+    let centres = rbf.centres();
+    for k in 0..rbf.n_centres() {
+        let row: Vec<String> = (0..centres.ncols())
+            .map(|d| format!("{:e}", centres[(k, d)]))
+            .collect();
+        let _ = writeln!(
+            w,
+            "  k = {k}: w = {:e} deg/h, β = {:e} g, c = [{}] g",
+            rbf.weights()[(k, 0)],
+            rbf.widths().get(k),
+            row.join(", ")
+        );
+    }
 }
