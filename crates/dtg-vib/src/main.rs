@@ -3,6 +3,8 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
+use cli_support::Style;
+use cli_support::progress::Progress;
 use dtg_vib::apply::{Applied, write_residues};
 use dtg_vib::diagnose::{DiagnoseOptions, diagnose_records};
 use dtg_vib::effects::{ChannelEffect, Effect};
@@ -13,13 +15,10 @@ use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
 use dtg_vib::report::{Baseline, Provenance, ReportExtras, build_report, write_diagnosis_report};
 use dtg_vib::split::SplitKind;
 use dtg_vib::window::WindowSpec;
-use indicatif::{ProgressBar, ProgressStyle};
 use nav_sensors::calibration::Calibration;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{Scenario, Site, simulate};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 #[derive(Parser)]
 #[command(
@@ -373,96 +372,16 @@ fn export_command(
     }
 }
 
-fn main() {
+fn main() -> std::process::ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => usage_error(e),
+        Err(e) => return cli_support::usage::exit(e, Style::VERBATIM),
     };
-    if let Err(e) = run(cli) {
-        // One line: what, where (the library's errors carry file:line:column),
-        // how to fix. Causes are joined unless the message already quotes them
-        // (many errors print their source themselves).
-        let mut msg = String::new();
-        for cause in e.chain().map(|c| c.to_string()) {
-            if msg.is_empty() {
-                msg = cause;
-            } else if !msg.contains(&cause) {
-                msg = format!("{msg}: {cause}");
-            }
-        }
-        eprintln!("error: {}", msg.replace('\n', "; "));
-        std::process::exit(1);
-    }
-}
-
-/// A command-line usage error on one line, like every other error: clap's
-/// message and any tip, without the usage block (`--help` has it). Help and
-/// version requests print as clap prints them.
-fn usage_error(e: clap::Error) -> ! {
-    use clap::error::ErrorKind;
-    if matches!(
-        e.kind(),
-        ErrorKind::DisplayHelp
-            | ErrorKind::DisplayVersion
-            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
-    ) {
-        e.exit();
-    }
-    let text = e.to_string();
-    let mut line = String::new();
-    for part in text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
-    {
-        if !line.is_empty() {
-            line.push_str(if line.ends_with(':') { " " } else { "; " });
-        }
-        line.push_str(part);
-    }
-    eprintln!("{line} (see --help)");
-    std::process::exit(2);
-}
-
-/// A spinner on stderr, or nothing when quiet or not a terminal.
-struct Progress(Option<ProgressBar>);
-
-impl Progress {
-    fn new(quiet: bool) -> Self {
-        if quiet || !std::io::stderr().is_terminal() {
-            return Self(None);
-        }
-        let pb = ProgressBar::new_spinner();
-        pb.set_style(
-            ProgressStyle::with_template("{spinner} {elapsed:>3} {msg}").expect("static template"),
-        );
-        pb.enable_steady_tick(Duration::from_millis(120));
-        Self(Some(pb))
-    }
-    /// Clears the spinner before the command prints its results.
-    fn clear(&self) {
-        if let Some(pb) = &self.0 {
-            pb.finish_and_clear();
-        }
-    }
-    fn say(&self, msg: impl Into<String>) {
-        if let Some(pb) = &self.0 {
-            pb.set_message(msg.into());
-        }
-    }
-}
-
-impl Drop for Progress {
-    fn drop(&mut self) {
-        if let Some(pb) = &self.0 {
-            pb.finish_and_clear();
-        }
-    }
+    cli_support::failure::exit(run(cli), Style::VERBATIM)
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let progress = Progress::new(cli.quiet);
+    let progress = Progress::new(cli_support::progress::visible(cli.quiet));
     match cli.command {
         Command::Simulate {
             scenario,
