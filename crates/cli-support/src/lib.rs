@@ -9,6 +9,7 @@
 //! | [`failure`] | an error and its causes as one `error:` line on stderr, exit 1 |
 //! | [`usage`] | clap's usage errors as one line ending in "(see --help)", exit 2 |
 //! | [`progress`] | a spinner on stderr, silent with `--quiet` or when stderr is not a terminal |
+//! | `testing` | (feature `testing`) running a binary under a time limit, for the integration tests |
 //!
 //! ```
 //! use cli_support::{Style, failure};
@@ -22,6 +23,9 @@
 pub mod failure;
 pub mod progress;
 pub mod usage;
+
+#[cfg(feature = "testing")]
+pub mod testing;
 
 /// How a message of several lines is put on one line.
 ///
