@@ -1129,3 +1129,45 @@ fn no_spinner_is_left_on_a_terminal() {
         "{lines:#?}"
     );
 }
+
+/// `export --lang text --out DIR` writes what `--lang text` prints into
+/// DIR/equations.txt and says where (it used to print and ignore `--out`),
+/// never over the model it reads.
+#[test]
+fn export_text_with_out_writes_the_equations_there() {
+    let printed = ok(&["export", "--model", model(), "--lang", "text"]);
+    assert!(printed.contains("deg/h"), "{printed}");
+    let out = dir().join("export-text");
+    let said = ok(&[
+        "export",
+        "--model",
+        model(),
+        "--lang",
+        "text",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let file = out.join("equations.txt");
+    assert_eq!(said, format!("wrote {}\n", file.display()));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), printed);
+    // A model that is DIR/equations.txt is refused as the output.
+    let inside = dir().join("export-inside");
+    std::fs::create_dir_all(&inside).unwrap();
+    let m = inside.join("equations.txt");
+    std::fs::copy(model(), &m).unwrap();
+    let before = std::fs::read(&m).unwrap();
+    let err = fails(&[
+        "export",
+        "--model",
+        m.to_str().unwrap(),
+        "--lang",
+        "text",
+        "--out",
+        inside.to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("--out") && err.contains("same file as --model"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&m).unwrap(), before);
+}

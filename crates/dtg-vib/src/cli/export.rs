@@ -1,10 +1,10 @@
 //! `dtg-vib export`: a causal model as C99 sources and onboard tables, or
-//! any model as equations.
+//! any model as equations (on stdout, or into `DIR/equations.txt`).
 
 use anyhow::Result;
 use clap::Args;
 use dtg_vib::model::CompensationModel;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The flags of `export`.
 #[derive(Args)]
@@ -12,10 +12,11 @@ pub struct ExportArgs {
     /// Model file from `fit --causal` (any model for --lang text).
     #[arg(long)]
     model: PathBuf,
-    /// c: dtg_model.h, dtg_model.c, main.c and model.dtgo into --out; text: equations on stdout.
+    /// c: dtg_model.h, dtg_model.c, main.c and model.dtgo into --out; text:
+    /// equations on stdout, or into equations.txt with --out.
     #[arg(long)]
     lang: String,
-    /// Output directory (--lang c).
+    /// Output directory (--lang c; --lang text writes equations.txt there).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tables and arithmetic of the C: f64 (equal to `compensate`) or f32.
@@ -23,63 +24,74 @@ pub struct ExportArgs {
     precision: String,
 }
 
-/// Writes the C sources and tables, or prints the equations.
-pub fn run(a: ExportArgs) -> Result<()> {
-    let ExportArgs {
-        model,
-        lang,
-        out,
-        precision,
-    } = a;
-    export(&model, &lang, out.as_deref(), &precision)
-}
+/// The file `--lang text --out DIR` writes into DIR.
+const EQUATIONS_FILE: &str = "equations.txt";
 
-/// `dtg-vib export`: the model as C99 sources and onboard tables, or as equations.
-fn export(
-    model_path: &std::path::Path,
-    lang: &str,
-    out: Option<&std::path::Path>,
-    precision: &str,
-) -> anyhow::Result<()> {
-    let model = CompensationModel::load(model_path)?;
-    match lang {
-        "text" => {
-            print!("{}", dtg_vib::export::equations(&model));
-            Ok(())
-        }
+/// Writes the C sources and tables, or the equations.
+pub fn run(a: ExportArgs) -> Result<()> {
+    let model = CompensationModel::load(&a.model)?;
+    match a.lang.as_str() {
+        "text" => text(&model, &a.model, a.out.as_deref()),
         "c" => {
-            let Some(out) = out else {
+            let Some(out) = &a.out else {
                 anyhow::bail!("--lang c writes files: give the directory with --out DIR");
             };
-            let precision: dtg_vib::export::Precision = precision.parse()?;
-            let files = ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"];
-            outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
-            let c = dtg_vib::export::c_sources(&model, precision)?;
-            let tables = dtg_vib::export::tables(&model)?;
-            std::fs::create_dir_all(out)
-                .map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
-            for (name, text) in c.files() {
-                outfile::write_bytes(out.join(name), text)
-                    .map_err(|e| anyhow::anyhow!("{}: {e}", out.join(name).display()))?;
-            }
-            let bin = out.join("model.dtgo");
-            outfile::write_bytes(&bin, &tables.bytes)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", bin.display()))?;
-            let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
-            println!(
-                "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
-                out.display(),
-                m.size_bytes(),
-                m.state_len(),
-                m.flops_per_step(),
-                if tables.extra.is_empty() {
-                    "none".to_string()
-                } else {
-                    tables.extra.join(", ")
-                }
-            );
-            Ok(())
+            c(&model, &a.model, out, &a.precision)
         }
         other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
     }
+}
+
+/// The equations on stdout, or into `out/equations.txt` (never over the
+/// model), saying where they went.
+fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Result<()> {
+    let equations = dtg_vib::export::equations(model);
+    let Some(out) = out else {
+        print!("{equations}");
+        return Ok(());
+    };
+    outfile::guard_dir(
+        "--out",
+        out,
+        &[EQUATIONS_FILE],
+        &[("--model", Some(model_path))],
+    )?;
+    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
+    let path = out.join(EQUATIONS_FILE);
+    outfile::write_bytes(&path, equations)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The C99 sources and the onboard tables into `out`, with their size, state
+/// and cost per step.
+fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) -> Result<()> {
+    let precision: dtg_vib::export::Precision = precision.parse()?;
+    let files = ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"];
+    outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
+    let c = dtg_vib::export::c_sources(model, precision)?;
+    let tables = dtg_vib::export::tables(model)?;
+    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
+    for (name, text) in c.files() {
+        outfile::write_bytes(out.join(name), text)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", out.join(name).display()))?;
+    }
+    let bin = out.join("model.dtgo");
+    outfile::write_bytes(&bin, &tables.bytes)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", bin.display()))?;
+    let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
+    println!(
+        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
+        out.display(),
+        m.size_bytes(),
+        m.state_len(),
+        m.flops_per_step(),
+        if tables.extra.is_empty() {
+            "none".to_string()
+        } else {
+            tables.extra.join(", ")
+        }
+    );
+    Ok(())
 }
