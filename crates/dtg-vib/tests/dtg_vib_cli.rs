@@ -1171,3 +1171,34 @@ fn export_text_with_out_writes_the_equations_there() {
     );
     assert_eq!(std::fs::read(&m).unwrap(), before);
 }
+
+/// `--centres` and `--max-centres` are the flags; `--centers` and
+/// `--max-centers` (the spelling of earlier releases) stay as aliases that
+/// fit the same model.
+#[test]
+fn centre_flags_and_their_aliases_fit_the_same_model() {
+    let fit = |name: &str, centres: &str, max: &str| {
+        let out = dir().join(name);
+        ok(&[
+            "fit",
+            "--data",
+            &record(),
+            centres,
+            "kmeans",
+            max,
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        std::fs::read(out).unwrap()
+    };
+    let primary = fit("centres.json", "--centres", "--max-centres");
+    let alias = fit("centers.json", "--centers", "--max-centers");
+    assert!(primary == alias, "the aliases fit another model");
+    let m: serde_json::Value = serde_json::from_slice(&primary).unwrap();
+    // --max-centres bounds the sizes cross-validation tries.
+    for c in m["model"]["channels"].as_array().unwrap() {
+        let k = c["rbf"]["centres"]["rows"].as_u64().unwrap();
+        assert!((1..=5).contains(&k), "{k} centres");
+    }
+}

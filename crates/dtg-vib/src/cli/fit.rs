@@ -150,7 +150,9 @@ pub struct FitReport {
 struct ChannelReport {
     channel: nav_sensors::geometry::Channel,
     effects: Vec<String>,
-    n_centers: usize,
+    // The key is a contract (issue 24 §5: code says centre, JSON keys stay).
+    #[serde(rename = "n_centers")]
+    n_centres: usize,
     train_rms: f64,
     val_rms: f64,
     val_rms_bias_only: f64,
@@ -203,7 +205,7 @@ impl FitReport {
                 ChannelReport {
                     channel: c.channel(),
                     effects: c.effects().iter().map(|e| e.id()).collect(),
-                    n_centers: c.n_centres(),
+                    n_centres: c.n_centres(),
                     train_rms: s.train_rms,
                     val_rms: s.val_rms,
                     val_rms_bias_only: s.val_rms_bias_only,

@@ -34,8 +34,8 @@ pub struct FitArgs {
     #[arg(long = "add-effect")]
     pub add_effect: Vec<String>,
     /// Centre selection.
-    #[arg(long, default_value = "ols")]
-    pub centers: String,
+    #[arg(long, visible_alias = "centers", default_value = "ols")]
+    pub centres: String,
     /// Window length, samples (the paper: 50).
     #[arg(long, default_value_t = 50, value_parser = parse_count, allow_hyphen_values = true)]
     pub window: usize,
@@ -57,8 +57,8 @@ pub struct FitArgs {
     #[arg(long = "train-fraction", default_value_t = 0.5, value_parser = parse_fraction, allow_hyphen_values = true)]
     pub train_fraction: f64,
     /// Largest number of RBF centres tried by cross-validation.
-    #[arg(long = "max-centers", default_value_t = 60, value_parser = parse_count, allow_hyphen_values = true)]
-    pub max_centers: usize,
+    #[arg(long = "max-centres", visible_alias = "max-centers", default_value_t = 60, value_parser = parse_count, allow_hyphen_values = true)]
+    pub max_centres: usize,
     /// OLS candidate centres: a seeded subsample of this many training windows.
     #[arg(long, default_value_t = 400, value_parser = parse_count, allow_hyphen_values = true)]
     pub candidates: usize,
@@ -106,13 +106,13 @@ pub struct FitArgs {
 
 /// The fit options the flags say.
 pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
-    let centres = a.centers.parse::<CentreMethod>()?;
-    if centres == CentreMethod::Ols && a.max_centers > a.candidates {
+    let centres = a.centres.parse::<CentreMethod>()?;
+    if centres == CentreMethod::Ols && a.max_centres > a.candidates {
         // OLS picks among the candidates; more centres than that used to
         // run a size ladder far past them (--max-centers 100000000 hung).
         anyhow::bail!(
             "--max-centers {}: OLS picks centres among --candidates {} windows; use --max-centers 1 to {} (or raise --candidates)",
-            a.max_centers,
+            a.max_centres,
             a.candidates,
             a.candidates
         );
@@ -182,7 +182,7 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         effects,
         add,
         centres,
-        max_centres: a.max_centers,
+        max_centres: a.max_centres,
         candidates: a.candidates,
         ridge: a.ridge,
         split,
