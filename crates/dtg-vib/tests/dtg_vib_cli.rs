@@ -107,6 +107,25 @@ fn variant(name: &str, edit: impl FnOnce(&mut Vec<String>)) -> String {
     p.display().to_string()
 }
 
+/// `fit --data RECORD ARGS… --out DIR/NAME`, which must succeed: the model
+/// file's bytes.
+fn fit_bytes(name: &str, args: &[&str]) -> Vec<u8> {
+    let out = dir().join(name);
+    let r = record();
+    let mut all = vec!["fit", "--data", r.as_str()];
+    all.extend_from_slice(args);
+    all.extend(["--out", out.to_str().unwrap()]);
+    ok(&all);
+    std::fs::read(out).unwrap()
+}
+
+/// A small model (5 centres at most) fitted with these flags, as JSON.
+fn fitted(name: &str, args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["--max-centers", "5"];
+    all.extend_from_slice(args);
+    serde_json::from_slice(&fit_bytes(name, &all)).unwrap()
+}
+
 /// A command that must fail: its exit status (1, or 2 for a flag clap
 /// refuses), the fragments its one `error:` line must hold, and a path it
 /// must not have written.
@@ -716,20 +735,7 @@ fn a_hand_edited_model_that_disagrees_with_itself_is_refused() {
 #[test]
 fn table_rate_takes_the_documented_comma_form() {
     // docs/dtg-vib.md: `--table-rate WX,WY,WZ` (deg/s).
-    let out = dir().join("table-rate.json").display().to_string();
-    ok(&[
-        "fit",
-        "--data",
-        &record(),
-        "--table-rate",
-        "0,0,0.01",
-        "--max-centers",
-        "5",
-        "--out",
-        &out,
-    ]);
-    let m: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let m = fitted("table-rate.json", &["--table-rate", "0,0,0.01"]);
     assert_eq!(
         m["model"]["preprocess"]["rate_reference"]["rate_deg_s"],
         serde_json::json!([0.0, 0.0, 0.01])
@@ -739,36 +745,16 @@ fn table_rate_takes_the_documented_comma_form() {
 #[test]
 fn negative_numbers_are_values_not_flags() {
     // A southern site and a table turning backwards are ordinary tests.
-    let out = dir().join("south.json").display().to_string();
-    ok(&[
-        "fit",
-        "--data",
-        &record(),
-        "--earth-rate",
-        "-33.9",
-        "--max-centers",
-        "5",
-        "--out",
-        &out,
-    ]);
-    let m: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let m = fitted("south.json", &["--earth-rate", "-33.9"]);
     assert_eq!(
         m["model"]["preprocess"]["rate_reference"]["site"]["latitude_deg"],
         serde_json::json!(-33.9)
     );
-    let out = dir().join("backwards.json").display().to_string();
-    ok(&[
-        "fit",
-        "--data",
-        &record(),
-        "--table-rate",
-        "-0.01,0,0",
-        "--max-centers",
-        "5",
-        "--out",
-        &out,
-    ]);
+    let m = fitted("backwards.json", &["--table-rate", "-0.01,0,0"]);
+    assert_eq!(
+        m["model"]["preprocess"]["rate_reference"]["rate_deg_s"],
+        serde_json::json!([-0.01, 0.0, 0.0])
+    );
 }
 
 #[test]
@@ -1177,23 +1163,14 @@ fn export_text_with_out_writes_the_equations_there() {
 /// fit the same model.
 #[test]
 fn centre_flags_and_their_aliases_fit_the_same_model() {
-    let fit = |name: &str, centres: &str, max: &str| {
-        let out = dir().join(name);
-        ok(&[
-            "fit",
-            "--data",
-            &record(),
-            centres,
-            "kmeans",
-            max,
-            "5",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        std::fs::read(out).unwrap()
-    };
-    let primary = fit("centres.json", "--centres", "--max-centres");
-    let alias = fit("centers.json", "--centers", "--max-centers");
+    let primary = fit_bytes(
+        "centres.json",
+        &["--centres", "kmeans", "--max-centres", "5"],
+    );
+    let alias = fit_bytes(
+        "centers.json",
+        &["--centers", "kmeans", "--max-centers", "5"],
+    );
     assert!(primary == alias, "the aliases fit another model");
     let m: serde_json::Value = serde_json::from_slice(&primary).unwrap();
     // --max-centres bounds the sizes cross-validation tries.

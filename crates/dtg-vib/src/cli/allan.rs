@@ -8,6 +8,8 @@ use dtg_vib::model::CompensationModel;
 use nav_sensors::record::Record;
 use std::path::PathBuf;
 
+use super::report::guard_report;
+
 /// The flags of `allan`.
 #[derive(Args)]
 pub struct AllanArgs {
@@ -37,14 +39,10 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         json,
         report,
     } = a;
-    if let Some(dir) = &report {
-        outfile::guard_dir(
-            "--report",
-            dir,
-            &["index.html"],
-            &[("--data", Some(&data)), ("--model", model.as_deref())],
-        )?;
-    }
+    guard_report(
+        report.as_deref(),
+        &[("--data", Some(&data)), ("--model", model.as_deref())],
+    )?;
     let record = Record::read_csv(&data)?;
     let m = model.as_ref().map(CompensationModel::load).transpose()?;
     progress.say("computing Allan deviations");

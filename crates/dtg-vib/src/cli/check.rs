@@ -9,7 +9,7 @@ use nav_sensors::record::Record;
 use std::path::PathBuf;
 
 use super::parse::parse_share;
-use super::report::model_report;
+use super::report::{guard_report, model_report};
 use super::residues::print_residues_on;
 
 /// The flags of `check`.
@@ -41,14 +41,10 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         json,
         report,
     } = a;
-    if let Some(dir) = &report {
-        outfile::guard_dir(
-            "--report",
-            dir,
-            &["index.html"],
-            &[("--model", Some(&model)), ("--data", Some(&data))],
-        )?;
-    }
+    guard_report(
+        report.as_deref(),
+        &[("--model", Some(&model)), ("--data", Some(&data))],
+    )?;
     let m = CompensationModel::load(&model)?;
     let record = Record::read_csv(&data)?;
     progress.say("applying the model");

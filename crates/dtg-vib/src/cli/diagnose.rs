@@ -10,6 +10,7 @@ use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
 use super::fit_args::once_each;
+use super::report::guard_report;
 use super::thresholds::Thresholds;
 
 /// The flags of `diagnose`.
@@ -41,13 +42,10 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         report,
         thresholds,
     } = a;
-    if let Some(dir) = &report {
-        let inputs: Vec<(&str, Option<&Path>)> =
-            std::iter::once(("--model", Some(model.as_path())))
-                .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
-                .collect();
-        outfile::guard_dir("--report", dir, &["index.html"], &inputs)?;
-    }
+    let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
+        .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
+        .collect();
+    guard_report(report.as_deref(), &inputs)?;
     once_each(&data)?;
     let m = CompensationModel::load(&model)?;
     let records = data

@@ -12,6 +12,7 @@ use std::path::PathBuf;
 
 use super::fit::{FitReport, print_fit};
 use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
+use super::report::guard_report;
 use super::thresholds::Thresholds;
 
 /// The flags of `explain`: a fit's, the diagnosis thresholds and the loop's own.
@@ -44,9 +45,7 @@ fn explain_takes(f: &FitArgs) -> Result<()> {
 pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let f = &a.fit;
     outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
-    if let Some(dir) = &a.report {
-        outfile::guard_dir("--report", dir, &["index.html"], &fit_inputs(f))?;
-    }
+    guard_report(a.report.as_deref(), &fit_inputs(f))?;
     explain_takes(f)?;
     let options = fit_options(f)?;
     let records = read_records(f)?;

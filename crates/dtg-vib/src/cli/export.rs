@@ -56,10 +56,8 @@ fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Res
         &[EQUATIONS_FILE],
         &[("--model", Some(model_path))],
     )?;
-    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
+    write_files(out, [(EQUATIONS_FILE, equations.as_bytes())])?;
     let path = out.join(EQUATIONS_FILE);
-    outfile::write_bytes(&path, equations)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     println!("wrote {}", path.display());
     Ok(())
 }
@@ -72,14 +70,13 @@ fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) 
     outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
     let c = dtg_vib::export::c_sources(model, precision)?;
     let tables = dtg_vib::export::tables(model)?;
-    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
-    for (name, text) in c.files() {
-        outfile::write_bytes(out.join(name), text)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", out.join(name).display()))?;
-    }
-    let bin = out.join("model.dtgo");
-    outfile::write_bytes(&bin, &tables.bytes)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", bin.display()))?;
+    let sources = c.files().map(|(name, text)| (name, text.as_bytes()));
+    write_files(
+        out,
+        sources
+            .into_iter()
+            .chain([("model.dtgo", &tables.bytes[..])]),
+    )?;
     let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
     println!(
         "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
@@ -93,5 +90,16 @@ fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) 
             tables.extra.join(", ")
         }
     );
+    Ok(())
+}
+
+/// Writes each (name, bytes) into `out`, made if missing; each file atomically.
+fn write_files<'a>(out: &Path, files: impl IntoIterator<Item = (&'a str, &'a [u8])>) -> Result<()> {
+    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
+    for (name, bytes) in files {
+        let path = out.join(name);
+        outfile::write_bytes(&path, bytes)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    }
     Ok(())
 }

@@ -8,7 +8,7 @@ use dtg_vib::apply::Applied;
 use dtg_vib::model::CompensationModel;
 use dtg_vib::report::{Baseline, Provenance, ReportExtras, build_report};
 use nav_sensors::record::Record;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::residues::print_residues;
 
@@ -73,6 +73,16 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
         print_baseline_table(ba, &summary.channels);
     }
     println!("report: {}", summary.index.display());
+    Ok(())
+}
+
+/// Refuses, before any work, a `--report DIR` (of `check`, `diagnose`,
+/// `explain`, `allan`) whose index.html would be one of the inputs, or that
+/// cannot be written.
+pub fn guard_report(report: Option<&Path>, inputs: &[(&str, Option<&Path>)]) -> Result<()> {
+    if let Some(dir) = report {
+        outfile::guard_dir("--report", dir, &["index.html"], inputs)?;
+    }
     Ok(())
 }
 
