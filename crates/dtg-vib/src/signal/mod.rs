@@ -1,8 +1,8 @@
 //! Pre-processing of 50-Hz sensor records: the Butterworth low-pass and its
-//! zero-phase filtering. The filters themselves live in
-//! [`nav_sensors::signal`], the lowest crate that needs them (its sensor
-//! dynamics run the same [`Biquad`]), so the workspace has one filter type;
-//! this module keeps the application's paths.
+//! zero-phase filtering. The filters themselves live in the `iir` crate,
+//! below both the sensor models (whose dynamics run the same [`Biquad`])
+//! and the identification loop, so the workspace has one filter type; this
+//! module keeps the application's paths.
 //!
 //! ```
 //! use dtg_vib::signal::LowPass;
@@ -10,4 +10,4 @@
 //! assert!((lp.gain_at(5.0) - 0.5_f64.sqrt()).abs() < 1e-12);
 //! ```
 
-pub use nav_sensors::signal::{Biquad, FilterError, LowPass, MAX_ORDER, MIN_CUTOFF_PER_RATE, num};
+pub use iir::{Biquad, FilterError, LowPass, MAX_ORDER, MIN_CUTOFF_PER_RATE, num};

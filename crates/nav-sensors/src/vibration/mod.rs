@@ -1,20 +1,20 @@
 //! The vibration environment: PSD tables (with the NAVMAT P-9492 profile),
 //! FFT synthesis of random vibration, sine and sweep, level schedules,
-//! shaker drives with cross-axis motion and rocking, and Welch's PSD.
+//! shaker drives with cross-axis motion and rocking, and Welch's PSD (from
+//! the `iir` crate, which the identification loop shares).
 
 mod environment;
 mod psd;
 mod schedule;
 mod sine;
 mod synth;
-mod welch;
 
 pub use environment::{Drive, Rocking, VibrationConfig, VibrationError, VibrationHistory};
+pub use iir::{Spectrum, welch};
 pub use psd::{PsdError, PsdTable};
 pub use schedule::{LevelSchedule, Segment};
 pub use sine::{sine, sweep};
 pub use synth::{Motion, STANDARD_GRAVITY_M_S2, synthesize_random};
-pub use welch::{Spectrum, welch};
 
 #[cfg(test)]
 mod tests {

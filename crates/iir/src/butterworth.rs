@@ -17,14 +17,14 @@
 //! zero-phase filtering and no steady-state initial conditions. The
 //! outputs here agree with scipy's to rounding (tests below).
 
-use super::{Biquad, FilterError};
+use crate::{Biquad, FilterError};
 use serde::{Deserialize, Serialize};
 
 /// A digital Butterworth low-pass filter: maximally flat pass band, −3 dB at
 /// the cut-off, roll-off of `20·order` dB/decade.
 ///
 /// ```
-/// use nav_sensors::signal::LowPass;
+/// use iir::LowPass;
 /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap(); // 4th order, 5 Hz, 50 Hz sampling
 /// assert_eq!(lp.sections().len(), 2);
 /// assert!((lp.gain_at(0.0) - 1.0).abs() < 1e-12);

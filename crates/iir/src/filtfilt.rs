@@ -5,13 +5,13 @@
 //! the acceleration by the same group delay only if both went through it —
 //! filtering forward and backward removes the question.
 
-use super::{FilterError, LowPass};
+use crate::{FilterError, LowPass};
 
 impl LowPass {
     /// One causal pass from rest (zero initial state).
     ///
     /// ```
-    /// use nav_sensors::signal::LowPass;
+    /// use iir::LowPass;
     /// let lp = LowPass::butterworth(2, 1.0, 50.0).unwrap();
     /// let y = lp.filter(&vec![1.0; 500]);
     /// assert!((y[499] - 1.0).abs() < 1e-9); // a step settles at the DC gain
@@ -33,7 +33,7 @@ impl LowPass {
     /// `≤ n` only.
     ///
     /// ```
-    /// use nav_sensors::signal::LowPass;
+    /// use iir::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// let y = lp.filter_causal(&vec![3.0; 50]);
     /// assert!(y.iter().all(|v| (v - 3.0).abs() < 1e-12)); // no transient
@@ -56,7 +56,7 @@ impl LowPass {
     /// (−6 dB at the cut-off); the phase is zero.
     ///
     /// ```
-    /// use nav_sensors::signal::LowPass;
+    /// use iir::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// // A 0.5 Hz sine passes with no delay.
     /// let x: Vec<f64> = (0..1000).map(|i| (2.0 * std::f64::consts::PI * 0.5 * i as f64 / 50.0).sin()).collect();
@@ -98,7 +98,7 @@ impl LowPass {
     /// test compares a filtered residual with.
     ///
     /// ```
-    /// use nav_sensors::signal::LowPass;
+    /// use iir::LowPass;
     /// let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     /// let rho = lp.white_noise_acf(1, 30);
     /// assert_eq!(rho[0], 1.0);

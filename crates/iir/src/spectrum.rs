@@ -6,7 +6,7 @@ use rustfft::{FftPlanner, num_complex::Complex};
 ///
 /// ```
 /// let x: Vec<f64> = (0..4096).map(|n| (n as f64 * 0.3).sin()).collect();
-/// let s = nav_sensors::vibration::welch(&x, 1000.0, 256);
+/// let s = iir::welch(&x, 1000.0, 256);
 /// assert_eq!(s.frequency_hz.len(), s.density.len());
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -21,7 +21,7 @@ impl Spectrum {
     /// Bin spacing, Hz.
     ///
     /// ```
-    /// let s = nav_sensors::vibration::welch(&vec![0.0; 1024], 1000.0, 512);
+    /// let s = iir::welch(&vec![0.0; 1024], 1000.0, 512);
     /// assert!((s.resolution_hz() - 1000.0 / 512.0).abs() < 1e-12);
     /// ```
     pub fn resolution_hz(&self) -> f64 {
@@ -33,7 +33,7 @@ impl Spectrum {
     /// ```
     /// let fs = 100.0;
     /// let x: Vec<f64> = (0..10_000).map(|n| (2.0 * std::f64::consts::PI * 10.0 * n as f64 / fs).sin()).collect();
-    /// let s = nav_sensors::vibration::welch(&x, fs, 1000);
+    /// let s = iir::welch(&x, fs, 1000);
     /// assert!((s.band_power(5.0, 15.0) - 0.5).abs() < 1e-3);
     /// ```
     pub fn band_power(&self, lo_hz: f64, hi_hz: f64) -> f64 {
@@ -56,7 +56,7 @@ impl Spectrum {
 /// `segment_len < 2` or the signal is shorter than one segment.
 ///
 /// ```
-/// use nav_sensors::vibration::welch;
+/// use iir::welch;
 /// use rand::SeedableRng;
 /// use rand_distr::{Distribution, StandardNormal};
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);

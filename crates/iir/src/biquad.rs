@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 /// only, and reading gives a section at rest.
 ///
 /// ```
-/// use nav_sensors::signal::Biquad;
+/// use iir::Biquad;
 /// // A 800-Hz, ζ = 0.7 low-pass at 4 kHz passes DC unchanged.
 /// let mut f = Biquad::low_pass(800.0, 0.7, 4000.0);
 /// let mut y = 0.0;
@@ -35,7 +35,7 @@ impl Biquad {
     /// denominator `a1, a2` (a0 = 1).
     ///
     /// ```
-    /// use nav_sensors::signal::Biquad;
+    /// use iir::Biquad;
     /// let s = Biquad::new([0.25, 0.5, 0.25], [0.0, 0.0]);
     /// assert!((s.dc_gain() - 1.0).abs() < 1e-15);
     /// ```
@@ -46,7 +46,7 @@ impl Biquad {
     /// The gain at zero frequency, `H(1)`.
     ///
     /// ```
-    /// let f = nav_sensors::signal::Biquad::low_pass(100.0, 0.7, 4000.0);
+    /// let f = iir::Biquad::low_pass(100.0, 0.7, 4000.0);
     /// assert!((f.dc_gain() - 1.0).abs() < 1e-12);
     /// ```
     pub fn dc_gain(&self) -> f64 {
@@ -87,7 +87,7 @@ impl Biquad {
     /// every ζ > 0 and every rate; the DC gain is exactly 1.
     ///
     /// ```
-    /// let mut f = nav_sensors::signal::Biquad::low_pass(100.0, 0.7, 4000.0);
+    /// let mut f = iir::Biquad::low_pass(100.0, 0.7, 4000.0);
     /// // A 1-kHz tone, a decade above the corner, is attenuated by ~40 dB.
     /// let mut peak: f64 = 0.0;
     /// for n in 0..4000 {
@@ -120,7 +120,7 @@ impl Biquad {
     /// (RBJ cookbook, constant 0 dB peak gain).
     ///
     /// ```
-    /// use nav_sensors::signal::Biquad;
+    /// use iir::Biquad;
     /// let (fs, f0) = (4000.0, 400.0);
     /// let mut bp = Biquad::band_pass(f0, 10.0, fs);
     /// let mut ms = 0.0;
@@ -151,7 +151,7 @@ impl Biquad {
     /// Filters one sample.
     ///
     /// ```
-    /// let mut f = nav_sensors::signal::Biquad::band_pass(400.0, 10.0, 4000.0);
+    /// let mut f = iir::Biquad::band_pass(400.0, 10.0, 4000.0);
     /// assert_eq!(f.step(0.0), 0.0);
     /// ```
     #[inline]
@@ -166,7 +166,7 @@ impl Biquad {
     /// low-pass this avoids a start-up transient).
     ///
     /// ```
-    /// let mut f = nav_sensors::signal::Biquad::low_pass(100.0, 0.7, 4000.0);
+    /// let mut f = iir::Biquad::low_pass(100.0, 0.7, 4000.0);
     /// f.settle(1.0);
     /// assert!((f.step(1.0) - 1.0).abs() < 1e-12);
     /// ```
