@@ -85,7 +85,7 @@ impl Applied {
     /// own [`ChannelModel::scores`](crate::model::ChannelModel::scores) on the
     /// record it was fitted on). Needs the split: from [`Applied::new`].
     pub fn scores(&self, channel: Channel) -> ChannelScores {
-        crate::fit::score(
+        sysid::score(
             self.prepared.target(channel),
             &self.predicted[channel.index()],
             &self.train,

@@ -1,12 +1,11 @@
 //! Does a model hold on a record it was not fitted on? Per channel rms
 //! before and after compensation, the parity residues, and how much of the
 //! record lies outside the operating range the model was trained on
-//! ([`crate::operating`]).
+//! ([`sysid::operating`]).
 
 use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::CompensationModel;
-use crate::operating;
 use crate::parity::ResidueStats;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
@@ -18,29 +17,10 @@ use serde::Serialize;
 pub const MOVING_RATE_DEG_S: f64 = crate::effects::ANISOINERTIA_MIN_RATE_DEG_S;
 
 /// Share of windows outside the training range above which `check` warns.
-pub const DEFAULT_OUTSIDE_THRESHOLD: f64 = 0.05;
+pub use sysid::check::DEFAULT_OUTSIDE_THRESHOLD;
 
 /// One channel on the new record, deg/h.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ChannelTransfer {
-    /// The channel.
-    pub channel: Channel,
-    /// Rms of the pre-processed output about its mean: what the best
-    /// constant (bias-only) correction leaves.
-    pub rms_before: f64,
-    /// Rms of output − model about zero: everything the model leaves,
-    /// a bias that moved since the fit included.
-    pub rms_after: f64,
-    /// Mean of output − model (a bias shift, or a rectified error the model
-    /// does not know at this vibration level).
-    pub mean_after: f64,
-    /// 100·(1 − ‖y − ŷ‖/‖y − ȳ‖), as MATLAB's `compare`.
-    pub fit_percent: f64,
-    /// Rms of output − model on windows inside the training range (null if none).
-    pub rms_inside: Option<f64>,
-    /// Rms of output − model on windows outside it (null if none).
-    pub rms_outside: Option<f64>,
-}
+pub type ChannelTransfer = sysid::check::ChannelTransfer<Channel>;
 
 /// A model checked on another record.
 #[derive(Debug, Clone, Serialize)]
@@ -95,79 +75,16 @@ pub fn check_applied(
     applied: &Applied,
     threshold: f64,
 ) -> Result<TransferCheck, DtgVibError> {
-    if !(0.0..=1.0).contains(&threshold) {
-        return Err(DtgVibError::InvalidOption {
-            name: "outside threshold",
-            value: threshold.to_string(),
-            reason: "a share of windows, between 0 and 1",
-        });
-    }
-    let prepared = &applied.prepared;
-    let n = prepared.rows();
-    let rows: Vec<usize> = (0..n).collect();
-    let distances = match model.operating_points() {
-        Some(op) => {
-            let length = model.preprocess().window.length();
-            Some(op.relative_distances(&operating::points(prepared, length, &rows))?)
-        }
-        None => None,
-    };
-    let outside: Option<Vec<bool>> = distances
-        .as_ref()
-        .map(|d| d.iter().map(|&v| v > operating::OUTSIDE_FACTOR).collect());
-    let median_relative_distance = distances.map(|mut d| {
-        d.sort_by(f64::total_cmp);
-        d[d.len() / 2]
-    });
-    let channels = Channel::ALL
-        .iter()
-        .map(|&ch| {
-            let y = prepared.target(ch);
-            let e: Vec<f64> = y
-                .iter()
-                .zip(&applied.predicted[ch.index()])
-                .map(|(a, b)| a - b)
-                .collect();
-            let mean_y = y.iter().sum::<f64>() / n as f64;
-            let dev: Vec<f64> = y.iter().map(|v| v - mean_y).collect();
-            let (before, after) = (stats::rms(&dev), stats::rms(&e));
-            let pick = |want: bool| -> Option<f64> {
-                let o = outside.as_ref()?;
-                let sel: Vec<f64> = e
-                    .iter()
-                    .zip(o)
-                    .filter(|(_, out)| **out == want)
-                    .map(|(v, _)| *v)
-                    .collect();
-                (!sel.is_empty()).then(|| stats::rms(&sel))
-            };
-            ChannelTransfer {
-                channel: ch,
-                rms_before: before,
-                rms_after: after,
-                mean_after: e.iter().sum::<f64>() / n as f64,
-                fit_percent: 100.0 * (1.0 - after / before),
-                rms_inside: pick(false),
-                rms_outside: pick(true),
-            }
-        })
-        .collect();
-    let outside_fraction = outside.map(|o| o.iter().filter(|v| **v).count() as f64 / n as f64);
-    let warning = match outside_fraction {
-        None => Some(
-            "the model file has no training operating points (fitted by an older version): refit it to measure extrapolation".to_string(),
-        ),
-        Some(f) if f > threshold => Some(format!(
-            "{:.1}% of the windows lie outside the operating range the model was trained on (threshold {:.1}%): its errors there are extrapolation; fit on a record that covers them (several --data)",
-            100.0 * f,
-            100.0 * threshold
-        )),
-        Some(_) => None,
-    };
+    let t = sysid::check::transfer(
+        model.inner(),
+        applied.prepared.inner(),
+        &applied.predicted,
+        threshold,
+    )?;
     // A gyro channel reads the unit's own rate as well as its errors; only a
     // fixed rate reference is removed, so on a moving unit (a flight) the
     // channel rms is mostly motion, while the parity residues cancel any rate.
-    let rec = prepared.calibrated();
+    let rec = applied.prepared.calibrated();
     let rate_std_deg_s = crate::effects::rate_variation_deg_s(rec, 0..rec.len());
     let note = (rate_std_deg_s > MOVING_RATE_DEG_S).then(|| {
         format!(
@@ -175,14 +92,14 @@ pub fn check_applied(
         )
     });
     Ok(TransferCheck {
-        channels,
+        channels: t.channels,
         residues: applied.all_residues(),
-        outside_fraction,
-        median_relative_distance,
-        threshold,
-        warning,
+        outside_fraction: t.outside_fraction,
+        median_relative_distance: t.median_relative_distance,
+        threshold: t.threshold,
+        warning: t.warning,
         rate_std_deg_s,
         note,
-        windows: n,
+        windows: t.windows,
     })
 }

@@ -12,7 +12,7 @@
 //! The bias is not an effect: every channel model has one (λ0 of eq. 7).
 
 use nav_sensors::dtg::{DtgInput, DtgTerm, within_interval_covariance};
-use nav_sensors::geometry::{Channel, ChannelFrame, least_squares_rate, measurement_matrix};
+use nav_sensors::geometry::{Axis, Channel, ChannelFrame, least_squares_rate, measurement_matrix};
 use nav_sensors::record::Record;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
@@ -223,6 +223,103 @@ impl FromStr for ChannelEffect {
     }
 }
 
+/// A unit's record as the effects read it: its columns, borrowed (from a
+/// [`Record`], or from the loop's [`sysid::Signals`] of one).
+///
+/// ```
+/// use dtg_vib::effects::UnitColumns;
+/// let csv = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az,temp\n0,1,0,0,0,0,0,0,0,1,20\n0.02,1,0,0,0,0,0,0,0,1,21\n";
+/// let rec = nav_sensors::record::Record::from_reader(csv.as_bytes(), "doc.csv").unwrap();
+/// let u = UnitColumns::from(&rec);
+/// assert_eq!((u.len(), u.gyro_sample(1)[0], u.extra("temp")), (2, 1.0, Some(&[20.0, 21.0][..])));
+/// ```
+#[derive(Debug, Clone)]
+pub struct UnitColumns<'a> {
+    gyro: [&'a [f64]; 6],
+    accel: [&'a [f64]; 3],
+    extra: Vec<(&'a str, &'a [f64])>,
+}
+
+impl<'a> UnitColumns<'a> {
+    /// The columns of a record of the paper's unit held as named signals:
+    /// `None` when one of the unit's columns is missing.
+    pub fn of_signals(s: &'a sysid::Signals) -> Option<Self> {
+        let gyro = Channel::ALL.map(|c| s.column(c.name()));
+        let accel = Axis::ALL.map(|a| s.column(a.column()));
+        let extra = s
+            .columns()
+            .iter()
+            .filter(|(n, _)| !is_unit_column(n))
+            .map(|(n, v)| (n.as_str(), v.as_slice()))
+            .collect();
+        Some(Self {
+            gyro: [gyro[0]?, gyro[1]?, gyro[2]?, gyro[3]?, gyro[4]?, gyro[5]?],
+            accel: [accel[0]?, accel[1]?, accel[2]?],
+            extra,
+        })
+    }
+
+    /// Samples.
+    pub fn len(&self) -> usize {
+        self.gyro[0].len()
+    }
+
+    /// True for a record without samples.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Gyro channel `k`'s outputs (X, X1, Y, Y1, Z, Z1 order), deg/h.
+    pub fn gyro_column(&self, k: usize) -> &'a [f64] {
+        self.gyro[k]
+    }
+
+    /// Accelerometer axis `k`'s specific force (x, y, z order), g.
+    pub fn accel_column(&self, k: usize) -> &'a [f64] {
+        self.accel[k]
+    }
+
+    /// The six gyro outputs of sample `i`, deg/h.
+    pub fn gyro_sample(&self, i: usize) -> [f64; 6] {
+        self.gyro.map(|g| g[i])
+    }
+
+    /// The specific force of sample `i`, g (cluster frame).
+    pub fn accel_sample(&self, i: usize) -> nalgebra::Vector3<f64> {
+        nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i])
+    }
+
+    /// An extra column by name.
+    pub fn extra(&self, name: &str) -> Option<&'a [f64]> {
+        self.extra.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+    }
+
+    /// The extra columns' names, in order.
+    pub fn extra_names(&self) -> Vec<&'a str> {
+        self.extra.iter().map(|(n, _)| *n).collect()
+    }
+}
+
+impl<'a> From<&'a Record> for UnitColumns<'a> {
+    fn from(r: &'a Record) -> Self {
+        Self {
+            gyro: Channel::ALL.map(|c| r.gyro(c)),
+            accel: Axis::ALL.map(|a| r.accel(a)),
+            extra: r
+                .extra_names()
+                .into_iter()
+                .map(|n| (n, r.extra(n).unwrap_or(&[])))
+                .collect(),
+        }
+    }
+}
+
+/// True for a column of the paper's unit itself (a gyro output or an
+/// accelerometer axis), false for an extra column.
+pub fn is_unit_column(name: &str) -> bool {
+    Channel::ALL.iter().any(|c| c.name() == name) || Axis::ALL.iter().any(|a| a.column() == name)
+}
+
 /// Evaluates effect regressors on a record for one channel.
 ///
 /// Specific force comes from the record's accelerometers (g, cluster frame);
@@ -246,7 +343,7 @@ impl FromStr for ChannelEffect {
 /// assert_eq!(m, vec![vec![1.0, 2.0], vec![1.0, 4.0], vec![20.0, 21.0]]);
 /// ```
 pub struct EffectColumns<'a> {
-    record: &'a Record,
+    record: UnitColumns<'a>,
     /// Per sample, the rate seen without each channel (index = `Channel::index`).
     rate_deg_h: Vec<[nalgebra::Vector3<f64>; 6]>,
     /// Within-interval covariance of the specific force (cluster frame), g².
@@ -255,7 +352,8 @@ pub struct EffectColumns<'a> {
 
 impl<'a> EffectColumns<'a> {
     /// Prepares the record (computes the least-squares rates once).
-    pub fn new(record: &'a Record) -> Self {
+    pub fn new(record: impl Into<UnitColumns<'a>>) -> Self {
+        let record = record.into();
         let ops = rate_without_each_channel();
         let rate_deg_h = (0..record.len())
             .map(|i| {
@@ -332,7 +430,11 @@ pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
 /// let rec = Record::from_reader(csv.as_bytes(), "doc.csv").unwrap();
 /// assert!((rate_variation_deg_s(&rec, 0..10) - 1.0).abs() < 1e-9);
 /// ```
-pub fn rate_variation_deg_s(record: &Record, samples: impl IntoIterator<Item = usize>) -> f64 {
+pub fn rate_variation_deg_s<'a>(
+    record: impl Into<UnitColumns<'a>>,
+    samples: impl IntoIterator<Item = usize>,
+) -> f64 {
+    let record = record.into();
     let rates: Vec<nalgebra::Vector3<f64>> = samples
         .into_iter()
         .map(|i| least_squares_rate(&record.gyro_sample(i)) / 3600.0)

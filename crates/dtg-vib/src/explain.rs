@@ -1,5 +1,6 @@
-//! The diagnosis loop in one call: fit, diagnose, add every suggested effect
-//! to its channel, refit, and repeat until nothing new is suggested.
+//! The diagnosis loop of the paper's unit in one call: fit, diagnose, add
+//! every suggested effect to its channel, refit, and repeat until nothing
+//! new is suggested ([`sysid::explain`] with the [`PaperUnit`]).
 //!
 //! Each round is what a user would do by hand with `dtg-vib diagnose` and
 //! `dtg-vib fit --add-effect CHANNEL=ID`, and gives the same answer: the
@@ -10,15 +11,45 @@
 //! mirror, a longer window) and hands the diagnosis the predictions, so the
 //! diagnosis only reads.
 
-use crate::diagnose::{DiagnoseOptions, Diagnosis, diagnose_prepared};
-use crate::effects::ChannelEffect;
+use crate::diagnose::{DiagnoseOptions, Diagnosis};
 use crate::error::DtgVibError;
-use crate::fit::{FitOptions, FitStage, fit_records};
+use crate::fit::FitOptions;
 use crate::model::CompensationModel;
+use crate::paper_unit::{PaperUnit, to_signals};
 use nav_sensors::calibration::Calibration;
-use nav_sensors::geometry::Channel;
+use nav_sensors::geometry::{Axis, Channel};
 use nav_sensors::record::Record;
-use serde::Serialize;
+
+pub use sysid::explain::ExplainStage;
+
+/// An effect a round added, with the evidence for it.
+pub type Added = sysid::explain::Added<Channel, Axis>;
+
+/// One channel's validation rms after a round's fit.
+pub type ChannelRms = sysid::explain::ChannelRms<Channel>;
+
+/// One round: the fit it made, what its diagnosis suggested (added in the next round).
+pub type Round = sysid::explain::Round<Channel, Axis>;
+
+/// The loop's outcome.
+#[derive(Debug, Clone)]
+pub struct Explanation {
+    /// Rounds in order; the last one's diagnosis suggested nothing new (or
+    /// the round limit was reached).
+    pub rounds: Vec<Round>,
+    /// The final model (the last round's fit).
+    pub model: CompensationModel,
+    /// Whether the loop stopped because nothing new was suggested (false: the round limit).
+    pub converged: bool,
+}
+
+/// Records of the paper's unit as the loop's named signals.
+fn signals(records: &[(String, &Record)]) -> Result<Vec<(String, sysid::Signals)>, DtgVibError> {
+    records
+        .iter()
+        .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
+        .collect()
+}
 
 /// Diagnoses a fitted model on a record (normally the one it was fitted on:
 /// the validation rows of the model's split are used).
@@ -39,14 +70,10 @@ pub fn diagnose(
 }
 
 /// Diagnoses a fitted model on several records at once (normally those it
-/// was fitted on, named by their files as at the fit): each record prepared
-/// on its own, the model's split applied as at fit time, the mirror fitted
-/// ([`crate::fit::mirror`]) and the diagnosis read from both
-/// ([`diagnose_prepared`]). Where a residual stays correlated beyond the
-/// model's window and `options.try_settings` is on, the recipe is refitted
-/// with a three times longer window and the diagnosis told what it gained
-/// ([`Diagnosis::note_window_trial`]); a record too short for it says
-/// nothing about it. One record gives exactly [`diagnose`].
+/// was fitted on, named by their files as at the fit): the mirror fitted
+/// and the diagnosis read from both, a longer window tried where the
+/// residual stays slow ([`sysid::explain::diagnose_records`]). One record
+/// gives exactly [`diagnose`].
 ///
 /// ```no_run
 /// use dtg_vib::explain::diagnose_records;
@@ -64,91 +91,13 @@ pub fn diagnose_records(
     records: &[(String, &Record)],
     options: &DiagnoseOptions,
 ) -> Result<Diagnosis, DtgVibError> {
-    let prepared = model.prepare_many(records)?;
-    let mirror = crate::fit::mirror(model, &prepared)?;
-    let mut diagnosis = diagnose_prepared(model, &prepared, &mirror, options)?;
-    if options.try_settings && !diagnosis.slow_channels().is_empty() {
-        let longer = model.preprocess().window.length() * 3;
-        if let Ok(trial) = crate::fit::refit_with_window(model, records, longer) {
-            diagnosis.note_window_trial(longer, &trial);
-        }
-    }
-    Ok(diagnosis)
-}
-
-/// An effect a round added, with the evidence for it.
-#[derive(Debug, Clone, Serialize)]
-pub struct Added {
-    /// The channel.
-    pub channel: Channel,
-    /// The effect id.
-    pub effect: String,
-    /// Its coefficient on the cross-fitted residual, in `unit`.
-    pub coef: f64,
-    /// The coefficient's standard error, in `unit`.
-    pub se: f64,
-    /// 95% confidence interval of `coef`.
-    pub ci95: [f64; 2],
-    /// Unit of `coef`.
-    pub unit: String,
-    /// p-value given the effects picked before it.
-    pub p: f64,
-    /// Share of what was left that it explains (conditional ERR).
-    pub err: f64,
-    /// Candidates it cannot be told apart from on this record.
-    pub alternatives: Vec<String>,
-    /// With alternatives: the combination this record identifies and the
-    /// run that would separate the group, as `diagnose --json` gives it.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub separation: Option<crate::diagnose::Separation>,
-    /// Diagnosed on several records: the candidates it was collinear with
-    /// on some record alone, and the records that told them apart.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub record_separations: Vec<crate::diagnose::RecordSeparation>,
-}
-
-/// One channel's validation rms after a round's fit.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct ChannelRms {
-    /// The channel.
-    pub channel: Channel,
-    /// Validation rms, deg/h.
-    pub val_rms: f64,
-}
-
-/// One round: the fit it made, what its diagnosis suggested (added in the next round).
-#[derive(Debug, Clone, Serialize)]
-pub struct Round {
-    /// Effects added to this round's fit (empty for the first).
-    pub added: Vec<Added>,
-    /// Validation rms of every channel after this round's fit.
-    pub channels: Vec<ChannelRms>,
-    /// This round's diagnosis (not serialised: `dtg-vib diagnose --json` has it).
-    #[serde(skip)]
-    pub diagnosis: Diagnosis,
-}
-
-/// The loop's outcome.
-#[derive(Debug, Clone)]
-pub struct Explanation {
-    /// Rounds in order; the last one's diagnosis suggested nothing new (or
-    /// the round limit was reached).
-    pub rounds: Vec<Round>,
-    /// The final model (the last round's fit).
-    pub model: CompensationModel,
-    /// The options that fit the final model (the first ones plus every addition).
-    pub options: FitOptions,
-    /// Whether the loop stopped because nothing new was suggested (false: the round limit).
-    pub converged: bool,
-}
-
-/// Progress of the loop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ExplainStage {
-    /// Fitting round `n` (1-based).
-    Fitting(usize),
-    /// Diagnosing round `n`.
-    Diagnosing(usize),
+    let owned = signals(records)?;
+    let named: Vec<(String, &sysid::Signals)> = owned.iter().map(|(n, s)| (n.clone(), s)).collect();
+    Ok(sysid::explain::diagnose_records(
+        model.inner(),
+        &named,
+        options,
+    )?)
 }
 
 /// Runs the loop for at most `max_rounds` fits (at least 1).
@@ -180,10 +129,10 @@ pub fn explain(
     )
 }
 
-/// [`explain`] on several records fitted together ([`fit_records`]) and
-/// diagnosed together ([`diagnose_records`]): candidates are ranked on all
-/// of them, so a pair one record cannot tell apart is named when another
-/// record excites it differently. One record gives exactly [`explain`].
+/// [`explain`] on several records fitted together and diagnosed together
+/// ([`sysid::explain::explain`]): candidates are ranked on all of them, so a
+/// pair one record cannot tell apart is named when another record excites
+/// it differently. One record gives exactly [`explain`].
 pub fn explain_records(
     records: &[(String, &Record)],
     calibration: Option<&Calibration>,
@@ -192,75 +141,24 @@ pub fn explain_records(
     max_rounds: usize,
     progress: &(dyn Fn(ExplainStage) + Sync),
 ) -> Result<Explanation, DtgVibError> {
-    let max_rounds = max_rounds.max(1);
-    let mut options = options.clone();
-    let mut rounds: Vec<Round> = Vec::new();
-    let mut added: Vec<Added> = Vec::new();
-    loop {
-        let n = rounds.len() + 1;
-        progress(ExplainStage::Fitting(n));
-        let (model, _) = fit_records(records, calibration, &options, &|_: FitStage| {})?;
-        progress(ExplainStage::Diagnosing(n));
-        let diagnosis = diagnose_records(&model, records, diagnose_options)?;
-        let next = suggestions(&diagnosis, &options);
-        let channels = model
-            .channels()
-            .iter()
-            .map(|c| ChannelRms {
-                channel: c.channel(),
-                val_rms: c.scores().val_rms,
-            })
-            .collect();
-        rounds.push(Round {
-            added: std::mem::take(&mut added),
-            channels,
-            diagnosis,
-        });
-        let converged = next.is_empty();
-        if converged || rounds.len() >= max_rounds {
-            return Ok(Explanation {
-                rounds,
-                model,
-                options,
-                converged,
-            });
-        }
-        for a in &next {
-            options.add.push(ChannelEffect {
-                channel: a.channel,
-                effect: a.effect.parse()?,
-            });
-        }
-        added = next;
-    }
-}
-
-/// The suggestions of a diagnosis that the options do not have yet.
-fn suggestions(d: &Diagnosis, options: &FitOptions) -> Vec<Added> {
-    let mut out = Vec::new();
-    for c in &d.channels {
-        let have: Vec<String> = options
-            .effects_of(c.channel)
-            .iter()
-            .map(|e| e.id())
-            .collect();
-        for id in c.suggested.iter().filter(|id| !have.contains(id)) {
-            if let Some(k) = c.candidates.iter().find(|k| &k.effect == id) {
-                out.push(Added {
-                    channel: c.channel,
-                    effect: id.clone(),
-                    coef: k.coef,
-                    se: k.coef_se,
-                    ci95: k.coef_ci95,
-                    unit: k.unit.clone(),
-                    p: k.p_value.unwrap_or(f64::NAN),
-                    err: k.conditional_err.unwrap_or(k.err),
-                    alternatives: k.alternatives.clone(),
-                    separation: k.separation.clone(),
-                    record_separations: k.record_separations.clone(),
-                });
-            }
-        }
-    }
-    out
+    options.preprocess.rate_reference.check()?;
+    let unit = PaperUnit {
+        calibration: calibration.cloned(),
+        rate_reference: options.preprocess.rate_reference,
+    };
+    let owned = signals(records)?;
+    let named: Vec<(String, &sysid::Signals)> = owned.iter().map(|(n, s)| (n.clone(), s)).collect();
+    let e = sysid::explain::explain(
+        &unit,
+        &named,
+        &options.sysid(),
+        diagnose_options,
+        max_rounds,
+        progress,
+    )?;
+    Ok(Explanation {
+        rounds: e.rounds,
+        model: CompensationModel::of(e.model),
+        converged: e.converged,
+    })
 }

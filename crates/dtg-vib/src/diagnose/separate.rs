@@ -12,20 +12,15 @@ use crate::effects::Effect;
 use nalgebra::Vector3;
 use nav_sensors::dtg::{DtgInput, DtgTerm};
 use nav_sensors::geometry::{Axis, Channel, ChannelFrame};
-use serde::Serialize;
+use sysid::Response;
 
-/// A regressor's response to vibration along one axis.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Response {
-    /// Regressor change per g of vibration (g-sensitive part), g.
-    pub linear: f64,
-    /// Regressor change per g² of vibration (rectifying part), g².
-    pub quadratic: f64,
-}
+/// What separates a group of candidates, along a vibration axis.
+pub type Separation = sysid::Separation<Axis>;
 
 /// The response of `term` on `channel` to vibration along `axis` about the
-/// mean specific force `gravity_g` (cluster frame, g); `None` for terms that
-/// do not depend on specific force.
+/// mean specific force `gravity_g` (cluster frame, g): the regressor's
+/// change per g (linear) and per g² (rectifying) of vibration; `None` for
+/// terms that do not depend on specific force.
 ///
 /// ```
 /// use dtg_vib::diagnose::response;
@@ -60,23 +55,6 @@ pub fn response(
         linear: (p - m) / 2.0,
         quadratic: (p + m) / 2.0 - z,
     })
-}
-
-/// A group of candidates this record cannot tell apart, and what would.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Separation {
-    /// The group, the suggested representative first.
-    pub effects: Vec<String>,
-    /// For each other member, κ such that the record identifies
-    /// c_representative + κ·c_member: the representative's coefficient is that combination.
-    pub combination: Vec<(String, f64)>,
-    /// The vibration axis along which the members respond most differently,
-    /// if geometry can separate them.
-    pub axis: Option<Axis>,
-    /// Each member's response on that axis (same order as `effects`).
-    pub responses: Vec<Option<Response>>,
-    /// The advice in words.
-    pub advice: String,
 }
 
 /// How unlike two members' responses are, each stacked over several axes as

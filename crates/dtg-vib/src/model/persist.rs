@@ -1,9 +1,15 @@
 //! Saving and loading compensation models as versioned JSON.
 
-use super::CompensationModel;
+use super::{ChannelModel, CompensationModel};
 use crate::error::DtgVibError;
+use crate::paper_unit::PaperUnit;
+use crate::pipeline::Preprocess;
+use crate::split::Holdout;
+use nav_sensors::calibration::Calibration;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use sysid::FitSettings;
+use sysid::operating::OperatingPoints;
 
 /// Version of the model file; bumped on any incompatible change.
 pub const FORMAT_VERSION: u32 = 1;
@@ -15,7 +21,49 @@ const KIND: &str = "dtg-vib compensation model";
 struct FileRef<'a> {
     kind: &'static str,
     format_version: u32,
-    model: &'a CompensationModel,
+    model: ModelRef<'a>,
+}
+
+/// The model as the file lays it out (the layout of every file written
+/// since format version 1: the unit's rate reference inside the
+/// pre-processing, its calibration next).
+#[derive(Serialize)]
+struct ModelRef<'a> {
+    preprocess: &'a Preprocess,
+    calibration: Option<&'a Calibration>,
+    dt_s: f64,
+    split: Holdout,
+    channels: &'a [ChannelModel],
+    fit: &'a FitSettings,
+    #[serde(skip_serializing_if = "<[String]>::is_empty")]
+    records: &'a [String],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    validated_on: Option<&'a str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    operating_points: Option<&'a OperatingPoints>,
+}
+
+/// The model as read from a file (what older files lack has a default).
+#[derive(Deserialize)]
+struct ModelOwned {
+    preprocess: Preprocess,
+    calibration: Option<Calibration>,
+    dt_s: f64,
+    split: Holdout,
+    channels: Vec<ChannelModel>,
+    /// How the networks were chosen (absent in older files: the defaults).
+    #[serde(default)]
+    fit: FitSettings,
+    /// The records fitted together, when there were several.
+    #[serde(default)]
+    records: Vec<String>,
+    /// Of several records, the one that only validated.
+    #[serde(default)]
+    validated_on: Option<String>,
+    /// Where the training windows sat (absent in older files: `check` then
+    /// cannot say what is outside).
+    #[serde(default)]
+    operating_points: Option<OperatingPoints>,
 }
 
 #[derive(Deserialize)]
@@ -26,17 +74,28 @@ struct Header {
 
 #[derive(Deserialize)]
 struct FileOwned {
-    model: CompensationModel,
+    model: ModelOwned,
 }
 
 impl CompensationModel {
     /// Writes the model as JSON.
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), DtgVibError> {
         let path = path.as_ref();
+        let m = &self.inner;
         let text = serde_json::to_string_pretty(&FileRef {
             kind: KIND,
             format_version: FORMAT_VERSION,
-            model: self,
+            model: ModelRef {
+                preprocess: &self.preprocess,
+                calibration: self.calibration(),
+                dt_s: m.dt_s(),
+                split: m.split(),
+                channels: m.channels(),
+                fit: m.settings(),
+                records: m.records(),
+                validated_on: m.validated_on(),
+                operating_points: m.operating_points(),
+            },
         })
         .map_err(|e| DtgVibError::ModelCorrupt {
             path: path.to_path_buf(),
@@ -92,7 +151,21 @@ impl CompensationModel {
                 "expected six channel models in X, X1, Y, Y1, Z, Z1 order".into(),
             ));
         }
-        m.check_consistency().map_err(corrupt)?;
-        Ok(m)
+        let inner = sysid::Model::from_parts(sysid::ModelParts {
+            sensor: PaperUnit {
+                calibration: m.calibration,
+                rate_reference: m.preprocess.rate_reference,
+            },
+            preprocess: m.preprocess.sysid(),
+            dt_s: m.dt_s,
+            split: m.split,
+            channels: m.channels,
+            settings: m.fit,
+            records: m.records,
+            validated_on: m.validated_on,
+            operating_points: m.operating_points,
+        })
+        .map_err(corrupt)?;
+        Ok(CompensationModel::of(inner))
     }
 }

@@ -7,7 +7,7 @@ use rbf::{LstsqOptions, SolveError, lstsq};
 /// both: each block is predicted by what was fitted on the other.
 ///
 /// ```
-/// use dtg_vib::inference::Blocks;
+/// use sysid::inference::Blocks;
 /// let rows: Vec<usize> = (0..100).collect();
 /// let b = Blocks::halves(&rows, 10).unwrap();
 /// // Cut at row 49; rows 44..54 (the gap) belong to neither block.
@@ -38,7 +38,7 @@ impl Blocks {
     ///
     /// ```
     /// let rows: Vec<usize> = (0..100).collect();
-    /// let b = dtg_vib::inference::Blocks::alternating(&rows, 4, 4).unwrap();
+    /// let b = sysid::inference::Blocks::alternating(&rows, 4, 4).unwrap();
     /// // Spans 0..25 and 50..75 against 25..50 and 75..100, 2 rows each side of a boundary dropped.
     /// assert_eq!((b.first[0], *b.first.last().unwrap()), (0, 72));
     /// assert_eq!((b.second[0], *b.second.last().unwrap()), (27, 99));
@@ -73,7 +73,7 @@ impl Blocks {
     ///
     /// ```
     /// let rows: Vec<usize> = (0..100).collect();
-    /// let b = dtg_vib::inference::Blocks::cut(&rows, 0, 0.25).unwrap();
+    /// let b = sysid::inference::Blocks::cut(&rows, 0, 0.25).unwrap();
     /// assert_eq!((b.first.len(), b.second.len()), (24, 76));
     /// ```
     pub fn cut(rows: &[usize], gap: usize, fraction: f64) -> Option<Self> {
@@ -97,7 +97,7 @@ impl Blocks {
 /// The solve's, e.g. a basis with more columns than rows.
 ///
 /// ```
-/// use dtg_vib::inference::residualise;
+/// use sysid::inference::residualise;
 /// use faer::mat;
 /// // A basis of [1, t]: what is linear in t is removed, the rest kept.
 /// let b = mat![[1.0, 0.0], [1.0, 1.0], [1.0, 2.0], [1.0, 3.0]];

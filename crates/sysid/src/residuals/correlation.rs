@@ -19,7 +19,7 @@ fn centred(x: &[f64]) -> Option<(Vec<f64>, f64)> {
 /// estimator, ρ(0) = 1). A constant series gives all zeros but ρ(0) = 1.
 ///
 /// ```
-/// use dtg_vib::residuals::autocorrelation;
+/// use sysid::residuals::autocorrelation;
 /// let x: Vec<f64> = (0..100).map(|i| if i % 2 == 0 { 1.0 } else { -1.0 }).collect();
 /// let r = autocorrelation(&x, 2);
 /// assert_eq!(r[0], 1.0);
@@ -53,7 +53,7 @@ pub fn autocorrelation(x: &[f64], max_lag: usize) -> Vec<f64> {
 /// lag 0). A positive lag pairs `a` now with `b` later.
 ///
 /// ```
-/// use dtg_vib::residuals::cross_correlation;
+/// use sysid::residuals::cross_correlation;
 /// let a: Vec<f64> = (0..200).map(|i| ((i * 7919) % 13) as f64).collect();
 /// let mut b = vec![0.0; 200];
 /// b[3..].copy_from_slice(&a[..197]); // b lags a by 3 samples
@@ -104,7 +104,7 @@ pub fn bartlett_truncation(n: usize) -> usize {
 /// `N / (N · var)` is the effective number of independent samples.
 ///
 /// ```
-/// use dtg_vib::residuals::bartlett_cross_variance;
+/// use sysid::residuals::bartlett_cross_variance;
 /// let white = [1.0, 0.0, 0.0, 0.0];
 /// let smooth = [1.0, 0.9, 0.8, 0.7];
 /// assert!((bartlett_cross_variance(&white, &smooth, 100) - 0.01).abs() < 1e-15);
@@ -132,7 +132,7 @@ pub fn bartlett_cross_variance(rho_a: &[f64], rho_b: &[f64], n: usize) -> f64 {
 /// var ≈ (1/N) Σ_k [ρ(k)² + ρ(k+τ)ρ(k−τ) − 4ρ(τ)ρ(k)ρ(k−τ) + 2ρ(k)²ρ(τ)²].
 ///
 /// ```
-/// use dtg_vib::residuals::bartlett_auto_variance;
+/// use sysid::residuals::bartlett_auto_variance;
 /// let white = [1.0, 0.0, 0.0];
 /// assert!((bartlett_auto_variance(&white, 1, 400) - 1.0 / 400.0).abs() < 1e-15);
 /// ```
@@ -164,7 +164,7 @@ pub fn bartlett_auto_variance(rho: &[f64], tau: usize, n: usize) -> f64 {
 /// dominates at the lags where the residual is correlated with itself.
 ///
 /// ```
-/// use dtg_vib::residuals::residual_times_input_variance;
+/// use sysid::residuals::residual_times_input_variance;
 /// // White, independent ±1 series: about 1/N at every lag.
 /// let mut s = 9u64;
 /// let mut sign = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); if s >> 63 == 0 { -1.0 } else { 1.0 } };

@@ -39,7 +39,7 @@ pub enum InferenceError {
 /// An estimated coefficient with its uncertainty, in `unit`.
 ///
 /// ```
-/// use dtg_vib::inference::Coefficient;
+/// use sysid::inference::Coefficient;
 /// let c = Coefficient::new(0.8, 0.05, [0.7, 0.9], "deg/h/°C");
 /// assert!(c.covers(0.75));
 /// assert_eq!(serde_json::to_value(&c).unwrap()["ci95"][1], 0.9);

@@ -3,15 +3,14 @@
 //! residual from a model that did not see it, and a candidate column has
 //! each half's function space projected out the same way.
 
-use crate::error::DtgVibError;
-use crate::model::ChannelModel;
-use crate::pipeline::Prepared;
+use crate::model::ChannelModelOf;
+use crate::{Prepared, Sensor, SysidError};
 use faer::Mat;
 
 /// One half of a cross-fit: a channel model, its predictions, the rows it
 /// was fitted on and the rows it predicts out of sample.
-pub(super) struct Half<'a> {
-    pub(super) model: &'a ChannelModel,
+pub(super) struct Half<'a, S: Sensor> {
+    pub(super) model: &'a ChannelModelOf<S>,
     pub(super) predicted: &'a [f64],
     pub(super) fit_rows: &'a [usize],
     pub(super) test_rows: &'a [usize],
@@ -19,14 +18,16 @@ pub(super) struct Half<'a> {
 
 /// The model and its mirror: between them every analysed row is predicted
 /// by a model that did not see it.
-pub(super) struct CrossFit<'a> {
+pub(super) struct CrossFit<'a, S: Sensor> {
     pub(super) x: &'a Mat<f64>,
     /// The fit's ridge on network weights.
     pub(super) ridge: f64,
-    pub(super) halves: [Half<'a>; 2],
+    /// The channel both halves model.
+    pub(super) channel: usize,
+    pub(super) halves: [Half<'a, S>; 2],
 }
 
-impl CrossFit<'_> {
+impl<S: Sensor> CrossFit<'_, S> {
     /// The analysed rows, in time order.
     pub(super) fn rows(&self) -> Vec<usize> {
         let mut r: Vec<usize> = self
@@ -54,13 +55,13 @@ impl CrossFit<'_> {
     /// rows and projected out of its test rows; on [`CrossFit::rows`].
     pub(super) fn partial_out(
         &self,
-        prepared: &Prepared,
+        prepared: &Prepared<S>,
         columns: &Mat<f64>,
-    ) -> Result<Mat<f64>, DtgVibError> {
+    ) -> Result<Mat<f64>, SysidError> {
         let m = columns.ncols();
         let mut out = Mat::<f64>::zeros(columns.nrows(), m);
         for h in &self.halves {
-            let z = prepared.effect_matrix(h.model.channel(), h.model.effects())?;
+            let z = prepared.effect_matrix(self.channel, h.model.effects())?;
             let p = z.ncols();
             let basis = |rows: &[usize]| {
                 let xr = Mat::from_fn(rows.len(), self.x.ncols(), |i, j| self.x[(rows[i], j)]);
@@ -81,8 +82,8 @@ impl CrossFit<'_> {
                 1 + p,
                 self.ridge,
             )
-            .map_err(|e| DtgVibError::Fit {
-                channel: h.model.channel(),
+            .map_err(|e| SysidError::Fit {
+                channel: h.model.channel().to_string(),
                 source: e.into(),
             })?;
             for (i, &row) in h.test_rows.iter().enumerate() {

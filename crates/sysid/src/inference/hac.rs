@@ -67,7 +67,7 @@ impl HacFit {
 /// the ones before it, [`InferenceError::NonFinite`] on non-finite input.
 ///
 /// ```
-/// use dtg_vib::inference::hac_regression;
+/// use sysid::inference::hac_regression;
 /// // y = 2·x + AR(1) noise: the interval covers 2, and is wider than the
 /// // white-noise formula would say.
 /// let n = 4000;
@@ -177,8 +177,8 @@ pub fn hac_regression(y: &[f64], x: &[&[f64]]) -> Result<HacFit, InferenceError>
 /// let mut s = 5u64;
 /// let white: Vec<f64> = (0..1000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
 /// let smooth: Vec<f64> = (0..1000).map(|i| (i as f64 / 50.0).sin()).collect();
-/// let a = dtg_vib::inference::andrews_bandwidth(&[white]);
-/// let b = dtg_vib::inference::andrews_bandwidth(&[smooth]);
+/// let a = sysid::inference::andrews_bandwidth(&[white]);
+/// let b = sysid::inference::andrews_bandwidth(&[smooth]);
 /// assert!(a < 5 && b > 50, "{a} {b}");
 /// ```
 pub fn andrews_bandwidth(scores: &[Vec<f64>]) -> usize {

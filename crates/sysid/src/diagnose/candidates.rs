@@ -5,33 +5,30 @@
 
 use super::context::Context;
 use super::crossfit::CrossFit;
-use super::{Ranking, Unexcited, rank, record_separations, separation};
-use crate::effects::{ANISOINERTIA_MIN_RATE_DEG_S, Effect, TERM_EFFECTS};
-use crate::error::DtgVibError;
-use crate::model::ChannelModel;
-use crate::pipeline::Prepared;
+use super::{Ranking, Unexcited, rank, record_separations};
+use crate::model::ChannelModelOf;
+use crate::{Candidacy, Effect, Prepared, Sensor, SysidError};
 use faer::Mat;
-use nav_sensors::dtg::DtgTerm;
 
 /// A channel's ranking, and each candidate's column (filtered, less its
 /// training mean) on the validation rows by id, for figures.
-pub(super) struct Ranked {
-    pub(super) ranking: Ranking,
+pub(super) struct Ranked<A> {
+    pub(super) ranking: Ranking<A>,
     pub(super) series: Vec<(String, Vec<f64>)>,
 }
 
 /// Ranks the candidates of one channel model on `prepared` (see the module).
-pub(super) fn rank_candidates(
-    model: &ChannelModel,
-    prepared: &Prepared,
+pub(super) fn rank_candidates<S: Sensor>(
+    model: &ChannelModelOf<S>,
+    prepared: &Prepared<S>,
     (train, val): (&[usize], &[usize]),
-    cross: &CrossFit<'_>,
+    cross: &CrossFit<'_, S>,
     ctx: &Context,
     opts: &super::DiagnoseOptions,
-) -> Result<Ranked, DtgVibError> {
-    let ch = model.channel();
+) -> Result<Ranked<S::Axis>, SysidError> {
+    let ch = cross.channel;
     let y = prepared.target(ch);
-    let (wanted, unexcited_ai) = wanted(model, ctx);
+    let (wanted, not_excited) = wanted(prepared, ch, model, ctx);
     let full = prepared.effect_columns_full(ch, &wanted)?;
     let first = prepared.first_sample();
     let series: Vec<(String, Vec<f64>)> = wanted
@@ -49,7 +46,7 @@ pub(super) fn rank_candidates(
     // The ranking's evidence: the whole record, cross-fitted and partialled out.
     let all = Mat::from_fn(prepared.rows(), full.len(), |i, j| full[j][first + i]);
     let partialled = cross.partial_out(prepared, &all)?;
-    let ranked: Vec<(Effect, Vec<f64>)> = wanted
+    let ranked: Vec<(S::Effect, Vec<f64>)> = wanted
         .iter()
         .enumerate()
         .map(|(j, e)| {
@@ -62,45 +59,47 @@ pub(super) fn rank_candidates(
         })
         .collect();
     let mut ranking = rank(&cross.residual(y), &ranked, opts.rank);
-    separate_groups(model, &mut ranking, &ranked, ctx);
+    separate_groups(prepared.sensor(), ch, &mut ranking, &ranked, ctx);
     separate_by_record(prepared, cross, &mut ranking, &ranked, opts);
-    ranking.unexcited.extend(unexcited_ai);
+    ranking.unexcited.extend(not_excited);
     Ok(Ranked { ranking, series })
 }
 
-/// Every effect the model lacks, and the anisoinertia candidates left out
-/// (with why) where the rate does not vary.
-fn wanted(model: &ChannelModel, ctx: &Context) -> (Vec<Effect>, Vec<Unexcited>) {
-    let extra_names: Vec<&str> = ctx.extras.iter().map(|(n, _)| n.as_str()).collect();
-    let mut unexcited_ai = Vec::new();
-    let wanted: Vec<Effect> = Effect::candidates(&extra_names)
-        .into_iter()
-        .filter(|e| !model.effects().contains(e))
-        .filter(|e| {
-            let ai = matches!(e, Effect::Term(t) if DtgTerm::ANISOINERTIA.contains(t));
-            if ai && ctx.rate_std_deg_s < ANISOINERTIA_MIN_RATE_DEG_S {
-                unexcited_ai.push(Unexcited {
-                    effect: e.id(),
-                    reason: format!(
-                        "the angular rate does not vary (largest std {:.3} deg/s < {ANISOINERTIA_MIN_RATE_DEG_S} deg/s): anisoinertia is not observable",
-                        ctx.rate_std_deg_s
-                    ),
+/// Every candidate the model lacks that the record excites (the sensor
+/// judges on the validation rows), and those it does not excite, with why.
+fn wanted<S: Sensor>(
+    prepared: &Prepared<S>,
+    channel: usize,
+    model: &ChannelModelOf<S>,
+    ctx: &Context,
+) -> (Vec<S::Effect>, Vec<Unexcited>) {
+    let mut wanted = Vec::new();
+    let mut not_excited = Vec::new();
+    let offered = prepared
+        .sensor()
+        .candidates(prepared.calibrated(), &ctx.samples, channel);
+    for c in offered {
+        match c {
+            Candidacy::Excited(e) if !model.effects().contains(&e) => wanted.push(e),
+            Candidacy::NotExcited { effect, reason } if !model.effects().contains(&effect) => {
+                not_excited.push(Unexcited {
+                    effect: effect.id(),
+                    reason,
                 });
-                return false;
             }
-            true
-        })
-        .collect();
-    debug_assert!(TERM_EFFECTS.len() + extra_names.len() >= wanted.len());
-    (wanted, unexcited_ai)
+            _ => {}
+        }
+    }
+    (wanted, not_excited)
 }
 
 /// For each significant candidate with alternatives: the combination the
 /// record identifies and the run that would separate the group.
-fn separate_groups(
-    model: &ChannelModel,
-    ranking: &mut Ranking,
-    ranked: &[(Effect, Vec<f64>)],
+fn separate_groups<S: Sensor>(
+    sensor: &S,
+    channel: usize,
+    ranking: &mut Ranking<S::Axis>,
+    ranked: &[(S::Effect, Vec<f64>)],
     ctx: &Context,
 ) {
     for c in ranking
@@ -121,24 +120,17 @@ fn separate_groups(
                 kappa.push(r.iter().zip(a).map(|(p, q)| p * q).sum::<f64>() / rr);
             }
         }
-        c.separation = Some(separation(
-            model.channel(),
-            &group,
-            &kappa,
-            &ctx.gravity_g,
-            ctx.vibration_g,
-            ctx.vibration_axis,
-        ));
+        c.separation = Some(sensor.separation(channel, &group, &kappa, &ctx.stats));
     }
 }
 
 /// Several records: which candidates a suggestion was collinear with on
 /// some record alone, and which records told them apart.
-fn separate_by_record(
-    prepared: &Prepared,
-    cross: &CrossFit<'_>,
-    ranking: &mut Ranking,
-    ranked: &[(Effect, Vec<f64>)],
+fn separate_by_record<S: Sensor>(
+    prepared: &Prepared<S>,
+    cross: &CrossFit<'_, S>,
+    ranking: &mut Ranking<S::Axis>,
+    ranked: &[(S::Effect, Vec<f64>)],
     opts: &super::DiagnoseOptions,
 ) {
     let rows = cross.rows();

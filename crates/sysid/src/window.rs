@@ -28,7 +28,7 @@ pub enum WindowError {
 /// signal, concatenated signal by signal (oldest sample first).
 ///
 /// ```
-/// use dtg_vib::window::WindowSpec;
+/// use sysid::window::WindowSpec;
 /// let spec = WindowSpec::new(vec!["az".into()], 3).unwrap();
 /// let az = [0.0, 1.0, 2.0, 3.0, 4.0];
 /// let w = spec.build(&[&az]).unwrap();
@@ -136,7 +136,7 @@ impl WindowSpec {
 /// is copied); those of several signals are written out row by row.
 ///
 /// ```
-/// use dtg_vib::window::WindowSpec;
+/// use sysid::window::WindowSpec;
 /// let spec = WindowSpec::new(vec!["ax".into(), "az".into()], 2).unwrap();
 /// let w = spec.build(&[&[1.0, 2.0, 3.0], &[10.0, 20.0, 30.0]]).unwrap();
 /// assert_eq!(w.dim(), 4);
@@ -203,7 +203,7 @@ impl Windows {
     /// from: nothing is copied.
     ///
     /// ```
-    /// use dtg_vib::window::WindowSpec;
+    /// use sysid::window::WindowSpec;
     /// let one = WindowSpec::new(vec!["az".into()], 3).unwrap().build(&[&[0.0, 1.0, 2.0, 3.0, 4.0]]).unwrap();
     /// let m = one.matrix();
     /// assert_eq!((m.nrows(), m.ncols(), m[(2, 0)], m[(2, 2)]), (3, 3, 2.0, 4.0));
@@ -238,7 +238,7 @@ impl Windows {
     /// samples (its warm-up, which has no window) left out.
     ///
     /// ```
-    /// use dtg_vib::window::{WindowSpec, Windows};
+    /// use sysid::window::{WindowSpec, Windows};
     /// let spec = WindowSpec::new(vec!["az".into()], 2).unwrap();
     /// let a = spec.build(&[&[1.0, 2.0, 3.0]]).unwrap();
     /// let b = spec.build(&[&[7.0, 8.0]]).unwrap();

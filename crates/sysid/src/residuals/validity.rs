@@ -139,7 +139,7 @@ fn verdict(
 /// lags carry no information anyway).
 ///
 /// ```
-/// use dtg_vib::residuals::whiteness;
+/// use sysid::residuals::whiteness;
 /// // A deterministic pseudo-random sequence (LCG) is white; its running sum is not.
 /// let mut s = 12345u64;
 /// let e: Vec<f64> = (0..2000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
@@ -188,7 +188,7 @@ pub fn whiteness(
 /// residual is the sensor's noise alone, which no finite model meets.
 ///
 /// ```
-/// use dtg_vib::residuals::whiteness_beyond;
+/// use sysid::residuals::whiteness_beyond;
 /// let mut s = 99u64;
 /// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };
 /// let w: Vec<f64> = (0..3000).map(|_| next()).collect();
@@ -292,7 +292,7 @@ fn residual_times_input_test(
 /// every lag in −max_lag..=max_lag.
 ///
 /// ```
-/// use dtg_vib::residuals::independence;
+/// use sysid::residuals::independence;
 /// let mut s = 3u64;
 /// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };
 /// let u: Vec<f64> = (0..1000).map(|_| next()).collect();
@@ -320,7 +320,7 @@ pub fn independence(e: &[f64], u: &[f64], max_lag: usize, confidence: f64) -> Co
 /// since e·u and e are never independent.
 ///
 /// ```
-/// use dtg_vib::residuals::{billings_voon, CorrelationKind};
+/// use sysid::residuals::{billings_voon, CorrelationKind};
 /// // Uniform pseudo-random numbers from a 64-bit LCG.
 /// let mut s = 7u64;
 /// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };

@@ -11,8 +11,7 @@
 //! knows: the gap its windows and filter need, and the fewest rows a side
 //! may have.
 
-use crate::error::DtgVibError;
-use crate::pipeline::Prepared;
+use crate::{Prepared, Sensor, SysidError};
 pub use rbf::Holdout;
 
 /// Fewest rows on either side of a split.
@@ -22,18 +21,18 @@ pub const MIN_ROWS: usize = 20;
 /// block are dropped (blocked only).
 ///
 /// ```
-/// use dtg_vib::split::{rows, Holdout};
+/// use sysid::split::{rows, Holdout};
 /// let (train, val) = rows(Holdout::Interleaved, 100, 3).unwrap();
 /// assert_eq!((&train[..3], &val[..3]), (&[0, 2, 4][..], &[1, 3, 5][..]));
 /// // Blocked: the first half trains; the gap keeps rows 50..53 out of both.
 /// let (train, val) = rows(Holdout::default(), 100, 3).unwrap();
 /// assert_eq!((train.len(), val[0]), (50, 53));
 /// ```
-pub fn rows(split: Holdout, n: usize, gap: usize) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+pub fn rows(split: Holdout, n: usize, gap: usize) -> Result<(Vec<usize>, Vec<usize>), SysidError> {
     let (train, val) = match split.fold(n, gap) {
         Ok(fold) => (fold.train, fold.validation),
         Err(rbf::SplitError::Fraction { fraction }) => {
-            return Err(DtgVibError::InvalidOption {
+            return Err(SysidError::InvalidOption {
                 name: "train fraction",
                 value: fraction.to_string(),
                 reason: "must lie strictly between 0 and 1",
@@ -52,13 +51,13 @@ pub fn rows(split: Holdout, n: usize, gap: usize) -> Result<(Vec<usize>, Vec<usi
 }
 
 /// The error for a side with fewer than [`MIN_ROWS`] rows (training first).
-fn too_few(train: usize, validation: usize) -> DtgVibError {
+fn too_few(train: usize, validation: usize) -> SysidError {
     let (what, have) = if train < MIN_ROWS {
         ("training rows", train)
     } else {
         ("validation rows", validation)
     };
-    DtgVibError::TooFewSamples {
+    SysidError::TooFewSamples {
         what,
         have,
         need: MIN_ROWS,
@@ -68,7 +67,7 @@ fn too_few(train: usize, validation: usize) -> DtgVibError {
 
 /// Rows closer than this to the other side of a split may share samples:
 /// a window length plus the filter's reach.
-pub fn leakage_gap(prepared: &Prepared) -> usize {
+pub fn leakage_gap<S: Sensor>(prepared: &Prepared<S>) -> usize {
     // Row 0's window ends at sample `first_sample()`: a window spans that many
     // samples before its own.
     prepared.first_sample() + prepared.filter_memory()
@@ -77,10 +76,10 @@ pub fn leakage_gap(prepared: &Prepared) -> usize {
 /// Training and validation rows of prepared data: the split applied within
 /// each record of a multi-record preparation, so every record trains and
 /// validates and no side reaches across a record's boundary.
-pub fn split_rows(
-    prepared: &Prepared,
+pub fn split_rows<S: Sensor>(
+    prepared: &Prepared<S>,
     split: Holdout,
-) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+) -> Result<(Vec<usize>, Vec<usize>), SysidError> {
     let gap = leakage_gap(prepared);
     let parts = prepared.record_rows();
     if parts.len() == 1 {
@@ -88,7 +87,7 @@ pub fn split_rows(
     }
     let (mut train, mut val) = (Vec::new(), Vec::new());
     for (name, range) in parts {
-        let (t, v) = rows(split, range.len(), gap).map_err(|e| DtgVibError::InRecord {
+        let (t, v) = rows(split, range.len(), gap).map_err(|e| SysidError::InRecord {
             record: name.to_string(),
             source: Box::new(e),
         })?;
@@ -101,13 +100,13 @@ pub fn split_rows(
 /// Training rows of every record but `name`, validation rows of `name`
 /// (`--split by-record --validate-on NAME`): the question "does a model of
 /// these tests hold on that one?".
-pub fn by_record_rows(
-    prepared: &Prepared,
+pub fn by_record_rows<S: Sensor>(
+    prepared: &Prepared<S>,
     name: &str,
-) -> Result<(Vec<usize>, Vec<usize>), DtgVibError> {
+) -> Result<(Vec<usize>, Vec<usize>), SysidError> {
     let parts = prepared.record_rows();
     if !parts.iter().any(|(n, _)| *n == name) || parts.len() < 2 {
-        return Err(DtgVibError::UnknownRecord {
+        return Err(SysidError::UnknownRecord {
             flag: "--validate-on",
             name: name.to_string(),
             known: parts.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
@@ -126,11 +125,11 @@ pub fn by_record_rows(
 /// Parses `--split`: `blocked` or `interleaved`.
 ///
 /// ```
-/// assert!(dtg_vib::split::parse("interleaved").is_ok());
-/// assert!(dtg_vib::split::parse("random").is_err());
+/// assert!(sysid::split::parse("interleaved").is_ok());
+/// assert!(sysid::split::parse("random").is_err());
 /// ```
-pub fn parse(name: &str) -> Result<Holdout, DtgVibError> {
-    name.parse().map_err(|_| DtgVibError::InvalidOption {
+pub fn parse(name: &str) -> Result<Holdout, SysidError> {
+    name.parse().map_err(|_| SysidError::InvalidOption {
         name: "split",
         value: name.trim().to_string(),
         reason: "use blocked or interleaved",
@@ -143,7 +142,7 @@ pub fn parse(name: &str) -> Result<Holdout, DtgVibError> {
 /// it must use.
 ///
 /// ```
-/// use dtg_vib::split::{row_spacing, rows, Holdout};
+/// use sysid::split::{row_spacing, rows, Holdout};
 /// let (train, val) = rows(Holdout::Interleaved, 100, 0).unwrap();
 /// assert_eq!((row_spacing(&train), row_spacing(&val)), (2, 2));
 /// let (_, val) = rows(Holdout::default(), 100, 3).unwrap();
@@ -184,7 +183,7 @@ mod tests {
         };
         assert!(matches!(
             rows(whole, 100, 0),
-            Err(DtgVibError::InvalidOption { .. })
+            Err(SysidError::InvalidOption { .. })
         ));
         assert!(parse("random").is_err());
     }

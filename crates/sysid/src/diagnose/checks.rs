@@ -1,11 +1,10 @@
 //! The residual's correlation tests: whiteness beyond the model's memory,
 //! independence of every input, and the Billings–Voon nonlinear tests of
-//! the accelerations, on the rows far enough from a record's ends.
+//! the operating signals, on the rows far enough from a record's ends.
 
 use super::NamedCheck;
 use super::context::Context;
 use crate::residuals::{billings_voon, independence, whiteness_beyond};
-use nav_sensors::geometry::Axis;
 
 /// The tests of a validation residual, and the names of those that fail.
 pub(super) fn correlation_checks(
@@ -28,20 +27,23 @@ pub(super) fn correlation_checks(
         });
     }
     let lag = opts.max_lag.min(e.len() / 4).max(1);
-    let inputs = Axis::ALL
+    // Operating signals by name, extra columns as `col:NAME` (the effect id
+    // a column would have).
+    let inputs = ctx
+        .operating
         .iter()
-        .map(|a| (a.column().to_string(), steady(&ctx.accel[a.index()])))
+        .map(|(n, v)| (n.clone(), steady(v), true))
         .chain(
             ctx.extras
                 .iter()
-                .map(|(n, v)| (format!("col:{n}"), steady(v))),
+                .map(|(n, v)| (format!("col:{n}"), steady(v), false)),
         );
-    for (name, u) in inputs {
+    for (name, u, operating) in inputs {
         checks.push(NamedCheck {
             name: format!("independence:{name}"),
             check: independence(&e, &u, lag, opts.confidence),
         });
-        if name.starts_with('a') {
+        if operating {
             for c in billings_voon(&e, &u, lag.min(10), opts.confidence) {
                 checks.push(NamedCheck {
                     name: format!("{}:{name}", c.kind.name()),

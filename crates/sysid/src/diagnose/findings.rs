@@ -1,13 +1,14 @@
 //! What a channel's diagnosis says in words, most actionable first.
 
 use super::{Band, Ranking, Regime, Segment};
+use crate::Wording;
 
 /// A p-value as text: below double precision's resolution of 1 − cdf it
 /// is a bound, not a number.
 ///
 /// ```
-/// assert_eq!(dtg_vib::diagnose::p_text(0.0), "< 1e-15");
-/// assert_eq!(dtg_vib::diagnose::p_text(0.0123), "= 1.2e-2");
+/// assert_eq!(sysid::diagnose::p_text(0.0), "< 1e-15");
+/// assert_eq!(sysid::diagnose::p_text(0.0123), "= 1.2e-2");
 /// ```
 pub fn p_text(p: f64) -> String {
     if p < 1e-15 {
@@ -18,13 +19,20 @@ pub fn p_text(p: f64) -> String {
 }
 
 /// Plain-language findings, most actionable first.
-pub(super) fn findings(
-    ranking: &Ranking,
+pub(super) fn findings<A>(
+    ranking: &Ranking<A>,
     failing: &[String],
-    segs: &[Segment],
-    bands: &[Band],
-    regimes: &[Regime],
+    (segs, bands, regimes): (&[Segment], &[Band], &[Regime]),
+    wording: &Wording,
 ) -> Vec<String> {
+    let mut out = ranking_findings(ranking);
+    out.extend(residual_findings(failing, (segs, bands, regimes), wording));
+    out
+}
+
+/// What the ranking found: each suggestion with its evidence, or that
+/// nothing is missing, and what the record cannot reveal.
+fn ranking_findings<A>(ranking: &Ranking<A>) -> Vec<String> {
     let mut out = Vec::new();
     for id in &ranking.suggested {
         if let Some(c) = ranking.candidates.iter().find(|c| &c.effect == id) {
@@ -92,6 +100,17 @@ pub(super) fn findings(
             ids.join(", ")
         ));
     }
+    out
+}
+
+/// Where the residual says something is left: slow power, a dependence on
+/// an operating signal, a bad stretch of time, failing tests.
+fn residual_findings(
+    failing: &[String],
+    (segs, bands, regimes): (&[Segment], &[Band], &[Regime]),
+    w: &Wording,
+) -> Vec<String> {
+    let mut out = Vec::new();
     // Excess slow power alone is expected of any model (its errors are
     // correlated over its window); "something slow is left" needs the
     // residual to be correlated beyond that memory as well.
@@ -108,21 +127,37 @@ pub(super) fn findings(
             b.f_hi_hz,
             b.ratio_to_floor,
             if b.f_hi_hz <= 0.5 {
-                ": something slow is not modelled and the residual stays correlated beyond the model's window (a temperature or a drift: add its column as col:NAME)"
+                format!(
+                    ": something slow is not modelled and the residual stays correlated beyond the model's window ({})",
+                    w.slow_hint
+                )
             } else {
-                ""
+                String::new()
             }
         ));
     }
     for r in regimes.iter().filter(|r| r.mean_spread_sigma > 5.0) {
-        out.push(format!("the residual's mean changes with {} across its range ({:.0}σ): a g- or g²-sensitive term along it may be missing", r.axis, r.mean_spread_sigma));
+        out.push(format!(
+            "the residual's mean changes with {} across its range ({:.0}σ): {}",
+            r.axis, r.mean_spread_sigma, w.regime_hint
+        ));
     }
     if !segs.is_empty() {
         let mut rms: Vec<f64> = segs.iter().map(|s| s.residual_rms).collect();
         rms.sort_by(f64::total_cmp);
         let median = rms[rms.len() / 2];
         for s in segs.iter().filter(|s| s.residual_rms > 2.0 * median) {
-            out.push(format!("{:.1}–{:.1} s: residual rms {:.3} deg/h, {:.1}× the median segment (low-passed specific force, rms about its record mean: {:.2} g)", s.t_start, s.t_end, s.residual_rms, s.residual_rms / median, s.vibration_rms_g));
+            out.push(format!(
+                "{:.1}–{:.1} s: residual rms {:.3} {}, {:.1}× the median segment ({}, rms about its record mean: {:.2} {})",
+                s.t_start,
+                s.t_end,
+                s.residual_rms,
+                w.target_unit,
+                s.residual_rms / median,
+                w.operating_noun,
+                s.operating_rms,
+                w.operating_unit
+            ));
         }
     }
     if !failing.is_empty() {

@@ -11,14 +11,14 @@
 //! A candidate's coefficient is then what the network cannot absorb, and the
 //! evidence comes from every row of the record, not one validation half.
 
-use crate::effects::Effect;
+use crate::Effect;
 use crate::inference::{HacFit, hac_regression};
 use faer::Mat;
 use serde::Serialize;
 
 /// A candidate effect and what it would explain.
 #[derive(Debug, Clone, Serialize)]
-pub struct Candidate {
+pub struct Candidate<A = String> {
     /// Stable id (`gg_IS`, `col:temp`, …).
     pub effect: String,
     /// Share of the validation residual's mean square this effect explains
@@ -52,7 +52,7 @@ pub struct Candidate {
     pub alternatives: Vec<String>,
     /// For a suggestion with alternatives: the combination this record
     /// identifies and the run that would split the group.
-    pub separation: Option<super::Separation>,
+    pub separation: Option<super::Separation<A>>,
     /// For a suggestion diagnosed on several records: the candidates it is
     /// collinear with on some record alone, and the records that told them
     /// apart (absent for one record).
@@ -99,7 +99,7 @@ impl RankOptions {
     /// The conditional ERR that cuts the residual rms by `min_rms_reduction`.
     ///
     /// ```
-    /// let o = dtg_vib::diagnose::RankOptions::default();
+    /// let o = sysid::diagnose::RankOptions::default();
     /// assert!((o.min_err() - 0.19).abs() < 1e-12);
     /// ```
     pub fn min_err(&self) -> f64 {
@@ -120,9 +120,9 @@ impl Default for RankOptions {
 
 /// The outcome of a ranking.
 #[derive(Debug, Clone, Serialize)]
-pub struct Ranking {
+pub struct Ranking<A = String> {
     /// Candidates sorted by `err`, descending.
-    pub candidates: Vec<Candidate>,
+    pub candidates: Vec<Candidate<A>>,
     /// Suggested effect ids, in forward-selection order.
     pub suggested: Vec<String>,
     /// Candidates left out because nothing excites them.
@@ -154,22 +154,26 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// pick that fails ends the suggestions.
 ///
 /// ```
-/// use dtg_vib::diagnose::{rank, RankOptions};
-/// use dtg_vib::effects::Effect;
+/// use sysid::diagnose::{rank, RankOptions};
+/// use sysid::Named;
 /// let n = 2000;
 /// let mut s = 1u64;
 /// let mut next = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 };
 /// let temp: Vec<f64> = (0..n).map(|i| i as f64 / 200.0 - 5.0).collect();
 /// let g: Vec<f64> = (0..n).map(|_| next()).collect();
 /// let residual: Vec<f64> = temp.iter().map(|t| 0.5 * t + 0.3 * next()).collect();
-/// let cands = vec![(Effect::Column("temp".into()), temp), ("g_I".parse().unwrap(), g)];
-/// let r = rank(&residual, &cands, RankOptions::default());
+/// let cands = vec![(Named::new("col:temp", "y/°C", "thermal drift"), temp), (Named::new("g", "y/g", "g-sensitivity"), g)];
+/// let r: sysid::diagnose::Ranking = rank(&residual, &cands, RankOptions::default());
 /// assert_eq!(r.suggested, ["col:temp"]);
 /// let c = &r.candidates[0];
 /// assert!(c.coef_ci95[0] < 0.5 && 0.5 < c.coef_ci95[1], "{c:?}");
 /// ```
 #[track_caller]
-pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptions) -> Ranking {
+pub fn rank<E: Effect, A>(
+    residual: &[f64],
+    candidates: &[(E, Vec<f64>)],
+    opts: RankOptions,
+) -> Ranking<A> {
     let n = residual.len();
     assert!(
         candidates.iter().all(|(_, c)| c.len() == n),
@@ -219,12 +223,12 @@ pub fn rank(residual: &[f64], candidates: &[(Effect, Vec<f64>)], opts: RankOptio
 
 /// The candidates with something left once the model's function space is
 /// projected out, and those without (with why).
-fn screen(
+fn screen<E: Effect>(
     r_energy: f64,
-    candidates: &[(Effect, Vec<f64>)],
-) -> (Vec<(&Effect, &[f64])>, Vec<Unexcited>) {
+    candidates: &[(E, Vec<f64>)],
+) -> (Vec<(&E, &[f64])>, Vec<Unexcited>) {
     let mut unexcited = Vec::new();
-    let mut live: Vec<(&Effect, &[f64])> = Vec::new();
+    let mut live: Vec<(&E, &[f64])> = Vec::new();
     for (e, c) in candidates {
         let energy = dot(c, c);
         let scale: f64 = r_energy.max(f64::MIN_POSITIVE);
@@ -248,13 +252,13 @@ fn screen(
 /// Each live candidate alone against the residual (coefficient, HAC
 /// interval, first-step ERR) and the candidates it is collinear with;
 /// `effective_samples` from the first one's HAC bandwidth.
-fn single_candidates(
+fn single_candidates<E: Effect, A>(
     r: &[f64],
-    live: &[(&Effect, &[f64])],
+    live: &[(&E, &[f64])],
     first_errs: &[f64],
     opts: RankOptions,
     effective_samples: &mut f64,
-) -> Vec<Candidate> {
+) -> Vec<Candidate<A>> {
     let n = r.len();
     // Collinearity is about shape: the correlation compares centred columns.
     let corr = stats::correlation;
@@ -299,11 +303,11 @@ fn single_candidates(
 /// Walks the forward path: each pick's ERR relative to what is left, and
 /// its coefficient's t given the picks before it; the suggestions end at
 /// the first pick that fails.
-fn walk_path(
+fn walk_path<E: Effect, A>(
     r: &[f64],
-    live: &[(&Effect, &[f64])],
+    live: &[(&E, &[f64])],
     picks: &[rbf::Pick],
-    out: &mut [Candidate],
+    out: &mut [Candidate<A>],
     opts: RankOptions,
     p_threshold: f64,
 ) -> Vec<String> {

@@ -16,7 +16,7 @@ pub use validity::{
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::signal::LowPass;
+    use iir::LowPass;
     use rand::SeedableRng;
     use rand_distr::{Distribution, StandardNormal};
 

@@ -2,25 +2,21 @@
 //! validation rows, the rates the residual tests run at, and the rows far
 //! enough from a record's ends to test.
 
-use crate::error::DtgVibError;
-use crate::pipeline::Prepared;
-use nav_sensors::geometry::Axis;
+use crate::{OperatingStats, Prepared, Sensor, SysidError};
 
 /// What every channel's diagnosis shares: inputs on the validation rows.
 pub(super) struct Context {
     pub(super) t: Vec<f64>,
-    /// Filtered accelerations (ax, ay, az) on the validation rows.
-    pub(super) accel: [Vec<f64>; 3],
+    /// The record samples of the validation rows (where a window ends).
+    pub(super) samples: Vec<usize>,
+    /// Filtered operating signals (an inertial unit's ax, ay, az) on the
+    /// validation rows.
+    pub(super) operating: Vec<(String, Vec<f64>)>,
     /// Filtered extra columns on the validation rows.
     pub(super) extras: Vec<(String, Vec<f64>)>,
-    /// Largest standard deviation of the least-squares rate, deg/s.
-    pub(super) rate_std_deg_s: f64,
-    /// Mean filtered specific force on the validation rows (cluster frame), g.
-    pub(super) gravity_g: nalgebra::Vector3<f64>,
-    /// RMS of the filtered specific force about its mean, g.
-    pub(super) vibration_g: f64,
-    /// The axis along which the filtered specific force varies most.
-    pub(super) vibration_axis: Axis,
+    /// The operating signals' means and variances on the validation rows.
+    pub(super) stats: OperatingStats,
+    /// The validation series' sample rate, Hz.
     pub(super) fs: f64,
     /// The model's memory in decimated samples: a window plus the filter's
     /// reach. The whiteness test looks beyond it.
@@ -40,22 +36,25 @@ pub(super) struct Context {
 }
 
 impl Context {
-    pub(super) fn new(prepared: &Prepared, val: &[usize]) -> Result<Self, DtgVibError> {
+    pub(super) fn new<S: Sensor>(
+        prepared: &Prepared<S>,
+        val: &[usize],
+    ) -> Result<Self, SysidError> {
         let first = prepared.first_sample();
         let on_val = |x: &[f64]| -> Vec<f64> { val.iter().map(|&r| x[first + r]).collect() };
         let rec = prepared.calibrated();
-        let accel = [
-            on_val(&prepared.signal_full(Axis::X.column())?),
-            on_val(&prepared.signal_full(Axis::Y.column())?),
-            on_val(&prepared.signal_full(Axis::Z.column())?),
-        ];
-        let extras = rec
-            .extra_names()
-            .iter()
-            .map(|n| Ok((n.to_string(), on_val(&prepared.signal_full(n)?))))
-            .collect::<Result<Vec<_>, DtgVibError>>()?;
-        let rate_std_deg_s =
-            crate::effects::rate_variation_deg_s(rec, val.iter().map(|&r| first + r));
+        let sensor = prepared.sensor();
+        let filtered = |names: Vec<String>| -> Result<Vec<(String, Vec<f64>)>, SysidError> {
+            names
+                .into_iter()
+                .map(|n| {
+                    let v = on_val(&prepared.signal_full(&n)?);
+                    Ok((n, v))
+                })
+                .collect()
+        };
+        let operating = filtered(sensor.operating_signals())?;
+        let extras = filtered(sensor.extra_columns(rec))?;
         // The validation series' own rate: alternate rows (an interleaved
         // split) are two samples apart.
         let spacing = crate::split::row_spacing(val);
@@ -87,12 +86,11 @@ impl Context {
             let m = mean(v);
             v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len().max(1) as f64
         };
-        let gravity_g = nalgebra::Vector3::new(mean(&accel[0]), mean(&accel[1]), mean(&accel[2]));
-        let variances = [var(&accel[0]), var(&accel[1]), var(&accel[2])];
-        let vibration_axis = Axis::ALL
-            .into_iter()
-            .max_by(|a, b| variances[a.index()].total_cmp(&variances[b.index()]))
-            .expect("three axes");
+        let stats = OperatingStats {
+            names: operating.iter().map(|(n, _)| n.clone()).collect(),
+            means: operating.iter().map(|(_, v)| mean(v)).collect(),
+            variances: operating.iter().map(|(_, v)| var(v)).collect(),
+        };
         let fm = prepared.filter_memory();
         // A row's window starts `first` samples before the sample it ends at.
         let steady: Vec<usize> = val
@@ -114,13 +112,11 @@ impl Context {
         let memory = reach.div_ceil(spacing * decimation);
         Ok(Self {
             t: on_val(rec.t()),
+            samples: val.iter().map(|&r| first + r).collect(),
             memory,
-            gravity_g,
-            vibration_g: variances.iter().sum::<f64>().sqrt(),
-            vibration_axis,
-            accel,
+            operating,
             extras,
-            rate_std_deg_s,
+            stats,
             fs,
             decimation,
             steady,

@@ -1,6 +1,6 @@
 //! Where a model fails: the validation residual broken down by time segment,
 //! by frequency band against a white-noise floor, and by operating regime
-//! (bins of acceleration along each axis).
+//! (bins of each operating signal: an inertial unit's accelerations).
 
 use serde::Serialize;
 
@@ -11,12 +11,14 @@ pub struct Segment {
     pub t_start: f64,
     /// End, s.
     pub t_end: f64,
-    /// RMS of the (pre-processed, so low-passed) acceleration deviation from its record mean over the segment,
-    /// summed over the three axes (the vibration level), g.
-    pub vibration_rms_g: f64,
-    /// Mean of the residual, deg/h.
+    /// RMS of the (pre-processed, so low-passed) operating signals' deviation
+    /// from their record means over the segment, summed over the signals
+    /// (an inertial unit's vibration level, g; named so in JSON).
+    #[serde(rename = "vibration_rms_g")]
+    pub operating_rms: f64,
+    /// Mean of the residual, in the target's unit.
     pub residual_mean: f64,
-    /// RMS of the residual, deg/h.
+    /// RMS of the residual, in the target's unit.
     pub residual_rms: f64,
 }
 
@@ -34,31 +36,34 @@ pub struct Band {
     pub ratio_to_floor: f64,
 }
 
-/// Residual statistics in one bin of one acceleration axis.
+/// Residual statistics in one bin of one operating signal.
 #[derive(Debug, Clone, Serialize)]
 pub struct RegimeBin {
-    /// Lower edge of the acceleration bin, g.
-    pub lo_g: f64,
-    /// Upper edge, g.
-    pub hi_g: f64,
+    /// Lower edge of the bin, in the signal's unit (g for an inertial
+    /// unit's acceleration; named so in JSON).
+    #[serde(rename = "lo_g")]
+    pub lo: f64,
+    /// Upper edge.
+    #[serde(rename = "hi_g")]
+    pub hi: f64,
     /// Rows in the bin.
     pub count: usize,
-    /// Mean of the residual, deg/h.
+    /// Mean of the residual, in the target's unit.
     pub residual_mean: f64,
-    /// RMS of the residual, deg/h.
+    /// RMS of the residual, in the target's unit.
     pub residual_rms: f64,
 }
 
-/// The residual binned by one acceleration axis.
+/// The residual binned by one operating signal.
 #[derive(Debug, Clone, Serialize)]
 pub struct Regime {
-    /// The axis column (`ax`, `ay`, `az`).
+    /// The signal (`ax`, `ay`, `az` for an inertial unit).
     pub axis: String,
-    /// Quantile bins of the (filtered) acceleration.
+    /// Quantile bins of the (filtered) signal.
     pub bins: Vec<RegimeBin>,
     /// Spread of the bin means, in units of their standard error: a residual
-    /// that depends on this acceleration (a missing g or g² term) gives ≫ 3.
-    /// 0 for an axis that does not vary (one bin).
+    /// that depends on this signal (a missing g or g² term of an
+    /// acceleration) gives ≫ 3. 0 for a signal that does not vary (one bin).
     pub mean_spread_sigma: f64,
 }
 
@@ -77,35 +82,35 @@ fn rms(x: impl Iterator<Item = f64> + Clone) -> f64 {
 /// Splits rows into `count` contiguous segments of (nearly) equal length.
 ///
 /// ```
-/// use dtg_vib::diagnose::segments;
+/// use sysid::diagnose::segments;
 /// let t: Vec<f64> = (0..100).map(|i| i as f64).collect();
 /// let r: Vec<f64> = (0..100).map(|i| if i < 50 { 1.0 } else { 3.0 }).collect();
-/// let acc = [vec![0.0; 100], vec![0.0; 100], vec![0.0; 100]];
+/// let acc = vec![vec![0.0; 100], vec![0.0; 100], vec![0.0; 100]];
 /// let s = segments(&t, &r, &acc, 2);
 /// assert_eq!((s[0].residual_rms, s[1].residual_rms), (1.0, 3.0));
 /// ```
 #[track_caller]
-pub fn segments(t: &[f64], residual: &[f64], accel: &[Vec<f64>; 3], count: usize) -> Vec<Segment> {
+pub fn segments(t: &[f64], residual: &[f64], operating: &[Vec<f64>], count: usize) -> Vec<Segment> {
     let n = residual.len();
     assert!(
-        t.len() == n && accel.iter().all(|a| a.len() == n),
+        t.len() == n && operating.iter().all(|a| a.len() == n),
         "series lengths differ"
     );
     let count = count.clamp(1, n.max(1));
-    let means: Vec<f64> = accel.iter().map(|a| mean(a.iter().copied())).collect();
+    let means: Vec<f64> = operating.iter().map(|a| mean(a.iter().copied())).collect();
     (0..count)
         .filter_map(|s| {
             let (lo, hi) = (s * n / count, (s + 1) * n / count);
             (hi > lo).then(|| {
                 let r = residual[lo..hi].iter().copied();
-                let vib = (0..3)
-                    .map(|k| mean(accel[k][lo..hi].iter().map(|v| (v - means[k]).powi(2))))
+                let vib = (0..operating.len())
+                    .map(|k| mean(operating[k][lo..hi].iter().map(|v| (v - means[k]).powi(2))))
                     .sum::<f64>()
                     .sqrt();
                 Segment {
                     t_start: t[lo],
                     t_end: t[hi - 1],
-                    vibration_rms_g: vib,
+                    operating_rms: vib,
                     residual_mean: mean(r.clone()),
                     residual_rms: rms(r),
                 }
@@ -120,9 +125,9 @@ pub fn segments(t: &[f64], residual: &[f64], accel: &[Vec<f64>; 3], count: usize
 pub struct ResidualSpectrum {
     /// Bin frequencies, Hz.
     pub frequency_hz: Vec<f64>,
-    /// Residual PSD, (deg/h)²/Hz.
+    /// Residual PSD, (target unit)²/Hz.
     pub density: Vec<f64>,
-    /// White floor through the pre-filter at each bin, (deg/h)²/Hz.
+    /// White floor through the pre-filter at each bin, (target unit)²/Hz.
     pub floor: Vec<f64>,
 }
 
@@ -134,7 +139,7 @@ impl ResidualSpectrum {
     /// shape. `None` for a residual shorter than 16 samples.
     ///
     /// ```
-    /// use dtg_vib::diagnose::ResidualSpectrum;
+    /// use sysid::diagnose::ResidualSpectrum;
     /// let x: Vec<f64> = (0..4096).map(|i| ((i * 7919) % 101) as f64 - 50.0).collect();
     /// let s = ResidualSpectrum::new(&x, 50.0, &|_| 1.0).unwrap();
     /// assert_eq!(s.frequency_hz.len(), s.floor.len());
@@ -145,7 +150,7 @@ impl ResidualSpectrum {
         if seg < 8 || residual.len() < seg {
             return None;
         }
-        let s = nav_sensors::vibration::welch(residual, fs, seg);
+        let s = iir::welch(residual, fs, seg);
         let mut levels: Vec<f64> = s
             .frequency_hz
             .iter()
@@ -172,7 +177,7 @@ impl ResidualSpectrum {
     /// the variance and its ratio to the floor.
     ///
     /// ```
-    /// use dtg_vib::diagnose::ResidualSpectrum;
+    /// use sysid::diagnose::ResidualSpectrum;
     /// // A white residual: every band is at its floor.
     /// let mut s = 9u64;
     /// let x: Vec<f64> = (0..20000).map(|_| { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5 }).collect();
@@ -216,10 +221,10 @@ impl ResidualSpectrum {
     }
 }
 
-/// Bins the residual by quantiles of one acceleration series.
+/// Bins the residual by quantiles of one operating signal (an acceleration).
 ///
 /// ```
-/// use dtg_vib::diagnose::regime;
+/// use sysid::diagnose::regime;
 /// // A residual proportional to the acceleration: the bin means spread far.
 /// let a: Vec<f64> = (0..1000).map(|i| ((i * 37) % 100) as f64 / 100.0).collect();
 /// let r: Vec<f64> = a.iter().enumerate().map(|(i, v)| 2.0 * v + 0.01 * ((i % 7) as f64 - 3.0)).collect();
@@ -230,19 +235,19 @@ impl ResidualSpectrum {
 #[track_caller]
 pub fn regime(
     axis: &str,
-    accel: &[f64],
+    signal: &[f64],
     residual: &[f64],
     bins: usize,
     effective_samples: f64,
 ) -> Regime {
-    assert_eq!(accel.len(), residual.len(), "series lengths differ");
-    let n = accel.len();
+    assert_eq!(signal.len(), residual.len(), "series lengths differ");
+    let n = signal.len();
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| accel[a].total_cmp(&accel[b]));
+    order.sort_by(|&a, &b| signal[a].total_cmp(&signal[b]));
     // An axis that does not move has one regime: quantile bins of tied
     // values would split the rows by time and call a drift a dependence.
     let (lo, hi) = match (order.first(), order.last()) {
-        (Some(&a), Some(&b)) => (accel[a], accel[b]),
+        (Some(&a), Some(&b)) => (signal[a], signal[b]),
         _ => (0.0, 0.0),
     };
     let bins = if hi - lo <= 1e-12 * lo.abs().max(hi.abs()) {
@@ -256,8 +261,8 @@ pub fn regime(
             (!idx.is_empty()).then(|| {
                 let r = idx.iter().map(|&i| residual[i]);
                 RegimeBin {
-                    lo_g: accel[idx[0]],
-                    hi_g: accel[idx[idx.len() - 1]],
+                    lo: signal[idx[0]],
+                    hi: signal[idx[idx.len() - 1]],
                     count: idx.len(),
                     residual_mean: mean(r.clone()),
                     residual_rms: rms(r),

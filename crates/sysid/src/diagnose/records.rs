@@ -53,7 +53,7 @@ const MIN_ROWS: usize = 20;
 /// and its positions in the columns; with one record the list is empty.
 ///
 /// ```
-/// use dtg_vib::diagnose::record_separations;
+/// use sysid::diagnose::record_separations;
 /// // Record "z" drives both columns alike; record "y" drives them apart.
 /// let a: Vec<f64> = (0..200).map(|i| ((i as f64) * 0.7).sin()).collect();
 /// let b: Vec<f64> = (0..200)

@@ -1,0 +1,302 @@
+//! Fitting a sensor's channel models: physical effects and an RBF on the
+//! input windows, fitted together, with the width and the number of
+//! centres chosen by blocked cross-validation inside the training rows.
+//!
+//! Together, not in stages: the effect columns (e.g. a gyro's g_I ∝ a_z)
+//! and the RBF features (functions of the a_z window) are correlated, and a
+//! staged fit would hand the shared part to whichever stage runs first. The
+//! effects' coefficients come from cross-fitted partialling out
+//! ([`partial`]), the network is fitted on what they leave, and the OLS
+//! engine takes any forced columns first, so the centres explain only what
+//! the physics does not.
+//!
+//! This is also the layer the diagnosis asks for the fits it needs and does
+//! not make itself: the model's [`mirror`] and a [`refit_with_window`].
+
+mod channel;
+mod network;
+mod partial;
+
+use crate::model::{ChannelModelOf, Model, ModelParts};
+use crate::operating::OperatingPoints;
+use crate::split::{by_record_rows, split_rows};
+use crate::{FitOptions, Prepared, Recipe, Sensor, Signals, SysidError};
+use channel::{
+    ChannelFit, fit_channel, gather, inner_folds_fit, refit_weights, scored, windows_vary,
+};
+use rayon::prelude::*;
+use serde::Serialize;
+
+pub use partial::MIN_BLOCK_ROWS;
+
+/// Which stage of a fit is running, for progress display.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FitStage<C> {
+    /// Reading and pre-processing the records.
+    Preparing,
+    /// One channel's cross-validation and fit finished.
+    ChannelDone(C),
+}
+
+/// A fit's progress callback.
+pub type Progress<'a, C> = &'a (dyn Fn(FitStage<C>) + Sync);
+
+/// Fits every channel of `sensor` on one raw record.
+///
+/// ```
+/// # use sysid::example::{Line, line_record};
+/// let mut options = sysid::FitOptions::new(1);
+/// options.recipe.preprocess = Line::preprocess();
+/// options.recipe.effects[0] = vec![sysid::example::Slope];
+/// options.recipe.settings.max_centres = 5;
+/// let model = sysid::fit(&Line, &line_record(3000, 2.0, 1), &options, &|_| {})?;
+/// let slope = &model.channel(0).coefficients().unwrap()[0];
+/// assert!(slope.covers(2.0), "{slope:?}");
+/// # Ok::<(), sysid::SysidError>(())
+/// ```
+pub fn fit<S: Sensor>(
+    sensor: &S,
+    record: &Signals,
+    options: &FitOptions<S::Effect>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<Model<S>, SysidError> {
+    options.recipe.settings.check()?;
+    progress(FitStage::Preparing);
+    let prepared = Prepared::new(sensor, record, &options.recipe.preprocess)?;
+    fit_prepared(&prepared, options, progress)
+}
+
+/// [`fit`] on records already prepared (with `options.recipe.preprocess`;
+/// the sensor, with its calibration, comes from `prepared`).
+pub fn fit_prepared<S: Sensor>(
+    prepared: &Prepared<S>,
+    options: &FitOptions<S::Effect>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<Model<S>, SysidError> {
+    options.recipe.settings.check()?;
+    let (train, val) = match &options.validate_on {
+        Some(name) => by_record_rows(prepared, name)?,
+        None => split_rows(prepared, options.recipe.split)?,
+    };
+    let mut model = fit_rows(prepared, &options.recipe, &train, &val, progress)?;
+    model.set_validated_on(options.validate_on.clone());
+    Ok(model)
+}
+
+/// [`fit`] on several records, each prepared on its own (filters and
+/// windows never cross a boundary) and named for errors and scores.
+pub fn fit_records<S: Sensor>(
+    sensor: &S,
+    records: &[(String, &Signals)],
+    options: &FitOptions<S::Effect>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<(Model<S>, Prepared<S>), SysidError> {
+    options.recipe.settings.check()?;
+    progress(FitStage::Preparing);
+    let prepared = Prepared::new_many(sensor, records, &options.recipe.preprocess)?;
+    let mut model = fit_prepared(&prepared, options, progress)?;
+    model.set_records(record_names(records));
+    Ok((model, prepared))
+}
+
+/// The names a model or diagnosis keeps of its records: none for one
+/// record (its file is said where it is given), every one of several.
+pub(crate) fn record_names(records: &[(String, &Signals)]) -> Vec<String> {
+    match records.len() {
+        1 => Vec::new(),
+        _ => records.iter().map(|(n, _)| n.clone()).collect(),
+    }
+}
+
+/// The model's mirror, which the diagnosis's cross-fit reads: its recipe
+/// trained on its validation rows of `prepared` (the records it was fitted
+/// on, prepared by [`Model::prepare_many`]) and validated on its training
+/// rows, so that between the model and its mirror every row has a
+/// prediction from a model that did not see it.
+pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Model<S>, SysidError> {
+    let (train, val) = model.rows(prepared)?;
+    fit_rows(prepared, &model.recipe(), &val, &train, &|_| {})
+}
+
+/// `model`'s recipe fitted again on `records` with windows of `length`
+/// samples, split within each record: the trial the diagnosis's advice on a
+/// slow residual rests on.
+pub fn refit_with_window<S: Sensor>(
+    model: &Model<S>,
+    records: &[(String, &Signals)],
+    length: usize,
+) -> Result<Model<S>, SysidError> {
+    let mut recipe = model.recipe();
+    let signals = recipe.preprocess.window.signals().to_vec();
+    recipe.preprocess.window = crate::WindowSpec::new(signals, length)?;
+    let prepared = Prepared::new_many(model.sensor(), records, &recipe.preprocess)?;
+    let (train, val) = split_rows(&prepared, recipe.split)?;
+    let mut trial = fit_rows(&prepared, &recipe, &train, &val, &|_| {})?;
+    trial.set_records(record_names(records));
+    Ok(trial)
+}
+
+/// One record's validation rms of one channel, in the target's unit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RecordScore {
+    /// The record's name (its file).
+    pub file: String,
+    /// Rms of target − model on the record's validation rows.
+    pub val_rms: f64,
+}
+
+/// Each channel's validation rms on each record of `prepared`, for the
+/// validation rows the model was fitted with (the sensor's channel order);
+/// a record without validation rows (it only trained) is left out.
+pub fn record_scores<S: Sensor>(
+    model: &Model<S>,
+    prepared: &Prepared<S>,
+) -> Result<Vec<Vec<RecordScore>>, SysidError> {
+    let val = match model.validated_on() {
+        // A by-record fit validated on one whole record: asked of data without
+        // it, that is an error naming the record, not another split.
+        Some(name) => by_record_rows(prepared, name)?.1,
+        None => model.rows(prepared)?.1,
+    };
+    let predicted = model.predict(prepared)?;
+    Ok((0..model.channels().len())
+        .map(|k| {
+            let y = prepared.target(k);
+            prepared
+                .record_rows()
+                .into_iter()
+                .filter_map(|(name, range)| {
+                    let rows: Vec<usize> =
+                        val.iter().copied().filter(|r| range.contains(r)).collect();
+                    (!rows.is_empty()).then(|| RecordScore {
+                        file: name.to_string(),
+                        val_rms: stats::rms(
+                            &rows
+                                .iter()
+                                .map(|&r| y[r] - predicted[k][r])
+                                .collect::<Vec<_>>(),
+                        ),
+                    })
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// Leave one record out: each record validated, whole, by a model fitted
+/// on the others; each channel's rms per record.
+pub fn leave_one_record_out<S: Sensor>(
+    prepared: &Prepared<S>,
+    options: &FitOptions<S::Effect>,
+) -> Result<Vec<Vec<RecordScore>>, SysidError> {
+    let mut out: Vec<Vec<RecordScore>> = vec![Vec::new(); prepared.sensor().channels().len()];
+    for (name, _) in prepared.record_rows() {
+        let (train, val) = by_record_rows(prepared, name)?;
+        let m = fit_rows(prepared, &options.recipe, &train, &val, &|_| {}).map_err(|e| {
+            SysidError::InRecord {
+                record: format!("leaving out {name}"),
+                source: Box::new(e),
+            }
+        })?;
+        for (k, c) in m.channels().iter().enumerate() {
+            out[k].push(RecordScore {
+                file: name.to_string(),
+                val_rms: c.scores().val_rms,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// A recipe fitted on explicit training and validation rows of data
+/// prepared with its pre-processing (the mirror trains on a model's
+/// validation rows; leaving a record out trains on the others).
+fn fit_rows<S: Sensor>(
+    prepared: &Prepared<S>,
+    recipe: &Recipe<S::Effect>,
+    train: &[usize],
+    val: &[usize],
+    progress: Progress<'_, S::Channel>,
+) -> Result<Model<S>, SysidError> {
+    debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
+    let settings = &recipe.settings;
+    let channels = prepared.sensor().channels();
+    let (train, val) = (train.to_vec(), val.to_vec());
+    // A view of the prepared windows, not a copy: only the rows a fit works
+    // on are gathered (all training rows, or the selection subsample).
+    let x = prepared.window_view();
+    windows_vary(x, &train, recipe.preprocess.window.signals())?;
+    let stride = selection_stride(train.len());
+    let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
+    inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
+    let fit_on = if stride > 1 { &sel } else { &train };
+    let x_fit = gather(x, fit_on);
+    let fits: Vec<ChannelFit<S>> = (0..channels.len())
+        .into_par_iter()
+        .map(|k| {
+            let m = fit_channel(
+                prepared,
+                x,
+                &x_fit,
+                fit_on,
+                k,
+                recipe.effects_of(k),
+                settings,
+            );
+            progress(FitStage::ChannelDone(channels[k].clone()));
+            m
+        })
+        .collect::<Result<_, _>>()?;
+    drop(x_fit);
+    // On a subsample, the weights are solved again on every training row,
+    // over row blocks (memory independent of the number of rows), before
+    // the channel is scored.
+    let fitted: Vec<ChannelModelOf<S>> = fits
+        .into_par_iter()
+        .map(|f| match stride {
+            1 => scored(prepared, x, &train, &val, f),
+            _ => refit_weights(prepared, x, &train, f, settings)
+                .and_then(|f| scored(prepared, x, &train, &val, f)),
+        })
+        .collect::<Result<_, _>>()?;
+    let operating_points = Some(OperatingPoints::from_training(
+        prepared,
+        recipe.preprocess.window.length(),
+        &train,
+        &val,
+    )?);
+    Model::from_parts(ModelParts {
+        sensor: prepared.sensor().clone(),
+        preprocess: recipe.preprocess.clone(),
+        dt_s: prepared.calibrated().dt(),
+        split: recipe.split,
+        channels: fitted,
+        settings: settings.clone(),
+        records: Vec::new(),
+        validated_on: None,
+        operating_points,
+    })
+    .map_err(|reason| SysidError::InvalidOption {
+        name: "fitted model",
+        value: reason,
+        reason: "a fit gave an inconsistent model (a bug: please report it)",
+    })
+}
+
+/// Training windows above which cross-validation and centre selection run on
+/// every `selection_stride`-th of them; the weights are still solved on all.
+/// Their cost is rows × candidates per fold and channel: 1.6 GB a channel at
+/// 500,000 rows, where a 1M-row record needed 6 GB and over 5 minutes.
+pub const MAX_SELECTION_ROWS: usize = 50_000;
+
+/// The stride of the training windows that choose centres and width: 1 up to
+/// [`MAX_SELECTION_ROWS`]. A stride keeps time order, so the blocked folds'
+/// leakage gap of g rows spans g·stride samples, never fewer than needed.
+///
+/// ```
+/// assert_eq!(sysid::fit::selection_stride(50_000), 1);
+/// assert_eq!(sysid::fit::selection_stride(500_000), 10);
+/// ```
+pub fn selection_stride(n_train: usize) -> usize {
+    n_train.div_ceil(MAX_SELECTION_ROWS).max(1)
+}

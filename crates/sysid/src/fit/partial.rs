@@ -1,0 +1,212 @@
+//! The effects' coefficients by cross-fitted partialling out (Chernozhukov
+//! et al. 2018): a network alone on one block of the training rows, the
+//! residuals of the target and of every effect column on the other, θ
+//! from their regression with Newey–West errors; then the network on what
+//! θ leaves.
+
+use super::channel::gather;
+use super::network::fit_network;
+use crate::FitSettings;
+use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
+use faer::{Mat, MatRef};
+
+/// How the training rows are cut for cross-fitting: into this many spans of
+/// time, alternately assigned to the two blocks, so that both blocks see the
+/// whole test (every level step, the whole temperature range). Each count
+/// gives an estimate; their spread is part of the uncertainty, because the
+/// networks that partial the effects out are themselves estimates and shift
+/// with the rows they were fitted on.
+const CROSS_FIT_CHUNKS: [usize; 3] = [4, 6, 8];
+
+/// Several cross-fits' estimates as one (Chernozhukov et al. 2018, §3.4):
+/// θ the mean, σ² the mean of σ_s² + (θ_s − θ)², the fewest degrees of freedom.
+fn combine_splits(fits: &[HacFit]) -> Option<HacFit> {
+    let first = fits.first()?;
+    let s = fits.len() as f64;
+    let p = first.coef.len();
+    let mut out = first.clone();
+    for j in 0..p {
+        let mean = fits.iter().map(|f| f.coef[j]).sum::<f64>() / s;
+        let var = fits
+            .iter()
+            .map(|f| f.se[j].powi(2) + (f.coef[j] - mean).powi(2))
+            .sum::<f64>()
+            / s;
+        out.coef[j] = mean;
+        out.se[j] = var.sqrt();
+    }
+    out.dof = fits.iter().map(|f| f.dof).fold(f64::INFINITY, f64::min);
+    Some(out)
+}
+
+/// Fewest rows in each cross-fitting block: each block's network is chosen
+/// by its own cross-validation, which needs a few hundred windows.
+pub const MIN_BLOCK_ROWS: usize = 200;
+
+/// The effects' coefficients (each in its unit of `units`) by cross-fitted partialling out, then the network
+/// on what the effects leave.
+///
+/// The training rows are cut in two blocks (with the leakage gap between).
+/// On each block a network alone (no effects) is fitted to y by
+/// cross-validation; its basis (bias and kernel columns) is fitted by least
+/// squares to y and to every effect column on that block, and the residuals
+/// are taken on the other block. θ is the regression of y's residual on the
+/// effects' residuals over both blocks, with Newey–West standard errors.
+/// The final network is fitted to y − Zθ on all training rows.
+///
+/// With blocks too short for their own cross-validation the fit is joint (θ
+/// and the network in one solve) and θ's standard errors come from the same
+/// regression in-sample (Frisch–Waugh–Lovell), which is optimistic.
+pub(super) fn fit_partially_linear(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    train: &[usize],
+    units: &[String],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<(rbf::RbfModel, Vec<Coefficient>), rbf::RbfError> {
+    let p = units.len();
+    let cuts: Vec<Blocks> = CROSS_FIT_CHUNKS
+        .iter()
+        .filter_map(|&k| Blocks::alternating(train, gap, k))
+        .filter(|b| b.first.len().min(b.second.len()) >= MIN_BLOCK_ROWS)
+        .collect();
+    let mut fits = Vec::with_capacity(cuts.len());
+    for b in &cuts {
+        if let Some(f) = cross_fit(x, z, y, b, settings, gap)? {
+            fits.push(f);
+        }
+    }
+    let inference = combine_splits(&fits);
+    let x_train = gather(x, train);
+    let z_train = gather(z.as_ref(), train);
+    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
+    let (model, fit) = match inference {
+        Some(f) => {
+            let theta = Mat::from_fn(p, 1, |j, _| f.coef[j]);
+            let y_adj = &y_train - &z_train * &theta;
+            let net = fit_network(
+                settings,
+                x_train.as_ref(),
+                Mat::<f64>::zeros(train.len(), 0).as_ref(),
+                y_adj.as_ref(),
+                gap,
+            )?;
+            (net.with_linear(theta.as_ref()), Some(f))
+        }
+        None => joint_fit(x, z, y, train, settings, gap)?,
+    };
+    let theta = model.linear_coefficients();
+    // No interval rather than a made-up one when the regression of the
+    // residuals failed (the model file then carries none).
+    let coefficients = match &fit {
+        Some(f) => units
+            .iter()
+            .enumerate()
+            .map(|(j, unit)| {
+                // Centred on the stored value (θ itself, or the joint fit's in the fallback).
+                let half = f.interval(j, 0.95).map(|b| b - f.coef[j]);
+                let v = theta[(j, 0)];
+                Coefficient::new(v, f.se[j], [v + half[0], v + half[1]], unit.as_str())
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    Ok((model, coefficients))
+}
+
+/// `[y, Z]` on `rows`: the targets whose residuals on a network's basis
+/// the partialling out regresses.
+fn y_and_z(y: &[f64], z: &Mat<f64>, rows: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), 1 + z.ncols(), |i, j| {
+        if j == 0 {
+            y[rows[i]]
+        } else {
+            z[(rows[i], j - 1)]
+        }
+    })
+}
+
+/// One cross-fit: residuals of `[y, Z]` on each block from the other
+/// block's basis (a network alone fitted there), put back in time order,
+/// and θ with its HAC errors.
+fn cross_fit(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    b: &Blocks,
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Option<HacFit>, rbf::RbfError> {
+    let p = z.ncols();
+    let mut by_row: Vec<(usize, Vec<f64>)> = Vec::with_capacity(b.first.len() + b.second.len());
+    for (fit_rows, test_rows) in [(&b.second, &b.first), (&b.first, &b.second)] {
+        let xf = gather(x, fit_rows);
+        let yf = Mat::from_fn(fit_rows.len(), 1, |i, _| y[fit_rows[i]]);
+        let no_z = Mat::<f64>::zeros(fit_rows.len(), 0);
+        let net = fit_network(settings, xf.as_ref(), no_z.as_ref(), yf.as_ref(), gap)?;
+        let xt = gather(x, test_rows);
+        let r = residualise(
+            net.features(xf.as_ref()).as_ref(),
+            y_and_z(y, z, fit_rows).as_ref(),
+            net.features(xt.as_ref()).as_ref(),
+            y_and_z(y, z, test_rows).as_ref(),
+            1,
+            settings.ridge,
+        )
+        .map_err(rbf::RbfError::from)?;
+        by_row.extend(
+            test_rows
+                .iter()
+                .enumerate()
+                .map(|(i, &row)| (row, (0..=p).map(|j| r[(i, j)]).collect())),
+        );
+    }
+    by_row.sort_by_key(|(row, _)| *row);
+    let column = |j: usize| -> Vec<f64> { by_row.iter().map(|(_, v)| v[j]).collect() };
+    let rz: Vec<Vec<f64>> = (1..=p).map(column).collect();
+    let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
+    Ok(hac_regression(&column(0), &cols).ok())
+}
+
+/// The joint fit of blocks too short to cross-fit: θ and the network in one
+/// solve, θ's uncertainty from the same projection in-sample.
+fn joint_fit(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    train: &[usize],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<(rbf::RbfModel, Option<HacFit>), rbf::RbfError> {
+    let p = z.ncols();
+    let x_train = gather(x, train);
+    let z_train = gather(z.as_ref(), train);
+    let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
+    let joint = fit_network(
+        settings,
+        x_train.as_ref(),
+        z_train.as_ref(),
+        y_train.as_ref(),
+        gap,
+    )?;
+    let phi = joint.features(x_train.as_ref());
+    let targets = y_and_z(y, z, train);
+    let r = residualise(
+        phi.as_ref(),
+        targets.as_ref(),
+        phi.as_ref(),
+        targets.as_ref(),
+        1,
+        settings.ridge,
+    )
+    .map_err(rbf::RbfError::from)?;
+    let ry: Vec<f64> = (0..r.nrows()).map(|i| r[(i, 0)]).collect();
+    let rz: Vec<Vec<f64>> = (1..=p)
+        .map(|j| (0..r.nrows()).map(|i| r[(i, j)]).collect())
+        .collect();
+    let cols: Vec<&[f64]> = rz.iter().map(Vec::as_slice).collect();
+    let f = hac_regression(&ry, &cols).ok();
+    Ok((joint, f))
+}

@@ -1,0 +1,443 @@
+//! From raw records to model inputs: the plug-in's calibration and targets,
+//! the low-pass (zero-phase, or causal in [`Preprocess::causal`] mode), the
+//! windows and the effects' regressors, each record on its own and laid end
+//! to end.
+
+use crate::window::Windows;
+use crate::{Preprocess, Sensor, Signals, SysidError};
+use faer::{Mat, MatRef};
+use iir::LowPass;
+
+/// Records prepared for fitting, prediction or diagnosis, with the sensor
+/// (its calibration) and pre-processing they were prepared with: a fit on
+/// them keeps both, so nothing prepared one way is fitted as if it were
+/// another.
+///
+/// Row `r` of the windows (and of every per-row quantity) is sample
+/// `first_sample() + r` of [`Prepared::calibrated`].
+///
+/// ```
+/// # use sysid::example::Line;
+/// let t: Vec<f64> = (0..100).map(|i| i as f64 * 0.1).collect();
+/// let u: Vec<f64> = t.iter().map(|t| t.sin()).collect();
+/// let y: Vec<f64> = u.iter().map(|u| 2.0 * u).collect();
+/// let rec = sysid::Signals::new(t, vec![("y".into(), y), ("u".into(), u)])?;
+/// let pre = sysid::Preprocess { filter: None, window: sysid::WindowSpec::new(vec!["u".into()], 10)?, ..Default::default() };
+/// let p = sysid::Prepared::new(&Line, &rec, &pre)?;
+/// assert_eq!((p.rows(), p.first_sample()), (91, 9));
+/// assert_eq!(p.target(0)[0], 2.0 * p.windows().row(0)[9]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Prepared<S: Sensor> {
+    sensor: S,
+    preprocess: Preprocess,
+    calibrated: Signals,
+    /// The records of a multi-record preparation, each calibrated and
+    /// untrimmed, with their rows; empty for one record.
+    parts: Vec<Part>,
+    filter: Option<LowPass>,
+    /// Filtered targets per channel, full length.
+    targets: Vec<Vec<f64>>,
+    windows: Windows,
+}
+
+/// One record of a multi-record preparation.
+#[derive(Debug, Clone)]
+struct Part {
+    name: String,
+    calibrated: Signals,
+    rows: std::ops::Range<usize>,
+}
+
+/// A plug-in's error as the loop's.
+pub(crate) fn sensor_error(e: crate::SensorError) -> SysidError {
+    SysidError::Sensor(e)
+}
+
+impl<S: Sensor> Prepared<S> {
+    /// Calibrates `raw` (the sensor's), takes the targets, filters and forms
+    /// windows.
+    pub fn new(sensor: &S, raw: &Signals, pre: &Preprocess) -> Result<Self, SysidError> {
+        let causal = pre.causal;
+        let calibrated = sensor.calibrate(raw).map_err(sensor_error)?;
+        let design = |f: Option<crate::FilterSpec>| {
+            f.map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
+                .transpose()
+        };
+        let filter = design(pre.filter)?;
+        let targets = sensor
+            .targets(&calibrated)
+            .map_err(sensor_error)?
+            .iter()
+            .map(|y| apply(&filter, causal, y))
+            .collect::<Result<Vec<_>, _>>()?;
+        let input_filter = design(pre.input_filter)?;
+        let mut signals = Vec::with_capacity(pre.window.signals().len());
+        for name in pre.window.signals() {
+            signals.push(apply(
+                &input_filter,
+                causal,
+                signal(sensor, &calibrated, name)?,
+            )?);
+        }
+        let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
+        let windows = pre.window.build(&refs)?;
+        Ok(Self {
+            sensor: sensor.clone(),
+            preprocess: pre.clone(),
+            calibrated,
+            parts: Vec::new(),
+            filter,
+            targets,
+            windows,
+        })
+    }
+
+    /// Several records prepared one by one (calibration, filter and windows
+    /// never cross from one record to the next) and laid end to end, named
+    /// (by their file, say) for errors and per-record scores.
+    ///
+    /// Row `r` is still sample `first_sample() + r` of
+    /// [`Prepared::calibrated`], which holds the records one after another
+    /// with each later record's warm-up (the samples before its first full
+    /// window) left out and its time restamped to continue the first
+    /// record's. The records must share their sample interval and their
+    /// extra columns. One record gives exactly [`Prepared::new`].
+    pub fn new_many(
+        sensor: &S,
+        records: &[(String, &Signals)],
+        pre: &Preprocess,
+    ) -> Result<Self, SysidError> {
+        let Some(((first_name, first_record), rest)) = records.split_first() else {
+            return Err(SysidError::NoRecords);
+        };
+        if rest.is_empty() {
+            return Self::new(sensor, first_record, pre);
+        }
+        let extras = |r: &Signals| {
+            let mut names = sensor.extra_columns(r);
+            names.sort_unstable();
+            names
+        };
+        let names = extras(first_record);
+        for (name, r) in rest {
+            let dt = (first_record.dt(), r.dt());
+            if (dt.0 - dt.1).abs() > 1e-9 * dt.0 {
+                return Err(SysidError::RecordsDiffer {
+                    first: first_name.clone(),
+                    other: name.clone(),
+                    what: format!("sampling interval {} s against {} s", dt.0, dt.1),
+                });
+            }
+            let other = extras(r);
+            if other != names {
+                return Err(SysidError::RecordsDiffer {
+                    first: first_name.clone(),
+                    other: name.clone(),
+                    what: format!(
+                        "extra columns [{}] against [{}]",
+                        names.join(", "),
+                        other.join(", ")
+                    ),
+                });
+            }
+        }
+        let prepared = records
+            .iter()
+            .map(|(name, r)| {
+                Self::new(sensor, r, pre).map_err(|e| SysidError::InRecord {
+                    record: name.clone(),
+                    source: Box::new(e),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self::concat(prepared, records))
+    }
+
+    /// Prepared records laid end to end, each later one without its warm-up.
+    fn concat(prepared: Vec<Self>, records: &[(String, &Signals)]) -> Self {
+        let first = prepared[0].first_sample();
+        let trim = |k: usize| if k == 0 { 0 } else { first };
+        let mut parts = Vec::with_capacity(prepared.len());
+        let mut row = 0;
+        for (p, (name, _)) in prepared.iter().zip(records) {
+            let rows = p.rows();
+            parts.push(Part {
+                name: name.clone(),
+                calibrated: p.calibrated.clone(),
+                rows: row..row + rows,
+            });
+            row += rows;
+        }
+        let targets: Vec<Vec<f64>> = (0..prepared[0].targets.len())
+            .map(|k| {
+                prepared
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(i, p)| p.targets[k][trim(i)..].iter().copied())
+                    .collect()
+            })
+            .collect();
+        let calibrated = Signals::concat(
+            &prepared.iter().map(|p| &p.calibrated).collect::<Vec<_>>(),
+            first,
+        );
+        let windows = Windows::concat(
+            &prepared
+                .iter()
+                .map(|p| p.windows.clone())
+                .collect::<Vec<_>>(),
+        );
+        let head = prepared.into_iter().next().expect("two or more records");
+        Self {
+            sensor: head.sensor,
+            preprocess: head.preprocess,
+            calibrated,
+            parts,
+            filter: head.filter,
+            targets,
+            windows,
+        }
+    }
+
+    /// The sensor the records were calibrated and read by.
+    pub fn sensor(&self) -> &S {
+        &self.sensor
+    }
+
+    /// How the records were prepared.
+    pub fn preprocess(&self) -> &Preprocess {
+        &self.preprocess
+    }
+
+    /// The records and their rows: one entry per record of
+    /// [`Prepared::new_many`], and one named `""` for [`Prepared::new`].
+    pub fn record_rows(&self) -> Vec<(&str, std::ops::Range<usize>)> {
+        if self.parts.is_empty() {
+            return vec![("", 0..self.rows())];
+        }
+        self.parts
+            .iter()
+            .map(|p| (p.name.as_str(), p.rows.clone()))
+            .collect()
+    }
+
+    /// The record (calibrated, whole) a row belongs to, and the sample of
+    /// that record its window ends at: a window's span `sample + 1 −
+    /// length ..= sample` then lies inside one record.
+    pub fn locate(&self, row: usize) -> (&Signals, usize) {
+        let first = self.first_sample();
+        match self.parts.iter().find(|p| p.rows.contains(&row)) {
+            Some(p) => (&p.calibrated, first + row - p.rows.start),
+            None => (&self.calibrated, first + row),
+        }
+    }
+
+    /// A per-record series over the full (concatenated) sample range:
+    /// computed on each record alone, filtered on it alone, warm-up of each
+    /// later record left out.
+    fn per_record(
+        &self,
+        f: impl Fn(&Signals) -> Result<Vec<Vec<f64>>, SysidError>,
+    ) -> Result<Vec<Vec<f64>>, SysidError> {
+        if self.parts.is_empty() {
+            return f(&self.calibrated);
+        }
+        let first = self.first_sample();
+        let mut out: Vec<Vec<f64>> = Vec::new();
+        for (k, p) in self.parts.iter().enumerate() {
+            let cols = f(&p.calibrated).map_err(|e| SysidError::InRecord {
+                record: p.name.clone(),
+                source: Box::new(e),
+            })?;
+            out.resize_with(cols.len(), || Vec::with_capacity(self.calibrated.len()));
+            for (o, c) in out.iter_mut().zip(cols) {
+                o.extend(c.into_iter().skip(if k == 0 { 0 } else { first }));
+            }
+        }
+        Ok(out)
+    }
+
+    /// The calibrated (not filtered) records, end to end.
+    pub fn calibrated(&self) -> &Signals {
+        &self.calibrated
+    }
+
+    /// Number of rows (windows).
+    pub fn rows(&self) -> usize {
+        self.windows.len()
+    }
+
+    /// Record sample of row 0.
+    pub fn first_sample(&self) -> usize {
+        self.windows.first_sample()
+    }
+
+    /// The windows as an `rows × dim` matrix.
+    pub fn window_matrix(&self) -> Mat<f64> {
+        let w = &self.windows;
+        Mat::from_fn(w.len(), w.dim(), |i, j| w.row(i)[j])
+    }
+
+    /// The windows as an `rows × dim` matrix view of the prepared windows
+    /// themselves ([`Windows::matrix`]; nothing is copied): what
+    /// [`Prepared::window_matrix`] holds, without its copy (400 MB for a
+    /// 1M-row record of 50-sample windows).
+    pub fn window_view(&self) -> MatRef<'_, f64> {
+        self.windows.matrix()
+    }
+
+    /// The windows.
+    pub fn windows(&self) -> &Windows {
+        &self.windows
+    }
+
+    /// Channel `channel`'s filtered target over the whole record.
+    pub fn target_full(&self, channel: usize) -> &[f64] {
+        &self.targets[channel]
+    }
+
+    /// Channel `channel`'s target on the rows.
+    pub fn target(&self, channel: usize) -> &[f64] {
+        &self.targets[channel][self.first_sample()..]
+    }
+
+    /// The filtered regressors of `effects` of channel `channel` over the
+    /// whole record.
+    pub fn effect_columns_full(
+        &self,
+        channel: usize,
+        effects: &[S::Effect],
+    ) -> Result<Vec<Vec<f64>>, SysidError> {
+        // No effects, no columns: a record's regressors (0.5 GB of rates
+        // and covariances for a 1M-sample inertial record) are not worked
+        // out for nothing.
+        if effects.is_empty() {
+            return Ok(Vec::new());
+        }
+        // Regressors first, filter second: the sensor saw the regressor (a
+        // product of inputs, say), and the filtered output holds the
+        // filtered regressor, not one of filtered inputs.
+        self.per_record(|record| {
+            let cols = self
+                .sensor
+                .regressors(record, channel, effects)
+                .map_err(sensor_error)?;
+            cols.iter()
+                .map(|c| apply(&self.filter, self.preprocess.causal, c))
+                .collect()
+        })
+    }
+
+    /// The regressors of channel `channel` on the rows, as an
+    /// `rows × effects` matrix.
+    pub fn effect_matrix(
+        &self,
+        channel: usize,
+        effects: &[S::Effect],
+    ) -> Result<Mat<f64>, SysidError> {
+        let cols = self.effect_columns_full(channel, effects)?;
+        let first = self.first_sample();
+        Ok(Mat::from_fn(self.rows(), cols.len(), |i, j| {
+            cols[j][first + i]
+        }))
+    }
+
+    /// A record signal (an operating signal or an extra column), filtered,
+    /// over the whole record.
+    pub fn signal_full(&self, name: &str) -> Result<Vec<f64>, SysidError> {
+        let filtered = |r: &Signals| {
+            apply(
+                &self.filter,
+                self.preprocess.causal,
+                signal(&self.sensor, r, name)?,
+            )
+            .map(|v| vec![v])
+        };
+        Ok(self.per_record(filtered)?.pop().unwrap_or_default())
+    }
+
+    /// A series over the whole record (one sample per record sample)
+    /// through the filter the targets went through, zero-phase or causal:
+    /// e.g. a simulator's per-sample noise floor as the model's target sees
+    /// it. For a preparation of one record (a series over several would be
+    /// filtered across their boundaries).
+    pub fn filter_like_targets(&self, x: &[f64]) -> Result<Vec<f64>, SysidError> {
+        apply(&self.filter, self.preprocess.causal, x)
+    }
+
+    /// True when prepared in causal mode ([`Preprocess::causal`]).
+    pub fn causal(&self) -> bool {
+        self.preprocess.causal
+    }
+
+    /// The designed filter, if any.
+    pub fn filter(&self) -> Option<&LowPass> {
+        self.filter.as_ref()
+    }
+
+    /// Samples over which one sample influences its filtered neighbours on
+    /// each side (where the impulse response, zero-phase or causal, exceeds
+    /// 10⁻³ of its peak); 0 without a filter. Train and validation rows are
+    /// kept this far apart, plus a window length, so nothing leaks across.
+    pub fn filter_memory(&self) -> usize {
+        let Some(f) = &self.filter else { return 0 };
+        if self.preprocess.causal {
+            let mut impulse = vec![0.0; 4000];
+            impulse[0] = 1.0;
+            let h = f.filter(&impulse);
+            let peak = h.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            return (1..h.len())
+                .rev()
+                .find(|&k| h[k].abs() > 1e-3 * peak)
+                .unwrap_or(0);
+        }
+        let half = 2000;
+        let mut impulse = vec![0.0; 2 * half + 1];
+        impulse[half] = 1.0;
+        let Ok(h) = f.filtfilt(&impulse) else {
+            return 0;
+        };
+        let peak = h[half].abs();
+        (1..half)
+            .rev()
+            .find(|&k| h[half + k].abs() > 1e-3 * peak)
+            .unwrap_or(0)
+    }
+}
+
+/// `x` through the filter (forward–backward, or one causal pass), or as it
+/// is without one.
+fn apply(filter: &Option<LowPass>, causal: bool, x: &[f64]) -> Result<Vec<f64>, SysidError> {
+    Ok(match filter {
+        Some(f) if causal => {
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                return Err(iir::FilterError::NotFinite { index: i }.into());
+            }
+            f.filter_causal(x)
+        }
+        Some(f) => f.filtfilt(x)?,
+        None => x.to_vec(),
+    })
+}
+
+/// A signal a window or a test may read: one of the sensor's operating
+/// signals or an extra column of the record (never its outputs).
+pub fn signal<'r, S: Sensor>(
+    sensor: &S,
+    record: &'r Signals,
+    name: &str,
+) -> Result<&'r [f64], SysidError> {
+    let operating = sensor.operating_signals();
+    let extras = sensor.extra_columns(record);
+    let known = operating.iter().chain(&extras).any(|n| n == name);
+    match record.column(name) {
+        Some(v) if known => Ok(v),
+        _ => Err(SysidError::WindowSignal {
+            name: name.to_string(),
+            operating,
+            available: extras,
+        }),
+    }
+}
