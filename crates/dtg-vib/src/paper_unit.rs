@@ -256,7 +256,7 @@ impl sysid::Sensor for PaperUnit {
             .into_iter()
             .max_by(|a, b| variances[a.index()].total_cmp(&variances[b.index()]))
             .unwrap_or(Axis::Z);
-        crate::diagnose::separation(
+        crate::diagnose::separate::separation(
             Channel::ALL[channel],
             group,
             kappa,

@@ -2,8 +2,11 @@
 //! before and after compensation, and how much of the record lies outside
 //! the operating range the model was trained on ([`crate::operating`]).
 
+use crate::error::SysidError;
+use crate::model::Model;
 use crate::operating::{OUTSIDE_FACTOR, points};
-use crate::{Model, Prepared, Sensor, SysidError};
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
 use serde::Serialize;
 
 /// Share of windows outside the training range above which the check warns.

@@ -1,7 +1,7 @@
 //! What the loop can refuse: each variant says what is wrong and, where it
 //! helps, how to fix it. A plug-in's own error passes through as it is.
 
-use crate::SensorError;
+use crate::sensor::SensorError;
 
 /// Everything the identification loop can refuse.
 #[derive(Debug, thiserror::Error)]
@@ -11,7 +11,7 @@ pub enum SysidError {
     Sensor(SensorError),
     /// Columns cannot form a record.
     #[error(transparent)]
-    Signals(#[from] crate::SignalsError),
+    Signals(#[from] crate::signals::SignalsError),
     /// The k-d tree of operating points cannot be built (non-finite
     /// operating signals reach it only through a hand-edited model).
     #[error("operating points of the model: {0}; refit the model")]

@@ -4,10 +4,10 @@
 //! examples and the crate's own tests fit; `examples/pressure_transducer.rs`
 //! is a sensor with physics.
 
-use crate::{
-    Candidacy, Effect, OperatingStats, Preprocess, Sensor, SensorError, Separation, Signals,
-    WindowSpec, Wording,
-};
+use crate::preprocess::Preprocess;
+use crate::sensor::{Candidacy, Effect, OperatingStats, Sensor, SensorError, Separation, Wording};
+use crate::signals::Signals;
+use crate::window::WindowSpec;
 use serde::{Deserialize, Serialize};
 
 /// The one effect of [`Line`]: the slope on the input, id `u`.

@@ -11,8 +11,12 @@
 //! diagnosis only reads.
 
 use crate::diagnose::{DiagnoseOptions, Diagnosis, RecordSeparation, diagnose_prepared};
+use crate::error::SysidError;
 use crate::fit::{FitStage, fit_records, mirror, refit_with_window};
-use crate::{Effect, FitOptions, Model, Sensor, Separation, Signals, SysidError};
+use crate::model::Model;
+use crate::recipe::FitOptions;
+use crate::sensor::{Effect, Sensor, Separation};
+use crate::signals::Signals;
 use serde::Serialize;
 
 /// Diagnoses a fitted model on the records it was fitted on (named as at

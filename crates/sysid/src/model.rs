@@ -3,10 +3,15 @@
 //! windows; with the sensor and recipe it was fitted with, so new records
 //! are prepared exactly as the training records were.
 
+use crate::error::SysidError;
 use crate::inference::Coefficient;
 use crate::operating::OperatingPoints;
+use crate::prepared::Prepared;
+use crate::preprocess::Preprocess;
+use crate::recipe::{FitSettings, Recipe};
+use crate::sensor::Sensor;
+use crate::signals::Signals;
 use crate::split::{Holdout, by_record_rows, split_rows};
-use crate::{FitSettings, Prepared, Preprocess, Recipe, Sensor, Signals, SysidError};
 use faer::Mat;
 use rbf::RbfModel;
 use serde::{Deserialize, Serialize};

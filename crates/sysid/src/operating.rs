@@ -20,7 +20,9 @@
 //! reference (kiddo's k-d tree finds it). The reference is measured, not
 //! assumed, so it holds whatever the spacing of the training points.
 
-use crate::{Prepared, Sensor, SysidError};
+use crate::error::SysidError;
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use serde::{Deserialize, Serialize};
 

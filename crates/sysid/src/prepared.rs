@@ -3,8 +3,11 @@
 //! windows and the effects' regressors, each record on its own and laid end
 //! to end.
 
+use crate::error::SysidError;
+use crate::preprocess::Preprocess;
+use crate::sensor::Sensor;
+use crate::signals::Signals;
 use crate::window::Windows;
-use crate::{Preprocess, Sensor, Signals, SysidError};
 use faer::{Mat, MatRef};
 use iir::LowPass;
 
@@ -51,7 +54,7 @@ struct Part {
 }
 
 /// A plug-in's error as the loop's.
-pub(crate) fn sensor_error(e: crate::SensorError) -> SysidError {
+pub(crate) fn sensor_error(e: crate::sensor::SensorError) -> SysidError {
     SysidError::Sensor(e)
 }
 
@@ -61,7 +64,7 @@ impl<S: Sensor> Prepared<S> {
     pub fn new(sensor: &S, raw: &Signals, pre: &Preprocess) -> Result<Self, SysidError> {
         let causal = pre.causal;
         let calibrated = sensor.calibrate(raw).map_err(sensor_error)?;
-        let design = |f: Option<crate::FilterSpec>| {
+        let design = |f: Option<crate::preprocess::FilterSpec>| {
             f.map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
                 .transpose()
         };

@@ -1,7 +1,7 @@
 //! What decides a fit besides the data: the recipe a model stores and hands
 //! back to be fitted again the same way, and the options of one fit.
 
-use crate::SysidError;
+use crate::error::SysidError;
 use crate::preprocess::Preprocess;
 use crate::split::Holdout;
 use rbf::Kernel;

@@ -5,7 +5,7 @@
 //! be missing and how to compute their regressors, and which experiment
 //! tells two look-alike effects apart.
 
-use crate::Signals;
+use crate::signals::Signals;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::fmt::{Debug, Display};

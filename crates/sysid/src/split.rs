@@ -11,7 +11,9 @@
 //! knows: the gap its windows and filter need, and the fewest rows a side
 //! may have.
 
-use crate::{Prepared, Sensor, SysidError};
+use crate::error::SysidError;
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
 pub use rbf::Holdout;
 
 /// Fewest rows on either side of a split.

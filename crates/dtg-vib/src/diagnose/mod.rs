@@ -5,7 +5,7 @@
 //! The loop layer that fits the mirror and the longer-window trial and
 //! hands the diagnosis their predictions is [`crate::explain`].
 
-mod separate;
+pub(crate) mod separate;
 
 pub use separate::{Separation, response, separation};
 pub use sysid::diagnose::{

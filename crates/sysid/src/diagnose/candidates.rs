@@ -6,8 +6,10 @@
 use super::context::Context;
 use super::crossfit::CrossFit;
 use super::{Ranking, Unexcited, rank, record_separations};
+use crate::error::SysidError;
 use crate::model::ChannelModelOf;
-use crate::{Candidacy, Effect, Prepared, Sensor, SysidError};
+use crate::prepared::Prepared;
+use crate::sensor::{Candidacy, Effect, Sensor};
 use faer::Mat;
 
 /// A channel's ranking, and each candidate's column (filtered, less its

@@ -2,7 +2,9 @@
 //! validation rows, the rates the residual tests run at, and the rows far
 //! enough from a record's ends to test.
 
-use crate::{OperatingStats, Prepared, Sensor, SysidError};
+use crate::error::SysidError;
+use crate::prepared::Prepared;
+use crate::sensor::{OperatingStats, Sensor};
 
 /// What every channel's diagnosis shares: inputs on the validation rows.
 pub(super) struct Context {

@@ -3,8 +3,10 @@
 //! residual from a model that did not see it, and a candidate column has
 //! each half's function space projected out the same way.
 
+use crate::error::SysidError;
 use crate::model::ChannelModelOf;
-use crate::{Prepared, Sensor, SysidError};
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
 use faer::Mat;
 
 /// One half of a cross-fit: a channel model, its predictions, the rows it

@@ -1,7 +1,7 @@
 //! What a channel's diagnosis says in words, most actionable first.
 
 use super::{Band, Ranking, Regime, Segment};
-use crate::Wording;
+use crate::sensor::Wording;
 
 /// A p-value as text: below double precision's resolution of 1 − cdf it
 /// is a bound, not a number.

@@ -26,9 +26,11 @@ pub use locate::{Band, Regime, RegimeBin, ResidualSpectrum, Segment, regime, seg
 pub use rank::{Candidate, RankOptions, Ranking, Unexcited, rank};
 pub use records::{MIN_ENERGY_SHARE, RecordCorrelation, RecordSeparation, record_separations};
 
+use crate::error::SysidError;
 use crate::model::{ChannelModelOf, ChannelScores, Model};
+use crate::prepared::Prepared;
 use crate::residuals::CorrelationCheck;
-use crate::{Effect, Prepared, Sensor, SysidError};
+use crate::sensor::{Effect, Sensor};
 use context::Context;
 use crossfit::{CrossFit, Half};
 use serde::Serialize;
@@ -279,7 +281,7 @@ fn diagnose_channel<S: Sensor>(
 ) -> Result<ChannelDiagnosis<S::Channel, S::Axis>, SysidError> {
     let y = prepared.target(cross.channel);
     let residual: Vec<f64> = val.iter().map(|&r| y[r] - predicted[r]).collect();
-    let compare = crate::score(y, predicted, train, val);
+    let compare = crate::model::score(y, predicted, train, val);
     let candidates::Ranked { ranking, series } =
         candidates::rank_candidates(model, prepared, (train, val), cross, ctx, opts)?;
     let (checks, failing) = checks::correlation_checks(&residual, ctx, opts);

@@ -11,8 +11,8 @@
 //! A candidate's coefficient is then what the network cannot absorb, and the
 //! evidence comes from every row of the record, not one validation half.
 
-use crate::Effect;
 use crate::inference::{HacFit, hac_regression};
+use crate::sensor::Effect;
 use faer::Mat;
 use serde::Serialize;
 

@@ -4,10 +4,13 @@
 
 use super::network::fit_network;
 use super::partial::fit_partially_linear;
+use crate::error::SysidError;
 use crate::inference::Coefficient;
 use crate::model::{ChannelModel, ChannelModelOf, score};
+use crate::prepared::Prepared;
+use crate::recipe::FitSettings;
+use crate::sensor::{Effect, Sensor};
 use crate::split::leakage_gap;
-use crate::{Effect, FitSettings, Prepared, Sensor, SysidError};
 use faer::{Mat, MatRef, Par};
 use rbf::{CentreSelection, ParamGuard, RbfParams, Split, WidthRule};
 
@@ -313,7 +316,7 @@ mod tests {
             recipe.settings.width_scales = vec![1.0];
             let prepared = Prepared::new(&Line, &rec, &recipe.preprocess).unwrap();
             let (train, val) = split_rows(&prepared, recipe.split).unwrap();
-            let options = crate::FitOptions {
+            let options = crate::recipe::FitOptions {
                 recipe: recipe.clone(),
                 validate_on: None,
             };

@@ -17,10 +17,14 @@ mod channel;
 mod network;
 mod partial;
 
+use crate::error::SysidError;
 use crate::model::{ChannelModelOf, Model, ModelParts};
 use crate::operating::OperatingPoints;
+use crate::prepared::Prepared;
+use crate::recipe::{FitOptions, Recipe};
+use crate::sensor::Sensor;
+use crate::signals::Signals;
 use crate::split::{by_record_rows, split_rows};
-use crate::{FitOptions, Prepared, Recipe, Sensor, Signals, SysidError};
 use channel::{
     ChannelFit, fit_channel, gather, inner_folds_fit, refit_weights, scored, windows_vary,
 };

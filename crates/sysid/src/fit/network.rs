@@ -1,7 +1,7 @@
 //! The network chosen by blocked cross-validation over widths and numbers
 //! of centres, refitted on all the rows it was chosen on.
 
-use crate::{CentreMethod, FitSettings};
+use crate::recipe::{CentreMethod, FitSettings};
 use faer::{MatRef, Par};
 use rbf::{
     Candidates, CentreSelection, Grid, KMeansSettings, ParamGuard, RbfParams, Sizes, Split,

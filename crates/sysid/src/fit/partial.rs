@@ -6,8 +6,8 @@
 
 use super::channel::gather;
 use super::network::fit_network;
-use crate::FitSettings;
 use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
+use crate::recipe::FitSettings;
 use faer::{Mat, MatRef};
 
 /// How the training rows are cut for cross-fitting: into this many spans of
