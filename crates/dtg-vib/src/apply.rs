@@ -42,12 +42,13 @@ impl Applied {
     pub fn unsplit(model: &CompensationModel, record: &Record) -> Result<Self, DtgVibError> {
         let prepared = model.prepare(record)?;
         if prepared.rows() < 2 {
-            return Err(DtgVibError::TooFewSamples {
+            return Err(sysid::SysidError::TooFewSamples {
                 what: "full windows",
                 have: prepared.rows(),
                 need: 2,
                 hint: "a compensated record needs two samples with a full window: use a longer record",
-            });
+            }
+            .into());
         }
         // A causal model runs sample by sample through the onboard evaluator
         // (the code a flight computer runs); a zero-phase one as a batch.

@@ -31,37 +31,9 @@ pub enum DtgVibError {
     /// A model cannot be exported or run on-line.
     #[error("export: {0}")]
     Export(#[from] crate::onboard::error::ExportError),
-    /// A value the pre-processing computed is non-finite or beyond ±1e150
-    /// (where squares overflow): said with the record time it belongs to.
-    #[error(
-        "{what} is {value:e} at t = {t} s (data row {row}), beyond ±1e150 where squares overflow; {hint}"
-    )]
-    OutOfRange {
-        what: String,
-        value: f64,
-        t: f64,
-        /// 1-based data row of the record.
-        row: usize,
-        hint: &'static str,
-    },
     /// An effect id, `CHANNEL=ID` pair or effect column is wrong.
     #[error(transparent)]
     Effect(#[from] crate::effects::EffectError),
-    /// Too few windows to train and validate.
-    #[error("{what}: {have} windows, need at least {need} ({hint})")]
-    TooFewSamples {
-        what: &'static str,
-        have: usize,
-        need: usize,
-        hint: &'static str,
-    },
-    /// An option is out of range.
-    #[error("{name} = {value}: {reason}")]
-    InvalidOption {
-        name: &'static str,
-        value: String,
-        reason: &'static str,
-    },
     /// An anisoinertia effect on a record whose angular rate does not vary.
     #[error(
         "channel {channel}: effect {effect} (anisoinertia) needs a varying angular rate, but the rate varies by only {rate_std_deg_s:.3} deg/s (< {min_deg_s} deg/s) over the training rows: its rate products would fit the gyros' own noise and drift; drop it or fit on a rate-table record"

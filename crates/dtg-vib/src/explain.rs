@@ -15,7 +15,7 @@ use crate::diagnose::{DiagnoseOptions, Diagnosis};
 use crate::error::DtgVibError;
 use crate::fit::FitOptions;
 use crate::model::CompensationModel;
-use crate::paper_unit::{PaperUnit, to_signals};
+use crate::paper_unit::{PaperUnit, borrowed, named_signals};
 use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::{Axis, Channel};
 use nav_sensors::record::Record;
@@ -41,14 +41,6 @@ pub struct Explanation {
     pub model: CompensationModel,
     /// Whether the loop stopped because nothing new was suggested (false: the round limit).
     pub converged: bool,
-}
-
-/// Records of the paper's unit as the loop's named signals.
-fn signals(records: &[(String, &Record)]) -> Result<Vec<(String, sysid::Signals)>, DtgVibError> {
-    records
-        .iter()
-        .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
-        .collect()
 }
 
 /// Diagnoses a fitted model on a record (normally the one it was fitted on:
@@ -91,11 +83,10 @@ pub fn diagnose_records(
     records: &[(String, &Record)],
     options: &DiagnoseOptions,
 ) -> Result<Diagnosis, DtgVibError> {
-    let owned = signals(records)?;
-    let named: Vec<(String, &sysid::Signals)> = owned.iter().map(|(n, s)| (n.clone(), s)).collect();
+    let signals = named_signals(records)?;
     Ok(sysid::explain::diagnose_records(
         model.inner(),
-        &named,
+        &borrowed(&signals),
         options,
     )?)
 }
@@ -146,11 +137,10 @@ pub fn explain_records(
         calibration: calibration.cloned(),
         rate_reference: options.preprocess.rate_reference,
     };
-    let owned = signals(records)?;
-    let named: Vec<(String, &sysid::Signals)> = owned.iter().map(|(n, s)| (n.clone(), s)).collect();
+    let signals = named_signals(records)?;
     let e = sysid::explain::explain(
         &unit,
-        &named,
+        &borrowed(&signals),
         &options.sysid(),
         diagnose_options,
         max_rounds,

@@ -70,6 +70,19 @@ pub fn to_signals(record: &Record) -> Result<Signals, DtgVibError> {
     Ok(Signals::new(record.t().to_vec(), columns).map_err(sysid::SysidError::from)?)
 }
 
+/// Named records of the paper's unit as the loop's named signals.
+pub fn named_signals(records: &[(String, &Record)]) -> Result<Vec<(String, Signals)>, DtgVibError> {
+    records
+        .iter()
+        .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
+        .collect()
+}
+
+/// Named signals as the loop borrows them.
+pub fn borrowed(named: &[(String, Signals)]) -> Vec<(String, &Signals)> {
+    named.iter().map(|(n, s)| (n.clone(), s)).collect()
+}
+
 /// The loop's named signals of the paper's unit as a record.
 pub fn to_record(signals: &Signals) -> Result<Record, DtgVibError> {
     let u = columns(signals)?;
@@ -317,12 +330,13 @@ fn check_range(
         .position(|v| !(v.is_finite() && v.abs() <= tabular::MAX_MAGNITUDE))
     {
         None => Ok(()),
-        Some(i) => Err(DtgVibError::OutOfRange {
+        Some(i) => Err(sysid::SysidError::OutOfRange {
             what: what(),
             value: x[i],
             t: t[i],
             row: i + 1,
             hint,
-        }),
+        }
+        .into()),
     }
 }

@@ -8,7 +8,7 @@
 
 use crate::effects::Effect;
 use crate::error::DtgVibError;
-use crate::paper_unit::{PaperUnit, to_record, to_signals};
+use crate::paper_unit::{PaperUnit, borrowed, named_signals, to_record, to_signals};
 use crate::signal::LowPass;
 use crate::window::{WindowSpec, Windows};
 use faer::{Mat, MatRef};
@@ -53,11 +53,12 @@ impl RateReference {
     /// perpendicular x and z axes, or three finite table rates.
     pub fn check(&self) -> Result<(), DtgVibError> {
         let bad = |name, value: String, reason| {
-            Err(DtgVibError::InvalidOption {
+            Err(sysid::SysidError::InvalidOption {
                 name,
                 value,
                 reason,
-            })
+            }
+            .into())
         };
         match self {
             RateReference::None => Ok(()),
@@ -164,16 +165,10 @@ impl Preprocess {
 }
 
 impl Default for Preprocess {
-    /// Low-pass of the outputs, unfiltered 50-sample windows of `az` (the
-    /// paper's input), no rate reference.
+    /// The loop's default (low-pass of the outputs, unfiltered 50-sample
+    /// windows of `az`, the paper's input), no rate reference.
     fn default() -> Self {
-        Self {
-            filter: Some(FilterSpec::default()),
-            input_filter: None,
-            window: WindowSpec::paper(),
-            rate_reference: RateReference::None,
-            causal: false,
-        }
+        Self::of(&sysid::Preprocess::default(), RateReference::None)
     }
 }
 
@@ -234,13 +229,8 @@ impl Prepared {
             calibration: calibration.cloned(),
             rate_reference: pre.rate_reference,
         };
-        let signals = records
-            .iter()
-            .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
-            .collect::<Result<Vec<_>, DtgVibError>>()?;
-        let named: Vec<(String, &sysid::Signals)> =
-            signals.iter().map(|(n, s)| (n.clone(), s)).collect();
-        let inner = sysid::Prepared::new_many(&unit, &named, &pre.sysid())?;
+        let signals = named_signals(records)?;
+        let inner = sysid::Prepared::new_many(&unit, &borrowed(&signals), &pre.sysid())?;
         Self::of(inner, pre.clone())
     }
 

@@ -26,11 +26,12 @@ impl std::str::FromStr for Precision {
         match s.trim() {
             "f64" => Ok(Precision::F64),
             "f32" => Ok(Precision::F32),
-            other => Err(crate::DtgVibError::InvalidOption {
+            other => Err(sysid::SysidError::InvalidOption {
                 name: "precision",
                 value: other.to_string(),
                 reason: "use f64 or f32",
-            }),
+            }
+            .into()),
         }
     }
 }
@@ -375,29 +376,29 @@ static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
 "#,
         cal = *calibrated as i32,
-        frames = arr(&frames),
-        ls = arr(&ls),
-        gyro_cal = arr(&gyro_cal),
-        accel_cal = arr(&accel_cal),
-        out_sos = arr(&out_sos),
-        in_sos = arr(&in_sos),
-        codes = iarr(&signal_codes),
-        n_eff = iarr(&n_effects),
+        frames = arr(frames),
+        ls = arr(ls),
+        gyro_cal = arr(gyro_cal),
+        accel_cal = arr(accel_cal),
+        out_sos = arr(out_sos),
+        in_sos = arr(in_sos),
+        codes = iarr(signal_codes),
+        n_eff = iarr(n_effects),
         e_off = iarr(&e_offsets),
-        kinds = iarr(&kinds),
-        indices = iarr(&indices),
-        poff = iarr(&param_offset),
+        kinds = iarr(kinds),
+        indices = iarr(indices),
+        poff = iarr(param_offset),
         np = params.len().max(1),
-        params = arr(&params),
-        bias = arr(&bias),
-        coeff = arr(&coeff),
-        n_cen = iarr(&n_centres),
+        params = arr(params),
+        bias = arr(bias),
+        coeff = arr(coeff),
+        n_cen = iarr(n_centres),
         c_off = iarr(&c_offsets),
         nk = widths.len().max(1),
-        widths = arr(&widths),
-        weights = arr(&weights),
+        widths = arr(widths),
+        weights = arr(weights),
         nc = centres.len().max(1),
-        centres = arr(&centres),
+        centres = arr(centres),
     )
 }
 

@@ -11,7 +11,7 @@ pub use sysid::{CentreMethod, ChannelScores, FitSettings, INTERVAL_TOLERANCE, Re
 
 use crate::effects::Effect;
 use crate::error::DtgVibError;
-use crate::paper_unit::{PaperUnit, to_signals};
+use crate::paper_unit::{PaperUnit, borrowed, named_signals};
 use crate::pipeline::{Prepared, Preprocess};
 use crate::split::Holdout;
 use nav_sensors::calibration::Calibration;
@@ -104,13 +104,9 @@ impl CompensationModel {
     /// [`Prepared::new_many`] lays them end to end. One record gives exactly
     /// [`CompensationModel::prepare`].
     pub fn prepare_many(&self, records: &[(String, &Record)]) -> Result<Prepared, DtgVibError> {
-        let signals = records
-            .iter()
-            .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
-            .collect::<Result<Vec<_>, DtgVibError>>()?;
-        let named: Vec<(String, &sysid::Signals)> =
-            signals.iter().map(|(n, s)| (n.clone(), s)).collect();
-        Prepared::of(self.inner.prepare_many(&named)?, self.preprocess.clone())
+        let signals = named_signals(records)?;
+        let inner = self.inner.prepare_many(&borrowed(&signals))?;
+        Prepared::of(inner, self.preprocess.clone())
     }
 
     /// Predicted error of every channel on every row, deg/h, in X, X1, Y, Y1, Z, Z1 order.
