@@ -8,7 +8,7 @@
 //! |---|---|
 //! | [`failure`] | an error and its causes as one `error:` line on stderr, exit 1 |
 //! | [`usage`] | clap's usage errors as one line ending in "(see --help)", exit 2 |
-//! | [`progress`] | a spinner on stderr, silent with `--quiet` or when stderr is not a terminal |
+//! | [`progress`] | a spinner on stderr and lines above it for long steps, silent with `--quiet` or when stderr is not a terminal |
 //! | `testing` | (feature `testing`) running a binary under a time limit, for the integration tests |
 //!
 //! ```

@@ -1023,12 +1023,18 @@ fn compensate_says_which_rate_reference_it_removes() {
     );
 }
 
-/// Runs `dtg-vib ARGS…` on a pseudo-terminal (util-linux `script`), as a
-/// user at a terminal would see it: stdout and stderr together, the spinner
-/// drawn. `None` where `script` is absent.
+/// Columns of the pseudo-terminal the terminal tests run on.
+const COLUMNS: usize = 100;
+
+/// Runs `dtg-vib ARGS…` on a pseudo-terminal (util-linux `script`) of
+/// [`COLUMNS`] columns, as a user at a terminal would see it: stdout and
+/// stderr together, the spinner drawn. `None` where `script` is absent.
 fn on_terminal(args: &[&str]) -> Option<String> {
     let quote = |s: &str| format!("'{}'", s.replace('\'', r"'\''"));
-    let mut cmd = quote(env!("CARGO_BIN_EXE_dtg-vib"));
+    // script's terminal has no size of its own; give it one, so that lines
+    // padded to the width wrap where a user's terminal would wrap them.
+    let mut cmd = format!("stty cols {COLUMNS} rows 50; exec ");
+    cmd.push_str(&quote(env!("CARGO_BIN_EXE_dtg-vib")));
     for a in args {
         cmd.push(' ');
         cmd.push_str(&quote(a));
@@ -1046,36 +1052,82 @@ fn on_terminal(args: &[&str]) -> Option<String> {
     Some(String::from_utf8_lossy(&out.stdout).into_owned())
 }
 
-/// The lines a terminal shows for `raw`: a carriage return starts the line
-/// again (the pty ends lines with "\r\n") and escape sequences (cursor
-/// moves, line clears) draw nothing.
+/// The lines a terminal of [`COLUMNS`] columns shows once `raw` is drawn:
+/// a carriage return goes back to the start of the line, a line feed down
+/// one, a character past the last column wraps to the next line, `ESC [ 2K`
+/// clears the line, `ESC [ n A` moves up n lines, `ESC [ J` clears below;
+/// other escape sequences draw nothing. Trailing blanks and blank lines at
+/// the end are dropped.
 fn screen_lines(raw: &str) -> Vec<String> {
-    raw.split('\n')
-        .map(|line| {
-            let line = line.strip_suffix('\r').unwrap_or(line);
-            let shown = line.rsplit('\r').next().unwrap_or("");
-            let mut out = String::new();
-            let mut chars = shown.chars().peekable();
-            while let Some(c) = chars.next() {
-                if c == '\x1b' {
-                    // CSI: ESC [ parameters… final byte in @..~
-                    if chars.peek() == Some(&'[') {
-                        chars.next();
-                        for d in chars.by_ref() {
-                            if ('@'..='~').contains(&d) {
-                                break;
-                            }
-                        }
-                    } else {
-                        chars.next();
+    let mut screen: Vec<Vec<char>> = vec![Vec::new()];
+    let (mut row, mut col) = (0usize, 0usize);
+    let mut chars = raw.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\r' => col = 0,
+            '\n' => row += 1,
+            '\x1b' => {
+                // CSI: ESC [ parameters… final byte in @..~
+                if chars.peek() != Some(&'[') {
+                    chars.next();
+                    continue;
+                }
+                chars.next();
+                let mut params = String::new();
+                let mut last = ' ';
+                for d in chars.by_ref() {
+                    if ('@'..='~').contains(&d) {
+                        last = d;
+                        break;
                     }
-                } else {
-                    out.push(c);
+                    params.push(d);
+                }
+                let n: usize = params.parse().unwrap_or(1);
+                match last {
+                    'K' => {
+                        if let Some(line) = screen.get_mut(row) {
+                            // 2K: the whole line; K, 0K: from the cursor on.
+                            line.truncate(if params == "2" { 0 } else { col });
+                        }
+                    }
+                    'A' => row = row.saturating_sub(n),
+                    'J' => {
+                        screen.truncate(row + 1);
+                        if let Some(line) = screen.get_mut(row) {
+                            line.truncate(col);
+                        }
+                    }
+                    _ => {}
                 }
             }
-            out
-        })
-        .collect()
+            c => {
+                if col == COLUMNS {
+                    row += 1;
+                    col = 0;
+                }
+                while screen.len() <= row {
+                    screen.push(Vec::new());
+                }
+                let line = &mut screen[row];
+                while line.len() <= col {
+                    line.push(' ');
+                }
+                line[col] = c;
+                col += 1;
+            }
+        }
+        while screen.len() <= row {
+            screen.push(Vec::new());
+        }
+    }
+    let mut lines: Vec<String> = screen
+        .iter()
+        .map(|l| l.iter().collect::<String>().trim_end().to_string())
+        .collect();
+    while lines.last().is_some_and(String::is_empty) {
+        lines.pop();
+    }
+    lines
 }
 
 /// The spinner's glyphs (indicatif's default tick strings are braille).
@@ -1114,6 +1166,71 @@ fn no_spinner_is_left_on_a_terminal() {
         lines[0].starts_with("channel") || lines[0].starts_with("note:"),
         "{lines:#?}"
     );
+}
+
+/// `explain` over several records takes tens of seconds: on a terminal it
+/// leaves a line per round and per channel fitted, and one when it
+/// diagnoses, above its results; the spinner is gone at the end, and with
+/// `--quiet` there are no such lines.
+#[test]
+fn explain_shows_each_round_and_channel_on_a_terminal() {
+    let out = dir().join("terminal-explain.json").display().to_string();
+    let args = [
+        "explain",
+        "--data",
+        &record(),
+        "--max-rounds",
+        "1",
+        "--max-centres",
+        "5",
+        "--out",
+        &out,
+    ];
+    let Some(raw) = on_terminal(&args) else {
+        eprintln!("notice: util-linux `script` not found, the terminal check is skipped");
+        return;
+    };
+    let lines = screen_lines(&raw);
+    assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
+    // Each progress line: seconds since the start, then the step.
+    let step = |l: &str| -> Option<String> {
+        let (secs, rest) = l.trim_start().split_once(" s  ")?;
+        secs.parse::<f64>().ok()?;
+        Some(rest.to_string())
+    };
+    let steps: Vec<String> = lines.iter().filter_map(|l| step(l)).collect();
+    assert_eq!(
+        steps.first().map(String::as_str),
+        Some("round 1: fitting the six channels"),
+        "{lines:#?}"
+    );
+    for ch in ["X", "X1", "Y", "Y1", "Z", "Z1"] {
+        assert_eq!(
+            steps
+                .iter()
+                .filter(|s| s.starts_with(&format!("round 1: {ch} fitted (")))
+                .count(),
+            1,
+            "{ch}: {lines:#?}"
+        );
+    }
+    assert!(
+        steps.iter().any(|s| s.ends_with("fitted (6 of 6)")),
+        "{lines:#?}"
+    );
+    assert_eq!(
+        steps.last().map(String::as_str),
+        Some("round 1: diagnosing (the model's mirror, then every candidate effect)"),
+        "{lines:#?}"
+    );
+    // The steps come first, then the results as without a terminal.
+    let first_result = lines.iter().position(|l| l == "round 1:").expect("results");
+    assert_eq!(first_result, steps.len(), "{lines:#?}");
+    // --quiet: the results alone.
+    let quiet: Vec<&str> = args.iter().copied().chain(["--quiet"]).collect();
+    let lines = screen_lines(&on_terminal(&quiet).expect("script ran once"));
+    assert_eq!(lines[0], "round 1:", "{lines:#?}");
+    assert!(!lines.iter().any(|l| step(l).is_some()), "{lines:#?}");
 }
 
 /// `export --lang text --out DIR` writes what `--lang text` prints into
