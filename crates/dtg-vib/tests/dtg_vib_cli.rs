@@ -594,6 +594,73 @@ fn fit_json_has_the_contract_keys() {
     assert_eq!(channels[0]["effects"], serde_json::json!([]));
 }
 
+/// The line `fit` (and `explain`'s final table) prints for each effect of
+/// the model file `model` (JSON): id, coefficient ± standard error, unit and
+/// the stored 95% interval; one entry per channel, `None` without effects.
+fn coefficient_cells(model: &serde_json::Value) -> Vec<Option<String>> {
+    model["model"]["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| {
+            let cells: Vec<String> = c["effects"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .zip(c["coefficients"].as_array()?)
+                .map(|(id, k)| {
+                    let f = |v: &serde_json::Value| format!("{:.4}", v.as_f64().unwrap());
+                    format!(
+                        "{} {} ± {} {} ({} to {})",
+                        id.as_str().unwrap(),
+                        f(&k["value"]),
+                        f(&k["se"]),
+                        k["unit"].as_str().unwrap(),
+                        f(&k["ci95"][0]),
+                        f(&k["ci95"][1])
+                    )
+                })
+                .collect();
+            (!cells.is_empty()).then(|| cells.join(", "))
+        })
+        .collect()
+}
+
+/// `fit`'s table gives each effect's coefficient with its standard error
+/// and the 95% interval the model file stores (it used to stop at ± SE).
+#[test]
+fn fit_prints_each_coefficient_with_its_interval() {
+    let calib = sim().join("calibration.json").display().to_string();
+    let out = dir().join("text-model.json");
+    let text = ok(&[
+        "fit",
+        "--data",
+        &record(),
+        "--calib",
+        &calib,
+        "--add-effect",
+        "Y1=col:temp",
+        "--max-centers",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
+    );
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let cells = coefficient_cells(&m);
+    assert!(cells[3].as_deref().unwrap().starts_with("col:temp "));
+    for (line, cell) in lines[1..7].iter().zip(&cells) {
+        match cell {
+            Some(cell) => assert!(line.ends_with(&format!("  {cell}")), "{line} / {cell}"),
+            None => assert!(line.ends_with("  —"), "{line}"),
+        }
+    }
+}
+
 #[test]
 fn residues_columns_without_and_with_a_model() {
     let out = dir().join("res.csv");

@@ -104,6 +104,9 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
             a.max_rounds
         );
     }
+    if e.rounds.iter().any(|r| !r.added.is_empty()) {
+        println!("{WHICH_COEFFICIENT}");
+    }
     print_fit(&e.model);
     println!("model: {} ({:.1} s)", f.out.display(), seconds);
     if let Some(p) = &page {
@@ -111,6 +114,11 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     }
     Ok(())
 }
+
+/// Why an added effect's coefficient in the rounds is not the one the final
+/// table stores: two estimates of one effect, on other rows and with other
+/// things fitted alongside (one estimate is issue 23's).
+const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, from the residual the model left on every row; the model below stores and compensates with the fit's, from its training rows only with the network partialled out: two estimates of one effect, so they differ";
 
 /// A round's steps as lines that stay on the terminal (a round over several
 /// records takes tens of seconds), and the current one on the spinner;
