@@ -695,7 +695,7 @@ fn residues_columns_without_and_with_a_model() {
         "{header}"
     );
     assert!(header.ends_with(",K5_comp"), "{header}");
-    assert!(printed.contains("reduction"));
+    assert!(printed.contains("  change\n") && printed.contains("\n pooled "), "{printed}");
 }
 
 #[test]
