@@ -661,6 +661,110 @@ fn fit_prints_each_coefficient_with_its_interval() {
     }
 }
 
+/// `diagnose` says under its findings what their terms mean, each once and
+/// only where it was printed: the candidates not ranked (anisoinertia, and
+/// what would excite it), every failing correlation test in words (a name
+/// like billings_voon_u2_e:ax said nothing), a negative fit (worse than the
+/// mean), and the findings' own words. The tri-axial record with hidden
+/// effects and a small model has all of them.
+#[test]
+fn diagnose_says_what_its_terms_mean() {
+    let tri = dir().join("tri");
+    ok(&[
+        "simulate",
+        "--builtin",
+        "triaxial_hidden",
+        "--out",
+        tri.to_str().unwrap(),
+    ]);
+    let (rec, calib, m) = (
+        tri.join("record.csv").display().to_string(),
+        tri.join("calibration.json").display().to_string(),
+        dir().join("tri.json").display().to_string(),
+    );
+    ok(&[
+        "fit",
+        "--data",
+        &rec,
+        "--calib",
+        &calib,
+        "--max-centers",
+        "10",
+        "--out",
+        &m,
+    ]);
+    let args = ["diagnose", "--model", m.as_str(), "--data", rec.as_str()];
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&[&args[..], &["--json"]].concat())).unwrap();
+    let text = ok(&args);
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| *l == "terms used above:")
+        .unwrap_or_else(|| panic!("no terms:\n{text}"));
+    let legend = &lines[at + 1..];
+    assert!(legend.iter().all(|l| l.starts_with("  ")), "{text}");
+    let mut unique = legend.to_vec();
+    unique.dedup();
+    assert_eq!(unique.len(), legend.len(), "a term said twice: {text}");
+    let says = |start: &str| legend.iter().find(|l| l[2..].starts_with(start)).copied();
+    let channels = v["channels"].as_array().unwrap();
+    let (mut failing, mut negative, mut findings) = (vec![], vec![], String::new());
+    for c in channels {
+        for u in c["unexcited"].as_array().unwrap() {
+            let id = u["effect"].as_str().unwrap();
+            let l = legend
+                .iter()
+                .find(|l| l.contains(id))
+                .unwrap_or_else(|| panic!("{id} not explained: {text}"));
+            if id.starts_with("ai_") {
+                assert!(
+                    l.contains("anisoinertia") && l.contains("excites them"),
+                    "{l}"
+                );
+            }
+        }
+        for f in c["failing"].as_array().unwrap() {
+            failing.push(f.as_str().unwrap());
+        }
+        if c["compare"]["val_fit_percent"].as_f64().unwrap() < 0.0 {
+            negative.push(c["channel"].as_str().unwrap());
+        }
+        for f in c["findings"].as_array().unwrap() {
+            findings.push_str(f.as_str().unwrap());
+        }
+    }
+    assert!(failing.contains(&"billings_voon_u2_e:ax"), "{failing:?}");
+    for name in &failing {
+        assert!(says(&format!("{name}: ")).is_some(), "{name}: {text}");
+    }
+    assert_eq!(
+        says("billings_voon_u2_e:ax: "),
+        Some(
+            "  billings_voon_u2_e:ax: Billings–Voon test, the residual against ax²: an even function of ax (a g² term) is left"
+        )
+    );
+    assert!(!negative.is_empty(), "{text}");
+    let fit = says("fit % = ").unwrap_or_else(|| panic!("no negative fit line: {text}"));
+    assert!(
+        fit.contains(&format!("below 0 on {}:", negative.join(", ")))
+            && fit.ends_with("worse than the mean"),
+        "{fit}"
+    );
+    for (word, start) in [
+        ("cross-fitted", "cross-fitted residual: "),
+        ("|r|", "|r|: "),
+        ("σ)", "(Nσ): "),
+        ("white floor", "white floor: "),
+    ] {
+        assert_eq!(
+            findings.contains(word),
+            says(start).is_some(),
+            "{word}: {text}"
+        );
+    }
+}
+
 #[test]
 fn residues_columns_without_and_with_a_model() {
     let out = dir().join("res.csv");
@@ -997,6 +1101,47 @@ fn allan_json_has_the_contract_keys_and_after_is_what_compensate_writes() {
     }
 }
 
+/// `allan` says why it starts at a later sample with a model (its first
+/// full window, so before and after cover the same samples) and names the
+/// noise terms in words; "not resolved" is said once under the tables.
+#[test]
+fn allan_says_where_it_starts_and_what_its_terms_are() {
+    let with = ok(&["allan", "--data", &record(), "--model", model()]);
+    let first = with.lines().next().unwrap();
+    assert!(
+        first.contains(": 4951 samples from sample 49 (the first with a full window of the model: before and after cover the same samples), τ = "),
+        "{first}"
+    );
+    let plain = ok(&["allan", "--data", &record()]);
+    let first = plain.lines().next().unwrap();
+    assert!(
+        first.contains(": 5000 samples from sample 0, τ = "),
+        "{first}"
+    );
+    for text in [&with, &plain] {
+        for head in [
+            "angle random walk (deg/√h)  before",
+            "bias instability (deg/h)    before",
+            "rate random walk (deg/h/√h) before",
+        ] {
+            assert_eq!(
+                text.lines().filter(|l| l.starts_with(head)).count(),
+                1,
+                "{text}"
+            );
+        }
+        let (explained, unresolved): (Vec<&str>, Vec<&str>) = text
+            .lines()
+            .filter(|l| l.contains("(not resolved)"))
+            .partition(|l| l.starts_with("< bound (not resolved): "));
+        assert_eq!(
+            explained.len(),
+            usize::from(!unresolved.is_empty()),
+            "{text}"
+        );
+    }
+}
+
 #[test]
 fn allan_report_writes_its_figures() {
     let report = dir().join("allan-report");
@@ -1010,7 +1155,7 @@ fn allan_report_writes_its_figures() {
         "--report",
         report.to_str().unwrap(),
     ]);
-    assert!(out.contains("ARW (deg/√h)"), "{out}");
+    assert!(out.contains("angle random walk (deg/√h)"), "{out}");
     for f in [
         "index.html",
         "allan_channels.png",
