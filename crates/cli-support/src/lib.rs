@@ -29,8 +29,9 @@ pub mod testing;
 
 /// How a message of several lines is put on one line.
 ///
-/// The two binaries grew different habits before they shared this crate; both
-/// are kept so that every message stays byte for byte what it was.
+/// The two binaries grew different habits before they shared this crate.
+/// Both now print errors [`Style::TRIMMED`]; `dtg-vib` keeps
+/// [`Style::VERBATIM`]'s "; " between clap's usage lines.
 ///
 /// ```
 /// use cli_support::Style;
@@ -48,12 +49,14 @@ pub struct Style {
 }
 
 impl Style {
-    /// `rbf`'s: trimmed error lines, usage lines joined by spaces.
+    /// Trimmed error lines, usage lines joined by spaces (`rbf`'s; both
+    /// binaries' errors).
     pub const TRIMMED: Style = Style {
         trim_lines: true,
         usage_semicolons: false,
     };
-    /// `dtg-vib`'s: error lines as they stand, usage lines joined by "; ".
+    /// Error lines as they stand, usage lines joined by "; " (`dtg-vib`'s
+    /// usage errors).
     pub const VERBATIM: Style = Style {
         trim_lines: false,
         usage_semicolons: true,

@@ -480,6 +480,25 @@ fn bad_scenarios() -> Vec<Refusal> {
     refusals
 }
 
+/// A scenario that is not TOML: the parse error's position, and its excerpt
+/// on one line with each line trimmed at its ends (it read "…;   |; 1 |
+/// seed = ;   |        ^; …", as rbf's errors no longer do).
+fn bad_toml() -> Vec<Refusal> {
+    let bad = dir().join("not-toml.toml");
+    std::fs::write(&bad, "seed = \n").unwrap();
+    let out = dir().join("not-toml");
+    let (b, o) = (bad.to_str().unwrap(), out.to_str().unwrap());
+    vec![Refusal {
+        writes_nothing_at: Some(out.join("record.csv")),
+        ..refusal(
+            "a scenario that is not TOML",
+            1,
+            &["simulate", "--scenario", b, "--out", o],
+            &[b, "line 1, column 8; |; 1 | seed =; |", "^; string values"],
+        )
+    }]
+}
+
 /// What `explain` cannot do, said with why: records given twice (also to
 /// `diagnose`), `--cv`, a by-record split of one record; no model written.
 fn explain_refusals() -> Vec<Refusal> {
@@ -544,6 +563,7 @@ fn bad_inputs_are_refused_in_one_line() {
     cases.extend(bad_flags());
     cases.extend(bad_models());
     cases.extend(bad_scenarios());
+    cases.extend(bad_toml());
     cases.extend(explain_refusals());
     cases.push(refusal(
         "allan --report on an input",
@@ -799,7 +819,10 @@ fn residues_columns_without_and_with_a_model() {
         "{header}"
     );
     assert!(header.ends_with(",K5_comp"), "{header}");
-    assert!(printed.contains("  change\n") && printed.contains("\n pooled "), "{printed}");
+    assert!(
+        printed.contains("  change\n") && printed.contains("\n pooled "),
+        "{printed}"
+    );
 }
 
 #[test]
