@@ -563,7 +563,10 @@ fn lexical(p: &Path) -> Vec<std::ffi::OsString> {
         match c {
             Component::CurDir => {}
             Component::ParentDir => {
-                if out.last().is_some_and(|l| !Path::new(l).has_root() && l != "..") {
+                if out
+                    .last()
+                    .is_some_and(|l| !Path::new(l).has_root() && l != "..")
+                {
                     out.pop();
                 } else if out.is_empty() {
                     out.push("..".into());
@@ -713,11 +716,17 @@ mod tests {
         // The demo's final page linking its sibling reports, paths as the
         // command gave them (relative to where it ran, not to the page).
         assert_eq!(
-            h("demo-out/baseline/report/index.html", "demo-out/final/report"),
+            h(
+                "demo-out/baseline/report/index.html",
+                "demo-out/final/report"
+            ),
             "../../baseline/report/index.html"
         );
         assert_eq!(
-            h("demo-out/final/diagnosis/index.html", "demo-out/final/report"),
+            h(
+                "demo-out/final/diagnosis/index.html",
+                "demo-out/final/report"
+            ),
             "../diagnosis/index.html"
         );
         assert_eq!(
