@@ -32,14 +32,17 @@ fn done(ctx: &Ctx<'_>, source: &str) -> String {
         .stats
         .iter()
         .map(|s| s.reduction)
-        .filter(|r| *r > 1.0)
+        .filter(|r| format!("{r:.2}").parse::<f64>().is_ok_and(|r| r > 1.0))
         .collect();
     let min_red = fell.iter().copied().fold(f64::INFINITY, f64::min);
     let max_red = fell.iter().copied().fold(0.0, f64::max);
     let reduction = if fell.len() == ctx.stats.len() {
         format!("Residue rms fell {min_red:.2}× to {max_red:.2}× on the validation rows.")
     } else if fell.is_empty() {
-        "Residue rms fell on none of the residues on the validation rows.".to_string()
+        format!(
+            "Residue rms fell on none of the {} residues on the validation rows.",
+            ctx.stats.len()
+        )
     } else {
         format!(
             "Residue rms fell on {} of {} residues on the validation rows ({min_red:.2}× to {max_red:.2}×).",
@@ -188,16 +191,18 @@ fn diagnosis_left(d: &DiagnosisExtra<'_>) -> Vec<String> {
 /// the Allan terms, and the power compensation added at 0.2–2 Hz.
 fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
     let mut out = Vec::new();
-    // The Summary table: rms before (bias only) and after.
+    // The Summary table: rms before (bias only) and after, and the
+    // reduction as it prints it (a channel at "1.00×" did not get worse).
     let up: Vec<String> = ctx
         .model
         .channels()
         .iter()
         .zip(&ctx.scores)
-        .filter(|(_, s)| s.val_rms > s.val_rms_bias_only)
-        .map(|(c, s)| {
+        .map(|(c, s)| (c, s, s.val_rms_bias_only / s.val_rms))
+        .filter(|(_, _, r)| format!("{r:.2}").parse::<f64>().is_ok_and(|r| r < 1.0))
+        .map(|(c, s, r)| {
             format!(
-                "{} {} → {} deg/h",
+                "{} {} → {} deg/h ({r:.2}×)",
                 c.channel().name(),
                 fmt(s.val_rms_bias_only),
                 fmt(s.val_rms)
@@ -206,30 +211,35 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
         .collect();
     if !up.is_empty() {
         out.push(format!(
-            "The validation rms after compensation is higher than before (a bias-only model) on {} of {} channels: {} (Summary).",
+            "The validation rms after compensation is higher than before (a bias-only model) on {} of {} channels (Summary): {}.",
             up.len(),
             ctx.scores.len(),
             up.join(", ")
         ));
     }
-    // The residue table.
+    // The residue table, its reduction as printed.
     let rose: Vec<String> = ctx
         .stats
         .iter()
-        .filter(|s| s.reduction <= 1.0)
+        .filter(|s| {
+            format!("{:.2}", s.reduction)
+                .parse::<f64>()
+                .is_ok_and(|r| r < 1.0)
+        })
         .map(|s| {
             format!(
-                "{} {} → {} deg/h ({:.2}× worse)",
+                "{} {} → {} deg/h ({:.2}×, {:.2}× worse)",
                 s.residue.name(),
                 fmt(s.rms_before),
                 fmt(s.rms_after),
+                s.reduction,
                 1.0 / s.reduction
             )
         })
         .collect();
     if !rose.is_empty() {
         out.push(format!(
-            "Residue rms rose on {} of {}: {} (Residues (eq. 6)).",
+            "Residue rms rose on {} of {} (Residues (eq. 6)): {}.",
             rose.len(),
             ctx.stats.len(),
             rose.join(", ")
@@ -262,14 +272,13 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
     if let Some(a) = extras.allan {
         out.extend(allan_worse(a));
     }
+    // The spectra's band powers: a rise the page prints as more than 1.0×.
     let powers = residues::powers(ctx);
     let added: Vec<(f64, String)> = powers
         .iter()
-        .filter(|p| p.bands[1][1] > p.bands[1][0])
-        .map(|p| {
-            let r = p.bands[1][1] / p.bands[1][0];
-            (r, format!("{r:.1}×"))
-        })
+        .map(|p| p.bands[1][1] / p.bands[1][0])
+        .filter(|r| format!("{r:.1}").parse::<f64>().is_ok_and(|r| r > 1.0))
+        .map(|r| (r, format!("{r:.1}×")))
         .collect();
     if !added.is_empty() {
         let (lo, hi) = residues::BANDS[1];
