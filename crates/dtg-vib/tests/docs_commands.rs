@@ -10,7 +10,9 @@
 //! printed. `...` stands for lines left out.
 //!
 //! Not run, with a notice: `cargo test` (this is it) and, where no C
-//! compiler is installed, the lines that compile the exported C.
+//! compiler is installed, the lines that compile the exported C. The
+//! blocks are shell: the test runs them with bash, on Unix.
+#![cfg(unix)]
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -32,7 +32,7 @@ fn done(ctx: &Ctx<'_>, source: &str) -> String {
         .stats
         .iter()
         .map(|s| s.reduction)
-        .filter(|r| format!("{r:.2}").parse::<f64>().is_ok_and(|r| r > 1.0))
+        .filter(|r| as_printed(*r, 2) > 1.0)
         .collect();
     let min_red = fell.iter().copied().fold(f64::INFINITY, f64::min);
     let max_red = fell.iter().copied().fold(0.0, f64::max);
@@ -71,6 +71,28 @@ fn span(cells: &[(f64, String)]) -> String {
         (Some(lo), _) => lo.1.clone(),
         _ => String::new(),
     }
+}
+
+/// `v` as a table prints it with `decimals` decimals: a ratio printed
+/// "1.00×" is neither better nor worse on the page, so not in its summary.
+fn as_printed(v: f64, decimals: usize) -> f64 {
+    format!("{v:.decimals$}").parse().unwrap_or(v)
+}
+
+/// "LEAD on K of N WHAT (SECTION): ITEMS.", when there are items.
+fn counted(
+    lead: &str,
+    items: &[String],
+    (n, what): (usize, &str),
+    section: &str,
+) -> Option<String> {
+    (!items.is_empty()).then(|| {
+        format!(
+            "{lead} on {} of {n} {what} ({section}): {}.",
+            items.len(),
+            items.join(", ")
+        )
+    })
 }
 
 /// What is left: the residual against the noise floor, the band most above
@@ -199,7 +221,7 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
         .iter()
         .zip(&ctx.scores)
         .map(|(c, s)| (c, s, s.val_rms_bias_only / s.val_rms))
-        .filter(|(_, _, r)| format!("{r:.2}").parse::<f64>().is_ok_and(|r| r < 1.0))
+        .filter(|(_, _, r)| as_printed(*r, 2) < 1.0)
         .map(|(c, s, r)| {
             format!(
                 "{} {} → {} deg/h ({r:.2}×)",
@@ -209,23 +231,17 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
             )
         })
         .collect();
-    if !up.is_empty() {
-        out.push(format!(
-            "The validation rms after compensation is higher than before (a bias-only model) on {} of {} channels (Summary): {}.",
-            up.len(),
-            ctx.scores.len(),
-            up.join(", ")
-        ));
-    }
+    out.extend(counted(
+        "The validation rms after compensation is higher than before (a bias-only model)",
+        &up,
+        (ctx.scores.len(), "channels"),
+        "Summary",
+    ));
     // The residue table, its reduction as printed.
     let rose: Vec<String> = ctx
         .stats
         .iter()
-        .filter(|s| {
-            format!("{:.2}", s.reduction)
-                .parse::<f64>()
-                .is_ok_and(|r| r < 1.0)
-        })
+        .filter(|s| as_printed(s.reduction, 2) < 1.0)
         .map(|s| {
             format!(
                 "{} {} → {} deg/h ({:.2}×, {:.2}× worse)",
@@ -237,14 +253,12 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
             )
         })
         .collect();
-    if !rose.is_empty() {
-        out.push(format!(
-            "Residue rms rose on {} of {} (Residues (eq. 6)): {}.",
-            rose.len(),
-            ctx.stats.len(),
-            rose.join(", ")
-        ));
-    }
+    out.extend(counted(
+        "Residue rms rose",
+        &rose,
+        (ctx.stats.len(), "residues"),
+        "Residues (eq. 6)",
+    ));
     // The "Before and after" table's change column.
     if let Some((b, bs)) = ctx.baseline() {
         let up: Vec<String> = ctx
@@ -253,7 +267,7 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
             .zip(bs)
             .zip(ctx.model.channels())
             .map(|((new, old), c)| (c, 100.0 * (new.val_rms / old.val_rms - 1.0)))
-            .filter(|(_, change)| format!("{change:+.1}") != "+0.0" && *change > 0.0)
+            .filter(|(_, change)| as_printed(*change, 1) > 0.0)
             .map(|(c, change)| format!("{} {change:+.1}%", c.channel().name()))
             .collect();
         if !up.is_empty() {
@@ -277,7 +291,7 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
     let added: Vec<(f64, String)> = powers
         .iter()
         .map(|p| p.bands[1][1] / p.bands[1][0])
-        .filter(|r| format!("{r:.1}").parse::<f64>().is_ok_and(|r| r > 1.0))
+        .filter(|r| as_printed(*r, 1) > 1.0)
         .map(|r| (r, format!("{r:.1}×")))
         .collect();
     if !added.is_empty() {
