@@ -344,3 +344,48 @@ fn the_checker_finds_a_broken_link_anchor_image_and_absolute_path() {
     );
     assert!(broken[2].to_string().contains("does not exist"));
 }
+
+/// scripts/screenshot-report.sh follows the page's links before it looks
+/// for Chromium: a broken one makes it exit 1 naming the link, with or
+/// without a browser; a page whose links resolve passes on to the browser
+/// (exit 2 where there is none).
+#[test]
+fn the_browser_script_fails_naming_a_broken_link() {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/screenshot-report.sh");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("r");
+    std::fs::create_dir_all(dir.join("figs")).unwrap();
+    std::fs::write(dir.join("figs/a b.png"), b"png").unwrap();
+    let page = |links: &str| {
+        std::fs::write(
+            dir.join("index.html"),
+            format!("<html><body><section id=\"s1\"><img src=\"figs/a%20b.png\" alt=\"\">{links}<a href=\"#s1\">top</a></section></body></html>"),
+        )
+        .unwrap();
+        Command::new("bash")
+            .arg(&script)
+            .arg(dir.join("index.html"))
+            .arg(tmp.path().join("shots"))
+            .env("CHROMIUM", "/nonexistent/chromium")
+            .output()
+            .expect("run bash")
+    };
+    let bad =
+        page("<a href=\"../baseline/report/index.html\">baseline</a><a href=\"#s2\">gone</a>");
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("broken link in")
+            && err.contains("\"../baseline/report/index.html\" resolves to"),
+        "{err}"
+    );
+    assert!(err.contains("\"#s2\" names no id on the page"), "{err}");
+    assert!(String::from_utf8_lossy(&bad.stdout).contains("links=4 broken_links=2"));
+    let good = page("");
+    assert_eq!(
+        good.status.code(),
+        Some(2),
+        "links resolve, then no browser: {}",
+        String::from_utf8_lossy(&good.stderr)
+    );
+}
