@@ -74,13 +74,14 @@ fn record() -> String {
     sim().join("record.csv").display().to_string()
 }
 
-/// A model fitted with `col:temp` on every channel, once for all tests.
-fn model() -> &'static str {
-    static MODEL: OnceLock<String> = OnceLock::new();
+/// A model fitted with `col:temp` on every channel, once for all tests:
+/// its file and what `fit` printed.
+fn fitted_model() -> &'static (String, String) {
+    static MODEL: OnceLock<(String, String)> = OnceLock::new();
     MODEL.get_or_init(|| {
         let m = dir().join("model.json").display().to_string();
         let calib = sim().join("calibration.json").display().to_string();
-        ok(&[
+        let printed = ok(&[
             "fit",
             "--data",
             &record(),
@@ -93,8 +94,13 @@ fn model() -> &'static str {
             "--out",
             &m,
         ]);
-        m
+        (m, printed)
     })
+}
+
+/// The file of [`fitted_model`].
+fn model() -> &'static str {
+    &fitted_model().0
 }
 
 /// Writes a variant of the record: `edit` gets the lines and changes them.
@@ -650,21 +656,7 @@ fn coefficient_cells(model: &serde_json::Value) -> Vec<Option<String>> {
 /// and the 95% interval the model file stores (it used to stop at ± SE).
 #[test]
 fn fit_prints_each_coefficient_with_its_interval() {
-    let calib = sim().join("calibration.json").display().to_string();
-    let out = dir().join("text-model.json");
-    let text = ok(&[
-        "fit",
-        "--data",
-        &record(),
-        "--calib",
-        &calib,
-        "--add-effect",
-        "Y1=col:temp",
-        "--max-centers",
-        "5",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (out, text) = fitted_model();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
@@ -672,7 +664,11 @@ fn fit_prints_each_coefficient_with_its_interval() {
     );
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     let cells = coefficient_cells(&m);
-    assert!(cells[3].as_deref().unwrap().starts_with("col:temp "));
+    assert!(
+        cells
+            .iter()
+            .all(|c| c.as_deref().unwrap().starts_with("col:temp "))
+    );
     for (line, cell) in lines[1..7].iter().zip(&cells) {
         match cell {
             Some(cell) => assert!(line.ends_with(&format!("  {cell}")), "{line} / {cell}"),

@@ -344,28 +344,34 @@ impl ShortRecord {
         );
         serde_json::from_slice::<serde_json::Value>(&out.stdout).ok()
     }
+
+    /// `explain` on the record with its calibration, at most two rounds,
+    /// writing `out`, with `extra` flags.
+    fn explain_args<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+        let mut args = vec![
+            "explain",
+            "--data",
+            "sim/record.csv",
+            "--calib",
+            "sim/calibration.json",
+            "--out",
+            out,
+            "--max-rounds",
+            "2",
+        ];
+        args.extend_from_slice(extra);
+        args
+    }
 }
 
 #[test]
 fn explain_and_diagnose_json_keep_their_keys() {
     let r = ShortRecord::new();
     let run = |args: &[&str]| r.run(args);
-    let e = run(&[
-        "explain",
-        "--data",
-        "sim/record.csv",
-        "--calib",
-        "sim/calibration.json",
-        "--out",
+    let e = run(&ShortRecord::explain_args(
         "final.json",
-        "--json",
-        "--max-rounds",
-        "2",
-        "--alpha",
-        "0.01",
-        "--min-gain",
-        "0.1",
-    ])
+        &["--json", "--alpha", "0.01", "--min-gain", "0.1"],
+    ))
     .expect("one JSON object");
     let rounds = e["rounds"].as_array().unwrap();
     assert_eq!(rounds.len(), 2, "{e}");
@@ -440,17 +446,7 @@ fn explain_and_diagnose_json_keep_their_keys() {
 #[test]
 fn explain_says_which_coefficient_is_which() {
     let r = ShortRecord::new();
-    let out = r.output(&[
-        "explain",
-        "--data",
-        "sim/record.csv",
-        "--calib",
-        "sim/calibration.json",
-        "--out",
-        "text.json",
-        "--max-rounds",
-        "2",
-    ]);
+    let out = r.output(&ShortRecord::explain_args("text.json", &[]));
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
