@@ -40,6 +40,7 @@ pub mod noise;
 pub mod regressors;
 pub mod signal;
 pub mod sim;
+pub mod unit;
 pub mod vibration;
 
 pub use files::{calibration, record};
