@@ -37,6 +37,7 @@ pub mod dtg;
 pub mod files;
 pub mod geometry;
 pub mod noise;
+pub mod rate;
 pub mod regressors;
 pub mod signal;
 pub mod sim;

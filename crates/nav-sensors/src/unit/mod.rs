@@ -53,9 +53,11 @@
 mod error;
 mod file;
 mod geometry;
+mod term;
 
 pub use error::UnitError;
 pub use geometry::UnitGeometry;
+pub use term::{GyroTerm, Sensed};
 
 use std::fmt;
 use std::path::Path;
