@@ -8,6 +8,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::record::Record;
+pub use super::unit_calibration::{GyroCoefficients, UnitCalibration, UnitCalibrationError};
 use crate::accel::{AccelCoefficients, compensate_triad};
 use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};

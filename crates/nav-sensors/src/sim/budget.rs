@@ -53,8 +53,7 @@ pub(crate) use stats::{correlation, rms, std_dev};
 pub(crate) fn budget(
     s: &Scenario,
     hr: &HighRate,
-    regressors: &[[[f64; 18]; 6]],
-    noise: &[[f64; 6]],
+    noise: &[Vec<f64>],
     temp_meas: &[f64],
     calibration: &Calibration,
     t: &[f64],
@@ -93,35 +92,54 @@ pub(crate) fn budget(
             .filter(|h| h.channel == channel)
             .map(|h| h.term)
             .collect();
-        let mut d = vec![vec![0.0; n_out]; 18];
-        let mut pred_all = vec![[0.0; 18]; n_out];
-        let mut unmodelled = vec![0.0; n_out];
-        let mut motion = vec![0.0; n_out];
-        let mut cal_err = vec![0.0; n_out];
-        for n in 0..n_out {
-            let e: Ios = frame.resolve(&static_rate(n));
-            let a = hr.accel_ideal_g[n];
-            let x = DtgInput {
-                rate_deg_h: e,
-                specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
-                temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
-                rate_2n_mean_square_deg2_s2: 0.0,
-                // The product of means: d_k is defined against it.
-                specific_force_cov_g2: [0.0; 6],
-            };
-            let pred = DtgTerm::regressors(&x);
-            for k in 0..18 {
-                d[k][n] = c[k] * (regressors[n][ch][k] - pred[k]);
-                let term = DtgTerm::ALL[k];
-                if term.is_calibrated() && !hidden_here.contains(&term) {
-                    cal_err[n] += (c[k] - cal[k]) * pred[k];
+        let base = channel_budget(
+            hr,
+            ch,
+            &c,
+            &noise[ch],
+            &elementary,
+            &predictable::weights(&frame.input, &frame.other, &frame.spin, &c),
+            |n| {
+                let e: Ios = frame.resolve(&static_rate(n));
+                let a = hr.accel_ideal_g[n];
+                let x = DtgInput {
+                    rate_deg_h: e,
+                    specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
+                    temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
+                    rate_2n_mean_square_deg2_s2: 0.0,
+                    // The product of means: d_k is defined against it.
+                    specific_force_cov_g2: [0.0; 6],
+                };
+                (
+                    DtgTerm::regressors(&x).to_vec(),
+                    e.i,
+                    truth.nonlinearity_deg_h(e.i),
+                )
+            },
+        );
+        let ChannelBudget {
+            d,
+            pred: pred_all,
+            unmodelled,
+            motion,
+            predicted,
+            floor,
+            after,
+            noise: noise_ch,
+        } = base;
+        let cal_err: Vec<f64> = pred_all
+            .iter()
+            .map(|pred| {
+                let mut v = 0.0;
+                for k in 0..18 {
+                    let term = DtgTerm::ALL[k];
+                    if term.is_calibrated() && !hidden_here.contains(&term) {
+                        v += (c[k] - cal[k]) * pred[k];
+                    }
                 }
-            }
-            pred_all[n] = pred;
-            unmodelled[n] = d.iter().map(|dk| dk[n]).sum::<f64>() + hr.nonlinearity_deg_h[n][ch]
-                - truth.nonlinearity_deg_h(e.i);
-            motion[n] = hr.rate_i_deg_h[n][ch] - e.i;
-        }
+                v
+            })
+            .collect();
         let mut expected = vec![0.0; n_out];
         let mut at_full = BTreeMap::new();
         for (k, dk) in d.iter().enumerate() {
@@ -137,26 +155,8 @@ pub(crate) fn budget(
                 *e += kk * g;
             }
         }
-        // What a model given the level and the 50-Hz accelerations can
-        // predict: the g and g² terms through the elementary series, the
-        // rest (temperature lag, rates, 2N, nonlinearity) through the level.
-        let w = predictable::weights(&frame.input, &frame.other, &frame.spin, &c);
-        let rest: Vec<f64> = (0..n_out)
-            .map(|n| unmodelled[n] - predictable::combine(&w, &elementary.actual, n))
-            .collect();
-        let rest_predicted = predictable::level_only(g2, &[&rest]).pop().expect("one");
-        let predicted: Vec<f64> = (0..n_out)
-            .map(|n| predictable::combine(&w, &elementary.predicted, n) + rest_predicted[n])
-            .collect();
-        let noise_ch: Vec<f64> = noise.iter().map(|v| v[ch]).collect();
-        let floor: Vec<f64> = (0..n_out)
-            .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - predicted[n])
-            .collect();
         let level_only_floor: Vec<f64> = (0..n_out)
             .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
-            .collect();
-        let after: Vec<f64> = (0..n_out)
-            .map(|n| noise_ch[n] + motion[n] + unmodelled[n])
             .collect();
         let noise_floor = std_dev(&floor);
         for &term in &hidden_here {
@@ -244,4 +244,80 @@ pub(crate) fn budget(
         residue_after_true_compensation_rms_deg_h,
     };
     (truth, components)
+}
+
+/// One channel's budget series: per term the unmodelled part `d_k`, the
+/// regressors at what the record shows (`pred[n][k]`), their sum with the
+/// nonlinearity's mismatch (`unmodelled`), the rocking about I (`motion`),
+/// the part a model given the level and the 50-Hz accelerations predicts,
+/// the floor series and what true-coefficient compensation leaves.
+pub(crate) struct ChannelBudget {
+    pub d: Vec<Vec<f64>>,
+    pub pred: Vec<Vec<f64>>,
+    pub unmodelled: Vec<f64>,
+    pub motion: Vec<f64>,
+    pub predicted: Vec<f64>,
+    pub floor: Vec<f64>,
+    pub after: Vec<f64>,
+    pub noise: Vec<f64>,
+}
+
+/// The budget of channel `ch` with true coefficients `c` (term order),
+/// g/g² weights `w` on the elementary series, and `at_record(n)` giving the
+/// regressors at what the record shows, the rate about I a model would
+/// take as the reference, and the nonlinearity's drift there. Any model,
+/// any unit: the paper's DTG channels and a unit's DTG or rate channels
+/// share it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn channel_budget(
+    hr: &HighRate,
+    ch: usize,
+    c: &[f64],
+    noise: &[f64],
+    elementary: &predictable::Elementary,
+    w: &[f64; 9],
+    at_record: impl Fn(usize) -> (Vec<f64>, f64, f64),
+) -> ChannelBudget {
+    let n_out = noise.len();
+    let g2 = &hr.level_squared;
+    let mut d = vec![vec![0.0; n_out]; c.len()];
+    let mut pred_all = Vec::with_capacity(n_out);
+    let mut unmodelled = vec![0.0; n_out];
+    let mut motion = vec![0.0; n_out];
+    for n in 0..n_out {
+        let (pred, rate_i, nl) = at_record(n);
+        let regs = hr.regs(ch, n);
+        for k in 0..c.len() {
+            d[k][n] = c[k] * (regs[k] - pred[k]);
+        }
+        pred_all.push(pred);
+        unmodelled[n] = d.iter().map(|dk| dk[n]).sum::<f64>() + hr.nonlinearity_deg_h[ch][n] - nl;
+        motion[n] = hr.rate_i_deg_h[ch][n] - rate_i;
+    }
+    // What a model given the level and the 50-Hz accelerations can
+    // predict: the g and g² terms through the elementary series, the
+    // rest (temperature lag, rates, 2N, nonlinearity) through the level.
+    let rest: Vec<f64> = (0..n_out)
+        .map(|n| unmodelled[n] - predictable::combine(w, &elementary.actual, n))
+        .collect();
+    let rest_predicted = predictable::level_only(g2, &[&rest]).pop().expect("one");
+    let predicted: Vec<f64> = (0..n_out)
+        .map(|n| predictable::combine(w, &elementary.predicted, n) + rest_predicted[n])
+        .collect();
+    let floor: Vec<f64> = (0..n_out)
+        .map(|n| noise[n] + motion[n] + unmodelled[n] - predicted[n])
+        .collect();
+    let after: Vec<f64> = (0..n_out)
+        .map(|n| noise[n] + motion[n] + unmodelled[n])
+        .collect();
+    ChannelBudget {
+        d,
+        pred: pred_all,
+        unmodelled,
+        motion,
+        predicted,
+        floor,
+        after,
+        noise: noise.to_vec(),
+    }
 }
