@@ -196,19 +196,12 @@ impl UnitCalibration {
     /// assert!(nav_sensors::calibration::UnitCalibration::from_json("{}", "c.json").is_err());
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, CalibrationFileError> {
-        let cal: Self =
-            serde_json::from_str(text).map_err(|source| CalibrationFileError::Json {
-                path: path.to_string(),
-                source,
-            })?;
-        if cal.format_version != Self::FORMAT_VERSION {
-            return Err(CalibrationFileError::Version {
-                path: path.to_string(),
-                found: cal.format_version,
-                supported: Self::FORMAT_VERSION,
-            });
-        }
-        Ok(cal)
+        super::io::parse_versioned(
+            text,
+            path,
+            |c: &Self| c.format_version,
+            Self::FORMAT_VERSION,
+        )
     }
 
     /// Reads a calibration file.
@@ -221,12 +214,7 @@ impl UnitCalibration {
     /// assert_eq!(nav_sensors::calibration::UnitCalibration::load(&path).unwrap(), cal);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, CalibrationFileError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| CalibrationFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_json(&text, &path.display().to_string())
+        super::io::load_with(path.as_ref(), super::io::calibration_io, Self::from_json)
     }
 
     /// The calibration as pretty JSON (deterministic).
@@ -236,7 +224,7 @@ impl UnitCalibration {
     /// assert!(nav_sensors::calibration::UnitCalibration::ideal(&u).to_json().contains("\"model\": \"rate\""));
     /// ```
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
+        super::io::pretty(self)
     }
 
     /// Writes the calibration file atomically.
@@ -248,11 +236,7 @@ impl UnitCalibration {
     /// assert!(path.exists());
     /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
-        let path = path.as_ref();
-        outfile::write_bytes(path, self.to_json()).map_err(|source| CalibrationFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        super::io::save_calibration(self, path.as_ref())
     }
 
     /// Checks the calibration against a unit: every name is the unit's and
@@ -399,6 +383,8 @@ impl UnitCalibration {
             .iter()
             .map(|_| Vec::with_capacity(record.len()))
             .collect();
+        // i indexes the three columns at once.
+        #[allow(clippy::needless_range_loop)]
         for i in 0..record.len() {
             let m = Vector3::from(by_axis.map(|k| raw[k][i]));
             let a = compensate_triad(&coefficients, &m);

@@ -59,24 +59,17 @@ pub(crate) fn budget(
     t: &[f64],
 ) -> (Truth, Components) {
     let n_out = t.len();
-    let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
-    let gravity = s.site.gravity_cluster_g().expect("validated");
+    let Reference {
+        earth,
+        gravity,
+        static_rate,
+        elementary,
+    } = Reference::of(s, hr);
+    let static_rate = |n: usize| static_rate[n];
     let g2 = &hr.level_squared;
     let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut components = Components::new(t.to_vec());
     components.push("level_squared", g2.clone());
-    // The unit's own specific force and rate per interval: the site's
-    // constants at rest, the motion's interval means in flight.
-    let static_force: Vec<[f64; 3]> = match &hr.motion_means {
-        None => vec![[gravity.x, gravity.y, gravity.z]; n_out],
-        Some(m) => m.force_g.clone(),
-    };
-    let static_rate = |n: usize| match &hr.motion_means {
-        None => earth,
-        Some(m) => nalgebra::Vector3::from(m.rate_deg_h[n]),
-    };
-    let elementary =
-        predictable::elementary(&hr.force_moments, &hr.accel_ideal_g, &static_force, g2);
     let mut channels = BTreeMap::new();
     let mut hidden = Vec::new();
     let mut floor_series: [Vec<f64>; 6] = Default::default();
@@ -319,5 +312,51 @@ pub(crate) fn channel_budget(
         floor,
         after,
         noise: noise.to_vec(),
+    }
+}
+
+/// What a model of the record takes as the unit's own motion: Earth rate
+/// and gravity at t = 0, and per interval the reference rate (deg/h: the
+/// site's Earth rate at rest, the motion's interval mean in flight), with
+/// the elementary series of the g and g² terms ([`predictable`]).
+pub(crate) struct Reference {
+    pub earth: nalgebra::Vector3<f64>,
+    pub gravity: nalgebra::Vector3<f64>,
+    pub static_rate: Vec<nalgebra::Vector3<f64>>,
+    pub elementary: predictable::Elementary,
+}
+
+impl Reference {
+    pub(crate) fn of(s: &Scenario, hr: &HighRate) -> Self {
+        let n_out = hr.level_squared.len();
+        let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
+        let gravity = s.site.gravity_cluster_g().expect("validated");
+        // The unit's own specific force and rate per interval: the site's
+        // constants at rest, the motion's interval means in flight.
+        let (static_force, static_rate): (Vec<[f64; 3]>, _) = match &hr.motion_means {
+            None => (
+                vec![[gravity.x, gravity.y, gravity.z]; n_out],
+                vec![earth; n_out],
+            ),
+            Some(m) => (
+                m.force_g.clone(),
+                m.rate_deg_h
+                    .iter()
+                    .map(|w| nalgebra::Vector3::from(*w))
+                    .collect(),
+            ),
+        };
+        let elementary = predictable::elementary(
+            &hr.force_moments,
+            &hr.accel_ideal_g,
+            &static_force,
+            &hr.level_squared,
+        );
+        Self {
+            earth,
+            gravity,
+            static_rate,
+            elementary,
+        }
     }
 }

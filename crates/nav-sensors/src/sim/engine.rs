@@ -384,7 +384,9 @@ fn add_rate_random_walk(s: &Scenario, noise: &mut [Vec<f64>]) {
     let mut rng = stream(s.seed, Stream::GyroRateWalk);
     let mut walk = vec![0.0; noise.len()];
     let n_out = noise.first().map_or(0, Vec::len);
-    // Sample by sample, channel by channel: the draw order of every unit.
+    // Sample by sample, channel by channel: the draw order of every unit
+    // (n indexes every channel's series at once).
+    #[allow(clippy::needless_range_loop)]
     for n in 0..n_out {
         for (ch, b) in walk.iter_mut().enumerate() {
             let z1: f64 = StandardNormal.sample(&mut rng);

@@ -438,12 +438,11 @@ impl Scenario {
     /// assert_eq!(nav_sensors::sim::Scenario::load(&path).unwrap(), nav_sensors::sim::Scenario::default());
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_toml(&text, &path.display().to_string())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| ScenarioError::Io { path, source },
+            Self::from_toml,
+        )
     }
 
     /// The scenario as TOML text.

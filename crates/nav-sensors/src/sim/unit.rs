@@ -13,7 +13,7 @@ use std::path::Path;
 
 use nalgebra::Vector3;
 
-use super::budget::{ChannelBudget, channel_budget};
+use super::budget::{ChannelBudget, Reference, channel_budget};
 use super::calibrate::unit_ground_calibration;
 use super::engine::{AccelPhysics, GyroPhysics, Run, Stream, run, stream};
 use super::error::SimError;
@@ -325,19 +325,12 @@ fn unit_budget(
     temp_meas: &[f64],
 ) -> UnitTruth {
     let n_out = temp_meas.len();
-    let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
-    let gravity = s.site.gravity_cluster_g().expect("validated");
-    let g2 = &hr.level_squared;
-    let static_force: Vec<[f64; 3]> = match &hr.motion_means {
-        None => vec![[gravity.x, gravity.y, gravity.z]; n_out],
-        Some(m) => m.force_g.clone(),
-    };
-    let static_rate = |n: usize| match &hr.motion_means {
-        None => earth,
-        Some(m) => Vector3::from(m.rate_deg_h[n]),
-    };
-    let elementary =
-        predictable::elementary(&hr.force_moments, &hr.accel_ideal_g, &static_force, g2);
+    let Reference {
+        earth,
+        gravity,
+        static_rate,
+        elementary,
+    } = Reference::of(s, hr);
     let mut channels = Vec::new();
     let mut hidden = Vec::new();
     let mut floors = Vec::new();
@@ -346,7 +339,7 @@ fn unit_budget(
         let at_record = |n: usize| {
             let a = hr.accel_ideal_g[n];
             let f = Vector3::new(a[0], a[1], a[2]);
-            let w = static_rate(n);
+            let w = static_rate[n];
             let dt = temp_meas[n] - s.thermal.reference_c;
             match (truth, g.dtg_axes()) {
                 (GyroCoefficients::Dtg(coefficients), Some(axes)) => {

@@ -135,7 +135,7 @@ impl UnitTruth {
     /// assert!(sim.truth.to_json().contains("\"noise_floor_deg_h\""));
     /// ```
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
+        crate::files::io::pretty(self)
     }
 
     /// Parses truth JSON; `path` labels errors.
@@ -160,11 +160,10 @@ impl UnitTruth {
     /// assert_eq!(nav_sensors::sim::UnitTruth::load(dir.join("truth.json")).unwrap().unit, unit);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| TruthFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_json(&text, &path.display().to_string())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| TruthFileError::Io { path, source },
+            Self::from_json,
+        )
     }
 }

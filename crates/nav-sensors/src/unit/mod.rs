@@ -402,12 +402,11 @@ impl Unit {
     /// assert_eq!(nav_sensors::unit::Unit::load(&path).unwrap().gyros().len(), 4);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, UnitError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| UnitError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_toml(&text, &path.display().to_string())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| UnitError::Io { path, source },
+            Self::from_toml,
+        )
     }
 
     /// A built-in unit by name ([`Unit::BUILTIN_NAMES`]).

@@ -204,9 +204,10 @@ pub(crate) fn median(v: &[f64]) -> f64 {
     }
 }
 
-/// At least two samples and strictly increasing time; `line(i)` gives the
-/// file line of sample i.
-fn check_increasing(
+/// At least two samples and strictly increasing time (the rule of a whole
+/// log before it is split at its gaps); `line(i)` gives the file line of
+/// sample i.
+pub(crate) fn check_increasing(
     t: &[f64],
     file: &str,
     line: &impl Fn(usize) -> u64,
@@ -289,15 +290,4 @@ pub(crate) fn check_time_allowing_jitter(
         });
     }
     Ok(())
-}
-
-/// The rule of a whole log before splitting: at least two samples and
-/// strictly increasing time (jitter and gaps are the splitter's).
-pub(crate) fn check_time_allowing_jitter_or_gaps(
-    t: &[f64],
-    file: &str,
-    line: impl Fn(usize) -> u64,
-    column: usize,
-) -> Result<(), RecordError> {
-    check_increasing(t, file, &line, column)
 }

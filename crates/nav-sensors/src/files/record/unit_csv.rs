@@ -236,7 +236,7 @@ fn from_table(mut table: NumericTable, unit: &Unit) -> Result<UnitRecords, Recor
         .iter()
         .map(|v| v * c.time_scale)
         .collect();
-    super::time::check_time_allowing_jitter_or_gaps(&t, &file, |i| table.line_of_row(i), t_column)?;
+    super::time::check_increasing(&t, &file, &|i| table.line_of_row(i), t_column)?;
     let mut take_scaled = |name: &str, k: f64| -> Result<(String, Vec<f64>), RecordError> {
         let v = table.take_column(name)?;
         Ok((
