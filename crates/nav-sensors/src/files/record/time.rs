@@ -291,3 +291,67 @@ pub(crate) fn check_time_allowing_jitter(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::Record;
+    use super::*;
+
+    fn series(t: Vec<f64>) -> Result<Record, RecordError> {
+        let n = t.len();
+        let g = |name: &str| (name.to_string(), vec![0.0; n]);
+        Record::from_series(
+            t,
+            vec![g("a"), g("b"), g("c")],
+            vec![g("ax"), g("ay"), g("az")],
+            vec![],
+            None,
+        )
+    }
+
+    #[test]
+    fn a_record_of_any_unit_accepts_jitter_and_refuses_a_gap() {
+        assert!(series(vec![0.0, 0.01, 0.0205, 0.029, 0.05, 0.06]).is_ok());
+        let err = series(vec![0.0, 0.01, 0.02, 0.03, 0.2, 0.21]).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "<memory>:6:1: a gap of 0.17 s (the median step is 0.01 s): split the record at its gaps"
+        );
+    }
+
+    #[test]
+    fn names_and_lengths_are_checked() {
+        let g = |name: &str, n: usize| (name.to_string(), vec![0.0; n]);
+        let t = vec![0.0, 0.01];
+        let err = Record::from_series(
+            t.clone(),
+            vec![g("a", 2), g("a", 2), g("c", 2)],
+            vec![g("ax", 2)],
+            vec![],
+            None,
+        )
+        .unwrap_err();
+        assert_eq!(err.to_string(), "column name 'a' is given twice");
+        let err = Record::from_series(t.clone(), vec![g("a", 2)], vec![g("ax", 3)], vec![], None)
+            .unwrap_err();
+        assert_eq!(err.to_string(), "series 'ax' has 3 samples, expected 2");
+        let err = Record::from_series(t.clone(), vec![g("a", 2)], vec![], vec![g("a", 2)], None)
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "extra column name 'a' is reserved or repeated"
+        );
+        let err = Record::from_series(t, vec![g("a", 2)], vec![], vec![], Some("temp".into()))
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "temperature column 'temp' is not among the extra columns"
+        );
+    }
+
+    #[test]
+    fn the_median_of_an_even_count_is_the_mean_of_the_middle_two() {
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+    }
+}
