@@ -662,7 +662,7 @@ fn fit_prints_each_coefficient_with_its_interval() {
         lines[0],
         "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
     );
-    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap();
     let cells = coefficient_cells(&m);
     assert!(
         cells
