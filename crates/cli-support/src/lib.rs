@@ -8,7 +8,7 @@
 //! |---|---|
 //! | [`failure`] | an error and its causes as one `error:` line on stderr, exit 1 |
 //! | [`usage`] | clap's usage errors as one line ending in "(see --help)", exit 2 |
-//! | [`progress`] | a spinner on stderr, silent with `--quiet` or when stderr is not a terminal |
+//! | [`progress`] | a spinner on stderr and lines above it for long steps, silent with `--quiet` or when stderr is not a terminal |
 //! | `testing` | (feature `testing`) running a binary under a time limit, for the integration tests |
 //!
 //! ```
@@ -29,8 +29,9 @@ pub mod testing;
 
 /// How a message of several lines is put on one line.
 ///
-/// The two binaries grew different habits before they shared this crate; both
-/// are kept so that every message stays byte for byte what it was.
+/// The two binaries grew different habits before they shared this crate.
+/// Both now print errors [`Style::TRIMMED`]; `dtg-vib` keeps
+/// [`Style::VERBATIM`]'s "; " between clap's usage lines.
 ///
 /// ```
 /// use cli_support::Style;
@@ -48,12 +49,14 @@ pub struct Style {
 }
 
 impl Style {
-    /// `rbf`'s: trimmed error lines, usage lines joined by spaces.
+    /// Trimmed error lines, usage lines joined by spaces (`rbf`'s; both
+    /// binaries' errors).
     pub const TRIMMED: Style = Style {
         trim_lines: true,
         usage_semicolons: false,
     };
-    /// `dtg-vib`'s: error lines as they stand, usage lines joined by "; ".
+    /// Error lines as they stand, usage lines joined by "; " (`dtg-vib`'s
+    /// usage errors).
     pub const VERBATIM: Style = Style {
         trim_lines: false,
         usage_semicolons: true,

@@ -1,6 +1,7 @@
-//! A spinner on stderr while a command works, drawn only where someone
-//! watches: never with `--quiet`, never when stderr is a file or a pipe (so
-//! logs and tests see only the results).
+//! A spinner on stderr while a command works, and lines above it for the
+//! steps worth keeping in view, drawn only where someone watches: never with
+//! `--quiet`, never when stderr is a file or a pipe (so logs and tests see
+//! only the results).
 
 use std::borrow::Cow;
 use std::io::IsTerminal;
@@ -70,6 +71,25 @@ impl Progress {
     pub fn say(&self, msg: impl Into<String>) {
         if let Some(pb) = &self.0 {
             pb.set_message(msg.into());
+        }
+    }
+
+    /// Prints `msg` on a line of its own above the spinner, after the
+    /// seconds since the start, where it stays when the spinner is cleared:
+    /// for a long command's steps (a round begun, a channel fitted), so the
+    /// terminal keeps the record of what was done and how long it took.
+    /// Nothing when not shown.
+    ///
+    /// ```
+    /// cli_support::progress::Progress::new(false).line("round 1: X fitted (1 of 6)");
+    /// ```
+    pub fn line(&self, msg: impl AsRef<str>) {
+        if let Some(pb) = &self.0 {
+            pb.println(format!(
+                "{:>6.1} s  {}",
+                pb.elapsed().as_secs_f64(),
+                msg.as_ref()
+            ));
         }
     }
 

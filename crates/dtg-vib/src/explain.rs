@@ -20,7 +20,8 @@ use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::{Axis, Channel};
 use nav_sensors::record::Record;
 
-pub use sysid::explain::ExplainStage;
+/// Progress of the loop.
+pub type ExplainStage = sysid::explain::ExplainStage<Channel>;
 
 /// An effect a round added, with the evidence for it.
 pub type Added = sysid::explain::Added<Channel, Axis>;

@@ -17,7 +17,9 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return cli_support::usage::exit(e, Style::VERBATIM),
     };
-    cli_support::failure::exit(run(cli), Style::VERBATIM)
+    // Errors as rbf prints them: a TOML error's excerpt lines trimmed, not
+    // "…;   |; 2 | seed = ;   |        ^; …".
+    cli_support::failure::exit(run(cli), Style::TRIMMED)
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {

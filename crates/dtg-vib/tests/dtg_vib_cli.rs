@@ -74,13 +74,14 @@ fn record() -> String {
     sim().join("record.csv").display().to_string()
 }
 
-/// A model fitted with `col:temp` on every channel, once for all tests.
-fn model() -> &'static str {
-    static MODEL: OnceLock<String> = OnceLock::new();
+/// A model fitted with `col:temp` on every channel, once for all tests:
+/// its file and what `fit` printed.
+fn fitted_model() -> &'static (String, String) {
+    static MODEL: OnceLock<(String, String)> = OnceLock::new();
     MODEL.get_or_init(|| {
         let m = dir().join("model.json").display().to_string();
         let calib = sim().join("calibration.json").display().to_string();
-        ok(&[
+        let printed = ok(&[
             "fit",
             "--data",
             &record(),
@@ -93,8 +94,13 @@ fn model() -> &'static str {
             "--out",
             &m,
         ]);
-        m
+        (m, printed)
     })
+}
+
+/// The file of [`fitted_model`].
+fn model() -> &'static str {
+    &fitted_model().0
 }
 
 /// Writes a variant of the record: `edit` gets the lines and changes them.
@@ -480,6 +486,25 @@ fn bad_scenarios() -> Vec<Refusal> {
     refusals
 }
 
+/// A scenario that is not TOML: the parse error's position, and its excerpt
+/// on one line with each line trimmed at its ends (it read "…;   |; 1 |
+/// seed = ;   |        ^; …", as rbf's errors no longer do).
+fn bad_toml() -> Vec<Refusal> {
+    let bad = dir().join("not-toml.toml");
+    std::fs::write(&bad, "seed = \n").unwrap();
+    let out = dir().join("not-toml");
+    let (b, o) = (bad.to_str().unwrap(), out.to_str().unwrap());
+    vec![Refusal {
+        writes_nothing_at: Some(out.join("record.csv")),
+        ..refusal(
+            "a scenario that is not TOML",
+            1,
+            &["simulate", "--scenario", b, "--out", o],
+            &[b, "line 1, column 8; |; 1 | seed =; |", "^; string values"],
+        )
+    }]
+}
+
 /// What `explain` cannot do, said with why: records given twice (also to
 /// `diagnose`), `--cv`, a by-record split of one record; no model written.
 fn explain_refusals() -> Vec<Refusal> {
@@ -544,6 +569,7 @@ fn bad_inputs_are_refused_in_one_line() {
     cases.extend(bad_flags());
     cases.extend(bad_models());
     cases.extend(bad_scenarios());
+    cases.extend(bad_toml());
     cases.extend(explain_refusals());
     cases.push(refusal(
         "allan --report on an input",
@@ -594,6 +620,167 @@ fn fit_json_has_the_contract_keys() {
     assert_eq!(channels[0]["effects"], serde_json::json!([]));
 }
 
+/// The line `fit` (and `explain`'s final table) prints for each effect of
+/// the model file `model` (JSON): id, coefficient ± standard error, unit and
+/// the stored 95% interval; one entry per channel, `None` without effects.
+fn coefficient_cells(model: &serde_json::Value) -> Vec<Option<String>> {
+    model["model"]["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| {
+            let cells: Vec<String> = c["effects"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .zip(c["coefficients"].as_array()?)
+                .map(|(id, k)| {
+                    let f = |v: &serde_json::Value| format!("{:.4}", v.as_f64().unwrap());
+                    format!(
+                        "{} {} ± {} {} ({} to {})",
+                        id.as_str().unwrap(),
+                        f(&k["value"]),
+                        f(&k["se"]),
+                        k["unit"].as_str().unwrap(),
+                        f(&k["ci95"][0]),
+                        f(&k["ci95"][1])
+                    )
+                })
+                .collect();
+            (!cells.is_empty()).then(|| cells.join(", "))
+        })
+        .collect()
+}
+
+/// `fit`'s table gives each effect's coefficient with its standard error
+/// and the 95% interval the model file stores (it used to stop at ± SE).
+#[test]
+fn fit_prints_each_coefficient_with_its_interval() {
+    let (out, text) = fitted_model();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
+    );
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap();
+    let cells = coefficient_cells(&m);
+    assert!(
+        cells
+            .iter()
+            .all(|c| c.as_deref().unwrap().starts_with("col:temp "))
+    );
+    for (line, cell) in lines[1..7].iter().zip(&cells) {
+        match cell {
+            Some(cell) => assert!(line.ends_with(&format!("  {cell}")), "{line} / {cell}"),
+            None => assert!(line.ends_with("  —"), "{line}"),
+        }
+    }
+}
+
+/// `diagnose` says under its findings what their terms mean, each once and
+/// only where it was printed: the candidates not ranked (anisoinertia, and
+/// what would excite it), every failing correlation test in words (a name
+/// like billings_voon_u2_e:ax said nothing), a negative fit (worse than the
+/// mean), and the findings' own words. The tri-axial record with hidden
+/// effects and a small model has all of them.
+#[test]
+fn diagnose_says_what_its_terms_mean() {
+    let tri = dir().join("tri");
+    ok(&[
+        "simulate",
+        "--builtin",
+        "triaxial_hidden",
+        "--out",
+        tri.to_str().unwrap(),
+    ]);
+    let (rec, calib, m) = (
+        tri.join("record.csv").display().to_string(),
+        tri.join("calibration.json").display().to_string(),
+        dir().join("tri.json").display().to_string(),
+    );
+    ok(&[
+        "fit",
+        "--data",
+        &rec,
+        "--calib",
+        &calib,
+        "--max-centers",
+        "10",
+        "--out",
+        &m,
+    ]);
+    let args = ["diagnose", "--model", m.as_str(), "--data", rec.as_str()];
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&[&args[..], &["--json"]].concat())).unwrap();
+    let text = ok(&args);
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| *l == "terms used above:")
+        .unwrap_or_else(|| panic!("no terms:\n{text}"));
+    let legend = &lines[at + 1..];
+    assert!(legend.iter().all(|l| l.starts_with("  ")), "{text}");
+    let mut unique = legend.to_vec();
+    unique.dedup();
+    assert_eq!(unique.len(), legend.len(), "a term said twice: {text}");
+    let says = |start: &str| legend.iter().find(|l| l[2..].starts_with(start)).copied();
+    let channels = v["channels"].as_array().unwrap();
+    let (mut failing, mut negative, mut findings) = (vec![], vec![], String::new());
+    for c in channels {
+        for u in c["unexcited"].as_array().unwrap() {
+            let id = u["effect"].as_str().unwrap();
+            let l = legend
+                .iter()
+                .find(|l| l.contains(id))
+                .unwrap_or_else(|| panic!("{id} not explained: {text}"));
+            if id.starts_with("ai_") {
+                assert!(
+                    l.contains("anisoinertia") && l.contains("excites them"),
+                    "{l}"
+                );
+            }
+        }
+        for f in c["failing"].as_array().unwrap() {
+            failing.push(f.as_str().unwrap());
+        }
+        if c["compare"]["val_fit_percent"].as_f64().unwrap() < 0.0 {
+            negative.push(c["channel"].as_str().unwrap());
+        }
+        for f in c["findings"].as_array().unwrap() {
+            findings.push_str(f.as_str().unwrap());
+        }
+    }
+    assert!(failing.contains(&"billings_voon_u2_e:ax"), "{failing:?}");
+    for name in &failing {
+        assert!(says(&format!("{name}: ")).is_some(), "{name}: {text}");
+    }
+    assert_eq!(
+        says("billings_voon_u2_e:ax: "),
+        Some(
+            "  billings_voon_u2_e:ax: Billings–Voon test, the residual against ax²: an even function of ax (a g² term) is left"
+        )
+    );
+    assert!(!negative.is_empty(), "{text}");
+    let fit = says("fit % = ").unwrap_or_else(|| panic!("no negative fit line: {text}"));
+    assert!(
+        fit.contains(&format!("below 0 on {}:", negative.join(", ")))
+            && fit.ends_with("worse than the mean"),
+        "{fit}"
+    );
+    for (word, start) in [
+        ("cross-fitted", "cross-fitted residual: "),
+        ("|r|", "|r|: "),
+        ("σ)", "(Nσ): "),
+        ("white floor", "white floor: "),
+    ] {
+        assert_eq!(
+            findings.contains(word),
+            says(start).is_some(),
+            "{word}: {text}"
+        );
+    }
+}
+
 #[test]
 fn residues_columns_without_and_with_a_model() {
     let out = dir().join("res.csv");
@@ -628,7 +815,10 @@ fn residues_columns_without_and_with_a_model() {
         "{header}"
     );
     assert!(header.ends_with(",K5_comp"), "{header}");
-    assert!(printed.contains("reduction"));
+    assert!(
+        printed.contains("  change\n") && printed.contains("\n pooled "),
+        "{printed}"
+    );
 }
 
 #[test]
@@ -930,6 +1120,47 @@ fn allan_json_has_the_contract_keys_and_after_is_what_compensate_writes() {
     }
 }
 
+/// `allan` says why it starts at a later sample with a model (its first
+/// full window, so before and after cover the same samples) and names the
+/// noise terms in words; "not resolved" is said once under the tables.
+#[test]
+fn allan_says_where_it_starts_and_what_its_terms_are() {
+    let with = ok(&["allan", "--data", &record(), "--model", model()]);
+    let first = with.lines().next().unwrap();
+    assert!(
+        first.contains(": 4951 samples from sample 49 (the first with a full window of the model: before and after cover the same samples), τ = "),
+        "{first}"
+    );
+    let plain = ok(&["allan", "--data", &record()]);
+    let first = plain.lines().next().unwrap();
+    assert!(
+        first.contains(": 5000 samples from sample 0, τ = "),
+        "{first}"
+    );
+    for text in [&with, &plain] {
+        for head in [
+            "angle random walk (deg/√h)  before",
+            "bias instability (deg/h)    before",
+            "rate random walk (deg/h/√h) before",
+        ] {
+            assert_eq!(
+                text.lines().filter(|l| l.starts_with(head)).count(),
+                1,
+                "{text}"
+            );
+        }
+        let (explained, unresolved): (Vec<&str>, Vec<&str>) = text
+            .lines()
+            .filter(|l| l.contains("(not resolved)"))
+            .partition(|l| l.starts_with("< bound (not resolved): "));
+        assert_eq!(
+            explained.len(),
+            usize::from(!unresolved.is_empty()),
+            "{text}"
+        );
+    }
+}
+
 #[test]
 fn allan_report_writes_its_figures() {
     let report = dir().join("allan-report");
@@ -943,7 +1174,7 @@ fn allan_report_writes_its_figures() {
         "--report",
         report.to_str().unwrap(),
     ]);
-    assert!(out.contains("ARW (deg/√h)"), "{out}");
+    assert!(out.contains("angle random walk (deg/√h)"), "{out}");
     for f in [
         "index.html",
         "allan_channels.png",
@@ -1023,12 +1254,18 @@ fn compensate_says_which_rate_reference_it_removes() {
     );
 }
 
-/// Runs `dtg-vib ARGS…` on a pseudo-terminal (util-linux `script`), as a
-/// user at a terminal would see it: stdout and stderr together, the spinner
-/// drawn. `None` where `script` is absent.
+/// Columns of the pseudo-terminal the terminal tests run on.
+const COLUMNS: usize = 100;
+
+/// Runs `dtg-vib ARGS…` on a pseudo-terminal (util-linux `script`) of
+/// [`COLUMNS`] columns, as a user at a terminal would see it: stdout and
+/// stderr together, the spinner drawn. `None` where `script` is absent.
 fn on_terminal(args: &[&str]) -> Option<String> {
     let quote = |s: &str| format!("'{}'", s.replace('\'', r"'\''"));
-    let mut cmd = quote(env!("CARGO_BIN_EXE_dtg-vib"));
+    // script's terminal has no size of its own; give it one, so that lines
+    // padded to the width wrap where a user's terminal would wrap them.
+    let mut cmd = format!("stty cols {COLUMNS} rows 50; exec ");
+    cmd.push_str(&quote(env!("CARGO_BIN_EXE_dtg-vib")));
     for a in args {
         cmd.push(' ');
         cmd.push_str(&quote(a));
@@ -1046,36 +1283,82 @@ fn on_terminal(args: &[&str]) -> Option<String> {
     Some(String::from_utf8_lossy(&out.stdout).into_owned())
 }
 
-/// The lines a terminal shows for `raw`: a carriage return starts the line
-/// again (the pty ends lines with "\r\n") and escape sequences (cursor
-/// moves, line clears) draw nothing.
+/// The lines a terminal of [`COLUMNS`] columns shows once `raw` is drawn:
+/// a carriage return goes back to the start of the line, a line feed down
+/// one, a character past the last column wraps to the next line, `ESC [ 2K`
+/// clears the line, `ESC [ n A` moves up n lines, `ESC [ J` clears below;
+/// other escape sequences draw nothing. Trailing blanks and blank lines at
+/// the end are dropped.
 fn screen_lines(raw: &str) -> Vec<String> {
-    raw.split('\n')
-        .map(|line| {
-            let line = line.strip_suffix('\r').unwrap_or(line);
-            let shown = line.rsplit('\r').next().unwrap_or("");
-            let mut out = String::new();
-            let mut chars = shown.chars().peekable();
-            while let Some(c) = chars.next() {
-                if c == '\x1b' {
-                    // CSI: ESC [ parameters… final byte in @..~
-                    if chars.peek() == Some(&'[') {
-                        chars.next();
-                        for d in chars.by_ref() {
-                            if ('@'..='~').contains(&d) {
-                                break;
-                            }
-                        }
-                    } else {
-                        chars.next();
+    let mut screen: Vec<Vec<char>> = vec![Vec::new()];
+    let (mut row, mut col) = (0usize, 0usize);
+    let mut chars = raw.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\r' => col = 0,
+            '\n' => row += 1,
+            '\x1b' => {
+                // CSI: ESC [ parameters… final byte in @..~
+                if chars.peek() != Some(&'[') {
+                    chars.next();
+                    continue;
+                }
+                chars.next();
+                let mut params = String::new();
+                let mut last = ' ';
+                for d in chars.by_ref() {
+                    if ('@'..='~').contains(&d) {
+                        last = d;
+                        break;
                     }
-                } else {
-                    out.push(c);
+                    params.push(d);
+                }
+                let n: usize = params.parse().unwrap_or(1);
+                match last {
+                    'K' => {
+                        if let Some(line) = screen.get_mut(row) {
+                            // 2K: the whole line; K, 0K: from the cursor on.
+                            line.truncate(if params == "2" { 0 } else { col });
+                        }
+                    }
+                    'A' => row = row.saturating_sub(n),
+                    'J' => {
+                        screen.truncate(row + 1);
+                        if let Some(line) = screen.get_mut(row) {
+                            line.truncate(col);
+                        }
+                    }
+                    _ => {}
                 }
             }
-            out
-        })
-        .collect()
+            c => {
+                if col == COLUMNS {
+                    row += 1;
+                    col = 0;
+                }
+                while screen.len() <= row {
+                    screen.push(Vec::new());
+                }
+                let line = &mut screen[row];
+                while line.len() <= col {
+                    line.push(' ');
+                }
+                line[col] = c;
+                col += 1;
+            }
+        }
+        while screen.len() <= row {
+            screen.push(Vec::new());
+        }
+    }
+    let mut lines: Vec<String> = screen
+        .iter()
+        .map(|l| l.iter().collect::<String>().trim_end().to_string())
+        .collect();
+    while lines.last().is_some_and(String::is_empty) {
+        lines.pop();
+    }
+    lines
 }
 
 /// The spinner's glyphs (indicatif's default tick strings are braille).
@@ -1114,6 +1397,71 @@ fn no_spinner_is_left_on_a_terminal() {
         lines[0].starts_with("channel") || lines[0].starts_with("note:"),
         "{lines:#?}"
     );
+}
+
+/// `explain` over several records takes tens of seconds: on a terminal it
+/// leaves a line per round and per channel fitted, and one when it
+/// diagnoses, above its results; the spinner is gone at the end, and with
+/// `--quiet` there are no such lines.
+#[test]
+fn explain_shows_each_round_and_channel_on_a_terminal() {
+    let out = dir().join("terminal-explain.json").display().to_string();
+    let args = [
+        "explain",
+        "--data",
+        &record(),
+        "--max-rounds",
+        "1",
+        "--max-centres",
+        "5",
+        "--out",
+        &out,
+    ];
+    let Some(raw) = on_terminal(&args) else {
+        eprintln!("notice: util-linux `script` not found, the terminal check is skipped");
+        return;
+    };
+    let lines = screen_lines(&raw);
+    assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
+    // Each progress line: seconds since the start, then the step.
+    let step = |l: &str| -> Option<String> {
+        let (secs, rest) = l.trim_start().split_once(" s  ")?;
+        secs.parse::<f64>().ok()?;
+        Some(rest.to_string())
+    };
+    let steps: Vec<String> = lines.iter().filter_map(|l| step(l)).collect();
+    assert_eq!(
+        steps.first().map(String::as_str),
+        Some("round 1: fitting the six channels"),
+        "{lines:#?}"
+    );
+    for ch in ["X", "X1", "Y", "Y1", "Z", "Z1"] {
+        assert_eq!(
+            steps
+                .iter()
+                .filter(|s| s.starts_with(&format!("round 1: {ch} fitted (")))
+                .count(),
+            1,
+            "{ch}: {lines:#?}"
+        );
+    }
+    assert!(
+        steps.iter().any(|s| s.ends_with("fitted (6 of 6)")),
+        "{lines:#?}"
+    );
+    assert_eq!(
+        steps.last().map(String::as_str),
+        Some("round 1: diagnosing (the model's mirror, then every candidate effect)"),
+        "{lines:#?}"
+    );
+    // The steps come first, then the results as without a terminal.
+    let first_result = lines.iter().position(|l| l == "round 1:").expect("results");
+    assert_eq!(first_result, steps.len(), "{lines:#?}");
+    // --quiet: the results alone.
+    let quiet: Vec<&str> = args.iter().copied().chain(["--quiet"]).collect();
+    let lines = screen_lines(&on_terminal(&quiet).expect("script ran once"));
+    assert_eq!(lines[0], "round 1:", "{lines:#?}");
+    assert!(!lines.iter().any(|l| step(l).is_some()), "{lines:#?}");
 }
 
 /// `export --lang text --out DIR` writes what `--lang text` prints into

@@ -124,11 +124,13 @@ pub struct Explanation<S: Sensor> {
     pub converged: bool,
 }
 
-/// Progress of the loop.
+/// Progress of the loop, for a channel type `C`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ExplainStage {
+pub enum ExplainStage<C> {
     /// Fitting round `n` (1-based).
     Fitting(usize),
+    /// Round `n`'s fit of this channel finished (channels finish in any order).
+    ChannelFitted(usize, C),
     /// Diagnosing round `n`.
     Diagnosing(usize),
 }
@@ -158,7 +160,7 @@ pub fn explain<S: Sensor>(
     options: &FitOptions<S::Effect>,
     diagnose_options: &DiagnoseOptions,
     max_rounds: usize,
-    progress: &(dyn Fn(ExplainStage) + Sync),
+    progress: &(dyn Fn(ExplainStage<S::Channel>) + Sync),
 ) -> Result<Explanation<S>, SysidError> {
     let max_rounds = max_rounds.max(1);
     let mut options = options.clone();
@@ -167,7 +169,11 @@ pub fn explain<S: Sensor>(
     loop {
         let n = rounds.len() + 1;
         progress(ExplainStage::Fitting(n));
-        let (model, _) = fit_records(sensor, records, &options, &|_: FitStage<_>| {})?;
+        let (model, _) = fit_records(sensor, records, &options, &|s: FitStage<_>| {
+            if let FitStage::ChannelDone(ch) = s {
+                progress(ExplainStage::ChannelFitted(n, ch));
+            }
+        })?;
         progress(ExplainStage::Diagnosing(n));
         let diagnosis = diagnose_records(&model, records, diagnose_options)?;
         let next = suggestions(&diagnosis, &options);

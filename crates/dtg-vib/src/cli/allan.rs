@@ -68,35 +68,55 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     }
     let tau = &a.channels[0].before.points;
     println!(
-        "Overlapping Allan deviation of {}: {} samples from sample {}, τ = {} to {} s; {:.1}% intervals",
+        "Overlapping Allan deviation of {}: {} samples from sample {}{}, τ = {} to {} s; {:.1}% intervals",
         data.display(),
         a.samples,
         a.first_sample,
+        first_sample_why(a.first_sample),
         tau.first().map_or(0.0, |p| p.tau_s),
         tau.last().map_or(0.0, |p| p.tau_s),
         100.0 * a.confidence
     );
     let text = dtg_vib::allan::term_text;
+    let mut unresolved = false;
     for (what, pick) in [
         (
-            "ARW (deg/√h)",
+            "angle random walk (deg/√h)",
             (|t| &t.arw) as fn(&nav_sensors::noise::NoiseTerms) -> &nav_sensors::noise::NoiseTerm,
         ),
         ("bias instability (deg/h)", |t| &t.bias_instability),
-        ("RRW (deg/h/√h)", |t| &t.rrw),
+        ("rate random walk (deg/h/√h)", |t| &t.rrw),
     ] {
-        println!("{what:<26} {:<40} after", "before");
+        println!("{what:<27} {:<40} after", "before");
         for s in a.channels.iter().chain(&a.residues) {
-            println!(
-                "{:>26} {:<40} {}",
-                s.name,
+            let (before, after) = (
                 text(pick(&s.terms_before)),
-                s.terms_after.as_ref().map_or("—".into(), |t| text(pick(t)))
+                s.terms_after.as_ref().map_or("—".into(), |t| text(pick(t))),
             );
+            unresolved |= before.contains("not resolved") || after.contains("not resolved");
+            println!("{:>27} {before:<40} {after}", s.name);
         }
+    }
+    if unresolved {
+        println!("{NOT_RESOLVED}");
     }
     if let Some(p) = &page {
         println!("report: {}", p.display());
     }
     Ok(())
 }
+
+/// Why the analysis starts at `first` (0-based), where it does not start
+/// at the record's first sample: rows before the model's first full window
+/// have no compensation, and before and after must cover the same samples.
+fn first_sample_why(first: usize) -> &'static str {
+    match first {
+        0 => "",
+        _ => {
+            " (the first with a full window of the model: before and after cover the same samples)"
+        }
+    }
+}
+
+/// What "< bound (not resolved)" in the tables says.
+const NOT_RESOLVED: &str = "< bound (not resolved): the curve shows no region of this term's slope; the bound is the largest value every τ still allows";

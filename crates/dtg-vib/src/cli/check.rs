@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use super::parse::parse_share;
 use super::report::{guard_report, model_report};
 use super::residues::print_residues_on;
+use super::terms;
 
 /// The flags of `check`.
 #[derive(Args)]
@@ -80,26 +81,38 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
 fn print_check(c: &dtg_vib::check::TransferCheck) {
     let cell = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
     println!(
-        "channel  rms before  rms after  mean after  fit %   inside  outside   (deg/h; before: about the record's mean)"
+        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside  (deg/h)"
     );
     for ch in &c.channels {
         println!(
-            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>5.1}  {:>7}  {:>7}",
+            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>12.4}  {:>6.1}  {:>7}  {:>7}",
             ch.channel.name(),
             ch.rms_before,
             ch.rms_after,
             ch.mean_after,
+            spread(ch.rms_after, ch.mean_after),
             ch.fit_percent,
             cell(ch.rms_inside),
             cell(ch.rms_outside)
         );
     }
+    println!("{}", terms::CHECK_COLUMNS);
+    let worse: Vec<&str> = c
+        .channels
+        .iter()
+        .filter(|ch| ch.fit_percent < 0.0)
+        .map(|ch| ch.channel.name())
+        .collect();
+    if let Some(line) = terms::negative_fit(&worse) {
+        println!("{line}");
+    }
     match c.outside_fraction {
         Some(f) => println!(
-            "windows outside the training range: {:.1}% of {} (median distance to the training points {:.2} × the reference, outside above {})",
+            "windows outside the training range: {:.1}% of {}; median distance to the nearest training point {:.2}× the reference distance ({}), outside beyond {}×",
             100.0 * f,
             c.windows,
             c.median_relative_distance.unwrap_or(f64::NAN),
+            terms::REFERENCE_DISTANCE,
             dtg_vib::operating::OUTSIDE_FACTOR
         ),
         None => {
@@ -107,4 +120,11 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
         }
     }
     print_residues_on(&c.residues, "every row");
+}
+
+/// The rms about the mean of what the model leaves, from its rms about zero
+/// and its mean (rms² = mean² + spread²): the figure to compare with "rms
+/// before", which is about the record's mean too.
+fn spread(rms: f64, mean: f64) -> f64 {
+    (rms * rms - mean * mean).max(0.0).sqrt()
 }

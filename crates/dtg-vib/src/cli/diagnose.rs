@@ -87,6 +87,13 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
                 println!("     {f}");
             }
         }
+        let terms = super::terms::diagnosis_terms(&d);
+        if !terms.is_empty() {
+            println!("terms used above:");
+            for t in terms {
+                println!("  {t}");
+            }
+        }
         if let Some(p) = &page {
             println!("report: {}", p.display());
         }

@@ -9,6 +9,7 @@ use dtg_vib::report::write_diagnosis_report;
 use nav_sensors::calibration::Calibration;
 use nav_sensors::record::Record;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::fit::{FitReport, print_fit};
 use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
@@ -53,16 +54,14 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
+    let fitted = AtomicUsize::new(0);
     let e = dtg_vib::explain::explain_records(
         &named,
         calibration.as_ref(),
         &options,
         &diagnose_options,
         a.max_rounds as usize,
-        &|stage| match stage {
-            ExplainStage::Fitting(n) => progress.say(format!("round {n}: fitting")),
-            ExplainStage::Diagnosing(n) => progress.say(format!("round {n}: diagnosing")),
-        },
+        &|stage| show_stage(&progress, &fitted, stage),
     )?;
     let seconds = start.elapsed().as_secs_f64();
     e.model.save(&f.out)?;
@@ -105,12 +104,43 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
             a.max_rounds
         );
     }
+    if e.rounds.iter().any(|r| !r.added.is_empty()) {
+        println!("{WHICH_COEFFICIENT}");
+    }
     print_fit(&e.model);
     println!("model: {} ({:.1} s)", f.out.display(), seconds);
     if let Some(p) = &page {
         println!("report: {}", p.display());
     }
     Ok(())
+}
+
+/// Why an added effect's coefficient in the rounds is not the one the final
+/// table stores: two estimates of one effect, on other rows and with other
+/// things fitted alongside (one estimate is issue 23's).
+const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, from the residual the model left on every row; the model below stores and compensates with the fit's, from its training rows only with the network partialled out: two estimates of one effect, so they differ";
+
+/// A round's steps as lines that stay on the terminal (a round over several
+/// records takes tens of seconds), and the current one on the spinner;
+/// `fitted` counts the round's channels, which finish in any order.
+fn show_stage(progress: &Progress, fitted: &AtomicUsize, stage: ExplainStage) {
+    match stage {
+        ExplainStage::Fitting(n) => {
+            fitted.store(0, Ordering::Relaxed);
+            progress.line(format!("round {n}: fitting the six channels"));
+            progress.say(format!("round {n}: fitting"));
+        }
+        ExplainStage::ChannelFitted(n, ch) => {
+            let k = fitted.fetch_add(1, Ordering::Relaxed) + 1;
+            progress.line(format!("round {n}: {} fitted ({k} of 6)", ch.name()));
+        }
+        ExplainStage::Diagnosing(n) => {
+            progress.line(format!(
+                "round {n}: diagnosing (the model's mirror, then every candidate effect)"
+            ));
+            progress.say(format!("round {n}: diagnosing"));
+        }
+    }
 }
 
 /// `explain --json`: every round, whether the loop converged, and the final fit

@@ -93,10 +93,12 @@ fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
     }
 }
 
-/// Each channel's centres, scores and effect coefficients.
+/// Each channel's centres, scores and effect coefficients (the fit's
+/// estimates, from the training rows), each with its standard error and 95%
+/// interval.
 pub fn print_fit(model: &CompensationModel) {
     println!(
-        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error)"
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
     );
     for c in model.channels() {
         let s = c.scores();
@@ -106,11 +108,13 @@ pub fn print_fit(model: &CompensationModel) {
             .enumerate()
             .map(|(j, e)| match c.coefficients() {
                 Some(k) => format!(
-                    "{} {:.4} ± {:.4} {}",
+                    "{} {:.4} ± {:.4} {} ({:.4} to {:.4})",
                     e.id(),
                     k[j].value,
                     k[j].se,
-                    k[j].unit
+                    k[j].unit,
+                    k[j].ci95[0],
+                    k[j].ci95[1]
                 ),
                 None => e.id(),
             })

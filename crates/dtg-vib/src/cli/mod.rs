@@ -9,6 +9,7 @@
 //! | [`fit_args`] | the flags of a fit (`fit`, `explain`) and the fit options they say |
 //! | [`thresholds`] | when the diagnosis suggests an effect (`diagnose`, `explain`) |
 //! | [`parse`] | validators of numeric flags, each saying the valid range |
+//! | [`terms`] | what the words the tables print mean, in a line under them |
 
 pub mod allan;
 pub mod check;
@@ -23,6 +24,7 @@ pub mod parse;
 pub mod report;
 pub mod residues;
 pub mod simulate;
+pub mod terms;
 pub mod thresholds;
 
 use clap::{Parser, Subcommand};
@@ -59,6 +61,19 @@ pub enum Command {
     Report(report::ReportArgs),
     /// Does a model hold on a record it was not fitted on? Rms before and
     /// after, residues, and the share of windows outside the training range.
+    ///
+    /// Per channel, deg/h: rms before, the output's rms about its mean (what
+    /// the best constant correction leaves); rms after, of output − model
+    /// about zero; mean after and spread after, its mean and its rms about
+    /// the mean (rms after² = mean after² + spread after²: compare spread
+    /// after with rms before); fit %, 100·(1 − rms after / rms before), below
+    /// 0 when the model does worse than the mean; inside and outside, rms
+    /// after on the windows inside and outside the training range. A window
+    /// is outside when its nearest training point lies farther than 1.5
+    /// reference distances, the distance within which 99% of the model's own
+    /// validation windows lie. The parity residues K0..K5 follow, before and
+    /// after about zero, how many times better or worse, and pooled: the rms
+    /// of the six together.
     Check(check::CheckArgs),
     /// Find what a model is missing: compare, locate failures, rank candidate effects.
     Diagnose(diagnose::DiagnoseArgs),

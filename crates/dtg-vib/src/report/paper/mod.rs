@@ -8,12 +8,13 @@ mod channels;
 mod ctx;
 mod diagnosis;
 mod fit;
+mod headline;
 mod histogram;
 mod paper_figures;
 mod residues;
 mod summary;
 
-use super::common::{Drawn, fmt, save_all};
+use super::common::{Drawn, save_all};
 use crate::apply::Applied;
 use crate::error::DtgVibError;
 use crate::model::{ChannelScores, CompensationModel};
@@ -37,24 +38,6 @@ pub struct ReportSummary {
     pub residues: Vec<ResidueStats>,
     /// Each channel's scores on this record, in X, X1, Y, Y1, Z, Z1 order.
     pub channels: Vec<ChannelScores>,
-}
-
-/// The page's summary line: the record, the split and the reduction.
-fn summary(ctx: &Ctx<'_>, source: &str) -> String {
-    let red = ctx.stats.iter().map(|s| s.reduction);
-    let min_red = red.clone().fold(f64::INFINITY, f64::min);
-    let max_red = red.fold(0.0, f64::max);
-    format!(
-        "Record {} ({} samples at {} Hz); split {} ({} training, {} validation rows). Residue rms fell {:.2}× to {:.2}× on the validation rows.",
-        source,
-        ctx.record.len(),
-        fmt(1.0 / ctx.record.dt()),
-        ctx.model.split(),
-        ctx.applied.train.len(),
-        ctx.applied.val.len(),
-        min_red,
-        max_red
-    )
 }
 
 /// Writes the figures and `index.html` into `dir`.
@@ -107,8 +90,11 @@ pub fn build_report(
     // measured against predicted, where it fails and the diagnosis, Allan
     // deviation, the spectra, the residual against the noise floor; then the
     // channel models, the before/after bars and the paper's figures.
-    let mut page = HtmlReport::new("DTG vibration-error compensation")
-        .summary(summary(&ctx, source))
+    let mut page = HtmlReport::new("DTG vibration-error compensation");
+    for p in headline::paragraphs(&ctx, extras, source) {
+        page = page.summary(p);
+    }
+    page = page
         .section(summary::section(&ctx, extras))
         .section(fit::section(&drawn));
     if let Some(d) = &extras.diagnosis {
