@@ -8,6 +8,7 @@
 //! |---|---|
 //! | [`failure`] | an error and its causes as one `error:` line on stderr, exit 1 |
 //! | [`usage`] | clap's usage errors as one line ending in "(see --help)", exit 2 |
+//! | [`pipe`] | a closed stdout (`… | head`) ends the program quietly, as it does `cat` |
 //! | [`progress`] | a spinner on stderr and lines above it for long steps, silent with `--quiet` or when stderr is not a terminal |
 //! | `testing` | (feature `testing`) running a binary under a time limit, for the integration tests |
 //!
@@ -21,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod failure;
+pub mod pipe;
 pub mod progress;
 pub mod usage;
 

@@ -1527,3 +1527,28 @@ fn centre_flags_and_their_aliases_fit_the_same_model() {
         assert!((1..=5).contains(&k), "{k} centres");
     }
 }
+
+/// A reader that stops early (`dtg-vib export --lang text | head -c 1`)
+/// closes the pipe: the program ends quietly (killed by SIGPIPE, as `cat` is),
+/// with no panic and no backtrace on stderr.
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_the_program_quietly() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = bin()
+        .args(["export", "--model", model(), "--lang", "text"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Read one byte, then close the pipe while the program still writes.
+    let mut stdout = child.stdout.take().unwrap();
+    let mut one = [0u8; 1];
+    stdout.read_exact(&mut one).unwrap();
+    drop(stdout);
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!stderr.contains("Broken pipe"), "{stderr}");
+}

@@ -13,6 +13,7 @@ use cli_support::Style;
 use commands::args::{Cli, Command};
 
 fn main() -> ExitCode {
+    cli_support::pipe::end_quietly_on_closed_pipe();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return cli_support::usage::exit(e, Style::TRIMMED),
