@@ -48,7 +48,7 @@ DIM = 50
 
 def windowed(n, seed):
     """Windows of a resonant low-pass filtered white-noise signal and a nonlinear
-    target: the recipe of benches/centre_selection.rs (its own random numbers)."""
+    target: the recipe of crates/rbf/benches/centre_selection.rs (its own random numbers)."""
     rng = np.random.default_rng(seed)
     burn = 200
     length = n + DIM + burn
