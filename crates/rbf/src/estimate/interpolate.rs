@@ -21,7 +21,7 @@ use faer::linalg::triangular_solve::solve_upper_triangular_in_place;
 use faer::{Conj, Mat, MatRef, Par};
 
 use super::condition::inverse_one_norm;
-use super::errors::SolveError;
+use super::error::SolveError;
 use super::lstsq::DEFAULT_MAX_CONDITION;
 use crate::check::first_non_finite;
 

@@ -7,7 +7,7 @@ use faer::linalg::qr::no_pivoting::factor::recommended_block_size;
 use faer::{Accum, Mat, MatRef, Par};
 
 use super::condition::upper_triangular_condition;
-use super::errors::SolveError;
+use super::error::SolveError;
 use crate::check::first_non_finite;
 
 /// Default limit on the estimated condition number: 1/(1000 ε) ≈ 4.5·10¹².

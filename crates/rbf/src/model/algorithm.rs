@@ -4,7 +4,7 @@
 use faer::prelude::ReborrowMut;
 use faer::{Mat, MatRef};
 
-use super::errors::RbfError;
+use super::error::RbfError;
 use super::fitted::{RbfModel, Scaling, Selection};
 use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};

@@ -6,7 +6,7 @@
 //! fields and getters.
 
 mod algorithm;
-mod errors;
+mod error;
 mod fitted;
 mod hyperparams;
 mod linfa_impl;
@@ -14,7 +14,7 @@ mod matser;
 mod persist;
 mod poly;
 
-pub use errors::{RbfError, RbfParamsError};
+pub use error::{RbfError, RbfParamsError};
 pub use fitted::{MAX_COEFFICIENT, RbfModel, Scaling, Selection};
 pub use hyperparams::{Candidates, CentreSelection, RbfParams, RbfValidParams, Strategy};
 pub use persist::{FORMAT_VERSION, PersistError};

@@ -4,7 +4,7 @@ use faer::linalg::matmul::matmul;
 use faer::prelude::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
-use super::errors::OlsError;
+use super::error::OlsError;
 use super::options::{OlsOptions, OlsProgress, StreamPrecision};
 use super::path::{OlsPath, Pick, StopReason};
 use super::store::{CandidateColumns, Store};

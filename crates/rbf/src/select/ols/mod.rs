@@ -60,14 +60,14 @@
 //! matrix–vector product a pick, are in `docs/performance.md`.
 
 mod engine;
-mod errors;
+mod error;
 mod options;
 mod path;
 mod store;
 mod stream;
 
 pub use engine::{forward_select, forward_select_columns, forward_select_owned};
-pub use errors::OlsError;
+pub use error::OlsError;
 pub use options::{OlsOptions, OlsProgress, StreamPrecision, UnknownStreamPrecision};
 pub use path::{Criterion, OlsPath, Pick, SizeRule, StopReason};
 pub use store::CandidateColumns;
