@@ -6,7 +6,7 @@ use std::process::{Command, Output};
 
 use rbf_cli::data;
 use rbf_cli::saved::SavedModel;
-use rbf_cli::settings::{Centers, FitSettings, WidthArg};
+use rbf_cli::settings::{Centres, FitSettings, WidthArg};
 use serde_json::Value;
 use tabular::Table;
 
@@ -171,8 +171,8 @@ fn fit_then_predict_round_trip_matches_the_library() {
 
     // A library fit on the even rows with the same settings gives the same model.
     let params = FitSettings {
-        centers: Centers::Ols,
-        max_centers: Some(12),
+        centres: Centres::Ols,
+        max_centres: Some(12),
         width: WidthArg::Fixed(1.0),
         ..FitSettings::default()
     }
@@ -892,7 +892,7 @@ fn stop_press_keeps_the_size_with_the_least_leave_one_out_error() {
         assert!(run.status.success(), "{}", stderr(&run));
         let j: Value = serde_json::from_str(&stdout(&run)).unwrap();
         let crit = j["criterion"].as_array().unwrap();
-        // --max-centers defaults to a tenth of the 212 training rows
+        // --max-centres defaults to a tenth of the 212 training rows
         assert_eq!(crit.len(), 22);
         let best = crit
             .iter()
@@ -944,7 +944,7 @@ fn stop_press_keeps_the_size_with_the_least_leave_one_out_error() {
     fails_with(&both, &["--stop err:RHO and --tol"]);
 }
 
-/// The code says `centres`; the command line keeps `--centers` and `--max-centers` and
+/// The code says `centres`; the command line keeps `--centres` and `--max-centres` and
 /// takes `--centres` and `--max-centres` as their aliases, with the same model.
 #[test]
 fn centres_spelling_is_an_alias_of_centers() {

@@ -7,7 +7,7 @@ use rbf::{Grid, Sizes, grid_search};
 use rbf_cli::data;
 use rbf_cli::progress;
 use rbf_cli::report::{CvContext, CvOut};
-use rbf_cli::settings::{Centers, CvScheme};
+use rbf_cli::settings::{Centres, CvScheme};
 use tabular::Table;
 
 use super::args::CvArgs;
@@ -18,18 +18,18 @@ pub fn run(a: CvArgs) -> Result<()> {
     if a.gap.is_some() && a.split != CvScheme::Blocked {
         bail!("--gap applies to --split blocked only");
     }
-    if !a.sizes.is_empty() && settings.centers == Centers::All {
+    if !a.sizes.is_empty() && settings.centres == Centres::All {
         bail!("--sizes applies to --centers ols, kmeans and random only, not all");
     }
-    if !a.tols.is_empty() && settings.centers != Centers::Ols {
+    if !a.tols.is_empty() && settings.centres != Centres::Ols {
         bail!(
             "--tols applies to --centers ols only, not {}",
-            settings.centers
+            settings.centres
         );
     }
     // The grid's largest size is the one the params must allow.
     if let Some(&k) = a.sizes.iter().max() {
-        settings.max_centers = Some(k);
+        settings.max_centres = Some(k);
     }
 
     let table = Table::read(&a.data.data)?;

@@ -146,7 +146,7 @@ struct ModelFacts {
     /// The least and largest β of per-centre widths (`None` for a uniform width).
     width_range: Option<(f64, f64)>,
     condition: Option<f64>,
-    n_centers: usize,
+    n_centres: usize,
     dim: usize,
     bias: Option<f64>,
     /// PRESS and GCV along the OLS path (empty without them).
@@ -174,8 +174,9 @@ pub struct FitReport {
     ols: Option<OlsOut>,
 }
 
-/// What `rbf fit --json` prints, borrowed from a [`FitReport`]. Fields in alphabetical
-/// order, the order of the keys (see the [module](super) doc); a key marked "absent"
+/// What `rbf fit --json` prints, borrowed from a [`FitReport`]. Fields in the
+/// alphabetical order of their keys, the order of the keys (see the [module](super) doc;
+/// `centres` prints as the key `centers`, a contract); a key marked "absent"
 /// is left out, not `null`, as scripts have always seen it.
 ///
 /// ```
@@ -188,7 +189,8 @@ pub struct FitReport {
 pub struct FitJson<'a> {
     bias: Option<f64>,
     candidates: Option<usize>,
-    centers: &'static str,
+    #[serde(rename = "centers")]
+    centres: &'static str,
     command: &'static str,
     condition: Option<f64>,
     /// Absent without PRESS and GCV along an OLS path.
@@ -200,9 +202,11 @@ pub struct FitJson<'a> {
     inputs: &'a [String],
     kernel: &'static str,
     kmeans_algorithm: Option<&'static str>,
-    max_centers: Option<usize>,
+    #[serde(rename = "max_centers")]
+    max_centres: Option<usize>,
     model: &'a str,
-    n_centers: usize,
+    #[serde(rename = "n_centers")]
+    n_centres: usize,
     n_train: usize,
     n_val: usize,
     ols: Option<&'a OlsOut>,
@@ -277,7 +281,7 @@ impl FitReport {
             width,
             width_range,
             condition: finite(model.condition()),
-            n_centers: model.n_centres(),
+            n_centres: model.n_centres(),
             dim: model.dim(),
             bias: model.bias().map(|b| b[0]),
             criterion: model
@@ -332,7 +336,7 @@ impl FitReport {
         FitJson {
             bias: f.bias,
             candidates: s.candidates,
-            centers: s.centers.name(),
+            centres: s.centres.name(),
             command: "fit",
             condition: f.condition,
             criterion: &f.criterion,
@@ -342,9 +346,9 @@ impl FitReport {
             inputs: &c.inputs,
             kernel: f.kernel,
             kmeans_algorithm: kmeans_algorithm(s),
-            max_centers: s.n_centers_for(c.train_rows.len()),
+            max_centres: s.n_centres_for(c.train_rows.len()),
             model: &c.out,
-            n_centers: f.n_centers,
+            n_centres: f.n_centres,
             n_train: c.train_rows.len(),
             n_val: c.n_val,
             ols: self.ols.as_ref(),
@@ -409,8 +413,8 @@ impl FitReport {
         let _ = writeln!(
             out,
             "  {} centres ({}{}), {} kernel, width {} ({}), ridge {}{}",
-            f.n_centers,
-            s.centers,
+            f.n_centres,
+            s.centres,
             kmeans_algorithm(s).map_or(String::new(), |a| format!(", {a}")),
             s.kernel,
             width,
