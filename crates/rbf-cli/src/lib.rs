@@ -30,7 +30,7 @@
 //!     width: WidthArg::Fixed(1.0),
 //!     ..FitSettings::default()
 //! }
-//! .params(rows.train.len())?;
+//! .params(rows.train.len(), inputs.len())?;
 //! let (xt, yt) = (data::take_rows(x.as_ref(), &rows.train), data::take_rows(y.as_ref(), &rows.train));
 //! let model = params.fit(xt.as_ref(), yt.as_ref())?;
 //! assert_eq!(model.n_centres(), 2);

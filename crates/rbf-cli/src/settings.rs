@@ -316,8 +316,9 @@ impl FromStr for CvScheme {
 /// A combination of flags that cannot be fitted.
 ///
 /// ```
-/// let e = rbf_cli::settings::SettingsError::TooManyCentres { centres: 9, rows: 4, what: "training rows" };
-/// assert!(e.to_string().ends_with("use --max-centers ≤ 4"));
+/// use rbf_cli::settings::SettingsError;
+/// let e = SettingsError::TooManyCentres { centres: 9, rows: 4, what: "training rows", most: 3, flag: "--max-centers" };
+/// assert!(e.to_string().ends_with("use --max-centers ≤ 3"));
 /// ```
 #[derive(Debug, PartialEq, thiserror::Error)]
 pub enum SettingsError {
@@ -341,8 +342,11 @@ pub enum SettingsError {
         /// What both set.
         what: &'static str,
     },
-    /// More centres than there are rows (or candidates) to choose them from.
-    #[error("{centres} centres asked for but only {rows} {what}; use --max-centers ≤ {rows}")]
+    /// More centres than the rows (or candidates) take, by the library's own rule
+    /// ([`rbf::RbfValidParams::most_centres`]): the value proposed then works.
+    #[error(
+        "{centres} centres asked for but {rows} {what} take at most {most}; use {flag} ≤ {most}"
+    )]
     TooManyCentres {
         /// Centres asked for.
         centres: usize,
@@ -350,10 +354,75 @@ pub enum SettingsError {
         rows: usize,
         /// What `rows` counts.
         what: &'static str,
+        /// The most centres that work.
+        most: usize,
+        /// The flag that sets the number of centres.
+        flag: &'static str,
+    },
+    /// Too few rows for the fixed columns alone (bias, linear or polynomial tail).
+    #[error(
+        "{rows} {what} are too few for the {fixed} fixed columns of the fit (bias, tails); use more rows or a lower --degree"
+    )]
+    TooFewRows {
+        /// Rows available.
+        rows: usize,
+        /// What `rows` counts.
+        what: &'static str,
+        /// Fixed columns of the weights' least squares.
+        fixed: usize,
     },
     /// The library rejected the parameters.
     #[error(transparent)]
     Params(#[from] RbfParamsError),
+}
+
+/// Refuses `k` centres when `rows` training rows of `dim` inputs take fewer by the
+/// library's rule ([`rbf::RbfValidParams::most_centres`], the rule the fit itself
+/// refuses by), naming `flag` with the largest value that works; `what` says what
+/// `rows` counts.
+///
+/// # Errors
+/// [`SettingsError::TooManyCentres`], or [`SettingsError::TooFewRows`] when the rows do
+/// not cover the fixed columns alone.
+///
+/// ```
+/// use rbf_cli::settings::{check_centres, Centres, FitSettings};
+/// let p = FitSettings { centres: Centres::Kmeans, ..Default::default() }.build(30, rbf::WidthRule::default()).unwrap();
+/// assert!(check_centres(&p, 23, 24, 2, "training rows", "--max-centers").is_ok());
+/// let e = check_centres(&p, 24, 24, 2, "training rows", "--max-centers").unwrap_err();
+/// assert!(e.to_string().ends_with("use --max-centers ≤ 23"), "{e}");
+/// ```
+pub fn check_centres(
+    params: &RbfValidParams,
+    k: usize,
+    rows: usize,
+    dim: usize,
+    what: &'static str,
+    flag: &'static str,
+) -> Result<(), SettingsError> {
+    let most = params.most_centres(rows, dim, 0);
+    if k <= most {
+        return Ok(());
+    }
+    if most == 0 {
+        return Err(SettingsError::TooFewRows {
+            rows,
+            what,
+            fixed: params.fixed_columns(dim, 0),
+        });
+    }
+    // OLS picks among its candidates: when they are a subsample, say so.
+    let (rows, what) = match params.centres() {
+        rbf::CentreSelection::Ols { .. } if most < rows => (most, "OLS candidates (--candidates)"),
+        _ => (rows, what),
+    };
+    Err(SettingsError::TooManyCentres {
+        centres: k,
+        rows,
+        what,
+        most,
+        flag,
+    })
 }
 
 /// Everything `rbf fit` needs to build the library's parameters.
@@ -361,18 +430,19 @@ pub enum SettingsError {
 /// ```
 /// use rbf_cli::settings::{Centres, FitSettings};
 /// let s = FitSettings { centres: Centres::Kmeans, max_centres: Some(8), ..FitSettings::default() };
-/// let p = s.params(100).unwrap();
+/// let p = s.params(100, 2).unwrap();
 /// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.n_centres == 8));
-/// assert!(s.params(5).unwrap_err().to_string().contains("--max-centers ≤ 5"));
+/// // 5 rows take 4 centres and the bias
+/// assert!(s.params(5, 2).unwrap_err().to_string().contains("--max-centers ≤ 4"));
 ///
 /// // --kmeans-algorithm picks whose Lloyd iterations run (the library's default otherwise)
 /// use rbf::KMeansAlgorithm::{Linfa, Lloyd};
 /// let linfa = FitSettings { kmeans_algorithm: Some(Linfa), ..s.clone() };
 /// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.algorithm == Lloyd));
-/// assert!(matches!(linfa.params(100).unwrap().centres(),
+/// assert!(matches!(linfa.params(100, 2).unwrap().centres(),
 ///     rbf::CentreSelection::KMeans(k) if k.algorithm == Linfa));
 /// let ols = FitSettings { centres: Centres::Ols, ..linfa };
-/// assert_eq!(ols.params(100).unwrap_err().to_string(),
+/// assert_eq!(ols.params(100, 2).unwrap_err().to_string(),
 ///     "--kmeans-algorithm applies to --centers kmeans only, not ols");
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -514,19 +584,20 @@ impl FitSettings {
         (sel, cands)
     }
 
-    /// Checks the flag combination for `n_train` training rows and builds the params.
+    /// Checks the flag combination for `n_train` training rows of `dim` inputs and builds
+    /// the params.
     ///
     /// # Errors
-    /// [`SettingsError`]: a flag for another strategy, more centres than rows (or OLS
-    /// candidates), or parameters the library rejects (e.g. a negative ridge).
+    /// [`SettingsError`]: a flag for another strategy, more centres than the rows (or OLS
+    /// candidates) take, or parameters the library rejects (e.g. a negative ridge).
     ///
     /// ```
     /// use rbf_cli::settings::{Centres, FitSettings};
     /// let s = FitSettings { centres: Centres::All, tol: Some(0.01), ..FitSettings::default() };
-    /// assert_eq!(s.params(10).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
+    /// assert_eq!(s.params(10, 1).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
     /// ```
-    pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
-        self.params_with_width(n_train, self.width.rule())
+    pub fn params(&self, n_train: usize, dim: usize) -> Result<RbfValidParams, SettingsError> {
+        self.params_with_width(n_train, dim, self.width.rule())
     }
 
     /// Whether `--width auto` is a search: with `--stop press|gcv` (and OLS) the width
@@ -551,31 +622,38 @@ impl FitSettings {
     ///
     /// ```
     /// let s = rbf_cli::settings::FitSettings::default();
-    /// let p = s.params_with_width(100, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
+    /// let p = s.params_with_width(100, 3, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
     /// assert_eq!(p.width(), &rbf::WidthRule::MedianPairwise { scale: 2.0 });
     /// ```
     pub fn params_with_width(
         &self,
         n_train: usize,
+        dim: usize,
         width: WidthRule,
     ) -> Result<RbfValidParams, SettingsError> {
-        self.check_flags()?;
-        let k = self.n_centres_for(n_train);
-        let (selection_rows, candidates) = self.ols_rows(n_train);
-        if let Some(k) = k {
-            let (rows, what) = match candidates {
-                Some(m) if m < n_train => (m, "OLS candidates (--candidates)"),
-                _ => (n_train, "training rows"),
-            };
-            if k > rows {
-                return Err(SettingsError::TooManyCentres {
-                    centres: k,
-                    rows,
-                    what,
-                });
-            }
+        let params = self.build(n_train, width)?;
+        if let Some(k) = self.n_centres_for(n_train) {
+            check_centres(&params, k, n_train, dim, "training rows", "--max-centers")?;
         }
-        let k = k.unwrap_or(0);
+        Ok(params)
+    }
+
+    /// The params for `n_train` training rows without comparing the number of centres
+    /// with any rows: for callers that check it against other rows themselves (`rbf cv`:
+    /// the smallest fold's) with [`check_centres`].
+    ///
+    /// # Errors
+    /// As [`FitSettings::params`], but for the number of centres.
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings { max_centres: Some(500), ..Default::default() };
+    /// assert!(s.build(10, rbf::WidthRule::default()).is_ok());
+    /// assert!(s.params(10, 1).is_err());
+    /// ```
+    pub fn build(&self, n_train: usize, width: WidthRule) -> Result<RbfValidParams, SettingsError> {
+        self.check_flags()?;
+        let k = self.n_centres_for(n_train).unwrap_or(0);
+        let (selection_rows, candidates) = self.ols_rows(n_train);
         let centres = match self.centres {
             Centres::Ols => CentreSelection::Ols {
                 max_centres: k,

@@ -176,7 +176,7 @@ fn fit_then_predict_round_trip_matches_the_library() {
         width: WidthArg::Fixed(1.0),
         ..FitSettings::default()
     }
-    .params(60)
+    .params(60, 2)
     .unwrap();
     let y = data::numeric_matrix(&table, &["y".to_string()]).unwrap();
     let even = data::interleaved(120).train;
@@ -449,7 +449,7 @@ fn fewer_rows_than_centres_says_how_many_fit() {
     let out = fit_on(&dir, &csv, &["--centers", "kmeans", "--max-centers", "15"]);
     fails_with(
         &out,
-        &["15 centres", "10 training rows", "use --max-centers ≤ 10"],
+        &["15 centres", "10 training rows", "use --max-centers ≤ 9"],
     );
 }
 

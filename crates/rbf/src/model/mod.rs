@@ -6,6 +6,7 @@
 //! fields and getters.
 
 mod algorithm;
+mod capacity;
 mod error;
 mod fitted;
 mod hyperparams;
