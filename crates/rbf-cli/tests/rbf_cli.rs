@@ -245,103 +245,51 @@ const fn refusal(
     }
 }
 
+#[rustfmt::skip]
 const REFUSALS: &[Refusal] = &[
-    refusal(
-        "missing target column lists the available ones",
+    refusal("missing target column lists the available ones",
         |s| s.fit("a,b,z\n1,2,3\n4,5,6\n", &[]),
-        &["d.csv", "no column 'y'", "a, b, z"],
-    ),
-    refusal(
-        "missing input column lists the available ones",
+        &["d.csv", "no column 'y'", "a, b, z"]),
+    refusal("missing input column lists the available ones",
         |s| s.fit("a,b,y\n1,2,3\n4,5,6\n", &["--inputs", "a,c"]),
-        &["no column 'c'", "a, b, y"],
-    ),
-    refusal(
-        "non-numeric cell names file, line and column",
+        &["no column 'c'", "a, b, y"]),
+    refusal("non-numeric cell names file, line and column",
         |s| s.fit("a,b,y\n1,2,3\n4,5,6\n7,eight,9\n", &["--inputs", "a,b"]),
-        &["d.csv:4:2:", "column 'b'", "'eight' is not a number"],
-    ),
-    refusal(
-        "NaN cell is refused with its position",
+        &["d.csv:4:2:", "column 'b'", "'eight' is not a number"]),
+    refusal("NaN cell is refused with its position",
         |s| s.fit("a,b,y\n1,2,3\n4,5,NaN\n7,8,9\n", &[]),
-        &["d.csv:3:3:", "'NaN' is not finite"],
-    ),
-    refusal(
-        "infinite cell is refused with its position",
+        &["d.csv:3:3:", "'NaN' is not finite"]),
+    refusal("infinite cell is refused with its position",
         |s| s.fit("a,b,y\n1,2,3\n4,-inf,6\n7,8,9\n", &[]),
-        &["d.csv:3:2:", "'-inf' is not finite"],
-    ),
-    refusal(
-        // 10 training rows take 9 k-means centres and the bias
-        "fewer rows than centres says how many fit",
-        |s| {
-            s.fit(
-                &smooth_csv(20, None),
-                &["--centres", "kmeans", "--max-centres", "15"],
-            )
-        },
-        &["15 centres", "10 training rows", "use --max-centers ≤ 9"],
-    ),
-    refusal(
-        "unknown kernel lists the valid names",
+        &["d.csv:3:2:", "'-inf' is not finite"]),
+    // 10 training rows take 9 k-means centres and the bias
+    refusal("fewer rows than centres says how many fit",
+        |s| s.fit(&smooth_csv(20, None), &["--centres", "kmeans", "--max-centres", "15"]),
+        &["15 centres", "10 training rows", "use --max-centers ≤ 9"]),
+    refusal("unknown kernel lists the valid names",
         |s| s.fit(&smooth_csv(20, None), &["--kernel", "gauss"]),
-        &["unknown kernel", "gaussian", "thin-plate", "wendland-c2"],
-    ),
-    refusal(
-        "singular all-points fit suggests a ridge",
+        &["unknown kernel", "gaussian", "thin-plate", "wendland-c2"]),
+    refusal("singular all-points fit suggests a ridge",
         |s| s.fit(&repeated_rows(), &["--centres", "all", "--width", "1"]),
-        &["fit failed", "use --ridge 1e-8"],
-    ),
-    refusal(
-        "bad split value names the allowed ones",
+        &["fit failed", "use --ridge 1e-8"]),
+    refusal("bad split value names the allowed ones",
         |s| s.fit("a,y,s\n1,2,train\n3,4,test\n", &["--split-column", "s"]),
-        &["d.csv:3:3:", "'test'", "allowed: train, val"],
-    ),
-    refusal(
-        "unreadable data file is named",
-        |s| {
-            let missing = s.path("nope.csv");
-            args(&[
-                "fit",
-                "--data",
-                &missing,
-                "--target",
-                "y",
-                "--centres",
-                "ols",
-                "--out",
-                "m.json",
-            ])
-        },
-        &["nope.csv", "No such file"],
-    ),
-    refusal(
-        "missing required flag is one line",
-        |_| {
-            args(&[
-                "fit",
-                "--data",
-                "d.csv",
-                "--target",
-                "y",
-                "--centres",
-                "ols",
-            ])
-        },
-        &["--out"],
-    ),
-    refusal(
-        "corrupt model file",
+        &["d.csv:3:3:", "'test'", "allowed: train, val"]),
+    refusal("unreadable data file is named",
+        |s| args(&["fit", "--data", &s.path("nope.csv"), "--target", "y", "--centres", "ols", "--out", "m.json"]),
+        &["nope.csv", "No such file"]),
+    refusal("missing required flag is one line",
+        |_| args(&["fit", "--data", "d.csv", "--target", "y", "--centres", "ols"]),
+        &["--out"]),
+    refusal("corrupt model file",
         |s| {
             let (data, model) = s.saved_model();
             let text = std::fs::read_to_string(&model).unwrap();
             std::fs::write(&model, &text[..text.len() / 2]).unwrap();
             s.predict(&model, &data)
         },
-        &["m.json", "corrupt model file"],
-    ),
-    refusal(
-        "model file of another format version",
+        &["m.json", "corrupt model file"]),
+    refusal("model file of another format version",
         |s| {
             let (data, model) = s.saved_model();
             let text = std::fs::read_to_string(&model).unwrap();
@@ -349,90 +297,45 @@ const REFUSALS: &[Refusal] = &[
             std::fs::write(&model, edited).unwrap();
             s.predict(&model, &data)
         },
-        &["format_version 99", "reads 1"],
-    ),
+        &["format_version 99", "reads 1"]),
     Refusal {
         name: "predict data lacking a model input",
         args: |s| {
             let (_, model) = s.saved_model();
             s.predict(&model, &s.file("other.csv", "a,y\n0.1,0.2\n"))
         },
-        says: &[
-            "needs input columns a, b",
-            "no column 'b'",
-            "the header has: a, y",
-        ],
+        says: &["needs input columns a, b", "no column 'b'", "the header has: a, y"],
         leaves_no: Some("p.csv"),
     },
     // A model whose `linear` block is not empty (edited, or from the library's forced
     // columns) is refused with the reason; it used to panic.
-    refusal(
-        "edited model with linear terms",
+    refusal("edited model with linear terms",
         |s| {
             let (data, model) = s.saved_model();
-            let mut v: Value =
-                serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
-            v["rbf"]["model"]["linear"] =
-                serde_json::json!({"cols": 1, "data": [[2.0]], "rows": 1});
+            let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+            v["rbf"]["model"]["linear"] = serde_json::json!({"cols": 1, "data": [[2.0]], "rows": 1});
             s.predict(&s.file("linear.json", &v.to_string()), &data)
         },
-        &["linear", "rbf fit"],
-    ),
+        &["linear", "rbf fit"]),
     // --threads outside 1..=256 is refused at once with the valid range (10,000 used
     // to hang while the pool started).
     refusal("--threads 0", |_| threads("0"), &["--threads", "1 to 256"]),
-    refusal(
-        "--threads 10000",
-        |_| threads("10000"),
-        &["--threads", "1 to 256"],
-    ),
-    refusal(
-        "--threads two",
-        |_| threads("two"),
-        &["--threads", "1 to 256"],
-    ),
-    refusal(
-        "--threads 1e3",
-        |_| threads("1e3"),
-        &["--threads", "1 to 256"],
-    ),
+    refusal("--threads 10000", |_| threads("10000"), &["--threads", "1 to 256"]),
+    refusal("--threads two", |_| threads("two"), &["--threads", "1 to 256"]),
+    refusal("--threads 1e3", |_| threads("1e3"), &["--threads", "1 to 256"]),
     // --folds beyond the rows is refused at once, with the flag and the valid range (a
     // billion folds used to abort allocating).
-    refusal(
-        "--folds 1000000000",
-        |s| folds(s, "1000000000"),
-        &["--folds", "use --folds 2 to 30"],
-    ),
-    refusal(
-        "--folds 31",
-        |s| folds(s, "31"),
-        &["--folds", "use --folds 2 to 30"],
-    ),
-    refusal(
-        "--folds 1",
-        |s| folds(s, "1"),
-        &["--folds", "use --folds 2 to 30"],
-    ),
+    refusal("--folds 1000000000", |s| folds(s, "1000000000"), &["--folds", "use --folds 2 to 30"]),
+    refusal("--folds 31", |s| folds(s, "31"), &["--folds", "use --folds 2 to 30"]),
+    refusal("--folds 1", |s| folds(s, "1"), &["--folds", "use --folds 2 to 30"]),
     // Cells whose squares would overflow are refused at the file, line and column (a
     // 1e308 target used to save a model of NaN with exit 0).
     Refusal {
         name: "overflowing cells are refused with their position",
         args: |s| {
             let data = s.file("h.csv", &overflowing_target());
-            let out = s.path("m.json");
-            args(&[
-                "fit",
-                "--data",
-                &data,
-                "--target",
-                "y",
-                "--centres",
-                "kmeans",
-                "--max-centres",
-                "5",
-                "--out",
-                &out,
-            ])
+            let fit = ["fit", "--data", &data, "--target", "y", "--centres", "kmeans"];
+            [args(&fit), args(&["--max-centres", "5", "--out", &s.path("m.json")])].concat()
         },
         says: &["h.csv:6:", "1e150"],
         leaves_no: Some("m.json"),
@@ -445,108 +348,36 @@ const REFUSALS: &[Refusal] = &[
         name: "a candidate matrix beyond memory names the flag that fits",
         args: |s| {
             let data = s.file("big.csv", &two_inputs(200_000));
-            let out = s.path("m.json");
             let fit = ["fit", "--data", &data, "--target", "y", "--centres", "ols"];
-            [
-                args(&fit),
-                args(&["--selection-rows", "100000", "--out", &out]),
-            ]
-            .concat()
+            [args(&fit), args(&["--selection-rows", "100000", "--out", &s.path("m.json")])].concat()
         },
         says: &["GiB", "use --candidates"],
         leaves_no: Some("m.json"),
     },
-    refusal(
-        "--stop k:0",
-        |s| {
-            sunspot_fit(
-                &s.path("m.json"),
-                &["--split-column", "split", "--stop", "k:0"],
-            )
-        },
-        &["--stop"],
-    ),
-    refusal(
-        "--stop err:RHO with --tol",
+    refusal("--stop k:0",
+        |s| sunspot_fit(&s.path("m.json"), &["--split-column", "split", "--stop", "k:0"]),
+        &["--stop"]),
+    refusal("--stop err:RHO with --tol",
         |s| sunspot_fit(&s.path("m.json"), &["--stop", "err:0.1", "--tol", "0.1"]),
-        &["--stop err:RHO and --tol"],
-    ),
-    refusal(
-        "--n-init is for k-means only",
-        |s| {
-            s.fit(
-                &smooth_csv(80, None),
-                &["--centres", "ols", "--n-init", "3"],
-            )
-        },
-        &["--n-init applies to --centers kmeans only"],
-    ),
-    refusal(
-        "thin-plate interpolation needs degree 1 (degree 0)",
-        |s| {
-            s.fit(
-                &smooth_csv(80, None),
-                &[
-                    "--centres",
-                    "all",
-                    "--kernel",
-                    "thin-plate",
-                    "--degree",
-                    "0",
-                ],
-            )
-        },
-        &["degree ≥ 1"],
-    ),
-    refusal(
-        "thin-plate interpolation needs degree 1 (degree -1)",
-        |s| {
-            s.fit(
-                &smooth_csv(80, None),
-                &[
-                    "--centres",
-                    "all",
-                    "--kernel",
-                    "thin-plate",
-                    "--degree",
-                    "-1",
-                ],
-            )
-        },
-        &["degree ≥ 1"],
-    ),
-    refusal(
-        "degree 3 lists the valid degrees",
-        |s| {
-            s.fit(
-                &smooth_csv(80, None),
-                &["--centres", "random", "--degree", "3"],
-            )
-        },
-        &["valid degrees: -1 (none), 0, 1, 2"],
-    ),
-    refusal(
-        "--ols-stream f16 lists the valid precisions",
+        &["--stop err:RHO and --tol"]),
+    refusal("--n-init is for k-means only",
+        |s| s.fit(&smooth_csv(80, None), &["--centres", "ols", "--n-init", "3"]),
+        &["--n-init applies to --centers kmeans only"]),
+    refusal("thin-plate interpolation needs degree 1 (degree 0)",
+        |s| s.fit(&smooth_csv(80, None), &["--centres", "all", "--kernel", "thin-plate", "--degree", "0"]),
+        &["degree ≥ 1"]),
+    refusal("thin-plate interpolation needs degree 1 (degree -1)",
+        |s| s.fit(&smooth_csv(80, None), &["--centres", "all", "--kernel", "thin-plate", "--degree", "-1"]),
+        &["degree ≥ 1"]),
+    refusal("degree 3 lists the valid degrees",
+        |s| s.fit(&smooth_csv(80, None), &["--centres", "random", "--degree", "3"]),
+        &["valid degrees: -1 (none), 0, 1, 2"]),
+    refusal("--ols-stream f16 lists the valid precisions",
         |s| s.fit(&smooth_csv(300, None), &["--ols-stream", "f16"]),
-        &["f32", "f64"],
-    ),
-    refusal(
-        "--ols-stream is for OLS only",
-        |s| {
-            s.fit(
-                &smooth_csv(300, None),
-                &[
-                    "--centres",
-                    "kmeans",
-                    "--max-centres",
-                    "5",
-                    "--ols-stream",
-                    "f64",
-                ],
-            )
-        },
-        &["--ols-stream applies to --centers ols only"],
-    ),
+        &["f32", "f64"]),
+    refusal("--ols-stream is for OLS only",
+        |s| s.fit(&smooth_csv(300, None), &["--centres", "kmeans", "--max-centres", "5", "--ols-stream", "f64"]),
+        &["--ols-stream applies to --centers ols only"]),
 ];
 
 /// `rbf --threads N fit ...` on a file that does not exist: the flag is refused first.
@@ -605,115 +436,22 @@ struct Hint {
     command: &'static [&'static str],
 }
 
+#[rustfmt::skip]
 const HINTS: &[Hint] = &[
-    Hint {
-        name: "fit kmeans, 15 training rows",
-        rows: 30,
-        command: &["fit", "--centres", "kmeans"],
-    },
-    Hint {
-        name: "fit random, 15 training rows",
-        rows: 30,
-        command: &["fit", "--centres", "random"],
-    },
-    Hint {
-        name: "fit ols, 15 training rows",
-        rows: 30,
-        command: &["fit", "--centres", "ols"],
-    },
-    Hint {
-        name: "fit kmeans with a quadratic tail",
-        rows: 30,
-        command: &["fit", "--centres", "kmeans", "--degree", "2"],
-    },
-    Hint {
-        name: "fit kmeans with a ridge",
-        rows: 30,
-        command: &["fit", "--centres", "kmeans", "--ridge", "1e-6"],
-    },
-    Hint {
-        name: "fit kmeans, standardised inputs",
-        rows: 30,
-        command: &["fit", "--centres", "kmeans", "--standardize"],
-    },
-    Hint {
-        name: "cv kmeans, 5 k-folds of 30 rows",
-        rows: 30,
-        command: &[
-            "cv",
-            "--centres",
-            "kmeans",
-            "--split",
-            "kfold",
-            "--folds",
-            "5",
-        ],
-    },
-    Hint {
-        name: "cv kmeans, 5 blocks of 30 rows",
-        rows: 30,
-        command: &[
-            "cv",
-            "--centres",
-            "kmeans",
-            "--split",
-            "blocked",
-            "--folds",
-            "5",
-        ],
-    },
-    Hint {
-        name: "cv random, 5 interleaved folds",
-        rows: 30,
-        command: &[
-            "cv",
-            "--centres",
-            "random",
-            "--split",
-            "interleaved",
-            "--folds",
-            "5",
-        ],
-    },
-    Hint {
-        name: "cv ols, 5 k-folds of 30 rows",
-        rows: 30,
-        command: &["cv", "--centres", "ols", "--split", "kfold", "--folds", "5"],
-    },
-    Hint {
-        name: "cv kmeans, --sizes beyond a gapped fold",
-        rows: 30,
-        command: &[
-            "cv",
-            "--centres",
-            "kmeans",
-            "--split",
-            "blocked",
-            "--folds",
-            "5",
-            "--gap",
-            "2",
-            "--sizes",
-            "5,40",
-        ],
-    },
-    Hint {
-        name: "cv, a gap that empties a fold",
-        rows: 60,
-        command: &[
-            "cv",
-            "--centres",
-            "ols",
-            "--max-centres",
-            "5",
-            "--split",
-            "blocked",
-            "--folds",
-            "5",
-            "--gap",
-            "200",
-        ],
-    },
+    Hint { name: "fit kmeans, 15 training rows", rows: 30, command: &["fit", "--centres", "kmeans"] },
+    Hint { name: "fit random, 15 training rows", rows: 30, command: &["fit", "--centres", "random"] },
+    Hint { name: "fit ols, 15 training rows", rows: 30, command: &["fit", "--centres", "ols"] },
+    Hint { name: "fit kmeans with a quadratic tail", rows: 30, command: &["fit", "--centres", "kmeans", "--degree", "2"] },
+    Hint { name: "fit kmeans with a ridge", rows: 30, command: &["fit", "--centres", "kmeans", "--ridge", "1e-6"] },
+    Hint { name: "fit kmeans, standardised inputs", rows: 30, command: &["fit", "--centres", "kmeans", "--standardize"] },
+    Hint { name: "cv kmeans, 5 k-folds of 30 rows", rows: 30, command: &["cv", "--centres", "kmeans", "--split", "kfold", "--folds", "5"] },
+    Hint { name: "cv kmeans, 5 blocks of 30 rows", rows: 30, command: &["cv", "--centres", "kmeans", "--split", "blocked", "--folds", "5"] },
+    Hint { name: "cv random, 5 interleaved folds", rows: 30, command: &["cv", "--centres", "random", "--split", "interleaved", "--folds", "5"] },
+    Hint { name: "cv ols, 5 k-folds of 30 rows", rows: 30, command: &["cv", "--centres", "ols", "--split", "kfold", "--folds", "5"] },
+    Hint { name: "cv kmeans, --sizes beyond a gapped fold", rows: 30,
+        command: &["cv", "--centres", "kmeans", "--split", "blocked", "--folds", "5", "--gap", "2", "--sizes", "5,40"] },
+    Hint { name: "cv, a gap that empties a fold", rows: 60,
+        command: &["cv", "--centres", "ols", "--max-centres", "5", "--split", "blocked", "--folds", "5", "--gap", "200"] },
 ];
 
 /// The flag and value a hint proposes, from "use FLAG ≤ K" or "use FLAG K or less".
