@@ -6,6 +6,7 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Kernel;
+use crate::widest::widest;
 
 /// Kernel widths β: one for every centre, or one per centre.
 ///
@@ -246,10 +247,28 @@ pub(crate) fn squared_distances_into(
 ) {
     check_shapes(x, centres, (out.nrows(), out.ncols()));
     product_tiles(x, centres, out, par, |_, col, xn, cn| {
+        add_norms(col, xn, cn)
+    });
+}
+
+widest! {
+    /// v ← max(v + ‖x̃ᵢ‖² + ‖c̃‖², 0): a column of −2x̃·c̃ products made squared
+    /// distances (tiny negative results of the cancellation clamped).
+    fn add_norms(col: &mut [f64], xn: &[f64], cn: f64) {
         for (v, &xi) in col.iter_mut().zip(xn) {
             *v = (*v + xi + cn).max(0.0);
         }
-    });
+    }
+}
+
+widest! {
+    /// A column shifted, `dst = src − shift`, its squares added to the rows' norms.
+    fn shift_column(dst: &mut [f64], src: &[f64], shift: f64, norms: &mut [f64]) {
+        for ((v, &x), norm) in dst.iter_mut().zip(src).zip(norms.iter_mut()) {
+            *v = x - shift;
+            *norm += v.powi(2);
+        }
+    }
 }
 
 #[track_caller]
@@ -304,10 +323,23 @@ struct Shifted {
 impl Shifted {
     fn new(x: MatRef<'_, f64>, shift: Vec<f64>) -> Self {
         let (n, d) = (x.nrows(), x.ncols());
-        let xs = Mat::from_fn(n, d, |i, k| x[(i, k)] - shift[k]);
-        let xn: Vec<f64> = (0..n)
-            .map(|i| (0..d).map(|k| xs[(i, k)].powi(2)).sum())
-            .collect();
+        let mut xs = Mat::<f64>::zeros(n, d);
+        // Column by column (contiguous); each row's squared norm still sums its columns
+        // in order from the first, as a row-wise sum would.
+        let mut xn = vec![0.0; n];
+        let mut copy = Vec::new();
+        for k in 0..d {
+            let src = x.col(k);
+            let src = match src.try_as_col_major() {
+                Some(c) => c.as_slice(),
+                None => {
+                    copy.clear();
+                    copy.extend((0..n).map(|i| src[i]));
+                    &copy[..]
+                }
+            };
+            shift_column(xs.col_as_slice_mut(k), src, shift[k], &mut xn);
+        }
         Self { xs, xn, shift }
     }
 

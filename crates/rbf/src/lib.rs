@@ -57,6 +57,7 @@ pub mod neighbours;
 mod parallel;
 pub mod select;
 pub mod split;
+mod widest;
 pub mod width;
 
 pub use faer;

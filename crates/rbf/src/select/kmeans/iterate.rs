@@ -5,6 +5,7 @@ use faer::{Mat, MatRef, Par};
 
 use super::KMeansCentres;
 use crate::design::squared_distances_into;
+use crate::widest::widest;
 
 /// Mean squared distance of the rows of `x` to their assigned centres, computed
 /// directly (O(n·d)).
@@ -84,6 +85,10 @@ pub fn lloyd(
     let mut nearest = vec![0.0; n];
     let mut previous = vec![usize::MAX; n];
     let mut counts = vec![0usize; k];
+    let rows: Vec<f64> = (0..n)
+        .flat_map(|i| (0..d).map(move |t| x[(i, t)]))
+        .collect();
+    let mut sums = vec![0.0; k * d];
     let mut unchanged = false;
     let mut iterations = 0;
     while iterations < max_iterations {
@@ -97,7 +102,7 @@ pub fn lloyd(
             par,
         );
         relocate_empty(&mut labels, &mut nearest, &mut counts);
-        means(x, &labels, &counts, &mut next);
+        means(&rows, &labels, &counts, &mut sums, &mut next);
         let shift = (0..d)
             .map(|t| {
                 (0..k)
@@ -174,15 +179,7 @@ fn assign(
         nearest.copy_from_slice(&column(0)[rows.clone()]);
         labels.fill(0);
         for j in 1..k {
-            for ((l, m), &v) in labels
-                .iter_mut()
-                .zip(nearest.iter_mut())
-                .zip(&column(j)[rows.clone()])
-            {
-                let closer = v < *m;
-                *m = if closer { v } else { *m };
-                *l = if closer { j } else { *l };
-            }
+            nearer(labels, nearest, &column(j)[rows.clone()], j);
         }
     };
     let threads = par.degree();
@@ -197,6 +194,18 @@ fn assign(
             .zip(nearest.par_chunks_mut(chunk))
             .enumerate()
             .for_each(|(c, (l, m))| argmin(c * chunk, l, m));
+    }
+}
+
+widest! {
+    /// Samples closer to centroid `j` (squared distances `dist`) than to the nearest so
+    /// far take it: branch-free selects, the earlier centroid kept on a tie.
+    fn nearer(labels: &mut [usize], nearest: &mut [f64], dist: &[f64], j: usize) {
+        for ((l, m), &v) in labels.iter_mut().zip(nearest.iter_mut()).zip(dist) {
+            let closer = v < *m;
+            *m = if closer { v } else { *m };
+            *l = if closer { j } else { *l };
+        }
     }
 }
 
@@ -226,20 +235,31 @@ fn relocate_empty(labels: &mut [usize], nearest: &mut [f64], counts: &mut [usize
     }
 }
 
-/// Centroids as the plain means of their members (every cluster has one).
-fn means(x: MatRef<'_, f64>, labels: &[usize], counts: &[usize], out: &mut Mat<f64>) {
-    out.fill(0.0);
-    for t in 0..x.ncols() {
-        let col = x.col(t);
-        let mut o = out.col_mut(t);
-        for (i, &l) in labels.iter().enumerate() {
-            o[l] += col[i];
+/// Centroids as the plain means of their members (every cluster has one). `rows` is
+/// `x` row by row (n × d, row-major): a sample's columns are added to its cluster's
+/// sums together, so a run of samples of one cluster is d independent sums rather than
+/// one chain through memory; each sum still adds its members in row order.
+fn means(rows: &[f64], labels: &[usize], counts: &[usize], sums: &mut [f64], out: &mut Mat<f64>) {
+    let d = out.ncols();
+    sums.fill(0.0);
+    if d > 0 {
+        for (row, &l) in rows.chunks_exact(d).zip(labels) {
+            add_to(&mut sums[l * d..(l + 1) * d], row);
         }
     }
     for (j, &c) in counts.iter().enumerate() {
         let inv = 1.0 / c as f64;
-        for t in 0..x.ncols() {
-            out[(j, t)] *= inv;
+        for t in 0..d {
+            out[(j, t)] = sums[j * d + t] * inv;
+        }
+    }
+}
+
+widest! {
+    /// `acc += row`, element by element.
+    fn add_to(acc: &mut [f64], row: &[f64]) {
+        for (a, &v) in acc.iter_mut().zip(row) {
+            *a += v;
         }
     }
 }
