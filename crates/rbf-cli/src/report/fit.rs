@@ -151,6 +151,8 @@ struct ModelFacts {
     bias: Option<f64>,
     /// PRESS and GCV along the OLS path (empty without them).
     criterion: Vec<CriterionOut>,
+    /// The threads the OLS passes ran on and why (OLS only).
+    pass_threads: Option<(usize, String)>,
 }
 
 /// The report of `rbf fit`.
@@ -223,6 +225,11 @@ pub struct FitJson<'a> {
     stop: Option<String>,
     target: &'a str,
     threads: usize,
+    /// Why the OLS passes ran on `threads_used` threads (null for other centres).
+    threads_reason: Option<&'a str>,
+    /// The threads the OLS passes ran on: the library keeps the parallelism asked for
+    /// only where it makes them faster (null for other centres).
+    threads_used: Option<usize>,
     tol: Option<f64>,
     train_nmse: Option<f64>,
     train_rmse: Option<f64>,
@@ -288,6 +295,7 @@ impl FitReport {
                 .selection()
                 .map(|s| s.criterion.iter().map(CriterionOut::from).collect())
                 .unwrap_or_default(),
+            pass_threads: model.pass_threads().map(|t| (t.threads, t.to_string())),
         };
         let ols = model.selection().map(|s| OlsOut {
             forced_errs: s.forced_errs.clone(),
@@ -368,6 +376,8 @@ impl FitReport {
             stop: s.stop.map(|v| v.name()),
             target: &c.target,
             threads: c.threads,
+            threads_reason: f.pass_threads.as_ref().map(|t| t.1.as_str()),
+            threads_used: f.pass_threads.as_ref().map(|t| t.0),
             tol: s.tol,
             train_nmse: finite(c.train.nmse),
             train_rmse: finite(c.train.rmse),

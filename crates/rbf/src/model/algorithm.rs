@@ -398,7 +398,7 @@ impl OlsStage {
             },
             criterion: self.path.criterion(),
         };
-        match &self.phi {
+        let model = match &self.phi {
             Some(phi) => solve_model(
                 params,
                 &self.design,
@@ -418,7 +418,8 @@ impl OlsStage {
                 ridge,
                 selection,
             ),
-        }
+        };
+        model.map(|m| m.with_pass_threads(self.path.pass_threads().clone()))
     }
 }
 

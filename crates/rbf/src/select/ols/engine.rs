@@ -9,6 +9,7 @@ use super::options::{OlsOptions, OlsProgress, StreamPrecision};
 use super::path::{OlsPath, Pick, StopReason};
 use super::store::{CandidateColumns, Store};
 use super::stream::{Columns, Compact, fill_slice, products};
+use super::threads::Schedule;
 use crate::check::first_non_finite;
 use crate::parallel::{axpy, dot};
 
@@ -303,6 +304,8 @@ struct Engine<'s, 'o> {
     options: &'o OlsOptions<'o>,
     /// Leverages hᵢᵢ = Σ_k q_ik² of the basis so far (for PRESS).
     lev: Vec<f64>,
+    /// The threads of the streaming passes.
+    schedule: Schedule,
 }
 
 /// Candidates per block of the initial scan: a block of f64 columns stays in cache
@@ -470,7 +473,11 @@ impl Engine<'_, '_> {
             (None, Some(p)) => Columns::F64(p),
             (None, None) => unreachable!("generated columns always stream their f32 copy"),
         };
-        products(&columns, &live, &vecs, &mut out, self.options.par);
+        let (par, start) = (self.schedule.par(), std::time::Instant::now());
+        products(&columns, &live, &vecs, &mut out, par);
+        let entries = live.len() * self.resid.nrows();
+        self.schedule
+            .record(par, start.elapsed().as_secs_f64(), entries);
         for (t, &j) in live.iter().enumerate() {
             let o = &out[t * s..(t + 1) * s];
             let c = &mut self.cands[j];
@@ -856,6 +863,7 @@ fn run(
         stop,
         press,
         n_samples: targets.nrows(),
+        pass_threads: eng.schedule.summary(),
     })
 }
 
@@ -925,6 +933,7 @@ impl<'s, 'o> Engine<'s, 'o> {
             target_energy,
             options,
             lev: vec![0.0; n],
+            schedule: Schedule::new(options.par, m * n * options.stream.bytes()),
         }
     }
 

@@ -65,9 +65,11 @@ mod options;
 mod path;
 mod store;
 mod stream;
+mod threads;
 
 pub use engine::{forward_select, forward_select_columns, forward_select_owned};
 pub use error::OlsError;
 pub use options::{OlsOptions, OlsProgress, StreamPrecision, UnknownStreamPrecision};
 pub use path::{Criterion, OlsPath, Pick, SizeRule, StopReason};
 pub use store::CandidateColumns;
+pub use threads::{PassThreads, PassThreadsReason};
