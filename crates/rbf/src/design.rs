@@ -421,25 +421,14 @@ impl Shifted {
     }
 }
 
-/// v ← φ(v + xᵢ + c) for a column of −2x·c products: one monomorphised loop per kernel
-/// (the kernel match hoisted out) so that the compiler vectorises it, compiled twice —
-/// for the baseline x86-64 target (SSE2) and with AVX2, chosen at run time — because the
-/// Gaussian's exponential dominates the design-matrix cost and runs twice as fast on
-/// four lanes.
-fn apply_kernel(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2 (checked just above).
-        unsafe { apply_kernel_avx2(kernel, width, col, xn, cn) };
-        return;
+widest! {
+    /// v ← φ(v + xᵢ + c) for a column of −2x·c products: one monomorphised loop per
+    /// kernel (the kernel match hoisted out) so that the compiler vectorises it, at the
+    /// widest width the processor has, because the Gaussian's exponential dominates the
+    /// design-matrix cost (an element-by-element loop: the same bits at any width).
+    fn apply_kernel(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
+        apply_kernel_generic(kernel, width, col, xn, cn)
     }
-    apply_kernel_generic(kernel, width, col, xn, cn);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn apply_kernel_avx2(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
-    apply_kernel_generic(kernel, width, col, xn, cn);
 }
 
 #[inline(always)]
