@@ -9,7 +9,8 @@
 # Environment: PYTHON (a Python with peers/scripts/requirements.txt; default python3),
 # REPS (repetitions per side, default 5), OUT (work directory, default /tmp/rbf-peer),
 # THREADS (the thread counts our side runs with, default "<cores> 1"), PY_THREADS
-# (if set, OpenBLAS and OpenMP threads of the Python side),
+# (the OpenBLAS and OpenMP thread counts the Python side runs with, default THREADS:
+# each side at each count, compared count for count),
 # CARGO_TARGET_DIR (default ./target). The sides alternate repetition by repetition
 # so that a noisy neighbour on a shared machine hits both alike; medians are quoted.
 #
@@ -29,9 +30,7 @@ REPS=${REPS:-5}
 OUT=${OUT:-/tmp/rbf-peer}
 NCPU=$(getconf _NPROCESSORS_ONLN) # not nproc: it follows OMP_NUM_THREADS
 THREADS=${THREADS:-"$NCPU 1"}
-if [[ -n ${PY_THREADS:-} ]]; then
-    export OPENBLAS_NUM_THREADS=$PY_THREADS OMP_NUM_THREADS=$PY_THREADS
-fi
+PY_THREADS=${PY_THREADS:-$THREADS}
 export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
 mode=${1:-peer}
 mkdir -p "$OUT"
@@ -46,7 +45,7 @@ machine() {
     echo "machine: $NCPU cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)," \
         "$(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo); $(date -u '+%Y-%m-%d %H:%M UTC');" \
         "rbf $(git -C "$root" rev-parse --short HEAD); load $(cut -d' ' -f1-3 /proc/loadavg);" \
-        "our threads: $THREADS; Python threads: ${PY_THREADS:-default ($NCPU)}"
+        "our threads: $THREADS; Python threads: $PY_THREADS"
 }
 
 json_field() { "$PY" -c "import json,sys; print(json.loads(sys.stdin.readline())['$1'])"; }
@@ -105,13 +104,19 @@ peer() {
             "$RBF" fit --threads "$t" "${common[@]}" --centers kmeans --max-centers 100 >>"$OUT/rust.jsonl"
             "$RBF" fit --threads "$t" "${common[@]}" --centers all --ridge 1e-8 >>"$OUT/rust.jsonl"
         done
-        "$PY" "$here/peer.py" run --data "$data" --beta "$beta" --k 100 --smoothing 1e-8 \
-            --methods cgs,ols,kmeans,rbfi >>"$OUT/python.jsonl"
+        for pt in $PY_THREADS; do
+            OPENBLAS_NUM_THREADS=$pt OMP_NUM_THREADS=$pt "$PY" "$here/peer.py" run --data "$data" \
+                --beta "$beta" --k 100 --smoothing 1e-8 --threads "$pt" \
+                --methods "${METHODS:-cgs,ols,kmeans,rbfi}" >>"$OUT/python.jsonl"
+        done
     done
     for t in $THREADS; do
         RBF_THREADS=$t "$BOUND" "$data" "$beta" >>"$OUT/rust.jsonl"
     done
-    "$PY" "$here/peer.py" run --data "$data" --beta "$beta" --methods matvec >>"$OUT/python.jsonl"
+    for pt in $PY_THREADS; do
+        OPENBLAS_NUM_THREADS=$pt OMP_NUM_THREADS=$pt "$PY" "$here/peer.py" run --data "$data" \
+            --beta "$beta" --methods matvec --threads "$pt" >>"$OUT/python.jsonl"
+    done
     load_end
     if [[ $LOAD_OK != 1 ]]; then
         if [[ ${ALLOW_LOADED:-0} != 1 ]]; then
