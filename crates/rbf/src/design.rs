@@ -232,25 +232,6 @@ pub fn kernel_matrix_into(
     });
 }
 
-/// Squared distances D[i, j] = ‖x_i − c_j‖² (n × m) into `out`, by the product formula of
-/// [`kernel_matrix`] (the same code: one faer product after shifting both sets by the
-/// centres' mean, tiny negative results clamped to 0). k-means assigns samples with it.
-///
-/// # Panics
-/// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
-#[track_caller]
-pub(crate) fn squared_distances_into(
-    x: MatRef<'_, f64>,
-    centres: MatRef<'_, f64>,
-    out: MatMut<'_, f64>,
-    par: Par,
-) {
-    check_shapes(x, centres, (out.nrows(), out.ncols()));
-    product_tiles(x, centres, out, par, |_, col, xn, cn| {
-        add_norms(col, xn, cn)
-    });
-}
-
 widest! {
     /// v ← max(v + ‖x̃ᵢ‖² + ‖c̃‖², 0): a column of −2x̃·c̃ products made squared
     /// distances (tiny negative results of the cancellation clamped).
@@ -312,6 +293,56 @@ fn product_tiles(
     samples.tiles(cs.as_ref(), &cn, out, par, finish);
 }
 
+/// Squared distances D[i, j] = ‖x_i − c_j‖² by the product formula of [`kernel_matrix`]
+/// (the same code: one faer product after shifting both sets by the centres' mean, tiny
+/// negative results clamped to 0). k-means assigns samples with it, again and again for
+/// the same samples: the shifted copy of the samples is kept and refilled instead of
+/// allocated at every call (a fresh megabyte a call was page faults: the first fit of a
+/// process took twice as long as the next).
+pub(crate) struct Distances {
+    samples: Shifted,
+}
+
+impl Distances {
+    pub(crate) fn new() -> Self {
+        Self {
+            samples: Shifted {
+                xs: Mat::zeros(0, 0),
+                xn: Vec::new(),
+                shift: Vec::new(),
+            },
+        }
+    }
+
+    /// The distances of the rows of `x` to the rows of `centres` (n × m) into `out`.
+    ///
+    /// # Panics
+    /// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
+    #[track_caller]
+    pub(crate) fn fill(
+        &mut self,
+        x: MatRef<'_, f64>,
+        centres: MatRef<'_, f64>,
+        out: MatMut<'_, f64>,
+        par: Par,
+    ) {
+        check_shapes(x, centres, (out.nrows(), out.ncols()));
+        if x.nrows() == 0 || centres.nrows() == 0 {
+            return;
+        }
+        let (d, m) = (x.ncols(), centres.nrows());
+        let shift: Vec<f64> = (0..d)
+            .map(|k| (0..m).map(|j| centres[(j, k)]).sum::<f64>() / m as f64)
+            .collect();
+        self.samples.refill(x, shift);
+        let (cs, cn) = self.samples.centres(centres);
+        self.samples
+            .tiles(cs.as_ref(), &cn, out, par, |_, col, xn, cn| {
+                add_norms(col, xn, cn)
+            });
+    }
+}
+
 /// Samples shifted by a fixed point (the centres' mean), with their squared norms: the
 /// half of the product formula that does not depend on the centres.
 struct Shifted {
@@ -322,11 +353,26 @@ struct Shifted {
 
 impl Shifted {
     fn new(x: MatRef<'_, f64>, shift: Vec<f64>) -> Self {
+        let mut s = Self {
+            xs: Mat::zeros(0, 0),
+            xn: Vec::new(),
+            shift: Vec::new(),
+        };
+        s.refill(x, shift);
+        s
+    }
+
+    /// The samples `x` shifted by `shift`, into the buffers already held.
+    fn refill(&mut self, x: MatRef<'_, f64>, shift: Vec<f64>) {
         let (n, d) = (x.nrows(), x.ncols());
-        let mut xs = Mat::<f64>::zeros(n, d);
+        if (self.xs.nrows(), self.xs.ncols()) != (n, d) {
+            self.xs = Mat::zeros(n, d);
+        }
         // Column by column (contiguous); each row's squared norm still sums its columns
         // in order from the first, as a row-wise sum would.
-        let mut xn = vec![0.0; n];
+        self.xn.clear();
+        self.xn.resize(n, 0.0);
+        let (xs, xn) = (&mut self.xs, &mut self.xn);
         let mut copy = Vec::new();
         for k in 0..d {
             let src = x.col(k);
@@ -338,9 +384,9 @@ impl Shifted {
                     &copy[..]
                 }
             };
-            shift_column(xs.col_as_slice_mut(k), src, shift[k], &mut xn);
+            shift_column(xs.col_as_slice_mut(k), src, shift[k], xn);
         }
-        Self { xs, xn, shift }
+        self.shift = shift;
     }
 
     /// Centres shifted the same way, and their squared norms.
@@ -504,7 +550,7 @@ mod tests {
             let c = random(m, d, off, 5);
             for par in [Par::Seq, Par::rayon(2)] {
                 let mut out = Mat::zeros(n, m);
-                squared_distances_into(x.as_ref(), c.as_ref(), out.as_mut(), par);
+                Distances::new().fill(x.as_ref(), c.as_ref(), out.as_mut(), par);
                 for i in 0..n {
                     for j in 0..m {
                         let want = (0..d).map(|t| (x[(i, t)] - c[(j, t)]).powi(2)).sum::<f64>();

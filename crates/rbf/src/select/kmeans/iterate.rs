@@ -4,7 +4,7 @@
 use faer::{Mat, MatRef, Par};
 
 use super::KMeansCentres;
-use crate::design::squared_distances_into;
+use crate::design::Distances;
 use crate::widest::widest;
 
 /// Mean squared distance of the rows of `x` to their assigned centres, computed
@@ -81,6 +81,7 @@ pub fn lloyd(
     let mut centres = start.to_owned();
     let mut next = Mat::<f64>::zeros(k, d);
     let mut dist = Mat::<f64>::zeros(n, k);
+    let mut work = Distances::new();
     let mut labels = vec![0usize; n];
     let mut nearest = vec![0.0; n];
     let mut previous = vec![usize::MAX; n];
@@ -96,6 +97,7 @@ pub fn lloyd(
         assign(
             x,
             centres.as_ref(),
+            &mut work,
             &mut dist,
             &mut labels,
             &mut nearest,
@@ -124,6 +126,7 @@ pub fn lloyd(
         assign(
             x,
             centres.as_ref(),
+            &mut work,
             &mut dist,
             &mut labels,
             &mut nearest,
@@ -159,12 +162,13 @@ fn mean_variance(x: MatRef<'_, f64>) -> f64 {
 fn assign(
     x: MatRef<'_, f64>,
     centres: MatRef<'_, f64>,
+    work: &mut Distances,
     dist: &mut Mat<f64>,
     labels: &mut [usize],
     nearest: &mut [f64],
     par: Par,
 ) {
-    squared_distances_into(x, centres, dist.as_mut(), par);
+    work.fill(x, centres, dist.as_mut(), par);
     let (n, k) = (dist.nrows(), dist.ncols());
     let dist = dist.as_ref();
     let column = |j: usize| {
