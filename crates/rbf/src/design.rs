@@ -374,7 +374,7 @@ impl Shifted {
         self.xn.resize(n, 0.0);
         let (xs, xn) = (&mut self.xs, &mut self.xn);
         let mut copy = Vec::new();
-        for k in 0..d {
+        for (k, &sk) in shift.iter().enumerate().take(d) {
             let src = x.col(k);
             let src = match src.try_as_col_major() {
                 Some(c) => c.as_slice(),
@@ -384,7 +384,7 @@ impl Shifted {
                     &copy[..]
                 }
             };
-            shift_column(xs.col_as_slice_mut(k), src, shift[k], xn);
+            shift_column(xs.col_as_slice_mut(k), src, sk, xn);
         }
         self.shift = shift;
     }

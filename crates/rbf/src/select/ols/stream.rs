@@ -499,11 +499,11 @@ mod avx512 {
             }
             i += 4;
         }
-        for c in 0..8 {
-            for k in 0..S {
+        for (c, ac) in a.iter().enumerate() {
+            for (k, &ack) in ac.iter().enumerate() {
                 let mut t = [0.0f64; 8];
                 // SAFETY: t has eight lanes.
-                unsafe { _mm512_storeu_pd(t.as_mut_ptr(), a[c][k]) };
+                unsafe { _mm512_storeu_pd(t.as_mut_ptr(), ack) };
                 for h in 0..2 {
                     let col = 2 * c + h;
                     let mut sum = (t[4 * h] + t[4 * h + 1]) + (t[4 * h + 2] + t[4 * h + 3]);

@@ -140,7 +140,7 @@ impl Schedule {
             return Par::Seq;
         }
         let parallel = if self.pass < TRIAL {
-            self.pass % 2 == 0
+            self.pass.is_multiple_of(2)
         } else {
             self.many
         };
