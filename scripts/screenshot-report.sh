@@ -12,11 +12,61 @@
 # broken counts images that did not load; first_table is the first header
 # cell of the first table on the page.
 #
+# Before the browser, every link of the page is followed on disk: each
+# href, src and srcset that is not a web address must be a path relative to
+# the page that names an existing file, and each #anchor an id on the page
+# it points into. A broken link is named on stderr and the script exits 1
+# (with or without Chromium); so it does when an image did not load.
+#
 # Usage: [SHOT_HEIGHT=PX] scripts/screenshot-report.sh REPORT_DIR/index.html [OUT_DIR]
-# Needs Chromium (Debian: apt-get install chromium). Exit status 2 when absent.
+# Needs Chromium (Debian: apt-get install chromium). Exit status 2 when absent
+# (after the link check), 1 on a broken link or image.
 set -euo pipefail
 
 page=${1:?usage: $0 REPORT_DIR/index.html [OUT_DIR]}
+[[ -f $page ]] || { echo "$page: no such file" >&2; exit 1; }
+
+# The ids of an HTML file, one a line.
+ids_of() { grep -o ' id="[^"]*"' "$1" | sed -e 's/^ id="//' -e 's/"$//' || true; }
+# Every href, src and srcset URL of an HTML file, entities decoded, one a line.
+links_of() {
+    grep -oE ' (href|src|srcset)="[^"]*"' "$1" \
+        | sed -E -e 's/^ [a-z]+="//' -e 's/"$//' -e 's/, /\n/g' \
+        | sed -E -e 's/ [0-9.]+[wx]$//' -e 's/&quot;/"/g' -e "s/&#39;/'/g" \
+                 -e 's/&lt;/</g' -e 's/&gt;/>/g' -e 's/&amp;/\&/g' || true
+}
+page_dir=$(dirname "$page")
+page_ids=$(ids_of "$page")
+links=0
+bad_links=0
+while IFS= read -r link; do
+    [[ -z $link ]] && continue
+    links=$((links + 1))
+    why=
+    case $link in
+        http://*|https://*) continue ;;
+        file:*|/*) why="is absolute: it breaks when the report is moved" ;;
+        \#*) grep -qxF -- "${link#\#}" <<<"$page_ids" || why="names no id on the page" ;;
+        *)
+            path=${link%%#*}
+            # %XX escapes as the file system spells the name.
+            file="$page_dir/$(printf '%b' "${path//%/\\x}")"
+            if [[ ! -e $file ]]; then
+                why="resolves to $file, which does not exist"
+            elif [[ $link == *#* ]] && ! ids_of "$file" | grep -qxF -- "${link#*#}"; then
+                why="names no id on $file"
+            fi
+            ;;
+    esac
+    if [[ -n $why ]]; then
+        echo "broken link in $page: \"$link\" $why" >&2
+        bad_links=$((bad_links + 1))
+    fi
+done < <(links_of "$page")
+echo "links=$links broken_links=$bad_links"
+if (( bad_links > 0 )); then
+    exit 1
+fi
 out=${2:-$(dirname "$page")/screenshots}
 browser=${CHROMIUM:-}
 if [[ -z $browser ]]; then
@@ -60,6 +110,7 @@ JS
 flags=(--headless=new --no-sandbox --disable-gpu --hide-scrollbars --disable-dev-shm-usage
        --allow-file-access-from-files --run-all-compositor-stages-before-draw
        --virtual-time-budget=20000)
+broken_images=0
 for width in 390 1440; do
     cat > "$probe" <<HTML
 <!DOCTYPE html><html><head><meta charset="utf-8"><style>body{margin:0}iframe{border:0;display:block}</style></head>
@@ -69,8 +120,15 @@ HTML
     dom=$("$browser" "${flags[@]}" --window-size="$(( width < 500 ? 500 : width )),$height" --dump-dom "file://$probe" 2>/dev/null || true)
     result=$(grep -o 'data-check="[^"]*"' <<<"$dom" | sed -e 's/^data-check="//' -e 's/"$//' || true)
     echo "width=$width ${result:-check=missing}"
+    if [[ $result =~ broken=([0-9]+) ]] && (( BASH_REMATCH[1] > 0 )); then
+        broken_images=1
+    fi
     # The top $height px of the page at this width.
     "$browser" "${flags[@]}" --window-size="$width,$height" \
         --screenshot="$out/report-$width.png" "file://$probe" >/dev/null 2>&1 || true
 done
 echo "screenshots: $out/report-390.png $out/report-1440.png"
+if (( broken_images )); then
+    echo "an image of $page did not load (broken>0 above)" >&2
+    exit 1
+fi

@@ -87,6 +87,8 @@ pub struct Explanation {
 pub enum ExplainStage {
     /// Fitting round `n` (1-based).
     Fitting(usize),
+    /// Round `n`'s fit of this channel finished (channels finish in any order).
+    ChannelFitted(usize, Channel),
     /// Diagnosing round `n`.
     Diagnosing(usize),
 }
@@ -139,7 +141,11 @@ pub fn explain_records(
     loop {
         let n = rounds.len() + 1;
         progress(ExplainStage::Fitting(n));
-        let (model, _) = fit_records(records, calibration, &options, &|_: FitStage| {})?;
+        let (model, _) = fit_records(records, calibration, &options, &|s: FitStage| {
+            if let FitStage::ChannelDone(ch) = s {
+                progress(ExplainStage::ChannelFitted(n, ch));
+            }
+        })?;
         progress(ExplainStage::Diagnosing(n));
         let diagnosis = diagnose_records(&model, records, diagnose_options)?;
         let next = suggestions(&diagnosis, &options);

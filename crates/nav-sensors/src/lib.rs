@@ -37,9 +37,11 @@ pub mod dtg;
 pub mod files;
 pub mod geometry;
 pub mod noise;
+pub mod rate;
 pub mod regressors;
 pub mod signal;
 pub mod sim;
+pub mod unit;
 pub mod vibration;
 
 pub use files::{calibration, record};

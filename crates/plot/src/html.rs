@@ -502,20 +502,80 @@ fn figure(h: &mut String, files: &FigureFiles, caption: &str, dir: &Path) {
 /// Widest screen (CSS px) that gets a figure's phone rendering.
 const NARROW_SCREEN: u32 = 600;
 
-/// A relative, percent-encoded, HTML-escaped link from the page in `dir` to `path`.
+/// A relative, percent-encoded, HTML-escaped link from the page in `dir` to
+/// `path`: the way from the page's directory to the file, so that it
+/// resolves when the page is opened, wherever the report was written and
+/// whatever directory the command ran in.
 fn href(path: &Path, dir: &Path) -> String {
-    let rel = path.strip_prefix(dir).unwrap_or(path);
-    let parts: Vec<String> = rel
-        .components()
-        .filter_map(|c| match c {
-            Component::Normal(s) => Some(percent_encode(&s.to_string_lossy())),
-            Component::ParentDir => Some("..".to_string()),
-            _ => None,
-        })
-        .collect();
-    // Outside the report directory: an absolute file link still works locally.
-    let root = if rel.has_root() { "file:///" } else { "" };
-    escape(&format!("{root}{}", parts.join("/")))
+    let encode = |parts: &[std::ffi::OsString]| -> Vec<String> {
+        parts
+            .iter()
+            .filter(|c| !Path::new(c).has_root())
+            .map(|c| {
+                if c == ".." {
+                    "..".to_string()
+                } else {
+                    percent_encode(&c.to_string_lossy())
+                }
+            })
+            .collect()
+    };
+    match relative_path(path, dir) {
+        Some(rel) => escape(&encode(&rel).join("/")),
+        // No way from one to the other (another drive, or no current
+        // directory to place a relative path in): the file's own URL.
+        None => {
+            let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+            escape(&format!("file:///{}", encode(&lexical(&abs)).join("/")))
+        }
+    }
+}
+
+/// The components of the path from directory `dir` to `path`, both placed
+/// in the current directory when relative, `.` and `..` resolved lexically
+/// (a report links files it wrote by the paths it wrote them to, so no
+/// symbolic link lies between the two that the lexical way would miss).
+///
+/// `None` when the two share no root (different drives) or a relative one
+/// cannot be placed (no current directory).
+fn relative_path(path: &Path, dir: &Path) -> Option<Vec<std::ffi::OsString>> {
+    let (path, dir) = if path.is_absolute() && dir.is_absolute() {
+        (lexical(path), lexical(dir))
+    } else {
+        (
+            lexical(&std::path::absolute(path).ok()?),
+            lexical(&std::path::absolute(dir).ok()?),
+        )
+    };
+    let common = path.iter().zip(&dir).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return None;
+    }
+    let up = std::iter::repeat_n(std::ffi::OsString::from(".."), dir.len() - common);
+    Some(up.chain(path[common..].iter().cloned()).collect())
+}
+
+/// The components of absolute path `p` (its prefix and root first) with `.`
+/// dropped and each `..` taking back the component before it (`/..` is `/`).
+fn lexical(p: &Path) -> Vec<std::ffi::OsString> {
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    for c in p.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if out
+                    .last()
+                    .is_some_and(|l| !Path::new(l).has_root() && l != "..")
+                {
+                    out.pop();
+                } else if out.is_empty() {
+                    out.push("..".into());
+                }
+            }
+            c => out.push(c.as_os_str().to_os_string()),
+        }
+    }
+    out
 }
 
 fn percent_encode(part: &str) -> String {
@@ -645,8 +705,50 @@ mod tests {
             ),
             "{html}"
         );
+        // Outside the page's directory: the way there and down again.
         let outside = href(Path::new("/elsewhere/a b.png"), dir);
-        assert_eq!(outside, "file:///elsewhere/a%20b.png");
+        assert_eq!(outside, "../../elsewhere/a%20b.png");
+    }
+
+    #[test]
+    fn links_go_from_the_page_to_the_file_wherever_both_are() {
+        let h = |p: &str, d: &str| href(Path::new(p), Path::new(d));
+        // The demo's final page linking its sibling reports, paths as the
+        // command gave them (relative to where it ran, not to the page).
+        assert_eq!(
+            h(
+                "demo-out/baseline/report/index.html",
+                "demo-out/final/report"
+            ),
+            "../../baseline/report/index.html"
+        );
+        assert_eq!(
+            h(
+                "demo-out/final/diagnosis/index.html",
+                "demo-out/final/report"
+            ),
+            "../diagnosis/index.html"
+        );
+        assert_eq!(
+            h("demo-out/final/report/fig.png", "demo-out"),
+            "final/report/fig.png"
+        );
+        assert_eq!(h("./out/./a/../b.png", "out"), "b.png");
+        assert_eq!(h("/x/y/z.png", "/x/y"), "z.png");
+        assert_eq!(h("/x/y/z.png", "/x/y/"), "z.png");
+        assert_eq!(h("/a/b", "/c/d"), "../../a/b");
+        // One relative, one absolute: both placed in the current directory.
+        let cwd = std::env::current_dir().unwrap();
+        let abs = cwd.join("r").join("p.png");
+        assert_eq!(href(&abs, Path::new("r")), "p.png");
+        assert_eq!(href(Path::new("r/p.png"), &cwd.join("r")), "p.png");
+        // From `../o` to `q/p.png` the way climbs out of `o` and back into
+        // the current directory by its name.
+        let here = cwd.file_name().unwrap().to_string_lossy().into_owned();
+        assert_eq!(
+            h("q/p.png", "../o"),
+            format!("../{}/q/p.png", percent_encode(&here))
+        );
     }
 
     #[test]

@@ -5,7 +5,6 @@
 //! stderr is not a terminal or with `--quiet` — and timestamps them, so `--json` can
 //! say how long each stage took and what one OLS pick costs.
 
-use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -13,14 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rbf::{Progress, Stage};
 use serde::Serialize;
 
-/// Whether to draw progress: stderr is a terminal and `--quiet` was not given.
-///
-/// ```
-/// assert!(!rbf_cli::progress::visible(true));
-/// ```
-pub fn visible(quiet: bool) -> bool {
-    !quiet && std::io::stderr().is_terminal()
-}
+pub use cli_support::progress::visible;
 
 /// The library's name for a stage, as printed and as a JSON key.
 ///
@@ -183,12 +175,5 @@ pub fn spinner(show: bool, message: &'static str) -> ProgressBar {
     if !show {
         return ProgressBar::hidden();
     }
-    let bar = ProgressBar::new_spinner();
-    bar.set_draw_target(ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed_precise}") {
-        bar.set_style(style);
-    }
-    bar.set_message(message);
-    bar.enable_steady_tick(Duration::from_millis(120));
-    bar
+    cli_support::progress::spinner("{spinner} {msg} {elapsed_precise}", message)
 }

@@ -21,7 +21,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::DtgInput;
-use crate::geometry::ChannelFrame;
+use crate::geometry::{ChannelFrame, DtgAxes};
 
 /// Within-interval covariance of a vector signal (cluster frame) at every
 /// interval, from the interval means; zero at the first and last interval,
@@ -68,18 +68,32 @@ impl DtgInput {
     /// assert_eq!(DtgTerm::GgII.regressor(&x), 4.5);
     /// ```
     pub fn with_covariance(mut self, frame: &ChannelFrame, cov: &Matrix3<f64>) -> Self {
-        let (i, o, s) = (frame.input, frame.other, frame.spin);
-        let q = |a: &Vector3<f64>, b: &Vector3<f64>| (a.transpose() * cov * b)[(0, 0)];
-        self.specific_force_cov_g2 = [
-            q(&i, &i),
-            q(&o, &o),
-            q(&s, &s),
-            q(&i, &o),
-            q(&i, &s),
-            q(&o, &s),
-        ];
+        self.specific_force_cov_g2 = resolve_covariance(&frame.axes(), cov);
         self
     }
+}
+
+/// A unit-frame covariance of the specific force (g²) resolved into a DTG
+/// channel's axes: (II, OO, SS, IO, IS, OS), the order of
+/// [`DtgInput::specific_force_cov_g2`].
+///
+/// ```
+/// use nav_sensors::geometry::{Channel, ChannelFrame};
+/// let cov = nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(0.0, 0.0, 0.5));
+/// let c = nav_sensors::dtg::resolve_covariance(&ChannelFrame::of(Channel::Z).axes(), &cov);
+/// assert_eq!(c[0], 0.5);
+/// ```
+pub fn resolve_covariance(axes: &DtgAxes, cov: &Matrix3<f64>) -> [f64; 6] {
+    let (i, o, s) = (axes.input, axes.output, axes.spin);
+    let q = |a: &Vector3<f64>, b: &Vector3<f64>| (a.transpose() * cov * b)[(0, 0)];
+    [
+        q(&i, &i),
+        q(&o, &o),
+        q(&s, &s),
+        q(&i, &o),
+        q(&i, &s),
+        q(&o, &s),
+    ]
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ mod rect2n;
 mod term;
 
 pub use coefficients::DtgCoefficients;
-pub use interval::within_interval_covariance;
+pub use interval::{resolve_covariance, within_interval_covariance};
 pub use model::DtgInput;
 pub use noise::DtgNoise;
 pub use rect2n::Rect2nDetector;

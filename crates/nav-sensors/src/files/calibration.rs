@@ -8,6 +8,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::record::Record;
+pub use super::unit_calibration::{GyroCoefficients, UnitCalibration, UnitCalibrationError};
 use crate::accel::{AccelCoefficients, compensate_triad};
 use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
@@ -138,19 +139,12 @@ impl Calibration {
     /// assert_eq!(cal.gyro(nav_sensors::geometry::Channel::Z).bias_deg_h, 2.0);
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, CalibrationFileError> {
-        let cal: Self =
-            serde_json::from_str(text).map_err(|source| CalibrationFileError::Json {
-                path: path.to_string(),
-                source,
-            })?;
-        if cal.format_version != Self::FORMAT_VERSION {
-            return Err(CalibrationFileError::Version {
-                path: path.to_string(),
-                found: cal.format_version,
-                supported: Self::FORMAT_VERSION,
-            });
-        }
-        Ok(cal)
+        super::io::parse_versioned(
+            text,
+            path,
+            |c: &Self| c.format_version,
+            Self::FORMAT_VERSION,
+        )
     }
 
     /// Reads a calibration JSON file.
@@ -163,12 +157,7 @@ impl Calibration {
     /// assert!(Calibration::load("/no/such/file.json").is_err());
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, CalibrationFileError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| CalibrationFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_json(&text, &path.display().to_string())
+        super::io::load_with(path.as_ref(), super::io::calibration_io, Self::from_json)
     }
 
     /// The calibration as pretty JSON (deterministic: maps are ordered).
@@ -178,7 +167,7 @@ impl Calibration {
     /// assert!(json.contains("\"format_version\": 1"));
     /// ```
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
+        super::io::pretty(self)
     }
 
     /// Writes the calibration as a JSON file.
@@ -189,11 +178,7 @@ impl Calibration {
     /// assert!(path.exists());
     /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
-        let path = path.as_ref();
-        outfile::write_bytes(path, self.to_json()).map_err(|source| CalibrationFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        super::io::save_calibration(self, path.as_ref())
     }
 
     /// Compensates a record with these coefficients, as a user can at the

@@ -4,4 +4,6 @@
 //! crate root as [`crate::record`] and [`crate::calibration`].
 
 pub mod calibration;
+pub(crate) mod io;
 pub mod record;
+mod unit_calibration;

@@ -182,9 +182,61 @@ impl ChannelFrame {
     /// ```
     #[inline]
     pub fn resolve(&self, v: &Vector3<f64>) -> Ios {
+        self.axes().resolve(v)
+    }
+
+    /// The frame's axes without the channel name.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let f = ChannelFrame::of(Channel::X);
+    /// assert_eq!(f.axes().output, f.other);
+    /// ```
+    pub fn axes(&self) -> DtgAxes {
+        DtgAxes {
+            input: self.input,
+            output: self.other,
+            spin: self.spin,
+        }
+    }
+}
+
+/// A DTG channel's axes in the unit frame — I (its input axis), O (its
+/// output axis: the DTG's other input axis, signed as the error model uses
+/// it) and S (the rotor's spin axis) — for any unit: a unit file's `dtg`
+/// gyro gives them ([`crate::unit::Gyro::dtg_axes`]); the paper's channels
+/// are [`ChannelFrame::axes`].
+///
+/// ```
+/// use nav_sensors::geometry::DtgAxes;
+/// use nalgebra::Vector3;
+/// let a = DtgAxes { input: Vector3::z(), output: Vector3::x(), spin: Vector3::y() };
+/// let r = a.resolve(&Vector3::new(1.0, 2.0, 3.0));
+/// assert_eq!(r.as_array(), [3.0, 1.0, 2.0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DtgAxes {
+    /// I: the input axis.
+    pub input: Vector3<f64>,
+    /// O: the output axis.
+    pub output: Vector3<f64>,
+    /// S: the spin axis.
+    pub spin: Vector3<f64>,
+}
+
+impl DtgAxes {
+    /// Resolves a unit-frame vector into (I, O, S) components.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, ChannelFrame};
+    /// let r = ChannelFrame::of(Channel::Z).axes().resolve(&nalgebra::Vector3::new(0.0, 0.0, 2.0));
+    /// assert_eq!(r.i, 2.0);
+    /// ```
+    #[inline]
+    pub fn resolve(&self, v: &Vector3<f64>) -> Ios {
         Ios {
             i: self.input.dot(v),
-            o: self.other.dot(v),
+            o: self.output.dot(v),
             s: self.spin.dot(v),
         }
     }

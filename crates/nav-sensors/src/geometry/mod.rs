@@ -7,8 +7,8 @@ mod frame;
 mod parity;
 
 pub use channel::{Axis, Channel, Dtg, ParseNameError};
-pub use fdi::{Fdi, FdiDecision};
-pub use frame::{ChannelFrame, Ios, dtg_frame, input_axis, spin_axis};
+pub use fdi::{Fdi, FdiDecision, FdiError, FdiOutcome, ParityFdi};
+pub use frame::{ChannelFrame, DtgAxes, Ios, dtg_frame, input_axis, spin_axis};
 pub use parity::{
     AxisMeasurements, Residue, axis_measurements, ideal_outputs, least_squares_operator,
     least_squares_rate, measurement_matrix, parity_matrix, parity_vector, residues,

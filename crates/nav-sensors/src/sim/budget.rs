@@ -53,31 +53,23 @@ pub(crate) use stats::{correlation, rms, std_dev};
 pub(crate) fn budget(
     s: &Scenario,
     hr: &HighRate,
-    regressors: &[[[f64; 18]; 6]],
-    noise: &[[f64; 6]],
+    noise: &[Vec<f64>],
     temp_meas: &[f64],
     calibration: &Calibration,
     t: &[f64],
 ) -> (Truth, Components) {
     let n_out = t.len();
-    let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
-    let gravity = s.site.gravity_cluster_g().expect("validated");
+    let Reference {
+        earth,
+        gravity,
+        static_rate,
+        elementary,
+    } = Reference::of(s, hr);
+    let static_rate = |n: usize| static_rate[n];
     let g2 = &hr.level_squared;
     let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut components = Components::new(t.to_vec());
     components.push("level_squared", g2.clone());
-    // The unit's own specific force and rate per interval: the site's
-    // constants at rest, the motion's interval means in flight.
-    let static_force: Vec<[f64; 3]> = match &hr.motion_means {
-        None => vec![[gravity.x, gravity.y, gravity.z]; n_out],
-        Some(m) => m.force_g.clone(),
-    };
-    let static_rate = |n: usize| match &hr.motion_means {
-        None => earth,
-        Some(m) => nalgebra::Vector3::from(m.rate_deg_h[n]),
-    };
-    let elementary =
-        predictable::elementary(&hr.force_moments, &hr.accel_ideal_g, &static_force, g2);
     let mut channels = BTreeMap::new();
     let mut hidden = Vec::new();
     let mut floor_series: [Vec<f64>; 6] = Default::default();
@@ -93,35 +85,54 @@ pub(crate) fn budget(
             .filter(|h| h.channel == channel)
             .map(|h| h.term)
             .collect();
-        let mut d = vec![vec![0.0; n_out]; 18];
-        let mut pred_all = vec![[0.0; 18]; n_out];
-        let mut unmodelled = vec![0.0; n_out];
-        let mut motion = vec![0.0; n_out];
-        let mut cal_err = vec![0.0; n_out];
-        for n in 0..n_out {
-            let e: Ios = frame.resolve(&static_rate(n));
-            let a = hr.accel_ideal_g[n];
-            let x = DtgInput {
-                rate_deg_h: e,
-                specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
-                temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
-                rate_2n_mean_square_deg2_s2: 0.0,
-                // The product of means: d_k is defined against it.
-                specific_force_cov_g2: [0.0; 6],
-            };
-            let pred = DtgTerm::regressors(&x);
-            for k in 0..18 {
-                d[k][n] = c[k] * (regressors[n][ch][k] - pred[k]);
-                let term = DtgTerm::ALL[k];
-                if term.is_calibrated() && !hidden_here.contains(&term) {
-                    cal_err[n] += (c[k] - cal[k]) * pred[k];
+        let base = channel_budget(
+            hr,
+            ch,
+            &c,
+            &noise[ch],
+            &elementary,
+            &predictable::weights(&frame.input, &frame.other, &frame.spin, &c),
+            |n| {
+                let e: Ios = frame.resolve(&static_rate(n));
+                let a = hr.accel_ideal_g[n];
+                let x = DtgInput {
+                    rate_deg_h: e,
+                    specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
+                    temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
+                    rate_2n_mean_square_deg2_s2: 0.0,
+                    // The product of means: d_k is defined against it.
+                    specific_force_cov_g2: [0.0; 6],
+                };
+                (
+                    DtgTerm::regressors(&x).to_vec(),
+                    e.i,
+                    truth.nonlinearity_deg_h(e.i),
+                )
+            },
+        );
+        let ChannelBudget {
+            d,
+            pred: pred_all,
+            unmodelled,
+            motion,
+            predicted,
+            floor,
+            after,
+            noise: noise_ch,
+        } = base;
+        let cal_err: Vec<f64> = pred_all
+            .iter()
+            .map(|pred| {
+                let mut v = 0.0;
+                for k in 0..18 {
+                    let term = DtgTerm::ALL[k];
+                    if term.is_calibrated() && !hidden_here.contains(&term) {
+                        v += (c[k] - cal[k]) * pred[k];
+                    }
                 }
-            }
-            pred_all[n] = pred;
-            unmodelled[n] = d.iter().map(|dk| dk[n]).sum::<f64>() + hr.nonlinearity_deg_h[n][ch]
-                - truth.nonlinearity_deg_h(e.i);
-            motion[n] = hr.rate_i_deg_h[n][ch] - e.i;
-        }
+                v
+            })
+            .collect();
         let mut expected = vec![0.0; n_out];
         let mut at_full = BTreeMap::new();
         for (k, dk) in d.iter().enumerate() {
@@ -137,26 +148,8 @@ pub(crate) fn budget(
                 *e += kk * g;
             }
         }
-        // What a model given the level and the 50-Hz accelerations can
-        // predict: the g and g² terms through the elementary series, the
-        // rest (temperature lag, rates, 2N, nonlinearity) through the level.
-        let w = predictable::weights(&frame.input, &frame.other, &frame.spin, &c);
-        let rest: Vec<f64> = (0..n_out)
-            .map(|n| unmodelled[n] - predictable::combine(&w, &elementary.actual, n))
-            .collect();
-        let rest_predicted = predictable::level_only(g2, &[&rest]).pop().expect("one");
-        let predicted: Vec<f64> = (0..n_out)
-            .map(|n| predictable::combine(&w, &elementary.predicted, n) + rest_predicted[n])
-            .collect();
-        let noise_ch: Vec<f64> = noise.iter().map(|v| v[ch]).collect();
-        let floor: Vec<f64> = (0..n_out)
-            .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - predicted[n])
-            .collect();
         let level_only_floor: Vec<f64> = (0..n_out)
             .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
-            .collect();
-        let after: Vec<f64> = (0..n_out)
-            .map(|n| noise_ch[n] + motion[n] + unmodelled[n])
             .collect();
         let noise_floor = std_dev(&floor);
         for &term in &hidden_here {
@@ -244,4 +237,126 @@ pub(crate) fn budget(
         residue_after_true_compensation_rms_deg_h,
     };
     (truth, components)
+}
+
+/// One channel's budget series: per term the unmodelled part `d_k`, the
+/// regressors at what the record shows (`pred[n][k]`), their sum with the
+/// nonlinearity's mismatch (`unmodelled`), the rocking about I (`motion`),
+/// the part a model given the level and the 50-Hz accelerations predicts,
+/// the floor series and what true-coefficient compensation leaves.
+pub(crate) struct ChannelBudget {
+    pub d: Vec<Vec<f64>>,
+    pub pred: Vec<Vec<f64>>,
+    pub unmodelled: Vec<f64>,
+    pub motion: Vec<f64>,
+    pub predicted: Vec<f64>,
+    pub floor: Vec<f64>,
+    pub after: Vec<f64>,
+    pub noise: Vec<f64>,
+}
+
+/// The budget of channel `ch` with true coefficients `c` (term order),
+/// g/g² weights `w` on the elementary series, and `at_record(n)` giving the
+/// regressors at what the record shows, the rate about I a model would
+/// take as the reference, and the nonlinearity's drift there. Any model,
+/// any unit: the paper's DTG channels and a unit's DTG or rate channels
+/// share it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn channel_budget(
+    hr: &HighRate,
+    ch: usize,
+    c: &[f64],
+    noise: &[f64],
+    elementary: &predictable::Elementary,
+    w: &[f64; 9],
+    at_record: impl Fn(usize) -> (Vec<f64>, f64, f64),
+) -> ChannelBudget {
+    let n_out = noise.len();
+    let g2 = &hr.level_squared;
+    let mut d = vec![vec![0.0; n_out]; c.len()];
+    let mut pred_all = Vec::with_capacity(n_out);
+    let mut unmodelled = vec![0.0; n_out];
+    let mut motion = vec![0.0; n_out];
+    for n in 0..n_out {
+        let (pred, rate_i, nl) = at_record(n);
+        let regs = hr.regs(ch, n);
+        for k in 0..c.len() {
+            d[k][n] = c[k] * (regs[k] - pred[k]);
+        }
+        pred_all.push(pred);
+        unmodelled[n] = d.iter().map(|dk| dk[n]).sum::<f64>() + hr.nonlinearity_deg_h[ch][n] - nl;
+        motion[n] = hr.rate_i_deg_h[ch][n] - rate_i;
+    }
+    // What a model given the level and the 50-Hz accelerations can
+    // predict: the g and g² terms through the elementary series, the
+    // rest (temperature lag, rates, 2N, nonlinearity) through the level.
+    let rest: Vec<f64> = (0..n_out)
+        .map(|n| unmodelled[n] - predictable::combine(w, &elementary.actual, n))
+        .collect();
+    let rest_predicted = predictable::level_only(g2, &[&rest]).pop().expect("one");
+    let predicted: Vec<f64> = (0..n_out)
+        .map(|n| predictable::combine(w, &elementary.predicted, n) + rest_predicted[n])
+        .collect();
+    let floor: Vec<f64> = (0..n_out)
+        .map(|n| noise[n] + motion[n] + unmodelled[n] - predicted[n])
+        .collect();
+    let after: Vec<f64> = (0..n_out)
+        .map(|n| noise[n] + motion[n] + unmodelled[n])
+        .collect();
+    ChannelBudget {
+        d,
+        pred: pred_all,
+        unmodelled,
+        motion,
+        predicted,
+        floor,
+        after,
+        noise: noise.to_vec(),
+    }
+}
+
+/// What a model of the record takes as the unit's own motion: Earth rate
+/// and gravity at t = 0, and per interval the reference rate (deg/h: the
+/// site's Earth rate at rest, the motion's interval mean in flight), with
+/// the elementary series of the g and g² terms ([`predictable`]).
+pub(crate) struct Reference {
+    pub earth: nalgebra::Vector3<f64>,
+    pub gravity: nalgebra::Vector3<f64>,
+    pub static_rate: Vec<nalgebra::Vector3<f64>>,
+    pub elementary: predictable::Elementary,
+}
+
+impl Reference {
+    pub(crate) fn of(s: &Scenario, hr: &HighRate) -> Self {
+        let n_out = hr.level_squared.len();
+        let earth = s.site.earth_rate_cluster_deg_h().expect("validated");
+        let gravity = s.site.gravity_cluster_g().expect("validated");
+        // The unit's own specific force and rate per interval: the site's
+        // constants at rest, the motion's interval means in flight.
+        let (static_force, static_rate): (Vec<[f64; 3]>, _) = match &hr.motion_means {
+            None => (
+                vec![[gravity.x, gravity.y, gravity.z]; n_out],
+                vec![earth; n_out],
+            ),
+            Some(m) => (
+                m.force_g.clone(),
+                m.rate_deg_h
+                    .iter()
+                    .map(|w| nalgebra::Vector3::from(*w))
+                    .collect(),
+            ),
+        };
+        let elementary = predictable::elementary(
+            &hr.force_moments,
+            &hr.accel_ideal_g,
+            &static_force,
+            &hr.level_squared,
+        );
+        Self {
+            earth,
+            gravity,
+            static_rate,
+            elementary,
+        }
+    }
 }

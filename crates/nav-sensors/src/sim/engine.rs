@@ -29,8 +29,10 @@ use super::error::SimError;
 use super::motion::MotionProfile;
 use super::output::Simulation;
 use super::scenario::Scenario;
-use crate::dtg::{DtgInput, DtgTerm, Rect2nDetector};
-use crate::geometry::{Axis, Channel, ChannelFrame};
+use crate::accel::AccelCoefficients;
+use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, Rect2nDetector};
+use crate::geometry::{Axis, ChannelFrame, DtgAxes};
+use crate::rate::{RateCoefficients, RateInput, RateTerm};
 use crate::record::Record;
 use crate::vibration::VibrationHistory;
 
@@ -57,19 +59,135 @@ pub(crate) fn stream(seed: u64, which: Stream) -> Xoshiro256PlusPlus {
     rng
 }
 
+/// One gyro channel's physics at the internal rate: its model, axes and
+/// true coefficients (and a DTG's 2N detector).
+pub(crate) enum GyroPhysics {
+    /// One input axis of a two-axis DTG (IEEE Std 813 terms in its I, O, S).
+    Dtg {
+        axes: DtgAxes,
+        coefficients: DtgCoefficients,
+        detector: Rect2nDetector,
+    },
+    /// A single-axis rate gyro (IEEE Std 952 / 1431 terms in the unit frame).
+    Rate {
+        input: Vector3<f64>,
+        coefficients: RateCoefficients,
+    },
+}
+
+impl GyroPhysics {
+    /// A DTG channel with the scenario's spin and 2N resonance.
+    pub(crate) fn dtg(s: &Scenario, axes: DtgAxes, coefficients: DtgCoefficients) -> Self {
+        GyroPhysics::Dtg {
+            axes,
+            coefficients,
+            detector: Rect2nDetector::new(s.gyros.spin_hz, s.gyros.rect_2n_q, s.internal_rate_hz),
+        }
+    }
+
+    /// Number of terms (regressors) of the model.
+    pub(crate) fn terms(&self) -> usize {
+        match self {
+            GyroPhysics::Dtg { .. } => DtgTerm::ALL.len(),
+            GyroPhysics::Rate { .. } => RateTerm::ALL.len(),
+        }
+    }
+
+    /// Position of the temperature term among the regressors (temperature
+    /// enters at the output rate, not in the high-rate loop).
+    pub(crate) fn temp_index(&self) -> usize {
+        match self {
+            GyroPhysics::Dtg { .. } => DtgTerm::Temp.index(),
+            GyroPhysics::Rate { .. } => RateTerm::Temp.index(),
+        }
+    }
+
+    /// The true coefficients in term order.
+    pub(crate) fn coefficients(&self) -> Vec<f64> {
+        match self {
+            GyroPhysics::Dtg { coefficients, .. } => coefficients.to_array().to_vec(),
+            GyroPhysics::Rate { coefficients, .. } => coefficients.to_array().to_vec(),
+        }
+    }
+
+    /// One internal sample: adds the regressors to `acc` and returns the
+    /// true rate about the input axis (deg/h) and the scale-factor
+    /// nonlinearity's drift (deg/h).
+    #[inline]
+    fn step(&mut self, w: &Vector3<f64>, f: &Vector3<f64>, acc: &mut [f64]) -> (f64, f64) {
+        match self {
+            GyroPhysics::Dtg {
+                axes,
+                coefficients,
+                detector,
+            } => {
+                let rate = axes.resolve(w);
+                let x = DtgInput {
+                    rate_deg_h: rate,
+                    specific_force_g: axes.resolve(f),
+                    temperature_delta_c: 0.0,
+                    rate_2n_mean_square_deg2_s2: detector.step(rate.i / 3600.0),
+                    // An instant: no interval to average over.
+                    specific_force_cov_g2: [0.0; 6],
+                };
+                for (a, v) in acc.iter_mut().zip(DtgTerm::regressors(&x)) {
+                    *a += v;
+                }
+                (rate.i, coefficients.nonlinearity_deg_h(rate.i))
+            }
+            GyroPhysics::Rate { input, .. } => {
+                let x = RateInput::sensed(input, w, f);
+                for (a, v) in acc.iter_mut().zip(RateTerm::regressors(&x)) {
+                    *a += v;
+                }
+                (x.rate_i_deg_h, 0.0)
+            }
+        }
+    }
+}
+
+/// One accelerometer's physics: the pendulous servo model (IEEE Std 1293)
+/// when it lies on a unit axis and the scenario gives that axis's
+/// coefficients, else an error-free accelerometer along its input axis
+/// (noise and servo loop still apply).
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum AccelPhysics {
+    Modelled {
+        axis: Axis,
+        coefficients: AccelCoefficients,
+    },
+    Ideal {
+        input: Vector3<f64>,
+    },
+}
+
+impl AccelPhysics {
+    #[inline]
+    fn output_g(&self, f: &Vector3<f64>) -> f64 {
+        match self {
+            AccelPhysics::Modelled { axis, coefficients } => coefficients.output_g(*axis, f),
+            AccelPhysics::Ideal { input } => input.dot(f),
+        }
+    }
+}
+
 /// Per-interval means from the high-rate loop.
 pub(crate) struct HighRate {
-    /// Mean regressor of every term, per channel (the `temp` slot is zero:
-    /// temperature enters at the output rate).
-    pub regressors: Vec<[[f64; 18]; 6]>,
-    /// Mean true rate about each channel's input axis, deg/h.
-    pub rate_i_deg_h: Vec<[f64; 6]>,
-    /// Mean scale-factor-nonlinearity drift per channel (true coefficients), deg/h.
-    pub nonlinearity_deg_h: Vec<[f64; 6]>,
-    /// Mean accelerometer output (error model, then servo loop), g.
-    pub accel_output_g: Vec<[f64; 3]>,
+    /// Regressors per term of each channel (`temp` zero until the output
+    /// rate sets it), `[channel][n·terms + k]`.
+    regressors: Vec<Vec<f64>>,
+    /// Terms per channel.
+    terms: Vec<usize>,
+    /// Mean true rate about each channel's input axis, deg/h, `[channel][n]`.
+    pub rate_i_deg_h: Vec<Vec<f64>>,
+    /// Mean scale-factor-nonlinearity drift per channel (true coefficients),
+    /// deg/h, `[channel][n]`.
+    pub nonlinearity_deg_h: Vec<Vec<f64>>,
+    /// Mean accelerometer output (error model, then servo loop), g,
+    /// `[accelerometer][n]`.
+    pub accel_output_g: Vec<Vec<f64>>,
     /// Mean of the true specific force through the servo loop alone (an
-    /// error-free accelerometer of the same bandwidth), g.
+    /// error-free accelerometer of the same bandwidth) along the unit axes, g.
     pub accel_ideal_g: Vec<[f64; 3]>,
     /// Mean squared level gain of the schedule.
     pub level_squared: Vec<f64>,
@@ -83,6 +201,21 @@ pub(crate) struct HighRate {
     /// angular rate without the rocking (Earth and body rates), deg/h, in
     /// the cluster frame. `None` at rest, where the site's constants hold.
     pub motion_means: Option<MotionMeans>,
+}
+
+impl HighRate {
+    /// Channel `ch`'s mean regressors over interval `n`.
+    #[inline]
+    pub fn regs(&self, ch: usize, n: usize) -> &[f64] {
+        let k = self.terms[ch];
+        &self.regressors[ch][n * k..(n + 1) * k]
+    }
+
+    #[inline]
+    fn regs_mut(&mut self, ch: usize, n: usize) -> &mut [f64] {
+        let k = self.terms[ch];
+        &mut self.regressors[ch][n * k..(n + 1) * k]
+    }
 }
 
 /// Interval means of a moving unit's specific force (g) and rate (deg/h).
@@ -115,30 +248,38 @@ impl Kinematics<'_> {
     }
 }
 
-fn high_rate(s: &Scenario, vib: &VibrationHistory, kin: &Kinematics) -> HighRate {
+fn high_rate(
+    s: &Scenario,
+    vib: &VibrationHistory,
+    kin: &Kinematics,
+    gyros: &mut [GyroPhysics],
+    accels: &[AccelPhysics],
+) -> HighRate {
     let fs = s.internal_rate_hz;
     let m = s.oversampling();
     let n_out = s.output_samples();
-    let frames = ChannelFrame::all();
-    let coefficients = Channel::ALL.map(|c| s.gyro(c));
-    let accel = Axis::ALL.map(|a| s.accel(a));
-    let mut servo_out = Axis::ALL.map(|_| s.accels.servo.filter(fs));
-    let mut servo_ideal = servo_out;
+    let mut servo_out: Vec<_> = accels.iter().map(|_| s.accels.servo.filter(fs)).collect();
+    let mut servo_ideal = Axis::ALL.map(|_| s.accels.servo.filter(fs));
     let (gravity, _) = kin.at(0);
     let gravity = &gravity;
+    // Start settled on the stationary unit's outputs (no start-up transient).
+    for (servo, a) in servo_out.iter_mut().zip(accels) {
+        servo.settle(a.output_g(gravity));
+    }
     for a in Axis::ALL {
-        // Start settled on the stationary unit's outputs (no start-up transient).
-        servo_out[a.index()].settle(accel[a.index()].output_g(a, gravity));
         servo_ideal[a.index()].settle(gravity[a.index()]);
     }
-    let mut detectors =
-        Channel::ALL.map(|_| Rect2nDetector::new(s.gyros.spin_hz, s.gyros.rect_2n_q, fs));
     let inv_m = 1.0 / m as f64;
+    let terms: Vec<usize> = gyros.iter().map(GyroPhysics::terms).collect();
     let mut out = HighRate {
-        regressors: Vec::with_capacity(n_out),
-        rate_i_deg_h: Vec::with_capacity(n_out),
-        nonlinearity_deg_h: Vec::with_capacity(n_out),
-        accel_output_g: Vec::with_capacity(n_out),
+        regressors: terms
+            .iter()
+            .map(|k| Vec::with_capacity(n_out * k))
+            .collect(),
+        terms: terms.clone(),
+        rate_i_deg_h: gyros.iter().map(|_| Vec::with_capacity(n_out)).collect(),
+        nonlinearity_deg_h: gyros.iter().map(|_| Vec::with_capacity(n_out)).collect(),
+        accel_output_g: accels.iter().map(|_| Vec::with_capacity(n_out)).collect(),
         accel_ideal_g: Vec::with_capacity(n_out),
         level_squared: Vec::with_capacity(n_out),
         force_moments: Vec::with_capacity(n_out),
@@ -147,13 +288,19 @@ fn high_rate(s: &Scenario, vib: &VibrationHistory, kin: &Kinematics) -> HighRate
             rate_deg_h: Vec::with_capacity(n_out),
         }),
     };
+    let mut reg: Vec<Vec<f64>> = terms.iter().map(|&k| vec![0.0; k]).collect();
+    let mut rate_i = vec![0.0; gyros.len()];
+    let mut nl = vec![0.0; gyros.len()];
+    let mut acc_out = vec![0.0; accels.len()];
     for j in 0..n_out {
         let mut static_f = Vector3::zeros();
         let mut static_w = Vector3::zeros();
-        let mut reg = [[0.0; 18]; 6];
-        let mut rate_i = [0.0; 6];
-        let mut nl = [0.0; 6];
-        let mut acc_out = [0.0; 3];
+        for r in &mut reg {
+            r.fill(0.0);
+        }
+        rate_i.fill(0.0);
+        nl.fill(0.0);
+        acc_out.fill(0.0);
         let mut acc_ideal = [0.0; 3];
         let mut g2 = 0.0;
         let mut moments = [0.0; 9];
@@ -179,39 +326,27 @@ fn high_rate(s: &Scenario, vib: &VibrationHistory, kin: &Kinematics) -> HighRate
             {
                 *acc += v;
             }
-            for a in Axis::ALL {
-                let k = a.index();
-                acc_out[k] += servo_out[k].step(accel[k].output_g(a, &f));
-                acc_ideal[k] += servo_ideal[k].step(f[k]);
+            for (k, a) in accels.iter().enumerate() {
+                acc_out[k] += servo_out[k].step(a.output_g(&f));
             }
-            for (ch, frame) in frames.iter().enumerate() {
-                let rate = frame.resolve(&w);
-                let x = DtgInput {
-                    rate_deg_h: rate,
-                    specific_force_g: frame.resolve(&f),
-                    temperature_delta_c: 0.0,
-                    rate_2n_mean_square_deg2_s2: detectors[ch].step(rate.i / 3600.0),
-                    // An instant: no interval to average over.
-                    specific_force_cov_g2: [0.0; 6],
-                };
-                let r = DtgTerm::regressors(&x);
-                for (acc, v) in reg[ch].iter_mut().zip(r) {
-                    *acc += v;
-                }
-                rate_i[ch] += rate.i;
-                nl[ch] += coefficients[ch].nonlinearity_deg_h(rate.i);
+            for (k, servo) in servo_ideal.iter_mut().enumerate() {
+                acc_ideal[k] += servo.step(f[k]);
+            }
+            for (ch, gyro) in gyros.iter_mut().enumerate() {
+                let (r, n) = gyro.step(&w, &f, &mut reg[ch]);
+                rate_i[ch] += r;
+                nl[ch] += n;
             }
             g2 += vib.envelope[idx] * vib.envelope[idx];
         }
-        for row in &mut reg {
-            for v in row.iter_mut() {
-                *v *= inv_m;
-            }
+        for (ch, r) in reg.iter().enumerate() {
+            out.regressors[ch].extend(r.iter().map(|v| v * inv_m));
+            out.rate_i_deg_h[ch].push(rate_i[ch] * inv_m);
+            out.nonlinearity_deg_h[ch].push(nl[ch] * inv_m);
         }
-        out.regressors.push(reg);
-        out.rate_i_deg_h.push(rate_i.map(|v| v * inv_m));
-        out.nonlinearity_deg_h.push(nl.map(|v| v * inv_m));
-        out.accel_output_g.push(acc_out.map(|v| v * inv_m));
+        for (k, v) in acc_out.iter().enumerate() {
+            out.accel_output_g[k].push(v * inv_m);
+        }
         out.accel_ideal_g.push(acc_ideal.map(|v| v * inv_m));
         out.level_squared.push(g2 * inv_m);
         out.force_moments.push(moments.map(|v| v * inv_m));
@@ -223,10 +358,15 @@ fn high_rate(s: &Scenario, vib: &VibrationHistory, kin: &Kinematics) -> HighRate
     out
 }
 
-/// Sensor noise per output sample and channel: white (ARW) plus a
-/// first-order Gauss–Markov bias, deg/h, plus the rate random walk.
-fn gyro_noise(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<[f64; 6]> {
-    let mut noise = white_and_markov(s, n_out, rng);
+/// Sensor noise per channel and output sample (`[channel][n]`): white (ARW)
+/// plus a first-order Gauss–Markov bias, deg/h, plus the rate random walk.
+fn gyro_noise(
+    s: &Scenario,
+    channels: usize,
+    n_out: usize,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Vec<Vec<f64>> {
+    let mut noise = white_and_markov(s, channels, n_out, rng);
     add_rate_random_walk(s, &mut noise);
     noise
 }
@@ -236,24 +376,33 @@ fn gyro_noise(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<[
 /// b + W/2 + q·z₂/√12 (a Brownian bridge's mean has variance dt/12 and is
 /// independent of the end point), so the Allan deviation is K·√(τ/3) at
 /// every τ, the shortest included. Nothing is drawn when K is zero.
-fn add_rate_random_walk(s: &Scenario, noise: &mut [[f64; 6]]) {
+fn add_rate_random_walk(s: &Scenario, noise: &mut [Vec<f64>]) {
     let q = s.gyros.noise.rrw_step_deg_h(1.0 / s.output_rate_hz);
     if q == 0.0 {
         return;
     }
     let mut rng = stream(s.seed, Stream::GyroRateWalk);
-    let mut walk = [0.0; 6];
-    for sample in noise.iter_mut() {
-        for (e, b) in sample.iter_mut().zip(walk.iter_mut()) {
+    let mut walk = vec![0.0; noise.len()];
+    let n_out = noise.first().map_or(0, Vec::len);
+    // Sample by sample, channel by channel: the draw order of every unit
+    // (n indexes every channel's series at once).
+    #[allow(clippy::needless_range_loop)]
+    for n in 0..n_out {
+        for (ch, b) in walk.iter_mut().enumerate() {
             let z1: f64 = StandardNormal.sample(&mut rng);
             let z2: f64 = StandardNormal.sample(&mut rng);
-            *e += *b + q * (0.5 * z1 + z2 / 12f64.sqrt());
+            noise[ch][n] += *b + q * (0.5 * z1 + z2 / 12f64.sqrt());
             *b += q * z1;
         }
     }
 }
 
-fn white_and_markov(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<[f64; 6]> {
+fn white_and_markov(
+    s: &Scenario,
+    channels: usize,
+    n_out: usize,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Vec<Vec<f64>> {
     let dt = 1.0 / s.output_rate_hz;
     let p = &s.gyros.noise;
     let white = p.white_sigma_deg_h(dt);
@@ -265,34 +414,39 @@ fn white_and_markov(s: &Scenario, n_out: usize, rng: &mut Xoshiro256PlusPlus) ->
     };
     let mut normal = || -> f64 { StandardNormal.sample(rng) };
     // Start the Gauss–Markov state in its stationary distribution.
-    let mut bias: [f64; 6] = std::array::from_fn(|_| p.bias_instability_deg_h * normal());
-    (0..n_out)
-        .map(|_| {
-            std::array::from_fn(|ch| {
-                let e = white * normal() + bias[ch];
-                bias[ch] = phi * bias[ch] + drive * normal();
-                e
-            })
-        })
-        .collect()
+    let mut bias: Vec<f64> = (0..channels)
+        .map(|_| p.bias_instability_deg_h * normal())
+        .collect();
+    let mut out: Vec<Vec<f64>> = (0..channels).map(|_| Vec::with_capacity(n_out)).collect();
+    for _ in 0..n_out {
+        for (ch, b) in bias.iter_mut().enumerate() {
+            out[ch].push(white * normal() + *b);
+            *b = phi * *b + drive * normal();
+        }
+    }
+    out
 }
 
-/// Simulates a scenario: the record, the calibration a user would have and
-/// the truth (with the per-channel noise floor), plus per-channel component
-/// series. The same scenario (seed included) always gives identical results.
-///
-/// ```
-/// use nav_sensors::sim::{simulate, Scenario};
-/// use nav_sensors::geometry::Channel;
-/// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
-/// let sim = simulate(&s).unwrap();
-/// assert_eq!(sim.record.len(), 50);
-/// assert!((sim.record.dt() - 0.02).abs() < 1e-12);
-/// // Shaker off at first: Z reads Earth rate plus its drift, az reads 1 g.
-/// assert!((sim.record.accel(nav_sensors::record::Axis::Z)[0] - 1.0).abs() < 1e-3);
-/// ```
-pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
-    s.validate()?;
+/// What every simulation produces before its calibration and truth: the
+/// high-rate means (with the temperature regressor set), the time base, the
+/// gyro and accelerometer outputs (`[sensor][n]`, deg/h and g), the sensor
+/// noise per channel (quantisation included) and the measured temperature.
+pub(crate) struct Run {
+    pub hr: HighRate,
+    pub t: Vec<f64>,
+    pub gyro: Vec<Vec<f64>>,
+    pub accel: Vec<Vec<f64>>,
+    pub noise: Vec<Vec<f64>>,
+    pub temp_meas: Vec<f64>,
+}
+
+/// Simulates a validated scenario for any set of gyro and accelerometer
+/// physics (the paper's unit or any other).
+pub(crate) fn run(
+    s: &Scenario,
+    mut gyros: Vec<GyroPhysics>,
+    accels: &[AccelPhysics],
+) -> Result<Run, SimError> {
     let n_out = s.output_samples();
     let m = s.oversampling();
     let dt = 1.0 / s.output_rate_hz;
@@ -313,7 +467,7 @@ pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
         motion: s.motion.as_ref(),
         internal_rate_hz: s.internal_rate_hz,
     };
-    let hr = high_rate(s, &vib, &kin);
+    let mut hr = high_rate(s, &vib, &kin, &mut gyros, accels);
     drop(vib);
 
     // Temperature: end-of-interval values for the record, the interval's
@@ -339,22 +493,23 @@ pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
 
     // Gyros: deterministic model from the interval means, then noise, then
     // optional pulse quantisation of the incremental angle.
-    let coefficients = Channel::ALL.map(|c| s.gyro(c).to_array());
-    let mut noise = gyro_noise(s, n_out, &mut stream(s.seed, Stream::GyroNoise));
-    let mut gyro: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(n_out));
-    let mut regressors = hr.regressors.clone();
-    let mut remainder_deg = [0.0; 6];
+    let coefficients: Vec<Vec<f64>> = gyros.iter().map(GyroPhysics::coefficients).collect();
+    let temp_index: Vec<usize> = gyros.iter().map(GyroPhysics::temp_index).collect();
+    let channels = gyros.len();
+    let mut noise = gyro_noise(s, channels, n_out, &mut stream(s.seed, Stream::GyroNoise));
+    let mut gyro: Vec<Vec<f64>> = (0..channels).map(|_| Vec::with_capacity(n_out)).collect();
+    let mut remainder_deg = vec![0.0; channels];
     for n in 0..n_out {
-        for ch in 0..6 {
-            let r = &mut regressors[n][ch];
-            r[DtgTerm::Temp.index()] = t_mean[n] - s.thermal.reference_c;
+        for ch in 0..channels {
+            let r = hr.regs_mut(ch, n);
+            r[temp_index[ch]] = t_mean[n] - s.thermal.reference_c;
             let drift: f64 = coefficients[ch]
                 .iter()
                 .zip(r.iter())
                 .map(|(c, r)| c * r)
                 .sum();
             let exact =
-                hr.rate_i_deg_h[n][ch] + drift + hr.nonlinearity_deg_h[n][ch] + noise[n][ch];
+                hr.rate_i_deg_h[ch][n] + drift + hr.nonlinearity_deg_h[ch][n] + noise[ch][n];
             let out = match s.gyros.pulse_arcsec {
                 None => exact,
                 Some(q_arcsec) => {
@@ -363,7 +518,7 @@ pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
                     let pulses = (angle / q).floor();
                     remainder_deg[ch] = angle - pulses * q;
                     let out = pulses * q * 3600.0 / dt;
-                    noise[n][ch] += out - exact;
+                    noise[ch][n] += out - exact;
                     out
                 }
             };
@@ -373,33 +528,81 @@ pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
 
     let mut rng_accel = stream(s.seed, Stream::AccelNoise);
     let accel_sigma = s.accels.noise.averaged_sigma_g(dt);
-    let accel: [Vec<f64>; 3] = std::array::from_fn(|k| {
-        hr.accel_output_g
-            .iter()
-            .map(|a| {
-                let e: f64 = StandardNormal.sample(&mut rng_accel);
-                a[k] + accel_sigma * e
-            })
-            .collect()
-    });
+    let accel: Vec<Vec<f64>> = hr
+        .accel_output_g
+        .iter()
+        .map(|a| {
+            a.iter()
+                .map(|a| {
+                    let e: f64 = StandardNormal.sample(&mut rng_accel);
+                    a + accel_sigma * e
+                })
+                .collect()
+        })
+        .collect();
 
     let t: Vec<f64> = (1..=n_out).map(|n| n as f64 * dt).collect();
-    let record = Record::new(
+    Ok(Run {
+        hr,
         t,
         gyro,
         accel,
+        noise,
+        temp_meas,
+    })
+}
+
+/// The paper's six DTG channels and three accelerometers as the scenario
+/// gives them.
+fn paper_physics(s: &Scenario) -> (Vec<GyroPhysics>, Vec<AccelPhysics>) {
+    let gyros = ChannelFrame::all()
+        .iter()
+        .map(|frame| GyroPhysics::dtg(s, frame.axes(), s.gyro(frame.channel)))
+        .collect();
+    let accels = Axis::ALL
+        .map(|axis| AccelPhysics::Modelled {
+            axis,
+            coefficients: s.accel(axis),
+        })
+        .to_vec();
+    (gyros, accels)
+}
+
+/// Simulates a scenario: the record, the calibration a user would have and
+/// the truth (with the per-channel noise floor), plus per-channel component
+/// series. The same scenario (seed included) always gives identical results.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario};
+/// use nav_sensors::geometry::Channel;
+/// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
+/// let sim = simulate(&s).unwrap();
+/// assert_eq!(sim.record.len(), 50);
+/// assert!((sim.record.dt() - 0.02).abs() < 1e-12);
+/// // Shaker off at first: Z reads Earth rate plus its drift, az reads 1 g.
+/// assert!((sim.record.accel(nav_sensors::record::Axis::Z)[0] - 1.0).abs() < 1e-3);
+/// ```
+pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
+    s.validate()?;
+    let (gyros, accels) = paper_physics(s);
+    let Run {
+        hr,
+        t,
+        gyro,
+        accel,
+        noise,
+        temp_meas,
+    } = run(s, gyros, &accels)?;
+    let mut gyro = gyro.into_iter();
+    let mut accel = accel.into_iter();
+    let record = Record::new(
+        t,
+        std::array::from_fn(|_| gyro.next().expect("six channels")),
+        std::array::from_fn(|_| accel.next().expect("three accelerometers")),
         vec![("temp".to_string(), temp_meas.clone())],
     )?;
     let calibration = ground_calibration(s, &mut stream(s.seed, Stream::Calibration));
-    let (truth, components) = budget(
-        s,
-        &hr,
-        &regressors,
-        &noise,
-        &temp_meas,
-        &calibration,
-        record.t(),
-    );
+    let (truth, components) = budget(s, &hr, &noise, &temp_meas, &calibration, record.t());
     Ok(Simulation {
         record,
         calibration,

@@ -17,12 +17,19 @@ mod scenario;
 mod site;
 mod thermal;
 pub mod truth;
+mod unit;
+mod unit_truth;
 
 pub use engine::simulate;
 pub use error::SimError;
 pub use motion::{MotionProfile, Phase};
 pub use output::{Components, Simulation};
 pub use presets::low_frequency_psd;
-pub use scenario::{AccelSet, CalibrationError, GyroSet, HiddenEffect, Scenario, ScenarioError};
+pub use scenario::{
+    AccelSet, CalibrationError, GyroSet, HiddenEffect, Scenario, ScenarioError, UnitGyros,
+    UnitHiddenEffect,
+};
 pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
 pub use thermal::Thermal;
+pub use unit::{UnitSimulation, simulate_unit};
+pub use unit_truth::{UnitChannelTruth, UnitHiddenTruth, UnitTruth};

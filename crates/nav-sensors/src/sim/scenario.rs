@@ -11,6 +11,7 @@ use super::thermal::Thermal;
 use crate::accel::{AccelCoefficients, AccelNoise, ServoLoop};
 use crate::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
 use crate::geometry::{Axis, Channel};
+use crate::rate::RateCoefficients;
 use crate::signal::num;
 use crate::vibration::{VibrationConfig, VibrationError};
 
@@ -163,6 +164,27 @@ impl CalibrationError {
             DtgTerm::Temp | DtgTerm::Rect2N => 0.0,
         }
     }
+
+    /// The absolute 1σ for a rate-gyro term: the DTG's bias, scale-factor,
+    /// g-sensitive and g²-sensitive errors for their rate-gyro counterparts
+    /// (zero for `temp`).
+    ///
+    /// ```
+    /// use nav_sensors::rate::RateTerm;
+    /// let e = nav_sensors::sim::CalibrationError::default();
+    /// assert_eq!(e.absolute_for_rate(RateTerm::GY), e.g_deg_h_g);
+    /// assert_eq!(e.absolute_for_rate(RateTerm::Temp), 0.0);
+    /// ```
+    pub fn absolute_for_rate(&self, term: crate::rate::RateTerm) -> f64 {
+        use crate::rate::RateTerm as T;
+        match term {
+            T::Bias => self.bias_deg_h,
+            T::ScaleFactor => self.scale_factor_ppm,
+            T::GX | T::GY | T::GZ => self.g_deg_h_g,
+            T::GgXx | T::GgYy | T::GgZz | T::GgXy | T::GgXz | T::GgYz => self.gg_deg_h_g2,
+            T::Temp => 0.0,
+        }
+    }
 }
 
 /// An effect present in the truth and zeroed in the calibration handed to
@@ -179,6 +201,81 @@ pub struct HiddenEffect {
     pub channel: Channel,
     /// The term, by stable id.
     pub term: DtgTerm,
+}
+
+/// The gyros of a unit other than the paper's (simulated with
+/// [`crate::sim::simulate_unit`]): true coefficients by channel name, in the
+/// table of the channel's model, and the hidden effects by channel name and
+/// term id. A channel listed nowhere is an ideal gyro, except that a `dtg`
+/// channel named like one of the paper's takes `gyros.channels` (so the
+/// paper's unit reads the scenario as [`crate::sim::simulate`] does).
+///
+/// ```
+/// let text = "[rate.g2]\ng_y_deg_h_g = 0.5\n[[hidden]]\nchannel = \"g2\"\nterm = \"g_y\"\n";
+/// let u: nav_sensors::sim::UnitGyros = toml::from_str(text).unwrap();
+/// assert_eq!(u.rate["g2"].g_y_deg_h_g, 0.5);
+/// assert_eq!(u.hidden[0].to_string(), "g2=g_y");
+/// ```
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitGyros {
+    /// Rate-gyro coefficients by channel name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub rate: BTreeMap<String, RateCoefficients>,
+    /// DTG coefficients by channel name.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub dtg: BTreeMap<String, DtgCoefficients>,
+    /// Effects present in the truth and zeroed in the calibration.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hidden: Vec<UnitHiddenEffect>,
+}
+
+impl UnitGyros {
+    /// Whether nothing is given (the scenario then writes no `[unit]` table).
+    ///
+    /// ```
+    /// assert!(nav_sensors::sim::UnitGyros::default().is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.rate.is_empty() && self.dtg.is_empty() && self.hidden.is_empty()
+    }
+}
+
+/// A hidden effect of a unit's channel: the channel's name and a term id of
+/// its model (`g2=g_y` for a rate gyro, `Y1=gg_IS` for a DTG channel).
+///
+/// ```
+/// let h: nav_sensors::sim::UnitHiddenEffect = "gx2 = g_x".parse().unwrap();
+/// assert_eq!((h.channel.as_str(), h.term.as_str()), ("gx2", "g_x"));
+/// assert!("gx2".parse::<nav_sensors::sim::UnitHiddenEffect>().is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitHiddenEffect {
+    /// The channel's name.
+    pub channel: String,
+    /// The term id.
+    pub term: String,
+}
+
+impl std::fmt::Display for UnitHiddenEffect {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}={}", self.channel, self.term)
+    }
+}
+
+impl std::str::FromStr for UnitHiddenEffect {
+    type Err = String;
+    /// `CHANNEL=ID`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.split_once('=') {
+            Some((c, t)) if !c.trim().is_empty() && !t.trim().is_empty() => Ok(Self {
+                channel: c.trim().to_string(),
+                term: t.trim().to_string(),
+            }),
+            _ => Err(format!("'{s}': expected CHANNEL=ID, e.g. g2=g_y")),
+        }
+    }
 }
 
 /// A complete vibration test.
@@ -229,6 +326,9 @@ pub struct Scenario {
     /// Effects present in the truth but zeroed in the calibration.
     #[serde(default)]
     pub hidden: Vec<HiddenEffect>,
+    /// The gyros of a unit other than the paper's (absent for the paper's).
+    #[serde(default, skip_serializing_if = "UnitGyros::is_empty")]
+    pub unit: UnitGyros,
 }
 
 /// What is wrong with a scenario.
@@ -297,6 +397,16 @@ pub enum ScenarioError {
         /// Term.
         term: DtgTerm,
     },
+    /// A `[unit]` entry that does not fit the unit simulated: a channel the
+    /// unit lacks, a table of the other model, an unknown term id, or a
+    /// hidden effect whose truth coefficient is zero.
+    #[error("{key}: {problem}")]
+    Unit {
+        /// The scenario key, e.g. `unit.rate.g5` or `unit.hidden[0]`.
+        key: String,
+        /// What is wrong, and with which unit file.
+        problem: String,
+    },
 }
 
 impl Default for Scenario {
@@ -328,12 +438,11 @@ impl Scenario {
     /// assert_eq!(nav_sensors::sim::Scenario::load(&path).unwrap(), nav_sensors::sim::Scenario::default());
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_toml(&text, &path.display().to_string())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| ScenarioError::Io { path, source },
+            Self::from_toml,
+        )
     }
 
     /// The scenario as TOML text.

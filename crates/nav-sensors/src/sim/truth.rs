@@ -196,7 +196,7 @@ impl Truth {
     /// assert!(sim.truth.to_json().contains("noise_floor_deg_h"));
     /// ```
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("plain data serialises") + "\n"
+        crate::files::io::pretty(self)
     }
 
     /// Parses truth JSON; `path` labels errors.
@@ -221,12 +221,11 @@ impl Truth {
     /// assert_eq!(truth.scenario.duration_s, 1.0);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| TruthFileError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::from_json(&text, &path.display().to_string())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| TruthFileError::Io { path, source },
+            Self::from_json,
+        )
     }
 
     /// The noise floor of one channel, deg/h.

@@ -5,7 +5,7 @@
 //! diagnosis page for the figures and the findings in full.
 
 use super::fmt;
-use crate::diagnose::{ChannelDiagnosis, Diagnosis};
+use crate::diagnose::{Band, ChannelDiagnosis, Diagnosis};
 use crate::report::diagnosis::channel::candidate_cells;
 use crate::report::diagnosis::overview::failing_cell;
 use crate::report::diagnosis::reading::candidate_columns;
@@ -42,19 +42,27 @@ fn worst_segment(c: &ChannelDiagnosis) -> String {
 }
 
 /// The band furthest above the white floor.
-fn worst_band(c: &ChannelDiagnosis) -> String {
+pub(super) fn top_band(c: &ChannelDiagnosis) -> Option<&Band> {
     c.bands
         .iter()
         .max_by(|a, b| a.ratio_to_floor.total_cmp(&b.ratio_to_floor))
-        .map_or("—".into(), |b| {
-            format!(
-                "{}–{} Hz: {:.1}× the white floor ({:.0}% of the power)",
-                short(b.f_lo_hz),
-                short(b.f_hi_hz),
-                b.ratio_to_floor,
-                100.0 * b.share
-            )
-        })
+}
+
+/// A band's edges as the page names them: `0–0.1 Hz`.
+pub(super) fn band_name(b: &Band) -> String {
+    format!("{}–{} Hz", short(b.f_lo_hz), short(b.f_hi_hz))
+}
+
+/// The band furthest above the white floor, as the table cell reads.
+fn worst_band(c: &ChannelDiagnosis) -> String {
+    top_band(c).map_or("—".into(), |b| {
+        format!(
+            "{}: {:.1}× the white floor ({:.0}% of the power)",
+            band_name(b),
+            b.ratio_to_floor,
+            100.0 * b.share
+        )
+    })
 }
 
 /// The acceleration axis the residual's mean follows most.

@@ -81,6 +81,19 @@ fn floor_sd(ctx: &Ctx<'_>) -> Option<[f64; 6]> {
     Some(out)
 }
 
+/// Per channel, the validation residual's standard deviation and the noise
+/// floor's (deg/h), when a floor is known: the section's table, and the
+/// page's summary reads the same numbers.
+pub(super) fn residual_and_floor(ctx: &Ctx<'_>) -> Option<Vec<(Channel, f64, f64)>> {
+    let f = floor_sd(ctx)?;
+    Some(
+        Channel::ALL
+            .into_iter()
+            .map(|ch| (ch, mean_sd(&residual(ctx, ch)).1, f[ch.index()]))
+            .collect(),
+    )
+}
+
 /// The figure, with its file stem.
 pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
     let floors = floor_sd(ctx);
@@ -133,8 +146,8 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
 /// The section, once its figure is drawn.
 pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
     let mut sec = Section::new("Residual distribution against the noise floor");
-    match (floor_sd(ctx), ctx.noise_floor) {
-        (Some(f), Some(floor)) => {
+    match (residual_and_floor(ctx), ctx.noise_floor) {
+        (Some(rows), Some(floor)) => {
             let mut t = Table::new([
                 "channel",
                 "residual σ (deg/h)",
@@ -142,9 +155,7 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
                 "residual / floor",
             ])
             .caption("Validation rows: the residual's standard deviation against the floor's.");
-            for ch in Channel::ALL {
-                let (_, sd) = mean_sd(&residual(ctx, ch));
-                let fl = f[ch.index()];
+            for (ch, sd, fl) in rows {
                 t = t.row([
                     ch.name().to_string(),
                     fmt(sd),
@@ -154,7 +165,7 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
             }
             sec = sec
                 .text(format!(
-                    "The noise floor is what no model of this record can predict: {}. It is passed through the model's pre-filter (as the target was) and its standard deviation taken on the validation rows; the solid black curve is the normal density with that σ, centred on the residual's mean (the floor says nothing of the mean). A residual at the floor has a histogram on that curve and a ratio near 1; a wider histogram is error the model could still remove.",
+                    "The noise floor is what no model of this record can predict: {}. It is passed through the model's pre-filter (as the target was) and its standard deviation taken on the validation rows; the solid black curve is the normal density with that σ, centred on the residual's mean (the floor says nothing of the mean). A residual at the floor has a histogram on that curve and a ratio near 1; a wider histogram is error above the floor that this model does not predict: an effect it lacks (the diagnosis names those it can find among its candidates) or its own estimation error.",
                     floor.source
                 ))
                 .table(t);

@@ -7,6 +7,7 @@ mod before_after;
 mod channels;
 mod diagnosis;
 mod fit;
+mod headline;
 mod histogram;
 mod paper_figures;
 mod residues;
@@ -148,24 +149,6 @@ fn showcase(scores: &[ChannelScores]) -> Channel {
         .map_or(Channel::X, |(c, _)| c)
 }
 
-/// The page's summary line: the record, the split and the reduction.
-fn summary(ctx: &Ctx<'_>, source: &str) -> String {
-    let red = ctx.stats.iter().map(|s| s.reduction);
-    let min_red = red.clone().fold(f64::INFINITY, f64::min);
-    let max_red = red.fold(0.0, f64::max);
-    format!(
-        "Record {} ({} samples at {} Hz); split {} ({} training, {} validation rows). Residue rms fell {:.2}× to {:.2}× on the validation rows.",
-        source,
-        ctx.record.len(),
-        fmt(1.0 / ctx.record.dt()),
-        ctx.model.split(),
-        ctx.applied.train.len(),
-        ctx.applied.val.len(),
-        min_red,
-        max_red
-    )
-}
-
 /// Writes the figures and `index.html` into `dir`.
 ///
 /// `source` names the record on the page (its file name, or "simulated").
@@ -216,8 +199,11 @@ pub fn build_report(
     // measured against predicted, where it fails and the diagnosis, Allan
     // deviation, the spectra, the residual against the noise floor; then the
     // channel models, the before/after bars and the paper's figures.
-    let mut page = HtmlReport::new("DTG vibration-error compensation")
-        .summary(summary(&ctx, source))
+    let mut page = HtmlReport::new("DTG vibration-error compensation");
+    for p in headline::paragraphs(&ctx, extras, source) {
+        page = page.summary(p);
+    }
+    page = page
         .section(summary::section(&ctx, extras))
         .section(fit::section(&drawn));
     if let Some(d) = &extras.diagnosis {

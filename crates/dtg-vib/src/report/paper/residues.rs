@@ -88,18 +88,18 @@ fn spectra(ctx: &Ctx<'_>) -> Figure {
 /// Where one residue's mean square is, `[before, after]`, (deg/h)²: its
 /// mean squared (0 Hz, which the spectra leave out), then the Welch spectrum
 /// integrated below 0.2 Hz, over 0.2–2 Hz and above 2 Hz.
-struct Powers {
-    residue: Residue,
-    mean2: [f64; 2],
-    bands: [[f64; 2]; 3],
+pub(super) struct Powers {
+    pub(super) residue: Residue,
+    pub(super) mean2: [f64; 2],
+    pub(super) bands: [[f64; 2]; 3],
 }
 
 /// The bands of [`Powers::bands`], Hz.
-const BANDS: [(f64, f64); 3] = [(0.0, 0.2), (0.2, 2.0), (2.0, f64::INFINITY)];
+pub(super) const BANDS: [(f64, f64); 3] = [(0.0, 0.2), (0.2, 2.0), (2.0, f64::INFINITY)];
 
 /// Each residue's [`Powers`] on the validation rows (residues too short
 /// for one Welch segment are left out).
-fn powers(ctx: &Ctx<'_>) -> Vec<Powers> {
+pub(super) fn powers(ctx: &Ctx<'_>) -> Vec<Powers> {
     let fs = fs_val(ctx);
     let mut out = Vec::new();
     for r in Residue::ALL {

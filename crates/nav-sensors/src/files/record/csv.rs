@@ -78,18 +78,17 @@ impl Record {
         let t = take("t");
         let t_column = table.column_index("t")? + 1;
         check_time(&t, &file, |i| table.line_of_row(i), t_column)?;
-        let gyro = Channel::ALL.map(|c| take(c.name()));
-        let accel = Axis::ALL.map(|a| take(a.column()));
+        let gyro = Channel::ALL
+            .map(|c| (c.name().to_string(), take(c.name())))
+            .to_vec();
+        let accel = Axis::ALL
+            .map(|a| (a.column().to_string(), take(a.column())))
+            .to_vec();
         let extra = columns
             .into_iter()
             .filter(|(n, _)| n != "t" && !SENSOR_COLUMNS.contains(&n.as_str()))
             .collect();
-        Ok(Self {
-            t,
-            gyro,
-            accel,
-            extra,
-        })
+        Self::assemble(t, gyro, accel, extra, None)
     }
 
     /// Writes the record as CSV (numbers in shortest round-trip form, so the
@@ -126,13 +125,13 @@ impl Record {
     pub(crate) fn columns(&self) -> (Vec<&str>, Vec<&[f64]>) {
         let mut names: Vec<&str> = vec!["t"];
         let mut cols: Vec<&[f64]> = vec![&self.t];
-        for c in Channel::ALL {
-            names.push(c.name());
-            cols.push(&self.gyro[c.index()]);
+        for (n, v) in self.gyro_names.iter().zip(&self.gyro) {
+            names.push(n);
+            cols.push(v);
         }
-        for a in Axis::ALL {
-            names.push(a.column());
-            cols.push(&self.accel[a.index()]);
+        for (n, v) in self.accel_names.iter().zip(&self.accel) {
+            names.push(n);
+            cols.push(v);
         }
         for (n, v) in &self.extra {
             names.push(n);

@@ -85,4 +85,69 @@ pub enum RecordError {
         /// The name.
         name: String,
     },
+    /// A sensor column name given twice to [`Record::from_series`](super::Record::from_series).
+    #[error("column name '{name}' is given twice")]
+    DuplicateName {
+        /// The name.
+        name: String,
+    },
+    /// The temperature column named is not among the extra columns.
+    #[error("temperature column '{name}' is not among the extra columns")]
+    NoTemperature {
+        /// The name.
+        name: String,
+    },
+    /// A step longer than [`GAP_FACTOR`](super::GAP_FACTOR) × the median in
+    /// one record (split the series at its gaps first).
+    #[error(
+        "{file}:{line}:{column}: a gap of {step} s (the median step is {median} s): split the record at its gaps"
+    )]
+    Gap {
+        /// File name.
+        file: String,
+        /// Line of the row after the gap.
+        line: u64,
+        /// Column of the time.
+        column: usize,
+        /// The step, s.
+        step: f64,
+        /// The median step, s.
+        median: f64,
+    },
+    /// A column the unit file names is not in the record.
+    #[error("{file}:1: no column '{name}' ({key} in {unit_file}); the header has: {}", header.join(", "))]
+    MissingUnitColumn {
+        /// The record's file name.
+        file: String,
+        /// The missing column.
+        name: String,
+        /// The unit file's key naming it, e.g. `gyro[2].name`.
+        key: String,
+        /// The unit file.
+        unit_file: String,
+        /// The header as read.
+        header: Vec<String>,
+    },
+    /// A column named like a gyro or accelerometer that the unit file does
+    /// not list (a sensor forgotten in the unit file would otherwise be
+    /// taken for an extra column and fitted as an effect).
+    #[error(
+        "{file}:1: column '{name}' looks like a gyro or accelerometer but {unit_file} names no such sensor: add it to the unit file or rename the column"
+    )]
+    SensorLikeColumn {
+        /// The record's file name.
+        file: String,
+        /// The column.
+        name: String,
+        /// The unit file.
+        unit_file: String,
+    },
+    /// A record written in a unit's format whose sensors are not the unit's.
+    #[error("the record's sensors ({}) are not those of {unit_file}", sensors.join(", "))]
+    NotOfUnit {
+        /// The unit file.
+        unit_file: String,
+        /// The record's gyro and accelerometer names.
+        sensors: Vec<String>,
+    },
 }

@@ -11,33 +11,49 @@
 
 mod csv;
 mod error;
+mod time;
+mod unit_csv;
 
 pub use error::RecordError;
+pub use time::{GAP_FACTOR, Gap, TimeReport};
+pub use unit_csv::UnitRecords;
 
 use std::ops::Range;
 
 pub use crate::geometry::Axis;
 use crate::geometry::Channel;
+use time::{check_time, check_time_allowing_jitter};
 
 /// Relative tolerance on the sample interval: every `t[i] − t[i−1]` must be
 /// within `1e-3·dt` of the median interval `dt`. That accepts timestamps
 /// rounded to 5 decimals at 50 Hz (≤ 1e-5 s error in a difference, 5e-4·dt)
 /// or stored in single precision over a 100-s test, and still rejects any
 /// dropped or repeated sample (a 100% deviation) or a 1% clock glitch.
+/// This is the paper format's strict rule ([`Record::new`],
+/// [`Record::read_csv`]); a record read with a unit file accepts jitter
+/// and splits at gaps instead ([`Record::read_with_unit`]).
 ///
 /// ```
 /// assert!(nav_sensors::record::INTERVAL_TOLERANCE < 0.01);
 /// ```
 pub const INTERVAL_TOLERANCE: f64 = 1e-3;
 
-/// The nine sensor columns every record has, after `t`.
+/// The nine sensor columns every record of the paper's unit has, after `t`.
 ///
 /// ```
 /// assert_eq!(nav_sensors::record::SENSOR_COLUMNS[8], "az");
 /// ```
 pub const SENSOR_COLUMNS: [&str; 9] = ["X", "X1", "Y", "Y1", "Z", "Z1", "ax", "ay", "az"];
 
-/// A validated test record.
+/// A validated test record: time (s), the gyros' outputs (deg/h), the
+/// accelerometers' outputs (g) and any extra numeric columns (one of which
+/// a unit may name its temperature column), each series named.
+///
+/// A record of the paper's unit has the six channels X, X1, Y, Y1, Z, Z1
+/// and the accelerometers ax, ay, az ([`Record::new`], [`Record::read_csv`]),
+/// and the [`Channel`]- and [`Axis`]-indexed accessors serve it. A record of
+/// any unit names its sensors as the unit does ([`Record::from_series`],
+/// [`Record::read_with_unit`]) and is read by index or name.
 ///
 /// ```
 /// use nav_sensors::record::{Axis, Record};
@@ -62,16 +78,27 @@ pub const SENSOR_COLUMNS: [&str; 9] = ["X", "X1", "Y", "Y1", "Z", "Z1", "ax", "a
 #[derive(Debug, Clone, PartialEq)]
 pub struct Record {
     t: Vec<f64>,
-    gyro: [Vec<f64>; 6],
-    accel: [Vec<f64>; 3],
+    gyro_names: Vec<String>,
+    gyro: Vec<Vec<f64>>,
+    accel_names: Vec<String>,
+    accel: Vec<Vec<f64>>,
     extra: Vec<(String, Vec<f64>)>,
+    /// The extra column that holds the unit's temperature, when it names one.
+    temperature: Option<String>,
+    /// Gyros X..Z1 and accelerometers ax, ay, az in that order: the
+    /// paper-indexed accessors then index directly.
+    paper: bool,
 }
 
+/// Named series, in order.
+type Named = Vec<(String, Vec<f64>)>;
+
 impl Record {
-    /// A record from its series (time in s, gyro outputs in deg/h in
-    /// [`Channel::ALL`] order, accelerations in g along x, y, z, extra named
-    /// columns). Checks lengths, at least two samples, strictly increasing
-    /// time and a constant interval; errors name the file `"<memory>"`.
+    /// A record of the paper's unit from its series (time in s, gyro outputs
+    /// in deg/h in [`Channel::ALL`] order, accelerations in g along x, y, z,
+    /// extra named columns). Checks lengths, at least two samples, strictly
+    /// increasing time and a constant interval; errors name the file
+    /// `"<memory>"`.
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
@@ -87,37 +114,114 @@ impl Record {
         accel: [Vec<f64>; 3],
         extra: Vec<(String, Vec<f64>)>,
     ) -> Result<Self, RecordError> {
-        let n = t.len();
-        let lengths = Channel::ALL
+        let gyros = Channel::ALL
             .iter()
-            .map(|c| (c.name().to_string(), gyro[c.index()].len()))
-            .chain(
-                Axis::ALL
-                    .iter()
-                    .map(|a| (a.column().to_string(), accel[a.index()].len())),
-            )
-            .chain(extra.iter().map(|(name, v)| (name.clone(), v.len())));
-        for (name, len) in lengths {
-            if len != n {
+            .zip(gyro)
+            .map(|(c, v)| (c.name().to_string(), v))
+            .collect();
+        let accels = Axis::ALL
+            .iter()
+            .zip(accel)
+            .map(|(a, v)| (a.column().to_string(), v))
+            .collect();
+        let r = Self::assemble(t, gyros, accels, extra, None)?;
+        check_time(&r.t, "<memory>", |i| i as u64 + 2, 1)?;
+        Ok(r)
+    }
+
+    /// A record of any unit from named series: time (s), gyro outputs
+    /// (deg/h) and accelerometer outputs (g) in the unit's order, extra
+    /// columns, and the name of the extra column holding temperature (°C),
+    /// if any. Checks lengths, unique names, at least two samples and
+    /// strictly increasing time; jitter is accepted but a gap (a step over
+    /// [`GAP_FACTOR`] × the median) is refused: split the series first
+    /// (the unit reader does, [`Record::read_with_unit`]).
+    ///
+    /// ```
+    /// use nav_sensors::record::Record;
+    /// let t = vec![0.0, 0.011, 0.019, 0.03];
+    /// let g = |v: f64| vec![v; 4];
+    /// let rec = Record::from_series(t,
+    ///     vec![("g1".into(), g(1.0)), ("g2".into(), g(2.0)), ("g3".into(), g(3.0)), ("g4".into(), g(4.0))],
+    ///     vec![("ax".into(), g(0.0)), ("ay".into(), g(0.0)), ("az".into(), g(1.0))],
+    ///     vec![("temp".into(), g(25.0))], Some("temp".into())).unwrap();
+    /// assert_eq!(rec.gyro_names(), ["g1", "g2", "g3", "g4"]);
+    /// assert_eq!(rec.gyro_named("g3").unwrap()[0], 3.0);
+    /// assert_eq!(rec.temperature().unwrap()[0], 25.0);
+    /// assert!(!rec.is_paper_layout());
+    /// ```
+    pub fn from_series(
+        t: Vec<f64>,
+        gyros: Named,
+        accels: Named,
+        extra: Named,
+        temperature: Option<String>,
+    ) -> Result<Self, RecordError> {
+        let r = Self::assemble(t, gyros, accels, extra, temperature)?;
+        check_time_allowing_jitter(&r.t, "<memory>", |i| i as u64 + 2, 1)?;
+        Ok(r)
+    }
+
+    /// Checks lengths and names (not time) and builds the record.
+    fn assemble(
+        t: Vec<f64>,
+        gyros: Named,
+        accels: Named,
+        extra: Named,
+        temperature: Option<String>,
+    ) -> Result<Self, RecordError> {
+        let n = t.len();
+        let all = gyros.iter().chain(&accels).chain(&extra);
+        for (name, v) in all.clone() {
+            if v.len() != n {
                 return Err(RecordError::LengthMismatch {
-                    name,
-                    len,
+                    name: name.clone(),
+                    len: v.len(),
                     expected: n,
                 });
             }
         }
-        for (k, (name, _)) in extra.iter().enumerate() {
-            let reserved = name == "t" || SENSOR_COLUMNS.contains(&name.as_str());
-            if reserved || extra[..k].iter().any(|(n, _)| n == name) {
-                return Err(RecordError::BadExtraName { name: name.clone() });
+        let sensors = gyros.len() + accels.len();
+        let names: Vec<&str> = all.map(|(n, _)| n.as_str()).collect();
+        for (k, name) in names.iter().enumerate() {
+            if *name == "t" || names[..k].contains(name) {
+                return Err(if k < sensors {
+                    RecordError::DuplicateName {
+                        name: name.to_string(),
+                    }
+                } else {
+                    RecordError::BadExtraName {
+                        name: name.to_string(),
+                    }
+                });
             }
         }
-        check_time(&t, "<memory>", |i| i as u64 + 2, 1)?;
+        if let Some(name) = &temperature
+            && !extra.iter().any(|(n, _)| n == name)
+        {
+            return Err(RecordError::NoTemperature { name: name.clone() });
+        }
+        let paper = gyros.len() == 6
+            && accels.len() == 3
+            && gyros
+                .iter()
+                .zip(Channel::ALL)
+                .all(|((n, _), c)| n == c.name())
+            && accels
+                .iter()
+                .zip(Axis::ALL)
+                .all(|((n, _), a)| n == a.column());
+        let (gyro_names, gyro) = gyros.into_iter().unzip();
+        let (accel_names, accel) = accels.into_iter().unzip();
         Ok(Self {
             t,
+            gyro_names,
             gyro,
+            accel_names,
             accel,
             extra,
+            temperature,
+            paper,
         })
     }
 
@@ -165,26 +269,177 @@ impl Record {
         (self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64
     }
 
-    /// One gyro channel's outputs, deg/h.
+    /// Whether the record has the paper's sensors (X, X1, Y, Y1, Z, Z1; ax,
+    /// ay, az, in that order), which the [`Channel`]-indexed accessors need.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert!(rec.is_paper_layout());
+    /// ```
+    pub fn is_paper_layout(&self) -> bool {
+        self.paper
+    }
+
+    /// The position of a paper channel, or a panic naming what the record has.
+    #[track_caller]
+    fn channel_index(&self, channel: Channel) -> usize {
+        if self.paper {
+            return channel.index();
+        }
+        self.gyro_names
+            .iter()
+            .position(|n| n == channel.name())
+            .unwrap_or_else(|| {
+                panic!(
+                    "the record has no channel {channel} (its gyros: {}); use gyro_at or gyro_named",
+                    self.gyro_names.join(", ")
+                )
+            })
+    }
+
+    /// The position of a cluster-axis accelerometer (`ax`, `ay`, `az`).
+    #[track_caller]
+    fn axis_index(&self, axis: Axis) -> usize {
+        if self.paper {
+            return axis.index();
+        }
+        self.accel_names
+            .iter()
+            .position(|n| n == axis.column())
+            .unwrap_or_else(|| {
+                panic!(
+                    "the record has no accelerometer {} (its accelerometers: {}); use accel_at or accel_named",
+                    axis.column(),
+                    self.accel_names.join(", ")
+                )
+            })
+    }
+
+    /// One gyro channel's outputs, deg/h (a channel the record has).
+    ///
+    /// # Panics
+    /// When the record has no gyro of that name (a record of another unit).
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
     ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
     /// assert_eq!(rec.gyro(nav_sensors::geometry::Channel::X1), &[1.0, 1.0, 1.0]);
     /// ```
+    #[track_caller]
     pub fn gyro(&self, channel: Channel) -> &[f64] {
-        &self.gyro[channel.index()]
+        &self.gyro[self.channel_index(channel)]
     }
 
-    /// One accelerometer's outputs, g.
+    /// One accelerometer's outputs, g (`ax`, `ay`, `az`).
+    ///
+    /// # Panics
+    /// When the record has no accelerometer of that name.
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
     ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
     /// assert_eq!(rec.accel(nav_sensors::record::Axis::Z), &[1.0, 1.0, 1.0]);
     /// ```
+    #[track_caller]
     pub fn accel(&self, axis: Axis) -> &[f64] {
-        &self.accel[axis.index()]
+        &self.accel[self.axis_index(axis)]
+    }
+
+    /// The gyros' names, in the unit's order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro_names()[1], "X1");
+    /// ```
+    pub fn gyro_names(&self) -> &[String] {
+        &self.gyro_names
+    }
+
+    /// The accelerometers' names, in the unit's order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel_names(), ["ax", "ay", "az"]);
+    /// ```
+    pub fn accel_names(&self) -> &[String] {
+        &self.accel_names
+    }
+
+    /// Gyro `k`'s outputs (unit order), deg/h.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro_at(5), &[5.0, 5.0, 5.0]);
+    /// ```
+    #[track_caller]
+    pub fn gyro_at(&self, k: usize) -> &[f64] {
+        &self.gyro[k]
+    }
+
+    /// Accelerometer `k`'s outputs (unit order), g.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel_at(2), &[1.0, 1.0, 1.0]);
+    /// ```
+    #[track_caller]
+    pub fn accel_at(&self, k: usize) -> &[f64] {
+        &self.accel[k]
+    }
+
+    /// A gyro's outputs by name, deg/h.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro_named("Y").unwrap()[0], 2.0);
+    /// assert!(rec.gyro_named("gx").is_none());
+    /// ```
+    pub fn gyro_named(&self, name: &str) -> Option<&[f64]> {
+        let k = self.gyro_names.iter().position(|n| n == name)?;
+        Some(&self.gyro[k])
+    }
+
+    /// An accelerometer's outputs by name, g.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel_named("az").unwrap()[0], 1.0);
+    /// ```
+    pub fn accel_named(&self, name: &str) -> Option<&[f64]> {
+        let k = self.accel_names.iter().position(|n| n == name)?;
+        Some(&self.accel[k])
+    }
+
+    /// The temperature column (°C) when the record's unit names one; `None`
+    /// otherwise (a `temp` column of the paper's format is an extra column:
+    /// [`Record::extra`]).
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert!(rec.temperature().is_none());
+    /// assert!(rec.extra("temp").is_some());
+    /// ```
+    pub fn temperature(&self) -> Option<&[f64]> {
+        self.extra(self.temperature.as_deref()?)
+    }
+
+    /// The name of the temperature column, when the unit names one.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert!(rec.temperature_name().is_none());
+    /// ```
+    pub fn temperature_name(&self) -> Option<&str> {
+        self.temperature.as_deref()
     }
 
     /// An extra column by name.
@@ -215,6 +470,9 @@ impl Record {
 
     /// The six gyro outputs at sample `i`, in [`Channel::ALL`] order.
     ///
+    /// # Panics
+    /// On a record without the paper's channels.
+    ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
     ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
@@ -222,10 +480,41 @@ impl Record {
     /// ```
     #[track_caller]
     pub fn gyro_sample(&self, i: usize) -> [f64; 6] {
-        std::array::from_fn(|k| self.gyro[k][i])
+        if self.paper {
+            return std::array::from_fn(|k| self.gyro[k][i]);
+        }
+        std::array::from_fn(|k| self.gyro(Channel::ALL[k])[i])
     }
 
-    /// The three accelerations at sample `i`, g.
+    /// Every gyro's output at sample `i`, in the unit's order, deg/h.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.gyro_row(1).len(), 6);
+    /// ```
+    #[track_caller]
+    pub fn gyro_row(&self, i: usize) -> Vec<f64> {
+        self.gyro.iter().map(|g| g[i]).collect()
+    }
+
+    /// Every accelerometer's output at sample `i`, in the unit's order, g.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// assert_eq!(rec.accel_row(0), [0.0, 0.0, 1.0]);
+    /// ```
+    #[track_caller]
+    pub fn accel_row(&self, i: usize) -> Vec<f64> {
+        self.accel.iter().map(|a| a[i]).collect()
+    }
+
+    /// The three accelerations `ax, ay, az` at sample `i`, g.
+    ///
+    /// # Panics
+    /// On a record without accelerometers named `ax`, `ay`, `az` (use
+    /// [`crate::unit::Unit::specific_force`] with [`Record::accel_row`]).
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
@@ -234,7 +523,14 @@ impl Record {
     /// ```
     #[track_caller]
     pub fn accel_sample(&self, i: usize) -> nalgebra::Vector3<f64> {
-        nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i])
+        if self.paper {
+            return nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i]);
+        }
+        nalgebra::Vector3::new(
+            self.accel(Axis::X)[i],
+            self.accel(Axis::Y)[i],
+            self.accel(Axis::Z)[i],
+        )
     }
 
     /// The samples in `range` (time values kept as they are).
@@ -252,19 +548,36 @@ impl Record {
             "slice {range:?} of a {}-sample record must keep at least 2 samples",
             self.len()
         );
+        let cut = |v: &Vec<f64>| v[range.clone()].to_vec();
         Record {
-            t: self.t[range.clone()].to_vec(),
-            gyro: std::array::from_fn(|k| self.gyro[k][range.clone()].to_vec()),
-            accel: std::array::from_fn(|k| self.accel[k][range.clone()].to_vec()),
+            t: cut(&self.t),
+            gyro: self.gyro.iter().map(cut).collect(),
+            accel: self.accel.iter().map(cut).collect(),
             extra: self
                 .extra
                 .iter()
-                .map(|(n, v)| (n.clone(), v[range.clone()].to_vec()))
+                .map(|(n, v)| (n.clone(), cut(v)))
                 .collect(),
+            ..self.empty_like()
         }
     }
 
-    /// A copy with new gyro outputs (same time base and other columns).
+    /// The names and flags of this record without its series.
+    fn empty_like(&self) -> Record {
+        Record {
+            t: Vec::new(),
+            gyro_names: self.gyro_names.clone(),
+            gyro: Vec::new(),
+            accel_names: self.accel_names.clone(),
+            accel: Vec::new(),
+            extra: Vec::new(),
+            temperature: self.temperature.clone(),
+            paper: self.paper,
+        }
+    }
+
+    /// A copy with new gyro outputs for the paper's six channels (same time
+    /// base and other columns).
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
@@ -275,8 +588,25 @@ impl Record {
     #[track_caller]
     pub fn with_gyro(&self, gyro: [Vec<f64>; 6]) -> Record {
         assert!(
-            gyro.iter().all(|g| g.len() == self.len()),
-            "one value per sample"
+            self.paper,
+            "with_gyro takes the paper's six channels; use with_gyro_series"
+        );
+        self.with_gyro_series(gyro.to_vec())
+    }
+
+    /// A copy with new gyro outputs, one series per gyro in the unit's order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let zero = rec.with_gyro_series(vec![vec![0.0; 3]; 6]);
+    /// assert_eq!(zero.gyro_at(0), &[0.0; 3]);
+    /// ```
+    #[track_caller]
+    pub fn with_gyro_series(&self, gyro: Vec<Vec<f64>>) -> Record {
+        assert!(
+            gyro.len() == self.gyro.len() && gyro.iter().all(|g| g.len() == self.len()),
+            "one series per gyro, one value per sample"
         );
         Record {
             gyro,
@@ -284,7 +614,7 @@ impl Record {
         }
     }
 
-    /// A copy with new accelerometer outputs.
+    /// A copy with new accelerometer outputs (`ax`, `ay`, `az` of the paper's unit).
     ///
     /// ```
     /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
@@ -295,60 +625,30 @@ impl Record {
     #[track_caller]
     pub fn with_accel(&self, accel: [Vec<f64>; 3]) -> Record {
         assert!(
-            accel.iter().all(|a| a.len() == self.len()),
-            "one value per sample"
+            self.paper,
+            "with_accel takes ax, ay, az; use with_accel_series"
+        );
+        self.with_accel_series(accel.to_vec())
+    }
+
+    /// A copy with new accelerometer outputs, one series per accelerometer
+    /// in the unit's order.
+    ///
+    /// ```
+    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
+    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
+    /// let moved = rec.with_accel_series(vec![vec![0.5; 3], vec![0.0; 3], vec![1.0; 3]]);
+    /// assert_eq!(moved.accel_at(0)[0], 0.5);
+    /// ```
+    #[track_caller]
+    pub fn with_accel_series(&self, accel: Vec<Vec<f64>>) -> Record {
+        assert!(
+            accel.len() == self.accel.len() && accel.iter().all(|a| a.len() == self.len()),
+            "one series per accelerometer, one value per sample"
         );
         Record {
             accel,
             ..self.clone()
         }
     }
-}
-
-/// Checks at least two samples, strictly increasing time and a constant
-/// interval; `line(i)` gives the file line of sample i.
-fn check_time(
-    t: &[f64],
-    file: &str,
-    line: impl Fn(usize) -> u64,
-    column: usize,
-) -> Result<(), RecordError> {
-    if t.len() < 2 {
-        return Err(RecordError::TooShort {
-            file: file.to_string(),
-            rows: t.len(),
-        });
-    }
-    for i in 1..t.len() {
-        if t[i].partial_cmp(&t[i - 1]) != Some(std::cmp::Ordering::Greater) {
-            return Err(RecordError::NotIncreasing {
-                file: file.to_string(),
-                line: line(i),
-                column,
-                previous: t[i - 1],
-                t: t[i],
-            });
-        }
-    }
-    // The median interval, so the row reported is the irregular one (a
-    // dropped sample would pull a mean interval away from every other row).
-    let mut intervals: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
-    let mid = intervals.len() / 2;
-    let expected = *intervals
-        .select_nth_unstable_by(mid, |a, b| a.total_cmp(b))
-        .1;
-    for i in 1..t.len() {
-        let interval = t[i] - t[i - 1];
-        if (interval - expected).abs() > INTERVAL_TOLERANCE * expected {
-            return Err(RecordError::IrregularInterval {
-                file: file.to_string(),
-                line: line(i),
-                column,
-                interval,
-                expected,
-                tolerance: INTERVAL_TOLERANCE,
-            });
-        }
-    }
-    Ok(())
 }

@@ -8,59 +8,18 @@
 //! byte-identical afterwards. The regression tests at the end pin the
 //! issue's cases to the messages that now replace them.
 
-#[path = "common/timed.rs"]
-mod timed;
-
+use cli_support::testing::{Binary, HOSTILE, s, scratch_dir};
 use nav_sensors::record::Record;
 use std::path::Path;
 use std::path::PathBuf;
 use std::sync::OnceLock;
-use timed::{HOSTILE, Run};
+
+/// `dtg-vib ARGS --quiet` under the harness's contract (exit 0, or one
+/// `error:` line; within the time limit).
+const BIN: Binary = Binary::new(env!("CARGO_BIN_EXE_dtg-vib")).appending(&["--quiet"]);
 
 fn dir() -> &'static Path {
-    timed::dir("dtg-vib-hostile")
-}
-
-/// Runs `dtg-vib ARGS --quiet`, killing it past [`timed::LIMIT`] (a failure).
-fn run(args: &[&str]) -> Run {
-    let mut all = args.to_vec();
-    all.push("--quiet");
-    timed::run(env!("CARGO_BIN_EXE_dtg-vib"), &all)
-}
-
-/// The contract of any run: exit 0, 1 or 2; a failure is one `error:` line.
-fn check(args: &[&str]) -> Run {
-    let r = run(args);
-    assert!(
-        matches!(r.code, 0..=2),
-        "{args:?}: exit {}: {}",
-        r.code,
-        r.stderr
-    );
-    assert!(
-        !r.stderr.contains("panicked"),
-        "{args:?} panicked: {}",
-        r.stderr
-    );
-    if r.code != 0 {
-        assert!(
-            r.stderr.starts_with("error: ") && r.stderr.trim_end().lines().count() == 1,
-            "{args:?}: not a one-line error: {}",
-            r.stderr
-        );
-    }
-    r
-}
-
-/// Must fail; its message.
-fn refused(args: &[&str]) -> String {
-    let r = check(args);
-    assert_ne!(r.code, 0, "{args:?} should fail");
-    r.stderr
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch_dir("dtg-vib-hostile")
 }
 
 /// The demo scenario shortened to 12 s (600 samples), its record,
@@ -89,12 +48,13 @@ fn files() -> &'static Files {
         .unwrap();
         let sim = dir().join("sim");
         assert_eq!(
-            check(&["simulate", "--scenario", s(&scenario), "--out", s(&sim)]).code,
+            BIN.check(&["simulate", "--scenario", s(&scenario), "--out", s(&sim)])
+                .code,
             0
         );
         let (record, calib) = (sim.join("record.csv"), sim.join("calibration.json"));
         let model = dir().join("model.json");
-        let r = check(&[
+        let r = BIN.check(&[
             "fit",
             "--data",
             s(&record),
@@ -163,7 +123,7 @@ fn fit_flags() {
                 args.extend(["--candidates", "40"]);
             }
             args.extend([flag, &value, "--out", s(&out)]);
-            let r = check(&args);
+            let r = BIN.check(&args);
             if r.code == 0 {
                 model_is_usable(&out);
             } else if r.code == 2 {
@@ -237,7 +197,7 @@ fn record_cells() {
                 ],
             ] {
                 let _ = std::fs::remove_file(&out);
-                let r = check(&args);
+                let r = BIN.check(&args);
                 if r.code == 0 && args[0] != "fit" {
                     // What was written reads back, so it is finite and bounded.
                     if args[0] == "compensate" {
@@ -329,7 +289,7 @@ fn model_numbers() {
                 ],
             ] {
                 let _ = std::fs::remove_file(&out);
-                let r = check(&args);
+                let r = BIN.check(&args);
                 if r.code == 0 && args[0] == "compensate" {
                     Record::read_csv(&out).unwrap();
                 }
@@ -367,7 +327,7 @@ fn scenario_numbers() {
             std::fs::write(&bad, text.replacen(field, &format!("{key} = {v}"), 1)).unwrap();
             let out = dir().join(format!("scenario-{k}"));
             let _ = std::fs::remove_dir_all(&out);
-            let r = check(&["simulate", "--scenario", s(&bad), "--out", s(&out)]);
+            let r = BIN.check(&["simulate", "--scenario", s(&bad), "--out", s(&out)]);
             if r.code == 0 {
                 Record::read_csv(out.join("record.csv")).unwrap();
             } else {
@@ -403,7 +363,7 @@ fn calibration_overflow_is_named_with_its_time() {
     }
     let data = dir().join("az-1e149.csv");
     std::fs::write(&data, lines.join("\n") + "\n").unwrap();
-    let err = refused(&[
+    let err = BIN.refused(&[
         "fit",
         "--data",
         s(&data),
@@ -431,7 +391,7 @@ fn diagnose_refuses_a_huge_temperature_cell() {
     lines[100] = cells.join(",");
     let data = dir().join("temp-1e155.csv");
     std::fs::write(&data, lines.join("\n") + "\n").unwrap();
-    let err = refused(&["diagnose", "--model", s(&f.model), "--data", s(&data)]);
+    let err = BIN.refused(&["diagnose", "--model", s(&f.model), "--data", s(&data)]);
     assert!(
         err.contains(&format!("temp-1e155.csv:101:{}", temp + 1)),
         "{err}"
@@ -461,7 +421,7 @@ fn edited_weights_are_refused_naming_the_field() {
             "/dev/null",
         ],
     ] {
-        let err = refused(&args);
+        let err = BIN.refused(&args);
         assert!(
             err.contains("weights[0][0] = 1e155") && err.contains("±1e150"),
             "{args:?}: {err}"
@@ -482,7 +442,7 @@ fn a_scenario_that_overflows_writes_nothing() {
     )
     .unwrap();
     let out = dir().join("hot");
-    let err = refused(&["simulate", "--scenario", s(&bad), "--out", s(&out)]);
+    let err = BIN.refused(&["simulate", "--scenario", s(&bad), "--out", s(&out)]);
     assert!(
         err.contains("nothing was written") && err.contains("column 'X'"),
         "{err}"
@@ -505,7 +465,7 @@ fn constant_windows_are_named_without_a_width_hint() {
     }
     let data = dir().join("az-constant.csv");
     std::fs::write(&data, lines.join("\n") + "\n").unwrap();
-    let err = refused(&["fit", "--data", s(&data), "--out", "/dev/null"]);
+    let err = BIN.refused(&["fit", "--data", s(&data), "--out", "/dev/null"]);
     assert!(
         err.contains("(az) do not vary") && !err.contains("fixed width"),
         "{err}"
@@ -517,7 +477,7 @@ fn constant_windows_are_named_without_a_width_hint() {
 #[test]
 fn inner_folds_too_short_name_the_settings() {
     let f = files();
-    let err = refused(&[
+    let err = BIN.refused(&[
         "fit",
         "--data",
         s(&f.record),
@@ -540,7 +500,7 @@ fn inner_folds_too_short_name_the_settings() {
 #[test]
 fn centre_counts_are_refused_with_values_that_work() {
     let f = files();
-    let err = refused(&[
+    let err = BIN.refused(&[
         "fit",
         "--data",
         s(&f.record),
@@ -550,7 +510,7 @@ fn centre_counts_are_refused_with_values_that_work() {
         "/dev/null",
     ]);
     assert!(err.contains("use --max-centers 1 to 400"), "{err}");
-    let err = refused(&[
+    let err = BIN.refused(&[
         "fit",
         "--data",
         s(&f.record),

@@ -141,6 +141,7 @@ fn dir() -> &'static Path {
         for (name, seed) in [("a", 31), ("b", 32)] {
             z_test(seed).write_dir(d.join(name)).unwrap();
         }
+        triaxial(24).write_dir(d.join("triaxial")).unwrap();
         d
     })
 }
@@ -237,6 +238,105 @@ fn the_command_line_fits_several_records_and_names_them_in_json() {
     }
     assert!(v["outside_fraction"].as_f64().is_some());
     assert!(v.get("warning").is_some());
+}
+
+/// `check`'s text says what `check --json` holds, compared alike: each
+/// channel's spread after (its rms about the mean, as "rms before" is) next to
+/// its mean, a negative fit said to be worse than the mean, what the reference
+/// distance is, each residue "N× better" or "N× worse" (a worsening used to
+/// print as a "reduction" of 0.16×), and the six residues pooled.
+#[test]
+fn check_text_compares_before_and_after_alike() {
+    let d = dir();
+    let (a, other) = (d.join("a/record.csv"), d.join("triaxial/record.csv"));
+    let (a, other) = (a.to_str().unwrap(), other.to_str().unwrap());
+    let model = d.join("a-text.json");
+    let model = model.to_str().unwrap();
+    let ok = |args: &[&str]| -> String {
+        let out = dtg(args);
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    ok(&["fit", "--data", a, "--out", model, "--max-centers", "20"]);
+    let args = ["check", "--model", model, "--data", other];
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&[&args[..], &["--json"]].concat())).unwrap();
+    let text = ok(&args);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside  (deg/h)"
+    );
+    let f = |v: &serde_json::Value| v.as_f64().unwrap();
+    let mut worse_than_the_mean = vec![];
+    for (c, line) in v["channels"].as_array().unwrap().iter().zip(&lines[1..7]) {
+        let cells: Vec<&str> = line.split_whitespace().collect();
+        let (rms, mean) = (f(&c["rms_after"]), f(&c["mean_after"]));
+        let spread = (rms * rms - mean * mean).sqrt();
+        assert_eq!(cells[0], c["channel"].as_str().unwrap());
+        assert_eq!(cells[1], format!("{:.4}", f(&c["rms_before"])), "{line}");
+        assert_eq!(cells[3], format!("{mean:.4}"), "{line}");
+        assert_eq!(cells[4], format!("{spread:.4}"), "{line}");
+        if f(&c["fit_percent"]) < 0.0 {
+            worse_than_the_mean.push(cells[0]);
+        }
+    }
+    assert!(
+        lines[7].starts_with("rms before and spread after are about the mean"),
+        "{text}"
+    );
+    let negative = lines.iter().find(|l| l.starts_with("fit % = ")).copied();
+    match worse_than_the_mean.is_empty() {
+        true => assert_eq!(negative, None, "{text}"),
+        false => {
+            let l = negative.unwrap_or_else(|| panic!("no line on negative fits: {text}"));
+            let named = format!("below 0 on {}:", worse_than_the_mean.join(", "));
+            assert!(
+                l.contains(&named) && l.ends_with("worse than the mean"),
+                "{l}"
+            );
+        }
+    }
+    assert!(
+        text.contains("× the reference distance (99% of the model's own validation windows lie within it of a training point), outside beyond 1.5×"),
+        "{text}"
+    );
+    // The residues, then the six pooled.
+    let head = lines
+        .iter()
+        .position(|l| l.starts_with("residue "))
+        .unwrap();
+    assert_eq!(
+        lines[head],
+        "residue  rms before  rms after  (deg/h, every row)        change"
+    );
+    let change = |before: f64, after: f64| match before >= after {
+        true => format!("{:.2}× better", before / after),
+        false => format!("{:.2}× worse", after / before),
+    };
+    let residues = v["residues"].as_array().unwrap();
+    let pooled =
+        |key: &str| (residues.iter().map(|r| f(&r[key]).powi(2)).sum::<f64>() / 6.0).sqrt();
+    let mut expected: Vec<(String, f64, f64)> = residues
+        .iter()
+        .map(|r| {
+            let name = r["residue"].as_str().unwrap().to_string();
+            (name, f(&r["rms_before"]), f(&r["rms_after"]))
+        })
+        .collect();
+    expected.push(("pooled".into(), pooled("rms_before"), pooled("rms_after")));
+    let rows = &lines[head + 1..head + 8];
+    for ((name, before, after), line) in expected.iter().zip(rows) {
+        let want = format!("{before:.4}  {after:>9.4}");
+        assert!(
+            line.trim_start().starts_with(&format!("{name}  ")),
+            "{line}"
+        );
+        assert!(line.contains(&want), "{line} / {want}");
+        assert!(line.ends_with(&change(*before, *after)), "{line}");
+    }
+    // This record makes some residue worse: the case the words are for.
+    assert!(rows.iter().any(|l| l.ends_with("worse")), "{text}");
 }
 
 #[test]

@@ -8,61 +8,17 @@
 //! byte-identical afterwards. The regression tests at the end pin the
 //! issue's cases to the messages that now replace them.
 
-#[path = "common/timed.rs"]
-mod timed;
-
+use cli_support::testing::{Binary, HOSTILE, s, scratch_dir};
 use std::path::Path;
 use std::path::PathBuf;
 use std::sync::OnceLock;
-use timed::{HOSTILE, Run};
+
+/// `rbf ARGS` under the harness's contract (exit 0 with nothing non-finite
+/// printed, or one `error:` line; within the time limit).
+const BIN: Binary = Binary::new(env!("CARGO_BIN_EXE_rbf")).finite_stdout();
 
 fn dir() -> &'static Path {
-    timed::dir("rbf-hostile")
-}
-
-/// Runs `rbf ARGS`, killing it past [`timed::LIMIT`] (a failure).
-fn run(args: &[&str]) -> Run {
-    timed::run(env!("CARGO_BIN_EXE_rbf"), args)
-}
-
-/// Exit 0, 1 or 2; a failure is one `error:` line; no NaN or inf printed.
-fn check(args: &[&str]) -> Run {
-    let r = run(args);
-    assert!(
-        matches!(r.code, 0..=2),
-        "{args:?}: exit {}: {}",
-        r.code,
-        r.stderr
-    );
-    assert!(
-        !r.stderr.contains("panicked"),
-        "{args:?} panicked: {}",
-        r.stderr
-    );
-    if r.code != 0 {
-        assert!(
-            r.stderr.starts_with("error: ") && r.stderr.trim_end().lines().count() == 1,
-            "{args:?}: not a one-line error: {}",
-            r.stderr
-        );
-    } else {
-        assert!(
-            !r.stdout.contains("NaN") && !r.stdout.contains("inf"),
-            "{args:?}: non-finite output: {}",
-            r.stdout
-        );
-    }
-    r
-}
-
-fn refused(args: &[&str]) -> String {
-    let r = check(args);
-    assert_ne!(r.code, 0, "{args:?} should fail");
-    r.stderr
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch_dir("rbf-hostile")
 }
 
 /// A smooth surface of two inputs on 60 rows.
@@ -89,7 +45,7 @@ fn data() -> &'static Path {
 fn model(kernel: &str) -> PathBuf {
     let p = dir().join(format!("m-{kernel}.json"));
     if !p.exists() {
-        let r = check(&[
+        let r = BIN.check(&[
             "fit",
             "--data",
             s(data()),
@@ -152,7 +108,7 @@ fn numeric_flags() {
                 flag,
                 v,
             ];
-            let r = check(&args);
+            let r = BIN.check(&args);
             if r.code == 2 {
                 assert!(
                     r.stderr.contains(flag) || r.stderr.contains(v),
@@ -163,7 +119,7 @@ fn numeric_flags() {
         }
         for flag in cv_flags {
             let split = if flag == "--gap" { "blocked" } else { "kfold" };
-            let r = check(&[
+            let r = BIN.check(&[
                 "cv",
                 "--data",
                 s(data()),
@@ -187,7 +143,7 @@ fn numeric_flags() {
                 );
             }
         }
-        let r = check(&[
+        let r = BIN.check(&[
             "--threads",
             v,
             "fit",
@@ -242,7 +198,7 @@ fn csv_cells() {
                 if centers != "all" {
                     args.extend(["--max-centers", "5"]);
                 }
-                let r = check(&args);
+                let r = BIN.check(&args);
                 if r.code != 0 && ["1e308", "-1e308", "NaN", "inf", "-inf"].contains(v) {
                     assert!(
                         r.stderr.contains(&format!("cell.csv:7:{}", col + 1)),
@@ -253,7 +209,7 @@ fn csv_cells() {
             }
             for m in &models {
                 let _ = std::fs::remove_file(&out);
-                let r = check(&[
+                let r = BIN.check(&[
                     "predict",
                     "--model",
                     s(m),
@@ -302,7 +258,7 @@ fn model_numbers() {
                 std::fs::write(&path, e.to_string().replacen("\"HOSTILE\"", value, 1)).unwrap();
                 let out = dir().join("edited.csv");
                 let _ = std::fs::remove_file(&out);
-                let r = check(&[
+                let r = BIN.check(&[
                     "predict",
                     "--model",
                     s(&path),
@@ -331,7 +287,7 @@ fn predictions_that_overflow_are_named_by_row() {
     let far = dir().join("far.csv");
     std::fs::write(&far, "a,b,y\n0.5,0.5,1\n1e149,0.5,1\n").unwrap();
     let out = dir().join("far-out.csv");
-    let err = refused(&[
+    let err = BIN.refused(&[
         "predict",
         "--model",
         s(&model("cubic")),
@@ -353,7 +309,7 @@ fn edited_weights_are_refused_naming_the_field() {
     *v.pointer_mut("/rbf/model/weights/data/0/0").unwrap() = serde_json::json!(1e155);
     let path = dir().join("w-1e155.json");
     std::fs::write(&path, v.to_string()).unwrap();
-    let err = refused(&[
+    let err = BIN.refused(&[
         "predict",
         "--model",
         s(&path),
@@ -372,7 +328,7 @@ fn a_huge_input_cell_is_refused_at_its_position() {
     let text = csv().replacen("\n0,0,", "\n-1e200,0,", 1);
     let bad = dir().join("neg.csv");
     std::fs::write(&bad, text).unwrap();
-    let err = refused(&[
+    let err = BIN.refused(&[
         "fit",
         "--data",
         s(&bad),
@@ -394,7 +350,7 @@ fn a_huge_input_cell_is_refused_at_its_position() {
 #[test]
 fn a_gap_that_empties_a_fold_names_the_flags() {
     let cv = |gap: &str| {
-        check(&[
+        BIN.check(&[
             "cv",
             "--data",
             s(data()),
@@ -444,7 +400,7 @@ fn flags_out_of_range_say_the_valid_range() {
         ("--tol", "-1e308", "from 0 up to"),
         ("--width", "1e-308", "1e-100 to 1e100"),
     ] {
-        let err = refused(&[
+        let err = BIN.refused(&[
             "fit",
             "--data",
             s(data()),

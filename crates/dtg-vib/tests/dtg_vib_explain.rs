@@ -344,28 +344,34 @@ impl ShortRecord {
         );
         serde_json::from_slice::<serde_json::Value>(&out.stdout).ok()
     }
+
+    /// `explain` on the record with its calibration, at most two rounds,
+    /// writing `out`, with `extra` flags.
+    fn explain_args<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+        let mut args = vec![
+            "explain",
+            "--data",
+            "sim/record.csv",
+            "--calib",
+            "sim/calibration.json",
+            "--out",
+            out,
+            "--max-rounds",
+            "2",
+        ];
+        args.extend_from_slice(extra);
+        args
+    }
 }
 
 #[test]
 fn explain_and_diagnose_json_keep_their_keys() {
     let r = ShortRecord::new();
     let run = |args: &[&str]| r.run(args);
-    let e = run(&[
-        "explain",
-        "--data",
-        "sim/record.csv",
-        "--calib",
-        "sim/calibration.json",
-        "--out",
+    let e = run(&ShortRecord::explain_args(
         "final.json",
-        "--json",
-        "--max-rounds",
-        "2",
-        "--alpha",
-        "0.01",
-        "--min-gain",
-        "0.1",
-    ])
+        &["--json", "--alpha", "0.01", "--min-gain", "0.1"],
+    ))
     .expect("one JSON object");
     let rounds = e["rounds"].as_array().unwrap();
     assert_eq!(rounds.len(), 2, "{e}");
@@ -431,6 +437,48 @@ fn explain_and_diagnose_json_keep_their_keys() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("between 0 and 1"));
+}
+
+/// `explain`'s text: when a round added an effect, a line says which of
+/// its two coefficients is which (the round's is the diagnosis's, the
+/// final table's the fit's, and they differ), and the final table gives
+/// each stored coefficient with its 95% interval.
+#[test]
+fn explain_says_which_coefficient_is_which() {
+    let r = ShortRecord::new();
+    let out = r.output(&ShortRecord::explain_args("text.json", &[]));
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let round = |l: &&str| l.starts_with("  added ");
+    let which = lines
+        .iter()
+        .position(|l| l.starts_with("coefficients: a round's is the diagnosis's estimate"))
+        .unwrap_or_else(|| panic!("no which-is-which line:\n{text}"));
+    assert!(lines[..which].iter().any(round), "{text}");
+    assert!(
+        lines[which].contains("the model below stores and compensates with the fit's"),
+        "{text}"
+    );
+    assert!(
+        lines[which + 1].ends_with("effects (coefficient ± standard error, 95% CI)"),
+        "{text}"
+    );
+    let model: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(r.dir.path().join("text.json")).unwrap()).unwrap();
+    // Each stored interval, on its channel's line.
+    for (c, line) in model["model"]["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(&lines[which + 2..which + 8])
+    {
+        for k in c["coefficients"].as_array().into_iter().flatten() {
+            let ci = &k["ci95"];
+            let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
+            assert!(line.contains(&format!("({lo:.4} to {hi:.4})")), "{line}");
+        }
+    }
 }
 
 /// A pair one record cannot tell apart: channel X's g_O and g_S are both

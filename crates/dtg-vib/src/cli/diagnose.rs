@@ -1,0 +1,102 @@
+//! `dtg-vib diagnose`: what a model is missing, ranked on its records.
+
+use anyhow::Result;
+use clap::Args;
+use cli_support::progress::Progress;
+use dtg_vib::diagnose::diagnose_records;
+use dtg_vib::model::CompensationModel;
+use dtg_vib::report::write_diagnosis_report;
+use nav_sensors::record::Record;
+use std::path::{Path, PathBuf};
+
+use super::fit_args::once_each;
+use super::report::guard_report;
+use super::thresholds::Thresholds;
+
+/// The flags of `diagnose`.
+#[derive(Args)]
+pub struct DiagnoseArgs {
+    /// Model file from `fit`.
+    #[arg(long)]
+    model: PathBuf,
+    /// The test record it was fitted on; repeat for the records of a
+    /// model fitted on several (candidates are ranked on all of them).
+    #[arg(long, required = true)]
+    data: Vec<PathBuf>,
+    /// Print one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+    /// Write figures and index.html into this directory.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    #[command(flatten)]
+    thresholds: Thresholds,
+}
+
+/// Diagnoses the model on its records and prints (or writes as JSON) the findings.
+pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
+    let DiagnoseArgs {
+        model,
+        data,
+        json,
+        report,
+        thresholds,
+    } = a;
+    let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
+        .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
+        .collect();
+    guard_report(report.as_deref(), &inputs)?;
+    once_each(&data)?;
+    let m = CompensationModel::load(&model)?;
+    let records = data
+        .iter()
+        .map(|d| Ok((d.display().to_string(), Record::read_csv(d)?)))
+        .collect::<Result<Vec<(String, Record)>>>()?;
+    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
+    progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
+    let options = thresholds.options();
+    let d = diagnose_records(&m, &named, &options)?;
+    let page = match &report {
+        Some(dir) => {
+            progress.say("drawing figures");
+            Some(write_diagnosis_report(&d, options.rank.min_err(), dir)?)
+        }
+        None => None,
+    };
+    drop(progress);
+    if json {
+        // stdout holds the one JSON object; the page goes to stderr.
+        println!("{}", serde_json::to_string(&d)?);
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
+    } else {
+        for c in &d.channels {
+            println!(
+                "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
+                c.channel,
+                c.rms,
+                c.compare.val_fit_percent,
+                if c.suggested.is_empty() {
+                    "nothing".to_string()
+                } else {
+                    c.suggested.join(", ")
+                }
+            );
+            for f in &c.findings {
+                println!("     {f}");
+            }
+        }
+        let terms = super::terms::diagnosis_terms(&d);
+        if !terms.is_empty() {
+            println!("terms used above:");
+            for t in terms {
+                println!("  {t}");
+            }
+        }
+        if let Some(p) = &page {
+            println!("report: {}", p.display());
+        }
+    }
+    Ok(())
+}

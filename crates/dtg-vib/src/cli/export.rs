@@ -1,0 +1,105 @@
+//! `dtg-vib export`: a causal model as C99 sources and onboard tables, or
+//! any model as equations (on stdout, or into `DIR/equations.txt`).
+
+use anyhow::Result;
+use clap::Args;
+use dtg_vib::model::CompensationModel;
+use std::path::{Path, PathBuf};
+
+/// The flags of `export`.
+#[derive(Args)]
+pub struct ExportArgs {
+    /// Model file from `fit --causal` (any model for --lang text).
+    #[arg(long)]
+    model: PathBuf,
+    /// c: dtg_model.h, dtg_model.c, main.c and model.dtgo into --out; text:
+    /// equations on stdout, or into equations.txt with --out.
+    #[arg(long)]
+    lang: String,
+    /// Output directory (--lang c; --lang text writes equations.txt there).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Tables and arithmetic of the C: f64 (equal to `compensate`) or f32.
+    #[arg(long, default_value = "f64")]
+    precision: String,
+}
+
+/// The file `--lang text --out DIR` writes into DIR.
+const EQUATIONS_FILE: &str = "equations.txt";
+
+/// Writes the C sources and tables, or the equations.
+pub fn run(a: ExportArgs) -> Result<()> {
+    let model = CompensationModel::load(&a.model)?;
+    match a.lang.as_str() {
+        "text" => text(&model, &a.model, a.out.as_deref()),
+        "c" => {
+            let Some(out) = &a.out else {
+                anyhow::bail!("--lang c writes files: give the directory with --out DIR");
+            };
+            c(&model, &a.model, out, &a.precision)
+        }
+        other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
+    }
+}
+
+/// The equations on stdout, or into `out/equations.txt` (never over the
+/// model), saying where they went.
+fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Result<()> {
+    let equations = dtg_vib::export::equations(model);
+    let Some(out) = out else {
+        print!("{equations}");
+        return Ok(());
+    };
+    outfile::guard_dir(
+        "--out",
+        out,
+        &[EQUATIONS_FILE],
+        &[("--model", Some(model_path))],
+    )?;
+    write_files(out, [(EQUATIONS_FILE, equations.as_bytes())])?;
+    let path = out.join(EQUATIONS_FILE);
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The C99 sources and the onboard tables into `out`, with their size, state
+/// and cost per step.
+fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) -> Result<()> {
+    let precision: dtg_vib::export::Precision = precision.parse()?;
+    let files = ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"];
+    outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
+    let c = dtg_vib::export::c_sources(model, precision)?;
+    let tables = dtg_vib::export::tables(model)?;
+    let sources = c.files().map(|(name, text)| (name, text.as_bytes()));
+    write_files(
+        out,
+        sources
+            .into_iter()
+            .chain([("model.dtgo", &tables.bytes[..])]),
+    )?;
+    let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
+    println!(
+        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
+        out.display(),
+        m.size_bytes(),
+        m.state_len(),
+        m.flops_per_step(),
+        if tables.extra.is_empty() {
+            "none".to_string()
+        } else {
+            tables.extra.join(", ")
+        }
+    );
+    Ok(())
+}
+
+/// Writes each (name, bytes) into `out`, made if missing; each file atomically.
+fn write_files<'a>(out: &Path, files: impl IntoIterator<Item = (&'a str, &'a [u8])>) -> Result<()> {
+    std::fs::create_dir_all(out).map_err(|e| anyhow::anyhow!("--out {}: {e}", out.display()))?;
+    for (name, bytes) in files {
+        let path = out.join(name);
+        outfile::write_bytes(&path, bytes)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}

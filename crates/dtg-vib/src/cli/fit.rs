@@ -1,0 +1,235 @@
+//! `dtg-vib fit`: the six channel models fitted on the records, saved, and
+//! their scores printed (or written as JSON; `explain` prints its final fit
+//! the same way).
+
+use anyhow::Result;
+use cli_support::progress::Progress;
+use dtg_vib::fit::{FitStage, fit_records};
+use dtg_vib::model::CompensationModel;
+use nav_sensors::calibration::Calibration;
+use nav_sensors::record::Record;
+
+use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
+
+/// Fits, saves the model and prints its scores.
+pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
+    outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
+    let options = fit_options(&a)?;
+    let records = read_records(&a)?;
+    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let start = std::time::Instant::now();
+    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
+    let (model, prepared) = fit_records(
+        &named,
+        calibration.as_ref(),
+        &options,
+        &|stage| match stage {
+            FitStage::Preparing => progress.say("preparing the record"),
+            FitStage::ChannelDone(ch) => {
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress.say(format!("fitted {n}/6 channels (last {ch})"));
+            }
+        },
+    )?;
+    let per_record = match a.cv.is_some() {
+        true => {
+            progress.say("leaving one record out");
+            Some(dtg_vib::fit::leave_one_record_out(
+                &prepared,
+                calibration.as_ref(),
+                &options,
+            )?)
+        }
+        false if records.len() > 1 => Some(dtg_vib::fit::record_scores(&model, &prepared)?),
+        false => None,
+    };
+    let fit_seconds = start.elapsed().as_secs_f64();
+    model.save(&a.out)?;
+    progress.clear();
+    let n_train = model.channels()[0].scores().n_train;
+    let stride = dtg_vib::fit::selection_stride(n_train);
+    if stride > 1 {
+        eprintln!(
+            "note: {n_train} training windows: cross-validation and centre selection used every {stride}th of them ({}); the weights were solved on all",
+            n_train.div_ceil(stride)
+        );
+    }
+    if a.json {
+        let mut report = FitReport::new(&model, fit_seconds);
+        if let Some(per) = &per_record {
+            for (c, r) in report.channels.iter_mut().zip(per) {
+                c.records = Some(r.clone());
+            }
+            report.cv = a.cv.clone();
+        }
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print_fit(&model);
+        if let Some(per) = &per_record {
+            print_record_scores(per, a.cv.is_some());
+        }
+        println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
+    }
+    Ok(())
+}
+
+/// Validation rms of each channel on each record.
+fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
+    println!(
+        "validation rms per record, deg/h ({}):",
+        if loro {
+            "each record validated by a model fitted on the others"
+        } else {
+            "each record's validation rows"
+        }
+    );
+    for (k, scores) in per.iter().enumerate() {
+        let cells: Vec<String> = scores
+            .iter()
+            .map(|s| format!("{} {:.4}", s.file, s.val_rms))
+            .collect();
+        println!(
+            "{:>7}  {}",
+            nav_sensors::geometry::Channel::ALL[k].name(),
+            cells.join(", ")
+        );
+    }
+}
+
+/// Each channel's centres, scores and effect coefficients (the fit's
+/// estimates, from the training rows), each with its standard error and 95%
+/// interval.
+pub fn print_fit(model: &CompensationModel) {
+    println!(
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
+    );
+    for c in model.channels() {
+        let s = c.scores();
+        let e: Vec<String> = c
+            .effects()
+            .iter()
+            .enumerate()
+            .map(|(j, e)| match c.coefficients() {
+                Some(k) => format!(
+                    "{} {:.4} ± {:.4} {} ({:.4} to {:.4})",
+                    e.id(),
+                    k[j].value,
+                    k[j].se,
+                    k[j].unit,
+                    k[j].ci95[0],
+                    k[j].ci95[1]
+                ),
+                None => e.id(),
+            })
+            .collect();
+        println!(
+            "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
+            c.channel().name(),
+            c.n_centres(),
+            s.train_rms,
+            s.val_rms,
+            if e.is_empty() {
+                "—".into()
+            } else {
+                e.join(", ")
+            }
+        );
+    }
+}
+
+/// `fit --json`.
+#[derive(serde::Serialize)]
+pub struct FitReport {
+    channels: Vec<ChannelReport>,
+    split: String,
+    fit_seconds: f64,
+    /// `records` with `--cv records`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cv: Option<String>,
+}
+
+/// One channel of [`FitReport`].
+#[derive(serde::Serialize)]
+struct ChannelReport {
+    channel: nav_sensors::geometry::Channel,
+    effects: Vec<String>,
+    // The key is a contract (issue 24 §5: code says centre, JSON keys stay).
+    #[serde(rename = "n_centers")]
+    n_centres: usize,
+    train_rms: f64,
+    val_rms: f64,
+    val_rms_bias_only: f64,
+    val_fit_percent: f64,
+    width: f64,
+    bias: f64,
+    effect_coefficients: std::collections::BTreeMap<String, CoefficientReport>,
+    /// Validation rms per record, with several records.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    records: Option<Vec<dtg_vib::fit::RecordScore>>,
+}
+
+/// One effect coefficient of [`ChannelReport`].
+#[derive(serde::Serialize)]
+struct CoefficientReport {
+    value: f64,
+    unit: String,
+    /// Absent for a model file that predates standard errors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    se: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ci95: Option<[f64; 2]>,
+}
+
+impl FitReport {
+    pub fn new(model: &CompensationModel, fit_seconds: f64) -> Self {
+        let channels = model
+            .channels()
+            .iter()
+            .map(|c| {
+                let s = c.scores();
+                let effect_coefficients = c
+                    .effects()
+                    .iter()
+                    .zip(c.effect_coefficients())
+                    .enumerate()
+                    .map(|(j, (e, v))| {
+                        let k = c.coefficients().map(|k| &k[j]);
+                        (
+                            e.id(),
+                            CoefficientReport {
+                                value: v,
+                                unit: e.unit(),
+                                se: k.map(|k| k.se),
+                                ci95: k.map(|k| k.ci95),
+                            },
+                        )
+                    })
+                    .collect();
+                ChannelReport {
+                    channel: c.channel(),
+                    effects: c.effects().iter().map(|e| e.id()).collect(),
+                    n_centres: c.n_centres(),
+                    train_rms: s.train_rms,
+                    val_rms: s.val_rms,
+                    val_rms_bias_only: s.val_rms_bias_only,
+                    val_fit_percent: s.val_fit_percent,
+                    width: c.width(),
+                    bias: c.bias(),
+                    effect_coefficients,
+                    records: None,
+                }
+            })
+            .collect();
+        let split = match model.validated_on() {
+            Some(name) => format!("by record (validated on {name})"),
+            None => model.split().to_string(),
+        };
+        Self {
+            channels,
+            split,
+            fit_seconds,
+            cv: None,
+        }
+    }
+}

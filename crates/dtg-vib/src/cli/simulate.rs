@@ -1,0 +1,83 @@
+//! `dtg-vib simulate`: a sensor-unit vibration test from a scenario, written
+//! as the record and its ground truth.
+
+use anyhow::{Context, Result};
+use clap::Args;
+use cli_support::progress::Progress;
+use nav_sensors::sim::{Scenario, simulate};
+use std::path::PathBuf;
+
+/// The flags of `simulate`.
+#[derive(Args)]
+pub struct SimulateArgs {
+    /// Scenario file (TOML, see docs/formats.md).
+    #[arg(long, conflicts_with = "builtin")]
+    scenario: Option<PathBuf>,
+    /// A built-in scenario (each is scenarios/NAME.toml): paper_z_random,
+    /// triaxial_clean, triaxial_hidden, demo; the campaign x-axis, y-axis,
+    /// z-axis, sine-sweep, flight.
+    #[arg(long)]
+    builtin: Option<String>,
+    /// Override the scenario's seed.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Override the scenario's duration, s (a shorter run of a long
+    /// profile: the schedule and motion are cut, not compressed).
+    #[arg(long)]
+    duration: Option<f64>,
+    /// Output directory (record.csv, calibration.json, truth.json, components.csv, scenario.toml).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Simulates the scenario the flags name and writes its files.
+pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
+    let SimulateArgs {
+        scenario,
+        builtin,
+        seed,
+        duration,
+        out,
+    } = a;
+    let scenario_path = scenario.clone();
+    let mut s = match (scenario, builtin) {
+        (Some(path), _) => Scenario::load(&path)?,
+        (None, Some(name)) => Scenario::builtin(&name).with_context(|| {
+            format!(
+                "unknown built-in scenario '{name}' (valid: {})",
+                Scenario::BUILTIN.join(", ")
+            )
+        })?,
+        (None, None) => Scenario::default(),
+    };
+    if let Some(seed) = seed {
+        s.seed = seed;
+    }
+    if let Some(d) = duration {
+        s.duration_s = d;
+    }
+    if let Some(p) = &scenario_path {
+        // Named with the file, before anything is written.
+        s.validate()
+            .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
+    }
+    outfile::guard_dir(
+        "--out",
+        &out,
+        &nav_sensors::sim::Simulation::FILES,
+        &[("--scenario", scenario_path.as_deref())],
+    )?;
+    progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
+    let sim = simulate(&s)?;
+    sim.write_dir(&out).with_context(|| {
+        format!(
+            "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
+            s.name
+        )
+    })?;
+    drop(progress);
+    for name in nav_sensors::sim::Simulation::FILES {
+        println!("wrote {}", out.join(name).display());
+    }
+    Ok(())
+}

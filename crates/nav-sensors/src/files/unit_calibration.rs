@@ -1,0 +1,397 @@
+//! The ground calibration of any unit (JSON), and compensation of a record
+//! of that unit with it. The paper's unit keeps its own file
+//! ([`crate::calibration::Calibration`]); this one is keyed by the unit's
+//! channel and accelerometer names and says each gyro's model.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+use super::calibration::CalibrationFileError;
+use super::record::Record;
+use crate::accel::{AccelCoefficients, compensate_triad};
+use crate::dtg::{DtgCoefficients, within_interval_covariance};
+use crate::geometry::Axis;
+use crate::rate::RateCoefficients;
+use crate::unit::{GyroModel, Sensed, Unit};
+
+/// One gyro's coefficients, tagged with its model (`"model": "rate"` or
+/// `"dtg"` in the file).
+///
+/// ```
+/// use nav_sensors::calibration::GyroCoefficients;
+/// use nav_sensors::rate::RateCoefficients;
+/// let c = GyroCoefficients::Rate(RateCoefficients { bias_deg_h: 1.5, ..Default::default() });
+/// let json = serde_json::to_string(&c).unwrap();
+/// assert!(json.starts_with("{\"model\":\"rate\",\"bias_deg_h\":1.5"));
+/// assert_eq!(serde_json::from_str::<GyroCoefficients>(&json).unwrap(), c);
+/// assert!(serde_json::from_str::<GyroCoefficients>("{\"model\":\"rate\",\"g_I_deg_h_g\":1}").is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "lowercase")]
+pub enum GyroCoefficients {
+    /// A rate gyro's table.
+    Rate(RateCoefficients),
+    /// A DTG channel's table.
+    Dtg(DtgCoefficients),
+}
+
+impl GyroCoefficients {
+    /// Zero coefficients of a gyro's model (an ideal gyro).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// let z = nav_sensors::calibration::GyroCoefficients::zero(&u.gyros()[0].model);
+    /// assert!(matches!(z, nav_sensors::calibration::GyroCoefficients::Rate(_)));
+    /// ```
+    pub fn zero(model: &GyroModel) -> Self {
+        match model {
+            GyroModel::Rate => GyroCoefficients::Rate(RateCoefficients::default()),
+            GyroModel::Dtg { .. } => GyroCoefficients::Dtg(DtgCoefficients::default()),
+        }
+    }
+
+    /// The coefficients in the model's term order.
+    ///
+    /// ```
+    /// let c = nav_sensors::calibration::GyroCoefficients::Rate(Default::default());
+    /// assert_eq!(c.to_vec().len(), 12);
+    /// ```
+    pub fn to_vec(&self) -> Vec<f64> {
+        match self {
+            GyroCoefficients::Rate(c) => c.to_array().to_vec(),
+            GyroCoefficients::Dtg(c) => c.to_array().to_vec(),
+        }
+    }
+
+    /// The model's name (`rate`, `dtg`).
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::calibration::GyroCoefficients::Dtg(Default::default()).model(), "dtg");
+    /// ```
+    pub fn model(&self) -> &'static str {
+        match self {
+            GyroCoefficients::Rate(_) => "rate",
+            GyroCoefficients::Dtg(_) => "dtg",
+        }
+    }
+
+    /// The inverse model: the rate about the input axis (deg/h) that gives
+    /// `measured_deg_h` for what the gyro senses otherwise.
+    fn compensate(&self, unit: &Unit, channel: usize, measured_deg_h: f64, s: &Sensed) -> f64 {
+        let gyro = &unit.gyros()[channel];
+        match (self, gyro.dtg_input(s), gyro.rate_input(s)) {
+            (GyroCoefficients::Dtg(c), Some(x), _) => c.compensate_deg_h(measured_deg_h, &x),
+            (GyroCoefficients::Rate(c), _, Some(x)) => c.compensate_deg_h(measured_deg_h, &x),
+            // Checked against the unit before compensating.
+            _ => measured_deg_h,
+        }
+    }
+}
+
+/// What is wrong with using a unit calibration on a unit.
+///
+/// ```
+/// use nav_sensors::calibration::{UnitCalibration, UnitCalibrationError};
+/// let triad = nav_sensors::unit::Unit::builtin("triad").unwrap();
+/// let mut cal = UnitCalibration::ideal(&triad);
+/// cal.gyros.insert("gq".into(), cal.gyros["gx"]);
+/// let err = cal.check(&triad).unwrap_err();
+/// assert_eq!(err.to_string(), "the calibration has gyro 'gq', which units/triad.toml does not");
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum UnitCalibrationError {
+    /// A gyro or accelerometer name the unit does not have.
+    #[error("the calibration has {what} '{name}', which {unit_file} does not")]
+    Unknown {
+        /// "gyro" or "accelerometer".
+        what: &'static str,
+        /// The name.
+        name: String,
+        /// The unit file.
+        unit_file: String,
+    },
+    /// A gyro's table of the other model.
+    #[error("gyro '{name}': the calibration has a \"{given}\" table, {unit_file} says \"{model}\"")]
+    Model {
+        /// The gyro.
+        name: String,
+        /// The model of the table.
+        given: &'static str,
+        /// The unit's model.
+        model: &'static str,
+        /// The unit file.
+        unit_file: String,
+    },
+    /// The record's sensors are not the unit's.
+    #[error("the record's gyros ({}) are not those of {unit_file}", record.join(", "))]
+    Record {
+        /// The record's gyro names.
+        record: Vec<String>,
+        /// The unit file.
+        unit_file: String,
+    },
+}
+
+/// The ground calibration of a unit's gyros (by name, each with its model)
+/// and accelerometers (by name; the pendulous model of
+/// [`crate::accel::AccelCoefficients`], used for accelerometers on the unit
+/// axes). Terms ground calibration does not cover are zero.
+///
+/// ```
+/// use nav_sensors::calibration::{GyroCoefficients, UnitCalibration};
+/// use nav_sensors::rate::RateCoefficients;
+/// let tetra = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+/// let mut cal = UnitCalibration::ideal(&tetra);
+/// cal.gyros.insert("g2".into(), GyroCoefficients::Rate(RateCoefficients { bias_deg_h: 2.0, ..Default::default() }));
+/// let back = UnitCalibration::from_json(&cal.to_json(), "mem").unwrap();
+/// assert_eq!(back, cal);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitCalibration {
+    /// File format version ([`UnitCalibration::FORMAT_VERSION`]).
+    pub format_version: u32,
+    /// Gyro coefficients by channel name.
+    pub gyros: BTreeMap<String, GyroCoefficients>,
+    /// Accelerometer coefficients by name.
+    pub accels: BTreeMap<String, AccelCoefficients>,
+}
+
+impl UnitCalibration {
+    /// The format version written and read.
+    ///
+    /// ```
+    /// assert_eq!(nav_sensors::calibration::UnitCalibration::FORMAT_VERSION, 1);
+    /// ```
+    pub const FORMAT_VERSION: u32 = 1;
+
+    /// A calibration of ideal sensors of a unit (every table zero).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("dual-triad").unwrap();
+    /// assert_eq!(nav_sensors::calibration::UnitCalibration::ideal(&u).gyros.len(), 6);
+    /// ```
+    pub fn ideal(unit: &Unit) -> Self {
+        Self {
+            format_version: Self::FORMAT_VERSION,
+            gyros: unit
+                .gyros()
+                .iter()
+                .map(|g| (g.name.clone(), GyroCoefficients::zero(&g.model)))
+                .collect(),
+            accels: unit
+                .accels()
+                .iter()
+                .map(|a| (a.name.clone(), AccelCoefficients::default()))
+                .collect(),
+        }
+    }
+
+    /// Parses calibration JSON; `path` labels errors.
+    ///
+    /// ```
+    /// assert!(nav_sensors::calibration::UnitCalibration::from_json("{}", "c.json").is_err());
+    /// ```
+    pub fn from_json(text: &str, path: &str) -> Result<Self, CalibrationFileError> {
+        super::io::parse_versioned(
+            text,
+            path,
+            |c: &Self| c.format_version,
+            Self::FORMAT_VERSION,
+        )
+    }
+
+    /// Reads a calibration file.
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-unit-cal.json");
+    /// let cal = nav_sensors::calibration::UnitCalibration::ideal(&u);
+    /// cal.save(&path).unwrap();
+    /// assert_eq!(nav_sensors::calibration::UnitCalibration::load(&path).unwrap(), cal);
+    /// ```
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, CalibrationFileError> {
+        super::io::load_with(path.as_ref(), super::io::calibration_io, Self::from_json)
+    }
+
+    /// The calibration as pretty JSON (deterministic).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// assert!(nav_sensors::calibration::UnitCalibration::ideal(&u).to_json().contains("\"model\": \"rate\""));
+    /// ```
+    pub fn to_json(&self) -> String {
+        super::io::pretty(self)
+    }
+
+    /// Writes the calibration file atomically.
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// let path = std::env::temp_dir().join("nav-sensors-doc-unit-cal-save.json");
+    /// nav_sensors::calibration::UnitCalibration::ideal(&u).save(&path).unwrap();
+    /// assert!(path.exists());
+    /// ```
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
+        super::io::save_calibration(self, path.as_ref())
+    }
+
+    /// Checks the calibration against a unit: every name is the unit's and
+    /// every gyro table is of the gyro's model (a sensor the calibration
+    /// omits is ideal).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// assert!(nav_sensors::calibration::UnitCalibration::ideal(&u).check(&u).is_ok());
+    /// ```
+    pub fn check(&self, unit: &Unit) -> Result<(), UnitCalibrationError> {
+        for (name, c) in &self.gyros {
+            let Some(k) = unit.gyro_index(name) else {
+                return Err(UnitCalibrationError::Unknown {
+                    what: "gyro",
+                    name: name.clone(),
+                    unit_file: unit.file().to_string(),
+                });
+            };
+            let model = unit.gyros()[k].model.name();
+            if c.model() != model {
+                return Err(UnitCalibrationError::Model {
+                    name: name.clone(),
+                    given: c.model(),
+                    model,
+                    unit_file: unit.file().to_string(),
+                });
+            }
+        }
+        if let Some(name) = self
+            .accels
+            .keys()
+            .find(|n| !unit.accel_names().contains(&n.as_str()))
+        {
+            return Err(UnitCalibrationError::Unknown {
+                what: "accelerometer",
+                name: name.clone(),
+                unit_file: unit.file().to_string(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Compensates a record of the unit, at its output rate: first the
+    /// accelerometers (static inverse of the three jointly, when they lie
+    /// on the unit axes; others pass through), then every gyro with its
+    /// model's inverse, using the compensated specific force (with its
+    /// within-interval covariance estimated from neighbouring means, as the
+    /// gyro outputs hold interval means of g² products) and the
+    /// least-squares rate of all gyros (two passes: raw, then compensated).
+    /// `temp` is not compensated (ground calibration does not cover it).
+    /// For the paper's unit this gives [`crate::calibration::Calibration::compensate`]'s numbers.
+    ///
+    /// ```
+    /// use nav_sensors::calibration::{GyroCoefficients, UnitCalibration};
+    /// use nav_sensors::rate::RateCoefficients;
+    /// use nav_sensors::record::Record;
+    /// let triad = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// let mut cal = UnitCalibration::ideal(&triad);
+    /// cal.gyros.insert("gz".into(), GyroCoefficients::Rate(RateCoefficients { bias_deg_h: 1.5, g_z_deg_h_g: 0.8, ..Default::default() }));
+    /// let g = |v: f64| vec![v; 3];
+    /// let rec = Record::from_series(vec![0.0, 0.02, 0.04],
+    ///     vec![("gx".into(), g(0.0)), ("gy".into(), g(0.0)), ("gz".into(), g(10.0 + 1.5 + 0.8))],
+    ///     vec![("ax".into(), g(0.0)), ("ay".into(), g(0.0)), ("az".into(), g(1.0))], vec![], None).unwrap();
+    /// let out = cal.compensate(&triad, &rec).unwrap();
+    /// assert!((out.gyro_named("gz").unwrap()[1] - 10.0).abs() < 1e-12);
+    /// ```
+    pub fn compensate(&self, unit: &Unit, record: &Record) -> Result<Record, UnitCalibrationError> {
+        self.check(unit)?;
+        let same = |have: &[String], want: Vec<&str>| have.iter().map(String::as_str).eq(want);
+        if !same(record.gyro_names(), unit.gyro_names())
+            || !same(record.accel_names(), unit.accel_names())
+        {
+            return Err(UnitCalibrationError::Record {
+                record: record.gyro_names().to_vec(),
+                unit_file: unit.file().to_string(),
+            });
+        }
+        let n = record.len();
+        let accel = self.compensate_accels(unit, record);
+        let force: Vec<Vector3<f64>> = (0..n)
+            .map(|i| {
+                let row: Vec<f64> = accel.iter().map(|a| a[i]).collect();
+                unit.specific_force(&row)
+            })
+            .collect();
+        let covariance = within_interval_covariance(&force);
+        let coefficients: Vec<GyroCoefficients> = unit
+            .gyros()
+            .iter()
+            .map(|g| {
+                self.gyros
+                    .get(&g.name)
+                    .copied()
+                    .unwrap_or(GyroCoefficients::zero(&g.model))
+            })
+            .collect();
+        let channels = unit.gyros().len();
+        let mut gyro: Vec<Vec<f64>> = (0..channels).map(|k| record.gyro_at(k).to_vec()).collect();
+        for _pass in 0..2 {
+            let mut next: Vec<Vec<f64>> = (0..channels).map(|_| Vec::with_capacity(n)).collect();
+            for i in 0..n {
+                let current: Vec<f64> = gyro.iter().map(|g| g[i]).collect();
+                let sensed = Sensed {
+                    rate_deg_h: unit.least_squares_rate(&current),
+                    specific_force_g: force[i],
+                    specific_force_cov_g2: covariance[i],
+                    ..Sensed::default()
+                };
+                for (k, c) in coefficients.iter().enumerate() {
+                    next[k].push(c.compensate(unit, k, record.gyro_at(k)[i], &sensed));
+                }
+            }
+            gyro = next;
+        }
+        Ok(record.with_gyro_series(gyro).with_accel_series(accel))
+    }
+
+    /// The accelerometers compensated: the static inverse of the three
+    /// jointly when they are the unit axes x, y, z (in any order), else
+    /// their outputs unchanged.
+    fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
+        let raw: Vec<Vec<f64>> = (0..unit.accels().len())
+            .map(|k| record.accel_at(k).to_vec())
+            .collect();
+        let axis_of: Vec<Option<Axis>> = unit
+            .accels()
+            .iter()
+            .map(|a| Axis::ALL.into_iter().find(|x| a.input == x.unit_vector()))
+            .collect();
+        let on_axes = axis_of.len() == 3 && Axis::ALL.iter().all(|x| axis_of.contains(&Some(*x)));
+        if !on_axes {
+            return raw;
+        }
+        let by_axis: [usize; 3] =
+            Axis::ALL.map(|x| axis_of.iter().position(|a| *a == Some(x)).expect("checked"));
+        let coefficients = by_axis.map(|k| {
+            self.accels
+                .get(&unit.accels()[k].name)
+                .copied()
+                .unwrap_or_default()
+        });
+        let mut out: Vec<Vec<f64>> = raw
+            .iter()
+            .map(|_| Vec::with_capacity(record.len()))
+            .collect();
+        // i indexes the three columns at once.
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..record.len() {
+            let m = Vector3::from(by_axis.map(|k| raw[k][i]));
+            let a = compensate_triad(&coefficients, &m);
+            for (j, &k) in by_axis.iter().enumerate() {
+                out[k].push(a[j]);
+            }
+        }
+        out
+    }
+}

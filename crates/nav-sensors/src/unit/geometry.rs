@@ -1,0 +1,234 @@
+//! What a unit's axes give: the measurement matrix H (n×3), the
+//! least-squares rate operator, the parity matrix V and the residues, and
+//! the specific force from the accelerometers.
+//!
+//! Orthogonal methods throughout (never the normal equations): the
+//! least-squares operator is H's pseudo-inverse by SVD, and V is the last
+//! n − 3 columns of the orthogonal factor of the Householder QR of
+//! `[H | I]`, which span H's left null space. The paper's geometry keeps
+//! today's constants (eq. 4's operator, eq. 6's residues, the Gram–Schmidt
+//! parity matrix of [`crate::geometry::parity_matrix`]) so its figures and
+//! model files do not move by a bit.
+
+use nalgebra::{DMatrix, DVector, Vector3};
+
+use super::{Accelerometer, Gyro};
+use crate::geometry::{Residue, least_squares_operator, parity_matrix, residues};
+
+/// The derived geometry of a unit (see the module documentation).
+///
+/// ```
+/// use nav_sensors::unit::Unit;
+/// let u = Unit::builtin("dual-triad").unwrap();
+/// let g = u.geometry();
+/// let p = g.least_squares_operator();
+/// assert!((p * g.measurement_matrix() - nalgebra::DMatrix::<f64>::identity(3, 3)).norm() < 1e-12);
+/// assert_eq!(g.parity_matrix().nrows(), 3);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnitGeometry {
+    h: DMatrix<f64>,
+    least_squares: DMatrix<f64>,
+    parity: DMatrix<f64>,
+    residue_names: Vec<String>,
+    paper: bool,
+    /// `None` when the accelerometers are exactly the unit axes, one each:
+    /// then `axis_of[k]` says which unit axis accelerometer k reads.
+    accel_least_squares: Option<DMatrix<f64>>,
+    axis_of: Vec<usize>,
+}
+
+impl UnitGeometry {
+    /// Derives the geometry of validated sensors (input axes spanning 3-D).
+    pub(super) fn new(gyros: &[Gyro], accels: &[Accelerometer], paper: bool) -> Self {
+        let n = gyros.len();
+        let h = DMatrix::from_fn(n, 3, |i, j| gyros[i].input[j]);
+        let (least_squares, parity, residue_names) = if paper {
+            let p = least_squares_operator();
+            let v = parity_matrix();
+            (
+                DMatrix::from_fn(3, 6, |i, j| p[(i, j)]),
+                DMatrix::from_fn(3, 6, |i, j| v[(i, j)]),
+                Residue::ALL.iter().map(|r| r.name().to_string()).collect(),
+            )
+        } else {
+            let v = left_null_space(&h);
+            let names = (0..v.nrows()).map(|k| format!("P{k}")).collect();
+            (pseudo_inverse(&h), v, names)
+        };
+        let axes: Vec<Vector3<f64>> = accels.iter().map(|a| a.input).collect();
+        let axis_of: Vec<usize> = axes
+            .iter()
+            .filter_map(|a| (0..3).find(|&j| *a == Vector3::ith(j, 1.0)))
+            .collect();
+        let on_axes =
+            accels.len() == 3 && axis_of.len() == 3 && (0..3).all(|j| axis_of.contains(&j));
+        let accel_least_squares =
+            (!on_axes).then(|| pseudo_inverse(&DMatrix::from_fn(axes.len(), 3, |i, j| axes[i][j])));
+        Self {
+            h,
+            least_squares,
+            parity,
+            residue_names,
+            paper,
+            accel_least_squares,
+            axis_of,
+        }
+    }
+
+    /// H (n×3): row k is gyro k's input axis.
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::paper();
+    /// let h = u.geometry().measurement_matrix();
+    /// let today = nav_sensors::geometry::measurement_matrix();
+    /// assert!(h.iter().zip(today.iter()).all(|(a, b)| a.to_bits() == b.to_bits()));
+    /// ```
+    pub fn measurement_matrix(&self) -> &DMatrix<f64> {
+        &self.h
+    }
+
+    /// The 3×n least-squares operator `(HᵀH)⁻¹Hᵀ`, computed as H's
+    /// pseudo-inverse by SVD (the paper's geometry: today's constant).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// let p = u.geometry().least_squares_operator();
+    /// assert!((p * u.measurement_matrix() - nalgebra::DMatrix::<f64>::identity(3, 3)).norm() < 1e-12);
+    /// ```
+    pub fn least_squares_operator(&self) -> &DMatrix<f64> {
+        &self.least_squares
+    }
+
+    /// V ((n − 3)×n), orthonormal rows spanning H's left null space (0×n for
+    /// three gyros).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// let v = u.geometry().parity_matrix();
+    /// assert!((v * v.transpose() - nalgebra::DMatrix::<f64>::identity(1, 1)).norm() < 1e-12);
+    /// ```
+    pub fn parity_matrix(&self) -> &DMatrix<f64> {
+        &self.parity
+    }
+
+    /// The residues' names (`K0`–`K5` for the paper's geometry, else `P0`…).
+    ///
+    /// ```
+    /// assert!(nav_sensors::unit::Unit::builtin("triad").unwrap().geometry().residue_names().is_empty());
+    /// ```
+    pub fn residue_names(&self) -> &[String] {
+        &self.residue_names
+    }
+
+    /// See [`super::Unit::residues`].
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::paper();
+    /// let m = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    /// assert_eq!(u.geometry().residues(&m), nav_sensors::geometry::residues(&m).to_vec());
+    /// ```
+    #[track_caller]
+    pub fn residues(&self, m: &[f64]) -> Vec<f64> {
+        assert_eq!(m.len(), self.h.nrows(), "one output per gyro");
+        if self.paper {
+            let m: [f64; 6] = std::array::from_fn(|k| m[k]);
+            return residues(&m).to_vec();
+        }
+        (&self.parity * DVector::from_column_slice(m))
+            .iter()
+            .copied()
+            .collect()
+    }
+
+    /// The coefficients of each residue on the gyro outputs (rows in
+    /// [`UnitGeometry::residue_names`] order, columns in gyro order): eq. 6's
+    /// for the paper's geometry, V otherwise.
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{Channel, Residue};
+    /// let c = nav_sensors::unit::Unit::paper().geometry().residue_coefficients();
+    /// assert_eq!(c[(Residue::K0.index(), Channel::X.index())], 1.0);
+    /// ```
+    pub fn residue_coefficients(&self) -> DMatrix<f64> {
+        if self.paper {
+            return DMatrix::from_fn(6, 6, |r, j| Residue::ALL[r].coefficients()[j]);
+        }
+        self.parity.clone()
+    }
+
+    /// See [`super::Unit::least_squares_rate`].
+    ///
+    /// ```
+    /// use nav_sensors::geometry::{ideal_outputs, least_squares_rate};
+    /// let m = ideal_outputs(&nalgebra::Vector3::new(1.0, 2.0, 3.0));
+    /// let u = nav_sensors::unit::Unit::paper();
+    /// assert_eq!(u.geometry().least_squares_rate(&m), least_squares_rate(&m));
+    /// ```
+    #[track_caller]
+    pub fn least_squares_rate(&self, m: &[f64]) -> Vector3<f64> {
+        assert_eq!(m.len(), self.h.nrows(), "one output per gyro");
+        if self.paper {
+            let m: [f64; 6] = std::array::from_fn(|k| m[k]);
+            return crate::geometry::least_squares_rate(&m);
+        }
+        let w = &self.least_squares * DVector::from_column_slice(m);
+        Vector3::new(w[0], w[1], w[2])
+    }
+
+    /// See [`super::Unit::specific_force`].
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// assert_eq!(u.geometry().specific_force(&[0.0, 0.0, 1.0]).z, 1.0);
+    /// ```
+    #[track_caller]
+    pub fn specific_force(&self, a: &[f64]) -> Vector3<f64> {
+        match &self.accel_least_squares {
+            None => {
+                assert_eq!(a.len(), 3, "one output per accelerometer");
+                let mut f = Vector3::zeros();
+                for (k, &j) in self.axis_of.iter().enumerate() {
+                    f[j] = a[k];
+                }
+                f
+            }
+            Some(p) => {
+                assert_eq!(a.len(), p.ncols(), "one output per accelerometer");
+                let f = p * DVector::from_column_slice(a);
+                Vector3::new(f[0], f[1], f[2])
+            }
+        }
+    }
+}
+
+/// H's pseudo-inverse by SVD (H has full column rank: validated).
+fn pseudo_inverse(h: &DMatrix<f64>) -> DMatrix<f64> {
+    h.clone()
+        .svd(true, true)
+        .pseudo_inverse(1e-12)
+        .expect("U and V were computed")
+}
+
+/// An orthonormal basis of H's left null space as rows: the last n − 3
+/// columns of Q in the Householder QR of `[H | I]` (the first three span
+/// H's columns). Each row's sign is fixed so its largest entry is positive,
+/// so the basis does not depend on the QR's sign conventions.
+pub(crate) fn left_null_space(h: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = h.nrows();
+    let mut a = DMatrix::zeros(n, n + 3);
+    a.view_mut((0, 0), (n, 3)).copy_from(h);
+    a.view_mut((0, 3), (n, n)).fill_with_identity();
+    let q = a.qr().q();
+    let mut v = q.columns(3, n - 3).transpose();
+    for mut row in v.row_iter_mut() {
+        let big = row
+            .iter()
+            .copied()
+            .fold(0.0_f64, |b, x| if x.abs() > b.abs() { x } else { b });
+        if big < 0.0 {
+            row.neg_mut();
+        }
+    }
+    v
+}
