@@ -86,9 +86,8 @@ pub fn lloyd(
     let mut nearest = vec![0.0; n];
     let mut previous = vec![usize::MAX; n];
     let mut counts = vec![0usize; k];
-    let rows: Vec<f64> = (0..n)
-        .flat_map(|i| (0..d).map(move |t| x[(i, t)]))
-        .collect();
+    // x row by row: the columns of its transpose (one faer copy).
+    let rows = x.transpose().to_owned();
     let mut sums = vec![0.0; k * d];
     let mut unchanged = false;
     let mut iterations = 0;
@@ -104,7 +103,7 @@ pub fn lloyd(
             par,
         );
         relocate_empty(&mut labels, &mut nearest, &mut counts);
-        means(&rows, &labels, &counts, &mut sums, &mut next);
+        means(rows.as_ref(), &labels, &counts, &mut sums, &mut next);
         let shift = (0..d)
             .map(|t| {
                 (0..k)
@@ -240,14 +239,26 @@ fn relocate_empty(labels: &mut [usize], nearest: &mut [f64], counts: &mut [usize
 }
 
 /// Centroids as the plain means of their members (every cluster has one). `rows` is
-/// `x` row by row (n × d, row-major): a sample's columns are added to its cluster's
-/// sums together, so a run of samples of one cluster is d independent sums rather than
-/// one chain through memory; each sum still adds its members in row order.
-fn means(rows: &[f64], labels: &[usize], counts: &[usize], sums: &mut [f64], out: &mut Mat<f64>) {
+/// the transpose of `x` (d × n, a sample per column): a sample's columns are added to
+/// its cluster's sums together, so a run of samples of one cluster is d independent
+/// sums rather than one chain through memory; each sum still adds its members in row
+/// order.
+fn means(
+    rows: MatRef<'_, f64>,
+    labels: &[usize],
+    counts: &[usize],
+    sums: &mut [f64],
+    out: &mut Mat<f64>,
+) {
     let d = out.ncols();
     sums.fill(0.0);
     if d > 0 {
-        for (row, &l) in rows.chunks_exact(d).zip(labels) {
+        for (i, &l) in labels.iter().enumerate() {
+            let row = rows
+                .col(i)
+                .try_as_col_major()
+                .expect("an owned matrix has contiguous columns")
+                .as_slice();
             add_to(&mut sums[l * d..(l + 1) * d], row);
         }
     }
