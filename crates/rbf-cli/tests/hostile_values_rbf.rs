@@ -180,7 +180,7 @@ fn csv_cells() {
             let bad = dir().join("cell.csv");
             std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
             let out = dir().join("cell-out");
-            for centers in ["ols", "kmeans", "all"] {
+            for centres in ["ols", "kmeans", "all"] {
                 let mut args = vec![
                     "fit",
                     "--data",
@@ -188,14 +188,14 @@ fn csv_cells() {
                     "--target",
                     "y",
                     "--centers",
-                    centers,
+                    centres,
                     "--quiet",
                     "--ridge",
                     "1e-6",
                     "--out",
                     s(&out),
                 ];
-                if centers != "all" {
+                if centres != "all" {
                     args.extend(["--max-centers", "5"]);
                 }
                 let r = BIN.check(&args);
