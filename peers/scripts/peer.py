@@ -48,7 +48,7 @@ DIM = 50
 
 def windowed(n, seed):
     """Windows of a resonant low-pass filtered white-noise signal and a nonlinear
-    target: the recipe of benches/centre_selection.rs (its own random numbers)."""
+    target: the recipe of crates/rbf/benches/centre_selection.rs (its own random numbers)."""
     rng = np.random.default_rng(seed)
     burn = 200
     length = n + DIM + burn
@@ -204,7 +204,7 @@ def timed(f):
 def cmd_run(a):
     xt, yt, xv, yv, train_rows = load(a.data)
     methods = a.methods.split(",")
-    base = {"side": "python", "n_train": len(yt), "n_val": len(yv)}
+    base = {"side": "python", "n_train": len(yt), "n_val": len(yv), "threads": a.threads}
     for _ in range(a.reps):
         for name, select in (("cgs", ols_cgs), ("ols", ols_chen)):
             if name not in methods:
@@ -245,8 +245,8 @@ def normalise(r):
         r = dict(r, side="rust", method=r["centers"])
         if r.get("ols"):
             r["picks"] = [p["row"] for p in r["ols"]["picks"]]
-    if r.get("side") == "rust":
-        r["side"] = f"rust-{r.get('threads', 0)}t"
+    if r.get("side") in ("rust", "python"):
+        r["side"] = f"{r['side']}-{r.get('threads') or 0}t"
     return r
 
 
@@ -254,8 +254,17 @@ def cmd_report(a):
     recs = [normalise(json.loads(line)) for path in a.files for line in open(path)
             if line.startswith("{")]
     ours = sorted({r["side"] for r in recs if r["side"].startswith("rust")}, reverse=True)
+    theirs = sorted({r["side"] for r in recs if r["side"].startswith("python")}, reverse=True)
+    # The Python side compared with ours: the one run with as many threads, else the only one.
+    peer_side = [theirs[0] if theirs else "python-0t"]
+
+    def peer_for(ours_side):
+        same = "python-" + ours_side[5:]
+        return same if same in theirs else (theirs[0] if theirs else "python-0t")
 
     def pick(side, method):
+        if side == "python":
+            side = peer_side[0]
         return [r for r in recs if r.get("side") == side and r.get("method") == method]
 
     def med(rs, key):
@@ -265,8 +274,8 @@ def cmd_report(a):
     for r in recs:
         if r.get("method") == "all":
             r["fit+predict"] = r["fit_seconds"] + r["predict_seconds"]
-    print("| measurement | ours: threads | reps ours/peer | ours median (s) | peer median (s) | ours/peer "
-          "| val NMSE ours | val NMSE peer |")
+    print("| measurement | threads: ours, peer | reps ours/peer | ours median (s) | peer median (s) "
+          "| ours/peer | val NMSE ours | val NMSE peer |")
     print("|---|---|---|---|---|---|---|---|")
     for label, method, peer_method, key in [
         ("OLS K=100, fit (vs numpy CGS OLS, one gemv a pick)", "ols", "cgs", "fit_seconds"),
@@ -276,24 +285,27 @@ def cmd_report(a):
         ("all points, predict 2500", "all", "all", "predict_seconds"),
         ("all points, fit + predict", "all", "all", "fit+predict"),
     ]:
-        ps = pick("python", peer_method)
-        if not ps:
-            continue
-        peer = med(ps, key)
         for side in ours:
-            rs = pick(side, method)
-            if not rs:
+            peer_side[0] = peer_for(side)
+            ps, rs = pick("python", peer_method), pick(side, method)
+            if not (ps and rs):
                 continue
-            o = med(rs, key)
-            print(f"| {label} | {side[5:-1]} | {len(rs)}/{len(ps)} | {o:.4f} | {peer:.4f} | {o / peer:.3f} "
+            peer, o = med(ps, key), med(rs, key)
+            pt = peer_side[0][7:-1]
+            print(f"| {label} | {side[5:-1]}, {pt if pt != '0' else 'default'} | {len(rs)}/{len(ps)} "
+                  f"| {o:.4f} | {peer:.4f} | {o / peer:.3f} "
                   f"| {med(rs, 'val_nmse'):.6f} | {med(ps, 'val_nmse'):.6f} |")
 
-    po = pick("python", "cgs") or pick("python", "ols")
-    pc, pd = pick("python", "cgs"), pick("python", "ols")
     print()
-    if pc and pd:
-        print(f"numpy peers agree with each other: {pc[0]['picks'] == pd[0]['picks']}")
+    for side in theirs:
+        peer_side[0] = side
+        pc, pd = pick("python", "cgs"), pick("python", "ols")
+        if pc and pd:
+            print(f"numpy peers agree with each other ({side[7:-1]} threads): "
+                  f"{pc[0]['picks'] == pd[0]['picks']}")
     for side in ours:
+        peer_side[0] = peer_for(side)
+        po = pick("python", "cgs") or pick("python", "ols")
         ro = pick(side, "ols")
         if not (ro and po):
             continue
@@ -308,6 +320,10 @@ def cmd_report(a):
               f"{shared} of {min(len(a_), len(b_))} centres shared; "
               f"{'the same in every repetition' if consistent else 'NOT the same in every repetition'}")
         print(f"OLS validation RMSE: ours {med(ro, 'val_rmse'):.9f}, numpy {med(po, 'val_rmse'):.9f}")
+        used = sorted({r.get("threads_used") for r in ro if r.get("threads_used")})
+        if used:
+            print(f"OLS passes ({side[5:-1]} threads asked): ran on {used} threads; "
+                  f"last reason: {ro[-1].get('threads_reason')}")
         spp = med(ro, "seconds_per_pick")
         line = f"OLS core ({side[5:-1]} threads): {spp * 1e3:.2f} ms per pick"
         mv = pick(side, "matvec")
@@ -319,12 +335,16 @@ def cmd_report(a):
                      f"one faer vᵀP over the f64 matrix {b1 * 1e3:.2f} ms "
                      f"({med(mv, 'gb_per_s'):.1f} GB/s), [q r]ᵀP {b2 * 1e3:.2f} ms")
         print(line)
-    mp = pick("python", "matvec")
-    if mp:
-        print(f"numpy v @ P over the same matrix: {med(mp, 'seconds') * 1e3:.2f} ms")
-    ko = pick("python", "kmeans")
-    if ko:
-        print(f"scikit-learn k-means iterations (median): {med(ko, 'iterations'):.0f}")
+    for side in theirs:
+        peer_side[0] = side
+        mp = pick("python", "matvec")
+        if mp:
+            print(f"numpy v @ P over the same matrix ({side[7:-1]} threads): "
+                  f"{med(mp, 'seconds') * 1e3:.2f} ms")
+        ko = pick("python", "kmeans")
+        if ko:
+            print(f"scikit-learn k-means iterations (median, {side[7:-1]} threads): "
+                  f"{med(ko, 'iterations'):.0f}")
 
 
 def main():
@@ -343,6 +363,8 @@ def main():
     r.add_argument("--smoothing", type=float, default=1e-8)
     r.add_argument("--reps", type=int, default=1)
     r.add_argument("--methods", default="cgs,ols,kmeans,rbfi,matvec")
+    r.add_argument("--threads", type=int, default=None,
+                   help="the OpenBLAS/OpenMP threads this run was given (a label for the report)")
     p = sub.add_parser("report")
     p.add_argument("files", nargs="+")
     a = ap.parse_args()

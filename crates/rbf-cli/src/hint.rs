@@ -17,8 +17,8 @@ const MAX_SUGGESTED_RIDGE: f64 = 1.0;
 /// let e = RbfError::Solve(SolveError::NotPositiveDefinite { pivot: 3 });
 /// assert_eq!(rbf_cli::hint::fix_for(&e, 0.0).as_deref(), Some("use --ridge 1e-8"));
 /// assert_eq!(rbf_cli::hint::fix_for(&e, 1e-8).as_deref(), Some("use a larger --ridge (e.g. 1e-6)"));
-/// let e = RbfError::FewerRowsThanCentres { rows: 20, centres: 50 };
-/// assert_eq!(rbf_cli::hint::fix_for(&e, 0.0).as_deref(), Some("use --max-centers ≤ 20"));
+/// let e = RbfError::FewerRowsThanCentres { rows: 20, centres: 50, most: 19 };
+/// assert_eq!(rbf_cli::hint::fix_for(&e, 0.0).as_deref(), Some("use --max-centers ≤ 19"));
 /// ```
 pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
     match err {
@@ -42,7 +42,11 @@ pub fn fix_for(err: &RbfError, ridge: f64) -> Option<String> {
         RbfError::FewerRowsThanCentres { rows: 0, .. } => {
             Some("the training set is empty: check the split".to_string())
         }
-        RbfError::FewerRowsThanCentres { rows, .. } => Some(format!("use --max-centers ≤ {rows}")),
+        // `most` comes from the rule that refused: the value proposed works.
+        RbfError::FewerRowsThanCentres { most: 0, .. } => {
+            Some("use more training rows or a lower --degree".to_string())
+        }
+        RbfError::FewerRowsThanCentres { most, .. } => Some(format!("use --max-centers ≤ {most}")),
         RbfError::Memory(m) => Some(format!(
             "use --candidates {} (OLS picks centres from a random subsample of the training rows)",
             m.max_columns.max(1)
@@ -73,6 +77,7 @@ mod tests {
         let e = RbfError::FewerRowsThanCentres {
             rows: 0,
             centres: 5,
+            most: 0,
         };
         assert!(!fix_for(&e, 0.0).unwrap().contains("≤ 0"));
         let e = RbfError::Solve(SolveError::NotPositiveDefinite { pivot: 1 });

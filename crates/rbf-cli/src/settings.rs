@@ -13,12 +13,12 @@ use rbf::{
     RbfParams, RbfParamsError, RbfValidParams, Split, WidthRule,
 };
 
-/// Centres when `--max-centers` is not given (the library's default OLS size).
+/// Centres when `--max-centres` is not given (the library's default OLS size).
 ///
 /// ```
-/// assert_eq!(rbf_cli::settings::DEFAULT_MAX_CENTERS, 50);
+/// assert_eq!(rbf_cli::settings::DEFAULT_MAX_CENTRES, 50);
 /// ```
-pub const DEFAULT_MAX_CENTERS: usize = 50;
+pub const DEFAULT_MAX_CENTRES: usize = 50;
 
 /// OLS on more training rows than this selects its centres on a seeded subsample of
 /// this many rows (unless `--selection-rows` says otherwise) and solves the weights on
@@ -37,15 +37,15 @@ pub const AUTO_SELECTION_ROWS: usize = 20_000;
 /// ```
 pub const AUTO_CANDIDATES: usize = 2000;
 
-/// `--centers`: how the centres are chosen.
+/// `--centres`: how the centres are chosen.
 ///
 /// ```
-/// use rbf_cli::settings::Centers;
-/// assert_eq!("kmeans".parse::<Centers>().unwrap(), Centers::Kmeans);
-/// assert!("best".parse::<Centers>().unwrap_err().contains("ols, kmeans, random, all"));
+/// use rbf_cli::settings::Centres;
+/// assert_eq!("kmeans".parse::<Centres>().unwrap(), Centres::Kmeans);
+/// assert!("best".parse::<Centres>().unwrap_err().contains("ols, kmeans, random, all"));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Centers {
+pub enum Centres {
     /// OLS forward selection by error-reduction ratio (Chen, Cowan & Grant 1991).
     #[default]
     Ols,
@@ -57,39 +57,39 @@ pub enum Centers {
     All,
 }
 
-impl Centers {
-    /// The names `--centers` accepts.
+impl Centres {
+    /// The names `--centres` accepts.
     ///
     /// ```
-    /// assert_eq!(rbf_cli::settings::Centers::NAMES[0], "ols");
+    /// assert_eq!(rbf_cli::settings::Centres::NAMES[0], "ols");
     /// ```
     pub const NAMES: [&'static str; 4] = ["ols", "kmeans", "random", "all"];
 
     /// The flag value naming this choice.
     ///
     /// ```
-    /// assert_eq!(rbf_cli::settings::Centers::All.name(), "all");
+    /// assert_eq!(rbf_cli::settings::Centres::All.name(), "all");
     /// ```
     pub fn name(self) -> &'static str {
         Self::NAMES[self as usize]
     }
 }
 
-impl FromStr for Centers {
+impl FromStr for Centres {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
-            "ols" => Ok(Centers::Ols),
-            "kmeans" => Ok(Centers::Kmeans),
-            "random" => Ok(Centers::Random),
-            "all" => Ok(Centers::All),
+            "ols" => Ok(Centres::Ols),
+            "kmeans" => Ok(Centres::Kmeans),
+            "random" => Ok(Centres::Random),
+            "all" => Ok(Centres::All),
             _ => Err(format!("valid names: {}", Self::NAMES.join(", "))),
         }
     }
 }
 
-impl fmt::Display for Centers {
+impl fmt::Display for Centres {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
@@ -120,7 +120,7 @@ pub enum StopArg {
     Gcv,
     /// Stop once 1 − ΣERR < ρ (`--tol ρ`).
     Err(f64),
-    /// Exactly K picks, fewer only if the candidates run out (`--max-centers K`).
+    /// Exactly K picks, fewer only if the candidates run out (`--max-centres K`).
     K(usize),
 }
 
@@ -173,14 +173,14 @@ impl FromStr for StopArg {
     }
 }
 
-/// The most centres `--stop press|gcv` considers when `--max-centers` is not given:
+/// The most centres `--stop press|gcv` considers when `--max-centres` is not given:
 /// a tenth of the training rows, from 10 to 200 (and at most the candidates).
 ///
 /// ```
-/// use rbf_cli::settings::auto_max_centers;
-/// assert_eq!((auto_max_centers(50), auto_max_centers(1000), auto_max_centers(1_000_000)), (10, 100, 200));
+/// use rbf_cli::settings::auto_max_centres;
+/// assert_eq!((auto_max_centres(50), auto_max_centres(1000), auto_max_centres(1_000_000)), (10, 100, 200));
 /// ```
-pub fn auto_max_centers(n_train: usize) -> usize {
+pub fn auto_max_centres(n_train: usize) -> usize {
     (n_train / 10).clamp(10, 200)
 }
 
@@ -316,20 +316,21 @@ impl FromStr for CvScheme {
 /// A combination of flags that cannot be fitted.
 ///
 /// ```
-/// let e = rbf_cli::settings::SettingsError::TooManyCenters { centers: 9, rows: 4, what: "training rows" };
-/// assert!(e.to_string().ends_with("use --max-centers ≤ 4"));
+/// use rbf_cli::settings::SettingsError;
+/// let e = SettingsError::TooManyCentres { centres: 9, rows: 4, what: "training rows", most: 3, flag: "--max-centers" };
+/// assert!(e.to_string().ends_with("use --max-centers ≤ 3"));
 /// ```
 #[derive(Debug, PartialEq, thiserror::Error)]
 pub enum SettingsError {
-    /// A flag that only applies to other `--centers`.
-    #[error("{flag} applies to --centers {applies} only, not {centers}")]
+    /// A flag that only applies to other `--centres`.
+    #[error("{flag} applies to --centers {applies} only, not {centres}")]
     NotApplicable {
         /// The flag.
         flag: &'static str,
         /// The strategies it applies to.
         applies: &'static str,
         /// The strategy given.
-        centers: Centers,
+        centres: Centres,
     },
     /// Two flags that say the same thing differently.
     #[error("{a} and {b} both set the {what}: give one")]
@@ -341,46 +342,115 @@ pub enum SettingsError {
         /// What both set.
         what: &'static str,
     },
-    /// More centres than there are rows (or candidates) to choose them from.
-    #[error("{centers} centres asked for but only {rows} {what}; use --max-centers ≤ {rows}")]
-    TooManyCenters {
+    /// More centres than the rows (or candidates) take, by the library's own rule
+    /// ([`rbf::RbfValidParams::most_centres`]): the value proposed then works.
+    #[error(
+        "{centres} centres asked for but {rows} {what} take at most {most}; use {flag} ≤ {most}"
+    )]
+    TooManyCentres {
         /// Centres asked for.
-        centers: usize,
+        centres: usize,
         /// Rows or candidates available.
         rows: usize,
         /// What `rows` counts.
         what: &'static str,
+        /// The most centres that work.
+        most: usize,
+        /// The flag that sets the number of centres.
+        flag: &'static str,
+    },
+    /// Too few rows for the fixed columns alone (bias, linear or polynomial tail).
+    #[error(
+        "{rows} {what} are too few for the {fixed} fixed columns of the fit (bias, tails); use more rows or a lower --degree"
+    )]
+    TooFewRows {
+        /// Rows available.
+        rows: usize,
+        /// What `rows` counts.
+        what: &'static str,
+        /// Fixed columns of the weights' least squares.
+        fixed: usize,
     },
     /// The library rejected the parameters.
     #[error(transparent)]
     Params(#[from] RbfParamsError),
 }
 
+/// Refuses `k` centres when `rows` training rows of `dim` inputs take fewer by the
+/// library's rule ([`rbf::RbfValidParams::most_centres`], the rule the fit itself
+/// refuses by), naming `flag` with the largest value that works; `what` says what
+/// `rows` counts.
+///
+/// # Errors
+/// [`SettingsError::TooManyCentres`], or [`SettingsError::TooFewRows`] when the rows do
+/// not cover the fixed columns alone.
+///
+/// ```
+/// use rbf_cli::settings::{check_centres, Centres, FitSettings};
+/// let p = FitSettings { centres: Centres::Kmeans, ..Default::default() }.build(30, rbf::WidthRule::default()).unwrap();
+/// assert!(check_centres(&p, 23, 24, 2, "training rows", "--max-centers").is_ok());
+/// let e = check_centres(&p, 24, 24, 2, "training rows", "--max-centers").unwrap_err();
+/// assert!(e.to_string().ends_with("use --max-centers ≤ 23"), "{e}");
+/// ```
+pub fn check_centres(
+    params: &RbfValidParams,
+    k: usize,
+    rows: usize,
+    dim: usize,
+    what: &'static str,
+    flag: &'static str,
+) -> Result<(), SettingsError> {
+    let most = params.most_centres(rows, dim, 0);
+    if k <= most {
+        return Ok(());
+    }
+    if most == 0 {
+        return Err(SettingsError::TooFewRows {
+            rows,
+            what,
+            fixed: params.fixed_columns(dim, 0),
+        });
+    }
+    // OLS picks among its candidates: when they are a subsample, say so.
+    let (rows, what) = match params.centres() {
+        rbf::CentreSelection::Ols { .. } if most < rows => (most, "OLS candidates (--candidates)"),
+        _ => (rows, what),
+    };
+    Err(SettingsError::TooManyCentres {
+        centres: k,
+        rows,
+        what,
+        most,
+        flag,
+    })
+}
+
 /// Everything `rbf fit` needs to build the library's parameters.
 ///
 /// ```
-/// use rbf_cli::settings::{Centers, FitSettings};
-/// let s = FitSettings { centers: Centers::Kmeans, max_centers: Some(8), ..FitSettings::default() };
-/// let p = s.params(100).unwrap();
+/// use rbf_cli::settings::{Centres, FitSettings};
+/// let s = FitSettings { centres: Centres::Kmeans, max_centres: Some(8), ..FitSettings::default() };
+/// let p = s.params(100, 2).unwrap();
 /// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.n_centres == 8));
-/// assert!(s.params(5).unwrap_err().to_string().contains("--max-centers ≤ 5"));
+/// // 5 rows take 4 centres and the bias
+/// assert!(s.params(5, 2).unwrap_err().to_string().contains("--max-centers ≤ 4"));
 ///
 /// // --kmeans-algorithm picks whose Lloyd iterations run (the library's default otherwise)
 /// use rbf::KMeansAlgorithm::{Linfa, Lloyd};
 /// let linfa = FitSettings { kmeans_algorithm: Some(Linfa), ..s.clone() };
 /// assert!(matches!(p.centres(), rbf::CentreSelection::KMeans(k) if k.algorithm == Lloyd));
-/// assert!(matches!(linfa.params(100).unwrap().centres(),
+/// assert!(matches!(linfa.params(100, 2).unwrap().centres(),
 ///     rbf::CentreSelection::KMeans(k) if k.algorithm == Linfa));
-/// let ols = FitSettings { centers: Centers::Ols, ..linfa };
-/// assert_eq!(ols.params(100).unwrap_err().to_string(),
+/// let ols = FitSettings { centres: Centres::Ols, ..linfa };
+/// assert_eq!(ols.params(100, 2).unwrap_err().to_string(),
 ///     "--kmeans-algorithm applies to --centers kmeans only, not ols");
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitSettings {
-    /// `--centers`.
-    pub centers: Centers,
-    /// `--max-centers` (OLS: the most; k-means and random: exactly).
-    pub max_centers: Option<usize>,
+    /// `--centres`.
+    pub centres: Centres,
+    /// `--max-centres` (OLS: the most; k-means and random: exactly).
+    pub max_centres: Option<usize>,
     /// `--candidates` (OLS: a seeded subsample of this many training rows).
     pub candidates: Option<usize>,
     /// `--selection-rows` (OLS: select on a seeded subsample of this many training
@@ -417,8 +487,8 @@ pub struct FitSettings {
 impl Default for FitSettings {
     fn default() -> Self {
         Self {
-            centers: Centers::Ols,
-            max_centers: None,
+            centres: Centres::Ols,
+            max_centres: None,
             candidates: None,
             selection_rows: None,
             ols_stream: None,
@@ -441,36 +511,36 @@ impl FitSettings {
     /// The number of centres asked for (all: none).
     ///
     /// ```
-    /// assert_eq!(rbf_cli::settings::FitSettings::default().n_centers(), Some(50));
+    /// assert_eq!(rbf_cli::settings::FitSettings::default().n_centres(), Some(50));
     /// ```
-    pub fn n_centers(&self) -> Option<usize> {
-        match self.centers {
-            Centers::All => None,
-            _ => Some(self.max_centers.unwrap_or(DEFAULT_MAX_CENTERS)),
+    pub fn n_centres(&self) -> Option<usize> {
+        match self.centres {
+            Centres::All => None,
+            _ => Some(self.max_centres.unwrap_or(DEFAULT_MAX_CENTRES)),
         }
     }
 
-    /// The most centres for `n_train` training rows: `--stop k:K`, `--max-centers`, or
-    /// with `--stop press|gcv` [`auto_max_centers`] (at most the OLS candidates), else
-    /// [`DEFAULT_MAX_CENTERS`].
+    /// The most centres for `n_train` training rows: `--stop k:K`, `--max-centres`, or
+    /// with `--stop press|gcv` [`auto_max_centres`] (at most the OLS candidates), else
+    /// [`DEFAULT_MAX_CENTRES`].
     ///
     /// ```
     /// use rbf_cli::settings::{FitSettings, StopArg};
     /// let s = FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() };
-    /// assert_eq!(s.n_centers_for(2500), Some(200));
-    /// assert_eq!(FitSettings::default().n_centers_for(2500), Some(50));
+    /// assert_eq!(s.n_centres_for(2500), Some(200));
+    /// assert_eq!(FitSettings::default().n_centres_for(2500), Some(50));
     /// ```
-    pub fn n_centers_for(&self, n_train: usize) -> Option<usize> {
-        match (self.centers, self.stop, self.max_centers) {
-            (Centers::All, ..) => None,
+    pub fn n_centres_for(&self, n_train: usize) -> Option<usize> {
+        match (self.centres, self.stop, self.max_centres) {
+            (Centres::All, ..) => None,
             (_, Some(StopArg::K(k)), _) => Some(k),
             (_, _, Some(k)) => Some(k),
-            (Centers::Ols, Some(StopArg::Press | StopArg::Gcv), None) => {
+            (Centres::Ols, Some(StopArg::Press | StopArg::Gcv), None) => {
                 let (sel, cands) = self.ols_rows(n_train);
                 let m = cands.or(sel).unwrap_or(n_train).min(n_train);
-                Some(auto_max_centers(n_train).min(m.max(1)))
+                Some(auto_max_centres(n_train).min(m.max(1)))
             }
-            _ => Some(DEFAULT_MAX_CENTERS),
+            _ => Some(DEFAULT_MAX_CENTRES),
         }
     }
 
@@ -503,7 +573,7 @@ impl FitSettings {
     /// assert_eq!(t.ols_rows(500_000), (Some(20_000), Some(300)));
     /// ```
     pub fn ols_rows(&self, n_train: usize) -> (Option<usize>, Option<usize>) {
-        if self.centers != Centers::Ols {
+        if self.centres != Centres::Ols {
             return (None, None);
         }
         let sel = self
@@ -514,19 +584,20 @@ impl FitSettings {
         (sel, cands)
     }
 
-    /// Checks the flag combination for `n_train` training rows and builds the params.
+    /// Checks the flag combination for `n_train` training rows of `dim` inputs and builds
+    /// the params.
     ///
     /// # Errors
-    /// [`SettingsError`]: a flag for another strategy, more centres than rows (or OLS
-    /// candidates), or parameters the library rejects (e.g. a negative ridge).
+    /// [`SettingsError`]: a flag for another strategy, more centres than the rows (or OLS
+    /// candidates) take, or parameters the library rejects (e.g. a negative ridge).
     ///
     /// ```
-    /// use rbf_cli::settings::{Centers, FitSettings};
-    /// let s = FitSettings { centers: Centers::All, tol: Some(0.01), ..FitSettings::default() };
-    /// assert_eq!(s.params(10).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
+    /// use rbf_cli::settings::{Centres, FitSettings};
+    /// let s = FitSettings { centres: Centres::All, tol: Some(0.01), ..FitSettings::default() };
+    /// assert_eq!(s.params(10, 1).unwrap_err().to_string(), "--tol applies to --centers ols only, not all");
     /// ```
-    pub fn params(&self, n_train: usize) -> Result<RbfValidParams, SettingsError> {
-        self.params_with_width(n_train, self.width.rule())
+    pub fn params(&self, n_train: usize, dim: usize) -> Result<RbfValidParams, SettingsError> {
+        self.params_with_width(n_train, dim, self.width.rule())
     }
 
     /// Whether `--width auto` is a search: with `--stop press|gcv` (and OLS) the width
@@ -539,7 +610,7 @@ impl FitSettings {
     /// assert!(FitSettings { stop: Some(StopArg::Press), ..FitSettings::default() }.searches_width());
     /// ```
     pub fn searches_width(&self) -> bool {
-        self.centers == Centers::Ols
+        self.centres == Centres::Ols
             && self.width == WidthArg::Auto
             && matches!(self.stop, Some(StopArg::Press | StopArg::Gcv))
     }
@@ -551,33 +622,40 @@ impl FitSettings {
     ///
     /// ```
     /// let s = rbf_cli::settings::FitSettings::default();
-    /// let p = s.params_with_width(100, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
+    /// let p = s.params_with_width(100, 3, rbf::WidthRule::MedianPairwise { scale: 2.0 }).unwrap();
     /// assert_eq!(p.width(), &rbf::WidthRule::MedianPairwise { scale: 2.0 });
     /// ```
     pub fn params_with_width(
         &self,
         n_train: usize,
+        dim: usize,
         width: WidthRule,
     ) -> Result<RbfValidParams, SettingsError> {
-        self.check_flags()?;
-        let k = self.n_centers_for(n_train);
-        let (selection_rows, candidates) = self.ols_rows(n_train);
-        if let Some(k) = k {
-            let (rows, what) = match candidates {
-                Some(m) if m < n_train => (m, "OLS candidates (--candidates)"),
-                _ => (n_train, "training rows"),
-            };
-            if k > rows {
-                return Err(SettingsError::TooManyCenters {
-                    centers: k,
-                    rows,
-                    what,
-                });
-            }
+        let params = self.build(n_train, width)?;
+        if let Some(k) = self.n_centres_for(n_train) {
+            check_centres(&params, k, n_train, dim, "training rows", "--max-centers")?;
         }
-        let k = k.unwrap_or(0);
-        let centres = match self.centers {
-            Centers::Ols => CentreSelection::Ols {
+        Ok(params)
+    }
+
+    /// The params for `n_train` training rows without comparing the number of centres
+    /// with any rows: for callers that check it against other rows themselves (`rbf cv`:
+    /// the smallest fold's) with [`check_centres`].
+    ///
+    /// # Errors
+    /// As [`FitSettings::params`], but for the number of centres.
+    ///
+    /// ```
+    /// let s = rbf_cli::settings::FitSettings { max_centres: Some(500), ..Default::default() };
+    /// assert!(s.build(10, rbf::WidthRule::default()).is_ok());
+    /// assert!(s.params(10, 1).is_err());
+    /// ```
+    pub fn build(&self, n_train: usize, width: WidthRule) -> Result<RbfValidParams, SettingsError> {
+        self.check_flags()?;
+        let k = self.n_centres_for(n_train).unwrap_or(0);
+        let (selection_rows, candidates) = self.ols_rows(n_train);
+        let centres = match self.centres {
+            Centres::Ols => CentreSelection::Ols {
                 max_centres: k,
                 tol: self.rho().unwrap_or(0.0),
                 regularisation: 0.0,
@@ -586,7 +664,7 @@ impl FitSettings {
                     None => Candidates::TrainingVectors,
                 },
             },
-            Centers::Kmeans => {
+            Centres::Kmeans => {
                 let mut s =
                     KMeansSettings::new(k).algorithm(self.kmeans_algorithm.unwrap_or_default());
                 if let Some(init) = self.kmeans_init {
@@ -597,8 +675,8 @@ impl FitSettings {
                 }
                 CentreSelection::KMeans(s)
             }
-            Centers::Random => CentreSelection::random(k),
-            Centers::All => CentreSelection::AllPoints,
+            Centres::Random => CentreSelection::random(k),
+            Centres::All => CentreSelection::AllPoints,
         };
         let mut params = RbfParams::new();
         if let Some(degree) = self.degree {
@@ -625,11 +703,11 @@ impl FitSettings {
                 Err(SettingsError::NotApplicable {
                     flag,
                     applies,
-                    centers: self.centers,
+                    centres: self.centres,
                 })
             }
         };
-        let ols = self.centers == Centers::Ols;
+        let ols = self.centres == Centres::Ols;
         only("--tol", "ols", ols || self.tol.is_none())?;
         only("--stop", "ols", ols || self.stop.is_none())?;
         let conflict = |a, b, what| Err(SettingsError::Conflict { a, b, what });
@@ -637,7 +715,7 @@ impl FitSettings {
             Some(StopArg::Err(_)) if self.tol.is_some() => {
                 return conflict("--stop err:RHO", "--tol", "OLS tolerance");
             }
-            Some(StopArg::K(_)) if self.max_centers.is_some() => {
+            Some(StopArg::K(_)) if self.max_centres.is_some() => {
                 return conflict("--stop k:K", "--max-centers", "number of centres");
             }
             _ => {}
@@ -652,9 +730,9 @@ impl FitSettings {
         only(
             "--kmeans-algorithm",
             "kmeans",
-            self.centers == Centers::Kmeans || self.kmeans_algorithm.is_none(),
+            self.centres == Centres::Kmeans || self.kmeans_algorithm.is_none(),
         )?;
-        let kmeans = self.centers == Centers::Kmeans;
+        let kmeans = self.centres == Centres::Kmeans;
         only(
             "--kmeans-init",
             "kmeans",
@@ -664,7 +742,7 @@ impl FitSettings {
         only(
             "--max-centers",
             "ols, kmeans and random",
-            self.centers != Centers::All || self.max_centers.is_none(),
+            self.centres != Centres::All || self.max_centres.is_none(),
         )
     }
 }

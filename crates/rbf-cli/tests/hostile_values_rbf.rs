@@ -180,7 +180,7 @@ fn csv_cells() {
             let bad = dir().join("cell.csv");
             std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
             let out = dir().join("cell-out");
-            for centers in ["ols", "kmeans", "all"] {
+            for centres in ["ols", "kmeans", "all"] {
                 let mut args = vec![
                     "fit",
                     "--data",
@@ -188,14 +188,14 @@ fn csv_cells() {
                     "--target",
                     "y",
                     "--centers",
-                    centers,
+                    centres,
                     "--quiet",
                     "--ridge",
                     "1e-6",
                     "--out",
                     s(&out),
                 ];
-                if centers != "all" {
+                if centres != "all" {
                     args.extend(["--max-centers", "5"]);
                 }
                 let r = BIN.check(&args);
@@ -390,12 +390,13 @@ fn a_gap_that_empties_a_fold_names_the_flags() {
 
 /// Counts and ridges outside their ranges are refused with the flag as typed
 /// and the valid range; no hint proposes "--max-centers ≤ 0" or a ridge of
-/// 1e302.
+/// 1e302. (clap names an aliased flag by its primary spelling: `--max-centres`,
+/// which is typed here.)
 #[test]
 fn flags_out_of_range_say_the_valid_range() {
     for (flag, v, range) in [
         ("--candidates", "0", "≥ 1"),
-        ("--max-centers", "0", "≥ 1"),
+        ("--max-centres", "0", "≥ 1"),
         ("--ridge", "1e302", "0 to 1e12"),
         ("--tol", "-1e308", "from 0 up to"),
         ("--width", "1e-308", "1e-100 to 1e100"),

@@ -6,6 +6,7 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 use serde::{Deserialize, Serialize};
 
 use crate::kernel::Kernel;
+use crate::widest::widest;
 
 /// Kernel widths β: one for every centre, or one per centre.
 ///
@@ -231,25 +232,24 @@ pub fn kernel_matrix_into(
     });
 }
 
-/// Squared distances D[i, j] = ‖x_i − c_j‖² (n × m) into `out`, by the product formula of
-/// [`kernel_matrix`] (the same code: one faer product after shifting both sets by the
-/// centres' mean, tiny negative results clamped to 0). k-means assigns samples with it.
-///
-/// # Panics
-/// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
-#[track_caller]
-pub(crate) fn squared_distances_into(
-    x: MatRef<'_, f64>,
-    centres: MatRef<'_, f64>,
-    out: MatMut<'_, f64>,
-    par: Par,
-) {
-    check_shapes(x, centres, (out.nrows(), out.ncols()));
-    product_tiles(x, centres, out, par, |_, col, xn, cn| {
+widest! {
+    /// v ← max(v + ‖x̃ᵢ‖² + ‖c̃‖², 0): a column of −2x̃·c̃ products made squared
+    /// distances (tiny negative results of the cancellation clamped).
+    fn add_norms(col: &mut [f64], xn: &[f64], cn: f64) {
         for (v, &xi) in col.iter_mut().zip(xn) {
             *v = (*v + xi + cn).max(0.0);
         }
-    });
+    }
+}
+
+widest! {
+    /// A column shifted, `dst = src − shift`, its squares added to the rows' norms.
+    fn shift_column(dst: &mut [f64], src: &[f64], shift: f64, norms: &mut [f64]) {
+        for ((v, &x), norm) in dst.iter_mut().zip(src).zip(norms.iter_mut()) {
+            *v = x - shift;
+            *norm += v.powi(2);
+        }
+    }
 }
 
 #[track_caller]
@@ -293,6 +293,56 @@ fn product_tiles(
     samples.tiles(cs.as_ref(), &cn, out, par, finish);
 }
 
+/// Squared distances D[i, j] = ‖x_i − c_j‖² by the product formula of [`kernel_matrix`]
+/// (the same code: one faer product after shifting both sets by the centres' mean, tiny
+/// negative results clamped to 0). k-means assigns samples with it, again and again for
+/// the same samples: the shifted copy of the samples is kept and refilled instead of
+/// allocated at every call (a fresh megabyte a call was page faults: the first fit of a
+/// process took twice as long as the next).
+pub(crate) struct Distances {
+    samples: Shifted,
+}
+
+impl Distances {
+    pub(crate) fn new() -> Self {
+        Self {
+            samples: Shifted {
+                xs: Mat::zeros(0, 0),
+                xn: Vec::new(),
+                shift: Vec::new(),
+            },
+        }
+    }
+
+    /// The distances of the rows of `x` to the rows of `centres` (n × m) into `out`.
+    ///
+    /// # Panics
+    /// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
+    #[track_caller]
+    pub(crate) fn fill(
+        &mut self,
+        x: MatRef<'_, f64>,
+        centres: MatRef<'_, f64>,
+        out: MatMut<'_, f64>,
+        par: Par,
+    ) {
+        check_shapes(x, centres, (out.nrows(), out.ncols()));
+        if x.nrows() == 0 || centres.nrows() == 0 {
+            return;
+        }
+        let (d, m) = (x.ncols(), centres.nrows());
+        let shift: Vec<f64> = (0..d)
+            .map(|k| (0..m).map(|j| centres[(j, k)]).sum::<f64>() / m as f64)
+            .collect();
+        self.samples.refill(x, shift);
+        let (cs, cn) = self.samples.centres(centres);
+        self.samples
+            .tiles(cs.as_ref(), &cn, out, par, |_, col, xn, cn| {
+                add_norms(col, xn, cn)
+            });
+    }
+}
+
 /// Samples shifted by a fixed point (the centres' mean), with their squared norms: the
 /// half of the product formula that does not depend on the centres.
 struct Shifted {
@@ -303,12 +353,40 @@ struct Shifted {
 
 impl Shifted {
     fn new(x: MatRef<'_, f64>, shift: Vec<f64>) -> Self {
+        let mut s = Self {
+            xs: Mat::zeros(0, 0),
+            xn: Vec::new(),
+            shift: Vec::new(),
+        };
+        s.refill(x, shift);
+        s
+    }
+
+    /// The samples `x` shifted by `shift`, into the buffers already held.
+    fn refill(&mut self, x: MatRef<'_, f64>, shift: Vec<f64>) {
         let (n, d) = (x.nrows(), x.ncols());
-        let xs = Mat::from_fn(n, d, |i, k| x[(i, k)] - shift[k]);
-        let xn: Vec<f64> = (0..n)
-            .map(|i| (0..d).map(|k| xs[(i, k)].powi(2)).sum())
-            .collect();
-        Self { xs, xn, shift }
+        if (self.xs.nrows(), self.xs.ncols()) != (n, d) {
+            self.xs = Mat::zeros(n, d);
+        }
+        // Column by column (contiguous); each row's squared norm still sums its columns
+        // in order from the first, as a row-wise sum would.
+        self.xn.clear();
+        self.xn.resize(n, 0.0);
+        let (xs, xn) = (&mut self.xs, &mut self.xn);
+        let mut copy = Vec::new();
+        for (k, &sk) in shift.iter().enumerate().take(d) {
+            let src = x.col(k);
+            let src = match src.try_as_col_major() {
+                Some(c) => c.as_slice(),
+                None => {
+                    copy.clear();
+                    copy.extend((0..n).map(|i| src[i]));
+                    &copy[..]
+                }
+            };
+            shift_column(xs.col_as_slice_mut(k), src, sk, xn);
+        }
+        self.shift = shift;
     }
 
     /// Centres shifted the same way, and their squared norms.
@@ -389,25 +467,14 @@ impl Shifted {
     }
 }
 
-/// v ← φ(v + xᵢ + c) for a column of −2x·c products: one monomorphised loop per kernel
-/// (the kernel match hoisted out) so that the compiler vectorises it, compiled twice —
-/// for the baseline x86-64 target (SSE2) and with AVX2, chosen at run time — because the
-/// Gaussian's exponential dominates the design-matrix cost and runs twice as fast on
-/// four lanes.
-fn apply_kernel(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2 (checked just above).
-        unsafe { apply_kernel_avx2(kernel, width, col, xn, cn) };
-        return;
+widest! {
+    /// v ← φ(v + xᵢ + c) for a column of −2x·c products: one monomorphised loop per
+    /// kernel (the kernel match hoisted out) so that the compiler vectorises it, at the
+    /// widest width the processor has, because the Gaussian's exponential dominates the
+    /// design-matrix cost (an element-by-element loop: the same bits at any width).
+    fn apply_kernel(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
+        apply_kernel_generic(kernel, width, col, xn, cn)
     }
-    apply_kernel_generic(kernel, width, col, xn, cn);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn apply_kernel_avx2(kernel: Kernel, width: f64, col: &mut [f64], xn: &[f64], cn: f64) {
-    apply_kernel_generic(kernel, width, col, xn, cn);
 }
 
 #[inline(always)]
@@ -483,7 +550,7 @@ mod tests {
             let c = random(m, d, off, 5);
             for par in [Par::Seq, Par::rayon(2)] {
                 let mut out = Mat::zeros(n, m);
-                squared_distances_into(x.as_ref(), c.as_ref(), out.as_mut(), par);
+                Distances::new().fill(x.as_ref(), c.as_ref(), out.as_mut(), par);
                 for i in 0..n {
                     for j in 0..m {
                         let want = (0..d).map(|t| (x[(i, t)] - c[(j, t)]).powi(2)).sum::<f64>();

@@ -57,6 +57,7 @@ pub mod neighbours;
 mod parallel;
 pub mod select;
 pub mod split;
+mod widest;
 pub mod width;
 
 pub use faer;
@@ -91,9 +92,9 @@ pub use select::kmeans::{
     UnknownKMeansInit,
 };
 pub use select::ols::{
-    CandidateColumns, OlsError, OlsOptions, OlsPath, OlsProgress, Pick, StopReason,
-    StreamPrecision, UnknownStreamPrecision, forward_select, forward_select_columns,
-    forward_select_owned,
+    CandidateColumns, OlsError, OlsOptions, OlsPath, OlsProgress, PassThreads, PassThreadsReason,
+    Pick, StopReason, StreamPrecision, UnknownStreamPrecision, forward_select,
+    forward_select_columns, forward_select_owned,
 };
 pub use width::{WidthError, WidthRule};
 

@@ -183,7 +183,8 @@ fn given_centres_over_caller_row_blocks_equal_the_whole_matrix_fit() {
             err,
             rbf::RbfError::FewerRowsThanCentres {
                 rows: 10,
-                centres: 20
+                centres: 20,
+                most: 9
             }
         ),
         "{err}"

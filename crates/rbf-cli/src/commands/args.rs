@@ -1,10 +1,12 @@
 //! The command-line flags. Names are a contract with scripts and the docs: keep them.
+//! `--centres` and `--max-centres` are spelt as the code spells centre; `--centers` and
+//! `--max-centers`, the spelling of earlier releases, stay as visible aliases.
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rbf::{KMeansAlgorithm, KMeansInit, Kernel, PolyTail};
-use rbf_cli::settings::{Centers, CvScheme, FitSettings, StopArg, WidthArg};
+use rbf_cli::settings::{Centres, CvScheme, FitSettings, StopArg, WidthArg};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
 #[derive(Debug, Parser)]
@@ -112,16 +114,16 @@ pub struct ModelArgs {
     /// weights), all (every training row; interpolation, or smoothing with --ridge).
     /// [default: ols]
     #[arg(
-        long,
-        visible_alias = "centres",
+        long = "centres",
+        visible_alias = "centers",
         value_name = "ols|kmeans|random|all",
         default_value = "ols"
     )]
-    pub centers: Centers,
+    pub centres: Centres,
     /// Number of centres: the most for ols (fewer if --tol stops it), exactly for kmeans
     /// and random [default: 50].
-    #[arg(long, visible_alias = "max-centres", value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
-    pub max_centers: Option<usize>,
+    #[arg(long = "max-centres", visible_alias = "max-centers", value_name = "K", value_parser = parse_count, allow_hyphen_values = true)]
+    pub max_centres: Option<usize>,
     /// kmeans only: whose Lloyd iterations follow the seeded k-means++ start — lloyd
     /// (the library's: distances by faer products, scikit-learn's update and stopping
     /// rule) or linfa (linfa-clustering's KMeans) [default: lloyd].
@@ -138,7 +140,7 @@ pub struct ModelArgs {
     pub n_init: Option<usize>,
     /// Polynomial tail: -1 none, 0 constant, 1 linear, 2 quadratic, on the inputs mapped
     /// to the unit box (scipy RBFInterpolator's degree); replaces the bias [default: a
-    /// constant on unscaled inputs; with --centers all the kernel's minimum degree].
+    /// constant on unscaled inputs; with --centres all the kernel's minimum degree].
     #[arg(
         long,
         value_name = "D",
@@ -164,11 +166,11 @@ pub struct ModelArgs {
     /// ols only: how many centres to keep — press (the least leave-one-out error along
     /// the selection path, from its orthogonal basis at no extra pass), gcv (the least
     /// generalised cross-validation score), err:RHO (as --tol RHO) or k:K (as
-    /// --max-centers K). With press or gcv, --max-centers bounds the path [default: a
-    /// tenth of the training rows, 10 to 200] [default: run to --max-centers].
+    /// --max-centres K). With press or gcv, --max-centres bounds the path [default: a
+    /// tenth of the training rows, 10 to 200] [default: run to --max-centres].
     #[arg(long, value_name = "press|gcv|err:RHO|k:K")]
     pub stop: Option<StopArg>,
-    /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centers].
+    /// ols only: stop once 1 − ΣERR < RHO [default: 0, run to --max-centres].
     #[arg(allow_negative_numbers = true, long, value_name = "RHO", value_parser = parse_tol, allow_hyphen_values = true)]
     pub tol: Option<f64>,
     /// Kernel: gaussian exp(−r²/β²), multiquadric, inverse-multiquadric,
@@ -188,7 +190,7 @@ pub struct ModelArgs {
         allow_hyphen_values = true
     )]
     pub width: WidthArg,
-    /// Ridge λ ≥ 0 on the kernel weights (with --centers all: added to the kernel
+    /// Ridge λ ≥ 0 on the kernel weights (with --centres all: added to the kernel
     /// matrix's diagonal, scipy's `smoothing`).
     #[arg(
         allow_negative_numbers = true,
@@ -216,8 +218,8 @@ pub struct ModelArgs {
 impl ModelArgs {
     pub fn settings(&self) -> FitSettings {
         FitSettings {
-            centers: self.centers,
-            max_centers: self.max_centers,
+            centres: self.centres,
+            max_centres: self.max_centres,
             candidates: self.candidates,
             selection_rows: self.selection_rows,
             ols_stream: self.ols_stream,
@@ -309,7 +311,7 @@ pub struct CvArgs {
         allow_hyphen_values = true
     )]
     pub widths: Vec<WidthArg>,
-    /// Numbers of centres to try [default: --max-centers].
+    /// Numbers of centres to try [default: --max-centres].
     #[arg(
         long,
         value_name = "K1,K2,...",

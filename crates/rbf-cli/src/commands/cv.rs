@@ -7,7 +7,7 @@ use rbf::{Grid, Sizes, grid_search};
 use rbf_cli::data;
 use rbf_cli::progress;
 use rbf_cli::report::{CvContext, CvOut};
-use rbf_cli::settings::{Centers, CvScheme};
+use rbf_cli::settings::{Centres, CvScheme, SettingsError, check_centres};
 use tabular::Table;
 
 use super::args::CvArgs;
@@ -18,18 +18,18 @@ pub fn run(a: CvArgs) -> Result<()> {
     if a.gap.is_some() && a.split != CvScheme::Blocked {
         bail!("--gap applies to --split blocked only");
     }
-    if !a.sizes.is_empty() && settings.centers == Centers::All {
+    if !a.sizes.is_empty() && settings.centres == Centres::All {
         bail!("--sizes applies to --centers ols, kmeans and random only, not all");
     }
-    if !a.tols.is_empty() && settings.centers != Centers::Ols {
+    if !a.tols.is_empty() && settings.centres != Centres::Ols {
         bail!(
             "--tols applies to --centers ols only, not {}",
-            settings.centers
+            settings.centres
         );
     }
     // The grid's largest size is the one the params must allow.
     if let Some(&k) = a.sizes.iter().max() {
-        settings.max_centers = Some(k);
+        settings.max_centres = Some(k);
     }
 
     let table = Table::read(&a.data.data)?;
@@ -47,11 +47,19 @@ pub fn run(a: CvArgs) -> Result<()> {
             table.len().max(2)
         );
     }
-    let params = settings.params(table.len())?;
+    // The number of centres is checked against the folds' training rows below.
+    let params = settings.build(table.len(), settings.width.rule())?;
 
     let gap = a.gap.unwrap_or(0);
     let split = a.split.split(a.folds, gap, settings.seed);
-    check_folds(&a, &split, gap, table.file(), table.len())?;
+    let needs = FoldNeeds {
+        a: &a,
+        centres: settings.n_centres_for(table.len()),
+        params: &params,
+        n: table.len(),
+        dim: inputs.len(),
+    };
+    needs.check(&split, gap, table.file())?;
     let grid = Grid {
         widths: a.widths.iter().map(|w| w.rule()).collect(),
         sizes: if !a.sizes.is_empty() {
@@ -100,39 +108,84 @@ pub fn run(a: CvArgs) -> Result<()> {
     Ok(())
 }
 
-/// Builds the folds once before any fitting, so that a split leaving a fold
-/// without training rows (a `--gap` that eats them) is said with the flags
-/// that caused it and the largest `--gap` that works.
-fn check_folds(a: &CvArgs, split: &rbf::Split, gap: usize, file: &str, n: usize) -> Result<()> {
-    let Err(e) = split.folds(n) else {
-        return Ok(());
-    };
-    let rbf::SplitError::EmptyFold {
-        fold,
-        train,
-        validation,
-        ..
-    } = e
-    else {
-        bail!("--split {} --folds {}: {e}", a.split.name(), a.folds);
-    };
-    let what = if train == 0 { "training" } else { "validation" };
-    // The largest gap that leaves every fold rows on both sides: the split is
-    // monotone in the gap, so bisect (log n splits of n indices each).
-    let works = |g: usize| a.split.split(a.folds, g, 0).folds(n).is_ok();
-    let fix = if a.split == CvScheme::Blocked && works(0) {
-        let (mut lo, mut hi) = (0, gap);
-        while hi - lo > 1 {
-            let mid = lo + (hi - lo) / 2;
-            if works(mid) { lo = mid } else { hi = mid }
+/// What the folds of `rbf cv` must allow, checked once before any fitting so that a
+/// refusal names the flags that caused it with values that work: rows on both sides of
+/// every fold, and as many centres as the grid asks for in the smallest fold's training
+/// rows (every fold fits on its own: the whole file's row count, proposed before,
+/// failed in the folds).
+struct FoldNeeds<'a> {
+    a: &'a CvArgs,
+    /// Centres the grid asks for (none with `--centres all`).
+    centres: Option<usize>,
+    params: &'a rbf::RbfValidParams,
+    /// Data rows.
+    n: usize,
+    /// Inputs.
+    dim: usize,
+}
+
+impl FoldNeeds<'_> {
+    /// The number of centres against the smallest fold's training rows.
+    fn centres_fit(&self, folds: &[rbf::Fold]) -> Result<(), SettingsError> {
+        let Some(k) = self.centres else {
+            return Ok(());
+        };
+        let fewest = folds.iter().map(|f| f.train.len()).min().unwrap_or(0);
+        let flag = if self.a.sizes.is_empty() {
+            "--max-centers"
+        } else {
+            "--sizes"
+        };
+        let what = "training rows in the smallest fold";
+        check_centres(self.params, k, fewest, self.dim, what, flag)
+    }
+
+    /// Whether `--gap gap` leaves every fold rows on both sides and enough training
+    /// rows for the centres.
+    fn works(&self, gap: usize) -> bool {
+        let split = self.a.split.split(self.a.folds, gap, 0);
+        split
+            .folds(self.n)
+            .is_ok_and(|folds| self.centres_fit(&folds).is_ok())
+    }
+
+    fn check(&self, split: &rbf::Split, gap: usize, file: &str) -> Result<()> {
+        match split.folds(self.n) {
+            Ok(folds) => Ok(self.centres_fit(&folds)?),
+            Err(e) => self.empty_fold(e, gap, file),
         }
-        format!("use --gap {lo} or less (or fewer --folds)")
-    } else {
-        "use fewer --folds".to_string()
-    };
-    bail!(
-        "--split {} --folds {} --gap {gap}: fold {fold} of {file}'s {n} data rows would have no {what} rows ({train} training, {validation} validation); {fix}",
-        a.split.name(),
-        a.folds,
-    )
+    }
+
+    /// A split that leaves a fold without training or validation rows (a `--gap` that
+    /// eats them), said with the largest `--gap` that works.
+    fn empty_fold(&self, e: rbf::SplitError, gap: usize, file: &str) -> Result<()> {
+        let (a, n) = (self.a, self.n);
+        let rbf::SplitError::EmptyFold {
+            fold,
+            train,
+            validation,
+            ..
+        } = e
+        else {
+            bail!("--split {} --folds {}: {e}", a.split.name(), a.folds);
+        };
+        let what = if train == 0 { "training" } else { "validation" };
+        // The largest gap that works: the folds shrink as the gap grows, so bisect
+        // (log n splits of n indices each).
+        let fix = if a.split == CvScheme::Blocked && self.works(0) {
+            let (mut lo, mut hi) = (0, gap);
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if self.works(mid) { lo = mid } else { hi = mid }
+            }
+            format!("use --gap {lo} or less (or fewer --folds)")
+        } else {
+            "use fewer --folds".to_string()
+        };
+        bail!(
+            "--split {} --folds {} --gap {gap}: fold {fold} of {file}'s {n} data rows would have no {what} rows ({train} training, {validation} validation); {fix}",
+            a.split.name(),
+            a.folds,
+        )
+    }
 }

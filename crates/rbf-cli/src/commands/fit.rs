@@ -32,7 +32,7 @@ pub fn run(a: FitArgs) -> Result<()> {
         anyhow::bail!("{}: no data rows to train on", table.file());
     }
     let settings = a.model.settings();
-    let params = settings.params(rows.train.len())?;
+    let params = settings.params(rows.train.len(), inputs.len())?;
 
     let TrainVal { train, val } = rows;
     let (xt, yt) = (
@@ -120,7 +120,11 @@ fn search_width(
     let mut best: Option<(f64, rbf::RbfModel)> = None;
     let mut last_err = None;
     for scale in WIDTH_GRID {
-        let p = settings.params_with_width(x.nrows(), rbf::WidthRule::MedianPairwise { scale })?;
+        let p = settings.params_with_width(
+            x.nrows(),
+            x.ncols(),
+            rbf::WidthRule::MedianPairwise { scale },
+        )?;
         let m = match p.fit_with_progress(x, no_linear.as_ref(), y, observe) {
             Ok(m) => m,
             Err(e) => {

@@ -159,7 +159,8 @@ pub struct PointJson {
     /// Mean of the validation scores over the folds.
     pub mean: Option<ScoresJson>,
     /// Centres asked for, if the grid gives sizes.
-    pub n_centers: Option<usize>,
+    #[serde(rename = "n_centers")]
+    pub n_centres: Option<usize>,
     /// Ridge λ.
     pub ridge: f64,
     /// Standard deviation of the validation scores over the folds.
@@ -185,7 +186,7 @@ impl From<&GridPoint> for PointJson {
             error,
             folds,
             mean,
-            n_centers: p.n_centres,
+            n_centres: p.n_centres,
             ridge: p.ridge,
             std,
             tol: p.tol,
@@ -194,8 +195,9 @@ impl From<&GridPoint> for PointJson {
     }
 }
 
-/// What `rbf cv --json` prints, borrowed from a [`CvOut`]. Fields in alphabetical
-/// order, the order of the keys (see the [module](super) doc).
+/// What `rbf cv --json` prints, borrowed from a [`CvOut`]. Fields in the alphabetical
+/// order of their keys, the order of the keys (see the [module](super) doc; `centres`
+/// prints as the key `centers`, a contract).
 ///
 /// ```
 /// let g = rbf::GridReport { points: vec![], best: None };
@@ -206,7 +208,8 @@ impl From<&GridPoint> for PointJson {
 pub struct CvJson<'a> {
     best: Option<usize>,
     best_point: Option<&'a PointJson>,
-    centers: &'static str,
+    #[serde(rename = "centers")]
+    centres: &'static str,
     command: &'static str,
     data: &'a str,
     dim: usize,
@@ -288,7 +291,7 @@ impl<'a> CvOut<'a> {
         CvJson {
             best: self.grid.best,
             best_point: self.grid.best.map(|i| &self.points[i]),
-            centers: c.settings.centers.name(),
+            centres: c.settings.centres.name(),
             command: "cv",
             data: &c.data,
             dim: c.inputs.len(),
@@ -331,7 +334,7 @@ impl<'a> CvOut<'a> {
             c.data,
             c.inputs.len(),
             c.target,
-            c.settings.centers,
+            c.settings.centres,
             c.settings.kernel,
             c.seconds
         );
@@ -346,7 +349,7 @@ impl<'a> CvOut<'a> {
                 out,
                 "  {mark} {:>10} {:>8} {:>8} {:>10}  ",
                 width_cell(p.width),
-                cell(p.n_centers),
+                cell(p.n_centres),
                 cell(p.tol),
                 cell(Some(p.ridge))
             );
@@ -374,8 +377,8 @@ impl<'a> CvOut<'a> {
         };
         let p = &self.points[b];
         let mut point = vec![format!("width {}", width_cell(p.width))];
-        if p.n_centers.is_some() {
-            point.push(format!("{} centres", cell(p.n_centers)));
+        if p.n_centres.is_some() {
+            point.push(format!("{} centres", cell(p.n_centres)));
         }
         if p.tol.is_some() {
             point.push(format!("tol {}", cell(p.tol)));

@@ -146,11 +146,13 @@ struct ModelFacts {
     /// The least and largest β of per-centre widths (`None` for a uniform width).
     width_range: Option<(f64, f64)>,
     condition: Option<f64>,
-    n_centers: usize,
+    n_centres: usize,
     dim: usize,
     bias: Option<f64>,
     /// PRESS and GCV along the OLS path (empty without them).
     criterion: Vec<CriterionOut>,
+    /// The threads the OLS passes ran on and why (OLS only).
+    pass_threads: Option<(usize, String)>,
 }
 
 /// The report of `rbf fit`.
@@ -174,8 +176,9 @@ pub struct FitReport {
     ols: Option<OlsOut>,
 }
 
-/// What `rbf fit --json` prints, borrowed from a [`FitReport`]. Fields in alphabetical
-/// order, the order of the keys (see the [module](super) doc); a key marked "absent"
+/// What `rbf fit --json` prints, borrowed from a [`FitReport`]. Fields in the
+/// alphabetical order of their keys, the order of the keys (see the [module](super) doc;
+/// `centres` prints as the key `centers`, a contract); a key marked "absent"
 /// is left out, not `null`, as scripts have always seen it.
 ///
 /// ```
@@ -188,7 +191,8 @@ pub struct FitReport {
 pub struct FitJson<'a> {
     bias: Option<f64>,
     candidates: Option<usize>,
-    centers: &'static str,
+    #[serde(rename = "centers")]
+    centres: &'static str,
     command: &'static str,
     condition: Option<f64>,
     /// Absent without PRESS and GCV along an OLS path.
@@ -200,9 +204,11 @@ pub struct FitJson<'a> {
     inputs: &'a [String],
     kernel: &'static str,
     kmeans_algorithm: Option<&'static str>,
-    max_centers: Option<usize>,
+    #[serde(rename = "max_centers")]
+    max_centres: Option<usize>,
     model: &'a str,
-    n_centers: usize,
+    #[serde(rename = "n_centers")]
+    n_centres: usize,
     n_train: usize,
     n_val: usize,
     ols: Option<&'a OlsOut>,
@@ -219,6 +225,11 @@ pub struct FitJson<'a> {
     stop: Option<String>,
     target: &'a str,
     threads: usize,
+    /// Why the OLS passes ran on `threads_used` threads (null for other centres).
+    threads_reason: Option<&'a str>,
+    /// The threads the OLS passes ran on: the library keeps the parallelism asked for
+    /// only where it makes them faster (null for other centres).
+    threads_used: Option<usize>,
     tol: Option<f64>,
     train_nmse: Option<f64>,
     train_rmse: Option<f64>,
@@ -277,13 +288,14 @@ impl FitReport {
             width,
             width_range,
             condition: finite(model.condition()),
-            n_centers: model.n_centres(),
+            n_centres: model.n_centres(),
             dim: model.dim(),
             bias: model.bias().map(|b| b[0]),
             criterion: model
                 .selection()
                 .map(|s| s.criterion.iter().map(CriterionOut::from).collect())
                 .unwrap_or_default(),
+            pass_threads: model.pass_threads().map(|t| (t.threads, t.to_string())),
         };
         let ols = model.selection().map(|s| OlsOut {
             forced_errs: s.forced_errs.clone(),
@@ -332,7 +344,7 @@ impl FitReport {
         FitJson {
             bias: f.bias,
             candidates: s.candidates,
-            centers: s.centers.name(),
+            centres: s.centres.name(),
             command: "fit",
             condition: f.condition,
             criterion: &f.criterion,
@@ -342,9 +354,9 @@ impl FitReport {
             inputs: &c.inputs,
             kernel: f.kernel,
             kmeans_algorithm: kmeans_algorithm(s),
-            max_centers: s.n_centers_for(c.train_rows.len()),
+            max_centres: s.n_centres_for(c.train_rows.len()),
             model: &c.out,
-            n_centers: f.n_centers,
+            n_centres: f.n_centres,
             n_train: c.train_rows.len(),
             n_val: c.n_val,
             ols: self.ols.as_ref(),
@@ -364,6 +376,8 @@ impl FitReport {
             stop: s.stop.map(|v| v.name()),
             target: &c.target,
             threads: c.threads,
+            threads_reason: f.pass_threads.as_ref().map(|t| t.1.as_str()),
+            threads_used: f.pass_threads.as_ref().map(|t| t.0),
             tol: s.tol,
             train_nmse: finite(c.train.nmse),
             train_rmse: finite(c.train.rmse),
@@ -409,8 +423,8 @@ impl FitReport {
         let _ = writeln!(
             out,
             "  {} centres ({}{}), {} kernel, width {} ({}), ridge {}{}",
-            f.n_centers,
-            s.centers,
+            f.n_centres,
+            s.centres,
             kmeans_algorithm(s).map_or(String::new(), |a| format!(", {a}")),
             s.kernel,
             width,

@@ -33,19 +33,19 @@ pub use fit::{
 };
 pub use predict::PredictJson;
 
-use crate::settings::{Centers, FitSettings};
+use crate::settings::{Centres, FitSettings};
 
 /// The k-means algorithm that ran (`--kmeans-algorithm`, or the library's default),
 /// for k-means fits only.
 ///
 /// ```
-/// use rbf_cli::settings::{Centers, FitSettings};
-/// let s = FitSettings { centers: Centers::Kmeans, ..FitSettings::default() };
+/// use rbf_cli::settings::{Centres, FitSettings};
+/// let s = FitSettings { centres: Centres::Kmeans, ..FitSettings::default() };
 /// assert_eq!(rbf_cli::report::kmeans_algorithm(&s), Some("lloyd"));
 /// assert_eq!(rbf_cli::report::kmeans_algorithm(&FitSettings::default()), None);
 /// ```
 pub fn kmeans_algorithm(s: &FitSettings) -> Option<&'static str> {
-    (s.centers == Centers::Kmeans).then(|| s.kmeans_algorithm.unwrap_or_default().name())
+    (s.centres == Centres::Kmeans).then(|| s.kmeans_algorithm.unwrap_or_default().name())
 }
 
 /// A score as JSON: `None` (printed `null`) when it is undefined (NaN) or infinite.

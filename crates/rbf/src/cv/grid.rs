@@ -193,28 +193,7 @@ pub fn grid_search_with_linear(
     assert_eq!(x.nrows(), y.nrows(), "x and y row counts differ");
     assert_eq!(x.nrows(), z.nrows(), "x and z row counts differ");
     let folds = split.folds(x.nrows())?;
-    let is_ols = matches!(params.centres(), CentreSelection::Ols { .. });
-    if matches!(grid.sizes, Sizes::Tolerances(_)) && !is_ols {
-        return Err(RbfError::GridMismatch {
-            reason: "tolerance grids need OLS centre selection",
-        });
-    }
-    let widths: Vec<WidthRule> = if grid.widths.is_empty() {
-        vec![params.width().clone()]
-    } else {
-        grid.widths.clone()
-    };
-    let ridges: Vec<f64> = if grid.ridges.is_empty() {
-        vec![params.ridge()]
-    } else {
-        grid.ridges.clone()
-    };
-    // (n_centres, tol) per size
-    let sizes: Vec<(Option<usize>, Option<f64>)> = match &grid.sizes {
-        Sizes::Default => vec![(None, None)],
-        Sizes::Centres(v) => v.iter().map(|&k| (Some(k), None)).collect(),
-        Sizes::Tolerances(v) => v.iter().map(|&t| (None, Some(t))).collect(),
-    };
+    let axes = Axes::of(params, grid)?;
     let parts: Vec<(Part, Part)> = folds
         .iter()
         .map(|f| {
@@ -225,137 +204,185 @@ pub fn grid_search_with_linear(
         })
         .collect();
 
-    let mut points = Vec::with_capacity(widths.len() * sizes.len() * ridges.len());
-    for width in &widths {
+    let mut points = Vec::with_capacity(axes.widths.len() * axes.sizes.len() * axes.ridges.len());
+    for width in &axes.widths {
         let pw = params.with_width(width.clone());
-        // results[size][ridge] accumulates fold reports or the first error
-        let mut results: Vec<Vec<Result<Vec<FoldReport>, RbfError>>> = sizes
-            .iter()
-            .map(|_| ridges.iter().map(|_| Ok(Vec::new())).collect())
-            .collect();
-        let mut record = |s: usize, r: usize, rep: Result<FoldReport, RbfError>| {
-            let slot = &mut results[s][r];
-            if let Ok(v) = slot {
-                match rep {
-                    Ok(f) => v.push(f),
-                    Err(e) => *slot = Err(e),
-                }
-            }
-        };
+        let mut results = Results::new(axes.sizes.len(), axes.ridges.len());
         for (train, val) in &parts {
-            if let CentreSelection::Ols {
-                max_centres, tol, ..
-            } = pw.centres()
-            {
-                let k_max = sizes
-                    .iter()
-                    .filter_map(|s| s.0)
-                    .max()
-                    .unwrap_or(*max_centres);
-                // The smallest ρ asked for runs longest; every larger ρ is a prefix.
-                let rho = sizes
-                    .iter()
-                    .filter_map(|s| s.1)
-                    .reduce(f64::min)
-                    .unwrap_or(*tol);
-                match OlsStage::run(
-                    &pw,
-                    train.x.as_ref(),
-                    train.z.as_ref(),
-                    train.y.as_ref(),
-                    k_max,
-                    rho,
-                    None,
-                ) {
-                    Ok(stage) => {
-                        for (si, &(nc, t)) in sizes.iter().enumerate() {
-                            let path = stage.path();
-                            let k = match (nc, t) {
-                                (Some(k), _) => k.min(path.len()),
-                                (None, Some(t)) => path.terms_for_tol(t),
-                                (None, None) => path.len(),
-                            };
-                            for (ri, &ridge) in ridges.iter().enumerate() {
-                                let rep = stage
-                                    .model(&pw, k, ridge, train.y.as_ref())
-                                    .map(|m| fold_report(&m, train, val));
-                                record(si, ri, rep);
-                            }
-                        }
-                    }
-                    Err(e) => {
-                        let msg = e.to_string();
-                        for si in 0..sizes.len() {
-                            for ri in 0..ridges.len() {
-                                record(
-                                    si,
-                                    ri,
-                                    Err(RbfError::FoldFailed {
-                                        reason: msg.clone(),
-                                    }),
-                                );
-                            }
-                        }
-                    }
-                }
+            if matches!(pw.centres(), CentreSelection::Ols { .. }) {
+                ols_fold(&pw, &axes, train, val, &mut results);
             } else {
-                for (si, &(nc, _)) in sizes.iter().enumerate() {
-                    let ps = match (nc, pw.centres()) {
-                        (Some(k), CentreSelection::KMeans(s)) => {
-                            pw.with_centres(CentreSelection::KMeans(
-                                crate::select::kmeans::KMeansSettings { n_centres: k, ..*s },
-                            ))
-                        }
-                        (Some(k), CentreSelection::Random { .. }) => {
-                            pw.with_centres(CentreSelection::Random { n_centres: k })
-                        }
-                        _ => pw.clone(),
-                    };
-                    match ps.fit_ridges(
-                        train.x.as_ref(),
-                        train.z.as_ref(),
-                        train.y.as_ref(),
-                        &ridges,
-                    ) {
-                        Ok(models) => {
-                            for (ri, m) in models.into_iter().enumerate() {
-                                record(si, ri, m.map(|m| fold_report(&m, train, val)));
-                            }
-                        }
-                        Err(e) => {
-                            let msg = e.to_string();
-                            for ri in 0..ridges.len() {
-                                record(
-                                    si,
-                                    ri,
-                                    Err(RbfError::FoldFailed {
-                                        reason: msg.clone(),
-                                    }),
-                                );
-                            }
-                        }
-                    }
-                }
+                fixed_fold(&pw, &axes, train, val, &mut results);
             }
         }
-        for (si, row) in results.into_iter().enumerate() {
+        results.into_points(width, &axes, &mut points);
+    }
+    let best = best_point(&points);
+    Ok(GridReport { points, best })
+}
+
+/// The grid's axes, with the params' own width and ridge where the grid gives none.
+struct Axes {
+    widths: Vec<WidthRule>,
+    /// (n_centres, tol) per size.
+    sizes: Vec<(Option<usize>, Option<f64>)>,
+    ridges: Vec<f64>,
+}
+
+impl Axes {
+    fn of(params: &RbfValidParams, grid: &Grid) -> Result<Self, RbfError> {
+        let is_ols = matches!(params.centres(), CentreSelection::Ols { .. });
+        if matches!(grid.sizes, Sizes::Tolerances(_)) && !is_ols {
+            return Err(RbfError::GridMismatch {
+                reason: "tolerance grids need OLS centre selection",
+            });
+        }
+        let widths = if grid.widths.is_empty() {
+            vec![params.width().clone()]
+        } else {
+            grid.widths.clone()
+        };
+        let ridges = if grid.ridges.is_empty() {
+            vec![params.ridge()]
+        } else {
+            grid.ridges.clone()
+        };
+        let sizes = match &grid.sizes {
+            Sizes::Default => vec![(None, None)],
+            Sizes::Centres(v) => v.iter().map(|&k| (Some(k), None)).collect(),
+            Sizes::Tolerances(v) => v.iter().map(|&t| (None, Some(t))).collect(),
+        };
+        Ok(Self {
+            widths,
+            sizes,
+            ridges,
+        })
+    }
+}
+
+/// The fold reports of one width: `[size][ridge]`, or the first error of that point.
+struct Results(Vec<Vec<Result<Vec<FoldReport>, RbfError>>>);
+
+impl Results {
+    fn new(sizes: usize, ridges: usize) -> Self {
+        Self(
+            (0..sizes)
+                .map(|_| (0..ridges).map(|_| Ok(Vec::new())).collect())
+                .collect(),
+        )
+    }
+
+    fn record(&mut self, s: usize, r: usize, rep: Result<FoldReport, RbfError>) {
+        let slot = &mut self.0[s][r];
+        if let Ok(v) = slot {
+            match rep {
+                Ok(f) => v.push(f),
+                Err(e) => *slot = Err(e),
+            }
+        }
+    }
+
+    /// A fold whose fit failed fails every ridge of the sizes `sizes`.
+    fn fail(&mut self, sizes: std::ops::Range<usize>, e: &RbfError) {
+        let msg = e.to_string();
+        for si in sizes {
+            for ri in 0..self.0[si].len() {
+                let reason = msg.clone();
+                self.record(si, ri, Err(RbfError::FoldFailed { reason }));
+            }
+        }
+    }
+
+    /// The grid points of `width`, in size then ridge order.
+    fn into_points(self, width: &WidthRule, axes: &Axes, points: &mut Vec<GridPoint>) {
+        for (si, row) in self.0.into_iter().enumerate() {
             for (ri, res) in row.into_iter().enumerate() {
                 points.push(GridPoint {
                     width: width.clone(),
-                    n_centres: sizes[si].0,
-                    tol: sizes[si].1,
-                    ridge: ridges[ri],
+                    n_centres: axes.sizes[si].0,
+                    tol: axes.sizes[si].1,
+                    ridge: axes.ridges[ri],
                     result: res.map(CvReport::from_folds),
                 });
             }
         }
     }
-    let best = points
+}
+
+/// One fold with OLS: one forward selection up to the largest size (or smallest ρ),
+/// every size read off its path, the weights re-solved per ridge.
+fn ols_fold(pw: &RbfValidParams, axes: &Axes, train: &Part, val: &Part, results: &mut Results) {
+    let CentreSelection::Ols {
+        max_centres, tol, ..
+    } = pw.centres()
+    else {
+        unreachable!("called for OLS params only");
+    };
+    let sizes = &axes.sizes;
+    let k_max = sizes
+        .iter()
+        .filter_map(|s| s.0)
+        .max()
+        .unwrap_or(*max_centres);
+    // The smallest ρ asked for runs longest; every larger ρ is a prefix.
+    let rho = sizes
+        .iter()
+        .filter_map(|s| s.1)
+        .reduce(f64::min)
+        .unwrap_or(*tol);
+    let (tx, tz, ty) = (train.x.as_ref(), train.z.as_ref(), train.y.as_ref());
+    let stage = match OlsStage::run(pw, tx, tz, ty, k_max, rho, None) {
+        Ok(stage) => stage,
+        Err(e) => return results.fail(0..sizes.len(), &e),
+    };
+    for (si, &(nc, t)) in sizes.iter().enumerate() {
+        let path = stage.path();
+        let k = match (nc, t) {
+            (Some(k), _) => k.min(path.len()),
+            (None, Some(t)) => path.terms_for_tol(t),
+            (None, None) => path.len(),
+        };
+        for (ri, &ridge) in axes.ridges.iter().enumerate() {
+            let rep = stage
+                .model(pw, k, ridge, ty)
+                .map(|m| fold_report(&m, train, val));
+            results.record(si, ri, rep);
+        }
+    }
+}
+
+/// One fold with k-means, random or given centres: the centres once per size, the
+/// weights per ridge.
+fn fixed_fold(pw: &RbfValidParams, axes: &Axes, train: &Part, val: &Part, results: &mut Results) {
+    for (si, &(nc, _)) in axes.sizes.iter().enumerate() {
+        let ps = match (nc, pw.centres()) {
+            (Some(k), CentreSelection::KMeans(s)) => pw.with_centres(CentreSelection::KMeans(
+                crate::select::kmeans::KMeansSettings { n_centres: k, ..*s },
+            )),
+            (Some(k), CentreSelection::Random { .. }) => {
+                pw.with_centres(CentreSelection::Random { n_centres: k })
+            }
+            _ => pw.clone(),
+        };
+        let (tx, tz, ty) = (train.x.as_ref(), train.z.as_ref(), train.y.as_ref());
+        match ps.fit_ridges(tx, tz, ty, &axes.ridges) {
+            Ok(models) => {
+                for (ri, m) in models.into_iter().enumerate() {
+                    results.record(si, ri, m.map(|m| fold_report(&m, train, val)));
+                }
+            }
+            Err(e) => results.fail(si..si + 1, &e),
+        }
+    }
+}
+
+/// The point of lowest finite mean validation NMSE among those that succeeded.
+fn best_point(points: &[GridPoint]) -> Option<usize> {
+    points
         .iter()
         .enumerate()
         .filter_map(|(i, p)| p.result.as_ref().ok().map(|r| (i, r.mean.nmse)))
         .filter(|(_, v)| v.is_finite())
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(i, _)| i);
-    Ok(GridReport { points, best })
+        .map(|(i, _)| i)
 }

@@ -18,11 +18,12 @@ use faer::linalg::householder as hh;
 use faer::linalg::qr::col_pivoting::factor as cpqr;
 use faer::linalg::qr::no_pivoting::factor::recommended_block_size;
 use faer::linalg::triangular_solve::solve_upper_triangular_in_place;
-use faer::{Conj, Mat, MatRef, Par};
+use faer::prelude::ReborrowMut;
+use faer::{Conj, Mat, MatMut, MatRef, Par};
 
 use super::condition::inverse_one_norm;
-use super::errors::SolveError;
-use super::lstsq::DEFAULT_MAX_CONDITION;
+use super::error::SolveError;
+use super::lstsq::{DEFAULT_MAX_CONDITION, pivoted_rank, rank_deficient};
 use crate::check::first_non_finite;
 
 /// Options of [`interpolate`].
@@ -108,6 +109,63 @@ pub fn interpolate(
     y: MatRef<'_, f64>,
     options: &InterpolationOptions,
 ) -> Result<Interpolation, SolveError> {
+    check_inputs(phi.as_ref(), poly, y, options)?;
+    let (n, p, q, par) = (phi.nrows(), poly.ncols(), y.ncols(), options.par);
+    let sigma = options.sign;
+
+    // M = σΦ + λI, in place.
+    let mut m = phi;
+    definite_form(m.as_mut(), sigma, options.smoothing);
+    let mut rhs = Mat::from_fn(n, q, |i, k| sigma * y[(i, k)]);
+
+    let bs = recommended_block_size::<f64>(n, p.max(1)).max(1);
+    let mut mem = MemBuffer::new(scratch(n, p, q, bs, par));
+    let stack = MemStack::new(&mut mem);
+    let tail_qr = TailQr::factor(poly, bs, par, stack)?;
+    if let Some(t) = &tail_qr {
+        t.project(m.as_mut(), rhs.as_mut(), par, stack);
+    }
+
+    // Cholesky of the trailing block G₂₂ (its lower triangle; G is symmetric).
+    let k = n - p;
+    cholesky_trailing(m.as_mut().submatrix_mut(p, p, k, k), par, stack)?;
+    let l = m.as_ref().submatrix(p, p, k, k);
+    let condition = llt_condition(l);
+    if condition.is_nan() || condition > options.max_condition {
+        return Err(SolveError::IllConditioned {
+            condition,
+            limit: options.max_condition,
+        });
+    }
+
+    // α from L Lᵀ α = (Qᵀσy)₂.
+    let mut alpha = rhs.as_ref().subrows(p, k).to_owned();
+    llt_solve(l, Conj::No, alpha.as_mut(), par, stack);
+
+    let mut tail = Mat::<f64>::zeros(p, q);
+    // a = Q [0; α].
+    let mut weights = Mat::<f64>::zeros(n, q);
+    weights.as_mut().subrows_mut(p, k).copy_from(alpha.as_ref());
+    if let Some(t) = &tail_qr {
+        let g12 = m.as_ref().submatrix(0, p, p, k);
+        t.coefficients(g12, rhs.as_ref(), alpha.as_ref(), sigma, tail.as_mut(), par);
+        t.apply_q(weights.as_mut(), par, stack);
+    }
+    Ok(Interpolation {
+        weights,
+        tail,
+        condition,
+    })
+}
+
+/// Shapes (programmer errors: panics), the smoothing, finite entries and p < N.
+#[track_caller]
+fn check_inputs(
+    phi: MatRef<'_, f64>,
+    poly: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+    options: &InterpolationOptions,
+) -> Result<(), SolveError> {
     let n = phi.nrows();
     assert_eq!(phi.ncols(), n, "the kernel matrix must be square");
     assert_eq!(poly.nrows(), n, "tail rows must match the kernel matrix");
@@ -122,11 +180,7 @@ pub fn interpolate(
             value: options.smoothing,
         });
     }
-    for (name, m) in [
-        ("kernel matrix", phi.as_ref()),
-        ("tail", poly),
-        ("targets", y),
-    ] {
+    for (name, m) in [("kernel matrix", phi), ("tail", poly), ("targets", y)] {
         if let Some((row, col)) = first_non_finite(m) {
             return Err(SolveError::NonFinite {
                 matrix: name,
@@ -135,32 +189,29 @@ pub fn interpolate(
             });
         }
     }
-    let (p, q, par) = (poly.ncols(), y.ncols(), options.par);
+    let p = poly.ncols();
     if p >= n && n > 0 {
         return Err(SolveError::Underdetermined {
             rows: n,
             columns: n + p,
         });
     }
-    let sigma = options.sign;
+    Ok(())
+}
 
-    // M = σΦ + λI, in place.
-    let mut m = phi;
-    for j in 0..n {
-        for i in 0..n {
+/// M ← σM + λI: the definite form of the kernel matrix, smoothed.
+fn definite_form(mut m: MatMut<'_, f64>, sigma: f64, smoothing: f64) {
+    for j in 0..m.ncols() {
+        for i in 0..m.nrows() {
             m[(i, j)] *= sigma;
         }
-        m[(j, j)] += options.smoothing;
+        m[(j, j)] += smoothing;
     }
-    let mut rhs = Mat::from_fn(n, q, |i, k| sigma * y[(i, k)]);
+}
 
-    // Householder QR of the tail, with pivoting so that dependence is detected.
-    let mut pq = poly.to_owned();
-    let bs = recommended_block_size::<f64>(n, p.max(1)).max(1);
-    let mut h = Mat::<f64>::zeros(bs, p.min(n));
-    let mut fwd = vec![0usize; p];
-    let mut inv = vec![0usize; p];
-    let mut mem = MemBuffer::new(StackReq::any_of(&[
+/// The workspace of every step: the tail's QR, applying its reflections, Cholesky.
+fn scratch(n: usize, p: usize, q: usize, bs: usize, par: Par) -> StackReq {
+    StackReq::any_of(&[
         cpqr::qr_in_place_scratch::<usize, f64>(n, p, bs, par, Default::default()),
         hh::apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<f64>(
             n,
@@ -170,10 +221,36 @@ pub fn interpolate(
         hh::apply_block_householder_sequence_on_the_right_in_place_scratch::<f64>(n, bs, n),
         hh::apply_block_householder_sequence_on_the_left_in_place_scratch::<f64>(n, bs, q),
         cholesky_in_place_scratch::<f64>(n, par, Default::default()),
-    ]));
-    let stack = MemStack::new(&mut mem);
-    let mut perm_fwd = Vec::new();
-    if p > 0 {
+    ])
+}
+
+/// The tail columns P = Q [R; 0] Πᵀ: Householder QR with column pivoting, so that
+/// dependent columns are detected.
+struct TailQr {
+    /// The reflections below the diagonal, R above.
+    pq: Mat<f64>,
+    /// The block reflectors' factors.
+    h: Mat<f64>,
+    /// Π: the original column of each pivoted position.
+    perm_fwd: Vec<usize>,
+}
+
+impl TailQr {
+    /// `None` without tail columns.
+    fn factor(
+        poly: MatRef<'_, f64>,
+        bs: usize,
+        par: Par,
+        stack: &mut MemStack,
+    ) -> Result<Option<Self>, SolveError> {
+        let (n, p) = (poly.nrows(), poly.ncols());
+        if p == 0 {
+            return Ok(None);
+        }
+        let mut pq = poly.to_owned();
+        let mut h = Mat::<f64>::zeros(bs, p.min(n));
+        let mut fwd = vec![0usize; p];
+        let mut inv = vec![0usize; p];
         let (_, perm) = cpqr::qr_in_place(
             pq.as_mut(),
             h.as_mut(),
@@ -183,154 +260,129 @@ pub fn interpolate(
             stack,
             Default::default(),
         );
-        let r11 = pq[(0, 0)].abs();
-        let tol = n.max(p) as f64 * f64::EPSILON;
-        let rank = if r11 == 0.0 {
-            0
-        } else {
-            (0..p)
-                .position(|k| pq[(k, k)].abs() <= tol * r11)
-                .unwrap_or(p)
-        };
-        let (f, _) = perm.arrays();
-        perm_fwd = f.to_vec();
+        let rank = pivoted_rank(pq.as_ref(), n.max(p) as f64 * f64::EPSILON);
+        let perm_fwd = perm.arrays().0.to_vec();
         if rank < p {
-            let mut dependent = perm_fwd[rank..].to_vec();
-            dependent.sort_unstable();
-            return Err(SolveError::RankDeficient {
-                rank,
-                columns: p,
-                dependent,
-            });
+            return Err(rank_deficient(rank, &perm_fwd));
         }
-        // G = Qᵀ M Q and Qᵀ (σy).
+        Ok(Some(Self { pq, h, perm_fwd }))
+    }
+
+    /// G = Qᵀ M Q and Qᵀ (σy), in place.
+    fn project(
+        &self,
+        mut m: MatMut<'_, f64>,
+        rhs: MatMut<'_, f64>,
+        par: Par,
+        stack: &mut MemStack,
+    ) {
+        let (pq, h) = (self.pq.as_ref(), self.h.as_ref());
         hh::apply_block_householder_sequence_transpose_on_the_left_in_place_with_conj(
-            pq.as_ref(),
-            h.as_ref(),
+            pq,
+            h,
             Conj::No,
-            m.as_mut(),
+            m.rb_mut(),
             par,
             stack,
         );
         hh::apply_block_householder_sequence_on_the_right_in_place_with_conj(
-            pq.as_ref(),
-            h.as_ref(),
+            pq,
+            h,
             Conj::No,
-            m.as_mut(),
+            m,
             par,
             stack,
         );
         hh::apply_block_householder_sequence_transpose_on_the_left_in_place_with_conj(
-            pq.as_ref(),
-            h.as_ref(),
+            pq,
+            h,
             Conj::No,
-            rhs.as_mut(),
+            rhs,
             par,
             stack,
         );
     }
 
-    // Cholesky of the trailing block G₂₂ (its lower triangle; G is symmetric).
-    let k = n - p;
-    {
-        let g22 = m.as_mut().submatrix_mut(p, p, k, k);
-        cholesky_in_place(
-            g22,
-            LltRegularization::default(),
-            par,
-            stack,
-            Default::default(),
-        )
-        .map_err(|e| match e {
-            faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
-                SolveError::NotPositiveDefinite { pivot: index }
-            }
-        })?;
-    }
-    let l = m.as_ref().submatrix(p, p, k, k);
-    // κ₁(G₂₂) = ‖G₂₂‖₁‖G₂₂⁻¹‖₁. For an SPD matrix ‖G₂₂‖₁ lies between its largest
-    // diagonal entry (the largest squared row norm of L) and k times that; the lower
-    // bound keeps a refusal from ever being spurious.
-    let diag_max = (0..k)
-        .map(|i| (0..=i).map(|j| l[(i, j)].powi(2)).sum::<f64>())
-        .fold(0.0, f64::max);
-    let inv_norm = inverse_one_norm(
-        k,
-        |v| {
-            let mut col = faer::MatMut::from_column_major_slice_mut(v, k, 1);
-            llt_solve(
-                l,
-                Conj::No,
-                col.as_mut(),
-                Par::Seq,
-                MemStack::new(&mut MemBuffer::new(StackReq::EMPTY)),
-            );
-        },
-        |v| {
-            let mut col = faer::MatMut::from_column_major_slice_mut(v, k, 1);
-            llt_solve(
-                l,
-                Conj::No,
-                col.as_mut(),
-                Par::Seq,
-                MemStack::new(&mut MemBuffer::new(StackReq::EMPTY)),
-            );
-        },
-    );
-    let condition = diag_max * inv_norm;
-    if condition.is_nan() || condition > options.max_condition {
-        return Err(SolveError::IllConditioned {
-            condition,
-            limit: options.max_condition,
-        });
-    }
-
-    // α from L Lᵀ α = (Qᵀσy)₂.
-    let mut alpha = rhs.as_ref().subrows(p, k).to_owned();
-    llt_solve(l, Conj::No, alpha.as_mut(), par, stack);
-
-    let mut tail = Mat::<f64>::zeros(p, q);
-    if p > 0 {
-        // R c = (Qᵀ y)₁ − σ G₁₂ α, i.e. σ[(Qᵀσy)₁ − G₁₂ α]; then b = Π c.
-        let g12 = m.as_ref().submatrix(0, p, p, k);
-        let mut top = rhs.as_ref().subrows(0, p).to_owned();
-        faer::linalg::matmul::matmul(
-            top.as_mut(),
-            faer::Accum::Add,
-            g12,
-            alpha.as_ref(),
-            -1.0,
-            par,
-        );
+    /// The tail coefficients b (p × q): R c = (Qᵀ y)₁ − σ G₁₂ α, i.e.
+    /// σ[(Qᵀσy)₁ − G₁₂ α]; then b = Π c.
+    fn coefficients(
+        &self,
+        g12: MatRef<'_, f64>,
+        rhs: MatRef<'_, f64>,
+        alpha: MatRef<'_, f64>,
+        sigma: f64,
+        mut tail: MatMut<'_, f64>,
+        par: Par,
+    ) {
+        let p = self.perm_fwd.len();
+        let mut top = rhs.subrows(0, p).to_owned();
+        faer::linalg::matmul::matmul(top.as_mut(), faer::Accum::Add, g12, alpha, -1.0, par);
         for v in top.as_mut().col_iter_mut().flat_map(|c| c.iter_mut()) {
             *v *= sigma;
         }
-        let r = pq.as_ref().submatrix(0, 0, p, p);
+        let r = self.pq.as_ref().submatrix(0, 0, p, p);
         solve_upper_triangular_in_place(r, top.as_mut(), par);
-        for (pos, &orig) in perm_fwd.iter().enumerate() {
-            for c in 0..q {
+        for (pos, &orig) in self.perm_fwd.iter().enumerate() {
+            for c in 0..tail.ncols() {
                 tail[(orig, c)] = top[(pos, c)];
             }
         }
     }
-    // a = Q [0; α].
-    let mut weights = Mat::<f64>::zeros(n, q);
-    weights.as_mut().subrows_mut(p, k).copy_from(alpha.as_ref());
-    if p > 0 {
+
+    /// x ← Q x.
+    fn apply_q(&self, x: MatMut<'_, f64>, par: Par, stack: &mut MemStack) {
         hh::apply_block_householder_sequence_on_the_left_in_place_with_conj(
-            pq.as_ref(),
-            h.as_ref(),
+            self.pq.as_ref(),
+            self.h.as_ref(),
             Conj::No,
-            weights.as_mut(),
+            x,
             par,
             stack,
         );
     }
-    Ok(Interpolation {
-        weights,
-        tail,
-        condition,
-    })
+}
+
+/// Cholesky L Lᵀ of the projected block G₂₂ in place (its lower triangle).
+fn cholesky_trailing(
+    g22: MatMut<'_, f64>,
+    par: Par,
+    stack: &mut MemStack,
+) -> Result<(), SolveError> {
+    cholesky_in_place(
+        g22,
+        LltRegularization::default(),
+        par,
+        stack,
+        Default::default(),
+    )
+    .map_err(|e| match e {
+        faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
+            SolveError::NotPositiveDefinite { pivot: index }
+        }
+    })?;
+    Ok(())
+}
+
+/// κ₁(G₂₂) = ‖G₂₂‖₁‖G₂₂⁻¹‖₁ from its Cholesky factor `l`. For an SPD matrix ‖G₂₂‖₁
+/// lies between its largest diagonal entry (the largest squared row norm of L) and k
+/// times that; the lower bound keeps a refusal from ever being spurious.
+fn llt_condition(l: MatRef<'_, f64>) -> f64 {
+    let k = l.nrows();
+    let diag_max = (0..k)
+        .map(|i| (0..=i).map(|j| l[(i, j)].powi(2)).sum::<f64>())
+        .fold(0.0, f64::max);
+    // G₂₂ is symmetric: the solve with it and with its transpose are the same.
+    let solve = |v: &mut [f64]| {
+        let mut col = faer::MatMut::from_column_major_slice_mut(v, k, 1);
+        llt_solve(
+            l,
+            Conj::No,
+            col.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut MemBuffer::new(StackReq::EMPTY)),
+        );
+    };
+    diag_max * inverse_one_norm(k, solve, solve)
 }
 
 #[cfg(test)]

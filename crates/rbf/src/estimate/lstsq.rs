@@ -7,7 +7,7 @@ use faer::linalg::qr::no_pivoting::factor::recommended_block_size;
 use faer::{Accum, Mat, MatRef, Par};
 
 use super::condition::upper_triangular_condition;
-use super::errors::SolveError;
+use super::error::SolveError;
 use crate::check::first_non_finite;
 
 /// Default limit on the estimated condition number: 1/(1000 ε) ≈ 4.5·10¹².
@@ -116,6 +116,83 @@ pub fn lstsq(
     b: MatRef<'_, f64>,
     options: &LstsqOptions,
 ) -> Result<Solution, SolveError> {
+    check_inputs(a, b, options)?;
+    let (n, c, q) = (a.nrows(), a.ncols(), b.ncols());
+    let par = options.par;
+    if c == 0 {
+        return Ok(Solution {
+            coefficients: Mat::zeros(0, q),
+            rank: 0,
+            condition: 1.0,
+            residual_sum_squares: (0..q)
+                .map(|k| (0..n).map(|i| b[(i, k)].powi(2)).sum())
+                .collect(),
+        });
+    }
+    let (mut qr, mut rhs) = augmented(a, b, options)?;
+    let rows = qr.nrows();
+
+    let size = rows.min(c);
+    let bs = recommended_block_size::<f64>(rows, c);
+    let mut h = Mat::<f64>::zeros(bs, size);
+    let mut fwd = vec![0usize; c];
+    let mut inv = vec![0usize; c];
+    let mut mem = MemBuffer::new(StackReq::any_of(&[
+        cpqr::qr_in_place_scratch::<usize, f64>(rows, c, bs, par, Default::default()),
+        cpsolve::solve_lstsq_in_place_scratch::<usize, f64>(rows, c, bs, q, par),
+    ]));
+    let stack = MemStack::new(&mut mem);
+    let (_, perm) = cpqr::qr_in_place(
+        qr.as_mut(),
+        h.as_mut(),
+        &mut fwd,
+        &mut inv,
+        par,
+        stack,
+        Default::default(),
+    );
+
+    let tol = options
+        .rank_tol
+        .unwrap_or(rows.max(c) as f64 * f64::EPSILON);
+    let rank = pivoted_rank(qr.as_ref(), tol);
+    if rank < c {
+        return Err(rank_deficient(rank, perm.arrays().0));
+    }
+    let condition = upper_triangular_condition(qr.as_ref().submatrix(0, 0, c, c));
+    if condition.is_nan() || condition > options.max_condition {
+        return Err(SolveError::IllConditioned {
+            condition,
+            limit: options.max_condition,
+        });
+    }
+
+    cpsolve::solve_lstsq_in_place(
+        qr.as_ref(),
+        h.as_ref(),
+        qr.as_ref(),
+        perm,
+        rhs.as_mut(),
+        par,
+        stack,
+    );
+    let coefficients = rhs.as_ref().subrows(0, c).to_owned();
+    let residual_sum_squares = residual_sums(a, b, coefficients.as_ref(), par);
+    Ok(Solution {
+        coefficients,
+        rank,
+        condition,
+        residual_sum_squares,
+    })
+}
+
+/// Shapes (programmer errors: panics), the options and finite entries.
+#[track_caller]
+fn check_inputs(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    options: &LstsqOptions,
+) -> Result<(), SolveError> {
     assert_eq!(
         a.nrows(),
         b.nrows(),
@@ -149,32 +226,22 @@ pub fn lstsq(
             value: options.max_condition,
         });
     }
-    if let Some((row, col)) = first_non_finite(a) {
-        return Err(SolveError::NonFinite {
-            matrix: "A",
-            row,
-            col,
-        });
+    for (matrix, m) in [("A", a), ("B", b)] {
+        if let Some((row, col)) = first_non_finite(m) {
+            return Err(SolveError::NonFinite { matrix, row, col });
+        }
     }
-    if let Some((row, col)) = first_non_finite(b) {
-        return Err(SolveError::NonFinite {
-            matrix: "B",
-            row,
-            col,
-        });
-    }
+    Ok(())
+}
+
+/// The augmented system [A; √λ E] x ≈ [B; 0], E selecting the penalised columns (no
+/// extra rows without a ridge).
+fn augmented(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    options: &LstsqOptions,
+) -> Result<(Mat<f64>, Mat<f64>), SolveError> {
     let (n, c, q) = (a.nrows(), a.ncols(), b.ncols());
-    let par = options.par;
-    if c == 0 {
-        return Ok(Solution {
-            coefficients: Mat::zeros(0, q),
-            rank: 0,
-            condition: 1.0,
-            residual_sum_squares: (0..q)
-                .map(|k| (0..n).map(|i| b[(i, k)].powi(2)).sum())
-                .collect(),
-        });
-    }
     let extra = if options.ridge > 0.0 {
         c - options.unpenalised
     } else {
@@ -187,8 +254,6 @@ pub fn lstsq(
             columns: c,
         });
     }
-
-    // Augmented system [A; √λ E] x ≈ [B; 0], E selecting the penalised columns.
     let mut qr = Mat::<f64>::zeros(rows, c);
     qr.as_mut().subrows_mut(0, n).copy_from(a);
     let sl = options.ridge.sqrt();
@@ -197,87 +262,47 @@ pub fn lstsq(
     }
     let mut rhs = Mat::<f64>::zeros(rows, q);
     rhs.as_mut().subrows_mut(0, n).copy_from(b);
+    Ok((qr, rhs))
+}
 
-    let size = rows.min(c);
-    let bs = recommended_block_size::<f64>(rows, c);
-    let mut h = Mat::<f64>::zeros(bs, size);
-    let mut fwd = vec![0usize; c];
-    let mut inv = vec![0usize; c];
-    let mut mem = MemBuffer::new(StackReq::any_of(&[
-        cpqr::qr_in_place_scratch::<usize, f64>(rows, c, bs, par, Default::default()),
-        cpsolve::solve_lstsq_in_place_scratch::<usize, f64>(rows, c, bs, q, par),
-    ]));
-    let stack = MemStack::new(&mut mem);
-    let (_, perm) = cpqr::qr_in_place(
-        qr.as_mut(),
-        h.as_mut(),
-        &mut fwd,
-        &mut inv,
-        par,
-        stack,
-        Default::default(),
-    );
-
-    // Numerical rank from the pivoted diagonal, which is non-increasing in magnitude.
-    let tol = options
-        .rank_tol
-        .unwrap_or(rows.max(c) as f64 * f64::EPSILON);
-    let r11 = qr[(0, 0)].abs();
-    let rank = if r11 == 0.0 {
-        0
-    } else {
-        (0..c)
-            .position(|k| qr[(k, k)].abs() <= tol * r11)
-            .unwrap_or(c)
-    };
-    if rank < c {
-        let (fwd_arr, _) = perm.arrays();
-        let mut dependent: Vec<usize> = fwd_arr[rank..].to_vec();
-        dependent.sort_unstable();
-        return Err(SolveError::RankDeficient {
-            rank,
-            columns: c,
-            dependent,
-        });
+/// Numerical rank from the diagonal of a column-pivoted R, which is non-increasing in
+/// magnitude: the columns before the first |rₖₖ| ≤ `tol`·|r₁₁|.
+pub(super) fn pivoted_rank(r: MatRef<'_, f64>, tol: f64) -> usize {
+    let c = r.ncols();
+    let r11 = r[(0, 0)].abs();
+    if r11 == 0.0 {
+        return 0;
     }
-    let condition = upper_triangular_condition(qr.as_ref().submatrix(0, 0, c, c));
-    if condition.is_nan() || condition > options.max_condition {
-        return Err(SolveError::IllConditioned {
-            condition,
-            limit: options.max_condition,
-        });
-    }
+    (0..c)
+        .position(|k| r[(k, k)].abs() <= tol * r11)
+        .unwrap_or(c)
+}
 
-    cpsolve::solve_lstsq_in_place(
-        qr.as_ref(),
-        h.as_ref(),
-        qr.as_ref(),
-        perm,
-        rhs.as_mut(),
-        par,
-        stack,
-    );
-    let coefficients = rhs.as_ref().subrows(0, c).to_owned();
-
-    // Residuals on the original rows, recomputed rather than read off Qᵀb: an honest check.
-    let mut res = b.to_owned();
-    matmul(
-        res.as_mut(),
-        Accum::Add,
-        a,
-        coefficients.as_ref(),
-        -1.0,
-        par,
-    );
-    let residual_sum_squares = (0..q)
-        .map(|k| (0..n).map(|i| res[(i, k)].powi(2)).sum())
-        .collect();
-    Ok(Solution {
-        coefficients,
+/// The error of a pivoted QR of rank `rank`: the original indices of the columns
+/// pivoted past it, sorted.
+pub(super) fn rank_deficient(rank: usize, pivots: &[usize]) -> SolveError {
+    let mut dependent = pivots[rank..].to_vec();
+    dependent.sort_unstable();
+    SolveError::RankDeficient {
         rank,
-        condition,
-        residual_sum_squares,
-    })
+        columns: pivots.len(),
+        dependent,
+    }
+}
+
+/// Σ residual² per column of B on the original rows, recomputed rather than read off
+/// Qᵀb: an honest check.
+fn residual_sums(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    coefficients: MatRef<'_, f64>,
+    par: Par,
+) -> Vec<f64> {
+    let mut res = b.to_owned();
+    matmul(res.as_mut(), Accum::Add, a, coefficients, -1.0, par);
+    (0..b.ncols())
+        .map(|k| (0..b.nrows()).map(|i| res[(i, k)].powi(2)).sum())
+        .collect()
 }
 
 #[cfg(test)]

@@ -3,12 +3,12 @@
 //! polynomial tail). Never the normal equations: they square the condition number.
 
 mod condition;
-mod errors;
+mod error;
 mod interpolate;
 mod lstsq;
 mod stream;
 
-pub use errors::SolveError;
+pub use error::SolveError;
 pub use interpolate::{Interpolation, InterpolationOptions, interpolate};
 pub use lstsq::{DEFAULT_MAX_CONDITION, LstsqOptions, Solution, lstsq};
 pub use stream::StreamingLstsq;

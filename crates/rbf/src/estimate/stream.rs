@@ -14,7 +14,7 @@ use faer::linalg::qr::no_pivoting::factor::{
 };
 use faer::{Mat, MatRef, Par};
 
-use super::errors::SolveError;
+use super::error::SolveError;
 use super::lstsq::{LstsqOptions, Solution, lstsq};
 use crate::check::first_non_finite;
 

@@ -4,7 +4,7 @@
 use faer::prelude::ReborrowMut;
 use faer::{Mat, MatRef};
 
-use super::errors::RbfError;
+use super::error::RbfError;
 use super::fitted::{RbfModel, Scaling, Selection};
 use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
@@ -51,13 +51,8 @@ impl Design {
             Some(s) => s.apply(x),
             None => x.to_owned(),
         };
-        // All-points interpolation with a conditionally definite kernel needs the tail of
-        // its order for a uniquely solvable system.
-        let all = matches!(params.centres, CentreSelection::AllPoints);
-        let order = params.kernel.polynomial_order();
-        let bias = params.bias || (all && order >= 1);
-        let tail = params.linear_tail || (all && order >= 2);
-        let p = usize::from(bias) + if tail { d } else { 0 } + z.ncols();
+        let (bias, tail) = params.bias_and_tail();
+        let p = params.fixed_columns(d, z.ncols());
         let mut forced = Mat::<f64>::zeros(n, p);
         let mut c = 0;
         if bias {
@@ -403,7 +398,7 @@ impl OlsStage {
             },
             criterion: self.path.criterion(),
         };
-        match &self.phi {
+        let model = match &self.phi {
             Some(phi) => solve_model(
                 params,
                 &self.design,
@@ -423,7 +418,8 @@ impl OlsStage {
                 ridge,
                 selection,
             ),
-        }
+        };
+        model.map(|m| m.with_pass_threads(self.path.pass_threads().clone()))
     }
 }
 
@@ -536,10 +532,12 @@ impl RbfValidParams {
         }
         assert!(q >= 1, "y needs at least one column");
         check_dim("centres", given.as_ref(), d)?;
-        if n < given.nrows() {
+        let most = self.most_centres(n, d, r);
+        if given.nrows() > most {
             return Err(RbfError::FewerRowsThanCentres {
                 rows: n,
                 centres: given.nrows(),
+                most,
             });
         }
         // The design of Design::new without its n-row matrices: [1 | x | z].
@@ -620,11 +618,14 @@ fn fixed_centres(
     progress: Observer<'_>,
 ) -> Result<(Mat<f64>, Widths), RbfError> {
     let (n, d) = (design.n(), design.xs.ncols());
+    // Refused before any clustering, by the rule callers ask for their hints.
+    let most = params.most_centres(n, d, design.n_linear);
     let need = |k: usize| {
-        if n < k {
+        if k > most {
             Err(RbfError::FewerRowsThanCentres {
                 rows: n,
                 centres: k,
+                most,
             })
         } else {
             Ok(())

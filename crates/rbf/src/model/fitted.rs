@@ -139,6 +139,23 @@ pub struct RbfModel {
     /// from files written without one, which load as before.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     poly: Option<PolyFit>,
+    /// How the fit ran: not part of the model, never saved, never compared.
+    #[serde(skip)]
+    run: RunRecord,
+}
+
+/// How a fit ran (today: the threads of the OLS passes). Not part of what the model
+/// is: two models that predict alike are equal whatever their fits ran on, and a
+/// loaded model has none.
+#[derive(Clone, Debug, Default)]
+struct RunRecord {
+    pass_threads: Option<crate::PassThreads>,
+}
+
+impl PartialEq for RunRecord {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl RbfModel {
@@ -190,7 +207,28 @@ impl RbfModel {
             selection,
             condition,
             poly,
+            run: RunRecord::default(),
         }
+    }
+
+    /// The threads the streaming passes of the OLS selection ran on, and why; `None` for
+    /// other centres and for a loaded model (see [`crate::PassThreads`]).
+    ///
+    /// ```
+    /// let m = rbf::doc_model();
+    /// let t = m.pass_threads().expect("an OLS fit");
+    /// assert!(t.threads >= 1);
+    /// let back = rbf::RbfModel::from_reader({ let mut v = Vec::new(); m.to_writer(&mut v).unwrap(); v }.as_slice()).unwrap();
+    /// assert!(back.pass_threads().is_none() && back == m);
+    /// ```
+    pub fn pass_threads(&self) -> Option<&crate::PassThreads> {
+        self.run.pass_threads.as_ref()
+    }
+
+    /// Records the threads of the OLS passes that chose this model's centres.
+    pub(crate) fn with_pass_threads(mut self, threads: crate::PassThreads) -> Self {
+        self.run.pass_threads = Some(threads);
+        self
     }
 
     /// The assembled model, or [`RbfError::UnusableModel`] if it holds a

@@ -4,7 +4,7 @@ use faer::{Mat, Par};
 use linfa::ParamGuard;
 use serde::{Deserialize, Serialize};
 
-use super::errors::RbfParamsError;
+use super::error::RbfParamsError;
 use super::poly::PolyTail;
 use crate::check::{first_non_finite, non_negative, positive};
 use crate::estimate::DEFAULT_MAX_CONDITION;

@@ -4,7 +4,7 @@ use linfa::dataset::DatasetBase;
 use linfa::traits::{Fit, PredictInplace};
 use ndarray::{Array1, Array2, ArrayBase, Data, Ix1, Ix2};
 
-use super::errors::RbfError;
+use super::error::RbfError;
 use super::fitted::RbfModel;
 use super::hyperparams::RbfValidParams;
 use crate::convert::{mat_from_array, mat_from_array1};

@@ -6,7 +6,8 @@
 //! fields and getters.
 
 mod algorithm;
-mod errors;
+mod capacity;
+mod error;
 mod fitted;
 mod hyperparams;
 mod linfa_impl;
@@ -14,7 +15,7 @@ mod matser;
 mod persist;
 mod poly;
 
-pub use errors::{RbfError, RbfParamsError};
+pub use error::{RbfError, RbfParamsError};
 pub use fitted::{MAX_COEFFICIENT, RbfModel, Scaling, Selection};
 pub use hyperparams::{Candidates, CentreSelection, RbfParams, RbfValidParams, Strategy};
 pub use persist::{FORMAT_VERSION, PersistError};

@@ -5,7 +5,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::errors::KMeansError;
+use super::error::KMeansError;
 use crate::check::positive;
 
 /// Which Lloyd iterations follow the (shared, seeded) k-means++ start.

@@ -4,7 +4,8 @@
 use faer::{Mat, MatRef, Par};
 
 use super::KMeansCentres;
-use crate::design::squared_distances_into;
+use crate::design::Distances;
+use crate::widest::widest;
 
 /// Mean squared distance of the rows of `x` to their assigned centres, computed
 /// directly (O(n·d)).
@@ -80,10 +81,14 @@ pub fn lloyd(
     let mut centres = start.to_owned();
     let mut next = Mat::<f64>::zeros(k, d);
     let mut dist = Mat::<f64>::zeros(n, k);
+    let mut work = Distances::new();
     let mut labels = vec![0usize; n];
     let mut nearest = vec![0.0; n];
     let mut previous = vec![usize::MAX; n];
     let mut counts = vec![0usize; k];
+    // x row by row: the columns of its transpose (one faer copy).
+    let rows = x.transpose().to_owned();
+    let mut sums = vec![0.0; k * d];
     let mut unchanged = false;
     let mut iterations = 0;
     while iterations < max_iterations {
@@ -91,13 +96,14 @@ pub fn lloyd(
         assign(
             x,
             centres.as_ref(),
+            &mut work,
             &mut dist,
             &mut labels,
             &mut nearest,
             par,
         );
         relocate_empty(&mut labels, &mut nearest, &mut counts);
-        means(x, &labels, &counts, &mut next);
+        means(rows.as_ref(), &labels, &counts, &mut sums, &mut next);
         let shift = (0..d)
             .map(|t| {
                 (0..k)
@@ -119,6 +125,7 @@ pub fn lloyd(
         assign(
             x,
             centres.as_ref(),
+            &mut work,
             &mut dist,
             &mut labels,
             &mut nearest,
@@ -154,12 +161,13 @@ fn mean_variance(x: MatRef<'_, f64>) -> f64 {
 fn assign(
     x: MatRef<'_, f64>,
     centres: MatRef<'_, f64>,
+    work: &mut Distances,
     dist: &mut Mat<f64>,
     labels: &mut [usize],
     nearest: &mut [f64],
     par: Par,
 ) {
-    squared_distances_into(x, centres, dist.as_mut(), par);
+    work.fill(x, centres, dist.as_mut(), par);
     let (n, k) = (dist.nrows(), dist.ncols());
     let dist = dist.as_ref();
     let column = |j: usize| {
@@ -174,15 +182,7 @@ fn assign(
         nearest.copy_from_slice(&column(0)[rows.clone()]);
         labels.fill(0);
         for j in 1..k {
-            for ((l, m), &v) in labels
-                .iter_mut()
-                .zip(nearest.iter_mut())
-                .zip(&column(j)[rows.clone()])
-            {
-                let closer = v < *m;
-                *m = if closer { v } else { *m };
-                *l = if closer { j } else { *l };
-            }
+            nearer(labels, nearest, &column(j)[rows.clone()], j);
         }
     };
     let threads = par.degree();
@@ -197,6 +197,18 @@ fn assign(
             .zip(nearest.par_chunks_mut(chunk))
             .enumerate()
             .for_each(|(c, (l, m))| argmin(c * chunk, l, m));
+    }
+}
+
+widest! {
+    /// Samples closer to centroid `j` (squared distances `dist`) than to the nearest so
+    /// far take it: branch-free selects, the earlier centroid kept on a tie.
+    fn nearer(labels: &mut [usize], nearest: &mut [f64], dist: &[f64], j: usize) {
+        for ((l, m), &v) in labels.iter_mut().zip(nearest.iter_mut()).zip(dist) {
+            let closer = v < *m;
+            *m = if closer { v } else { *m };
+            *l = if closer { j } else { *l };
+        }
     }
 }
 
@@ -226,20 +238,43 @@ fn relocate_empty(labels: &mut [usize], nearest: &mut [f64], counts: &mut [usize
     }
 }
 
-/// Centroids as the plain means of their members (every cluster has one).
-fn means(x: MatRef<'_, f64>, labels: &[usize], counts: &[usize], out: &mut Mat<f64>) {
-    out.fill(0.0);
-    for t in 0..x.ncols() {
-        let col = x.col(t);
-        let mut o = out.col_mut(t);
+/// Centroids as the plain means of their members (every cluster has one). `rows` is
+/// the transpose of `x` (d × n, a sample per column): a sample's columns are added to
+/// its cluster's sums together, so a run of samples of one cluster is d independent
+/// sums rather than one chain through memory; each sum still adds its members in row
+/// order.
+fn means(
+    rows: MatRef<'_, f64>,
+    labels: &[usize],
+    counts: &[usize],
+    sums: &mut [f64],
+    out: &mut Mat<f64>,
+) {
+    let d = out.ncols();
+    sums.fill(0.0);
+    if d > 0 {
         for (i, &l) in labels.iter().enumerate() {
-            o[l] += col[i];
+            let row = rows
+                .col(i)
+                .try_as_col_major()
+                .expect("an owned matrix has contiguous columns")
+                .as_slice();
+            add_to(&mut sums[l * d..(l + 1) * d], row);
         }
     }
     for (j, &c) in counts.iter().enumerate() {
         let inv = 1.0 / c as f64;
-        for t in 0..x.ncols() {
-            out[(j, t)] *= inv;
+        for t in 0..d {
+            out[(j, t)] = sums[j * d + t] * inv;
+        }
+    }
+}
+
+widest! {
+    /// `acc += row`, element by element.
+    fn add_to(acc: &mut [f64], row: &[f64]) {
+        for (a, &v) in acc.iter_mut().zip(row) {
+            *a += v;
         }
     }
 }

@@ -20,10 +20,10 @@
 //! | settings | `hyperparams.rs` | [`KMeansSettings`], [`KMeansAlgorithm`], [`KMeansInit`] |
 //! | seeded start | `init.rs` | [`kmeans_plusplus`], [`greedy_kmeans_plusplus`] |
 //! | Lloyd iterations | `iterate.rs` | [`lloyd`] |
-//! | errors | `errors.rs` | [`KMeansError`] |
+//! | errors | `error.rs` | [`KMeansError`] |
 //! | best of `n_runs` | this file | [`kmeans_centres`], [`KMeansCentres`] |
 
-mod errors;
+mod error;
 mod hyperparams;
 mod init;
 mod iterate;
@@ -40,7 +40,7 @@ use rand_xoshiro::Xoshiro256Plus;
 use crate::convert::as_array;
 use iterate::inertia;
 
-pub use errors::KMeansError;
+pub use error::KMeansError;
 pub use hyperparams::{
     KMeansAlgorithm, KMeansInit, KMeansSettings, UnknownKMeansAlgorithm, UnknownKMeansInit,
 };

@@ -4,11 +4,12 @@ use faer::linalg::matmul::matmul;
 use faer::prelude::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
-use super::errors::OlsError;
+use super::error::OlsError;
 use super::options::{OlsOptions, OlsProgress, StreamPrecision};
 use super::path::{OlsPath, Pick, StopReason};
 use super::store::{CandidateColumns, Store};
 use super::stream::{Columns, Compact, fill_slice, products};
+use super::threads::Schedule;
 use crate::check::first_non_finite;
 use crate::parallel::{axpy, dot};
 
@@ -303,6 +304,8 @@ struct Engine<'s, 'o> {
     options: &'o OlsOptions<'o>,
     /// Leverages hᵢᵢ = Σ_k q_ik² of the basis so far (for PRESS).
     lev: Vec<f64>,
+    /// The threads of the streaming passes.
+    schedule: Schedule,
 }
 
 /// Candidates per block of the initial scan: a block of f64 columns stays in cache
@@ -470,7 +473,11 @@ impl Engine<'_, '_> {
             (None, Some(p)) => Columns::F64(p),
             (None, None) => unreachable!("generated columns always stream their f32 copy"),
         };
-        products(&columns, &live, &vecs, &mut out, self.options.par);
+        let (par, start) = (self.schedule.par(), std::time::Instant::now());
+        products(&columns, &live, &vecs, &mut out, par);
+        let entries = live.len() * self.resid.nrows();
+        self.schedule
+            .record(par, start.elapsed().as_secs_f64(), entries);
         for (t, &j) in live.iter().enumerate() {
             let o = &out[t * s..(t + 1) * s];
             let c = &mut self.cands[j];
@@ -827,133 +834,20 @@ fn run(
     options: &OlsOptions<'_>,
 ) -> Result<OlsPath, OlsError> {
     validate(options)?;
-    let (n, q, p) = (targets.nrows(), targets.ncols(), forced.ncols());
-    if n == 0 {
-        return Err(OlsError::NoSamples);
-    }
-    if let Some((row, col)) = first_non_finite(forced) {
-        return Err(OlsError::NonFinite {
-            matrix: "forced",
-            row,
-            col,
-        });
-    }
-    if let Some((row, col)) = first_non_finite(targets) {
-        return Err(OlsError::NonFinite {
-            matrix: "targets",
-            row,
-            col,
-        });
-    }
-    let resid = targets.to_owned();
-    let target_energy: f64 = (0..q).map(|o| resid.col(o).squared_norm_l2()).sum();
-    if !target_energy.is_finite() {
-        return Err(OlsError::Overflow {
-            what: "targets",
-            value: target_energy,
-        });
-    }
-    if target_energy == 0.0 {
-        return Err(OlsError::ZeroTarget);
-    }
-
-    let keeps_refreshed = match &store {
-        Store::Owned(_) => true,
-        Store::Borrowed(_) => options.stream == StreamPrecision::F64,
-        Store::Generated(_) => false,
-    };
-    let mut eng = Engine {
-        store,
-        basis: Basis {
-            q: Mat::zeros(n, 0),
-            len: 0,
-            r: Vec::new(),
-            g: Vec::new(),
-            energies: Vec::new(),
-        },
-        resid,
-        cands: Vec::new(),
-        cdot: vec![0.0; m * q],
-        err: vec![0.0; m],
-        compact: None,
-        err_lo: vec![0.0; m],
-        err_hi: vec![0.0; m],
-        keeps_refreshed,
-        q,
-        target_energy,
-        options,
-        lev: vec![0.0; n],
-    };
-
-    // Forced columns, in order.
-    let mut forced_errs = Vec::with_capacity(p);
-    for k in 0..p {
-        let mut w = forced.subcols(k, 1).to_owned();
-        let orig2 = dot(w.col_as_slice(0), w.col_as_slice(0));
-        if !orig2.is_finite() {
-            return Err(OlsError::Overflow {
-                what: "forced columns",
-                value: orig2,
-            });
-        }
-        let c = eng.basis.project_out(w.as_mut(), 0, options.par);
-        let coefs: Vec<f64> = (0..c.nrows()).map(|i| c[(i, 0)]).collect();
-        let w = w.col_as_slice(0).to_vec();
-        let norm2 = dot(&w, &w);
-        if !(norm2 > options.collinearity_tol * orig2 && norm2 > 0.0) {
-            return Err(OlsError::ForcedCollinear { column: k });
-        }
-        forced_errs.push(eng.commit(w, coefs, norm2));
-    }
-
+    let (resid, target_energy) = checked_targets(forced, targets)?;
+    let mut eng = Engine::new(store, m, resid, target_energy, options);
+    let forced_errs = eng.force(forced)?;
     // Candidates: their energies, their f32 copy, and the first pass against the forced
     // basis and the residuals, all from one read of the candidates block by block. The
     // first pass is in f64: it makes the first-step ERRs (each candidate's own ERR after
     // the forced columns) exact.
-    eng.scan(p)?;
+    eng.scan(forced.ncols())?;
     eng.settle();
     let first_step_errs = eng.err.clone();
     let mut press = vec![eng.press()];
-
-    let max_picks = options.max_terms.min(m);
-    let mut cum: f64 = forced_errs.iter().sum();
-    let mut picks: Vec<Pick> = Vec::new();
-    let stop = loop {
-        if 1.0 - cum < options.tol {
-            break StopReason::Tolerance;
-        }
-        if picks.len() >= max_picks {
-            break StopReason::MaxTerms;
-        }
-        let Some(e) = eng.choose()? else {
-            break StopReason::Exhausted;
-        };
-        let j = e.j;
-        let err = eng.commit(e.w, e.coefs, e.norm2);
-        eng.cands[j].status = Status::Selected;
-        eng.err[j] = 0.0;
-        cum += err;
-        press.push(eng.press());
-        picks.push(Pick {
-            index: j,
-            err,
-            cumulative_err: cum,
-        });
-        if let Some(f) = options.progress {
-            f(OlsProgress {
-                picks: picks.len(),
-                max_terms: max_picks,
-                cumulative_err: cum,
-            });
-        }
-        if picks.len() < max_picks && 1.0 - cum >= options.tol {
-            let nb = eng.basis.len;
-            eng.pass(nb - 1, nb);
-            eng.settle();
-        }
-    };
-
+    let (picks, stop) = eng.pick_all(forced_errs.iter().sum(), &mut press)?;
     let t = eng.basis.len;
+    let q = eng.q;
     let r = Mat::from_fn(t, t, |i, k| if i <= k { eng.basis.r[k][i] } else { 0.0 });
     let g = Mat::from_fn(t, q, |i, o| eng.basis.g[i][o]);
     Ok(OlsPath {
@@ -968,8 +862,153 @@ fn run(
         target_energy,
         stop,
         press,
-        n_samples: n,
+        n_samples: targets.nrows(),
+        pass_threads: eng.schedule.summary(),
     })
+}
+
+/// The residuals to start from (the targets) and their energy Σ‖d_o‖², once the
+/// forced columns and the targets are known finite and the targets not all zero.
+fn checked_targets(
+    forced: MatRef<'_, f64>,
+    targets: MatRef<'_, f64>,
+) -> Result<(Mat<f64>, f64), OlsError> {
+    if targets.nrows() == 0 {
+        return Err(OlsError::NoSamples);
+    }
+    for (matrix, m) in [("forced", forced), ("targets", targets)] {
+        if let Some((row, col)) = first_non_finite(m) {
+            return Err(OlsError::NonFinite { matrix, row, col });
+        }
+    }
+    let resid = targets.to_owned();
+    let target_energy: f64 = (0..resid.ncols())
+        .map(|o| resid.col(o).squared_norm_l2())
+        .sum();
+    if !target_energy.is_finite() {
+        return Err(OlsError::Overflow {
+            what: "targets",
+            value: target_energy,
+        });
+    }
+    if target_energy == 0.0 {
+        return Err(OlsError::ZeroTarget);
+    }
+    Ok((resid, target_energy))
+}
+
+impl<'s, 'o> Engine<'s, 'o> {
+    /// An engine over `m` candidates with an empty basis and residuals `resid`.
+    fn new(
+        store: Store<'s>,
+        m: usize,
+        resid: Mat<f64>,
+        target_energy: f64,
+        options: &'o OlsOptions<'o>,
+    ) -> Self {
+        let (n, q) = (resid.nrows(), resid.ncols());
+        let keeps_refreshed = match &store {
+            Store::Owned(_) => true,
+            Store::Borrowed(_) => options.stream == StreamPrecision::F64,
+            Store::Generated(_) => false,
+        };
+        Engine {
+            store,
+            basis: Basis {
+                q: Mat::zeros(n, 0),
+                len: 0,
+                r: Vec::new(),
+                g: Vec::new(),
+                energies: Vec::new(),
+            },
+            resid,
+            cands: Vec::new(),
+            cdot: vec![0.0; m * q],
+            err: vec![0.0; m],
+            compact: None,
+            err_lo: vec![0.0; m],
+            err_hi: vec![0.0; m],
+            keeps_refreshed,
+            q,
+            target_energy,
+            options,
+            lev: vec![0.0; n],
+            schedule: Schedule::new(options.par, m * n * options.stream.bytes()),
+        }
+    }
+
+    /// Commits the forced columns, in order; their ERRs.
+    fn force(&mut self, forced: MatRef<'_, f64>) -> Result<Vec<f64>, OlsError> {
+        let ctol = self.options.collinearity_tol;
+        let mut forced_errs = Vec::with_capacity(forced.ncols());
+        for k in 0..forced.ncols() {
+            let mut w = forced.subcols(k, 1).to_owned();
+            let orig2 = dot(w.col_as_slice(0), w.col_as_slice(0));
+            if !orig2.is_finite() {
+                return Err(OlsError::Overflow {
+                    what: "forced columns",
+                    value: orig2,
+                });
+            }
+            let c = self.basis.project_out(w.as_mut(), 0, self.options.par);
+            let coefs: Vec<f64> = (0..c.nrows()).map(|i| c[(i, 0)]).collect();
+            let w = w.col_as_slice(0).to_vec();
+            let norm2 = dot(&w, &w);
+            if !(norm2 > ctol * orig2 && norm2 > 0.0) {
+                return Err(OlsError::ForcedCollinear { column: k });
+            }
+            forced_errs.push(self.commit(w, coefs, norm2));
+        }
+        Ok(forced_errs)
+    }
+
+    /// Picks until the tolerance, `max_terms` or the candidates run out, from the
+    /// cumulative ERR `cum` of the forced columns; PRESS after each pick goes to
+    /// `press`.
+    fn pick_all(
+        &mut self,
+        mut cum: f64,
+        press: &mut Vec<f64>,
+    ) -> Result<(Vec<Pick>, StopReason), OlsError> {
+        let options = self.options;
+        let max_picks = options.max_terms.min(self.err.len());
+        let mut picks: Vec<Pick> = Vec::new();
+        let stop = loop {
+            if 1.0 - cum < options.tol {
+                break StopReason::Tolerance;
+            }
+            if picks.len() >= max_picks {
+                break StopReason::MaxTerms;
+            }
+            let Some(e) = self.choose()? else {
+                break StopReason::Exhausted;
+            };
+            let j = e.j;
+            let err = self.commit(e.w, e.coefs, e.norm2);
+            self.cands[j].status = Status::Selected;
+            self.err[j] = 0.0;
+            cum += err;
+            press.push(self.press());
+            picks.push(Pick {
+                index: j,
+                err,
+                cumulative_err: cum,
+            });
+            if let Some(f) = options.progress {
+                f(OlsProgress {
+                    picks: picks.len(),
+                    max_terms: max_picks,
+                    cumulative_err: cum,
+                });
+            }
+            if picks.len() < max_picks && 1.0 - cum >= options.tol {
+                let nb = self.basis.len;
+                self.pass(nb - 1, nb);
+                self.settle();
+            }
+        };
+        Ok((picks, stop))
+    }
 }
 
 /// A block of candidate columns: a view of a stored matrix, or generated columns.

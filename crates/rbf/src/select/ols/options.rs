@@ -45,6 +45,18 @@ impl StreamPrecision {
     /// The names [`FromStr`] accepts.
     pub const NAMES: [&'static str; 2] = ["f32", "f64"];
 
+    /// Bytes a pass reads per candidate entry.
+    ///
+    /// ```
+    /// assert_eq!(rbf::StreamPrecision::F32.bytes(), 4);
+    /// ```
+    pub fn bytes(self) -> usize {
+        match self {
+            StreamPrecision::F32 => 4,
+            StreamPrecision::F64 => 8,
+        }
+    }
+
     /// Its name (`f32`, `f64`).
     ///
     /// ```

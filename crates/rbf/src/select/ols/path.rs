@@ -112,9 +112,24 @@ pub struct OlsPath {
     pub(crate) press: Vec<f64>,
     /// Rows of the candidate matrix.
     pub(crate) n_samples: usize,
+    /// The threads the streaming passes ran on.
+    pub(crate) pass_threads: super::PassThreads,
 }
 
 impl OlsPath {
+    /// The threads the streaming passes ran on, and why (the engine keeps the
+    /// parallelism asked for only where it makes the passes faster: see
+    /// [`PassThreads`](super::PassThreads)). How the selection ran, not what it chose.
+    ///
+    /// ```
+    /// # use faer::{mat, Mat};
+    /// # let path = rbf::forward_select(mat![[1.0], [2.0]].as_ref(), Mat::<f64>::zeros(2, 0).as_ref(), mat![[1.0], [2.0]].as_ref(), &Default::default()).unwrap();
+    /// assert!(path.pass_threads().threads >= 1);
+    /// ```
+    pub fn pass_threads(&self) -> &super::PassThreads {
+        &self.pass_threads
+    }
+
     /// Number of picks (forced columns not counted).
     ///
     /// ```

@@ -8,7 +8,7 @@
 //! cargo run --release -p rbf --example kmeans_blobs -- plusplus 1   # seeding, n_init
 //! ```
 
-#[path = "../crates/rbf/tests/common/blobs.rs"]
+#[path = "../tests/common/blobs.rs"]
 mod blobs;
 
 use std::time::Instant;

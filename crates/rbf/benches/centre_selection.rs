@@ -16,8 +16,14 @@
 //! once per pick: the N × M Gaussian kernel matrix itself, and one plain
 //! matrix–vector product vᵀP over it (the memory-bandwidth bound of a pick).
 //!
+//! A second group, `threads`, fits OLS (K = 100) and k-means (K = 100) with one thread
+//! and with two, at N = 2500 and N = 5000 (OLS over all 5000 rows as candidates): the
+//! passes' threads are the engine's choice (`OlsPath::pass_threads`), the rest of the
+//! fit runs as asked.
+//!
 //! ```sh
 //! CARGO_TARGET_DIR=... cargo bench -p rbf --bench centre_selection
+//! cargo bench -p rbf --bench centre_selection -- threads     # the thread group only
 //! ```
 
 use std::hint::black_box;
@@ -25,7 +31,7 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatRef};
+use faer::{Accum, Mat, MatRef, Par};
 use linfa::ParamGuard;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
@@ -146,5 +152,41 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// OLS and k-means on one thread and on two, at two sizes.
+fn threads(c: &mut Criterion) {
+    let mut g = c.benchmark_group("threads");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(8));
+    for n in [N_TRAIN, 2 * N_TRAIN] {
+        let (x, y) = windowed(n, SEED);
+        let (x, y) = (x.as_ref(), y.as_ref());
+        let beta = match WidthRule::default()
+            .widths(x, Par::Seq)
+            .expect("median width")
+        {
+            Widths::Uniform(b) => b,
+            Widths::PerCentre(_) => unreachable!("the median rule gives one width"),
+        };
+        for (threads, par) in [(1, Par::Seq), (2, Par::rayon(2))] {
+            let ols = RbfParams::from(params(CentreSelection::ols(K), beta, 0.0))
+                .parallelism(par)
+                .check()
+                .expect("valid params");
+            g.bench_function(format!("ols_k100_n{n}_{threads}t"), |b| {
+                b.iter(|| ols.fit(black_box(x), y).expect("OLS fits"))
+            });
+            let km = RbfParams::from(params(CentreSelection::kmeans(K), beta, 0.0))
+                .parallelism(par)
+                .check()
+                .expect("valid params");
+            g.bench_function(format!("kmeans_k100_n{n}_{threads}t"), |b| {
+                b.iter(|| km.fit(black_box(x), y).expect("k-means fits"))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, threads);
 criterion_main!(benches);

@@ -162,13 +162,17 @@ pub enum RbfError {
         /// Samples needed.
         needed: usize,
     },
-    /// Fewer training rows than requested centres.
-    #[error("fewer rows ({rows}) than centres ({centres})")]
+    /// Too few training rows for the requested centres: a row per centre and, without
+    /// a ridge, one per unknown of the weights' least squares
+    /// ([`RbfValidParams::most_centres`](crate::RbfValidParams::most_centres)).
+    #[error("{rows} rows take at most {most} centres, not {centres}")]
     FewerRowsThanCentres {
         /// Training rows.
         rows: usize,
         /// Centres requested.
         centres: usize,
+        /// The most centres these rows take.
+        most: usize,
     },
     /// Given centres or candidates with the wrong number of columns.
     #[error("{what} have {found} columns but the inputs have {expected}")]

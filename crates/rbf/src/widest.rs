@@ -1,0 +1,45 @@
+//! Element-by-element loops compiled for the widest vectors the processor has.
+//!
+//! The workspace builds for the baseline x86-64 target (two f64 lanes); a loop written
+//! with [`widest!`] is also compiled for AVX-512 and for AVX2 and the widest one the
+//! processor runs is chosen at run time. Only loops whose every output element is
+//! computed on its own, in the same order of operations whatever the lane count (no
+//! sum across elements), belong here: their results are then the same to the bit on
+//! every processor, so choosing the width changes the time, never a number.
+
+/// `fn name(args) { body }` compiled three times and dispatched at run time, see the
+/// module documentation. The function returns nothing; its arguments are slices and
+/// numbers.
+macro_rules! widest {
+    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),* $(,)?) $body:block) => {
+        $(#[$meta])*
+        $vis fn $name($($arg: $ty),*) {
+            #[inline(always)]
+            fn plain($($arg: $ty),*) $body
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx512f")]
+            fn avx512($($arg: $ty),*) {
+                plain($($arg),*)
+            }
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2")]
+            fn avx2($($arg: $ty),*) {
+                plain($($arg),*)
+            }
+            #[cfg(target_arch = "x86_64")]
+            {
+                if std::arch::is_x86_feature_detected!("avx512f") {
+                    // SAFETY: the feature was just detected.
+                    return unsafe { avx512($($arg),*) };
+                }
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the feature was just detected.
+                    return unsafe { avx2($($arg),*) };
+                }
+            }
+            plain($($arg),*)
+        }
+    };
+}
+
+pub(crate) use widest;
