@@ -17,7 +17,8 @@ use super::axis::{self, Axis, Extent};
 use super::decimate;
 use super::legend::{Entry, Header, Swatch};
 use super::style::{self, GRID, GRID_LIGHT, INK, LABEL_SIZE, REFERENCE, TICK_SIZE};
-use super::{Panel, SeriesStyle};
+use super::panel::Panel;
+use super::series::SeriesStyle;
 
 /// Height reserved under the plot for x tick labels and the x axis label.
 pub(crate) const X_LABEL_AREA: u32 = 50;
