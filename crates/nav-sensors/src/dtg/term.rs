@@ -8,7 +8,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::model::DtgInput;
+use super::input::DtgInput;
 use crate::geometry::ParseNameError;
 
 /// One deterministic term of the DTG model (IEEE Std 813 naming).

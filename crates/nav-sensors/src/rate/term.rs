@@ -8,7 +8,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::model::RateInput;
+use super::input::RateInput;
 use crate::geometry::ParseNameError;
 
 /// One deterministic term of a rate gyro's model (IEEE Std 952 / 1431
