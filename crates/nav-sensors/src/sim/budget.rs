@@ -38,10 +38,10 @@ use super::engine::HighRate;
 use super::output::Components;
 use super::predictable;
 use super::scenario::Scenario;
-use crate::calibration::Calibration;
+use super::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 use crate::dtg::{DtgInput, DtgTerm};
+use crate::files::calibration::Calibration;
 use crate::geometry::{ChannelFrame, Ios, Residue};
-use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
 
 /// The candidate pairs checked for collinearity: the specific-force terms.
 const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;

@@ -12,8 +12,8 @@ use rand_distr::{Distribution, StandardNormal};
 
 use super::scenario::{CalibrationError, Scenario};
 use crate::accel::AccelCoefficients;
-use crate::calibration::{Calibration, GyroCoefficients, UnitCalibration};
 use crate::dtg::{DtgCoefficients, DtgTerm};
+use crate::files::calibration::{Calibration, GyroCoefficients, UnitCalibration};
 use crate::geometry::{Axis, Channel};
 use crate::rate::{RateCoefficients, RateTerm};
 use crate::unit::{GyroTerm, Unit};

@@ -6,9 +6,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::scenario::Scenario;
 use crate::dtg::{DtgCoefficients, DtgTerm};
 use crate::geometry::{Channel, Residue};
-use crate::sim::Scenario;
 
 /// A hidden effect with what it contributes to the record.
 ///

@@ -21,11 +21,11 @@ use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
 use super::unit_truth::{UnitChannelTruth, UnitHiddenTruth, UnitTruth};
 use crate::accel::AccelCoefficients;
-use crate::calibration::{GyroCoefficients, UnitCalibration};
 use crate::dtg::{DtgInput, DtgTerm};
+use crate::files::calibration::{GyroCoefficients, UnitCalibration};
+use crate::files::record::Record;
 use crate::geometry::{Axis, Channel};
 use crate::rate::{RateInput, RateTerm};
-use crate::record::Record;
 use crate::unit::{GyroModel, GyroTerm, Unit};
 use stats::{rms, std_dev};
 
