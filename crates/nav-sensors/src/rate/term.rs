@@ -262,14 +262,7 @@ impl fmt::Display for RateTerm {
 impl FromStr for RateTerm {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        RateTerm::ALL
-            .into_iter()
-            .find(|t| t.id() == s.trim())
-            .ok_or_else(|| ParseNameError {
-                kind: "rate-gyro term",
-                given: s.to_string(),
-                valid: RateTerm::ALL.iter().map(|t| t.id()).collect(),
-            })
+        ParseNameError::lookup("rate-gyro term", &RateTerm::ALL, RateTerm::id, s)
     }
 }
 
