@@ -144,10 +144,7 @@ impl UnitTruth {
     /// assert!(nav_sensors::sim::UnitTruth::from_json("{}", "t.json").is_err());
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
-        serde_json::from_str(text).map_err(|source| TruthFileError::Json {
-            path: path.to_string(),
-            source,
-        })
+        TruthFileError::parse(text, path)
     }
 
     /// Reads a truth JSON file.
@@ -160,10 +157,6 @@ impl UnitTruth {
     /// assert_eq!(nav_sensors::sim::UnitTruth::load(dir.join("truth.json")).unwrap().unit, unit);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        crate::files::io::load_with(
-            path.as_ref(),
-            |path, source| TruthFileError::Io { path, source },
-            Self::from_json,
-        )
+        TruthFileError::load(path.as_ref())
     }
 }
