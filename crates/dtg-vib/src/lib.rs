@@ -34,6 +34,7 @@ pub mod parity;
 pub mod pipeline;
 pub mod report;
 pub mod signal;
+pub mod unit_sensor;
 
 pub use error::DtgVibError;
 pub use sysid::{inference, operating, residuals, split, window};

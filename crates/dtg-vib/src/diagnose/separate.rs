@@ -60,7 +60,7 @@ pub fn response(
 /// How unlike two members' responses are, each stacked over several axes as
 /// (ℓ·a, q·a²) at vibration amplitude `a_g` (g rms): 1 − |cos|, 0 for
 /// proportional responses (a record with those axes cannot split them).
-fn unlikeness(x: &[Response], y: &[Response], a_g: f64) -> f64 {
+pub(crate) fn unlikeness(x: &[Response], y: &[Response], a_g: f64) -> f64 {
     let v: Vec<f64> = x
         .iter()
         .flat_map(|r| [r.linear * a_g, r.quadratic * a_g * a_g])

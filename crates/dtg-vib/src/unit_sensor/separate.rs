@@ -1,0 +1,217 @@
+//! Which vibration axis of the unit would tell apart candidates a record
+//! cannot, for any unit: the argument of [`crate::diagnose::separate`]
+//! (a term's regressor under vibration a along a unit axis u about the
+//! mean specific force g₀ is r(g₀) + ℓ·a + q·a²), with each channel's
+//! regressors taken from its own model and axes in the unit file.
+
+use super::UnitEffect;
+use crate::diagnose::separate::unlikeness;
+use nalgebra::Vector3;
+use nav_sensors::geometry::Axis;
+use nav_sensors::unit::{GyroTerm, Sensed, Unit};
+use sysid::{OperatingStats, Response, Separation};
+
+/// Whether a term depends on specific force (what vibration excites).
+fn is_specific_force(t: &GyroTerm) -> bool {
+    match t {
+        GyroTerm::Dtg(d) => nav_sensors::dtg::DtgTerm::SPECIFIC_FORCE.contains(d),
+        GyroTerm::Rate(r) => nav_sensors::rate::RateTerm::SPECIFIC_FORCE.contains(r),
+    }
+}
+
+/// The response of `term` of gyro `channel` to vibration along `axis`
+/// about `gravity_g` (unit frame, g); `None` for a term that does not
+/// depend on specific force.
+///
+/// ```
+/// use nav_sensors::geometry::Axis;
+/// let triad = nav_sensors::unit::Unit::builtin("triad").unwrap();
+/// let g = nalgebra::Vector3::new(0.0, 0.0, 1.0);
+/// let gg = triad.parse_term(0, "gg_zz").unwrap();
+/// let r = dtg_vib::unit_sensor::response(&triad, 0, gg, &g, Axis::Z).unwrap();
+/// assert!((r.linear - 2.0).abs() < 1e-12 && (r.quadratic - 1.0).abs() < 1e-12);
+/// ```
+pub fn response(
+    unit: &Unit,
+    channel: usize,
+    term: GyroTerm,
+    gravity_g: &Vector3<f64>,
+    axis: Axis,
+) -> Option<Response> {
+    if !is_specific_force(&term) {
+        return None;
+    }
+    let gyro = &unit.gyros()[channel];
+    let u = axis.unit_vector();
+    let at = |a: f64| {
+        gyro.regressor(
+            term,
+            &Sensed {
+                specific_force_g: gravity_g + u * a,
+                ..Sensed::default()
+            },
+        )
+    };
+    let (m, z, p) = (at(-1.0), at(0.0), at(1.0));
+    Some(Response {
+        linear: (p - m) / 2.0,
+        quadratic: (p + m) / 2.0 - z,
+    })
+}
+
+/// The operating signals' means and variances in the unit frame: the mean
+/// specific force, and each axis's variance (the accelerometers' variances
+/// carried through the unit's specific-force combination).
+fn unit_frame(unit: &Unit, operating: &OperatingStats) -> (Vector3<f64>, [f64; 3]) {
+    let n = unit.accels().len();
+    if operating.means.len() != n || operating.variances.len() != n {
+        return (Vector3::z(), [0.0, 0.0, 1.0]);
+    }
+    let gravity = unit.specific_force(&operating.means);
+    let mut var = [0.0; 3];
+    for (k, v) in operating.variances.iter().enumerate() {
+        let mut e = vec![0.0; n];
+        e[k] = 1.0;
+        let column = unit.specific_force(&e);
+        for (j, x) in var.iter_mut().enumerate() {
+            *x += column[j] * column[j] * v;
+        }
+    }
+    (gravity, var)
+}
+
+/// The separation advice for `group` (representative first) on gyro
+/// `channel` (see [`crate::diagnose::separate::separation`]).
+pub fn separation(
+    unit: &Unit,
+    channel: usize,
+    group: &[UnitEffect],
+    kappa: &[f64],
+    operating: &OperatingStats,
+) -> Separation<Axis> {
+    let (gravity_g, var) = unit_frame(unit, operating);
+    let current = Axis::ALL
+        .into_iter()
+        .max_by(|a, b| var[a.index()].total_cmp(&var[b.index()]))
+        .unwrap_or(Axis::Z);
+    let vibration_g = var.iter().sum::<f64>().sqrt();
+    let ids: Vec<String> = group.iter().map(UnitEffect::id).collect();
+    let combination: Vec<(String, f64)> = ids
+        .iter()
+        .skip(1)
+        .cloned()
+        .zip(kappa.iter().copied())
+        .collect();
+    let combo_text = combination
+        .iter()
+        .map(|(id, k)| format!("{k:+.3}·c({id})"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let identified = format!("this record measures c({}) {combo_text}", ids[0]);
+    let terms: Vec<Option<GyroTerm>> = group
+        .iter()
+        .map(|e| match e {
+            UnitEffect::Term(t) if is_specific_force(t) => Some(*t),
+            _ => None,
+        })
+        .collect();
+    let none = |advice: String| Separation {
+        effects: ids.clone(),
+        combination: combination.clone(),
+        axis: None,
+        responses: vec![None; group.len()],
+        advice,
+    };
+    if terms.iter().any(Option::is_none) {
+        return none(
+            if group.iter().any(|e| matches!(e, UnitEffect::Column(_))) {
+                format!(
+                    "{identified}; vary the column independently of the vibration (e.g. a separate thermal run) to tell them apart"
+                )
+            } else {
+                format!(
+                    "{identified}; rate-product terms are separated on a rate table, not by vibration"
+                )
+            },
+        );
+    }
+    let a = vibration_g.max(1e-3);
+    let on = |axis: Axis| -> Vec<Response> {
+        terms
+            .iter()
+            .flatten()
+            .map(|t| {
+                response(unit, channel, *t, &gravity_g, axis).unwrap_or(Response {
+                    linear: 0.0,
+                    quadratic: 0.0,
+                })
+            })
+            .collect()
+    };
+    let here = on(current);
+    let best = Axis::ALL
+        .iter()
+        .filter(|&&k| k != current)
+        .map(|&axis| {
+            let there = on(axis);
+            let worst = (0..there.len())
+                .flat_map(|i| (i + 1..there.len()).map(move |j| (i, j)))
+                .map(|(i, j)| unlikeness(&[here[i], there[i]], &[here[j], there[j]], a))
+                .fold(f64::INFINITY, f64::min);
+            (axis, there, worst)
+        })
+        .max_by(|x, y| x.2.total_cmp(&y.2));
+    let Some((axis, there, worst)) = best else {
+        return none(identified);
+    };
+    let described: Vec<String> = ids
+        .iter()
+        .zip(&there)
+        .map(|(id, r)| format!("{id} responds {:+.3}·a {:+.3}·a²", r.linear, r.quadratic))
+        .collect();
+    if worst < 1e-3 {
+        return Separation {
+            responses: there.into_iter().map(Some).collect(),
+            ..none(format!(
+                "{identified}; a run along another single axis of the unit does not split them either (their responses stay proportional): change the mount so the vibration axis is tilted"
+            ))
+        };
+    }
+    Separation {
+        effects: ids.clone(),
+        combination,
+        axis: Some(axis),
+        advice: format!(
+            "{identified}; run the same test with vibration along the unit's {} axis as well: there {} (a in g), unlike along {}",
+            axis.name(),
+            described.join(", "),
+            current.name()
+        ),
+        responses: there.into_iter().map(Some).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rate gyro under z vibration with gravity on z: g_x and gg_xx both
+    /// stay zero (one record cannot tell them apart); along x one responds
+    /// linearly and the other rectifies, which is what the advice names.
+    #[test]
+    fn the_advice_names_an_axis_of_the_unit() {
+        let triad = Unit::builtin("triad").unwrap();
+        let ops = OperatingStats {
+            names: vec!["ax".into(), "ay".into(), "az".into()],
+            means: vec![0.0, 0.0, 1.0],
+            variances: vec![0.0, 0.0, 0.25],
+        };
+        let group: Vec<UnitEffect> = ["g_x", "gg_xx"]
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let s = separation(&triad, 2, &group, &[1.0], &ops);
+        assert_eq!(s.axis, Some(Axis::X), "{}", s.advice);
+        assert!(s.advice.contains("unit's x axis"), "{}", s.advice);
+    }
+}
