@@ -31,6 +31,11 @@ pub struct DiagnoseArgs {
     report: Option<PathBuf>,
     #[command(flatten)]
     thresholds: Thresholds,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Diagnoses the model on its records and prints (or writes as JSON) the findings.
@@ -41,7 +46,14 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         json,
         report,
         thresholds,
+        unit,
     } = a;
+    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
+        if report.is_some() {
+            return Err(super::unit::not_yet("diagnose --report", m.unit()));
+        }
+        return super::unit::apply::diagnose(&m, &data, json, &thresholds.options(), progress);
+    }
     let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
         .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
         .collect();

@@ -13,6 +13,9 @@ use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
 
 /// Fits, saves the model and prints its scores.
 pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
+    if let Some(unit) = super::unit::chosen(a.unit.as_deref())? {
+        return super::unit::fit::fit(&a, unit, progress);
+    }
     outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
     let options = fit_options(&a)?;
     let records = read_records(&a)?;
@@ -97,10 +100,17 @@ fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
 /// estimates, from the training rows), each with its standard error and 95%
 /// interval.
 pub fn print_fit(model: &CompensationModel) {
+    print_fit_channels(model.channels());
+}
+
+/// [`print_fit`] of any sensor's channel models.
+pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
+    channels: &[sysid::ChannelModel<C, E>],
+) {
     println!(
         "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
     );
-    for c in model.channels() {
+    for c in channels {
         let s = c.scores();
         let e: Vec<String> = c
             .effects()
@@ -121,7 +131,7 @@ pub fn print_fit(model: &CompensationModel) {
             .collect();
         println!(
             "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
-            c.channel().name(),
+            c.channel().to_string(),
             c.n_centres(),
             s.train_rms,
             s.val_rms,
@@ -148,7 +158,7 @@ pub struct FitReport {
 /// One channel of [`FitReport`].
 #[derive(serde::Serialize)]
 struct ChannelReport {
-    channel: nav_sensors::geometry::Channel,
+    channel: String,
     effects: Vec<String>,
     // The key is a contract (issue 24 §5: code says centre, JSON keys stay).
     #[serde(rename = "n_centers")]
@@ -179,8 +189,20 @@ struct CoefficientReport {
 
 impl FitReport {
     pub fn new(model: &CompensationModel, fit_seconds: f64) -> Self {
-        let channels = model
-            .channels()
+        let split = match model.validated_on() {
+            Some(name) => format!("by record (validated on {name})"),
+            None => model.split().to_string(),
+        };
+        Self::of_channels(model.channels(), split, fit_seconds)
+    }
+
+    /// The report of any sensor's channel models.
+    pub fn of_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
+        channels: &[sysid::ChannelModel<C, E>],
+        split: String,
+        fit_seconds: f64,
+    ) -> Self {
+        let channels = channels
             .iter()
             .map(|c| {
                 let s = c.scores();
@@ -203,7 +225,7 @@ impl FitReport {
                     })
                     .collect();
                 ChannelReport {
-                    channel: c.channel(),
+                    channel: c.channel().to_string(),
                     effects: c.effects().iter().map(|e| e.id()).collect(),
                     n_centres: c.n_centres(),
                     train_rms: s.train_rms,
@@ -217,10 +239,6 @@ impl FitReport {
                 }
             })
             .collect();
-        let split = match model.validated_on() {
-            Some(name) => format!("by record (validated on {name})"),
-            None => model.split().to_string(),
-        };
         Self {
             channels,
             split,
