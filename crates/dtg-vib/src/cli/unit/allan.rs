@@ -41,8 +41,9 @@ pub fn allan(
     json: bool,
     progress: Progress,
 ) -> Result<()> {
-    let records = super::read_records(&[data.to_path_buf()], unit, 2)?;
-    let (name, r) = records
+    let read = super::read_records(&[data.to_path_buf()], unit, 2)?;
+    let (name, r) = read
+        .records
         .iter()
         .max_by_key(|(_, r)| r.len())
         .expect("read_records gives at least one segment");
@@ -60,6 +61,7 @@ pub fn allan(
         residues.push(series(p, &y, tau0, confidence)?);
     }
     drop(progress);
+    read.say_notes();
     if json {
         let v = serde_json::json!({
             "unit": unit.name(),

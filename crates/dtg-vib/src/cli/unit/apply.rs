@@ -8,10 +8,10 @@ use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
 
-use super::{borrowed, read_records, signals};
+use super::{Read, borrowed, read_records, signals};
 
 /// The records of a model's unit, segments at least two windows long.
-fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Vec<(String, Record)>> {
+fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Read> {
     let window = m.inner().preprocess().window.length();
     read_records(data, m.unit(), 2 * window)
 }
@@ -24,11 +24,12 @@ pub fn diagnose(
     options: &sysid::diagnose::DiagnoseOptions,
     progress: Progress,
 ) -> Result<()> {
-    let records = records_of(m, data)?;
-    let named = signals(&records)?;
+    let read = records_of(m, data)?;
+    let named = signals(&read.records)?;
     progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
     let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), options)?;
     drop(progress);
+    read.say_notes();
     if json {
         println!("{}", serde_json::to_string(&d)?);
         return Ok(());
@@ -67,13 +68,14 @@ pub fn check(
     json: bool,
     progress: Progress,
 ) -> Result<()> {
-    let records = records_of(m, &[data.to_path_buf()])?;
-    let named = signals(&records)?;
+    let read = records_of(m, &[data.to_path_buf()])?;
+    let named = signals(&read.records)?;
     progress.say("applying the model");
     let prepared = m.inner().prepare_many(&borrowed(&named))?;
     let predicted = m.inner().predict(&prepared)?;
     let c = sysid::check::transfer(m.inner(), &prepared, &predicted, outside_threshold)?;
     drop(progress);
+    read.say_notes();
     if json {
         let mut v = serde_json::to_value(&c)?;
         v["unit"] = serde_json::Value::String(m.unit().name().to_string());
@@ -132,8 +134,8 @@ pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record> {
 /// `compensate` with a unit's model: every segment compensated, written
 /// in the unit's column names and units, one after the other.
 pub fn compensate(m: &UnitModel, data: &Path, out: &Path, progress: Progress) -> Result<()> {
-    let records = records_of(m, &[data.to_path_buf()])?;
-    let named = signals(&records)?;
+    let read = records_of(m, &[data.to_path_buf()])?;
+    let named = signals(&read.records)?;
     progress.say("compensating");
     let mut text: Vec<u8> = Vec::new();
     let mut rows = 0;
@@ -153,6 +155,7 @@ pub fn compensate(m: &UnitModel, data: &Path, out: &Path, progress: Progress) ->
     }
     outfile::write_bytes(out, text).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
     drop(progress);
+    read.say_notes();
     eprintln!(
         "wrote {} ({rows} rows in the unit's names and units, from {} segment(s); each segment's first samples have no full window)",
         out.display(),

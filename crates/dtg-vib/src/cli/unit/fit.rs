@@ -78,6 +78,7 @@ struct Inputs {
     sensor: UnitSensor,
     options: sysid::FitOptions<UnitEffect>,
     records: Vec<(String, Record)>,
+    notes: super::Read,
 }
 
 fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
@@ -87,15 +88,17 @@ fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
     }
     let (options, reference) = unit_fit_options(a, &unit)?;
     let sensor = sensor(unit, a.calib.as_deref(), reference)?;
-    let records = read_records(&a.data, &sensor.unit, 2 * a.window)?;
-    for (_, r) in &records {
+    let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
+    for (_, r) in &read.records {
         check_against_record(a, r)?;
     }
-    check_observable(&sensor, &records)?;
+    check_observable(&sensor, &read.records)?;
+    let records = std::mem::take(&mut read.records);
     Ok(Inputs {
         sensor,
         options,
         records,
+        notes: read,
     })
 }
 
@@ -113,6 +116,7 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
         sensor,
         options,
         records,
+        notes,
     } = inputs(a, unit)?;
     let named = signals(&records)?;
     let n = sensor.unit.gyros().len();
@@ -133,6 +137,7 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     let model = UnitModel::of(model);
     model.save(&a.out)?;
     progress.clear();
+    notes.say_notes();
     let m = model.inner();
     if a.json {
         let report = FitReport::of_channels(m.channels(), split_text(m), seconds);
@@ -159,6 +164,7 @@ pub fn explain(
         sensor,
         options,
         records,
+        notes,
     } = inputs(a, unit)?;
     let named = signals(&records)?;
     let start = std::time::Instant::now();
@@ -182,6 +188,7 @@ pub fn explain(
     let model = UnitModel::of(e.model);
     model.save(&a.out)?;
     progress.clear();
+    notes.say_notes();
     let m = model.inner();
     if a.json {
         let v = serde_json::json!({

@@ -79,24 +79,37 @@ pub fn once_each(data: &[PathBuf]) -> Result<()> {
     super::fit_args::once_each(data)
 }
 
+/// Logs read with a unit: their segments and what the time columns
+/// showed, said once the command has done its work (a refusal stays one
+/// line).
+pub struct Read {
+    /// Every log's segments, in order.
+    pub records: Vec<(String, Record)>,
+    /// One line per log with gaps.
+    pub notes: Vec<String>,
+}
+
+impl Read {
+    /// Prints the notes on stderr.
+    pub fn say_notes(&self) {
+        for n in &self.notes {
+            eprintln!("{n}");
+        }
+    }
+}
+
 /// Reads every log with the unit: its segments between time gaps (each a
-/// record of its own), those shorter than `min_samples` dropped; a notice
-/// on stderr for each log with gaps.
-pub fn read_records(
-    data: &[PathBuf],
-    unit: &Unit,
-    min_samples: usize,
-) -> Result<Vec<(String, Record)>> {
+/// record of its own), those shorter than `min_samples` dropped.
+pub fn read_records(data: &[PathBuf], unit: &Unit, min_samples: usize) -> Result<Read> {
     once_each(data)?;
-    let mut out = Vec::new();
+    let mut records = Vec::new();
+    let mut notes = Vec::new();
     for d in data {
         let read = read_unit_records(d, unit, min_samples)?;
-        if let Some(note) = read.gaps_notice(&d.display().to_string()) {
-            eprintln!("{note}");
-        }
-        out.extend(read.segments);
+        notes.extend(read.gaps_notice(&d.display().to_string()));
+        records.extend(read.segments);
     }
-    Ok(out)
+    Ok(Read { records, notes })
 }
 
 /// Named records as the loop's named signals.

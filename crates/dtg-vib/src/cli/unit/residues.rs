@@ -42,7 +42,8 @@ pub fn residues(
         );
     }
     let min = model.map_or(2, |m| 2 * m.inner().preprocess().window.length());
-    let records = super::read_records(&[data.to_path_buf()], unit, min)?;
+    let read = super::read_records(&[data.to_path_buf()], unit, min)?;
+    let records = &read.records;
     progress.say("computing the parity residues");
     let names = unit.residue_names();
     let mut header: Vec<String> = vec!["t".into()];
@@ -51,7 +52,7 @@ pub fn residues(
         header.extend(names.iter().map(|n| format!("{n}_comp")));
     }
     let mut columns: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
-    for (_, r) in &records {
+    for (_, r) in records {
         let (base, after) = match model {
             Some(m) => {
                 let c = super::apply::compensated(m, &to_signals(r)?)?;
@@ -74,6 +75,7 @@ pub fn residues(
     let c: Vec<&[f64]> = columns.iter().map(Vec::as_slice).collect();
     tabular::write_csv(out, &h, &c)?;
     drop(progress);
+    read.say_notes();
     println!(
         "residue  rms before  {}(deg/h, every sample)",
         if model.is_some() { "rms after  " } else { "" }
