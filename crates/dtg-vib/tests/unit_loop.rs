@@ -486,7 +486,7 @@ fn real_logs_are_read_in_segments_and_refused_where_not_observable() {
 /// (records with an effect added), power (runs finding exactly the hidden
 /// effects), and the 95% intervals' coverage of the truth.
 #[test]
-#[ignore = "statistical: 20 seeds per unit, minutes"]
+#[ignore = "statistical: 20 seeds per unit (UNIT_LOOP_SEEDS), minutes"]
 fn rates_over_seeds() {
     let cases: [(&str, &[Hidden], fn(f64, u64, &[Hidden]) -> Scenario); 3] = [
         ("tetra", &TETRA, triaxial),
@@ -496,7 +496,10 @@ fn rates_over_seeds() {
     for (name, hidden, scenario) in cases {
         let u = Unit::builtin(name).unwrap();
         let (mut alarms, mut exact, mut covered, mut intervals) = (0, 0, 0, 0);
-        let n = 20;
+        let n: u64 = std::env::var("UNIT_LOOP_SEEDS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(20);
         for seed in 0..n {
             let clean = run(&u, &scenario(60.0, 1000 + seed, &[]));
             alarms += usize::from(!clean.added.is_empty());

@@ -117,13 +117,7 @@ impl UnitSensor {
             .filter(|&&i| i < rows.len())
             .map(|&i| self.unit.least_squares_rate(&rows[i]) / 3600.0)
             .collect();
-        let n = rates.len().max(1) as f64;
-        (0..3)
-            .map(|k| {
-                let m = rates.iter().map(|w| w[k]).sum::<f64>() / n;
-                (rates.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
-            })
-            .fold(0.0, f64::max)
+        crate::effects::largest_axis_std(&rates)
     }
 }
 
@@ -163,14 +157,8 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn wording(&self) -> Wording {
-        Wording {
-            target_unit: "deg/h".into(),
-            operating_unit: "g".into(),
-            spread: "vibration".into(),
-            operating_noun: "low-passed specific force".into(),
-            regime_hint: "a g- or g²-sensitive term along it may be missing".into(),
-            slow_hint: "a temperature or a drift: add its column as col:NAME".into(),
-        }
+        // The words of any inertial unit: the paper's plug-in's.
+        sysid::Sensor::wording(&crate::paper_unit::PaperUnit::default())
     }
 
     fn calibrate(&self, raw: &Signals) -> Result<Signals, SensorError> {

@@ -6,7 +6,7 @@
 
 use super::{UnitEffect, UnitSensor};
 use crate::error::DtgVibError;
-use crate::model::FORMAT_VERSION;
+use crate::model::{FORMAT_VERSION, check_header, write_json};
 use crate::pipeline::Preprocess;
 use crate::split::Holdout;
 use nav_sensors::calibration::UnitCalibration;
@@ -15,9 +15,6 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 use sysid::FitSettings;
 use sysid::operating::OperatingPoints;
-
-/// The `kind` every dtg-vib model file carries.
-const KIND: &str = "dtg-vib compensation model";
 
 /// One channel model of a unit.
 pub type UnitChannelModel = sysid::ChannelModel<String, UnitEffect>;
@@ -79,8 +76,6 @@ struct ModelOwned {
 
 #[derive(Deserialize)]
 struct FileOwned {
-    kind: Option<String>,
-    format_version: Option<u64>,
     model: ModelOwned,
 }
 
@@ -121,30 +116,25 @@ impl UnitModel {
         let path = path.as_ref();
         let m = &self.inner;
         let s = m.sensor();
-        let text = serde_json::to_string_pretty(&FileRef {
-            kind: KIND,
-            format_version: FORMAT_VERSION,
-            model: ModelRef {
-                unit: &s.unit,
-                preprocess: Preprocess::of(m.preprocess(), s.rate_reference),
-                calibration: s.calibration.as_ref(),
-                dt_s: m.dt_s(),
-                split: m.split(),
-                channels: m.channels(),
-                fit: m.settings(),
-                records: m.records(),
-                validated_on: m.validated_on(),
-                operating_points: m.operating_points(),
+        write_json(
+            path,
+            &FileRef {
+                kind: "dtg-vib compensation model",
+                format_version: FORMAT_VERSION,
+                model: ModelRef {
+                    unit: &s.unit,
+                    preprocess: Preprocess::of(m.preprocess(), s.rate_reference),
+                    calibration: s.calibration.as_ref(),
+                    dt_s: m.dt_s(),
+                    split: m.split(),
+                    channels: m.channels(),
+                    fit: m.settings(),
+                    records: m.records(),
+                    validated_on: m.validated_on(),
+                    operating_points: m.operating_points(),
+                },
             },
-        })
-        .map_err(|e| DtgVibError::ModelCorrupt {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
-        outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
-            path: path.to_path_buf(),
-            source,
-        })
+        )
     }
 
     /// Reads a model written by [`UnitModel::save`].
@@ -155,21 +145,8 @@ impl UnitModel {
             path: path.to_path_buf(),
             reason,
         };
+        check_header(&text, path)?;
         let f: FileOwned = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
-        if f.kind.as_deref() != Some(KIND) {
-            return Err(corrupt(format!("expected \"kind\": \"{KIND}\"")));
-        }
-        match f.format_version {
-            Some(v) if v == u64::from(FORMAT_VERSION) => {}
-            Some(found) => {
-                return Err(DtgVibError::ModelVersion {
-                    path: path.to_path_buf(),
-                    found,
-                    expected: FORMAT_VERSION,
-                });
-            }
-            None => return Err(corrupt("no format_version".into())),
-        }
         let m = f.model;
         let names = m.unit.gyro_names();
         if m.channels.len() != names.len()

@@ -43,12 +43,6 @@ pub fn observability(sensor: &UnitSensor, record: &Record) -> Observability {
         .filter(|c| c.len() == per_s)
         .map(|c| c.iter().sum::<nalgebra::Vector3<f64>>() / c.len() as f64)
         .collect();
-    let m = means.len().max(1) as f64;
-    let rate_std_deg_s = (0..3)
-        .map(|k| {
-            let mean = means.iter().map(|w| w[k]).sum::<f64>() / m;
-            (means.iter().map(|w| (w[k] - mean).powi(2)).sum::<f64>() / m).sqrt()
-        })
-        .fold(0.0, f64::max);
+    let rate_std_deg_s = crate::effects::largest_axis_std(&means);
     Observability { rate_std_deg_s }
 }

@@ -104,20 +104,26 @@ impl UnitRecord {
     /// piece.
     pub fn gaps_notice(&self, file: &str) -> Option<String> {
         let largest = self.time.largest_gap_s()?;
+        let mut dropped = Vec::new();
+        if self.time.dropped_samples > 0 {
+            dropped.push(format!(
+                "{} isolated sample(s) between gaps dropped",
+                self.time.dropped_samples
+            ));
+        }
+        if self.dropped_segments > 0 {
+            dropped.push(format!(
+                "{} segment(s) shorter than two windows dropped",
+                self.dropped_segments
+            ));
+        }
         Some(format!(
-            "note: {file}: {} gap(s) in the time column (largest {largest:.3} s, a step over {} × the median {:.4} s): {} segment(s), each fitted as a record of its own{}",
+            "note: {file}: {} gap(s) in the time column (largest {largest:.3} s, a step over {} × the median {:.4} s): {} segment(s), each treated as a record of its own{}",
             self.time.gaps.len(),
             nav_sensors::record::GAP_FACTOR,
             self.time.median_step_s,
             self.segments.len(),
-            if self.dropped_segments > 0 {
-                format!(
-                    "; {} segment(s) shorter than a window dropped",
-                    self.dropped_segments
-                )
-            } else {
-                String::new()
-            }
+            dropped.iter().map(|d| format!("; {d}")).collect::<String>()
         ))
     }
 }

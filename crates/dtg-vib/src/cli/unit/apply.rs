@@ -25,6 +25,7 @@ pub fn diagnose(
     progress: Progress,
 ) -> Result<()> {
     let read = records_of(m, data)?;
+    super::check_observable(m.inner().sensor(), &read.records)?;
     let named = signals(&read.records)?;
     progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
     let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), options)?;
@@ -34,29 +35,7 @@ pub fn diagnose(
         println!("{}", serde_json::to_string(&d)?);
         return Ok(());
     }
-    for c in &d.channels {
-        println!(
-            "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
-            c.channel,
-            c.rms,
-            c.compare.val_fit_percent,
-            if c.suggested.is_empty() {
-                "nothing".to_string()
-            } else {
-                c.suggested.join(", ")
-            }
-        );
-        for f in &c.findings {
-            println!("     {f}");
-        }
-    }
-    let terms = super::super::terms::diagnosis_terms(&d);
-    if !terms.is_empty() {
-        println!("terms used above:");
-        for t in terms {
-            println!("  {t}");
-        }
-    }
+    super::super::diagnose::print_diagnosis(&d);
     Ok(())
 }
 
@@ -69,6 +48,7 @@ pub fn check(
     progress: Progress,
 ) -> Result<()> {
     let read = records_of(m, &[data.to_path_buf()])?;
+    super::check_observable(m.inner().sensor(), &read.records)?;
     let named = signals(&read.records)?;
     progress.say("applying the model");
     let prepared = m.inner().prepare_many(&borrowed(&named))?;
