@@ -277,8 +277,7 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
         ..sim.calibration.clone()
     };
     for (o, n) in names.iter().zip(new) {
-        cal.gyros
-            .insert(n.to_string(), sim.calibration.gyros[*o].clone());
+        cal.gyros.insert(n.to_string(), sim.calibration.gyros[*o]);
     }
     let sensor = UnitSensor {
         unit: renamed.clone(),
@@ -482,13 +481,16 @@ fn real_logs_are_read_in_segments_and_refused_where_not_observable() {
     assert!(e.contains("bad.toml") && e.contains("input"), "{e}");
 }
 
+/// A scenario of a duration, seed and hidden effects.
+type ScenarioOf = fn(f64, u64, &[Hidden]) -> Scenario;
+
 /// The rates over seeds, per built-in unit: false alarms on clean twins
 /// (records with an effect added), power (runs finding exactly the hidden
 /// effects), and the 95% intervals' coverage of the truth.
 #[test]
 #[ignore = "statistical: 20 seeds per unit (UNIT_LOOP_SEEDS), minutes"]
 fn rates_over_seeds() {
-    let cases: [(&str, &[Hidden], fn(f64, u64, &[Hidden]) -> Scenario); 3] = [
+    let cases: [(&str, &[Hidden], ScenarioOf); 3] = [
         ("tetra", &TETRA, triaxial),
         ("triad", &TRIAD, along_z),
         ("dual-triad", &DUAL, triaxial),

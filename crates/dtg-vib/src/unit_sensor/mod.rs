@@ -169,7 +169,7 @@ impl sysid::Sensor for UnitSensor {
         let out = c
             .compensate(&self.unit, &record)
             .map_err(|e| boxed(UnitSensorError::Calibration(e.to_string())))?;
-        Ok(to_signals(&out).map_err(boxed)?)
+        to_signals(&out).map_err(boxed)
     }
 
     fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
