@@ -5,7 +5,7 @@
 //! regressors taken from its own model and axes in the unit file.
 
 use super::UnitEffect;
-use crate::diagnose::separate::unlikeness;
+use crate::diagnose::separate::{Group, advise};
 use nalgebra::Vector3;
 use nav_sensors::geometry::Axis;
 use nav_sensors::unit::{GyroTerm, Sensed, Unit};
@@ -94,20 +94,6 @@ pub fn separation(
         .into_iter()
         .max_by(|a, b| var[a.index()].total_cmp(&var[b.index()]))
         .unwrap_or(Axis::Z);
-    let vibration_g = var.iter().sum::<f64>().sqrt();
-    let ids: Vec<String> = group.iter().map(UnitEffect::id).collect();
-    let combination: Vec<(String, f64)> = ids
-        .iter()
-        .skip(1)
-        .cloned()
-        .zip(kappa.iter().copied())
-        .collect();
-    let combo_text = combination
-        .iter()
-        .map(|(id, k)| format!("{k:+.3}·c({id})"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let identified = format!("this record measures c({}) {combo_text}", ids[0]);
     let terms: Vec<Option<GyroTerm>> = group
         .iter()
         .map(|e| match e {
@@ -115,80 +101,23 @@ pub fn separation(
             _ => None,
         })
         .collect();
-    let none = |advice: String| Separation {
-        effects: ids.clone(),
-        combination: combination.clone(),
-        axis: None,
-        responses: vec![None; group.len()],
-        advice,
-    };
-    if terms.iter().any(Option::is_none) {
-        return none(
-            if group.iter().any(|e| matches!(e, UnitEffect::Column(_))) {
-                format!(
-                    "{identified}; vary the column independently of the vibration (e.g. a separate thermal run) to tell them apart"
-                )
-            } else {
-                format!(
-                    "{identified}; rate-product terms are separated on a rate table, not by vibration"
-                )
-            },
-        );
-    }
-    let a = vibration_g.max(1e-3);
-    let on = |axis: Axis| -> Vec<Response> {
-        terms
-            .iter()
-            .flatten()
-            .map(|t| {
-                response(unit, channel, *t, &gravity_g, axis).unwrap_or(Response {
-                    linear: 0.0,
-                    quadratic: 0.0,
-                })
-            })
-            .collect()
-    };
-    let here = on(current);
-    let best = Axis::ALL
-        .iter()
-        .filter(|&&k| k != current)
-        .map(|&axis| {
-            let there = on(axis);
-            let worst = (0..there.len())
-                .flat_map(|i| (i + 1..there.len()).map(move |j| (i, j)))
-                .map(|(i, j)| unlikeness(&[here[i], there[i]], &[here[j], there[j]], a))
-                .fold(f64::INFINITY, f64::min);
-            (axis, there, worst)
-        })
-        .max_by(|x, y| x.2.total_cmp(&y.2));
-    let Some((axis, there, worst)) = best else {
-        return none(identified);
-    };
-    let described: Vec<String> = ids
-        .iter()
-        .zip(&there)
-        .map(|(id, r)| format!("{id} responds {:+.3}·a {:+.3}·a²", r.linear, r.quadratic))
-        .collect();
-    if worst < 1e-3 {
-        return Separation {
-            responses: there.into_iter().map(Some).collect(),
-            ..none(format!(
-                "{identified}; a run along another single axis of the unit does not split them either (their responses stay proportional): change the mount so the vibration axis is tilted"
-            ))
-        };
-    }
-    Separation {
-        effects: ids.clone(),
-        combination,
-        axis: Some(axis),
-        advice: format!(
-            "{identified}; run the same test with vibration along the unit's {} axis as well: there {} (a in g), unlike along {}",
-            axis.name(),
-            described.join(", "),
-            current.name()
-        ),
-        responses: there.into_iter().map(Some).collect(),
-    }
+    advise(
+        Group {
+            ids: group.iter().map(UnitEffect::id).collect(),
+            kappa,
+            responsive: terms.iter().all(Option::is_some),
+            has_column: group.iter().any(|e| matches!(e, UnitEffect::Column(_))),
+        },
+        var.iter().sum::<f64>().sqrt(),
+        current,
+        |axis| {
+            terms
+                .iter()
+                .flatten()
+                .map(|t| response(unit, channel, *t, &gravity_g, axis).expect("specific force"))
+                .collect()
+        },
+    )
 }
 
 #[cfg(test)]
@@ -212,6 +141,6 @@ mod tests {
             .collect();
         let s = separation(&triad, 2, &group, &[1.0], &ops);
         assert_eq!(s.axis, Some(Axis::X), "{}", s.advice);
-        assert!(s.advice.contains("unit's x axis"), "{}", s.advice);
+        assert!(s.advice.contains("along x as well"), "{}", s.advice);
     }
 }
