@@ -46,6 +46,7 @@ fn explain_takes(f: &FitArgs) -> Result<()> {
 pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let f = &a.fit;
     if let Some(unit) = super::unit::chosen(f.unit.as_deref())? {
+        explain_takes(f)?;
         if a.report.is_some() {
             return Err(super::unit::not_yet("explain --report", &unit));
         }

@@ -57,16 +57,14 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
     if a.json {
         let mut report = FitReport::new(&model, fit_seconds);
         if let Some(per) = &per_record {
-            for (c, r) in report.channels.iter_mut().zip(per) {
-                c.records = Some(r.clone());
-            }
-            report.cv = a.cv.clone();
+            report.set_records(per, a.cv.clone());
         }
         println!("{}", serde_json::to_string(&report)?);
     } else {
         print_fit(&model);
         if let Some(per) = &per_record {
-            print_record_scores(per, a.cv.is_some());
+            let names = nav_sensors::geometry::Channel::ALL.map(|c| c.name().to_string());
+            print_record_scores(&names, per, a.cv.is_some());
         }
         println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
     }
@@ -74,7 +72,11 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
 }
 
 /// Validation rms of each channel on each record.
-fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
+pub fn print_record_scores(
+    channels: &[String],
+    per: &[Vec<dtg_vib::fit::RecordScore>],
+    loro: bool,
+) {
     println!(
         "validation rms per record, deg/h ({}):",
         if loro {
@@ -88,11 +90,7 @@ fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
             .iter()
             .map(|s| format!("{} {:.4}", s.file, s.val_rms))
             .collect();
-        println!(
-            "{:>7}  {}",
-            nav_sensors::geometry::Channel::ALL[k].name(),
-            cells.join(", ")
-        );
+        println!("{:>7}  {}", channels[k], cells.join(", "));
     }
 }
 
@@ -194,6 +192,15 @@ impl FitReport {
             None => model.split().to_string(),
         };
         Self::of_channels(model.channels(), split, fit_seconds)
+    }
+
+    /// Each channel's validation rms per record (`per`, in channel order),
+    /// and `records` for `--cv records`.
+    pub fn set_records(&mut self, per: &[Vec<dtg_vib::fit::RecordScore>], cv: Option<String>) {
+        for (c, r) in self.channels.iter_mut().zip(per) {
+            c.records = Some(r.clone());
+        }
+        self.cv = cv;
     }
 
     /// The report of any sensor's channel models.

@@ -11,7 +11,7 @@ use nav_sensors::unit::Unit;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use sysid::Sensor;
 
-use super::super::fit::{FitReport, print_fit_channels};
+use super::super::fit::{FitReport, print_fit_channels, print_record_scores};
 use super::super::fit_args::{FitArgs, check_against_record, fit_inputs, fit_options_with};
 use super::{borrowed, check_observable, read_records, sensor, signals};
 
@@ -83,9 +83,6 @@ struct Inputs {
 
 fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
     outfile::guard_file("--out", &a.out, &fit_inputs(a))?;
-    if a.cv.is_some() {
-        return Err(super::not_yet("--cv records", &unit));
-    }
     let (options, reference) = unit_fit_options(a, &unit)?;
     let sensor = sensor(unit, a.calib.as_deref(), reference)?;
     let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
@@ -122,7 +119,7 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     let n = sensor.unit.gyros().len();
     let done = AtomicUsize::new(0);
     let start = std::time::Instant::now();
-    let (mut model, _) =
+    let (mut model, prepared) =
         sysid::fit_records(&sensor, &borrowed(&named), &options, &|stage| match stage {
             sysid::FitStage::Preparing => progress.say("preparing the records"),
             sysid::FitStage::ChannelDone(ch) => {
@@ -133,6 +130,16 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     if records.len() > 1 {
         model = model.with_records(records.iter().map(|(n, _)| n.clone()).collect());
     }
+    // Each record's (or log segment's) validation rms; with --cv records,
+    // each validated by a model fitted on the others.
+    let per_record = match a.cv.is_some() {
+        true => {
+            progress.say("leaving one record out");
+            Some(sysid::fit::leave_one_record_out(&prepared, &options)?)
+        }
+        false if records.len() > 1 => Some(sysid::fit::record_scores(&model, &prepared)?),
+        false => None,
+    };
     let seconds = start.elapsed().as_secs_f64();
     let model = UnitModel::of(model);
     model.save(&a.out)?;
@@ -140,13 +147,19 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     notes.say_notes();
     let m = model.inner();
     if a.json {
-        let report = FitReport::of_channels(m.channels(), split_text(m), seconds);
+        let mut report = FitReport::of_channels(m.channels(), split_text(m), seconds);
+        if let Some(per) = &per_record {
+            report.set_records(per, a.cv.clone());
+        }
         let mut v = serde_json::to_value(&report)?;
         v["unit"] = serde_json::Value::String(sensor.unit.name().to_string());
         println!("{v}");
     } else {
         println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
         print_fit_channels(m.channels());
+        if let Some(per) = &per_record {
+            print_record_scores(&sensor.channels(), per, a.cv.is_some());
+        }
         println!("model: {} ({:.2} s)", a.out.display(), seconds);
     }
     Ok(())
