@@ -439,11 +439,17 @@ pub fn rate_variation_deg_s<'a>(
         .into_iter()
         .map(|i| least_squares_rate(&record.gyro_sample(i)) / 3600.0)
         .collect();
-    let n = rates.len().max(1) as f64;
+    largest_axis_std(&rates)
+}
+
+/// The largest standard deviation (about the mean) of three-axis samples'
+/// axes; 0 for none.
+pub(crate) fn largest_axis_std(v: &[nalgebra::Vector3<f64>]) -> f64 {
+    let n = v.len().max(1) as f64;
     (0..3)
         .map(|k| {
-            let m = rates.iter().map(|w| w[k]).sum::<f64>() / n;
-            (rates.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
+            let m = v.iter().map(|w| w[k]).sum::<f64>() / n;
+            (v.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
         })
         .fold(0.0, f64::max)
 }

@@ -9,6 +9,9 @@
 //! library (`plot`), and not the onboard evaluator (`dtg-onboard`, which it
 //! exports to). Data flow one way:
 //!
+//! Any other unit (a unit file, `--unit`) plugs in through [`unit_sensor`]
+//! instead of [`paper_unit`], with the loop's own types.
+//!
 //! record → [`paper_unit`] (the unit as a [`sysid::Sensor`]: calibration,
 //! rate reference, candidate effects [`effects`]) → [`pipeline`] (the loop's
 //! preparation by channel) → [`fit`] ([`model`]) → [`apply`], [`check`],
@@ -34,6 +37,7 @@ pub mod parity;
 pub mod pipeline;
 pub mod report;
 pub mod signal;
+pub mod unit_sensor;
 
 pub use error::DtgVibError;
 pub use sysid::{inference, operating, residuals, split, window};

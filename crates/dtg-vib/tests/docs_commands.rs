@@ -224,6 +224,8 @@ fn run_doc(doc: &str) {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     std::os::unix::fs::symlink(root().join("peers"), dir.join("peers")).unwrap();
+    // The real IMU logs the tutorial's "Your own unit" reads.
+    std::os::unix::fs::symlink(root().join("data"), dir.join("data")).unwrap();
     let (dtg, rbf) = binaries();
     let prelude = format!(
         "dtg-vib() {{ '{}' \"$@\"; }}\nrbf() {{ '{}' \"$@\"; }}\n",

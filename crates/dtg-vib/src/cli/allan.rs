@@ -28,6 +28,11 @@ pub struct AllanArgs {
     /// Write the log-log figures and index.html into this directory.
     #[arg(long)]
     report: Option<PathBuf>,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Computes the deviations and prints (or writes as JSON) the noise terms.
@@ -38,7 +43,24 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         confidence,
         json,
         report,
+        unit,
     } = a;
+    let unit_model = match &model {
+        Some(m) => super::unit::model_unit(m, unit.as_deref())?,
+        None => None,
+    };
+    if let Some(m) = &unit_model {
+        return Err(super::unit::not_yet("allan --model", m.unit()));
+    }
+    if let Some(u) = super::unit::chosen(unit.as_deref())? {
+        if report.is_some() {
+            return Err(super::unit::not_yet("allan --report", &u));
+        }
+        if model.is_some() {
+            return Err(super::unit::not_yet("allan --model", &u));
+        }
+        return super::unit::allan::allan(&u, &data, confidence, json, progress);
+    }
     guard_report(
         report.as_deref(),
         &[("--data", Some(&data)), ("--model", model.as_deref())],

@@ -31,6 +31,11 @@ pub struct CheckArgs {
     /// Also write the model's report on this record (figures and index.html) here.
     #[arg(long)]
     report: Option<PathBuf>,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Applies the model to the record and prints (or writes as JSON) how it did.
@@ -41,7 +46,14 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         outside_threshold,
         json,
         report,
+        unit,
     } = a;
+    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
+        if report.is_some() {
+            return Err(super::unit::not_yet("check --report", m.unit()));
+        }
+        return super::unit::apply::check(&m, &data, outside_threshold, json, progress);
+    }
     guard_report(
         report.as_deref(),
         &[("--model", Some(&model)), ("--data", Some(&data))],

@@ -20,11 +20,29 @@ pub struct CompensateArgs {
     /// Output CSV (same columns; rows from the first full window on).
     #[arg(long)]
     out: PathBuf,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Writes the compensated record and says what was removed.
 pub fn run(a: CompensateArgs, progress: Progress) -> Result<()> {
-    let CompensateArgs { model, data, out } = a;
+    let CompensateArgs {
+        model,
+        data,
+        out,
+        unit,
+    } = a;
+    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
+        outfile::guard_file(
+            "--out",
+            &out,
+            &[("--model", Some(&model)), ("--data", Some(&data))],
+        )?;
+        return super::unit::apply::compensate(&m, &data, &out, progress);
+    }
     outfile::guard_file(
         "--out",
         &out,

@@ -13,11 +13,19 @@ pub struct DemoArgs {
     /// Output directory.
     #[arg(long, default_value = "demo-out")]
     out: PathBuf,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Runs the demo into its directory and prints what it found.
 pub fn run(a: DemoArgs, progress: Progress) -> Result<()> {
-    let DemoArgs { out } = a;
+    let DemoArgs { out, unit } = a;
+    if let Some(u) = super::unit::chosen(unit.as_deref())? {
+        return Err(super::unit::not_yet("demo", &u));
+    }
     outfile::guard_dir("--out", &out, &[], &[])?;
     let summary = dtg_vib::demo::run(&out, &|step| progress.say(step.to_string()))?;
     drop(progress);

@@ -31,6 +31,11 @@ pub struct DiagnoseArgs {
     report: Option<PathBuf>,
     #[command(flatten)]
     thresholds: Thresholds,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Diagnoses the model on its records and prints (or writes as JSON) the findings.
@@ -41,7 +46,14 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         json,
         report,
         thresholds,
+        unit,
     } = a;
+    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
+        if report.is_some() {
+            return Err(super::unit::not_yet("diagnose --report", m.unit()));
+        }
+        return super::unit::apply::diagnose(&m, &data, json, &thresholds.options(), progress);
+    }
     let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
         .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
         .collect();
@@ -71,32 +83,40 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
             eprintln!("report: {}", p.display());
         }
     } else {
-        for c in &d.channels {
-            println!(
-                "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
-                c.channel,
-                c.rms,
-                c.compare.val_fit_percent,
-                if c.suggested.is_empty() {
-                    "nothing".to_string()
-                } else {
-                    c.suggested.join(", ")
-                }
-            );
-            for f in &c.findings {
-                println!("     {f}");
-            }
-        }
-        let terms = super::terms::diagnosis_terms(&d);
-        if !terms.is_empty() {
-            println!("terms used above:");
-            for t in terms {
-                println!("  {t}");
-            }
-        }
+        print_diagnosis(&d);
         if let Some(p) = &page {
             println!("report: {}", p.display());
         }
     }
     Ok(())
+}
+
+/// The diagnosis as `diagnose` prints it: each channel's rms, fit and
+/// suggestions with its findings, then what the words used mean.
+pub fn print_diagnosis<C: std::fmt::Display>(
+    d: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
+) {
+    for c in &d.channels {
+        println!(
+            "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
+            c.channel,
+            c.rms,
+            c.compare.val_fit_percent,
+            if c.suggested.is_empty() {
+                "nothing".to_string()
+            } else {
+                c.suggested.join(", ")
+            }
+        );
+        for f in &c.findings {
+            println!("     {f}");
+        }
+    }
+    let terms = super::terms::diagnosis_terms(d);
+    if !terms.is_empty() {
+        println!("terms used above:");
+        for t in terms {
+            println!("  {t}");
+        }
+    }
 }

@@ -45,6 +45,19 @@ fn explain_takes(f: &FitArgs) -> Result<()> {
 /// Runs the loop, saves the final model and prints the rounds.
 pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let f = &a.fit;
+    if let Some(unit) = super::unit::chosen(f.unit.as_deref())? {
+        explain_takes(f)?;
+        if a.report.is_some() {
+            return Err(super::unit::not_yet("explain --report", &unit));
+        }
+        return super::unit::fit::explain(
+            f,
+            unit,
+            &a.thresholds.options(),
+            a.max_rounds as usize,
+            progress,
+        );
+    }
     outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
     guard_report(a.report.as_deref(), &fit_inputs(f))?;
     explain_takes(f)?;
@@ -155,7 +168,10 @@ struct ExplainReport<'a> {
 
 /// Round `k` (from 0): what it added, how each addition is told from its
 /// look-alikes, and the validation rms after it.
-fn print_round(k: usize, r: &dtg_vib::explain::Round) {
+pub fn print_round<C: std::fmt::Display>(
+    k: usize,
+    r: &sysid::explain::Round<C, nav_sensors::geometry::Axis>,
+) {
     println!("round {}:", k + 1);
     if k == 0 {
         println!("  fitted with the given effects");

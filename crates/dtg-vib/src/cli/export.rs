@@ -22,6 +22,11 @@ pub struct ExportArgs {
     /// Tables and arithmetic of the C: f64 (equal to `compensate`) or f32.
     #[arg(long, default_value = "f64")]
     precision: String,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// The file `--lang text --out DIR` writes into DIR.
@@ -29,6 +34,13 @@ const EQUATIONS_FILE: &str = "equations.txt";
 
 /// Writes the C sources and tables, or the equations.
 pub fn run(a: ExportArgs) -> Result<()> {
+    if let Some(m) = super::unit::model_unit(&a.model, a.unit.as_deref())? {
+        return Err(anyhow::anyhow!(
+            "export: {} is a model of the unit '{}': the C and onboard export is written for the paper's six channels and cannot export another unit yet; use the model with dtg-vib compensate --model",
+            a.model.display(),
+            m.unit().name()
+        ));
+    }
     let model = CompensationModel::load(&a.model)?;
     match a.lang.as_str() {
         "text" => text(&model, &a.model, a.out.as_deref()),

@@ -13,6 +13,9 @@ use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
 
 /// Fits, saves the model and prints its scores.
 pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
+    if let Some(unit) = super::unit::chosen(a.unit.as_deref())? {
+        return super::unit::fit::fit(&a, unit, progress);
+    }
     outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
     let options = fit_options(&a)?;
     let records = read_records(&a)?;
@@ -54,16 +57,14 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
     if a.json {
         let mut report = FitReport::new(&model, fit_seconds);
         if let Some(per) = &per_record {
-            for (c, r) in report.channels.iter_mut().zip(per) {
-                c.records = Some(r.clone());
-            }
-            report.cv = a.cv.clone();
+            report.set_records(per, a.cv.clone());
         }
         println!("{}", serde_json::to_string(&report)?);
     } else {
         print_fit(&model);
         if let Some(per) = &per_record {
-            print_record_scores(per, a.cv.is_some());
+            let names = nav_sensors::geometry::Channel::ALL.map(|c| c.name().to_string());
+            print_record_scores(&names, per, a.cv.is_some());
         }
         println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
     }
@@ -71,7 +72,11 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
 }
 
 /// Validation rms of each channel on each record.
-fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
+pub fn print_record_scores(
+    channels: &[String],
+    per: &[Vec<dtg_vib::fit::RecordScore>],
+    loro: bool,
+) {
     println!(
         "validation rms per record, deg/h ({}):",
         if loro {
@@ -85,11 +90,7 @@ fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
             .iter()
             .map(|s| format!("{} {:.4}", s.file, s.val_rms))
             .collect();
-        println!(
-            "{:>7}  {}",
-            nav_sensors::geometry::Channel::ALL[k].name(),
-            cells.join(", ")
-        );
+        println!("{:>7}  {}", channels[k], cells.join(", "));
     }
 }
 
@@ -97,10 +98,17 @@ fn print_record_scores(per: &[Vec<dtg_vib::fit::RecordScore>; 6], loro: bool) {
 /// estimates, from the training rows), each with its standard error and 95%
 /// interval.
 pub fn print_fit(model: &CompensationModel) {
+    print_fit_channels(model.channels());
+}
+
+/// [`print_fit`] of any sensor's channel models.
+pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
+    channels: &[sysid::ChannelModel<C, E>],
+) {
     println!(
         "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
     );
-    for c in model.channels() {
+    for c in channels {
         let s = c.scores();
         let e: Vec<String> = c
             .effects()
@@ -121,7 +129,7 @@ pub fn print_fit(model: &CompensationModel) {
             .collect();
         println!(
             "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
-            c.channel().name(),
+            c.channel().to_string(),
             c.n_centres(),
             s.train_rms,
             s.val_rms,
@@ -148,7 +156,7 @@ pub struct FitReport {
 /// One channel of [`FitReport`].
 #[derive(serde::Serialize)]
 struct ChannelReport {
-    channel: nav_sensors::geometry::Channel,
+    channel: String,
     effects: Vec<String>,
     // The key is a contract (issue 24 §5: code says centre, JSON keys stay).
     #[serde(rename = "n_centers")]
@@ -179,8 +187,29 @@ struct CoefficientReport {
 
 impl FitReport {
     pub fn new(model: &CompensationModel, fit_seconds: f64) -> Self {
-        let channels = model
-            .channels()
+        let split = match model.validated_on() {
+            Some(name) => format!("by record (validated on {name})"),
+            None => model.split().to_string(),
+        };
+        Self::of_channels(model.channels(), split, fit_seconds)
+    }
+
+    /// Each channel's validation rms per record (`per`, in channel order),
+    /// and `records` for `--cv records`.
+    pub fn set_records(&mut self, per: &[Vec<dtg_vib::fit::RecordScore>], cv: Option<String>) {
+        for (c, r) in self.channels.iter_mut().zip(per) {
+            c.records = Some(r.clone());
+        }
+        self.cv = cv;
+    }
+
+    /// The report of any sensor's channel models.
+    pub fn of_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
+        channels: &[sysid::ChannelModel<C, E>],
+        split: String,
+        fit_seconds: f64,
+    ) -> Self {
+        let channels = channels
             .iter()
             .map(|c| {
                 let s = c.scores();
@@ -203,7 +232,7 @@ impl FitReport {
                     })
                     .collect();
                 ChannelReport {
-                    channel: c.channel(),
+                    channel: c.channel().to_string(),
                     effects: c.effects().iter().map(|e| e.id()).collect(),
                     n_centres: c.n_centres(),
                     train_rms: s.train_rms,
@@ -217,10 +246,6 @@ impl FitReport {
                 }
             })
             .collect();
-        let split = match model.validated_on() {
-            Some(name) => format!("by record (validated on {name})"),
-            None => model.split().to_string(),
-        };
         Self {
             channels,
             split,

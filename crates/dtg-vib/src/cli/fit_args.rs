@@ -27,6 +27,10 @@ pub struct FitArgs {
     /// Ground-calibration file (JSON); without it nothing is compensated.
     #[arg(long)]
     pub calib: Option<PathBuf>,
+    /// The sensor unit: a unit file (FILE.toml, docs/formats.md) or a
+    /// built-in name (paper, triad, tetra, dual-triad); default paper.
+    #[arg(long)]
+    pub unit: Option<String>,
     /// Physical effects of every channel, comma-separated (g_I, gg_IS, ai_OS, col:NAME, ...).
     #[arg(long, value_delimiter = ',')]
     pub effects: Vec<String>,
@@ -106,6 +110,26 @@ pub struct FitArgs {
 
 /// The fit options the flags say.
 pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
+    let (effects, add, options) = fit_options_with(
+        a,
+        |list| Ok(Effect::parse_list(list)?),
+        |s| Ok(s.parse::<ChannelEffect>()?),
+    )?;
+    Ok(FitOptions {
+        effects,
+        add,
+        ..options
+    })
+}
+
+/// The fit options the flags say, with the effects of `--effects` and
+/// `--add-effect` parsed by the given functions (those of the paper's unit,
+/// or of another unit) and returned beside options that hold none.
+pub fn fit_options_with<E, A>(
+    a: &FitArgs,
+    parse_effects: impl Fn(&str) -> Result<Vec<E>>,
+    parse_add: impl Fn(&str) -> Result<A>,
+) -> Result<(Vec<E>, Vec<A>, FitOptions)> {
     let centres = a.centres.parse::<CentreMethod>()?;
     if centres == CentreMethod::Ols && a.max_centres > a.candidates {
         // OLS picks among the candidates; more centres than that used to
@@ -117,12 +141,12 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
             a.candidates
         );
     }
-    let effects = Effect::parse_list(&a.effects.join(","))?;
+    let effects = parse_effects(&a.effects.join(","))?;
     let add = a
         .add_effect
         .iter()
-        .map(|s| s.parse::<ChannelEffect>())
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|s| parse_add(s))
+        .collect::<Result<Vec<_>>>()?;
     let by_record = a.split.trim() == "by-record";
     let split = match by_record {
         true => Holdout::Blocked {
@@ -171,7 +195,7 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
         (None, Some(w)) => RateReference::Table { rate_deg_s: *w },
         (None, None) => RateReference::None,
     };
-    Ok(FitOptions {
+    let options = FitOptions {
         preprocess: Preprocess {
             filter,
             input_filter,
@@ -179,8 +203,8 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
             rate_reference,
             causal: a.causal,
         },
-        effects,
-        add,
+        effects: Vec::new(),
+        add: Vec::new(),
         split,
         validate_on,
         settings: FitSettings {
@@ -191,7 +215,8 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
             seed: a.seed,
             ..FitSettings::default()
         },
-    })
+    };
+    Ok((effects, add, options))
 }
 
 /// The name of the --data record that `path` names (the same file), for
@@ -255,7 +280,7 @@ pub fn read_records(a: &FitArgs) -> Result<Vec<(String, Record)>> {
 }
 
 /// The flags that depend on the record's rate, said with the flag.
-fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
+pub fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
     for (flag, cutoff) in [
         ("--cutoff", (!a.no_filter).then_some(a.cutoff)),
         ("--input-cutoff", a.input_cutoff),

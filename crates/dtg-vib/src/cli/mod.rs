@@ -26,6 +26,7 @@ pub mod residues;
 pub mod simulate;
 pub mod terms;
 pub mod thresholds;
+pub mod unit;
 
 use clap::{Parser, Subcommand};
 

@@ -27,6 +27,11 @@ pub struct ReportArgs {
     /// Output directory.
     #[arg(long)]
     out: PathBuf,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Writes the report and prints the residues (and the baseline's table).
@@ -36,7 +41,11 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
         data,
         baseline,
         out,
+        unit,
     } = a;
+    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
+        return Err(super::unit::not_yet("report", m.unit()));
+    }
     outfile::guard_dir(
         "--out",
         &out,

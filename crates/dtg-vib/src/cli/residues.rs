@@ -21,11 +21,38 @@ pub struct ResiduesArgs {
     /// Output CSV.
     #[arg(long)]
     out: PathBuf,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. Not needed with a model
+    /// fitted on another unit (the model stores it).
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Writes the residues and, with a model, prints their rms before and after.
 pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
-    let ResiduesArgs { data, model, out } = a;
+    let ResiduesArgs {
+        data,
+        model,
+        out,
+        unit,
+    } = a;
+    let unit_model = match &model {
+        Some(m) => super::unit::model_unit(m, unit.as_deref())?,
+        None => None,
+    };
+    let chosen = match &unit_model {
+        Some(m) => Some(m.unit().clone()),
+        None if model.is_none() => super::unit::chosen(unit.as_deref())?,
+        None => None,
+    };
+    if let Some(u) = chosen {
+        outfile::guard_file(
+            "--out",
+            &out,
+            &[("--data", Some(&data)), ("--model", model.as_deref())],
+        )?;
+        return super::unit::residues::residues(&u, unit_model.as_ref(), &data, &out, progress);
+    }
     outfile::guard_file(
         "--out",
         &out,

@@ -25,9 +25,16 @@ pub struct SimulateArgs {
     /// profile: the schedule and motion are cut, not compressed).
     #[arg(long)]
     duration: Option<f64>,
-    /// Output directory (record.csv, calibration.json, truth.json, components.csv, scenario.toml).
+    /// Output directory (record.csv, calibration.json, truth.json, components.csv, scenario.toml;
+    /// with --unit: record.csv in the unit's names and units, calibration.json, truth.json,
+    /// scenario.toml, unit.toml).
     #[arg(long)]
     out: PathBuf,
+    /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
+    /// triad, tetra, dual-triad); default paper. The scenario's [unit] table
+    /// names its channels' coefficients and hidden effects.
+    #[arg(long)]
+    unit: Option<String>,
 }
 
 /// Simulates the scenario the flags name and writes its files.
@@ -38,7 +45,9 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         seed,
         duration,
         out,
+        unit,
     } = a;
+    let unit = super::unit::chosen(unit.as_deref())?;
     let scenario_path = scenario.clone();
     let mut s = match (scenario, builtin) {
         (Some(path), _) => Scenario::load(&path)?,
@@ -61,6 +70,9 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         s.validate()
             .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
     }
+    if let Some(unit) = unit {
+        return simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress);
+    }
     outfile::guard_dir(
         "--out",
         &out,
@@ -78,6 +90,45 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
     drop(progress);
     for name in nav_sensors::sim::Simulation::FILES {
         println!("wrote {}", out.join(name).display());
+    }
+    Ok(())
+}
+
+/// `simulate --unit`: the same physics on the unit's gyros and
+/// accelerometers, written in its column names and units.
+fn simulate_unit(
+    unit: &nav_sensors::unit::Unit,
+    s: &Scenario,
+    out: &std::path::Path,
+    scenario_path: Option<&std::path::Path>,
+    progress: Progress,
+) -> Result<()> {
+    use nav_sensors::sim::UnitSimulation;
+    outfile::guard_dir(
+        "--out",
+        out,
+        &UnitSimulation::FILES,
+        &[("--scenario", scenario_path)],
+    )?;
+    progress.say(format!(
+        "simulating '{}' ({} s) on the unit '{}'",
+        s.name,
+        s.duration_s,
+        unit.name()
+    ));
+    let sim = nav_sensors::sim::simulate_unit(unit, s)?;
+    sim.write_dir(out).with_context(|| {
+        format!(
+            "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
+            s.name
+        )
+    })?;
+    drop(progress);
+    for name in UnitSimulation::FILES {
+        println!("wrote {}", out.join(name).display());
+    }
+    for n in &sim.truth.not_applied {
+        eprintln!("note: {n}");
     }
     Ok(())
 }

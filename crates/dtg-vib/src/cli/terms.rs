@@ -3,7 +3,6 @@
 //! and could read only with the docs (issue 26 item 5). A term is explained
 //! only where it was printed, so a clean result stays short.
 
-use dtg_vib::diagnose::Diagnosis;
 use dtg_vib::effects::{ANISOINERTIA_MIN_RATE_DEG_S, Effect};
 use nav_sensors::dtg::DtgTerm;
 
@@ -30,7 +29,9 @@ pub fn negative_fit(channels: &[&str]) -> Option<String> {
 /// the candidates not ranked, the failing correlation tests, a negative fit,
 /// and the words of the findings (cross-fitted, |r|, σ, white floor) where
 /// they were printed.
-pub fn diagnosis_terms(d: &Diagnosis) -> Vec<String> {
+pub fn diagnosis_terms<C: std::fmt::Display>(
+    d: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
+) -> Vec<String> {
     let mut out = Vec::new();
     let mut unexcited: Vec<(&str, &str)> = Vec::new();
     let mut failing: Vec<&str> = Vec::new();
@@ -70,12 +71,13 @@ pub fn diagnosis_terms(d: &Diagnosis) -> Vec<String> {
         out.push(format!("{}: not ranked: {reason}", ids.join(", ")));
     }
     out.extend(failing.iter().map(|name| test_meaning(name)));
-    let negative: Vec<&str> = d
+    let negative: Vec<String> = d
         .channels
         .iter()
         .filter(|c| c.compare.val_fit_percent < 0.0)
-        .map(|c| c.channel.name())
+        .map(|c| c.channel.to_string())
         .collect();
+    let negative: Vec<&str> = negative.iter().map(String::as_str).collect();
     out.extend(negative_fit(&negative));
     let printed = |word: &str| {
         d.channels

@@ -90,13 +90,6 @@ pub fn separation(
     vibration_g: f64,
     current: Axis,
 ) -> Separation {
-    let ids: Vec<String> = group.iter().map(Effect::id).collect();
-    let combination: Vec<(String, f64)> = ids
-        .iter()
-        .skip(1)
-        .cloned()
-        .zip(kappa.iter().copied())
-        .collect();
     let terms: Vec<Option<DtgTerm>> = group
         .iter()
         .map(|e| match e {
@@ -104,19 +97,66 @@ pub fn separation(
             _ => None,
         })
         .collect();
+    advise(
+        Group {
+            ids: group.iter().map(Effect::id).collect(),
+            kappa,
+            responsive: terms.iter().all(Option::is_some),
+            has_column: group.iter().any(|e| matches!(e, Effect::Column(_))),
+        },
+        vibration_g,
+        current,
+        |axis| {
+            terms
+                .iter()
+                .flatten()
+                .map(|t| response(channel, *t, gravity_g, axis).expect("specific force"))
+                .collect()
+        },
+    )
+}
+
+/// A group of candidates one record cannot tell apart, as the advice needs
+/// it: their ids (the representative first), the identified combination's
+/// weights, whether every member responds to specific force, and whether
+/// one is an extra column.
+pub(crate) struct Group<'a> {
+    pub ids: Vec<String>,
+    pub kappa: &'a [f64],
+    pub responsive: bool,
+    pub has_column: bool,
+}
+
+/// The advice for a group under vibration along `current` of `vibration_g`
+/// (g rms), each member's response along an axis given by `on` (called only
+/// when every member responds to specific force): the other axis along
+/// which a run splits the group, if one does. One argument for every unit.
+pub(crate) fn advise(
+    group: Group<'_>,
+    vibration_g: f64,
+    current: Axis,
+    on: impl Fn(Axis) -> Vec<Response>,
+) -> Separation {
+    let Group {
+        ids,
+        kappa,
+        responsive,
+        has_column,
+    } = group;
+    let combination: Vec<(String, f64)> = ids
+        .iter()
+        .skip(1)
+        .cloned()
+        .zip(kappa.iter().copied())
+        .collect();
     let combo_text = combination
         .iter()
         .map(|(id, k)| format!("{k:+.3}·c({id})"))
         .collect::<Vec<_>>()
         .join(" ");
     let identified = format!("this record measures c({}) {combo_text}", ids[0]);
-    if terms.iter().any(Option::is_none) {
-        let others: Vec<&str> = group
-            .iter()
-            .filter(|e| matches!(e, Effect::Column(_)))
-            .map(|_| "an extra column")
-            .collect();
-        let advice = if others.is_empty() {
+    if !responsive {
+        let advice = if !has_column {
             format!(
                 "{identified}; rate-product terms are separated on a rate table, not by vibration"
             )
@@ -126,22 +166,14 @@ pub fn separation(
             )
         };
         return Separation {
+            responses: vec![None; ids.len()],
             effects: ids,
             combination,
             axis: None,
-            responses: vec![None; group.len()],
             advice,
         };
     }
     let a = vibration_g.max(1e-3);
-    let on = |axis: Axis| -> Vec<Response> {
-        terms
-            .iter()
-            .map(|t| {
-                response(channel, t.expect("checked"), gravity_g, axis).expect("specific force")
-            })
-            .collect()
-    };
     let here = on(current);
     let (axis, there, worst) = Axis::ALL
         .iter()

@@ -15,7 +15,7 @@ use sysid::operating::OperatingPoints;
 pub const FORMAT_VERSION: u32 = 1;
 
 /// A tag that tells a dtg-vib model from other JSON (an `rbf` model, a calibration).
-const KIND: &str = "dtg-vib compensation model";
+pub(crate) const KIND: &str = "dtg-vib compensation model";
 
 #[derive(Serialize)]
 struct FileRef<'a> {
@@ -82,29 +82,24 @@ impl CompensationModel {
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), DtgVibError> {
         let path = path.as_ref();
         let m = &self.inner;
-        let text = serde_json::to_string_pretty(&FileRef {
-            kind: KIND,
-            format_version: FORMAT_VERSION,
-            model: ModelRef {
-                preprocess: &self.preprocess,
-                calibration: self.calibration(),
-                dt_s: m.dt_s(),
-                split: m.split(),
-                channels: m.channels(),
-                fit: m.settings(),
-                records: m.records(),
-                validated_on: m.validated_on(),
-                operating_points: m.operating_points(),
+        write_json(
+            path,
+            &FileRef {
+                kind: KIND,
+                format_version: FORMAT_VERSION,
+                model: ModelRef {
+                    preprocess: &self.preprocess,
+                    calibration: self.calibration(),
+                    dt_s: m.dt_s(),
+                    split: m.split(),
+                    channels: m.channels(),
+                    fit: m.settings(),
+                    records: m.records(),
+                    validated_on: m.validated_on(),
+                    operating_points: m.operating_points(),
+                },
             },
-        })
-        .map_err(|e| DtgVibError::ModelCorrupt {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
-        outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
-            path: path.to_path_buf(),
-            source,
-        })
+        )
     }
 
     /// Reads a model saved by [`CompensationModel::save`], checking its kind
@@ -124,21 +119,7 @@ impl CompensationModel {
             path: path.to_path_buf(),
             reason,
         };
-        let header: Header = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
-        if header.kind.as_deref() != Some(KIND) {
-            return Err(corrupt(format!("expected \"kind\": \"{KIND}\"")));
-        }
-        match header.format_version {
-            Some(v) if v == u64::from(FORMAT_VERSION) => {}
-            Some(found) => {
-                return Err(DtgVibError::ModelVersion {
-                    path: path.to_path_buf(),
-                    found,
-                    expected: FORMAT_VERSION,
-                });
-            }
-            None => return Err(corrupt("no format_version".into())),
-        }
+        check_header(text, path)?;
         let file: FileOwned = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
         let m = file.model;
         if m.channels.len() != 6
@@ -168,4 +149,38 @@ impl CompensationModel {
         .map_err(corrupt)?;
         Ok(CompensationModel::of(inner))
     }
+}
+
+/// Checks that `text` is a dtg-vib model file of the supported format
+/// version (the paper's, or another unit's: one header for both).
+pub(crate) fn check_header(text: &str, path: &Path) -> Result<(), DtgVibError> {
+    let corrupt = |reason: String| DtgVibError::ModelCorrupt {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let header: Header = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
+    if header.kind.as_deref() != Some(KIND) {
+        return Err(corrupt(format!("expected \"kind\": \"{KIND}\"")));
+    }
+    match header.format_version {
+        Some(v) if v == u64::from(FORMAT_VERSION) => Ok(()),
+        Some(found) => Err(DtgVibError::ModelVersion {
+            path: path.to_path_buf(),
+            found,
+            expected: FORMAT_VERSION,
+        }),
+        None => Err(corrupt("no format_version".into())),
+    }
+}
+
+/// Writes a model file's JSON (pretty) atomically.
+pub(crate) fn write_json(path: &Path, file: &impl Serialize) -> Result<(), DtgVibError> {
+    let text = serde_json::to_string_pretty(file).map_err(|e| DtgVibError::ModelCorrupt {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })?;
+    outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
+        path: path.to_path_buf(),
+        source,
+    })
 }

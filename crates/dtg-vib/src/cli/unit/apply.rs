@@ -1,0 +1,145 @@
+//! `diagnose`, `check` and `compensate` with a model of a unit other than
+//! the paper's: the records read with the model's unit, in segments.
+
+use anyhow::Result;
+use cli_support::progress::Progress;
+use dtg_vib::unit_sensor::{UnitModel, to_record};
+use nav_sensors::record::Record;
+use std::path::{Path, PathBuf};
+use sysid::Signals;
+
+use super::{Read, borrowed, read_records, signals};
+
+/// The records of a model's unit, segments at least two windows long.
+fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Read> {
+    let window = m.inner().preprocess().window.length();
+    read_records(data, m.unit(), 2 * window)
+}
+
+/// `diagnose` of a unit's model.
+pub fn diagnose(
+    m: &UnitModel,
+    data: &[PathBuf],
+    json: bool,
+    options: &sysid::diagnose::DiagnoseOptions,
+    progress: Progress,
+) -> Result<()> {
+    let read = records_of(m, data)?;
+    super::check_observable(m.inner().sensor(), &read.records)?;
+    let named = signals(&read.records)?;
+    progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
+    let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), options)?;
+    drop(progress);
+    read.say_notes();
+    if json {
+        println!("{}", serde_json::to_string(&d)?);
+        return Ok(());
+    }
+    super::super::diagnose::print_diagnosis(&d);
+    Ok(())
+}
+
+/// `check` of a unit's model on a record (all its segments together).
+pub fn check(
+    m: &UnitModel,
+    data: &Path,
+    outside_threshold: f64,
+    json: bool,
+    progress: Progress,
+) -> Result<()> {
+    let read = records_of(m, &[data.to_path_buf()])?;
+    super::check_observable(m.inner().sensor(), &read.records)?;
+    let named = signals(&read.records)?;
+    progress.say("applying the model");
+    let prepared = m.inner().prepare_many(&borrowed(&named))?;
+    let predicted = m.inner().predict(&prepared)?;
+    let c = sysid::check::transfer(m.inner(), &prepared, &predicted, outside_threshold)?;
+    drop(progress);
+    read.say_notes();
+    if json {
+        let mut v = serde_json::to_value(&c)?;
+        v["unit"] = serde_json::Value::String(m.unit().name().to_string());
+        println!("{v}");
+        return Ok(());
+    }
+    println!(
+        "channel  rms before  rms after  mean after  fit %  (deg/h, {} windows)",
+        c.windows
+    );
+    for ch in &c.channels {
+        println!(
+            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>5.1}",
+            ch.channel, ch.rms_before, ch.rms_after, ch.mean_after, ch.fit_percent
+        );
+    }
+    if let Some(f) = c.outside_fraction {
+        println!(
+            "outside the training range: {:.1}% of the windows",
+            100.0 * f
+        );
+    }
+    if let Some(w) = &c.warning {
+        println!("warning: {w}");
+    }
+    if let Some(note) = super::no_residue_note(m.unit()) {
+        println!("{note}");
+    }
+    Ok(())
+}
+
+/// A segment compensated: its calibrated outputs less the model's
+/// predicted error, from the first sample with a full window on.
+pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record> {
+    let prepared = m.inner().prepare(segment)?;
+    let predicted = m.inner().predict(&prepared)?;
+    let first = prepared.first_sample();
+    let calibrated = prepared.calibrated();
+    let gyros = m.unit().gyro_names();
+    let columns = calibrated
+        .columns()
+        .iter()
+        .map(|(n, v)| {
+            let tail = &v[first..];
+            let out = match gyros.iter().position(|g| g == n) {
+                Some(k) => tail.iter().zip(&predicted[k]).map(|(y, e)| y - e).collect(),
+                None => tail.to_vec(),
+            };
+            (n.clone(), out)
+        })
+        .collect();
+    let s = Signals::new(calibrated.t()[first..].to_vec(), columns)?;
+    Ok(to_record(m.unit(), &s)?)
+}
+
+/// `compensate` with a unit's model: every segment compensated, written
+/// in the unit's column names and units, one after the other.
+pub fn compensate(m: &UnitModel, data: &Path, out: &Path, progress: Progress) -> Result<()> {
+    let read = records_of(m, &[data.to_path_buf()])?;
+    let named = signals(&read.records)?;
+    progress.say("compensating");
+    let mut text: Vec<u8> = Vec::new();
+    let mut rows = 0;
+    for (k, (name, s)) in named.iter().enumerate() {
+        let r = compensated(m, s)?;
+        rows += r.len();
+        let mut part = Vec::new();
+        r.write_with_unit(&mut part, name, m.unit())?;
+        let body = match k {
+            0 => &part[..],
+            _ => {
+                let header_end = part.iter().position(|&b| b == b'\n').map_or(0, |i| i + 1);
+                &part[header_end..]
+            }
+        };
+        text.extend_from_slice(body);
+    }
+    outfile::write_bytes(out, text).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
+    drop(progress);
+    read.say_notes();
+    eprintln!(
+        "wrote {} ({rows} rows in the unit's names and units, from {} segment(s); each segment's first samples have no full window)",
+        out.display(),
+        named.len()
+    );
+    Ok(())
+}

@@ -1,0 +1,233 @@
+//! `fit` and `explain` on a unit other than the paper's: the unit's
+//! effects parsed against its channels, its logs read in segments, the
+//! observability refusal, and the model saved with its unit.
+
+use anyhow::{Result, anyhow};
+use cli_support::progress::Progress;
+use dtg_vib::pipeline::RateReference;
+use dtg_vib::unit_sensor::{UnitEffect, UnitEffectError, UnitModel, UnitSensor};
+use nav_sensors::record::Record;
+use nav_sensors::unit::Unit;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use sysid::Sensor;
+
+use super::super::fit::{FitReport, print_fit_channels, print_record_scores};
+use super::super::fit_args::{FitArgs, check_against_record, fit_inputs, fit_options_with};
+use super::{borrowed, check_observable, read_records, sensor, signals};
+
+/// The loop's options for the unit, and the rate reference, from the fit
+/// flags: `--effects` must suit every channel, `--add-effect CHANNEL=ID`
+/// its channel's model.
+pub fn unit_fit_options(
+    a: &FitArgs,
+    unit: &Unit,
+) -> Result<(sysid::FitOptions<UnitEffect>, RateReference)> {
+    let (effects, add, o) = fit_options_with(
+        a,
+        |list| Ok(UnitEffect::parse_list(list)?),
+        |s| {
+            s.split_once('=')
+                .map(|(c, e)| (c.trim().to_string(), e.trim().to_string()))
+                .ok_or_else(|| UnitEffectError::NotAPair { given: s.into() }.into())
+        },
+    )?;
+    let plug = UnitSensor::new(unit.clone());
+    let mut per: Vec<Vec<UnitEffect>> = Vec::new();
+    for k in 0..unit.gyros().len() {
+        let mut e = Vec::new();
+        for x in &effects {
+            e.push(
+                plug.parse_effect(k, &x.id())
+                    .map_err(|err| anyhow!("--effects {x}: {err}"))?,
+            );
+        }
+        per.push(e);
+    }
+    for (channel, id) in add {
+        let k = unit
+            .gyro_index(&channel)
+            .ok_or_else(|| UnitEffectError::UnknownChannel {
+                given: format!("{channel}={id}"),
+                channel: channel.clone(),
+                valid: unit.gyro_names().iter().map(|n| n.to_string()).collect(),
+            })?;
+        let e = plug
+            .parse_effect(k, &id)
+            .map_err(|err| anyhow!("--add-effect {channel}={id}: {err}"))?;
+        if !per[k].contains(&e) {
+            per[k].push(e);
+        }
+    }
+    let recipe = sysid::Recipe {
+        preprocess: o.preprocess.sysid(),
+        split: o.split,
+        effects: per,
+        settings: o.settings,
+    };
+    Ok((
+        sysid::FitOptions {
+            recipe,
+            validate_on: o.validate_on,
+        },
+        o.preprocess.rate_reference,
+    ))
+}
+
+/// What a fit on a unit starts from: the plug-in, the options, the records.
+struct Inputs {
+    sensor: UnitSensor,
+    options: sysid::FitOptions<UnitEffect>,
+    records: Vec<(String, Record)>,
+    notes: super::Read,
+}
+
+fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
+    outfile::guard_file("--out", &a.out, &fit_inputs(a))?;
+    let (options, reference) = unit_fit_options(a, &unit)?;
+    let sensor = sensor(unit, a.calib.as_deref(), reference)?;
+    let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
+    for (_, r) in &read.records {
+        check_against_record(a, r)?;
+    }
+    check_observable(&sensor, &read.records)?;
+    let records = std::mem::take(&mut read.records);
+    Ok(Inputs {
+        sensor,
+        options,
+        records,
+        notes: read,
+    })
+}
+
+/// The split as `fit --json` says it.
+fn split_text(m: &sysid::Model<UnitSensor>) -> String {
+    match m.validated_on() {
+        Some(name) => format!("by record (validated on {name})"),
+        None => m.split().to_string(),
+    }
+}
+
+/// `fit --unit`.
+pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
+    let Inputs {
+        sensor,
+        options,
+        records,
+        notes,
+    } = inputs(a, unit)?;
+    let named = signals(&records)?;
+    let n = sensor.unit.gyros().len();
+    let done = AtomicUsize::new(0);
+    let start = std::time::Instant::now();
+    let (mut model, prepared) =
+        sysid::fit_records(&sensor, &borrowed(&named), &options, &|stage| match stage {
+            sysid::FitStage::Preparing => progress.say("preparing the records"),
+            sysid::FitStage::ChannelDone(ch) => {
+                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                progress.say(format!("fitted {k}/{n} channels (last {ch})"));
+            }
+        })?;
+    if records.len() > 1 {
+        model = model.with_records(records.iter().map(|(n, _)| n.clone()).collect());
+    }
+    // Each record's (or log segment's) validation rms; with --cv records,
+    // each validated by a model fitted on the others.
+    let per_record = match a.cv.is_some() {
+        true => {
+            progress.say("leaving one record out");
+            Some(sysid::fit::leave_one_record_out(&prepared, &options)?)
+        }
+        false if records.len() > 1 => Some(sysid::fit::record_scores(&model, &prepared)?),
+        false => None,
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let model = UnitModel::of(model);
+    model.save(&a.out)?;
+    progress.clear();
+    notes.say_notes();
+    let m = model.inner();
+    if a.json {
+        let mut report = FitReport::of_channels(m.channels(), split_text(m), seconds);
+        if let Some(per) = &per_record {
+            report.set_records(per, a.cv.clone());
+        }
+        let mut v = serde_json::to_value(&report)?;
+        v["unit"] = serde_json::Value::String(sensor.unit.name().to_string());
+        println!("{v}");
+    } else {
+        println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
+        print_fit_channels(m.channels());
+        if let Some(per) = &per_record {
+            print_record_scores(&sensor.channels(), per, a.cv.is_some());
+        }
+        println!("model: {} ({:.2} s)", a.out.display(), seconds);
+    }
+    Ok(())
+}
+
+/// `explain --unit`.
+pub fn explain(
+    a: &FitArgs,
+    unit: Unit,
+    diagnose: &sysid::diagnose::DiagnoseOptions,
+    max_rounds: usize,
+    progress: Progress,
+) -> Result<()> {
+    let Inputs {
+        sensor,
+        options,
+        records,
+        notes,
+    } = inputs(a, unit)?;
+    let named = signals(&records)?;
+    let start = std::time::Instant::now();
+    let e = sysid::explain::explain(
+        &sensor,
+        &borrowed(&named),
+        &options,
+        diagnose,
+        max_rounds,
+        &|stage| match stage {
+            sysid::explain::ExplainStage::Fitting(n) => progress.say(format!("round {n}: fitting")),
+            sysid::explain::ExplainStage::ChannelFitted(n, ch) => {
+                progress.say(format!("round {n}: {ch} fitted"))
+            }
+            sysid::explain::ExplainStage::Diagnosing(n) => {
+                progress.say(format!("round {n}: diagnosing"))
+            }
+        },
+    )?;
+    let seconds = start.elapsed().as_secs_f64();
+    let model = UnitModel::of(e.model);
+    model.save(&a.out)?;
+    progress.clear();
+    notes.say_notes();
+    let m = model.inner();
+    if a.json {
+        let v = serde_json::json!({
+            "unit": sensor.unit.name(),
+            "rounds": &e.rounds,
+            "converged": e.converged,
+            "final": FitReport::of_channels(m.channels(), split_text(m), seconds),
+        });
+        println!("{v}");
+        return Ok(());
+    }
+    println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
+    for (k, r) in e.rounds.iter().enumerate() {
+        super::super::explain::print_round(k, r);
+    }
+    if e.converged {
+        println!(
+            "nothing new suggested: the loop stopped after {} round(s)",
+            e.rounds.len()
+        );
+    } else {
+        println!(
+            "stopped at --max-rounds {max_rounds}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)"
+        );
+    }
+    print_fit_channels(m.channels());
+    println!("model: {} ({:.1} s)", a.out.display(), seconds);
+    Ok(())
+}

@@ -1,0 +1,247 @@
+//! The effects of any unit's channel, by id: a `dtg` channel's IEEE Std 813
+//! terms in its own (I, O, S) axes (the ids of [`crate::effects`]), a
+//! `rate` channel's IEEE Std 952 / 1431 g- and g²-sensitivities in the unit
+//! frame (`g_x` … `gg_yz`), and `col:NAME` for the record's extra columns.
+//! The ids of the two models are disjoint (upper-case axes for a DTG,
+//! lower-case for the unit frame), so an id alone says which term it is.
+
+use crate::effects::{COLUMN_PREFIX, TERM_EFFECTS};
+use nav_sensors::rate::RateTerm;
+use nav_sensors::unit::{GyroModel, GyroTerm};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::fmt;
+
+/// One effect of a unit's channel.
+///
+/// ```
+/// use dtg_vib::unit_sensor::UnitEffect;
+/// let e: UnitEffect = "g_y".parse().unwrap();
+/// assert_eq!((e.id(), e.unit()), ("g_y".to_string(), "deg/h/g".to_string()));
+/// let d: UnitEffect = "gg_IS".parse().unwrap();
+/// assert_eq!(d.unit(), "deg/h/g²");
+/// assert_eq!("col:temp".parse::<UnitEffect>().unwrap().unit(), "deg/h/°C");
+/// assert!("g_q".parse::<UnitEffect>().is_err());
+/// assert_eq!(serde_json::to_string(&e).unwrap(), "\"g_y\"");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum UnitEffect {
+    /// A term of the channel's model.
+    Term(GyroTerm),
+    /// An extra numeric column of the record, taken as is.
+    Column(String),
+}
+
+/// The rate-gyro terms that can be effects: those a vibration test excites
+/// through specific force (the bias is every model's; scale factor needs a
+/// varying rate reference; temperature enters as `col:NAME`).
+pub const RATE_EFFECTS: [RateTerm; 9] = RateTerm::SPECIFIC_FORCE;
+
+/// An effect id that could not be understood, or one of the other model.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum UnitEffectError {
+    /// Not a known id.
+    #[error("unknown effect '{given}' (rate gyros: {}; dtg channels: {}; col:NAME for an extra record column)", rate_ids().join(", "), dtg_ids().join(", "))]
+    Unknown {
+        /// What was given.
+        given: String,
+    },
+    /// `col:` with no name.
+    #[error("effect '{given}' names no column: write col:NAME, e.g. col:temp")]
+    EmptyColumn {
+        /// What was given.
+        given: String,
+    },
+    /// A term of the other gyro model.
+    #[error("effect '{id}' is not a term of channel {channel}, a \"{model}\" gyro: its terms are {}, or col:NAME", valid.join(", "))]
+    WrongModel {
+        /// The channel.
+        channel: String,
+        /// Its model (`rate`, `dtg`).
+        model: &'static str,
+        /// The id given.
+        id: String,
+        /// The ids it takes.
+        valid: Vec<&'static str>,
+    },
+    /// A `CHANNEL=ID` whose channel the unit has not.
+    #[error("'{given}': the unit has no channel '{channel}' (its channels: {})", valid.join(", "))]
+    UnknownChannel {
+        /// The argument.
+        given: String,
+        /// The channel named.
+        channel: String,
+        /// The unit's channels.
+        valid: Vec<String>,
+    },
+    /// A `CHANNEL=ID` argument without `=`.
+    #[error("'{given}' is not CHANNEL=ID (e.g. g2=g_y)")]
+    NotAPair {
+        /// The argument.
+        given: String,
+    },
+    /// `col:NAME` where the record has no such extra column.
+    #[error("effect 'col:{name}': the record has no extra column '{name}' (extra columns: {})", if available.is_empty() { "none".to_string() } else { available.join(", ") })]
+    MissingColumn {
+        /// The column.
+        name: String,
+        /// The record's extra columns.
+        available: Vec<String>,
+    },
+}
+
+fn rate_ids() -> Vec<&'static str> {
+    RATE_EFFECTS.iter().map(|t| t.id()).collect()
+}
+
+fn dtg_ids() -> Vec<&'static str> {
+    TERM_EFFECTS.iter().map(|t| t.id()).collect()
+}
+
+impl UnitEffect {
+    /// The stable id.
+    pub fn id(&self) -> String {
+        match self {
+            UnitEffect::Term(t) => t.id().to_string(),
+            UnitEffect::Column(c) => format!("{COLUMN_PREFIX}{c}"),
+        }
+    }
+
+    /// The physical name (IEEE vocabulary of the channel's model).
+    pub fn description(&self) -> String {
+        match self {
+            UnitEffect::Term(t) => t.ieee_name().to_string(),
+            UnitEffect::Column(c) => format!("sensitivity to the record's '{c}' column"),
+        }
+    }
+
+    /// The coefficient's unit (deg/h per regressor unit).
+    pub fn unit(&self) -> String {
+        match self {
+            UnitEffect::Term(t) => t.unit().to_string(),
+            UnitEffect::Column(c) if c == "temp" => "deg/h/°C".to_string(),
+            UnitEffect::Column(c) => format!("deg/h per unit of {c}"),
+        }
+    }
+
+    /// The term effects a gyro of this model takes, in ranking order.
+    ///
+    /// ```
+    /// use nav_sensors::unit::GyroModel;
+    /// assert_eq!(dtg_vib::unit_sensor::UnitEffect::terms_of(&GyroModel::Rate).len(), 9);
+    /// ```
+    pub fn terms_of(model: &GyroModel) -> Vec<UnitEffect> {
+        match model {
+            GyroModel::Rate => RATE_EFFECTS
+                .iter()
+                .map(|&t| UnitEffect::Term(GyroTerm::Rate(t)))
+                .collect(),
+            GyroModel::Dtg { .. } => TERM_EFFECTS
+                .iter()
+                .map(|&t| UnitEffect::Term(GyroTerm::Dtg(t)))
+                .collect(),
+        }
+    }
+
+    /// Whether a gyro of this model takes the effect.
+    pub fn fits(&self, model: &GyroModel) -> bool {
+        match self {
+            UnitEffect::Column(_) => true,
+            UnitEffect::Term(GyroTerm::Rate(_)) => matches!(model, GyroModel::Rate),
+            UnitEffect::Term(GyroTerm::Dtg(_)) => matches!(model, GyroModel::Dtg { .. }),
+        }
+    }
+
+    /// Parses a comma-separated list; `bias` is accepted and ignored (every
+    /// model has one), duplicates are dropped, order is kept.
+    ///
+    /// ```
+    /// let e = dtg_vib::unit_sensor::UnitEffect::parse_list("bias,g_x, g_x,col:temp").unwrap();
+    /// assert_eq!(e.len(), 2);
+    /// ```
+    pub fn parse_list(list: &str) -> Result<Vec<UnitEffect>, UnitEffectError> {
+        let mut out: Vec<UnitEffect> = Vec::new();
+        for item in list
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty() && *s != "bias")
+        {
+            let e: UnitEffect = item.parse()?;
+            if !out.contains(&e) {
+                out.push(e);
+            }
+        }
+        Ok(out)
+    }
+}
+
+impl fmt::Display for UnitEffect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.id())
+    }
+}
+
+impl std::str::FromStr for UnitEffect {
+    type Err = UnitEffectError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let s = s.trim();
+        if let Some(name) = s.strip_prefix(COLUMN_PREFIX) {
+            if name.trim().is_empty() {
+                return Err(UnitEffectError::EmptyColumn { given: s.into() });
+            }
+            return Ok(UnitEffect::Column(name.trim().to_string()));
+        }
+        if let Some(t) = TERM_EFFECTS.iter().find(|t| t.id() == s) {
+            return Ok(UnitEffect::Term(GyroTerm::Dtg(*t)));
+        }
+        if let Some(t) = RATE_EFFECTS.iter().find(|t| t.id() == s) {
+            return Ok(UnitEffect::Term(GyroTerm::Rate(*t)));
+        }
+        Err(UnitEffectError::Unknown { given: s.into() })
+    }
+}
+
+impl Serialize for UnitEffect {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.id())
+    }
+}
+
+impl<'de> Deserialize<'de> for UnitEffect {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+impl sysid::Effect for UnitEffect {
+    fn id(&self) -> String {
+        UnitEffect::id(self)
+    }
+    fn unit(&self) -> String {
+        UnitEffect::unit(self)
+    }
+    fn description(&self) -> String {
+        UnitEffect::description(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_id_round_trips_and_the_models_do_not_share_one() {
+        for model in [
+            GyroModel::Rate,
+            nav_sensors::unit::Unit::paper().gyros()[0].model,
+        ] {
+            for e in UnitEffect::terms_of(&model) {
+                assert_eq!(e.id().parse::<UnitEffect>().unwrap(), e);
+                assert!(e.fits(&model));
+            }
+        }
+        assert!(rate_ids().iter().all(|r| !dtg_ids().contains(r)));
+        let msg = "gg_q".parse::<UnitEffect>().unwrap_err().to_string();
+        assert!(msg.contains("g_x") && msg.contains("gg_IS") && msg.contains("col:NAME"));
+    }
+}

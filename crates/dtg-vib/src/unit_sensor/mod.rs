@@ -1,0 +1,359 @@
+//! The gyro plug-in of the identification loop for any unit a unit file
+//! describes ([`nav_sensors::unit::Unit`]): its gyros are the channels,
+//! named as the file names them; a `dtg` channel keeps the IEEE Std 813
+//! candidates in its own (I, O, S) axes, a `rate` channel gets the rate
+//! gyro's g- and g²-sensitivities in the unit frame ([`UnitEffect`]); the
+//! reference rate is removed through the unit's H, and the separation
+//! advice works along the unit's x, y, z axes.
+//!
+//! The paper's unit keeps its own plug-in ([`crate::paper_unit`]), whose
+//! outputs and model files are a contract to the bit; this one serves
+//! every other unit (and the paper's geometry under other names, units or
+//! column order).
+
+mod effect;
+mod error;
+mod model;
+mod observable;
+mod separate;
+mod signals;
+
+pub use effect::{RATE_EFFECTS, UnitEffect, UnitEffectError};
+pub use error::UnitSensorError;
+pub use model::UnitModel;
+pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
+pub use separate::response;
+pub use signals::{UnitRecord, read_unit_records, to_record, to_signals};
+
+use crate::effects::ANISOINERTIA_MIN_RATE_DEG_S;
+use crate::pipeline::RateReference;
+use nalgebra::{DMatrix, Vector3};
+use nav_sensors::calibration::UnitCalibration;
+use nav_sensors::dtg::{DtgTerm, within_interval_covariance};
+use nav_sensors::geometry::Axis;
+use nav_sensors::unit::{GyroTerm, Sensed, Unit};
+use sysid::{Candidacy, OperatingStats, SensorError, Separation, Signals, Wording};
+
+/// A unit as a [`sysid::Sensor`]: the unit, its ground calibration (if
+/// any) and the rate it saw (if known).
+///
+/// ```
+/// use sysid::Sensor;
+/// let tetra = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+/// let s = dtg_vib::unit_sensor::UnitSensor::new(tetra);
+/// assert_eq!(s.channels(), ["g1", "g2", "g3", "g4"]);
+/// assert_eq!(s.operating_signals(), ["ax", "ay", "az"]);
+/// assert_eq!(s.parse_effect(1, "g_y").unwrap().unit(), "deg/h/g");
+/// assert!(s.parse_effect(1, "g_I").is_err()); // a DTG term on a rate gyro
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnitSensor {
+    /// The unit.
+    pub unit: Unit,
+    /// The ground calibration compensated before anything else.
+    pub calibration: Option<UnitCalibration>,
+    /// The true rate (unit frame), removed from every channel's output.
+    pub rate_reference: RateReference,
+}
+
+impl UnitSensor {
+    /// The unit without calibration or rate reference.
+    pub fn new(unit: Unit) -> Self {
+        Self {
+            unit,
+            calibration: None,
+            rate_reference: RateReference::None,
+        }
+    }
+
+    /// The channel's own column, or which one is missing.
+    fn gyro_column<'a>(&self, s: &'a Signals, k: usize) -> Result<&'a [f64], UnitSensorError> {
+        let name = &self.unit.gyros()[k].name;
+        s.column(name).ok_or_else(|| self.missing(s, name))
+    }
+
+    fn missing(&self, s: &Signals, name: &str) -> UnitSensorError {
+        UnitSensorError::MissingColumn {
+            name: name.to_string(),
+            unit_file: self.unit.file().to_string(),
+            columns: s.names().iter().map(|n| n.to_string()).collect(),
+        }
+    }
+
+    /// The specific force in the unit frame, per sample, g.
+    fn specific_force(&self, s: &Signals) -> Result<Vec<Vector3<f64>>, UnitSensorError> {
+        let cols = self
+            .unit
+            .accel_names()
+            .iter()
+            .map(|n| s.column(n).ok_or_else(|| self.missing(s, n)))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((0..s.len())
+            .map(|i| {
+                let row: Vec<f64> = cols.iter().map(|c| c[i]).collect();
+                self.unit.specific_force(&row)
+            })
+            .collect())
+    }
+
+    /// The gyro outputs per sample, deg/h, in file order.
+    fn gyro_rows(&self, s: &Signals) -> Result<Vec<Vec<f64>>, UnitSensorError> {
+        let cols = (0..self.unit.gyros().len())
+            .map(|k| self.gyro_column(s, k))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((0..s.len())
+            .map(|i| cols.iter().map(|c| c[i]).collect())
+            .collect())
+    }
+
+    /// How much the least-squares rate varies over `samples`: the largest
+    /// standard deviation of its three axes, deg/s.
+    fn rate_variation_deg_s(&self, s: &Signals, samples: &[usize]) -> f64 {
+        let Ok(rows) = self.gyro_rows(s) else {
+            return 0.0;
+        };
+        let rates: Vec<Vector3<f64>> = samples
+            .iter()
+            .filter(|&&i| i < rows.len())
+            .map(|&i| self.unit.least_squares_rate(&rows[i]) / 3600.0)
+            .collect();
+        crate::effects::largest_axis_std(&rates)
+    }
+}
+
+/// For gyro `j`, the least-squares rate operator of the other gyros (row j
+/// of H zeroed), or `None` when they do not span three dimensions (a unit
+/// of three gyros): a channel's own output never enters its regressors.
+fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
+    let mut h = unit.measurement_matrix().clone();
+    h.row_mut(j).fill(0.0);
+    let svd = h.clone().svd(true, true);
+    if svd.singular_values.min() < 1e-6 {
+        return None;
+    }
+    svd.pseudo_inverse(1e-12).ok()
+}
+
+/// A plug-in error as the loop's.
+fn boxed(e: impl Into<UnitSensorError>) -> SensorError {
+    Box::new(e.into())
+}
+
+fn is_anisoinertia(e: &UnitEffect) -> bool {
+    matches!(e, UnitEffect::Term(GyroTerm::Dtg(t)) if DtgTerm::ANISOINERTIA.contains(t))
+}
+
+impl sysid::Sensor for UnitSensor {
+    type Channel = String;
+    type Effect = UnitEffect;
+    type Axis = Axis;
+
+    fn channels(&self) -> Vec<String> {
+        self.unit
+            .gyro_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect()
+    }
+
+    fn wording(&self) -> Wording {
+        // The words of any inertial unit: the paper's plug-in's.
+        sysid::Sensor::wording(&crate::paper_unit::PaperUnit::default())
+    }
+
+    fn calibrate(&self, raw: &Signals) -> Result<Signals, SensorError> {
+        let Some(c) = &self.calibration else {
+            return Ok(raw.clone());
+        };
+        let record = to_record(&self.unit, raw).map_err(boxed)?;
+        let out = c
+            .compensate(&self.unit, &record)
+            .map_err(|e| boxed(UnitSensorError::Calibration(e.to_string())))?;
+        to_signals(&out).map_err(boxed)
+    }
+
+    fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
+        let reference = self.rate_reference.rate_deg_h();
+        (0..self.unit.gyros().len())
+            .map(|k| {
+                let mut y = self.gyro_column(calibrated, k).map_err(boxed)?.to_vec();
+                if let Some(w) = reference {
+                    let r = self.unit.gyros()[k].input.dot(&w);
+                    y.iter_mut().for_each(|v| *v -= r);
+                }
+                Ok(y)
+            })
+            .collect()
+    }
+
+    fn operating_signals(&self) -> Vec<String> {
+        self.unit
+            .accel_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect()
+    }
+
+    fn operating_scale(&self) -> f64 {
+        crate::paper_unit::MIN_SCALE_G
+    }
+
+    fn extra_columns(&self, record: &Signals) -> Vec<String> {
+        let own =
+            |n: &str| self.unit.gyro_names().contains(&n) || self.unit.accel_names().contains(&n);
+        record
+            .names()
+            .into_iter()
+            .filter(|n| !own(n))
+            .map(String::from)
+            .collect()
+    }
+
+    fn candidates(
+        &self,
+        calibrated: &Signals,
+        samples: &[usize],
+        channel: usize,
+    ) -> Vec<Candidacy<UnitEffect>> {
+        let model = &self.unit.gyros()[channel].model;
+        let own_rate = rate_without(&self.unit, channel).is_some();
+        let rate_std = self.rate_variation_deg_s(calibrated, samples);
+        UnitEffect::terms_of(model)
+            .into_iter()
+            .chain(
+                self.extra_columns(calibrated)
+                    .into_iter()
+                    .map(UnitEffect::Column),
+            )
+            .map(|e| {
+                if !is_anisoinertia(&e) {
+                    return Candidacy::Excited(e);
+                }
+                let reason = if !own_rate {
+                    "the other gyros do not span three axes, so the rate this channel sees cannot be told without its own output: anisoinertia is not observable".to_string()
+                } else if rate_std < ANISOINERTIA_MIN_RATE_DEG_S {
+                    format!(
+                        "the angular rate does not vary (largest std {rate_std:.3} deg/s < {ANISOINERTIA_MIN_RATE_DEG_S} deg/s): anisoinertia is not observable"
+                    )
+                } else {
+                    return Candidacy::Excited(e);
+                };
+                Candidacy::NotExcited { effect: e, reason }
+            })
+            .collect()
+    }
+
+    fn check_excited(
+        &self,
+        calibrated: &Signals,
+        samples: &[usize],
+        channel: usize,
+        effects: &[UnitEffect],
+    ) -> Result<(), SensorError> {
+        let Some(ai) = effects.iter().find(|e| is_anisoinertia(e)) else {
+            return Ok(());
+        };
+        let v = self.rate_variation_deg_s(calibrated, samples);
+        if v < ANISOINERTIA_MIN_RATE_DEG_S || rate_without(&self.unit, channel).is_none() {
+            return Err(boxed(UnitSensorError::EffectNotObservable {
+                channel: self.unit.gyros()[channel].name.clone(),
+                effect: ai.id(),
+                rate_std_deg_s: v,
+                min_deg_s: ANISOINERTIA_MIN_RATE_DEG_S,
+            }));
+        }
+        Ok(())
+    }
+
+    fn parse_effect(&self, channel: usize, id: &str) -> Result<UnitEffect, SensorError> {
+        let e: UnitEffect = id.parse().map_err(boxed)?;
+        let g = &self.unit.gyros()[channel];
+        if !e.fits(&g.model) {
+            return Err(boxed(UnitEffectError::WrongModel {
+                channel: g.name.clone(),
+                model: g.model.name(),
+                id: id.to_string(),
+                valid: UnitEffect::terms_of(&g.model)
+                    .iter()
+                    .map(|e| match e {
+                        UnitEffect::Term(t) => t.id(),
+                        UnitEffect::Column(_) => "col:NAME",
+                    })
+                    .collect(),
+            }));
+        }
+        Ok(e)
+    }
+
+    fn regressors(
+        &self,
+        calibrated: &Signals,
+        channel: usize,
+        effects: &[UnitEffect],
+    ) -> Result<Vec<Vec<f64>>, SensorError> {
+        if effects.is_empty() {
+            return Ok(Vec::new());
+        }
+        let gyro = &self.unit.gyros()[channel];
+        for e in effects {
+            if !e.fits(&gyro.model) {
+                return Err(self
+                    .parse_effect(channel, &e.id())
+                    .err()
+                    .unwrap_or_else(|| {
+                        boxed(UnitSensorError::Calibration(format!("effect {e}")))
+                    }));
+            }
+        }
+        let force = self.specific_force(calibrated).map_err(boxed)?;
+        let covariance = within_interval_covariance(&force);
+        let needs_rate = effects.iter().any(is_anisoinertia);
+        let rates: Vec<Vector3<f64>> = match (needs_rate, rate_without(&self.unit, channel)) {
+            (true, Some(op)) => self
+                .gyro_rows(calibrated)
+                .map_err(boxed)?
+                .iter()
+                .map(|m| {
+                    let w = &op * nalgebra::DVector::from_column_slice(m);
+                    Vector3::new(w[0], w[1], w[2])
+                })
+                .collect(),
+            _ => vec![Vector3::zeros(); force.len()],
+        };
+        let sensed: Vec<Sensed> = (0..force.len())
+            .map(|i| Sensed {
+                rate_deg_h: rates[i],
+                specific_force_g: force[i],
+                specific_force_cov_g2: covariance[i],
+                ..Sensed::default()
+            })
+            .collect();
+        let extra = self.extra_columns(calibrated);
+        effects
+            .iter()
+            .map(|e| match e {
+                UnitEffect::Term(t) => Ok(sensed.iter().map(|s| gyro.regressor(*t, s)).collect()),
+                UnitEffect::Column(c) => calibrated
+                    .column(c)
+                    .filter(|_| extra.contains(c))
+                    .map(<[f64]>::to_vec)
+                    .ok_or_else(|| {
+                        boxed(UnitEffectError::MissingColumn {
+                            name: c.clone(),
+                            available: extra.clone(),
+                        })
+                    }),
+            })
+            .collect()
+    }
+
+    fn separation(
+        &self,
+        channel: usize,
+        group: &[UnitEffect],
+        kappa: &[f64],
+        operating: &OperatingStats,
+    ) -> Separation<Axis> {
+        separate::separation(&self.unit, channel, group, kappa, operating)
+    }
+}
