@@ -47,6 +47,14 @@ pub struct TransferCheck {
     pub note: Option<String>,
     /// Windows compared.
     pub windows: usize,
+    /// Share of windows outside the per-axis training range alone (each
+    /// axis's mean specific force and vibration level; null for a model
+    /// without one).
+    pub outside_range_fraction: Option<f64>,
+    /// Mean weight of the network part over the windows (1: never faded).
+    pub fade_weight_mean: Option<f64>,
+    /// What the record has that the model did not see, in words.
+    pub lacks: Vec<String>,
 }
 
 /// Applies `model` to `record` (never fitted on it) and measures how well it
@@ -101,5 +109,8 @@ pub fn check_applied(
         rate_std_deg_s,
         note,
         windows: t.windows,
+        outside_range_fraction: t.outside_range_fraction,
+        fade_weight_mean: t.fade_weight_mean,
+        lacks: t.lacks,
     })
 }
