@@ -24,8 +24,8 @@
 //! [`FadeSettings::width`] more scales, then smoothed by a one-pole
 //! low-pass of time constant [`FadeSettings::time_constant_s`] that starts
 //! at the first window's own weight: `w[n] = w[n−1] + α·(w₀[n] − w[n−1])`,
-//! `α = 1 − exp(−Δt/τ)`. The onboard evaluator and the exported C compute
-//! the same, in the same order.
+//! `α = 1 − exp(−Δt/τ)`, taking `w₀[n]` once within [`SNAP`] of it. The
+//! onboard evaluator and the exported C compute the same, in the same order.
 
 use super::range::statistics;
 use crate::error::SysidError;
@@ -105,15 +105,27 @@ impl Smoother {
         Self { alpha, state: None }
     }
 
-    /// The smoothed weight after `w0`; the first starts at `w0` itself.
+    /// The smoothed weight after `w0`; the first starts at `w0` itself, and
+    /// a weight within [`SNAP`] of `w0` becomes `w0` (a one-pole only
+    /// approaches its input: back inside, the model is again the fitted one,
+    /// to the bit).
     pub fn step(&mut self, w0: f64) -> f64 {
         let w = match self.state {
             None => w0,
-            Some(w) => w + self.alpha * (w0 - w),
+            Some(w) => snap(w + self.alpha * (w0 - w), w0),
         };
         self.state = Some(w);
         w
     }
+}
+
+/// How close the smoothed weight must come to its input to take it.
+pub const SNAP: f64 = 1e-9;
+
+/// `w`, or `w0` when within [`SNAP`] of it.
+#[inline]
+pub fn snap(w: f64, w0: f64) -> f64 {
+    if (w0 - w).abs() <= SNAP { w0 } else { w }
 }
 
 /// Per row: the window's distance outside the range and the fade weight.
