@@ -147,4 +147,13 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
         );
     }
     print_residues_on(&c.residues, "every row");
+    if let Some(r) = &c.residues_unfaded {
+        let pooled = |rms: fn(&dtg_vib::parity::ResidueStats) -> f64| {
+            (r.iter().map(|s| rms(s).powi(2)).sum::<f64>() / r.len().max(1) as f64).sqrt()
+        };
+        println!(
+            "no fade: pooled residue rms after {:.4} deg/h (the model as fitted, everywhere)",
+            pooled(|s| s.rms_after)
+        );
+    }
 }
