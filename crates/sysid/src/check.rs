@@ -241,11 +241,11 @@ fn offset_warning<C: std::fmt::Display>(
     let big: Vec<String> = channels
         .iter()
         .filter(|c| c.mean_after.abs() > c.spread_after.max(c.rms_before))
-        .map(|c| format!("{} {:+.4}", c.channel, c.mean_after))
+        .map(|c| format!("{} ({:+.4} {unit})", c.channel, c.mean_after))
         .collect();
     (!big.is_empty()).then(|| {
         format!(
-            "mean offset after compensation larger than the spread before on {} {unit}: a bias the model does not know (it moved since the fit, or the record holds conditions the operating point does not see); the record counts as outside what the model knows",
+            "mean offset after compensation larger than the variation before on {}: a bias the model does not know (it moved since the fit, or the record holds conditions the operating point does not see); the record counts as outside what the model knows",
             big.join(", ")
         )
     })

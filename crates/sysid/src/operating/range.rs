@@ -166,46 +166,62 @@ impl TrainingRange {
     pub fn lacks(&self, stats: &[Vec<f64>], unit: &str, spread: &str) -> Vec<String> {
         let k = self.signals.len();
         let n = stats.len().max(1);
-        let seen: Vec<&str> = (0..k)
-            .filter(|&j| self.level_max[j] > 4.0 * self.scale)
-            .map(|j| self.signals[j].as_str())
-            .collect();
-        let mut out = Vec::new();
-        for j in 0..k {
-            for (coord, lo, hi) in [
-                (k + j, self.level_min[j], self.level_max[j]),
-                (j, self.mean_min[j], self.mean_max[j]),
-            ] {
-                let beyond: Vec<f64> = stats
-                    .iter()
-                    .map(|p| p[coord])
-                    .filter(|&v| excess(v, lo, hi) / self.scale > self.tolerance.max(1.0))
-                    .collect();
-                if beyond.len() * 100 <= n {
-                    continue;
-                }
-                let (vmin, vmax) = stats
-                    .iter()
-                    .map(|p| p[coord])
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                        (a.min(v), b.max(v))
-                    });
-                let share = 100.0 * beyond.len() as f64 / n as f64;
-                let sig = &self.signals[j];
-                out.push(if coord >= k {
-                    let saw = match seen.as_slice() {
-                        [] => format!("no {spread} above {:.2} {unit} rms", 4.0 * self.scale),
-                        s if s.len() < k => format!("{spread} on {} only", s.join(", ")),
-                        s => format!("{spread} on {}", s.join(", ")),
-                    };
-                    format!(
-                        "the model saw {saw} ({lo:.2}–{hi:.2} {unit} rms on {sig}); this record has up to {vmax:.2} {unit} rms on {sig} ({share:.0}% of its windows beyond)"
-                    )
-                } else {
-                    format!(
-                        "the model saw the mean of {sig} between {lo:.2} and {hi:.2} {unit}; this record's spans {vmin:.2} to {vmax:.2} {unit} ({share:.0}% of its windows beyond)"
-                    )
+        // The windows beyond one coordinate's interval, and their extremes.
+        let beyond = |coord: usize, lo: f64, hi: f64| -> Option<(f64, f64, f64)> {
+            let far = stats
+                .iter()
+                .filter(|p| excess(p[coord], lo, hi) / self.scale > self.tolerance.max(1.0))
+                .count();
+            let (vmin, vmax) = stats
+                .iter()
+                .map(|p| p[coord])
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
                 });
+            (far * 100 > n).then(|| (100.0 * far as f64 / n as f64, vmin, vmax))
+        };
+        let mut out = Vec::new();
+        let levels: Vec<String> = (0..k)
+            .filter_map(|j| {
+                let (share, _, vmax) = beyond(k + j, self.level_min[j], self.level_max[j])?;
+                Some(format!(
+                    "this record has up to {vmax:.2} {unit} rms on {} ({share:.0}% of its windows beyond the {:.2} the model saw there)",
+                    self.signals[j], self.level_max[j]
+                ))
+            })
+            .collect();
+        if !levels.is_empty() {
+            let seen: Vec<usize> = (0..k)
+                .filter(|&j| self.level_max[j] > 4.0 * self.scale)
+                .collect();
+            let names: Vec<&str> = seen.iter().map(|&j| self.signals[j].as_str()).collect();
+            let lo = seen
+                .iter()
+                .map(|&j| self.level_min[j])
+                .fold(f64::INFINITY, f64::min);
+            let hi = seen.iter().map(|&j| self.level_max[j]).fold(0.0, f64::max);
+            let saw = match names.len() {
+                0 => format!(
+                    "the model saw no {spread} above {:.2} {unit} rms",
+                    4.0 * self.scale
+                ),
+                m if m < k => format!(
+                    "the model saw {spread} on {} only ({lo:.2}–{hi:.2} {unit} rms)",
+                    names.join(", ")
+                ),
+                _ => format!(
+                    "the model saw {spread} on {} ({lo:.2}–{hi:.2} {unit} rms)",
+                    names.join(", ")
+                ),
+            };
+            out.push(format!("{saw}; {}", levels.join(", ")));
+        }
+        for j in 0..k {
+            if let Some((share, vmin, vmax)) = beyond(j, self.mean_min[j], self.mean_max[j]) {
+                out.push(format!(
+                    "the model saw the mean of {} between {:.2} and {:.2} {unit}; this record's spans {vmin:.2} to {vmax:.2} {unit} ({share:.0}% of its windows beyond)",
+                    self.signals[j], self.mean_min[j], self.mean_max[j]
+                ));
             }
         }
         out
