@@ -292,3 +292,33 @@ pub fn network_means<S: Sensor>(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_smoothed_weight_starts_at_its_input_and_snaps_back_to_one() {
+        let mut s = Smoother::new(FadeSettings::for_window(50, 0.02).alpha(0.02));
+        assert_eq!(s.step(0.0), 0.0);
+        let w: Vec<f64> = (0..2000).map(|_| s.step(1.0)).collect();
+        assert!(w[0] > 0.0 && w[0] < 0.05, "{}", w[0]);
+        assert!(w.windows(2).all(|p| p[1] >= p[0]), "monotone");
+        assert_eq!(*w.last().unwrap(), 1.0, "exactly the fitted model again");
+    }
+
+    #[test]
+    fn outside_the_network_part_holds_and_inside_it_is_untouched() {
+        let p = [5.0, 6.0, 7.0, 8.0];
+        let r = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(fade_series(&p, &r, 0.0, &[1.0; 4]), p);
+        // Half weight: the held part moves half way toward the network.
+        let out = fade_series(&p, &r, 0.0, &[1.0, 0.5, 0.5, 0.0]);
+        assert_eq!(out, [5.0, 5.5, 6.25, 6.25]);
+        // A record that starts outside starts from the training mean c.
+        assert_eq!(
+            fade_series(&p, &r, 0.25, &[0.0; 4]),
+            [4.25, 4.25, 4.25, 4.25]
+        );
+    }
+}

@@ -232,3 +232,59 @@ impl TrainingRange {
 fn excess(v: f64, lo: f64, hi: f64) -> f64 {
     (lo - v).max(v - hi).max(0.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A range as a z-axis shaker run leaves it: gravity on z, vibration
+    /// on z only.
+    fn z_run() -> TrainingRange {
+        TrainingRange {
+            signals: vec!["ax".into(), "ay".into(), "az".into()],
+            window: 50,
+            mean_min: vec![-0.01, -0.01, 0.98],
+            mean_max: vec![0.01, 0.01, 1.02],
+            level_min: vec![0.0, 0.0, 0.1],
+            level_max: vec![0.03, 0.02, 0.5],
+            scale: 0.05,
+            tolerance: 0.2,
+            fade: FadeSettings::for_window(50, 0.02),
+            network_mean: vec![0.0],
+        }
+    }
+
+    #[test]
+    fn a_window_is_as_far_outside_as_its_coordinates_excess() {
+        let r = z_run();
+        // Inside every interval.
+        assert_eq!(r.distance(&[0.0, 0.0, 1.0, 0.01, 0.01, 0.3]), 0.0);
+        // 0.3 g rms on ax: 0.27 g beyond 0.03, 5.4 scales.
+        let d = r.distance(&[0.0, 0.0, 1.0, 0.3, 0.01, 0.3]);
+        assert!((d - 5.4).abs() < 1e-12, "{d}");
+        assert!(r.is_outside(d));
+        // Two coordinates beyond add in quadrature.
+        let d2 = r.distance(&[0.04, 0.0, 1.0, 0.07, 0.01, 0.3]);
+        assert!((d2 - (0.6f64.powi(2) + 0.8f64.powi(2)).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_hint_names_the_axis_and_level_the_model_did_not_see() {
+        let r = z_run();
+        let x_run: Vec<Vec<f64>> = (0..100)
+            .map(|i| vec![0.0, 0.0, 1.0, 0.2 + 0.003 * i as f64, 0.01, 0.01])
+            .collect();
+        let lacks = r.lacks(&x_run, "g", "vibration");
+        assert_eq!(lacks.len(), 1, "{lacks:?}");
+        assert!(
+            lacks[0].starts_with("the model saw vibration on az only (0.10–0.50 g rms); this record has up to 0.50 g rms on ax (100% of its windows beyond the 0.03"),
+            "{}",
+            lacks[0]
+        );
+        // A record like the training one lacks nothing.
+        let z: Vec<Vec<f64>> = (0..100)
+            .map(|_| vec![0.0, 0.0, 1.0, 0.01, 0.01, 0.3])
+            .collect();
+        assert!(r.lacks(&z, "g", "vibration").is_empty());
+    }
+}
