@@ -397,6 +397,9 @@ fn text_export_names_every_part_with_units() {
         "deg/h/°C)·LP[col:temp]",
         "w = ",
         "β = ",
+        "## Training range and fade",
+        "  ax: mean ",
+        "w = one-pole of w₀",
     ] {
         assert!(
             out.contains(want),
