@@ -83,24 +83,17 @@ pub fn points<S: Sensor>(
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    let sensor = prepared.sensor();
-    let names = sensor.operating_signals();
-    let mut out = Vec::with_capacity(rows.len());
-    for &r in rows {
-        let (record, end) = prepared.locate(r);
-        let span = end + 1 - length.min(end + 1)..=end;
-        let mut p = vec![0.0; names.len() + 1];
-        let mut var = 0.0;
-        for (k, name) in names.iter().enumerate() {
-            let a = &crate::prepared::signal(sensor, record, name)?[span.clone()];
-            let (m, v) = range::mean_and_variance(a);
-            var += v;
-            p[k] = m;
-        }
-        p[names.len()] = var.sqrt();
-        out.push(p);
-    }
-    Ok(out)
+    // Each signal's mean, then the root of their summed variances.
+    Ok(range::moments(prepared, length, rows)?
+        .into_iter()
+        .map(|m| {
+            let var = m.iter().fold(0.0, |acc, (_, v)| acc + v);
+            m.iter()
+                .map(|(mean, _)| *mean)
+                .chain([var.sqrt()])
+                .collect()
+        })
+        .collect())
 }
 
 /// The training operating points a model keeps.

@@ -40,6 +40,31 @@ pub(crate) fn mean_and_variance(a: &[f64]) -> (f64, f64) {
     (m, a.iter().map(|v| (v - m).powi(2)).sum::<f64>() / n)
 }
 
+/// Per row in `rows`, each operating signal's mean and variance over the
+/// window of `length` samples that ends at the row's sample (the one pass
+/// over the windows both the joint points and the range read).
+pub(crate) fn moments<S: Sensor>(
+    prepared: &Prepared<S>,
+    length: usize,
+    rows: &[usize],
+) -> Result<Vec<Vec<(f64, f64)>>, SysidError> {
+    let sensor = prepared.sensor();
+    let names = sensor.operating_signals();
+    rows.iter()
+        .map(|&r| {
+            let (record, end) = prepared.locate(r);
+            let span = end + 1 - length.min(end + 1)..=end;
+            names
+                .iter()
+                .map(|name| {
+                    let a = crate::prepared::signal(sensor, record, name)?;
+                    Ok(mean_and_variance(&a[span.clone()]))
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Per row in `rows`, the window (of `length` samples ending at the row's
 /// sample) statistics of each operating signal: the means of every signal,
 /// then their levels, in the sensor's unit.
@@ -48,21 +73,13 @@ pub fn statistics<S: Sensor>(
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    let sensor = prepared.sensor();
-    let names = sensor.operating_signals();
-    let k = names.len();
-    rows.iter()
-        .map(|&r| {
-            let (record, end) = prepared.locate(r);
-            let span = end + 1 - length.min(end + 1)..=end;
-            let mut p = vec![0.0; 2 * k];
-            for (j, name) in names.iter().enumerate() {
-                let a = &crate::prepared::signal(sensor, record, name)?[span.clone()];
-                (p[j], p[k + j]) = mean_and_level(a);
-            }
-            Ok(p)
+    Ok(moments(prepared, length, rows)?
+        .into_iter()
+        .map(|m| {
+            let means = m.iter().map(|(mean, _)| *mean);
+            means.chain(m.iter().map(|(_, var)| var.sqrt())).collect()
         })
-        .collect()
+        .collect())
 }
 
 /// What a model saw of each operating signal, and its fade.
