@@ -22,6 +22,11 @@ for root, _, fs in os.walk(src):
         if rel[-1] in ('mod', 'lib', 'main'): rel = rel[:-1]
         if rel and rel[0] == 'bin': continue
         files[tuple(rel)] = p
+# A file declared `#[cfg(test)] mod name;` (plot's src/tests.rs) is a test module
+# like a trailing inline one: not the crate's structure.
+for k, p in list(files.items()):
+    for m in re.finditer(r'#\[cfg\(test\)\]\s*(?:pub(?:\([^)]*\))?\s+)?mod\s+(\w+)\s*;', open(p).read()):
+        files.pop(k + (m.group(1),), None)
 def strip(text):
     # tests are not the crate's structure: drop a trailing #[cfg(test)] module first
     m = re.search(r'#\[cfg\(test\)\]\s*mod\s+\w+\s*\{', text)
@@ -70,16 +75,34 @@ for mod, p in files.items():
     is_dir_mod = p.endswith(('mod.rs', 'lib.rs', 'main.rs'))
     parent = mod[:-1]
     text = re.sub(r'pub\(in [\w:]+\)', 'pub', text)
+    # An inline `mod name { ... }` (e.g. rbf's model/matser.rs `mod option { use super::*; }`)
+    # is a module of its own: `super::` inside it names the file's module, not the file's
+    # parent. Reading it as the parent invented an edge matser.rs -> model/mod.rs.
+    inline = []
+    for im in re.finditer(r'\bmod\s+(\w+)\s*\{', text):
+        depth = 0; j = im.end() - 1
+        while j < len(text):
+            if text[j] == '{': depth += 1
+            elif text[j] == '}':
+                depth -= 1
+                if depth == 0: break
+            j += 1
+        inline.append((im.start(), j, im.group(1)))
     for m in re.finditer(r'(?<![\w:])(crate|super|self|\w+)::', text):
         head = m.group(1)
+        here = list(mod) + [n for a, b, n in inline if a < m.start() < b]
         if head == 'crate': base = []
-        elif head == 'super': base = list(parent)
-        elif head == 'self': base = list(mod)
+        elif head == 'super': base = here[:-1]
+        elif head == 'self': base = here
+        elif len(here) > len(mod): continue  # a child of the inline module: not a file
         elif head in children: base = list(mod) + [head]
         else: continue
         for path in expand(text, m.end()):
-            full = base + path
-            while full and full[0] == 'super': full = full[1:]
+            # `super::super::x`: each further `super` climbs one more level (dropping
+            # the word instead made the path resolve to the first parent).
+            up = base
+            while path and path[0] == 'super': up, path = up[:-1], path[1:]
+            full = up + path
             t = resolve(full)
             if t is not None and t != mod: edges[mod].add(t)
 # Tarjan

@@ -4,8 +4,12 @@
 //! It fits no model (that is `rbf` and `dtg-vib`) and knows no RBF.
 //!
 //! Layers, bottom up:
-//! - [`geometry`]: channels, frames, eqs. 1–6 of Malini, Mohanlal & Harikumar, FDI;
+//! - [`geometry`]: channels, frames, eqs. 1–6 of Malini, Mohanlal & Harikumar;
 //! - [`dtg`], [`accel`]: sensor error models, forward and inverse;
+//! - [`rate`]: the rate-gyro error model (IEEE Std 952/1431), forward and inverse;
+//! - [`unit`]: a unit of any gyros and accelerometers, from its description
+//!   file: measurement matrix, parity, each gyro's error model;
+//! - [`fdi`]: fault detection and isolation on a unit's parity vector;
 //! - [`vibration`]: PSD tables, synthesis, schedules, Welch PSD;
 //! - [`noise`]: Allan deviation and the IEEE Std 952 noise terms read from it;
 //! - [`sim`]: scenarios and the shaker-test simulator;
@@ -34,6 +38,7 @@
 
 pub mod accel;
 pub mod dtg;
+pub mod fdi;
 pub mod files;
 pub mod geometry;
 pub mod noise;

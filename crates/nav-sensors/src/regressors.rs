@@ -9,9 +9,9 @@
 use nalgebra::Vector3;
 
 use crate::dtg::{DtgInput, DtgTerm, within_interval_covariance};
+use crate::files::record::Record;
 use crate::geometry::{Channel, ChannelFrame, residues};
 use crate::rate::RateTerm;
-use crate::record::Record;
 use crate::unit::{GyroTerm, Sensed, Unit};
 
 impl Record {

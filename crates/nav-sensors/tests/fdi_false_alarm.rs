@@ -10,7 +10,7 @@
 //! interval:
 //! `cargo test --release -p nav-sensors --test fdi_false_alarm -- --ignored --nocapture`.
 
-use nav_sensors::geometry::ParityFdi;
+use nav_sensors::fdi::ParityFdi;
 use nav_sensors::rate::{RateCoefficients, RateTerm};
 use nav_sensors::sim::{Scenario, simulate_unit};
 use nav_sensors::unit::Unit;

@@ -11,10 +11,12 @@ use plotters::style::{Color, WHITE};
 use serde::Serialize;
 
 use super::axis::{self, Extent};
+use super::bars::BarChart;
 use super::bars::{self, PreparedBars};
+use super::error::ReportError;
+use super::panel::Panel;
 use super::style::{self, FIGURE_TITLE_SIZE, INK};
 use super::xy::{self, MARGIN_LEFT, MARGIN_RIGHT, PreparedXy};
-use super::{BarChart, Panel, ReportError};
 
 /// Default width in pixels: legible when scaled to a page or a browser column.
 const DEFAULT_WIDTH: u32 = 1100;

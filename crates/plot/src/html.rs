@@ -12,7 +12,8 @@ use std::path::{Component, Path, PathBuf};
 
 use serde::Serialize;
 
-use super::{FigureFiles, ReportError};
+use super::error::ReportError;
+use super::figure::FigureFiles;
 
 /// A table: a header row and rows of already-formatted cells.
 ///

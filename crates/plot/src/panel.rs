@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use super::Series;
+use super::series::Series;
 
 /// A shaded band `−limit ≤ y ≤ +limit`, e.g. the 95 % confidence band of a
 /// correlation test (±1.96/√N). Set with [`Panel::band`].

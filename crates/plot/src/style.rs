@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 
 use plotters::style::{Color, FontStyle, RGBColor, TextStyle};
 
-use super::ReportError;
+use super::error::ReportError;
 
 /// The Okabe–Ito palette, reordered so that the first colours are the ones
 /// most distinguishable for all common colour-vision deficiencies and on white

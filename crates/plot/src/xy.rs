@@ -6,8 +6,9 @@
 //! over `DrawingBackend`, so the PNG and the SVG of a figure come from the
 //! same numbers and the same code and cannot drift apart.
 
-use plotters::chart::ChartBuilder;
+use plotters::chart::{ChartBuilder, ChartContext};
 use plotters::coord::Shift;
+use plotters::coord::cartesian::Cartesian2d;
 use plotters::drawing::{DrawingArea, DrawingAreaErrorKind};
 use plotters::element::{Circle, DashedPathElement, PathElement, Rectangle};
 use plotters::prelude::DrawingBackend;
@@ -16,8 +17,9 @@ use plotters::style::{Color, RGBColor};
 use super::axis::{self, Axis, Extent};
 use super::decimate;
 use super::legend::{Entry, Header, Swatch};
+use super::panel::Panel;
+use super::series::SeriesStyle;
 use super::style::{self, GRID, GRID_LIGHT, INK, LABEL_SIZE, REFERENCE, TICK_SIZE};
-use super::{Panel, SeriesStyle};
 
 /// Height reserved under the plot for x tick labels and the x axis label.
 pub(crate) const X_LABEL_AREA: u32 = 50;
@@ -383,6 +385,40 @@ pub(crate) fn draw<DB: DrawingBackend>(
         .axis_style(INK.stroke_width(1))
         .draw()?;
 
+    draw_spans_and_band(&mut chart, p)?;
+    let baseline = if p.y.log {
+        p.y.lo
+    } else {
+        0.0f64.clamp(p.y.lo, p.y.hi)
+    };
+    for s in &p.series {
+        draw_series(&mut chart, s, baseline)?;
+    }
+
+    let (x0, x1) = (p.x.lo, p.x.hi);
+    for &v in &p.ref_lines {
+        chart.draw_series(std::iter::once(DashedPathElement::new(
+            vec![(x0, v), (x1, v)],
+            8,
+            5,
+            REFERENCE.stroke_width(2),
+        )))?;
+    }
+
+    if p.empty {
+        style::no_data(&chart.plotting_area().strip_coord_spec())?;
+    }
+    Ok(())
+}
+
+/// The chart a panel is drawn on: plot coordinates on both axes.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<Axis, Axis>>;
+
+/// The shaded x ranges and the ±band with its dashed edges, under the series.
+fn draw_spans_and_band<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    p: &PreparedXy,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let (x0, x1) = (p.x.lo, p.x.hi);
     for &(a, b) in &p.x_spans {
         let (a, b) = (a.clamp(x0, x1), b.clamp(x0, x1));
@@ -410,83 +446,70 @@ pub(crate) fn draw<DB: DrawingBackend>(
             }
         }
     }
+    Ok(())
+}
 
-    let baseline = if p.y.log {
-        p.y.lo
-    } else {
-        0.0f64.clamp(p.y.lo, p.y.hi)
-    };
-    for s in &p.series {
-        match s.style {
-            SeriesStyle::Line => {
-                for seg in &s.segments {
-                    if seg.len() == 1 {
-                        // A lone point between gaps would be invisible as a path.
-                        chart.draw_series(std::iter::once(Circle::new(
-                            seg[0],
-                            2,
-                            s.colour.filled(),
-                        )))?;
-                    } else {
-                        chart.draw_series(std::iter::once(PathElement::new(
-                            seg.clone(),
-                            s.colour.stroke_width(s.stroke),
-                        )))?;
-                    }
-                }
-            }
-            SeriesStyle::Dashed | SeriesStyle::Dotted => {
-                let (dash, gap) = if s.style == SeriesStyle::Dashed {
-                    (DASH, DASH_GAP)
+/// One series in its style; stems rise from `baseline`.
+fn draw_series<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    s: &Drawn,
+    baseline: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    match s.style {
+        SeriesStyle::Line => {
+            for seg in &s.segments {
+                if seg.len() == 1 {
+                    // A lone point between gaps would be invisible as a path.
+                    chart.draw_series(std::iter::once(Circle::new(
+                        seg[0],
+                        2,
+                        s.colour.filled(),
+                    )))?;
                 } else {
-                    (DOT, DOT_GAP)
-                };
-                for seg in &s.segments {
-                    chart.draw_series(std::iter::once(DashedPathElement::new(
+                    chart.draw_series(std::iter::once(PathElement::new(
                         seg.clone(),
-                        dash,
-                        gap,
-                        s.colour.stroke_width(2),
+                        s.colour.stroke_width(s.stroke),
                     )))?;
                 }
             }
-            SeriesStyle::Points => {
-                let dense = s.segments.iter().map(Vec::len).sum::<usize>() > 2000;
-                let fill = if dense {
-                    s.colour.mix(0.5).filled()
-                } else {
-                    s.colour.filled()
-                };
-                chart.draw_series(
-                    s.segments
-                        .iter()
-                        .flatten()
-                        .map(|&pt| Circle::new(pt, 2, fill)),
-                )?;
-            }
-            SeriesStyle::Stems => {
-                for seg in &s.segments {
-                    chart.draw_series(seg.iter().map(|&(x, y)| {
-                        PathElement::new(vec![(x, baseline), (x, y)], s.colour.stroke_width(2))
-                    }))?;
-                    chart
-                        .draw_series(seg.iter().map(|&pt| Circle::new(pt, 3, s.colour.filled())))?;
-                }
+        }
+        SeriesStyle::Dashed | SeriesStyle::Dotted => {
+            let (dash, gap) = if s.style == SeriesStyle::Dashed {
+                (DASH, DASH_GAP)
+            } else {
+                (DOT, DOT_GAP)
+            };
+            for seg in &s.segments {
+                chart.draw_series(std::iter::once(DashedPathElement::new(
+                    seg.clone(),
+                    dash,
+                    gap,
+                    s.colour.stroke_width(2),
+                )))?;
             }
         }
-    }
-
-    for &v in &p.ref_lines {
-        chart.draw_series(std::iter::once(DashedPathElement::new(
-            vec![(x0, v), (x1, v)],
-            8,
-            5,
-            REFERENCE.stroke_width(2),
-        )))?;
-    }
-
-    if p.empty {
-        style::no_data(&chart.plotting_area().strip_coord_spec())?;
+        SeriesStyle::Points => {
+            let dense = s.segments.iter().map(Vec::len).sum::<usize>() > 2000;
+            let fill = if dense {
+                s.colour.mix(0.5).filled()
+            } else {
+                s.colour.filled()
+            };
+            chart.draw_series(
+                s.segments
+                    .iter()
+                    .flatten()
+                    .map(|&pt| Circle::new(pt, 2, fill)),
+            )?;
+        }
+        SeriesStyle::Stems => {
+            for seg in &s.segments {
+                chart.draw_series(seg.iter().map(|&(x, y)| {
+                    PathElement::new(vec![(x, baseline), (x, y)], s.colour.stroke_width(2))
+                }))?;
+                chart.draw_series(seg.iter().map(|&pt| Circle::new(pt, 3, s.colour.filled())))?;
+            }
+        }
     }
     Ok(())
 }

@@ -137,7 +137,7 @@ impl<'a> KernelColumns<'a> {
     }
 }
 
-impl crate::CandidateColumns for KernelColumns<'_> {
+impl crate::select::ols::CandidateColumns for KernelColumns<'_> {
     fn nrows(&self) -> usize {
         self.samples.xs.nrows()
     }

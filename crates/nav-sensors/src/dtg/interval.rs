@@ -20,7 +20,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::DtgInput;
+use super::input::DtgInput;
 use crate::geometry::{ChannelFrame, DtgAxes};
 
 /// Within-interval covariance of a vector signal (cluster frame) at every

@@ -3,6 +3,7 @@
 //! the 2N angular-vibration rectification detector.
 
 mod coefficients;
+mod input;
 mod interval;
 mod model;
 mod noise;
@@ -10,8 +11,8 @@ mod rect2n;
 mod term;
 
 pub use coefficients::DtgCoefficients;
+pub use input::DtgInput;
 pub use interval::{resolve_covariance, within_interval_covariance};
-pub use model::DtgInput;
 pub use noise::DtgNoise;
 pub use rect2n::Rect2nDetector;
 pub use term::DtgTerm;

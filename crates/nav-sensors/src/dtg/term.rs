@@ -8,7 +8,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::model::DtgInput;
+use super::input::DtgInput;
 use crate::geometry::ParseNameError;
 
 /// One deterministic term of the DTG model (IEEE Std 813 naming).
@@ -331,14 +331,7 @@ impl fmt::Display for DtgTerm {
 impl FromStr for DtgTerm {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        DtgTerm::ALL
-            .into_iter()
-            .find(|t| t.id() == s.trim())
-            .ok_or_else(|| ParseNameError {
-                kind: "DTG term",
-                given: s.to_string(),
-                valid: DtgTerm::ALL.iter().map(|t| t.id()).collect(),
-            })
+        ParseNameError::lookup("DTG term", &DtgTerm::ALL, DtgTerm::id, s)
     }
 }
 

@@ -7,50 +7,12 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+pub use super::error::CalibrationFileError;
 use super::record::Record;
 pub use super::unit_calibration::{GyroCoefficients, UnitCalibration, UnitCalibrationError};
 use crate::accel::{AccelCoefficients, compensate_triad};
 use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
 use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
-
-/// Reading or writing a calibration file failed.
-///
-/// ```
-/// use nav_sensors::calibration::{Calibration, CalibrationFileError};
-/// let err = Calibration::from_json("{\"format_version\": 9, \"gyros\": {}, \"accels\": {}}", "c.json").unwrap_err();
-/// assert!(matches!(err, CalibrationFileError::Version { found: 9, .. }));
-/// ```
-#[derive(Debug, thiserror::Error)]
-pub enum CalibrationFileError {
-    /// The file could not be read or written.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: String,
-        /// The cause.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The JSON does not describe a calibration (serde's message has line and column).
-    #[error("{path}: {source}")]
-    Json {
-        /// The file.
-        path: String,
-        /// The cause.
-        #[source]
-        source: serde_json::Error,
-    },
-    /// A format version this code does not read.
-    #[error("{path}: calibration format_version {found}, this version reads {supported}")]
-    Version {
-        /// The file.
-        path: String,
-        /// The version found.
-        found: u32,
-        /// The version supported.
-        supported: u32,
-    },
-}
 
 /// Ground-calibrated coefficients: per gyro channel the DTG terms that ground
 /// calibration determines (bias, scale factor, misalignment, g-sensitive,

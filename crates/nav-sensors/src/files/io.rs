@@ -7,7 +7,7 @@ use std::path::Path;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use super::calibration::CalibrationFileError;
+use super::error::CalibrationFileError;
 
 /// Reads a text file and hands it with its displayed path to `parse`; an
 /// I/O failure becomes `io(path, error)`.

@@ -4,6 +4,7 @@
 //! crate root as [`crate::record`] and [`crate::calibration`].
 
 pub mod calibration;
+mod error;
 pub(crate) mod io;
 pub mod record;
 mod unit_calibration;

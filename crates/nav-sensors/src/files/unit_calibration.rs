@@ -9,7 +9,7 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::calibration::CalibrationFileError;
+use super::error::CalibrationFileError;
 use super::record::Record;
 use crate::accel::{AccelCoefficients, compensate_triad};
 use crate::dtg::{DtgCoefficients, within_interval_covariance};

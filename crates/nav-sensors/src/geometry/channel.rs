@@ -128,17 +128,31 @@ pub struct ParseNameError {
     pub valid: Vec<&'static str>,
 }
 
+impl ParseNameError {
+    /// The one of `all` whose `name` is `given` (trimmed), or the error that
+    /// lists every valid name: the parser of every name set that matches
+    /// exactly (channels, DTG and rate-gyro terms).
+    pub(crate) fn lookup<T: Copy>(
+        kind: &'static str,
+        all: &[T],
+        name: fn(T) -> &'static str,
+        given: &str,
+    ) -> Result<T, Self> {
+        all.iter()
+            .copied()
+            .find(|&t| name(t) == given.trim())
+            .ok_or_else(|| ParseNameError {
+                kind,
+                given: given.to_string(),
+                valid: all.iter().map(|&t| name(t)).collect(),
+            })
+    }
+}
+
 impl FromStr for Channel {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Channel::ALL
-            .into_iter()
-            .find(|c| c.name() == s.trim())
-            .ok_or_else(|| ParseNameError {
-                kind: "channel",
-                given: s.to_string(),
-                valid: Channel::ALL.iter().map(|c| c.name()).collect(),
-            })
+        ParseNameError::lookup("channel", &Channel::ALL, Channel::name, s)
     }
 }
 

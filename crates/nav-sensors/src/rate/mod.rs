@@ -18,9 +18,10 @@
 //! [`crate::dtg::within_interval_covariance`]).
 
 mod coefficients;
+mod input;
 mod model;
 mod term;
 
 pub use coefficients::RateCoefficients;
-pub use model::RateInput;
+pub use input::RateInput;
 pub use term::RateTerm;

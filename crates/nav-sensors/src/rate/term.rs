@@ -8,7 +8,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::model::RateInput;
+use super::input::RateInput;
 use crate::geometry::ParseNameError;
 
 /// One deterministic term of a rate gyro's model (IEEE Std 952 / 1431
@@ -262,14 +262,7 @@ impl fmt::Display for RateTerm {
 impl FromStr for RateTerm {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        RateTerm::ALL
-            .into_iter()
-            .find(|t| t.id() == s.trim())
-            .ok_or_else(|| ParseNameError {
-                kind: "rate-gyro term",
-                given: s.to_string(),
-                valid: RateTerm::ALL.iter().map(|t| t.id()).collect(),
-            })
+        ParseNameError::lookup("rate-gyro term", &RateTerm::ALL, RateTerm::id, s)
     }
 }
 

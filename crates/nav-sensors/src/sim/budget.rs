@@ -38,10 +38,10 @@ use super::engine::HighRate;
 use super::output::Components;
 use super::predictable;
 use super::scenario::Scenario;
-use crate::calibration::Calibration;
-use crate::dtg::{DtgInput, DtgTerm};
-use crate::geometry::{ChannelFrame, Ios, Residue};
-use crate::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
+use super::truth::{ChannelTruth, Collinear, HiddenTruth, Truth};
+use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm};
+use crate::files::calibration::Calibration;
+use crate::geometry::{Channel, ChannelFrame, Ios, Residue};
 
 /// The candidate pairs checked for collinearity: the specific-force terms.
 const CANDIDATES: [DtgTerm; 9] = DtgTerm::SPECIFIC_FORCE;
@@ -67,7 +67,6 @@ pub(crate) fn budget(
     } = Reference::of(s, hr);
     let static_rate = |n: usize| static_rate[n];
     let g2 = &hr.level_squared;
-    let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut components = Components::new(t.to_vec());
     components.push("level_squared", g2.clone());
     let mut channels = BTreeMap::new();
@@ -79,37 +78,7 @@ pub(crate) fn budget(
         let truth = s.gyro(channel);
         let c = truth.to_array();
         let cal = calibration.gyro(channel).to_array();
-        let hidden_here: Vec<DtgTerm> = s
-            .hidden
-            .iter()
-            .filter(|h| h.channel == channel)
-            .map(|h| h.term)
-            .collect();
-        let base = channel_budget(
-            hr,
-            ch,
-            &c,
-            &noise[ch],
-            &elementary,
-            &predictable::weights(&frame.input, &frame.other, &frame.spin, &c),
-            |n| {
-                let e: Ios = frame.resolve(&static_rate(n));
-                let a = hr.accel_ideal_g[n];
-                let x = DtgInput {
-                    rate_deg_h: e,
-                    specific_force_g: frame.resolve(&nalgebra::Vector3::new(a[0], a[1], a[2])),
-                    temperature_delta_c: temp_meas[n] - s.thermal.reference_c,
-                    rate_2n_mean_square_deg2_s2: 0.0,
-                    // The product of means: d_k is defined against it.
-                    specific_force_cov_g2: [0.0; 6],
-                };
-                (
-                    DtgTerm::regressors(&x).to_vec(),
-                    e.i,
-                    truth.nonlinearity_deg_h(e.i),
-                )
-            },
-        );
+        let hidden_here = s.hidden_terms(channel);
         let ChannelBudget {
             d,
             pred: pred_all,
@@ -119,73 +88,35 @@ pub(crate) fn budget(
             floor,
             after,
             noise: noise_ch,
-        } = base;
-        let cal_err: Vec<f64> = pred_all
-            .iter()
-            .map(|pred| {
-                let mut v = 0.0;
-                for k in 0..18 {
-                    let term = DtgTerm::ALL[k];
-                    if term.is_calibrated() && !hidden_here.contains(&term) {
-                        v += (c[k] - cal[k]) * pred[k];
-                    }
-                }
-                v
-            })
-            .collect();
-        let mut expected = vec![0.0; n_out];
-        let mut at_full = BTreeMap::new();
-        for (k, dk) in d.iter().enumerate() {
-            let kk = if g2_energy > 0.0 {
-                dk.iter().zip(g2).map(|(a, b)| a * b).sum::<f64>() / g2_energy
-            } else {
-                0.0
-            };
-            if kk.abs() >= 1e-4 {
-                at_full.insert(DtgTerm::ALL[k], kk);
-            }
-            for (e, g) in expected.iter_mut().zip(g2) {
-                *e += kk * g;
-            }
-        }
+        } = channel_budget(
+            hr,
+            ch,
+            &c,
+            &noise[ch],
+            &elementary,
+            &predictable::weights(&frame.input, &frame.other, &frame.spin, &c),
+            |n| {
+                at_record(
+                    frame,
+                    &truth,
+                    static_rate(n),
+                    hr.accel_ideal_g[n],
+                    temp_meas[n] - s.thermal.reference_c,
+                )
+            },
+        );
+        let cal_err = calibration_error(&pred_all, &c, &cal, &hidden_here);
+        let (expected, at_full) = level_only_expectation(&d, g2, n_out);
         let level_only_floor: Vec<f64> = (0..n_out)
             .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
             .collect();
         let noise_floor = std_dev(&floor);
         for &term in &hidden_here {
-            let k = term.index();
-            let visible: Vec<f64> = pred_all.iter().map(|p| c[k] * p[k]).collect();
-            let rms_deg_h = std_dev(&visible);
-            hidden.push(HiddenTruth {
-                channel,
-                term,
-                coefficient: c[k],
-                unit: term.unit().to_string(),
-                description: term.ieee_name().to_string(),
-                rms_deg_h,
-                ratio_to_noise_floor: rms_deg_h / noise_floor,
-            });
+            let (truth, visible) = hidden_truth(channel, term, &c, &pred_all, noise_floor);
+            hidden.push(truth);
             components.push(&format!("hidden_{channel}_{term}"), visible);
         }
-        // Candidates that move together on this record (gravity-only
-        // constants excluded: a constant regressor has no correlation).
-        let series: Vec<Vec<f64>> = CANDIDATES
-            .iter()
-            .map(|t| pred_all.iter().map(|p| p[t.index()]).collect())
-            .collect();
-        let mut collinear = Vec::new();
-        for i in 0..CANDIDATES.len() {
-            for j in i + 1..CANDIDATES.len() {
-                let r = correlation(&series[i], &series[j]);
-                if r.abs() > 0.95 {
-                    collinear.push(Collinear {
-                        a: CANDIDATES[i],
-                        b: CANDIDATES[j],
-                        correlation: r,
-                    });
-                }
-            }
-        }
+        let collinear = collinear(&pred_all);
         channels.insert(
             channel,
             ChannelTruth {
@@ -212,12 +143,7 @@ pub(crate) fn budget(
         floor_series[ch] = floor;
         after_true[ch] = after;
     }
-    let combine = |series: &[Vec<f64>; 6], r: Residue| -> Vec<f64> {
-        let w = r.coefficients();
-        (0..n_out)
-            .map(|n| (0..6).map(|k| w[k] * series[k][n]).sum())
-            .collect()
-    };
+    let combine = |series: &[Vec<f64>; 6], r: Residue| residue_series(series, r, n_out);
     let residue_noise_floor_deg_h = Residue::ALL
         .iter()
         .map(|&r| (r, std_dev(&combine(&floor_series, r))))
@@ -237,6 +163,132 @@ pub(crate) fn budget(
         residue_after_true_compensation_rms_deg_h,
     };
     (truth, components)
+}
+
+/// The regressors of a paper channel at what the record shows (the product
+/// of interval means: `d_k` is defined against it), the rate about I a
+/// model takes as the reference, and the nonlinearity's drift there.
+fn at_record(
+    frame: &ChannelFrame,
+    truth: &DtgCoefficients,
+    static_rate: nalgebra::Vector3<f64>,
+    accel_g: [f64; 3],
+    temperature_delta_c: f64,
+) -> (Vec<f64>, f64, f64) {
+    let e: Ios = frame.resolve(&static_rate);
+    let x = DtgInput {
+        rate_deg_h: e,
+        specific_force_g: frame
+            .resolve(&nalgebra::Vector3::new(accel_g[0], accel_g[1], accel_g[2])),
+        temperature_delta_c,
+        rate_2n_mean_square_deg2_s2: 0.0,
+        specific_force_cov_g2: [0.0; 6],
+    };
+    (
+        DtgTerm::regressors(&x).to_vec(),
+        e.i,
+        truth.nonlinearity_deg_h(e.i),
+    )
+}
+
+/// A hidden term's truth: what it adds to the record as a model of the
+/// record sees it (`c_k · r_k(x̄)`, also written as a component), its rms
+/// and its ratio to the channel's noise floor.
+fn hidden_truth(
+    channel: Channel,
+    term: DtgTerm,
+    c: &[f64],
+    pred: &[Vec<f64>],
+    noise_floor: f64,
+) -> (HiddenTruth, Vec<f64>) {
+    let k = term.index();
+    let visible: Vec<f64> = pred.iter().map(|p| c[k] * p[k]).collect();
+    let rms_deg_h = std_dev(&visible);
+    let truth = HiddenTruth {
+        channel,
+        term,
+        coefficient: c[k],
+        unit: term.unit().to_string(),
+        description: term.ieee_name().to_string(),
+        rms_deg_h,
+        ratio_to_noise_floor: rms_deg_h / noise_floor,
+    };
+    (truth, visible)
+}
+
+/// A residue (eq. 6) of six channel series.
+fn residue_series(series: &[Vec<f64>; 6], r: Residue, n_out: usize) -> Vec<f64> {
+    let w = r.coefficients();
+    (0..n_out)
+        .map(|n| (0..6).map(|k| w[k] * series[k][n]).sum())
+        .collect()
+}
+
+/// What the ground calibration's errors leave on a channel: the calibrated
+/// terms, hidden ones excepted, at the regressors the record shows.
+fn calibration_error(pred: &[Vec<f64>], c: &[f64], cal: &[f64], hidden: &[DtgTerm]) -> Vec<f64> {
+    pred.iter()
+        .map(|pred| {
+            let mut v = 0.0;
+            for k in 0..18 {
+                let term = DtgTerm::ALL[k];
+                if term.is_calibrated() && !hidden.contains(&term) {
+                    v += (c[k] - cal[k]) * pred[k];
+                }
+            }
+            v
+        })
+        .collect()
+}
+
+/// The level-only expectation of format version 1: each term's `d_k`
+/// fitted through the origin on g² (`k_k`), their sum over the record and
+/// the `k_k` worth writing (|k_k| ≥ 1e-4 deg/h at full level).
+fn level_only_expectation(
+    d: &[Vec<f64>],
+    g2: &[f64],
+    n_out: usize,
+) -> (Vec<f64>, BTreeMap<DtgTerm, f64>) {
+    let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
+    let mut expected = vec![0.0; n_out];
+    let mut at_full = BTreeMap::new();
+    for (k, dk) in d.iter().enumerate() {
+        let kk = if g2_energy > 0.0 {
+            dk.iter().zip(g2).map(|(a, b)| a * b).sum::<f64>() / g2_energy
+        } else {
+            0.0
+        };
+        if kk.abs() >= 1e-4 {
+            at_full.insert(DtgTerm::ALL[k], kk);
+        }
+        for (e, g) in expected.iter_mut().zip(g2) {
+            *e += kk * g;
+        }
+    }
+    (expected, at_full)
+}
+
+/// Candidates that move together on this record (gravity-only constants
+/// excluded: a constant regressor has no correlation).
+fn collinear(pred: &[Vec<f64>]) -> Vec<Collinear> {
+    let series: Vec<Vec<f64>> = CANDIDATES
+        .iter()
+        .map(|t| pred.iter().map(|p| p[t.index()]).collect())
+        .collect();
+    let mut collinear = Vec::new();
+    for i in 0..CANDIDATES.len() {
+        for j in i + 1..CANDIDATES.len() {
+            let r = correlation(&series[i], &series[j]);
+            if r.abs() > 0.95 {
+                collinear.push(Collinear {
+                    a: CANDIDATES[i],
+                    b: CANDIDATES[j],
+                    correlation: r,
+                });
+            }
+        }
+    }
+    collinear
 }
 
 /// One channel's budget series: per term the unmodelled part `d_k`, the

@@ -12,8 +12,8 @@ use rand_distr::{Distribution, StandardNormal};
 
 use super::scenario::{CalibrationError, Scenario};
 use crate::accel::AccelCoefficients;
-use crate::calibration::{Calibration, GyroCoefficients, UnitCalibration};
 use crate::dtg::{DtgCoefficients, DtgTerm};
+use crate::files::calibration::{Calibration, GyroCoefficients, UnitCalibration};
 use crate::geometry::{Axis, Channel};
 use crate::rate::{RateCoefficients, RateTerm};
 use crate::unit::{GyroTerm, Unit};
@@ -21,6 +21,18 @@ use crate::unit::{GyroTerm, Unit};
 /// Two independent standard normal draws.
 fn normal(rng: &mut impl Rng) -> (f64, f64) {
     (StandardNormal.sample(rng), StandardNormal.sample(rng))
+}
+
+/// One term's calibrated value: the truth with a relative and an absolute
+/// error when ground calibration determines the term, else zero. Two draws
+/// either way, so every channel takes the same share of the stream.
+fn drawn(truth: f64, calibrated: bool, relative: f64, absolute: f64, rng: &mut impl Rng) -> f64 {
+    let (n1, n2) = normal(rng);
+    if calibrated {
+        truth * (1.0 + relative * n1) + absolute * n2
+    } else {
+        0.0
+    }
 }
 
 /// A DTG channel's calibration: calibrated terms with errors, the others
@@ -33,12 +45,13 @@ fn draw_dtg(
 ) -> DtgCoefficients {
     let mut cal = truth;
     for t in DtgTerm::ALL {
-        let (n1, n2) = normal(rng);
-        let v = if t.is_calibrated() {
-            truth.get(t) * (1.0 + e.relative * n1) + e.absolute_for(t) * n2
-        } else {
-            0.0
-        };
+        let v = drawn(
+            truth.get(t),
+            t.is_calibrated(),
+            e.relative,
+            e.absolute_for(t),
+            rng,
+        );
         cal.set(t, v);
     }
     let (n1, _) = normal(rng);
@@ -58,12 +71,13 @@ fn draw_rate(
 ) -> RateCoefficients {
     let mut cal = truth;
     for t in RateTerm::ALL {
-        let (n1, n2) = normal(rng);
-        let v = if t.is_calibrated() {
-            truth.get(t) * (1.0 + e.relative * n1) + e.absolute_for_rate(t) * n2
-        } else {
-            0.0
-        };
+        let v = drawn(
+            truth.get(t),
+            t.is_calibrated(),
+            e.relative,
+            e.absolute_for_rate(t),
+            rng,
+        );
         cal.set(t, v);
     }
     for &t in hidden {

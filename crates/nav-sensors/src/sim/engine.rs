@@ -31,9 +31,9 @@ use super::output::Simulation;
 use super::scenario::Scenario;
 use crate::accel::AccelCoefficients;
 use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, Rect2nDetector};
+use crate::files::record::Record;
 use crate::geometry::{Axis, ChannelFrame, DtgAxes};
 use crate::rate::{RateCoefficients, RateInput, RateTerm};
-use crate::record::Record;
 use crate::vibration::VibrationHistory;
 
 /// Independent random streams derived from the scenario's seed, one per

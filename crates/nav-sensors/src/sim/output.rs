@@ -3,9 +3,9 @@
 use std::path::Path;
 
 use super::error::SimError;
-use crate::calibration::Calibration;
-use crate::record::Record;
-use crate::truth::Truth;
+use super::truth::Truth;
+use crate::files::calibration::Calibration;
+use crate::files::record::Record;
 
 /// Named per-sample series that explain a record (same time base):
 /// `level_squared`, then per channel `{ch}_noise`, `{ch}_motion`,
@@ -94,7 +94,7 @@ impl Components {
         names.extend(self.names.iter().map(String::as_str));
         let mut cols: Vec<&[f64]> = vec![&self.t];
         cols.extend(self.columns.iter().map(Vec::as_slice));
-        tabular::write_csv(path, &names, &cols).map_err(crate::record::RecordError::from)?;
+        tabular::write_csv(path, &names, &cols).map_err(crate::files::record::RecordError::from)?;
         Ok(())
     }
 }
@@ -163,7 +163,7 @@ impl Simulation {
         if let Some(e) = tabular::first_unwritable(&record, &names, &cols)
             .or_else(|| tabular::first_unwritable(&components, &comp_names, &comp_cols))
         {
-            return Err(crate::record::RecordError::from(e).into());
+            return Err(crate::files::record::RecordError::from(e).into());
         }
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         self.record.write_csv(dir.join("record.csv"))?;

@@ -515,6 +515,16 @@ impl Scenario {
             .unwrap_or_default()
     }
 
+    /// The terms of a channel the ground calibration does not see, in the
+    /// scenario's order.
+    pub(crate) fn hidden_terms(&self, channel: Channel) -> Vec<DtgTerm> {
+        self.hidden
+            .iter()
+            .filter(|h| h.channel == channel)
+            .map(|h| h.term)
+            .collect()
+    }
+
     /// The true coefficients of an accelerometer (zero when not listed).
     ///
     /// ```
@@ -533,6 +543,45 @@ impl Scenario {
     /// assert!(nav_sensors::sim::Scenario::default().validate().is_ok());
     /// ```
     pub fn validate(&self) -> Result<(), ScenarioError> {
+        self.check_timing()?;
+        self.check_sensors()?;
+        self.check_noise()?;
+        let range = check_range;
+        range(
+            "site.latitude_deg",
+            self.site.latitude_deg,
+            self.site.latitude_deg.abs() <= 90.0,
+            "must be from -90 to 90 degrees",
+        )?;
+        if let Ok(value) = toml::Value::try_from(self)
+            && let Some((field, value)) = first_non_finite(&value, "")
+        {
+            return Err(ScenarioError::NotFinite { field, value });
+        }
+        if self.site.orientation.axes_enu().is_none() {
+            return Err(ScenarioError::Orientation {
+                x: self.site.orientation.x,
+                z: self.site.orientation.z,
+            });
+        }
+        self.vibration.validate(self.internal_rate_hz)?;
+        if let Some(m) = &self.motion {
+            m.validate()?;
+        }
+        for h in &self.hidden {
+            if self.gyro(h.channel).get(h.term) == 0.0 {
+                return Err(ScenarioError::HiddenIsZero {
+                    channel: h.channel,
+                    term: h.term,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The rates and the length: a whole number of internal samples per
+    /// output sample, at least two output samples, and memory the machine has.
+    fn check_timing(&self) -> Result<(), ScenarioError> {
         let range = check_range;
         range(
             "output_rate_hz",
@@ -571,6 +620,14 @@ impl Scenario {
                 <= Self::MAX_INTERNAL_SAMPLES as f64,
             "with internal_rate_hz gives more than 2^26 internal samples (about 5 GiB of memory; 4.6 h at 4 kHz): split a longer test into several scenarios",
         )?;
+        Ok(())
+    }
+
+    /// The sensors' dynamics: spin, 2N resonance, pulse size, the
+    /// accelerometers' servo loop and the thermal lag.
+    fn check_sensors(&self) -> Result<(), ScenarioError> {
+        let range = check_range;
+        let s = &self.accels.servo;
         range(
             "gyros.spin_hz",
             self.gyros.spin_hz,
@@ -586,7 +643,6 @@ impl Scenario {
         if let Some(q) = self.gyros.pulse_arcsec {
             range("gyros.pulse_arcsec", q, q > 0.0, "must be positive")?;
         }
-        let s = &self.accels.servo;
         range(
             "accels.servo.natural_hz",
             s.natural_hz,
@@ -605,6 +661,13 @@ impl Scenario {
             self.thermal.time_constant_s >= 0.0,
             "must not be negative",
         )?;
+        Ok(())
+    }
+
+    /// The noise levels: none negative, and a correlation time where there
+    /// is bias instability.
+    fn check_noise(&self) -> Result<(), ScenarioError> {
+        let range = check_range;
         for (field, v) in [
             (
                 "gyros.noise.arw_deg_per_rt_h",
@@ -633,35 +696,6 @@ impl Scenario {
                 self.gyros.noise.bias_instability_tau_s > 0.0,
                 "must be positive when there is bias instability",
             )?;
-        }
-        range(
-            "site.latitude_deg",
-            self.site.latitude_deg,
-            self.site.latitude_deg.abs() <= 90.0,
-            "must be from -90 to 90 degrees",
-        )?;
-        if let Ok(value) = toml::Value::try_from(self)
-            && let Some((field, value)) = first_non_finite(&value, "")
-        {
-            return Err(ScenarioError::NotFinite { field, value });
-        }
-        if self.site.orientation.axes_enu().is_none() {
-            return Err(ScenarioError::Orientation {
-                x: self.site.orientation.x,
-                z: self.site.orientation.z,
-            });
-        }
-        self.vibration.validate(self.internal_rate_hz)?;
-        if let Some(m) = &self.motion {
-            m.validate()?;
-        }
-        for h in &self.hidden {
-            if self.gyro(h.channel).get(h.term) == 0.0 {
-                return Err(ScenarioError::HiddenIsZero {
-                    channel: h.channel,
-                    term: h.term,
-                });
-            }
         }
         Ok(())
     }

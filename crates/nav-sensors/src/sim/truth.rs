@@ -6,9 +6,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::scenario::Scenario;
 use crate::dtg::{DtgCoefficients, DtgTerm};
 use crate::geometry::{Channel, Residue};
-use crate::sim::Scenario;
 
 /// A hidden effect with what it contributes to the record.
 ///
@@ -176,6 +176,26 @@ pub enum TruthFileError {
     },
 }
 
+impl TruthFileError {
+    /// Parses a truth file of either kind (the paper's [`Truth`] or a unit's
+    /// [`super::UnitTruth`]); `path` labels errors.
+    pub(crate) fn parse<T: serde::de::DeserializeOwned>(text: &str, path: &str) -> Result<T, Self> {
+        serde_json::from_str(text).map_err(|source| TruthFileError::Json {
+            path: path.to_string(),
+            source,
+        })
+    }
+
+    /// Reads a truth file of either kind.
+    pub(crate) fn load<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, Self> {
+        crate::files::io::load_with(
+            path,
+            |path, source| TruthFileError::Io { path, source },
+            |text, path| Self::parse(text, path),
+        )
+    }
+}
+
 impl Truth {
     /// The format version written.
     ///
@@ -205,10 +225,7 @@ impl Truth {
     /// assert!(nav_sensors::truth::Truth::from_json("not json", "t.json").is_err());
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
-        serde_json::from_str(text).map_err(|source| TruthFileError::Json {
-            path: path.to_string(),
-            source,
-        })
+        TruthFileError::parse(text, path)
     }
 
     /// Reads a truth JSON file.
@@ -221,11 +238,7 @@ impl Truth {
     /// assert_eq!(truth.scenario.duration_s, 1.0);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        crate::files::io::load_with(
-            path.as_ref(),
-            |path, source| TruthFileError::Io { path, source },
-            Self::from_json,
-        )
+        TruthFileError::load(path.as_ref())
     }
 
     /// The noise floor of one channel, deg/h.

@@ -9,6 +9,7 @@
 //! (`accels.axes`); others are error-free (noise and servo loop still
 //! apply).
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use nalgebra::Vector3;
@@ -21,12 +22,12 @@ use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
 use super::unit_truth::{UnitChannelTruth, UnitHiddenTruth, UnitTruth};
 use crate::accel::AccelCoefficients;
-use crate::calibration::{GyroCoefficients, UnitCalibration};
 use crate::dtg::{DtgInput, DtgTerm};
+use crate::files::calibration::{GyroCoefficients, UnitCalibration};
+use crate::files::record::Record;
 use crate::geometry::{Axis, Channel};
 use crate::rate::{RateInput, RateTerm};
-use crate::record::Record;
-use crate::unit::{GyroModel, GyroTerm, Unit};
+use crate::unit::{Gyro, GyroModel, GyroTerm, Unit};
 use stats::{rms, std_dev};
 
 /// The result of [`simulate_unit`]: the record (deg/h and g inside; written
@@ -316,6 +317,59 @@ fn rate_weights(c: &[f64]) -> [f64; 9] {
     std::array::from_fn(|k| c[RateTerm::SPECIFIC_FORCE[k].index()])
 }
 
+/// The regressors of a gyro at what the record shows (rate `w` in deg/h,
+/// specific force `f` in g, temperature less the reference), the rate about
+/// its input axis a model takes as the reference, and the DTG
+/// nonlinearity's drift there (none for a rate gyro).
+fn gyro_at_record(
+    g: &Gyro,
+    truth: &GyroCoefficients,
+    w: &Vector3<f64>,
+    f: &Vector3<f64>,
+    temperature_delta_c: f64,
+) -> (Vec<f64>, f64, f64) {
+    match (truth, g.dtg_axes()) {
+        (GyroCoefficients::Dtg(coefficients), Some(axes)) => {
+            let x = DtgInput {
+                rate_deg_h: axes.resolve(w),
+                specific_force_g: axes.resolve(f),
+                temperature_delta_c,
+                ..DtgInput::default()
+            };
+            let wi = x.rate_deg_h.i;
+            (
+                DtgTerm::regressors(&x).to_vec(),
+                wi,
+                coefficients.nonlinearity_deg_h(wi),
+            )
+        }
+        _ => {
+            let mut x = RateInput::sensed(&g.input, w, f);
+            x.temperature_delta_c = temperature_delta_c;
+            (RateTerm::regressors(&x).to_vec(), x.rate_i_deg_h, 0.0)
+        }
+    }
+}
+
+/// The noise floor through each of the unit's parity residues, deg/h.
+fn residue_noise_floors(unit: &Unit, floors: &[Vec<f64>], n_out: usize) -> BTreeMap<String, f64> {
+    let coefficients = unit.geometry().residue_coefficients();
+    unit.residue_names()
+        .iter()
+        .enumerate()
+        .map(|(r, name)| {
+            let series: Vec<f64> = (0..n_out)
+                .map(|n| {
+                    (0..floors.len())
+                        .map(|k| coefficients[(r, k)] * floors[k][n])
+                        .sum()
+                })
+                .collect();
+            (name.clone(), std_dev(&series))
+        })
+        .collect()
+}
+
 fn unit_budget(
     unit: &Unit,
     s: &Scenario,
@@ -339,29 +393,13 @@ fn unit_budget(
         let at_record = |n: usize| {
             let a = hr.accel_ideal_g[n];
             let f = Vector3::new(a[0], a[1], a[2]);
-            let w = static_rate[n];
-            let dt = temp_meas[n] - s.thermal.reference_c;
-            match (truth, g.dtg_axes()) {
-                (GyroCoefficients::Dtg(coefficients), Some(axes)) => {
-                    let x = DtgInput {
-                        rate_deg_h: axes.resolve(&w),
-                        specific_force_g: axes.resolve(&f),
-                        temperature_delta_c: dt,
-                        ..DtgInput::default()
-                    };
-                    let wi = x.rate_deg_h.i;
-                    (
-                        DtgTerm::regressors(&x).to_vec(),
-                        wi,
-                        coefficients.nonlinearity_deg_h(wi),
-                    )
-                }
-                _ => {
-                    let mut x = RateInput::sensed(&g.input, &w, &f);
-                    x.temperature_delta_c = dt;
-                    (RateTerm::regressors(&x).to_vec(), x.rate_i_deg_h, 0.0)
-                }
-            }
+            gyro_at_record(
+                g,
+                truth,
+                &static_rate[n],
+                &f,
+                temp_meas[n] - s.thermal.reference_c,
+            )
         };
         let weights = match g.dtg_axes() {
             Some(axes) => predictable::weights(
@@ -413,22 +451,7 @@ fn unit_budget(
         });
         floors.push(floor);
     }
-    let coefficients = unit.geometry().residue_coefficients();
-    let residue_noise_floor_deg_h = unit
-        .residue_names()
-        .iter()
-        .enumerate()
-        .map(|(r, name)| {
-            let series: Vec<f64> = (0..n_out)
-                .map(|n| {
-                    (0..floors.len())
-                        .map(|k| coefficients[(r, k)] * floors[k][n])
-                        .sum()
-                })
-                .collect();
-            (name.clone(), std_dev(&series))
-        })
-        .collect();
+    let residue_noise_floor_deg_h = residue_noise_floors(unit, &floors, n_out);
     UnitTruth {
         format_version: UnitTruth::FORMAT_VERSION,
         unit: unit.clone(),

@@ -1,16 +1,16 @@
 //! The truth of a simulation of any unit (JSON): the unit, the scenario,
 //! every channel's true coefficients and error budget, the hidden effects
 //! and the residue noise floors. The paper's unit keeps its richer file
-//! ([`crate::truth::Truth`]).
+//! ([`super::truth::Truth`]).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::Scenario;
-use crate::calibration::GyroCoefficients;
-use crate::truth::TruthFileError;
+use super::scenario::Scenario;
+use super::truth::TruthFileError;
+use crate::files::calibration::GyroCoefficients;
 use crate::unit::Unit;
 
 /// A hidden effect of a unit's channel with what it contributes.
@@ -49,7 +49,7 @@ pub struct UnitHiddenTruth {
 }
 
 /// One channel's truth and error budget at the output rate (definitions
-/// as in [`crate::truth::ChannelTruth`]).
+/// as in [`super::truth::ChannelTruth`]).
 ///
 /// ```
 /// let unit = nav_sensors::unit::Unit::builtin("triad").unwrap();
@@ -144,10 +144,7 @@ impl UnitTruth {
     /// assert!(nav_sensors::sim::UnitTruth::from_json("{}", "t.json").is_err());
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
-        serde_json::from_str(text).map_err(|source| TruthFileError::Json {
-            path: path.to_string(),
-            source,
-        })
+        TruthFileError::parse(text, path)
     }
 
     /// Reads a truth JSON file.
@@ -160,10 +157,6 @@ impl UnitTruth {
     /// assert_eq!(nav_sensors::sim::UnitTruth::load(dir.join("truth.json")).unwrap().unit, unit);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        crate::files::io::load_with(
-            path.as_ref(),
-            |path, source| TruthFileError::Io { path, source },
-            Self::from_json,
-        )
+        TruthFileError::load(path.as_ref())
     }
 }

@@ -152,57 +152,7 @@ impl UnitFile {
         let mut gyros = Vec::with_capacity(self.gyro.len());
         for (k, g) in self.gyro.iter().enumerate() {
             claim(format!("gyro[{k}].name"), &g.name, format!("gyro[{k}]"))?;
-            let axis =
-                |what: &str, v: [f64; 3]| axis(file, &format!("gyro[{k}].{what}"), &g.name, v);
-            let input = axis("input", g.input)?;
-            let model = match g.model {
-                ModelName::Rate => {
-                    for (what, given) in
-                        [("spin", g.spin.is_some()), ("output", g.output.is_some())]
-                    {
-                        if given {
-                            return Err(UnitError::RateAxisGiven {
-                                file: f.clone(),
-                                key: format!("gyro[{k}].{what}"),
-                                name: g.name.clone(),
-                            });
-                        }
-                    }
-                    GyroModel::Rate
-                }
-                ModelName::Dtg => {
-                    let missing = |what: &str| UnitError::DtgAxisMissing {
-                        file: f.clone(),
-                        key: format!("gyro[{k}].{what}"),
-                        name: g.name.clone(),
-                    };
-                    let spin = axis("spin", g.spin.ok_or_else(|| missing("spin"))?)?;
-                    let output = axis("output", g.output.ok_or_else(|| missing("output"))?)?;
-                    for (a, va, b, vb) in [
-                        ("input", &input, "spin", &spin),
-                        ("input", &input, "output", &output),
-                        ("spin", &spin, "output", &output),
-                    ] {
-                        let cosine = va.dot(vb);
-                        if cosine.abs() > PERPENDICULAR_TOLERANCE {
-                            return Err(UnitError::NotPerpendicular {
-                                file: f.clone(),
-                                key: format!("gyro[{k}]"),
-                                name: g.name.clone(),
-                                a,
-                                b,
-                                cosine,
-                            });
-                        }
-                    }
-                    GyroModel::Dtg { spin, output }
-                }
-            };
-            gyros.push(Gyro {
-                name: g.name.clone(),
-                input,
-                model,
-            });
+            gyros.push(g.validate(file, k)?);
         }
         let mut accels = Vec::with_capacity(self.accel.len());
         for (k, a) in self.accel.iter().enumerate() {
@@ -250,6 +200,63 @@ impl UnitFile {
             accels,
             file.to_string(),
         ))
+    }
+}
+
+impl GyroFile {
+    /// Checks the axes the gyro's model needs (a rate gyro none but its
+    /// input, a DTG three perpendicular ones) and builds the gyro; `k` is
+    /// its position in the file, for the error's key.
+    fn validate(&self, file: &str, k: usize) -> Result<Gyro, UnitError> {
+        let g = self;
+        let axis = |what: &str, v: [f64; 3]| axis(file, &format!("gyro[{k}].{what}"), &g.name, v);
+        let input = axis("input", g.input)?;
+        let model = match g.model {
+            ModelName::Rate => {
+                for (what, given) in [("spin", g.spin.is_some()), ("output", g.output.is_some())] {
+                    if given {
+                        return Err(UnitError::RateAxisGiven {
+                            file: file.to_string(),
+                            key: format!("gyro[{k}].{what}"),
+                            name: g.name.clone(),
+                        });
+                    }
+                }
+                GyroModel::Rate
+            }
+            ModelName::Dtg => {
+                let missing = |what: &str| UnitError::DtgAxisMissing {
+                    file: file.to_string(),
+                    key: format!("gyro[{k}].{what}"),
+                    name: g.name.clone(),
+                };
+                let spin = axis("spin", g.spin.ok_or_else(|| missing("spin"))?)?;
+                let output = axis("output", g.output.ok_or_else(|| missing("output"))?)?;
+                for (a, va, b, vb) in [
+                    ("input", &input, "spin", &spin),
+                    ("input", &input, "output", &output),
+                    ("spin", &spin, "output", &output),
+                ] {
+                    let cosine = va.dot(vb);
+                    if cosine.abs() > PERPENDICULAR_TOLERANCE {
+                        return Err(UnitError::NotPerpendicular {
+                            file: file.to_string(),
+                            key: format!("gyro[{k}]"),
+                            name: g.name.clone(),
+                            a,
+                            b,
+                            cosine,
+                        });
+                    }
+                }
+                GyroModel::Dtg { spin, output }
+            }
+        };
+        Ok(Gyro {
+            name: g.name.clone(),
+            input,
+            model,
+        })
     }
 }
 

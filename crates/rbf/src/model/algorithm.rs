@@ -5,10 +5,11 @@ use faer::prelude::ReborrowMut;
 use faer::{Mat, MatRef};
 
 use super::error::RbfError;
-use super::fitted::{RbfModel, Scaling, Selection};
+use super::fitted::{RbfModel, Selection};
 use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
-use super::{Progress, Stage};
+use super::progress::{Progress, Stage};
+use super::scaling::Scaling;
 use crate::check::first_non_finite;
 use crate::design::{KernelColumns, Widths, kernel_matrix, kernel_matrix_into};
 use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
@@ -210,7 +211,7 @@ fn model_from(
     design: &Design,
     centres: Mat<f64>,
     widths: Widths,
-    sol: crate::Solution,
+    sol: crate::estimate::Solution,
     selection: Option<Selection>,
 ) -> Result<RbfModel, RbfError> {
     let (p, k) = (design.forced.ncols(), centres.nrows());
@@ -385,7 +386,7 @@ impl OlsStage {
             forced_errs: self.path.forced_errs().to_vec(),
             picks: self.path.picks()[..k]
                 .iter()
-                .map(|p| crate::Pick {
+                .map(|p| crate::select::ols::Pick {
                     index: self.labels[p.index],
                     ..*p
                 })

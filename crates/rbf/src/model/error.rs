@@ -107,7 +107,7 @@ pub enum RbfParamsError {
     )]
     DegreeTooLow {
         /// The kernel.
-        kernel: crate::Kernel,
+        kernel: crate::kernel::Kernel,
         /// Degree given.
         degree: i32,
         /// The kernel's minimum degree.

@@ -9,65 +9,11 @@ use super::algorithm::Design;
 use super::hyperparams::{CentreSelection, RbfParams, RbfValidParams, Strategy};
 use super::matser;
 use super::poly::{PolyFit, PolyTail, kernel_coordinates, monomials, monomials_into};
+use super::scaling::Scaling;
 use crate::design::{Widths, kernel_matrix_into};
 use crate::kernel::Kernel;
 use crate::select::ols::{Pick, StopReason};
 use crate::width::WidthRule;
-
-/// Per-input standardisation x ↦ (x − mean)/scale (population standard deviation;
-/// constant inputs keep scale 1).
-///
-/// ```
-/// let s = rbf::Scaling::from_data(faer::mat![[1.0], [3.0]].as_ref());
-/// assert_eq!((s.mean[0], s.scale[0]), (2.0, 1.0));
-/// ```
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Scaling {
-    /// Mean of each input.
-    pub mean: Vec<f64>,
-    /// Standard deviation of each input (1 where it is 0).
-    pub scale: Vec<f64>,
-}
-
-impl Scaling {
-    /// Mean and population standard deviation of every column of `x`.
-    ///
-    /// ```
-    /// let s = rbf::Scaling::from_data(faer::mat![[5.0, 0.0], [5.0, 2.0]].as_ref());
-    /// assert_eq!(s.scale, vec![1.0, 1.0]);
-    /// ```
-    pub fn from_data(x: MatRef<'_, f64>) -> Self {
-        let (n, d) = (x.nrows(), x.ncols());
-        let mut mean = vec![0.0; d];
-        let mut scale = vec![1.0; d];
-        for k in 0..d {
-            let m = (0..n).map(|i| x[(i, k)]).sum::<f64>() / n as f64;
-            let v = (0..n).map(|i| (x[(i, k)] - m).powi(2)).sum::<f64>() / n as f64;
-            mean[k] = m;
-            if v.sqrt() > 0.0 {
-                scale[k] = v.sqrt();
-            }
-        }
-        Self { mean, scale }
-    }
-
-    /// The standardised copy of `x`.
-    ///
-    /// # Panics
-    /// If `x` does not have one column per input.
-    ///
-    /// ```
-    /// let s = rbf::Scaling { mean: vec![1.0], scale: vec![2.0] };
-    /// assert_eq!(s.apply(faer::mat![[5.0]].as_ref())[(0, 0)], 2.0);
-    /// ```
-    #[track_caller]
-    pub fn apply(&self, x: MatRef<'_, f64>) -> Mat<f64> {
-        assert_eq!(x.ncols(), self.mean.len(), "wrong number of inputs");
-        Mat::from_fn(x.nrows(), x.ncols(), |i, k| {
-            (x[(i, k)] - self.mean[k]) / self.scale[k]
-        })
-    }
-}
 
 /// The OLS selection record of a model.
 ///
@@ -90,7 +36,7 @@ pub struct Selection {
     /// PRESS and GCV at every size of the selection run (k = 0 … its picks, while
     /// finite); empty in models saved before it was recorded.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub criterion: Vec<crate::ols::Criterion>,
+    pub criterion: Vec<crate::select::ols::Criterion>,
 }
 
 /// A fitted RBF network f(x, z) = λ0 + aᵀx + zᵀθ + Σᵢ λᵢ φ(‖x − cᵢ‖; βᵢ).
@@ -149,7 +95,7 @@ pub struct RbfModel {
 /// loaded model has none.
 #[derive(Clone, Debug, Default)]
 struct RunRecord {
-    pass_threads: Option<crate::PassThreads>,
+    pass_threads: Option<crate::select::ols::PassThreads>,
 }
 
 impl PartialEq for RunRecord {
@@ -212,7 +158,7 @@ impl RbfModel {
     }
 
     /// The threads the streaming passes of the OLS selection ran on, and why; `None` for
-    /// other centres and for a loaded model (see [`crate::PassThreads`]).
+    /// other centres and for a loaded model (see [`crate::select::ols::PassThreads`]).
     ///
     /// ```
     /// let m = rbf::doc_model();
@@ -221,12 +167,12 @@ impl RbfModel {
     /// let back = rbf::RbfModel::from_reader({ let mut v = Vec::new(); m.to_writer(&mut v).unwrap(); v }.as_slice()).unwrap();
     /// assert!(back.pass_threads().is_none() && back == m);
     /// ```
-    pub fn pass_threads(&self) -> Option<&crate::PassThreads> {
+    pub fn pass_threads(&self) -> Option<&crate::select::ols::PassThreads> {
         self.run.pass_threads.as_ref()
     }
 
     /// Records the threads of the OLS passes that chose this model's centres.
-    pub(crate) fn with_pass_threads(mut self, threads: crate::PassThreads) -> Self {
+    pub(crate) fn with_pass_threads(mut self, threads: crate::select::ols::PassThreads) -> Self {
         self.run.pass_threads = Some(threads);
         self
     }
@@ -234,9 +180,9 @@ impl RbfModel {
     /// The assembled model, or [`RbfError::UnusableModel`] if it holds a
     /// number no model may hold: a fit never returns what could not be saved
     /// and loaded back.
-    pub(crate) fn usable(self) -> Result<Self, crate::RbfError> {
+    pub(crate) fn usable(self) -> Result<Self, super::error::RbfError> {
         self.validate()
-            .map_err(crate::RbfError::UnusableModel)
+            .map_err(super::error::RbfError::UnusableModel)
             .map(|()| self)
     }
 

@@ -166,9 +166,9 @@ pub struct RbfValidParams {
     /// OLS: select on a seeded subsample of this many rows, weights on all (None: all).
     pub(crate) selection_rows: Option<usize>,
     /// OLS: how many of the path's picks the model keeps.
-    pub(crate) size_rule: crate::ols::SizeRule,
+    pub(crate) size_rule: crate::select::ols::SizeRule,
     /// OLS: precision of the streaming passes (the picks do not depend on it).
-    pub(crate) ols_stream: crate::StreamPrecision,
+    pub(crate) ols_stream: crate::select::ols::StreamPrecision,
 }
 
 impl RbfValidParams {
@@ -303,7 +303,7 @@ impl RbfValidParams {
     /// # use linfa::ParamGuard;
     /// assert_eq!(rbf::RbfParams::new().check().unwrap().size_rule(), rbf::ols::SizeRule::All);
     /// ```
-    pub fn size_rule(&self) -> crate::ols::SizeRule {
+    pub fn size_rule(&self) -> crate::select::ols::SizeRule {
         self.size_rule
     }
 
@@ -313,7 +313,7 @@ impl RbfValidParams {
     /// # use rbf::ParamGuard;
     /// assert_eq!(rbf::RbfParams::new().check().unwrap().ols_stream(), rbf::StreamPrecision::F32);
     /// ```
-    pub fn ols_stream(&self) -> crate::StreamPrecision {
+    pub fn ols_stream(&self) -> crate::select::ols::StreamPrecision {
         self.ols_stream
     }
 
@@ -495,8 +495,8 @@ impl RbfParams {
             max_condition: DEFAULT_MAX_CONDITION,
             degree: None,
             selection_rows: None,
-            size_rule: crate::ols::SizeRule::All,
-            ols_stream: crate::StreamPrecision::default(),
+            size_rule: crate::select::ols::SizeRule::All,
+            ols_stream: crate::select::ols::StreamPrecision::default(),
         })
     }
 
@@ -516,7 +516,7 @@ impl RbfParams {
         self
     }
 
-    /// OLS only: keep every pick ([`crate::ols::SizeRule::All`], the default: the run
+    /// OLS only: keep every pick ([`crate::select::ols::SizeRule::All`], the default: the run
     /// stops at the most centres or by ρ), or the size with the least leave-one-out
     /// error (PRESS) or GCV along the path, computed from the selection's orthogonal
     /// basis at no extra pass over the candidates.
@@ -526,13 +526,13 @@ impl RbfParams {
     /// let p = rbf::RbfParams::new().size_rule(rbf::ols::SizeRule::Press).check().unwrap();
     /// assert_eq!(p.size_rule(), rbf::ols::SizeRule::Press);
     /// ```
-    pub fn size_rule(mut self, rule: crate::ols::SizeRule) -> Self {
+    pub fn size_rule(mut self, rule: crate::select::ols::SizeRule) -> Self {
         self.0.size_rule = rule;
         self
     }
 
     /// OLS only: stream the candidates as an f32 copy with f64 accumulation
-    /// ([`crate::StreamPrecision::F32`], the default: half the bytes a pick, no f64
+    /// ([`crate::select::ols::StreamPrecision::F32`], the default: half the bytes a pick, no f64
     /// candidate matrix held, the same picks) or as f64 columns.
     ///
     /// ```
@@ -540,7 +540,7 @@ impl RbfParams {
     /// let p = rbf::RbfParams::new().ols_stream(rbf::StreamPrecision::F64).check().unwrap();
     /// assert_eq!(p.ols_stream(), rbf::StreamPrecision::F64);
     /// ```
-    pub fn ols_stream(mut self, precision: crate::StreamPrecision) -> Self {
+    pub fn ols_stream(mut self, precision: crate::select::ols::StreamPrecision) -> Self {
         self.0.ols_stream = precision;
         self
     }

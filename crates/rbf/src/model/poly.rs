@@ -204,7 +204,7 @@ pub(crate) fn monomials(
 /// The coordinates the kernel sees: standardised when `scaling` is set, else shifted by
 /// `shift` when there is one, else `x` itself.
 pub(crate) fn kernel_coordinates(
-    scaling: Option<&super::Scaling>,
+    scaling: Option<&super::scaling::Scaling>,
     shift: Option<&[f64]>,
     x: MatRef<'_, f64>,
 ) -> Mat<f64> {

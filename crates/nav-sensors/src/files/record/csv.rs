@@ -10,7 +10,9 @@ use std::path::Path;
 
 use tabular::NumericTable;
 
-use super::{Record, RecordError, SENSOR_COLUMNS, check_time};
+use super::error::RecordError;
+use super::time::check_time;
+use super::{Record, SENSOR_COLUMNS};
 use crate::geometry::{Axis, Channel};
 
 impl Record {

@@ -15,7 +15,7 @@ mod time;
 mod unit_csv;
 
 pub use error::RecordError;
-pub use time::{GAP_FACTOR, Gap, TimeReport};
+pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
 pub use unit_csv::UnitRecords;
 
 use std::ops::Range;
@@ -23,20 +23,6 @@ use std::ops::Range;
 pub use crate::geometry::Axis;
 use crate::geometry::Channel;
 use time::{check_time, check_time_allowing_jitter};
-
-/// Relative tolerance on the sample interval: every `t[i] − t[i−1]` must be
-/// within `1e-3·dt` of the median interval `dt`. That accepts timestamps
-/// rounded to 5 decimals at 50 Hz (≤ 1e-5 s error in a difference, 5e-4·dt)
-/// or stored in single precision over a 100-s test, and still rejects any
-/// dropped or repeated sample (a 100% deviation) or a 1% clock glitch.
-/// This is the paper format's strict rule ([`Record::new`],
-/// [`Record::read_csv`]); a record read with a unit file accepts jitter
-/// and splits at gaps instead ([`Record::read_with_unit`]).
-///
-/// ```
-/// assert!(nav_sensors::record::INTERVAL_TOLERANCE < 0.01);
-/// ```
-pub const INTERVAL_TOLERANCE: f64 = 1e-3;
 
 /// The nine sensor columns every record of the paper's unit has, after `t`.
 ///

@@ -17,7 +17,21 @@
 use std::fmt;
 use std::ops::Range;
 
-use super::{INTERVAL_TOLERANCE, RecordError};
+use super::error::RecordError;
+
+/// Relative tolerance on the sample interval: every `t[i] − t[i−1]` must be
+/// within `1e-3·dt` of the median interval `dt`. That accepts timestamps
+/// rounded to 5 decimals at 50 Hz (≤ 1e-5 s error in a difference, 5e-4·dt)
+/// or stored in single precision over a 100-s test, and still rejects any
+/// dropped or repeated sample (a 100% deviation) or a 1% clock glitch.
+/// This is the paper format's strict rule ([`Record::new`](super::Record::new),
+/// [`Record::read_csv`](super::Record::read_csv)); a record read with a unit file accepts jitter
+/// and splits at gaps instead ([`Record::read_with_unit`](super::Record::read_with_unit)).
+///
+/// ```
+/// assert!(nav_sensors::record::INTERVAL_TOLERANCE < 0.01);
+/// ```
+pub const INTERVAL_TOLERANCE: f64 = 1e-3;
 
 /// A step longer than `GAP_FACTOR` × the median step is a gap (the record is
 /// split there); every shorter step is accepted as jitter (see the module

@@ -10,8 +10,9 @@ use std::path::Path;
 
 use tabular::NumericTable;
 
+use super::Record;
+use super::error::RecordError;
 use super::time::TimeReport;
-use super::{Record, RecordError};
 use crate::unit::Unit;
 
 /// A log read with a unit: one record per segment between gaps, and what

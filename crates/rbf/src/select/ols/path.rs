@@ -113,20 +113,20 @@ pub struct OlsPath {
     /// Rows of the candidate matrix.
     pub(crate) n_samples: usize,
     /// The threads the streaming passes ran on.
-    pub(crate) pass_threads: super::PassThreads,
+    pub(crate) pass_threads: super::threads::PassThreads,
 }
 
 impl OlsPath {
     /// The threads the streaming passes ran on, and why (the engine keeps the
     /// parallelism asked for only where it makes the passes faster: see
-    /// [`PassThreads`](super::PassThreads)). How the selection ran, not what it chose.
+    /// [`PassThreads`](super::threads::PassThreads)). How the selection ran, not what it chose.
     ///
     /// ```
     /// # use faer::{mat, Mat};
     /// # let path = rbf::forward_select(mat![[1.0], [2.0]].as_ref(), Mat::<f64>::zeros(2, 0).as_ref(), mat![[1.0], [2.0]].as_ref(), &Default::default()).unwrap();
     /// assert!(path.pass_threads().threads >= 1);
     /// ```
-    pub fn pass_threads(&self) -> &super::PassThreads {
+    pub fn pass_threads(&self) -> &super::threads::PassThreads {
         &self.pass_threads
     }
 

@@ -19,8 +19,7 @@ use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
-use super::channel::Channel;
-use super::parity::parity_matrix;
+use crate::geometry::{Channel, parity_matrix};
 use crate::unit::Unit;
 
 /// Two columns of V count as parallel (the faults they describe give the
@@ -30,7 +29,7 @@ const PARALLEL_COSINE: f64 = 1.0 - 1e-9;
 /// Why a parity test cannot be built.
 ///
 /// ```
-/// use nav_sensors::geometry::{FdiError, ParityFdi};
+/// use nav_sensors::fdi::{FdiError, ParityFdi};
 /// let triad = nav_sensors::unit::Unit::builtin("triad").unwrap();
 /// let err = ParityFdi::new(&triad, 1.0).unwrap_err();
 /// assert!(matches!(err, FdiError::NotRedundant { gyros: 3 }));
@@ -61,7 +60,7 @@ pub enum FdiError {
 /// The outcome of one parity test on a unit of any size.
 ///
 /// ```
-/// use nav_sensors::geometry::{FdiOutcome, ParityFdi};
+/// use nav_sensors::fdi::{FdiOutcome, ParityFdi};
 /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
 /// let fdi = ParityFdi::new(&u, 1.0).unwrap();
 /// let mut m = vec![0.0; 4];
@@ -97,7 +96,7 @@ impl FdiOutcome {
     /// Whether the test raised an alarm (detected or isolated).
     ///
     /// ```
-    /// assert!(!nav_sensors::geometry::FdiOutcome::Healthy.is_alarm());
+    /// assert!(!nav_sensors::fdi::FdiOutcome::Healthy.is_alarm());
     /// ```
     pub fn is_alarm(&self) -> bool {
         !matches!(self, FdiOutcome::Healthy)
@@ -108,7 +107,7 @@ impl FdiOutcome {
 /// any unit of four or more gyros.
 ///
 /// ```
-/// use nav_sensors::geometry::{FdiOutcome, ParityFdi};
+/// use nav_sensors::fdi::{FdiOutcome, ParityFdi};
 /// use nalgebra::Vector3;
 /// let u = nav_sensors::unit::Unit::builtin("dual-triad").unwrap();
 /// let fdi = ParityFdi::for_false_alarm(&u, 0.3, 1e-3).unwrap();
@@ -134,7 +133,7 @@ impl ParityFdi {
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
-    /// assert_eq!(nav_sensors::geometry::ParityFdi::new(&u, 2.0).unwrap().threshold(), 2.0);
+    /// assert_eq!(nav_sensors::fdi::ParityFdi::new(&u, 2.0).unwrap().threshold(), 2.0);
     /// ```
     pub fn new(unit: &Unit, threshold: f64) -> Result<Self, FdiError> {
         let n = unit.gyros().len();
@@ -151,7 +150,7 @@ impl ParityFdi {
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
     /// // One degree of freedom: the two-sided normal 1e-3 point, 3.29σ.
-    /// let fdi = nav_sensors::geometry::ParityFdi::for_false_alarm(&u, 1.0, 1e-3).unwrap();
+    /// let fdi = nav_sensors::fdi::ParityFdi::for_false_alarm(&u, 1.0, 1e-3).unwrap();
     /// assert!((fdi.threshold() - 3.2905).abs() < 1e-4);
     /// ```
     pub fn for_false_alarm(unit: &Unit, sigma: f64, probability: f64) -> Result<Self, FdiError> {
@@ -209,7 +208,7 @@ impl ParityFdi {
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
-    /// assert_eq!(nav_sensors::geometry::ParityFdi::new(&u, 1.5).unwrap().threshold(), 1.5);
+    /// assert_eq!(nav_sensors::fdi::ParityFdi::new(&u, 1.5).unwrap().threshold(), 1.5);
     /// ```
     pub fn threshold(&self) -> f64 {
         self.threshold
@@ -221,7 +220,7 @@ impl ParityFdi {
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
     /// // Symmetric layout: every gyro has ‖v_j‖ = √(1/4).
-    /// let fdi = nav_sensors::geometry::ParityFdi::new(&u, 1.0).unwrap();
+    /// let fdi = nav_sensors::fdi::ParityFdi::new(&u, 1.0).unwrap();
     /// assert!((fdi.sensitivity(2) - 0.5).abs() < 1e-12);
     /// ```
     pub fn sensitivity(&self, channel: usize) -> f64 {
@@ -233,7 +232,7 @@ impl ParityFdi {
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
-    /// let fdi = nav_sensors::geometry::ParityFdi::new(&u, 1.0).unwrap();
+    /// let fdi = nav_sensors::fdi::ParityFdi::new(&u, 1.0).unwrap();
     /// assert!((fdi.minimum_detectable(0) - 2.0).abs() < 1e-12);
     /// ```
     pub fn minimum_detectable(&self, channel: usize) -> f64 {
@@ -245,7 +244,7 @@ impl ParityFdi {
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::paper();
-    /// let fdi = nav_sensors::geometry::ParityFdi::new(&u, 1.0).unwrap();
+    /// let fdi = nav_sensors::fdi::ParityFdi::new(&u, 1.0).unwrap();
     /// assert!((0..6).all(|j| fdi.can_isolate(j)));
     /// ```
     pub fn can_isolate(&self, channel: usize) -> bool {
@@ -255,7 +254,7 @@ impl ParityFdi {
     /// Tests one sample of gyro outputs (gyro order).
     ///
     /// ```
-    /// use nav_sensors::geometry::{FdiOutcome, ParityFdi};
+    /// use nav_sensors::fdi::{FdiOutcome, ParityFdi};
     /// let u = nav_sensors::unit::Unit::paper();
     /// assert_eq!(ParityFdi::new(&u, 1.0).unwrap().check(&[0.1; 6]), FdiOutcome::Healthy);
     /// ```
@@ -288,7 +287,7 @@ impl ParityFdi {
     /// set), and that outcome. `None` when no fault is confirmed.
     ///
     /// ```
-    /// use nav_sensors::geometry::{FdiOutcome, ParityFdi};
+    /// use nav_sensors::fdi::{FdiOutcome, ParityFdi};
     /// let u = nav_sensors::unit::Unit::builtin("dual-triad").unwrap();
     /// let mut samples = vec![vec![0.0; 6]; 10];
     /// for s in &mut samples[4..] { s[0] = 5.0; }
@@ -329,7 +328,8 @@ impl ParityFdi {
 /// The outcome of one FDI test on the paper's unit.
 ///
 /// ```
-/// use nav_sensors::geometry::{Channel, Fdi, FdiDecision};
+/// use nav_sensors::fdi::{Fdi, FdiDecision};
+/// use nav_sensors::geometry::Channel;
 /// let fdi = Fdi::new(1.0);
 /// let mut m = nav_sensors::geometry::ideal_outputs(&nalgebra::Vector3::new(10.0, 0.0, 5.0));
 /// assert_eq!(fdi.check(&m), FdiDecision::Healthy);
@@ -362,7 +362,7 @@ pub enum FdiDecision {
 /// channel names).
 ///
 /// ```
-/// use nav_sensors::geometry::Fdi;
+/// use nav_sensors::fdi::Fdi;
 /// // Channel noise 0.5 deg/h at 50 Hz: threshold 6σ (false-alarm probability
 /// // P(χ²₃ > 36) ≈ 7e-8 per sample).
 /// let fdi = Fdi::for_noise(0.5, 6.0);
@@ -377,7 +377,7 @@ impl Fdi {
     /// A test with a threshold on ‖p‖ (same unit as the outputs, e.g. deg/h).
     ///
     /// ```
-    /// let fdi = nav_sensors::geometry::Fdi::new(2.5);
+    /// let fdi = nav_sensors::fdi::Fdi::new(2.5);
     /// assert_eq!(fdi.threshold(), 2.5);
     /// ```
     #[track_caller]
@@ -397,7 +397,7 @@ impl Fdi {
     /// ‖p‖²/σ² of healthy sensors is χ² with 3 degrees of freedom.
     ///
     /// ```
-    /// assert_eq!(nav_sensors::geometry::Fdi::for_noise(0.1, 5.0).threshold(), 0.5);
+    /// assert_eq!(nav_sensors::fdi::Fdi::for_noise(0.1, 5.0).threshold(), 0.5);
     /// ```
     #[track_caller]
     pub fn for_noise(sigma: f64, k_sigma: f64) -> Self {
@@ -407,7 +407,7 @@ impl Fdi {
     /// The detection threshold on ‖p‖.
     ///
     /// ```
-    /// assert_eq!(nav_sensors::geometry::Fdi::new(1.0).threshold(), 1.0);
+    /// assert_eq!(nav_sensors::fdi::Fdi::new(1.0).threshold(), 1.0);
     /// ```
     pub fn threshold(&self) -> f64 {
         self.inner.threshold()
@@ -418,7 +418,8 @@ impl Fdi {
     /// detectable fault is `threshold / sensitivity`.
     ///
     /// ```
-    /// use nav_sensors::geometry::{Channel, Fdi};
+    /// use nav_sensors::fdi::Fdi;
+    /// use nav_sensors::geometry::Channel;
     /// let s = Fdi::new(1.0).sensitivity(Channel::X);
     /// assert!(s > 0.5 && s < 1.0);
     /// ```
@@ -430,7 +431,8 @@ impl Fdi {
     /// without noise: `threshold / sensitivity` (same unit as the outputs).
     ///
     /// ```
-    /// use nav_sensors::geometry::{Channel, Fdi};
+    /// use nav_sensors::fdi::Fdi;
+    /// use nav_sensors::geometry::Channel;
     /// let fdi = Fdi::new(2.0);
     /// assert!((fdi.minimum_detectable(Channel::Z) * fdi.sensitivity(Channel::Z) - 2.0).abs() < 1e-12);
     /// ```
@@ -441,7 +443,7 @@ impl Fdi {
     /// Tests one set of six outputs (in [`Channel::ALL`] order).
     ///
     /// ```
-    /// use nav_sensors::geometry::{Fdi, FdiDecision};
+    /// use nav_sensors::fdi::{Fdi, FdiDecision};
     /// assert_eq!(Fdi::new(1.0).check(&[0.1; 6]), FdiDecision::Healthy);
     /// ```
     pub fn check(&self, m: &[f64; 6]) -> FdiDecision {
@@ -453,7 +455,8 @@ impl Fdi {
     /// isolated noise spikes). `None` when no fault is confirmed.
     ///
     /// ```
-    /// use nav_sensors::geometry::{Channel, Fdi};
+    /// use nav_sensors::fdi::Fdi;
+    /// use nav_sensors::geometry::Channel;
     /// let mut samples = vec![[0.0; 6]; 10];
     /// for s in &mut samples[4..] { s[Channel::Z.index()] = 5.0; }
     /// assert_eq!(Fdi::new(1.0).first_fault(samples, 3), Some((6, Channel::Z)));
