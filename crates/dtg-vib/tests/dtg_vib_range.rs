@@ -136,3 +136,31 @@ fn a_model_file_without_a_range_loads_and_never_fades() {
     // under the threshold on this record: the reason the range was added.
     assert!(f(&c, "outside_fraction") < 0.05, "{err}");
 }
+
+#[test]
+fn a_hand_edited_range_is_refused_with_what_is_wrong() {
+    let text = std::fs::read_to_string(z_model()).unwrap();
+    let mut json: Value = serde_json::from_str(&text).unwrap();
+    let range = &mut json["model"]["operating_points"]["range"];
+    range["level_max"].as_array_mut().unwrap().pop();
+    let bad = dir().join("z-bad-range.json");
+    std::fs::write(&bad, serde_json::to_string_pretty(&json).unwrap()).unwrap();
+    for cmd in ["check", "compensate"] {
+        let mut c = bin();
+        c.args([cmd, "--model"])
+            .arg(&bad)
+            .arg("--data")
+            .arg(dir().join("x-axis/record.csv"));
+        if cmd == "compensate" {
+            c.arg("--out").arg(dir().join("bad-out.csv"));
+        }
+        let out = c.output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{cmd}");
+        assert!(
+            err.contains("training range: 2 values of level_max for 3 signals"),
+            "{cmd}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

@@ -24,8 +24,8 @@ pub(super) fn fade_block(model: &CompensationModel) -> Result<Option<Vec<f64>>, 
             range.window
         )));
     }
-    let axes: Vec<&str> = Axis::ALL.iter().map(|a| a.column()).collect();
-    if range.signals != axes || range.network_mean.len() != 6 {
+    let axes: Vec<String> = Axis::ALL.iter().map(|a| a.column().to_string()).collect();
+    if range.signals != axes || range.check(&axes, 6).is_err() {
         return Err(unsupported(format!(
             "a training range over {}",
             range.signals.join(", ")

@@ -147,6 +147,7 @@ pub fn weights<S: Sensor>(
     let Some(range) = model.operating_points().and_then(|o| o.range.as_ref()) else {
         return Ok(None);
     };
+    range.check(&model.sensor().operating_signals(), model.channels().len())?;
     let rows: Vec<usize> = (0..prepared.rows()).collect();
     let distance = range.distances(&statistics(prepared, range.window, &rows)?);
     let alpha = range.fade.alpha(model.dt_s());

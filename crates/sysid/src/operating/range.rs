@@ -153,6 +153,47 @@ impl TrainingRange {
         Ok(range)
     }
 
+    /// Whether the range fits a model of `signals` operating signals and
+    /// `channels` channels (a hand-edited file may not): the reason if not.
+    pub fn check(&self, signals: &[String], channels: usize) -> Result<(), SysidError> {
+        let k = signals.len();
+        let bad = |what: String| {
+            Err(SysidError::OperatingPoints(format!(
+                "training range: {what}"
+            )))
+        };
+        if self.signals != signals {
+            return bad(format!(
+                "signals {} where the sensor has {}",
+                self.signals.join(", "),
+                signals.join(", ")
+            ));
+        }
+        for (name, v) in [
+            ("mean_min", &self.mean_min),
+            ("mean_max", &self.mean_max),
+            ("level_min", &self.level_min),
+            ("level_max", &self.level_max),
+        ] {
+            if v.len() != k {
+                return bad(format!("{} values of {name} for {k} signals", v.len()));
+            }
+        }
+        if self.network_mean.len() != channels {
+            return bad(format!(
+                "{} network means for {channels} channels",
+                self.network_mean.len()
+            ));
+        }
+        if self.window == 0 || !(self.scale.is_finite() && self.scale > 0.0) {
+            return bad(format!(
+                "window {} samples, scale {}: need at least one sample and a positive scale",
+                self.window, self.scale
+            ));
+        }
+        Ok(())
+    }
+
     /// Each window's distance outside the range, in `scale`s (0 inside the
     /// training interval of every coordinate), from [`statistics`].
     pub fn distances(&self, stats: &[Vec<f64>]) -> Vec<f64> {
