@@ -60,6 +60,17 @@ pub const FIXED_HEADER_WORDS: usize = 21;
 /// Flag bit: the tables hold a ground calibration.
 pub const FLAG_CALIBRATION: u32 = 1;
 
+/// Flag bit: the tables end with a fade block ([`FADE_FLOATS`] numbers):
+/// outside the model's per-axis training range the network part holds
+/// (sysid::operating::fade).
+pub const FLAG_FADE: u32 = 2;
+
+/// `f64` numbers of the fade block: per axis x, y, z the window mean's
+/// smallest and largest and the window level's smallest and largest (g);
+/// the scale (g), the tolerance and the width (in scales), the smoother's
+/// gain α; each channel's network mean (deg/h).
+pub const FADE_FLOATS: usize = 12 + 4 + 6;
+
 /// Effect kinds of the tables.
 pub mod kind {
     /// An extra column, as given: `z = extra[index]`.
@@ -218,6 +229,11 @@ pub struct Model<'a> {
     state_len: usize,
     in_state: usize,
     rings: usize,
+    /// Byte offset of the fade block, if the tables have one.
+    fade: Option<usize>,
+    /// State of the fade: a doubled ring of 2L per axis, the six held
+    /// network parts, the smoothed weight.
+    fade_state: usize,
 }
 
 impl<'a> Model<'a> {
@@ -308,6 +324,7 @@ impl<'a> Model<'a> {
             ch.state = state;
             state += 2 * n_sections * ch.n_effects;
         }
+        let fade = (flags & FLAG_FADE != 0).then(|| take(FADE_FLOATS));
         let need = at;
         if bytes.len() < need {
             return Err(Error::Truncated {
@@ -319,6 +336,10 @@ impl<'a> Model<'a> {
         state += 2 * n_in_sections * n_signals;
         let rings = state;
         state += 2 * window_len * n_signals;
+        let fade_state = state;
+        if fade.is_some() {
+            state += 2 * window_len * 3 + 6 + 1;
+        }
         Ok(Self {
             bytes: &bytes[..need],
             calibrated,
@@ -339,6 +360,8 @@ impl<'a> Model<'a> {
             state_len: state,
             in_state,
             rings,
+            fade,
+            fade_state,
         })
     }
 
@@ -396,7 +419,17 @@ impl<'a> Model<'a> {
             f += 2 + 2 * c.n_effects + 9 * self.n_sections * c.n_effects + 20 * c.n_effects;
             f += c.n_centres * (3 * dim + 6);
         }
+        if self.fade.is_some() {
+            // Per axis: mean and variance over the window, the excesses; the
+            // smoothstep, the smoother, one hold per channel.
+            f += 3 * (4 * self.window_len + 12) + 20 + 6 * 5;
+        }
         f + 9 * self.n_in_sections * self.n_signals
+    }
+
+    /// Whether the tables fade the network part outside the training range.
+    pub fn fades(&self) -> bool {
+        self.fade.is_some()
     }
 
     #[inline(always)]
@@ -610,11 +643,21 @@ impl<'m, 's> Evaluator<'m, 's> {
             st[r + self.ring_pos] = v;
             st[r + self.ring_pos + l] = v;
         }
+        if m.fade.is_some() {
+            let r = m.fade_state;
+            for (k, v) in a.iter().enumerate() {
+                st[r + 2 * l * k + self.ring_pos] = *v;
+                st[r + 2 * l * k + self.ring_pos + l] = *v;
+            }
+        }
         self.ring_pos = (self.ring_pos + 1) % l;
         self.processed += 1;
         if self.processed < l as u64 {
             return None;
         }
+        let weight = m
+            .fade
+            .map(|at| fade_weight(&m, at, st, self.ring_pos, self.processed == l as u64));
 
         // Predictions.
         let mut out = Output {
@@ -624,6 +667,7 @@ impl<'m, 's> Evaluator<'m, 's> {
         };
         for (c, ch) in m.channels.iter().enumerate() {
             let mut y = m.f(ch.bias) + linear[c];
+            let mut net = 0.0;
             let mut centre = ch.centres;
             for k in 0..ch.n_centres {
                 let mut r2 = 0.0;
@@ -633,13 +677,101 @@ impl<'m, 's> Evaluator<'m, 's> {
                     centre += 8 * l;
                 }
                 let beta = m.f(ch.widths + 8 * k);
-                y += exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k);
+                let term = exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k);
+                y += term;
+                net += term;
+            }
+            if let (Some(w), Some(at)) = (weight, m.fade) {
+                // The held network part: the network itself at full weight,
+                // else moved toward it by the weight; a record's first
+                // output starts from the network's training mean.
+                let h = m.fade_state + 6 * l + c;
+                let before = if self.processed == l as u64 {
+                    m.f(at + 8 * (16 + c))
+                } else {
+                    st[h]
+                };
+                st[h] = if w >= 1.0 {
+                    net
+                } else {
+                    before + w * (net - before)
+                };
+                y -= net - st[h];
             }
             out.error_deg_h[c] = y;
             out.rate_deg_h[c] = gyro[c] - y;
         }
         Some(out)
     }
+}
+
+/// The smoothed fade weight of the window that ends at the newest sample
+/// (the fade block at byte `at`, its rings in `st` with the oldest sample
+/// at `pos`): each axis's window mean and level, the distance beyond the
+/// training range in scales, the smoothstep, the one-pole smoother (started
+/// at the first window's own weight).
+fn fade_weight(m: &Model, at: usize, st: &mut [f64], pos: usize, first: bool) -> f64 {
+    let l = m.window_len;
+    let n = l as f64;
+    let scale = m.f(at + 8 * 12);
+    let mut d2 = 0.0;
+    for k in 0..3 {
+        let win = &st[m.fade_state + 2 * l * k + pos..][..l];
+        let mut sum = 0.0;
+        for v in win {
+            sum += *v;
+        }
+        let mean = sum / n;
+        let mut ss = 0.0;
+        for v in win {
+            ss += (*v - mean) * (*v - mean);
+        }
+        let level = sqrt(ss / n);
+        let b = at + 8 * 4 * k;
+        let em = excess(mean, m.f(b), m.f(b + 8)) / scale;
+        let el = excess(level, m.f(b + 16), m.f(b + 24)) / scale;
+        d2 += em * em + el * el;
+    }
+    let (tolerance, width, alpha) = (m.f(at + 8 * 13), m.f(at + 8 * 14), m.f(at + 8 * 15));
+    let d = sqrt(d2);
+    let w0 = if d <= tolerance {
+        1.0
+    } else {
+        let u = (d - tolerance) / width;
+        let u = if u < 1.0 { u } else { 1.0 };
+        1.0 - u * u * (3.0 - 2.0 * u)
+    };
+    let ws = m.fade_state + 6 * l + 6;
+    st[ws] = if first {
+        w0
+    } else {
+        // Within 1e-9 of its input the one-pole takes it (sysid's SNAP).
+        let w = st[ws] + alpha * (w0 - st[ws]);
+        if abs(w0 - w) <= 1e-9 { w0 } else { w }
+    };
+    st[ws]
+}
+
+/// How far `v` lies beyond `[lo, hi]` (0 inside).
+#[inline(always)]
+fn excess(v: f64, lo: f64, hi: f64) -> f64 {
+    let e = if lo - v > v - hi { lo - v } else { v - hi };
+    if e > 0.0 { e } else { 0.0 }
+}
+
+/// √x by Newton's iteration from the exponent-halved guess (no_std has no
+/// `sqrt`): correctly rounded to within an ulp for the window levels and
+/// distances here (x ≥ 0; 0 gives 0).
+fn sqrt(x: f64) -> f64 {
+    if x <= 0.0 || x.is_nan() || x.is_infinite() {
+        return if x == 0.0 || x.is_infinite() { x } else { 0.0 };
+    }
+    let bits = x.to_bits();
+    let mut y = f64::from_bits((bits >> 1) + (1023u64 << 51));
+    for _ in 0..6 {
+        y = 0.5 * (y + x / y);
+    }
+    y
 }
 
 /// ‖x − c‖² of a window against a centre's bytes; four partial sums (the

@@ -13,7 +13,8 @@ use nav_sensors::record::Record;
 pub struct Applied {
     /// The record prepared as the model's training data were.
     pub prepared: Prepared,
-    /// Predicted error per channel and row, deg/h.
+    /// Predicted error per channel and row, deg/h: what compensation
+    /// subtracts, the network part faded outside the training range.
     pub predicted: [Vec<f64>; 6],
     /// Residues of the pre-processed outputs before and after compensation, per row.
     pub residues: ResidueSeries,
@@ -65,7 +66,13 @@ impl Applied {
         };
         let (predicted, onboard) = match stepped {
             Some(s) => (s.error_deg_h.clone(), Some(s)),
-            None => (model.predict(&prepared)?, None),
+            // Outside the training range the network part fades
+            // (sysid::operating::fade), as the onboard evaluator fades it.
+            None => {
+                let f = sysid::operating::fade::predict_faded(model.inner(), prepared.inner())?;
+                let mut p = f.predicted.into_iter();
+                (std::array::from_fn(|_| p.next().unwrap_or_default()), None)
+            }
         };
         let first = prepared.first_sample();
         let outputs: [Vec<f64>; 6] =

@@ -47,6 +47,17 @@ pub struct TransferCheck {
     pub note: Option<String>,
     /// Windows compared.
     pub windows: usize,
+    /// Share of windows outside the per-axis training range alone (each
+    /// axis's mean specific force and vibration level; null for a model
+    /// without one).
+    pub outside_range_fraction: Option<f64>,
+    /// Mean weight of the network part over the windows (1: never faded).
+    pub fade_weight_mean: Option<f64>,
+    /// What the record has that the model did not see, in words.
+    pub lacks: Vec<String>,
+    /// Parity residues after the model as fitted, its network part not
+    /// faded (null for a model without a training range: `residues` is it).
+    pub residues_unfaded: Option<Vec<ResidueStats>>,
 }
 
 /// Applies `model` to `record` (never fitted on it) and measures how well it
@@ -101,5 +112,33 @@ pub fn check_applied(
         rate_std_deg_s,
         note,
         windows: t.windows,
+        residues_unfaded: unfaded_residues(model, applied)?,
+        outside_range_fraction: t.outside_range_fraction,
+        fade_weight_mean: t.fade_weight_mean,
+        lacks: t.lacks,
     })
+}
+
+/// The residues after the model as fitted (not faded), every row; `None`
+/// for a model without a training range, which never fades.
+fn unfaded_residues(
+    model: &CompensationModel,
+    applied: &Applied,
+) -> Result<Option<Vec<ResidueStats>>, DtgVibError> {
+    if model
+        .operating_points()
+        .and_then(|o| o.range.as_ref())
+        .is_none()
+    {
+        return Ok(None);
+    }
+    let p = &applied.prepared;
+    let predicted = model.predict(p)?;
+    let first = p.first_sample();
+    let outputs: [Vec<f64>; 6] =
+        std::array::from_fn(|k| p.target_full(Channel::ALL[k])[first..].to_vec());
+    let t = p.calibrated().t()[first..].to_vec();
+    let series = crate::parity::ResidueSeries::new(t, &outputs, &predicted);
+    let all: Vec<usize> = (0..series.t.len()).collect();
+    Ok(Some(series.stats(&all)))
 }

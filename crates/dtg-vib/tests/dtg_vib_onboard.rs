@@ -103,12 +103,37 @@ fn record() -> Record {
     Record::read_csv(sim().join("record.csv")).unwrap()
 }
 
-/// Largest |step − batch| of the predicted errors and compensated rates.
+/// The simulated record with its specific force along x shifted by 2 g
+/// from sample 2000 to 3500: a stretch outside every model's training range,
+/// where the network part fades out and back in.
+fn outside_record() -> &'static Path {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        let rec = record();
+        let mut acc: [Vec<f64>; 3] =
+            std::array::from_fn(|k| rec.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec());
+        acc[0][2000..3500].iter_mut().for_each(|v| *v += 2.0);
+        let p = dir().join("outside.csv");
+        rec.with_accel(acc).write_csv(&p).unwrap();
+        p
+    })
+}
+
+/// Largest |step − batch| of the predicted errors and compensated rates on
+/// the simulated record.
 fn step_against_batch(model_path: &Path) -> f64 {
+    step_against_batch_on(model_path, &record())
+}
+
+/// Largest |step − batch| on `rec`, the batch's network part faded outside
+/// the training range as compensation fades it.
+fn step_against_batch_on(model_path: &Path, rec: &Record) -> f64 {
     let model = CompensationModel::load(model_path).unwrap();
-    let rec = record();
+    let rec = rec.clone();
     let prepared = model.prepare(&rec).unwrap();
-    let batch = model.predict(&prepared).unwrap();
+    let batch = sysid::operating::fade::predict_faded(model.inner(), prepared.inner())
+        .unwrap()
+        .predicted;
     let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     assert_eq!(stepped.first_sample, prepared.first_sample());
     let first = prepared.first_sample();
@@ -131,6 +156,36 @@ fn the_no_std_evaluator_equals_the_batch_pipeline() {
     for m in [plain(), rich()] {
         let worst = step_against_batch(m);
         eprintln!("{}: largest |step − batch| = {worst:e} deg/h", m.display());
+        assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+    }
+}
+
+#[test]
+fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
+    let rec = Record::read_csv(outside_record()).unwrap();
+    for m in [plain(), rich()] {
+        // Guards the comparison: the network must fade out and come back.
+        let model = CompensationModel::load(m).unwrap();
+        let prepared = model.prepare(&rec).unwrap();
+        let w = sysid::operating::fade::weights(model.inner(), prepared.inner())
+            .unwrap()
+            .expect("a new model has a training range")
+            .weight;
+        let first = prepared.first_sample();
+        assert_eq!(w[100], 1.0, "inside before the shift");
+        assert!(
+            w[3000 - first] < 1e-3,
+            "outside: weight {}",
+            w[3000 - first]
+        );
+        assert_eq!(*w.last().unwrap(), 1.0, "inside again after it");
+        let t = dtg_vib::export::tables(&model).unwrap();
+        assert!(dtg_onboard::Model::parse(&t.bytes).unwrap().fades());
+        let worst = step_against_batch_on(m, &rec);
+        eprintln!(
+            "{} outside: largest |step − batch| = {worst:e} deg/h",
+            m.display()
+        );
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
     }
 }
@@ -219,13 +274,19 @@ fn read_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
 /// difference from `dtg-vib compensate` over every channel and sample;
 /// `None` where there is no C compiler.
 fn c_against_compensate(model: &Path, precision: &str) -> Option<f64> {
+    c_against_compensate_on(model, precision, &sim().join("record.csv"))
+}
+
+/// [`c_against_compensate`] on the record at `data`.
+fn c_against_compensate_on(model: &Path, precision: &str, data: &Path) -> Option<f64> {
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     if Command::new(&cc).arg("--version").output().is_err() {
         eprintln!("NOTICE: no C compiler ('{cc}'): the C equality test is skipped");
         return None;
     }
     let name = model.file_stem().unwrap().to_str().unwrap();
-    let out = dir().join(format!("c-{name}-{precision}"));
+    let data_name = data.file_stem().unwrap().to_str().unwrap();
+    let out = dir().join(format!("c-{name}-{precision}-{data_name}"));
     std::fs::create_dir_all(&out).unwrap();
     ok(bin()
         .args(["export", "--lang", "c", "--precision", precision, "--model"])
@@ -251,18 +312,18 @@ fn c_against_compensate(model: &Path, precision: &str) -> Option<f64> {
         .status()
         .unwrap();
     assert!(status.success(), "the exported C does not compile");
-    let input = std::fs::File::open(sim().join("record.csv")).unwrap();
+    let input = std::fs::File::open(data).unwrap();
     let c = Command::new(&exe)
         .stdin(Stdio::from(input))
         .output()
         .unwrap();
     assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
-    let desk = dir().join(format!("compensated-{name}.csv"));
+    let desk = dir().join(format!("compensated-{name}-{data_name}.csv"));
     ok(bin()
         .args(["compensate", "--model"])
         .arg(model)
         .arg("--data")
-        .arg(sim().join("record.csv"))
+        .arg(data)
         .arg("--out")
         .arg(&desk));
     let (hc, rc) = read_csv(&String::from_utf8(c.stdout).unwrap());
@@ -287,6 +348,20 @@ fn the_exported_c_equals_compensate() {
         };
         eprintln!(
             "{}: largest |C − compensate| = {worst:e} deg/h",
+            m.display()
+        );
+        assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+    }
+}
+
+#[test]
+fn the_exported_c_fades_as_compensate_does() {
+    for m in [plain(), rich()] {
+        let Some(worst) = c_against_compensate_on(m, "f64", outside_record()) else {
+            return;
+        };
+        eprintln!(
+            "{} outside: largest |C − compensate| = {worst:e} deg/h",
             m.display()
         );
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
@@ -322,6 +397,9 @@ fn text_export_names_every_part_with_units() {
         "deg/h/°C)·LP[col:temp]",
         "w = ",
         "β = ",
+        "## Training range and fade",
+        "  ax: mean ",
+        "w = one-pole of w₀",
     ] {
         assert!(
             out.contains(want),

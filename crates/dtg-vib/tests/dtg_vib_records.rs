@@ -265,7 +265,7 @@ fn check_text_compares_before_and_after_alike() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
-        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside  (deg/h)"
+        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside  │ no fade: rms after  mean after  spread after  (deg/h)"
     );
     let f = |v: &serde_json::Value| v.as_f64().unwrap();
     let mut worse_than_the_mean = vec![];
@@ -277,6 +277,13 @@ fn check_text_compares_before_and_after_alike() {
         assert_eq!(cells[1], format!("{:.4}", f(&c["rms_before"])), "{line}");
         assert_eq!(cells[3], format!("{mean:.4}"), "{line}");
         assert_eq!(cells[4], format!("{spread:.4}"), "{line}");
+        // After the bar, the model as fitted: its network part not faded.
+        assert_eq!(cells[8], "│", "{line}");
+        assert_eq!(
+            cells[9],
+            format!("{:.4}", f(&c["rms_after_unfaded"])),
+            "{line}"
+        );
         if f(&c["fit_percent"]) < 0.0 {
             worse_than_the_mean.push(cells[0]);
         }

@@ -19,6 +19,15 @@
 //! distance to the nearest kept point exceeds [`OUTSIDE_FACTOR`] times that
 //! reference (kiddo's k-d tree finds it). The reference is measured, not
 //! assumed, so it holds whatever the spacing of the training points.
+//!
+//! Those points sum the signals' variances into one level, so they do not
+//! see *which* signal vibrates. A model also keeps its [`range::TrainingRange`]:
+//! each signal's window mean and level as the training windows spanned them,
+//! beyond which its network part fades ([`fade`]) and a window is outside
+//! too.
+
+pub mod fade;
+pub mod range;
 
 use crate::error::SysidError;
 use crate::prepared::Prepared;
@@ -74,25 +83,17 @@ pub fn points<S: Sensor>(
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    let sensor = prepared.sensor();
-    let names = sensor.operating_signals();
-    let mut out = Vec::with_capacity(rows.len());
-    for &r in rows {
-        let (record, end) = prepared.locate(r);
-        let span = end + 1 - length.min(end + 1)..=end;
-        let n = span.clone().count() as f64;
-        let mut p = vec![0.0; names.len() + 1];
-        let mut var = 0.0;
-        for (k, name) in names.iter().enumerate() {
-            let a = &crate::prepared::signal(sensor, record, name)?[span.clone()];
-            let m = a.iter().sum::<f64>() / n;
-            var += a.iter().map(|v| (v - m).powi(2)).sum::<f64>() / n;
-            p[k] = m;
-        }
-        p[names.len()] = var.sqrt();
-        out.push(p);
-    }
-    Ok(out)
+    // Each signal's mean, then the root of their summed variances.
+    Ok(range::moments(prepared, length, rows)?
+        .into_iter()
+        .map(|m| {
+            let var = m.iter().fold(0.0, |acc, (_, v)| acc + v);
+            m.iter()
+                .map(|(mean, _)| *mean)
+                .chain([var.sqrt()])
+                .collect()
+        })
+        .collect())
 }
 
 /// The training operating points a model keeps.
@@ -107,6 +108,11 @@ pub struct OperatingPoints {
     /// 99th percentile of the validation windows' distances to the kept
     /// points (scaled).
     pub reference_distance: f64,
+    /// Each operating signal's mean and level over the training windows,
+    /// and the fade beyond them (absent in files written before: such a
+    /// model never fades).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<range::TrainingRange>,
 }
 
 impl OperatingPoints {
@@ -159,6 +165,7 @@ impl OperatingPoints {
             scale,
             points: kept,
             reference_distance: 1.0,
+            range: None,
         };
         let step = val.len().div_ceil(MAX_POINTS).max(1);
         let val: Vec<usize> = val.iter().step_by(step).copied().collect();

@@ -92,23 +92,44 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
 
 fn print_check(c: &dtg_vib::check::TransferCheck) {
     let cell = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
+    // A model with a training range fades its network part outside it: the
+    // figures of the model as fitted follow, for comparison.
+    let unfaded = c.channels.iter().any(|ch| ch.rms_after_unfaded.is_some());
+    let tail = if unfaded {
+        "  │ no fade: rms after  mean after  spread after"
+    } else {
+        ""
+    };
     println!(
-        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside  (deg/h)"
+        "channel  rms before  rms after  mean after  spread after   fit %   inside  outside{tail}  (deg/h)"
     );
     for ch in &c.channels {
+        let no_fade = if unfaded {
+            format!(
+                "  │          {:>9}  {:>10}  {:>12}",
+                cell(ch.rms_after_unfaded),
+                cell(ch.mean_after_unfaded),
+                cell(ch.spread_after_unfaded)
+            )
+        } else {
+            String::new()
+        };
         println!(
-            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>12.4}  {:>6.1}  {:>7}  {:>7}",
+            "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>12.4}  {:>6.1}  {:>7}  {:>7}{no_fade}",
             ch.channel.name(),
             ch.rms_before,
             ch.rms_after,
             ch.mean_after,
-            spread(ch.rms_after, ch.mean_after),
+            ch.spread_after,
             ch.fit_percent,
             cell(ch.rms_inside),
             cell(ch.rms_outside)
         );
     }
     println!("{}", terms::CHECK_COLUMNS);
+    if unfaded {
+        println!("{}", terms::CHECK_FADE);
+    }
     let worse: Vec<&str> = c
         .channels
         .iter()
@@ -131,12 +152,20 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
             println!("windows outside the training range: unknown (model without operating points)")
         }
     }
+    if let (Some(r), Some(w)) = (c.outside_range_fraction, c.fade_weight_mean) {
+        println!(
+            "windows outside the per-axis range (each axis's mean specific force and vibration level as the training windows spanned them): {:.1}%; network part weight {w:.3} on average (1: the model as fitted)",
+            100.0 * r
+        );
+    }
     print_residues_on(&c.residues, "every row");
-}
-
-/// The rms about the mean of what the model leaves, from its rms about zero
-/// and its mean (rms² = mean² + spread²): the figure to compare with "rms
-/// before", which is about the record's mean too.
-fn spread(rms: f64, mean: f64) -> f64 {
-    (rms * rms - mean * mean).max(0.0).sqrt()
+    if let Some(r) = &c.residues_unfaded {
+        let pooled = |rms: fn(&dtg_vib::parity::ResidueStats) -> f64| {
+            (r.iter().map(|s| rms(s).powi(2)).sum::<f64>() / r.len().max(1) as f64).sqrt()
+        };
+        println!(
+            "no fade: pooled residue rms after {:.4} deg/h (the model as fitted, everywhere)",
+            pooled(|s| s.rms_after)
+        );
+    }
 }

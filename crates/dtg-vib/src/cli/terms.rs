@@ -10,6 +10,9 @@ use nav_sensors::dtg::DtgTerm;
 /// that "before" is compared with "spread after", not with "rms after".
 pub const CHECK_COLUMNS: &str = "rms before and spread after are about the mean (rms after² = mean after² + spread after²); inside, outside: rms after on the windows inside and outside the training range";
 
+/// What `check`'s columns without the fade are.
+pub const CHECK_FADE: &str = "rms after, mean after, spread after: the compensation as applied, its network part fading out beyond the per-axis range (it holds its last value there; the effects stay); no fade: the model as fitted, everywhere";
+
 /// What `check`'s reference distance is, in its line.
 pub const REFERENCE_DISTANCE: &str =
     "99% of the model's own validation windows lie within it of a training point";

@@ -133,6 +133,8 @@ struct Layout {
     widths: Vec<f64>,
     weights: Vec<f64>,
     centres: Vec<f64>,
+    /// The fade block (empty: the tables do not fade).
+    fade: Vec<f64>,
 }
 
 impl Layout {
@@ -196,6 +198,11 @@ impl Layout {
             centres.extend(take(n_centres[c] * dim));
             e0 += n_effects[c];
         }
+        let fade = if m.fades() {
+            take(dtg_onboard::FADE_FLOATS)
+        } else {
+            vec![]
+        };
         Ok(Self {
             calibrated,
             n_sections,
@@ -223,6 +230,7 @@ impl Layout {
             widths,
             weights,
             centres,
+            fade,
         })
     }
 }
@@ -231,15 +239,16 @@ impl Layout {
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
     let layout = Layout::read(&t.bytes)?;
-    let (real, exp, fabs) = match precision {
-        Precision::F64 => ("double", "exp", "fabs"),
-        Precision::F32 => ("float", "expf", "fabsf"),
+    let (real, exp, fabs, sqrt) = match precision {
+        Precision::F64 => ("double", "exp", "fabs", "sqrt"),
+        Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
     };
     let mut source = tables_c(&layout);
     source.push_str(
         &STEP_C
             .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}(")),
+            .replace("FABS(", &format!("{fabs}("))
+            .replace("SQRT(", &format!("{sqrt}(")),
     );
     Ok(CSources {
         header: header_h(&layout, &t.extra, real),
@@ -257,6 +266,7 @@ fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
         n_sections,
         n_in_sections,
         total_effects,
+        fade,
         ..
     } = layout;
     let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
@@ -283,6 +293,8 @@ typedef {real} dtg_real;
 #define DTG_N_SECTIONS {n_sections}
 #define DTG_N_IN_SECTIONS {n_in_sections}
 #define DTG_N_EFFECTS {total_effects}
+/* 1: outside the training range the network part holds (docs/formats.md). */
+#define DTG_FADE {fades}
 /* Extra columns, in the order dtg_step takes them. */
 #define DTG_EXTRA_NAMES {{{extra_names}}}
 
@@ -297,6 +309,9 @@ typedef struct {{
     dtg_real out_z[2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1];
     dtg_real in_z[2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1];
     dtg_real ring[DTG_N_SIGNALS][2 * DTG_WINDOW_LEN];
+    dtg_real fade_ring[3][2 * DTG_WINDOW_LEN]; /* calibrated ax, ay, az: the per-axis range */
+    dtg_real fade_h[6]; /* held network part per channel, deg/h */
+    dtg_real fade_w;    /* smoothed weight of the network part */
 }} dtg_state;
 
 void dtg_init(dtg_state *s);
@@ -308,6 +323,7 @@ int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]);
 #endif
 "#,
         first = l,
+        fades = i32::from(!fade.is_empty()),
         n_extra = extra.len(),
         extra_names = if names.is_empty() {
             "\"\"".to_string()
@@ -340,6 +356,7 @@ fn tables_c(layout: &Layout) -> String {
         widths,
         weights,
         centres,
+        fade,
         ..
     } = layout;
     let c_offsets: Vec<usize> = (0..6).map(|c| n_centres[..c].iter().sum()).collect();
@@ -374,6 +391,9 @@ static const int CENTRE_OFFSET[6] = {c_off};
 static const dtg_real WIDTH[{nk}] = {widths};
 static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
+/* Per axis: mean min, max, level min, max (g); scale (g), tolerance, width,
+ * smoother gain; each channel's network mean (deg/h). */
+static const dtg_real FADE[{nf}] = {fade};
 "#,
         cal = *calibrated as i32,
         frames = arr(frames),
@@ -399,6 +419,8 @@ static const dtg_real CENTRES[{nc}] = {centres};
         weights = arr(weights),
         nc = centres.len().max(1),
         centres = arr(centres),
+        nf = fade.len().max(1),
+        fade = arr(fade),
     )
 }
 
@@ -415,7 +437,54 @@ void dtg_init(dtg_state *s) {
     for (i = 0; i < 2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1; i++) s->in_z[i] = R(0);
     for (i = 0; i < DTG_N_SIGNALS; i++)
         for (j = 0; j < 2 * DTG_WINDOW_LEN; j++) s->ring[i][j] = R(0);
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 2 * DTG_WINDOW_LEN; j++) s->fade_ring[i][j] = R(0);
+    for (i = 0; i < 6; i++) s->fade_h[i] = R(0);
+    s->fade_w = R(0);
 }
+
+#if DTG_FADE
+static dtg_real excess(dtg_real v, dtg_real lo, dtg_real hi) {
+    dtg_real e = lo - v > v - hi ? lo - v : v - hi;
+    return e > R(0) ? e : R(0);
+}
+
+/* The smoothed weight of the network part for the window ending at the
+ * newest sample (sysid::operating::fade): each axis's window mean and
+ * level, the distance beyond the training range, a smoothstep, a one-pole. */
+static dtg_real fade_weight(dtg_state *s, int first) {
+    const int l = DTG_WINDOW_LEN;
+    dtg_real d2 = R(0), d, w0, u;
+    int k, i;
+    for (k = 0; k < 3; k++) {
+        const dtg_real *x = s->fade_ring[k] + s->ring_pos;
+        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
+        for (i = 0; i < l; i++) sum += x[i];
+        mean = sum / R(l);
+        for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
+        level = SQRT(ss / R(l));
+        em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[12];
+        el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[12];
+        d2 += em * em + el * el;
+    }
+    d = SQRT(d2);
+    if (d <= FADE[13]) {
+        w0 = R(1);
+    } else {
+        u = (d - FADE[13]) / FADE[14];
+        if (u > R(1)) u = R(1);
+        w0 = R(1) - u * u * (R(3) - R(2) * u);
+    }
+    if (first) {
+        s->fade_w = w0;
+    } else {
+        /* Within 1e-9 of its input the one-pole takes it. */
+        dtg_real w = s->fade_w + FADE[15] * (w0 - s->fade_w);
+        s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
+    }
+    return s->fade_w;
+}
+#endif
 
 /* One value through a cascade of second-order sections (transposed direct
  * form II); on the first step the states start in the steady state of x. */
@@ -533,7 +602,7 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 
 /* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real a[3], g[6], linear[6];
+    dtg_real a[3], g[6], linear[6], w = R(1);
     int first = s->processed == 0;
     int i, k, c, e, sig;
     const int l = DTG_WINDOW_LEN;
@@ -572,11 +641,20 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
         s->ring[sig][s->ring_pos] = v;
         s->ring[sig][s->ring_pos + l] = v;
     }
+#if DTG_FADE
+    for (k = 0; k < 3; k++) {
+        s->fade_ring[k][s->ring_pos] = a[k];
+        s->fade_ring[k][s->ring_pos + l] = a[k];
+    }
+#endif
     s->ring_pos = (s->ring_pos + 1) % l;
     s->processed += 1;
     if (s->processed < l) return 0;
+#if DTG_FADE
+    w = fade_weight(s, s->processed == l);
+#endif
     for (c = 0; c < 6; c++) {
-        dtg_real y = BIAS[c] + linear[c];
+        dtg_real y = BIAS[c] + linear[c], net = R(0), term;
         for (k = 0; k < N_CENTRES[c]; k++) {
             int kk = CENTRE_OFFSET[c] + k;
             const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
@@ -594,8 +672,21 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
                 r2 += (acc0 + acc1) + (acc2 + acc3) + tail;
                 cen += l;
             }
-            y += EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
+            term = EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
+            y += term;
+            net += term;
         }
+#if DTG_FADE
+        {
+            /* The held network part; the first output starts from the
+             * network's training mean. */
+            dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
+            s->fade_h[c] = w >= R(1) ? net : before + w * (net - before);
+            y -= net - s->fade_h[c];
+        }
+#else
+        (void)net;
+#endif
         rate_deg_h[c] = (double)(g[c] - y);
     }
     for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];

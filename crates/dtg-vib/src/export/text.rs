@@ -47,7 +47,41 @@ pub fn equations(model: &CompensationModel) -> String {
     for c in model.channels() {
         channel_text(w, c);
     }
+    range_text(w, model);
     s
+}
+
+/// The training range and the fade of the network part beyond it
+/// (sysid::operating::fade); nothing for a model without one.
+fn range_text(w: &mut String, model: &CompensationModel) {
+    let Some(r) = model.operating_points().and_then(|o| o.range.as_ref()) else {
+        return;
+    };
+    let _ = writeln!(
+        w,
+        "\n## Training range and fade\nper axis, over the last {} samples (calibrated, not filtered): the window mean and level (rms about the mean) the training windows spanned, g",
+        r.window
+    );
+    for (k, sig) in r.signals.iter().enumerate() {
+        let _ = writeln!(
+            w,
+            "  {sig}: mean {:e} to {:e}, level {:e} to {:e}",
+            r.mean_min[k], r.mean_max[k], r.level_min[k], r.level_max[k]
+        );
+    }
+    let _ = writeln!(
+        w,
+        "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀, τ = {} s\nh_c = rbf_c at w = 1, else h_c + w·(rbf_c − h_c) (from the network mean {}); error_c uses h_c in place of the RBF sum",
+        r.scale,
+        r.tolerance,
+        r.tolerance + r.fade.width,
+        r.fade.time_constant_s,
+        r.network_mean
+            .iter()
+            .map(|m| format!("{m:e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
 }
 
 /// The ground calibration, as the inverse models the preparation applies.

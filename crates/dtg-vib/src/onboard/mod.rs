@@ -3,6 +3,7 @@
 //! record. The exporter writes the tables out; compensation runs them.
 
 pub mod error;
+mod fade;
 mod step;
 mod tables;
 

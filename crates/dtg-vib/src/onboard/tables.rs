@@ -5,7 +5,7 @@ use super::ExportError;
 use crate::effects::{Effect, rate_without_each_channel};
 use crate::model::CompensationModel;
 use crate::signal::LowPass;
-use dtg_onboard::{FIXED_HEADER_WORDS, FLAG_CALIBRATION, MAGIC, VERSION, kind};
+use dtg_onboard::{FIXED_HEADER_WORDS, FLAG_CALIBRATION, FLAG_FADE, MAGIC, VERSION, kind};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::{Axis, Channel, ChannelFrame, least_squares_operator};
 
@@ -129,6 +129,9 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
     f.extend(sections(&out_filter));
     f.extend(sections(&in_filter));
     channel_floats(model, &params, &mut f)?;
+    if let Some(block) = super::fade::fade_block(model)? {
+        f.extend(block);
+    }
     let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
     for w in &words {
         bytes.extend(w.to_le_bytes());
@@ -155,6 +158,10 @@ fn header_words(
         0, // header words, below
         if model.calibration().is_some() {
             FLAG_CALIBRATION
+        } else {
+            0
+        } | if super::fade::fade_block(model)?.is_some() {
+            FLAG_FADE
         } else {
             0
         },

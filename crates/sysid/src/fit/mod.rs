@@ -20,6 +20,7 @@ mod partial;
 use crate::error::SysidError;
 use crate::model::{ChannelModelOf, Model, ModelParts};
 use crate::operating::OperatingPoints;
+use crate::operating::range::TrainingRange;
 use crate::prepared::Prepared;
 use crate::recipe::{FitOptions, Recipe};
 use crate::sensor::Sensor;
@@ -263,12 +264,18 @@ fn fit_rows<S: Sensor>(
                 .and_then(|f| scored(prepared, x, &train, &val, f)),
         })
         .collect::<Result<_, _>>()?;
-    let operating_points = Some(OperatingPoints::from_training(
-        prepared,
-        recipe.preprocess.window.length(),
-        &train,
-        &val,
+    let length = recipe.preprocess.window.length();
+    let mut operating_points = OperatingPoints::from_training(prepared, length, &train, &val)?;
+    // The range's tolerance is measured on every row that did not train
+    // (validation and the gaps): the records fitted on stay inside, to the bit.
+    let mut trained = vec![false; prepared.rows()];
+    train.iter().for_each(|&r| trained[r] = true);
+    let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
+    let means = crate::operating::fade::network_means::<S>(&fitted, x, &train);
+    operating_points.range = Some(TrainingRange::from_training(
+        prepared, length, &train, &others, means,
     )?);
+    let operating_points = Some(operating_points);
     Model::from_parts(ModelParts {
         sensor: prepared.sensor().clone(),
         preprocess: recipe.preprocess.clone(),

@@ -1,0 +1,325 @@
+//! The causal fade of the network part outside the training range.
+//!
+//! A network knows only the conditions it was trained on; beyond them its
+//! output is extrapolation, while the physical effects (bias and named
+//! terms, with units and intervals) hold wherever their physics does. So
+//! outside the [`TrainingRange`](super::range::TrainingRange) the network
+//! part stops following its input (its variation fades to zero) and the
+//! effects stay:
+//!
+//! `ŷ[n] = bias + Σ θⱼ zⱼ[n] + h[n]`,   `h[n] = h[n−1] + w[n]·(rbf(x[n]) − h[n−1])`,
+//!
+//! with `w` the fade weight. Inside (`w = 1`) `h` is the network itself
+//! and the prediction the fitted model's, to the bit; outside (`w = 0`)
+//! `h` holds the last value the network gave inside, so leaving the range
+//! adds no step; a record that starts outside starts from the network's
+//! mean over the training windows
+//! ([`TrainingRange::network_mean`](super::range::TrainingRange::network_mean)).
+//! The mean offset such a hold leaves is one the model cannot know: `check`
+//! reports it beside the rms and calls the record outside.
+//!
+//! The weight is causal, as a flight computer needs it: from each window's
+//! distance `d` outside the range (the window that ends at the row),
+//! `w₀ = 1` up to the range's tolerance, falling as a smoothstep to 0 over
+//! [`FadeSettings::width`] more scales, then smoothed by a one-pole
+//! low-pass of time constant [`FadeSettings::time_constant_s`] that starts
+//! at the first window's own weight: `w[n] = w[n−1] + α·(w₀[n] − w[n−1])`,
+//! `α = 1 − exp(−Δt/τ)`, taking `w₀[n]` once within [`SNAP`] of it. The
+//! onboard evaluator and the exported C compute the same, in the same order.
+
+use super::range::statistics;
+use crate::error::SysidError;
+use crate::model::Model;
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
+use faer::Mat;
+use serde::{Deserialize, Serialize};
+
+/// Width of the fade beyond the tolerance, in the range's scales: with an
+/// inertial unit's 0.05 g, the network is gone 0.1 g beyond what it saw.
+pub const FADE_WIDTH: f64 = 2.0;
+
+/// How the network part fades outside the training range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FadeSettings {
+    /// Distance beyond the tolerance (in the range's scales) over which the
+    /// weight falls from 1 to 0.
+    pub width: f64,
+    /// Time constant of the one-pole smoother of the weight, s.
+    pub time_constant_s: f64,
+}
+
+impl FadeSettings {
+    /// The default for a model of `length`-sample windows at `dt_s`: width
+    /// [`FADE_WIDTH`], time constant one window (the statistics' own span).
+    ///
+    /// ```
+    /// let f = sysid::operating::fade::FadeSettings::for_window(50, 0.02);
+    /// assert_eq!((f.width, f.time_constant_s), (2.0, 1.0));
+    /// ```
+    pub fn for_window(length: usize, dt_s: f64) -> Self {
+        Self {
+            width: FADE_WIDTH,
+            time_constant_s: length as f64 * dt_s,
+        }
+    }
+
+    /// The one-pole smoother's gain per sample of `dt_s`.
+    pub fn alpha(&self, dt_s: f64) -> f64 {
+        if self.time_constant_s > 0.0 {
+            1.0 - (-dt_s / self.time_constant_s).exp()
+        } else {
+            1.0
+        }
+    }
+}
+
+/// The weight of a window at distance `d` outside a range of tolerance
+/// `tolerance`, before smoothing: 1 inside, a smoothstep down to 0 at
+/// `tolerance + width`.
+///
+/// ```
+/// use sysid::operating::fade::raw_weight;
+/// assert_eq!(raw_weight(0.5, 1.0, 2.0), 1.0);
+/// assert_eq!(raw_weight(2.0, 1.0, 2.0), 0.5);
+/// assert_eq!(raw_weight(9.0, 1.0, 2.0), 0.0);
+/// ```
+pub fn raw_weight(d: f64, tolerance: f64, width: f64) -> f64 {
+    if d <= tolerance {
+        return 1.0;
+    }
+    let u = ((d - tolerance) / width.max(f64::MIN_POSITIVE)).min(1.0);
+    1.0 - u * u * (3.0 - 2.0 * u)
+}
+
+/// The one-pole smoother of the weight, sample by sample.
+#[derive(Debug, Clone, Copy)]
+pub struct Smoother {
+    alpha: f64,
+    state: Option<f64>,
+}
+
+impl Smoother {
+    /// A smoother of gain `alpha` ([`FadeSettings::alpha`]) at rest.
+    pub fn new(alpha: f64) -> Self {
+        Self { alpha, state: None }
+    }
+
+    /// The smoothed weight after `w0`; the first starts at `w0` itself, and
+    /// a weight within [`SNAP`] of `w0` becomes `w0` (a one-pole only
+    /// approaches its input: back inside, the model is again the fitted one,
+    /// to the bit).
+    pub fn step(&mut self, w0: f64) -> f64 {
+        let w = match self.state {
+            None => w0,
+            Some(w) => snap(w + self.alpha * (w0 - w), w0),
+        };
+        self.state = Some(w);
+        w
+    }
+}
+
+/// How close the smoothed weight must come to its input to take it.
+pub const SNAP: f64 = 1e-9;
+
+/// `w`, or `w0` when within [`SNAP`] of it.
+#[inline]
+pub fn snap(w: f64, w0: f64) -> f64 {
+    if (w0 - w).abs() <= SNAP { w0 } else { w }
+}
+
+/// Per row: the window's distance outside the range and the fade weight.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Weights {
+    /// Distance outside the training range, in its scales.
+    pub distance: Vec<f64>,
+    /// Smoothed weight of the network part, 0 to 1.
+    pub weight: Vec<f64>,
+}
+
+/// The fade weights of a model on prepared data (each record of several
+/// restarts the smoother); `None` for a model without a training range
+/// (fitted by an older version: it never fades).
+pub fn weights<S: Sensor>(
+    model: &Model<S>,
+    prepared: &Prepared<S>,
+) -> Result<Option<Weights>, SysidError> {
+    let Some(range) = model.operating_points().and_then(|o| o.range.as_ref()) else {
+        return Ok(None);
+    };
+    range.check(&model.sensor().operating_signals(), model.channels().len())?;
+    let rows: Vec<usize> = (0..prepared.rows()).collect();
+    let distance = range.distances(&statistics(prepared, range.window, &rows)?);
+    let alpha = range.fade.alpha(model.dt_s());
+    let mut weight = Vec::with_capacity(distance.len());
+    for (_, part) in prepared.record_rows() {
+        let mut s = Smoother::new(alpha);
+        weight.extend(
+            distance[part]
+                .iter()
+                .map(|&d| s.step(raw_weight(d, range.tolerance, range.fade.width))),
+        );
+    }
+    Ok(Some(Weights { distance, weight }))
+}
+
+/// Each channel's network part on every row: the RBF sum without bias and
+/// effects, in the target's unit.
+pub fn network_parts<S: Sensor>(model: &Model<S>, windows: &Mat<f64>) -> Vec<Vec<f64>> {
+    model
+        .channels()
+        .iter()
+        .map(|c| {
+            let z = Mat::<f64>::zeros(windows.nrows(), c.rbf().n_linear());
+            let b = c.bias();
+            c.predict_with(windows, &z)
+                .into_iter()
+                .map(|v| v - b)
+                .collect()
+        })
+        .collect()
+}
+
+/// A model's prediction with its network part faded, and without.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Faded {
+    /// What compensation subtracts: the network part faded outside the range.
+    pub predicted: Vec<Vec<f64>>,
+    /// The model as fitted, not faded ([`Model::predict`]).
+    pub unfaded: Vec<Vec<f64>>,
+    /// The weights (`None` for a model without a training range; then
+    /// `predicted` is `unfaded`).
+    pub weights: Option<Weights>,
+}
+
+/// Predicts every channel on every row, with the network part faded outside
+/// the training range: what `compensate` and `check` subtract.
+///
+/// ```
+/// # use sysid::example::{Line, line_record};
+/// let mut options = sysid::FitOptions::new(1);
+/// options.recipe.preprocess = Line::preprocess();
+/// options.recipe.settings.max_centres = 5;
+/// let model = sysid::fit(&Line, &line_record(3000, 2.0, 1), &options, &|_| {})?;
+/// let own = model.prepare(&line_record(3000, 2.0, 1))?;
+/// let f = sysid::operating::fade::predict_faded(&model, &own)?;
+/// assert_eq!(f.predicted, f.unfaded); // its own record: inside, to the bit
+/// # Ok::<(), sysid::SysidError>(())
+/// ```
+pub fn predict_faded<S: Sensor>(
+    model: &Model<S>,
+    prepared: &Prepared<S>,
+) -> Result<Faded, SysidError> {
+    let unfaded = model.predict(prepared)?;
+    let weights = weights(model, prepared)?;
+    let predicted = match (
+        &weights,
+        model.operating_points().and_then(|o| o.range.as_ref()),
+    ) {
+        (Some(w), Some(range)) if w.weight.iter().any(|&v| v < 1.0) => {
+            let net = network_parts(model, &prepared.window_matrix());
+            let parts: Vec<std::ops::Range<usize>> =
+                prepared.record_rows().into_iter().map(|(_, r)| r).collect();
+            unfaded
+                .iter()
+                .zip(&net)
+                .zip(&range.network_mean)
+                .map(|((p, r), &c)| {
+                    parts
+                        .iter()
+                        .flat_map(|rows| {
+                            let rows = rows.clone();
+                            fade_series(&p[rows.clone()], &r[rows.clone()], c, &w.weight[rows])
+                        })
+                        .collect()
+                })
+                .collect()
+        }
+        _ => unfaded.clone(),
+    };
+    Ok(Faded {
+        predicted,
+        unfaded,
+        weights,
+    })
+}
+
+/// One record's prediction `p` with its network part `r` faded by the
+/// weights `w`: `p − (r − h)` with `h` the held network part (module docs),
+/// starting from `c`; exactly `p` where `w = 1`.
+///
+/// ```
+/// let p = [10.0, 11.0, 12.0];
+/// let r = [1.0, 2.0, 3.0]; // the network's share of p
+/// let out = sysid::operating::fade::fade_series(&p, &r, 0.5, &[1.0, 0.0, 0.0]);
+/// assert_eq!(out, [10.0, 10.0, 10.0]); // outside, the network holds its last value
+/// ```
+pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
+    let mut h = c;
+    p.iter()
+        .zip(r)
+        .zip(w)
+        .map(|((p, &r), &w)| {
+            h = hold(h, r, w);
+            p - (r - h)
+        })
+        .collect()
+}
+
+/// The held network part after one more sample: the network `r` itself at
+/// full weight (exactly), else `h` moved toward it by the weight.
+#[inline]
+pub fn hold(h: f64, r: f64, w: f64) -> f64 {
+    if w >= 1.0 { r } else { h + w * (r - h) }
+}
+
+/// The network means over rows `rows` of every channel, for
+/// [`TrainingRange::network_mean`](super::range::TrainingRange::network_mean) (at most 20,000 rows, evenly strided).
+pub fn network_means<S: Sensor>(
+    model_channels: &[crate::model::ChannelModelOf<S>],
+    windows: faer::MatRef<'_, f64>,
+    rows: &[usize],
+) -> Vec<f64> {
+    let step = rows.len().div_ceil(20_000).max(1);
+    let rows: Vec<usize> = rows.iter().step_by(step).copied().collect();
+    let x = Mat::from_fn(rows.len(), windows.ncols(), |i, j| windows[(rows[i], j)]);
+    model_channels
+        .iter()
+        .map(|c| {
+            let z = Mat::<f64>::zeros(x.nrows(), c.rbf().n_linear());
+            let b = c.bias();
+            let v = c.predict_with(&x, &z);
+            v.iter().map(|v| v - b).sum::<f64>() / v.len().max(1) as f64
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_smoothed_weight_starts_at_its_input_and_snaps_back_to_one() {
+        let mut s = Smoother::new(FadeSettings::for_window(50, 0.02).alpha(0.02));
+        assert_eq!(s.step(0.0), 0.0);
+        let w: Vec<f64> = (0..2000).map(|_| s.step(1.0)).collect();
+        assert!(w[0] > 0.0 && w[0] < 0.05, "{}", w[0]);
+        assert!(w.windows(2).all(|p| p[1] >= p[0]), "monotone");
+        assert_eq!(*w.last().unwrap(), 1.0, "exactly the fitted model again");
+    }
+
+    #[test]
+    fn outside_the_network_part_holds_and_inside_it_is_untouched() {
+        let p = [5.0, 6.0, 7.0, 8.0];
+        let r = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(fade_series(&p, &r, 0.0, &[1.0; 4]), p);
+        // Half weight: the held part moves half way toward the network.
+        let out = fade_series(&p, &r, 0.0, &[1.0, 0.5, 0.5, 0.0]);
+        assert_eq!(out, [5.0, 5.5, 6.25, 6.25]);
+        // A record that starts outside starts from the training mean c.
+        assert_eq!(
+            fade_series(&p, &r, 0.25, &[0.0; 4]),
+            [4.25, 4.25, 4.25, 4.25]
+        );
+    }
+}

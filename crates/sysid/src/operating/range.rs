@@ -1,0 +1,348 @@
+//! The training range per operating signal: each signal's window mean and
+//! its vibration level (the window rms about that mean) as the model's
+//! training windows spanned them, and how far a new window lies outside.
+//!
+//! The operating points of [`super::OperatingPoints`] sum the signals'
+//! variances into one level, so a network fitted on a z-axis shaker run
+//! sees an x-axis run (same gravity, same overall level) as inside. Here
+//! each signal keeps its own level: the z run's model saw 0.5 g rms on `az`
+//! and a few hundredths on `ax`, and an x run's 0.3 g rms on `ax` lies far
+//! outside. A window's distance outside is the Euclidean norm of each
+//! coordinate's excess beyond the training interval `[min, max]`, divided by
+//! the sensor's [`Sensor::operating_scale`]; the range counts as inside up
+//! to the largest such distance of the validation windows (measured, so the
+//! data the model was validated on are inside by construction, and a model
+//! applied to its own record is unchanged).
+
+use super::fade::FadeSettings;
+use crate::error::SysidError;
+use crate::prepared::Prepared;
+use crate::sensor::Sensor;
+use serde::{Deserialize, Serialize};
+
+/// A window's mean of one signal and its rms about that mean (population:
+/// divided by the window length).
+///
+/// ```
+/// let (m, level) = sysid::operating::range::mean_and_level(&[1.0, 3.0]);
+/// assert_eq!((m, level), (2.0, 1.0));
+/// ```
+pub fn mean_and_level(a: &[f64]) -> (f64, f64) {
+    let (m, var) = mean_and_variance(a);
+    (m, var.sqrt())
+}
+
+/// A window's mean and variance about it, summed in time order (the onboard
+/// evaluator sums in the same order).
+pub(crate) fn mean_and_variance(a: &[f64]) -> (f64, f64) {
+    let n = a.len().max(1) as f64;
+    let m = a.iter().sum::<f64>() / n;
+    (m, a.iter().map(|v| (v - m).powi(2)).sum::<f64>() / n)
+}
+
+/// Per row in `rows`, each operating signal's mean and variance over the
+/// window of `length` samples that ends at the row's sample (the one pass
+/// over the windows both the joint points and the range read).
+pub(crate) fn moments<S: Sensor>(
+    prepared: &Prepared<S>,
+    length: usize,
+    rows: &[usize],
+) -> Result<Vec<Vec<(f64, f64)>>, SysidError> {
+    let sensor = prepared.sensor();
+    let names = sensor.operating_signals();
+    rows.iter()
+        .map(|&r| {
+            let (record, end) = prepared.locate(r);
+            let span = end + 1 - length.min(end + 1)..=end;
+            names
+                .iter()
+                .map(|name| {
+                    let a = crate::prepared::signal(sensor, record, name)?;
+                    Ok(mean_and_variance(&a[span.clone()]))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Per row in `rows`, the window (of `length` samples ending at the row's
+/// sample) statistics of each operating signal: the means of every signal,
+/// then their levels, in the sensor's unit.
+pub fn statistics<S: Sensor>(
+    prepared: &Prepared<S>,
+    length: usize,
+    rows: &[usize],
+) -> Result<Vec<Vec<f64>>, SysidError> {
+    Ok(moments(prepared, length, rows)?
+        .into_iter()
+        .map(|m| {
+            let means = m.iter().map(|(mean, _)| *mean);
+            means.chain(m.iter().map(|(_, var)| var.sqrt())).collect()
+        })
+        .collect())
+}
+
+/// What a model saw of each operating signal, and its fade.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrainingRange {
+    /// The operating signals (`ax`, `ay`, `az`).
+    pub signals: Vec<String>,
+    /// Samples of the window the statistics are taken over (the model's).
+    pub window: usize,
+    /// Smallest window mean of each signal over the training windows.
+    pub mean_min: Vec<f64>,
+    /// Largest window mean of each signal.
+    pub mean_max: Vec<f64>,
+    /// Smallest window rms about the mean (vibration level) of each signal.
+    pub level_min: Vec<f64>,
+    /// Largest level of each signal.
+    pub level_max: Vec<f64>,
+    /// Divisor of a coordinate's excess, in the signals' unit
+    /// ([`Sensor::operating_scale`]).
+    pub scale: f64,
+    /// Distance (in `scale`s) up to which a window is inside: the largest of
+    /// the fitted records' windows that did not train (validation, gaps).
+    pub tolerance: f64,
+    /// How the network part fades beyond it.
+    pub fade: FadeSettings,
+    /// Each channel's network part (the RBF sum without bias and effects)
+    /// averaged over the training windows, in the target's unit: outside the
+    /// range the network part fades toward this constant.
+    pub network_mean: Vec<f64>,
+}
+
+impl TrainingRange {
+    /// The range of the training rows `train`, its tolerance measured on the
+    /// rows `val` (those that did not train), with each channel's network
+    /// mean given.
+    pub fn from_training<S: Sensor>(
+        prepared: &Prepared<S>,
+        length: usize,
+        train: &[usize],
+        val: &[usize],
+        network_mean: Vec<f64>,
+    ) -> Result<Self, SysidError> {
+        let sensor = prepared.sensor();
+        let signals = sensor.operating_signals();
+        let k = signals.len();
+        let all = statistics(prepared, length, train)?;
+        if all.is_empty() {
+            return Err(SysidError::TooFewSamples {
+                what: "training windows",
+                have: 0,
+                need: 1,
+                hint: "use a longer record",
+            });
+        }
+        let fold =
+            |j: usize, f: fn(f64, f64) -> f64| all.iter().map(|p| p[j]).reduce(f).unwrap_or(0.0);
+        let mut range = Self {
+            mean_min: (0..k).map(|j| fold(j, f64::min)).collect(),
+            mean_max: (0..k).map(|j| fold(j, f64::max)).collect(),
+            level_min: (0..k).map(|j| fold(k + j, f64::min)).collect(),
+            level_max: (0..k).map(|j| fold(k + j, f64::max)).collect(),
+            signals,
+            window: length,
+            scale: sensor.operating_scale(),
+            tolerance: 0.0,
+            fade: FadeSettings::for_window(length, prepared.calibrated().dt()),
+            network_mean,
+        };
+        let d = range.distances(&statistics(prepared, length, val)?);
+        range.tolerance = d.into_iter().fold(0.0, f64::max);
+        Ok(range)
+    }
+
+    /// Whether the range fits a model of `signals` operating signals and
+    /// `channels` channels (a hand-edited file may not): the reason if not.
+    pub fn check(&self, signals: &[String], channels: usize) -> Result<(), SysidError> {
+        let k = signals.len();
+        let bad = |what: String| {
+            Err(SysidError::OperatingPoints(format!(
+                "training range: {what}"
+            )))
+        };
+        if self.signals != signals {
+            return bad(format!(
+                "signals {} where the sensor has {}",
+                self.signals.join(", "),
+                signals.join(", ")
+            ));
+        }
+        for (name, v) in [
+            ("mean_min", &self.mean_min),
+            ("mean_max", &self.mean_max),
+            ("level_min", &self.level_min),
+            ("level_max", &self.level_max),
+        ] {
+            if v.len() != k {
+                return bad(format!("{} values of {name} for {k} signals", v.len()));
+            }
+        }
+        if self.network_mean.len() != channels {
+            return bad(format!(
+                "{} network means for {channels} channels",
+                self.network_mean.len()
+            ));
+        }
+        if self.window == 0 || !(self.scale.is_finite() && self.scale > 0.0) {
+            return bad(format!(
+                "window {} samples, scale {}: need at least one sample and a positive scale",
+                self.window, self.scale
+            ));
+        }
+        Ok(())
+    }
+
+    /// Each window's distance outside the range, in `scale`s (0 inside the
+    /// training interval of every coordinate), from [`statistics`].
+    pub fn distances(&self, stats: &[Vec<f64>]) -> Vec<f64> {
+        stats.iter().map(|p| self.distance(p)).collect()
+    }
+
+    /// One window's distance outside the range, in `scale`s.
+    pub fn distance(&self, p: &[f64]) -> f64 {
+        let k = self.signals.len();
+        let mut sum = 0.0;
+        for j in 0..k {
+            let m = excess(p[j], self.mean_min[j], self.mean_max[j]) / self.scale;
+            let l = excess(p[k + j], self.level_min[j], self.level_max[j]) / self.scale;
+            sum += m * m + l * l;
+        }
+        sum.sqrt()
+    }
+
+    /// Whether a window at distance `d` lies outside (beyond the tolerance).
+    pub fn is_outside(&self, d: f64) -> bool {
+        d > self.tolerance
+    }
+
+    /// What a record's windows (`stats`, from [`statistics`]) have that the
+    /// model did not see, in words: which signal's level or mean, and the
+    /// range the model saw there. Empty when at most 1% of the windows lie
+    /// outside on any one coordinate.
+    pub fn lacks(&self, stats: &[Vec<f64>], unit: &str, spread: &str) -> Vec<String> {
+        let k = self.signals.len();
+        let n = stats.len().max(1);
+        // The windows beyond one coordinate's interval, and their extremes.
+        let beyond = |coord: usize, lo: f64, hi: f64| -> Option<(f64, f64, f64)> {
+            let far = stats
+                .iter()
+                .filter(|p| excess(p[coord], lo, hi) / self.scale > self.tolerance.max(1.0))
+                .count();
+            let (vmin, vmax) = stats
+                .iter()
+                .map(|p| p[coord])
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                });
+            (far * 100 > n).then(|| (100.0 * far as f64 / n as f64, vmin, vmax))
+        };
+        let mut out = Vec::new();
+        let levels: Vec<String> = (0..k)
+            .filter_map(|j| {
+                let (share, _, vmax) = beyond(k + j, self.level_min[j], self.level_max[j])?;
+                Some(format!(
+                    "this record has up to {vmax:.2} {unit} rms on {} ({share:.0}% of its windows beyond the {:.2} the model saw there)",
+                    self.signals[j], self.level_max[j]
+                ))
+            })
+            .collect();
+        if !levels.is_empty() {
+            let seen: Vec<usize> = (0..k)
+                .filter(|&j| self.level_max[j] > 4.0 * self.scale)
+                .collect();
+            let names: Vec<&str> = seen.iter().map(|&j| self.signals[j].as_str()).collect();
+            let lo = seen
+                .iter()
+                .map(|&j| self.level_min[j])
+                .fold(f64::INFINITY, f64::min);
+            let hi = seen.iter().map(|&j| self.level_max[j]).fold(0.0, f64::max);
+            let saw = match names.len() {
+                0 => format!(
+                    "the model saw no {spread} above {:.2} {unit} rms",
+                    4.0 * self.scale
+                ),
+                m if m < k => format!(
+                    "the model saw {spread} on {} only ({lo:.2}–{hi:.2} {unit} rms)",
+                    names.join(", ")
+                ),
+                _ => format!(
+                    "the model saw {spread} on {} ({lo:.2}–{hi:.2} {unit} rms)",
+                    names.join(", ")
+                ),
+            };
+            out.push(format!("{saw}; {}", levels.join(", ")));
+        }
+        for j in 0..k {
+            if let Some((share, vmin, vmax)) = beyond(j, self.mean_min[j], self.mean_max[j]) {
+                out.push(format!(
+                    "the model saw the mean of {} between {:.2} and {:.2} {unit}; this record's spans {vmin:.2} to {vmax:.2} {unit} ({share:.0}% of its windows beyond)",
+                    self.signals[j], self.mean_min[j], self.mean_max[j]
+                ));
+            }
+        }
+        out
+    }
+}
+
+/// How far `v` lies beyond `[lo, hi]` (0 inside).
+fn excess(v: f64, lo: f64, hi: f64) -> f64 {
+    (lo - v).max(v - hi).max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A range as a z-axis shaker run leaves it: gravity on z, vibration
+    /// on z only.
+    fn z_run() -> TrainingRange {
+        TrainingRange {
+            signals: vec!["ax".into(), "ay".into(), "az".into()],
+            window: 50,
+            mean_min: vec![-0.01, -0.01, 0.98],
+            mean_max: vec![0.01, 0.01, 1.02],
+            level_min: vec![0.0, 0.0, 0.1],
+            level_max: vec![0.03, 0.02, 0.5],
+            scale: 0.05,
+            tolerance: 0.2,
+            fade: FadeSettings::for_window(50, 0.02),
+            network_mean: vec![0.0],
+        }
+    }
+
+    #[test]
+    fn a_window_is_as_far_outside_as_its_coordinates_excess() {
+        let r = z_run();
+        // Inside every interval.
+        assert_eq!(r.distance(&[0.0, 0.0, 1.0, 0.01, 0.01, 0.3]), 0.0);
+        // 0.3 g rms on ax: 0.27 g beyond 0.03, 5.4 scales.
+        let d = r.distance(&[0.0, 0.0, 1.0, 0.3, 0.01, 0.3]);
+        assert!((d - 5.4).abs() < 1e-12, "{d}");
+        assert!(r.is_outside(d));
+        // Two coordinates beyond add in quadrature.
+        let d2 = r.distance(&[0.04, 0.0, 1.0, 0.07, 0.01, 0.3]);
+        assert!((d2 - (0.6f64.powi(2) + 0.8f64.powi(2)).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_hint_names_the_axis_and_level_the_model_did_not_see() {
+        let r = z_run();
+        let x_run: Vec<Vec<f64>> = (0..100)
+            .map(|i| vec![0.0, 0.0, 1.0, 0.2 + 0.003 * i as f64, 0.01, 0.01])
+            .collect();
+        let lacks = r.lacks(&x_run, "g", "vibration");
+        assert_eq!(lacks.len(), 1, "{lacks:?}");
+        assert!(
+            lacks[0].starts_with("the model saw vibration on az only (0.10–0.50 g rms); this record has up to 0.50 g rms on ax (100% of its windows beyond the 0.03"),
+            "{}",
+            lacks[0]
+        );
+        // A record like the training one lacks nothing.
+        let z: Vec<Vec<f64>> = (0..100)
+            .map(|_| vec![0.0, 0.0, 1.0, 0.01, 0.01, 0.3])
+            .collect();
+        assert!(r.lacks(&z, "g", "vibration").is_empty());
+    }
+}
