@@ -13,8 +13,13 @@ use nav_sensors::record::Record;
 pub struct Applied {
     /// The record prepared as the model's training data were.
     pub prepared: Prepared,
-    /// Predicted error per channel and row, deg/h.
+    /// Predicted error per channel and row, deg/h, of the pre-processed
+    /// (filtered) output: the effects filtered as the output is.
     pub predicted: [Vec<f64>; 6],
+    /// What compensation subtracts from the unfiltered output per channel
+    /// and row, deg/h: `predicted` with the effects unfiltered (θ·z), whose
+    /// part above the filter's cut-off is the effect's too.
+    pub compensation: [Vec<f64>; 6],
     /// Residues of the pre-processed outputs before and after compensation, per row.
     pub residues: ResidueSeries,
     /// Training rows of the model's split (meaningful on the record it was
@@ -63,9 +68,25 @@ impl Applied {
         } else {
             None
         };
-        let (predicted, onboard) = match stepped {
-            Some(s) => (s.error_deg_h.clone(), Some(s)),
-            None => (model.predict(&prepared)?, None),
+        // The onboard evaluator subtracts the effects unfiltered, as the
+        // batch compensation does; the filtered outputs' prediction has them
+        // filtered.
+        let above = model.inner().effects_above_band(prepared.inner())?;
+        let shift = |series: &[Vec<f64>; 6], sign: f64| -> [Vec<f64>; 6] {
+            std::array::from_fn(|k| {
+                series[k]
+                    .iter()
+                    .zip(&above[k])
+                    .map(|(p, a)| p + sign * a)
+                    .collect()
+            })
+        };
+        let (predicted, compensation, onboard) = match stepped {
+            Some(s) => (shift(&s.error_deg_h, -1.0), s.error_deg_h.clone(), Some(s)),
+            None => {
+                let p = model.predict(&prepared)?;
+                (p.clone(), shift(&p, 1.0), None)
+            }
         };
         let first = prepared.first_sample();
         let outputs: [Vec<f64>; 6] =
@@ -75,6 +96,7 @@ impl Applied {
         Ok(Self {
             prepared,
             predicted,
+            compensation,
             residues,
             train: Vec::new(),
             val: Vec::new(),
@@ -107,7 +129,7 @@ impl Applied {
 
     /// The record compensated: from the first sample with a full window on,
     /// each gyro output (after the model's ground calibration, not filtered)
-    /// minus the channel's predicted error; accelerations calibrated; extra
+    /// minus the channel's [`Applied::compensation`]; accelerations calibrated; extra
     /// columns as given. The first `window − 1` samples have no window and
     /// are not in it. For a causal model, the onboard evaluator's
     /// compensated rates and calibrated accelerations.
@@ -124,7 +146,7 @@ impl Applied {
             sliced
                 .gyro(Channel::ALL[k])
                 .iter()
-                .zip(&self.predicted[k])
+                .zip(&self.compensation[k])
                 .map(|(m, p)| m - p)
                 .collect()
         });
