@@ -115,6 +115,22 @@ impl CompensationModel {
         Ok(std::array::from_fn(|_| out.next().unwrap_or_default()))
     }
 
+    /// What compensation subtracts from each unfiltered output, deg/h, in
+    /// X, X1, Y, Y1, Z, Z1 order: [`CompensationModel::predict`] with the
+    /// effects unfiltered (θ·z, [`sysid::Model::effects_above_band`]); the
+    /// onboard evaluator computes the same.
+    pub fn compensation(&self, prepared: &Prepared) -> Result<[Vec<f64>; 6], DtgVibError> {
+        let above = self.inner.effects_above_band(prepared.inner())?;
+        let predicted = self.predict(prepared)?;
+        Ok(std::array::from_fn(|k| {
+            predicted[k]
+                .iter()
+                .zip(&above[k])
+                .map(|(p, a)| p + a)
+                .collect()
+        }))
+    }
+
     /// Of several records, the one that only validated (`--validate-on`).
     pub fn validated_on(&self) -> Option<&str> {
         self.inner.validated_on()
