@@ -202,6 +202,11 @@ fn print_round(k: usize, r: &dtg_vib::explain::Round) {
             );
         }
     }
+    for x in &r.added {
+        for caveat in &x.caveats {
+            println!("    caveat on {}={}: {caveat}", x.channel, x.effect);
+        }
+    }
     let rms: Vec<String> = r
         .channels
         .iter()
