@@ -246,10 +246,10 @@ fn intervals_cover_the_true_coefficients_on_a_few_seeds() {
 /// g² term (issue 23's acceptance), every refit within 1.1× its clean twin.
 ///
 /// Measured with the coefficients cross-fitted on every row (4, 6 and 8
-/// alternating spans, their spread in the interval): see the closing note
-/// of issue 23 and docs/dtg-vib.md for the figures. With the record cut in
-/// two halves only (the diagnosis's cut) the intervals were too narrow:
-/// Y1=gg_IS 85%, Z=col:temp 73% over 78 seeds.
+/// alternating spans, their spread in the interval): Y1=gg_IS 94/100,
+/// Z=col:temp 98/100. With the record cut in two halves only (the
+/// diagnosis's cut) the intervals were too narrow: Y1=gg_IS 85%,
+/// Z=col:temp 73% over 78 seeds.
 #[test]
 #[ignore = "statistical claim over 100 seeds, ~30 min: run with --ignored"]
 fn interval_coverage_over_100_seeds() {
