@@ -77,6 +77,19 @@ fn resolved_vibration(mut s: Scenario) -> Scenario {
     s
 }
 
+/// The default fit of `s`'s clean twin (the same record without its
+/// hidden terms): what a refit with the hidden effects should come near.
+fn clean_twin_fit(s: &Scenario) -> dtg_vib::model::CompensationModel {
+    let clean = simulate(&without_hidden(s)).unwrap();
+    fit(
+        &clean.record,
+        Some(&clean.calibration),
+        &FitOptions::default(),
+        &|_| {},
+    )
+    .unwrap()
+}
+
 fn id_of(term: DtgTerm) -> String {
     if term == DtgTerm::Temp {
         "col:temp".into()
@@ -123,14 +136,7 @@ fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error
     assert_eq!(added, ["Y1=col:temp", "Y1=gg_IS"]);
 
     // The final model's Y1 against a fit of the same record without the hidden terms.
-    let clean = simulate(&without_hidden(&scenario)).unwrap();
-    let reference = fit(
-        &clean.record,
-        Some(&clean.calibration),
-        &FitOptions::default(),
-        &|_| {},
-    )
-    .unwrap();
+    let reference = clean_twin_fit(&scenario);
     for c in e.model.channels() {
         let r = c.scores().val_rms / reference.channel(c.channel()).scores().val_rms;
         eprintln!(
@@ -190,14 +196,7 @@ fn coverage(seeds: std::ops::Range<u64>) -> Coverage {
             ..FitOptions::default()
         };
         let m = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-        let clean = simulate(&without_hidden(&s)).unwrap();
-        let twin = fit(
-            &clean.record,
-            Some(&clean.calibration),
-            &FitOptions::default(),
-            &|_| {},
-        )
-        .unwrap();
+        let twin = clean_twin_fit(&s);
         for (h, t) in base.hidden.iter().zip(&mut tally) {
             let c = m.channel(h.channel);
             let j = c
