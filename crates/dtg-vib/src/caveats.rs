@@ -124,3 +124,54 @@ pub fn specific_force_caveats(records: &[(&Signals, Vec<usize>)], quadratic: boo
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A record of `n` 50-Hz samples whose accelerations are given per axis
+    /// as functions of time, s.
+    fn record(n: usize, axes: [&dyn Fn(f64) -> f64; 3]) -> Signals {
+        let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.02).collect();
+        let col = |f: &dyn Fn(f64) -> f64| t.iter().map(|&t| f(t)).collect::<Vec<f64>>();
+        Signals::new(
+            t.clone(),
+            vec![
+                ("ax".into(), col(axes[0])),
+                ("ay".into(), col(axes[1])),
+                ("az".into(), col(axes[2])),
+            ],
+        )
+        .unwrap()
+    }
+
+    fn sine(hz: f64, phase: f64) -> impl Fn(f64) -> f64 {
+        move |t| (2.0 * std::f64::consts::PI * hz * t + phase).sin()
+    }
+
+    /// Vibration near the output rate along z only: a g² suggestion gets
+    /// both caveats, a linear one only the one-axis caveat.
+    #[test]
+    fn aliased_one_axis_vibration_carries_both_caveats() {
+        let zero = |_: f64| 0.0;
+        let fast = sine(21.0, 0.0);
+        let z = |t: f64| 1.0 + fast(t);
+        let rec = record(3000, [&zero, &zero, &z]);
+        let all: Vec<usize> = (0..3000).collect();
+        let both = specific_force_caveats(&[(&rec, all.clone())], true);
+        assert_eq!(both.len(), 2, "{both:?}");
+        assert!(both[0].contains("sees a small part of the vibration"));
+        assert!(both[1].contains("vibrated along z only"));
+        let linear = specific_force_caveats(&[(&rec, all)], false);
+        assert_eq!(linear.len(), 1, "{linear:?}");
+    }
+
+    /// Resolved vibration on three axes: nothing to say.
+    #[test]
+    fn resolved_three_axis_vibration_has_no_caveat() {
+        let (x, y, z) = (sine(2.0, 0.0), sine(3.0, 1.0), sine(5.0, 2.0));
+        let rec = record(3000, [&x, &y, &z]);
+        let all: Vec<usize> = (0..3000).collect();
+        assert!(specific_force_caveats(&[(&rec, all)], true).is_empty());
+    }
+}
