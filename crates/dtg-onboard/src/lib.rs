@@ -21,7 +21,9 @@
 //!    least-squares rate (two passes), the g² terms with the within-interval
 //!    covariance from the sample and its two neighbours;
 //! 2. per channel, the effect regressors from the calibrated accelerations,
-//!    rates and extra columns, each through the causal low-pass;
+//!    rates and extra columns, each through the tables' effect low-pass
+//!    (none in the tables `dtg-vib export` writes: the effects are
+//!    subtracted unfiltered, θ·z);
 //! 3. the window signals through the causal input low-pass into their windows;
 //! 4. once the windows are full, per channel the predicted error
 //!    `bias + Σ θⱼ·zⱼ + Σₖ wₖ·exp(−‖x − cₖ‖²/βₖ²)`, subtracted from the

@@ -13,9 +13,14 @@ use nav_sensors::record::Record;
 pub struct Applied {
     /// The record prepared as the model's training data were.
     pub prepared: Prepared,
-    /// Predicted error per channel and row, deg/h: what compensation
-    /// subtracts, the network part faded outside the training range.
+    /// Predicted error per channel and row, deg/h, of the pre-processed
+    /// (filtered) output: the effects filtered as the output is, the network
+    /// part faded outside the training range.
     pub predicted: [Vec<f64>; 6],
+    /// What compensation subtracts from the unfiltered output per channel
+    /// and row, deg/h: `predicted` with the effects unfiltered (θ·z), whose
+    /// part above the filter's cut-off is the effect's too.
+    pub compensation: [Vec<f64>; 6],
     /// Residues of the pre-processed outputs before and after compensation, per row.
     pub residues: ResidueSeries,
     /// Training rows of the model's split (meaningful on the record it was
@@ -64,14 +69,29 @@ impl Applied {
         } else {
             None
         };
-        let (predicted, onboard) = match stepped {
-            Some(s) => (s.error_deg_h.clone(), Some(s)),
+        // The onboard evaluator subtracts the effects unfiltered, as the
+        // batch compensation does; the filtered outputs' prediction has them
+        // filtered.
+        let above = model.inner().effects_above_band(prepared.inner())?;
+        let shift = |series: &[Vec<f64>; 6], sign: f64| -> [Vec<f64>; 6] {
+            std::array::from_fn(|k| {
+                series[k]
+                    .iter()
+                    .zip(&above[k])
+                    .map(|(p, a)| p + sign * a)
+                    .collect()
+            })
+        };
+        let (predicted, compensation, onboard) = match stepped {
+            Some(s) => (shift(&s.error_deg_h, -1.0), s.error_deg_h.clone(), Some(s)),
             // Outside the training range the network part fades
             // (sysid::operating::fade), as the onboard evaluator fades it.
             None => {
                 let f = sysid::operating::fade::predict_faded(model.inner(), prepared.inner())?;
-                let mut p = f.predicted.into_iter();
-                (std::array::from_fn(|_| p.next().unwrap_or_default()), None)
+                let mut it = f.predicted.into_iter();
+                let p: [Vec<f64>; 6] = std::array::from_fn(|_| it.next().unwrap_or_default());
+                let c = shift(&p, 1.0);
+                (p, c, None)
             }
         };
         let first = prepared.first_sample();
@@ -82,6 +102,7 @@ impl Applied {
         Ok(Self {
             prepared,
             predicted,
+            compensation,
             residues,
             train: Vec::new(),
             val: Vec::new(),
@@ -114,7 +135,7 @@ impl Applied {
 
     /// The record compensated: from the first sample with a full window on,
     /// each gyro output (after the model's ground calibration, not filtered)
-    /// minus the channel's predicted error; accelerations calibrated; extra
+    /// minus the channel's [`Applied::compensation`]; accelerations calibrated; extra
     /// columns as given. The first `window − 1` samples have no window and
     /// are not in it. For a causal model, the onboard evaluator's
     /// compensated rates and calibrated accelerations.
@@ -131,7 +152,7 @@ impl Applied {
             sliced
                 .gyro(Channel::ALL[k])
                 .iter()
-                .zip(&self.predicted[k])
+                .zip(&self.compensation[k])
                 .map(|(m, p)| m - p)
                 .collect()
         });

@@ -21,6 +21,7 @@
 
 pub mod allan;
 pub mod apply;
+pub mod caveats;
 pub mod check;
 pub mod demo;
 pub mod diagnose;

@@ -278,6 +278,20 @@ impl sysid::Sensor for PaperUnit {
             vibration_axis,
         )
     }
+
+    fn caveats(
+        &self,
+        records: &[(&Signals, Vec<usize>)],
+        _channel: usize,
+        effect: &Effect,
+    ) -> Vec<String> {
+        match effect {
+            Effect::Term(t) if DtgTerm::SPECIFIC_FORCE.contains(t) => {
+                crate::caveats::specific_force_caveats(records, t.is_quadratic())
+            }
+            _ => Vec::new(),
+        }
+    }
 }
 
 /// Smallest spread an operating point's coordinate is divided by, g: a

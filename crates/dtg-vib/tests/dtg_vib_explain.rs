@@ -77,6 +77,19 @@ fn resolved_vibration(mut s: Scenario) -> Scenario {
     s
 }
 
+/// The default fit of `s`'s clean twin (the same record without its
+/// hidden terms): what a refit with the hidden effects should come near.
+fn clean_twin_fit(s: &Scenario) -> dtg_vib::model::CompensationModel {
+    let clean = simulate(&without_hidden(s)).unwrap();
+    fit(
+        &clean.record,
+        Some(&clean.calibration),
+        &FitOptions::default(),
+        &|_| {},
+    )
+    .unwrap()
+}
+
 fn id_of(term: DtgTerm) -> String {
     if term == DtgTerm::Temp {
         "col:temp".into()
@@ -123,14 +136,7 @@ fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error
     assert_eq!(added, ["Y1=col:temp", "Y1=gg_IS"]);
 
     // The final model's Y1 against a fit of the same record without the hidden terms.
-    let clean = simulate(&without_hidden(&scenario)).unwrap();
-    let reference = fit(
-        &clean.record,
-        Some(&clean.calibration),
-        &FitOptions::default(),
-        &|_| {},
-    )
-    .unwrap();
+    let reference = clean_twin_fit(&scenario);
     for c in e.model.channels() {
         let r = c.scores().val_rms / reference.channel(c.channel()).scores().val_rms;
         eprintln!(
@@ -152,9 +158,20 @@ fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error
     }
 }
 
-/// One fit per seed with both effects named; returns, per effect, whether
-/// its 95% interval covered the truth.
-fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
+/// Per effect, its id, how many seeds' stored 95% intervals covered the
+/// truth and the number of seeds; and the largest ratio of a refit
+/// channel's validation rms to its clean twin's (the same seed without the
+/// hidden terms, fitted without them).
+struct Coverage {
+    tally: Vec<(String, usize, usize)>,
+    worst_twin_ratio: f64,
+}
+
+/// One fit per seed with both effects named (issue 10's records: the
+/// tri-axial record with gg_IS on Y1 and a temperature term on Z, on 1–8 Hz
+/// drives), and one of its clean twin; the stored coefficients (cross-fitted
+/// on every row, issue 23 §3) against the truth.
+fn coverage(seeds: std::ops::Range<u64>) -> Coverage {
     let base = resolved_vibration(Scenario::triaxial_hidden());
     let add: Vec<ChannelEffect> = base
         .hidden
@@ -169,6 +186,7 @@ fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
         .iter()
         .map(|h| (format!("{}={}", h.channel, id_of(h.term)), 0, 0))
         .collect();
+    let mut worst_twin_ratio = 0.0f64;
     for seed in seeds {
         let mut s = base.clone();
         s.seed = 1_000_003 * (seed + 1);
@@ -178,6 +196,7 @@ fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
             ..FitOptions::default()
         };
         let m = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+        let twin = clean_twin_fit(&s);
         for (h, t) in base.hidden.iter().zip(&mut tally) {
             let c = m.channel(h.channel);
             let j = c
@@ -189,8 +208,10 @@ fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
             let truth = s.gyro(h.channel).get(h.term);
             t.1 += usize::from(k.covers(truth));
             t.2 += 1;
+            let ratio = c.scores().val_rms / twin.channel(h.channel).scores().val_rms;
+            worst_twin_ratio = worst_twin_ratio.max(ratio);
             eprintln!(
-                "seed {seed} {}: {:.4} ± {:.4} (truth {truth}){}",
+                "seed {seed} {}: {:.4} ± {:.4} (truth {truth}){}; val rms {ratio:.3}× the clean twin's",
                 t.0,
                 k.value,
                 k.se,
@@ -198,29 +219,52 @@ fn coverage(seeds: std::ops::Range<u64>) -> Vec<(String, usize, usize)> {
             );
         }
     }
-    tally
-}
-
-/// The short coverage check CI runs: over 8 seeds each 95% interval covers
-/// the truth at least 6 times (P(≤ 5 of 8 | 95%) = 0.6%).
-#[test]
-fn intervals_cover_the_true_coefficients_on_a_few_seeds() {
-    for (effect, covered, n) in coverage(0..8) {
-        assert!(covered >= 6, "{effect}: covered {covered} of {n}");
+    Coverage {
+        tally,
+        worst_twin_ratio,
     }
 }
 
-/// Coverage over 100 seeds: must lie in 90–99% for the temperature and the g² term.
+/// The short coverage check CI runs: over 8 seeds each 95% interval covers
+/// the truth at least 6 times (P(≤ 5 of 8 | 95%) = 0.6%), and every refit
+/// channel stays within 1.1× its clean twin's validation rms.
 #[test]
-#[ignore = "statistical claim over 100 seeds, ~10 min: run with --ignored"]
+fn intervals_cover_the_true_coefficients_on_a_few_seeds() {
+    let c = coverage(0..8);
+    for (effect, covered, n) in c.tally {
+        assert!(covered >= 6, "{effect}: covered {covered} of {n}");
+    }
+    assert!(
+        c.worst_twin_ratio <= 1.1,
+        "a refit is {:.3}× its clean twin",
+        c.worst_twin_ratio
+    );
+}
+
+/// Coverage over 100 seeds: must lie in 90–99% for the temperature and the
+/// g² term (issue 23's acceptance), every refit within 1.1× its clean twin.
+///
+/// Measured with the coefficients cross-fitted on every row (4, 6 and 8
+/// alternating spans, their spread in the interval): Y1=gg_IS 94/100,
+/// Z=col:temp 98/100; worst refit channel 1.016× its clean twin's
+/// validation rms. With the record cut in two halves only (the
+/// diagnosis's cut) the intervals were too narrow: Y1=gg_IS 85%,
+/// Z=col:temp 73% over 78 seeds.
+#[test]
+#[ignore = "statistical claim over 100 seeds, ~30 min: run with --ignored"]
 fn interval_coverage_over_100_seeds() {
-    for (effect, covered, n) in coverage(0..100) {
+    let c = coverage(0..100);
+    for (effect, covered, n) in &c.tally {
         println!("coverage {effect}: {covered}/{n}");
+    }
+    println!("worst refit / clean twin: {:.3}", c.worst_twin_ratio);
+    for (effect, covered, n) in c.tally {
         assert!(
             (90..=99).contains(&(100 * covered / n)),
             "{effect}: {covered}/{n}"
         );
     }
+    assert!(c.worst_twin_ratio <= 1.1, "{:.3}", c.worst_twin_ratio);
 }
 
 /// False alarms per record over 50 clean records: how many records get any

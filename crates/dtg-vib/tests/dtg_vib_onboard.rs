@@ -2,7 +2,7 @@
 //! the `no_std` evaluator, gives the desktop tool's numbers.
 //!
 //! The reference is the batch pipeline (calibration, filters, effect columns
-//! and the RBF over whole-record arrays, `CompensationModel::predict`); the
+//! and the RBF over whole-record arrays, `CompensationModel::compensation`); the
 //! `dtg-onboard` evaluator runs the same model one sample at a time, and the
 //! exported C, compiled with the system compiler, runs it from a CSV.
 
@@ -131,9 +131,7 @@ fn step_against_batch_on(model_path: &Path, rec: &Record) -> f64 {
     let model = CompensationModel::load(model_path).unwrap();
     let rec = rec.clone();
     let prepared = model.prepare(&rec).unwrap();
-    let batch = sysid::operating::fade::predict_faded(model.inner(), prepared.inner())
-        .unwrap()
-        .predicted;
+    let batch = model.compensation(&prepared).unwrap();
     let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     assert_eq!(stepped.first_sample, prepared.first_sample());
     let first = prepared.first_sample();
@@ -466,7 +464,7 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
     };
     let model = fit(&rec, None, &options, &|_| {}).unwrap();
     let prepared = model.prepare(&rec).unwrap();
-    let batch = model.predict(&prepared).unwrap();
+    let batch = model.compensation(&prepared).unwrap();
     let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     let mut worst = 0.0f64;
     for (k, b) in batch.iter().enumerate() {

@@ -87,6 +87,10 @@ pub struct Added<C, A = String> {
     /// on some record alone, and the records that told them apart.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub record_separations: Vec<RecordSeparation>,
+    /// What the suggestion rests on that its p-value does not say, as the
+    /// diagnosis gives it; absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub caveats: Vec<String>,
 }
 
 /// One channel's validation rms after a round's fit.
@@ -241,6 +245,7 @@ fn suggestions<C: Clone, A: Clone, E: Effect>(
                         alternatives: cand.alternatives.clone(),
                         separation: cand.separation.clone(),
                         record_separations: cand.record_separations.clone(),
+                        caveats: cand.caveats.clone(),
                     },
                 ));
             }

@@ -333,6 +333,29 @@ impl<S: Sensor> Prepared<S> {
         })
     }
 
+    /// The regressors of `effects` of channel `channel` on the rows, not
+    /// filtered, as an `rows × effects` matrix: what compensation subtracts
+    /// from the unfiltered output (θ·z), where the filtered regressor would
+    /// leave the effect's part above the cut-off in it.
+    pub fn effect_matrix_unfiltered(
+        &self,
+        channel: usize,
+        effects: &[S::Effect],
+    ) -> Result<Mat<f64>, SysidError> {
+        if effects.is_empty() {
+            return Ok(Mat::zeros(self.rows(), 0));
+        }
+        let cols = self.per_record(|record| {
+            self.sensor
+                .regressors(record, channel, effects)
+                .map_err(sensor_error)
+        })?;
+        let first = self.first_sample();
+        Ok(Mat::from_fn(self.rows(), cols.len(), |i, j| {
+            cols[j][first + i]
+        }))
+    }
+
     /// The regressors of channel `channel` on the rows, as an
     /// `rows × effects` matrix.
     pub fn effect_matrix(

@@ -328,4 +328,19 @@ pub trait Sensor: Clone + Sync {
         kappa: &[f64],
         operating: &OperatingStats,
     ) -> Separation<Self::Axis>;
+
+    /// What a suggestion of `effect` on channel `channel` rests on that its
+    /// p-value does not say: each a sentence the diagnosis prints beside it
+    /// (in the terminal, the JSON's `caveats` and the report). `records`
+    /// holds each diagnosed record (calibrated) with the samples analysed.
+    /// None by default.
+    fn caveats(
+        &self,
+        records: &[(&Signals, Vec<usize>)],
+        channel: usize,
+        effect: &Self::Effect,
+    ) -> Vec<String> {
+        let _ = (records, channel, effect);
+        Vec::new()
+    }
 }

@@ -128,10 +128,12 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     Ok(())
 }
 
-/// Why an added effect's coefficient in the rounds is not the one the final
-/// table stores: two estimates of one effect, on other rows and with other
-/// things fitted alongside (one estimate is issue 23's).
-const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, from the residual the model left on every row; the model below stores and compensates with the fit's, from its training rows only with the network partialled out: two estimates of one effect, so they differ";
+/// Which of an added effect's two coefficients is which: the round's (the
+/// diagnosis's screening estimate) and the final table's (the one stored),
+/// both from every row of the record by cross-fitted partialling (issue 23
+/// §3), so they agree within their intervals; the stored one's interval
+/// also holds the spread over its three cuts.
+const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, cross-fitted on the record's two halves; the model below stores and compensates with the fit's, cross-fitted on the same rows (every row) over 4, 6 and 8 alternating spans, their spread in its interval: one effect estimated on the same rows, so the two agree within their intervals";
 
 /// A round's steps as lines that stay on the terminal (a round over several
 /// records takes tens of seconds), and the current one on the spinner;
@@ -214,6 +216,11 @@ pub fn print_round<C: std::fmt::Display>(
                     format!("{} told them apart", sep.separated_by.join(", "))
                 }
             );
+        }
+    }
+    for x in &r.added {
+        for caveat in &x.caveats {
+            println!("    caveat on {}={}: {caveat}", x.channel, x.effect);
         }
     }
     let rms: Vec<String> = r

@@ -116,6 +116,24 @@ impl CompensationModel {
         Ok(std::array::from_fn(|_| out.next().unwrap_or_default()))
     }
 
+    /// What compensation subtracts from each unfiltered output, deg/h, in
+    /// X, X1, Y, Y1, Z, Z1 order: [`CompensationModel::predict`], its network
+    /// part faded outside the training range, with the
+    /// effects unfiltered (θ·z, [`sysid::Model::effects_above_band`]); the
+    /// onboard evaluator computes the same.
+    pub fn compensation(&self, prepared: &Prepared) -> Result<[Vec<f64>; 6], DtgVibError> {
+        let above = self.inner.effects_above_band(prepared.inner())?;
+        // The network part faded outside the training range, as compensate fades it.
+        let predicted = sysid::operating::fade::predict_faded(&self.inner, prepared.inner())?.predicted;
+        Ok(std::array::from_fn(|k| {
+            predicted[k]
+                .iter()
+                .zip(&above[k])
+                .map(|(p, a)| p + a)
+                .collect()
+        }))
+    }
+
     /// Of several records, the one that only validated (`--validate-on`).
     pub fn validated_on(&self) -> Option<&str> {
         self.inner.validated_on()

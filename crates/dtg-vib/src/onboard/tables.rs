@@ -120,7 +120,12 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
             .transpose()
             .map_err(|e| ExportError::Tables(e.to_string()))
     };
-    let out_filter = design(&pre.filter)?;
+    // The effects are subtracted unfiltered (θ·z, as the batch
+    // compensation does): their coefficients were estimated on the filtered
+    // output and regressors alike, and the filtered regressor would leave
+    // the effect's part above the cut-off in the output. The targets'
+    // filter is then nothing the evaluator runs.
+    let out_filter: Option<LowPass> = None;
     let in_filter = design(&pre.input_filter)?;
     let n_sections = out_filter.as_ref().map_or(0, |f| f.sections().len());
     let n_in_sections = in_filter.as_ref().map_or(0, |f| f.sections().len());

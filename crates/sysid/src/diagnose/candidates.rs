@@ -63,6 +63,7 @@ pub(super) fn rank_candidates<S: Sensor>(
     let mut ranking = rank(&cross.residual(y), &ranked, opts.rank);
     separate_groups(prepared.sensor(), ch, &mut ranking, &ranked, ctx);
     separate_by_record(prepared, cross, &mut ranking, &ranked, opts);
+    add_caveats(prepared, ch, &mut ranking, &ranked, cross);
     ranking.unexcited.extend(not_excited);
     Ok(Ranked { ranking, series })
 }
@@ -159,5 +160,41 @@ fn separate_by_record<S: Sensor>(
             .collect();
         c.record_separations =
             record_separations(column, &others, &positions, opts.rank.collinearity);
+    }
+}
+
+/// Each suggestion's caveats (the sensor's), from every diagnosed record
+/// and the samples of its analysed rows.
+fn add_caveats<S: Sensor>(
+    prepared: &Prepared<S>,
+    channel: usize,
+    ranking: &mut Ranking<S::Axis>,
+    ranked: &[(S::Effect, Vec<f64>)],
+    cross: &CrossFit<'_, S>,
+) {
+    if ranking.suggested.is_empty() {
+        return;
+    }
+    let rows = cross.rows();
+    let records: Vec<(&crate::Signals, Vec<usize>)> = prepared
+        .record_rows()
+        .into_iter()
+        .filter_map(|(_, range)| {
+            let (record, _) = prepared.locate(range.start);
+            let samples: Vec<usize> = rows
+                .iter()
+                .filter(|r| range.contains(r))
+                .map(|&r| prepared.locate(r).1)
+                .collect();
+            (!samples.is_empty()).then_some((record, samples))
+        })
+        .collect();
+    for c in ranking.candidates.iter_mut() {
+        if !ranking.suggested.contains(&c.effect) {
+            continue;
+        }
+        if let Some((e, _)) = ranked.iter().find(|(e, _)| e.id() == c.effect) {
+            c.caveats = prepared.sensor().caveats(&records, channel, e);
+        }
     }
 }

@@ -47,6 +47,9 @@ fn ranking_findings<A>(ranking: &Ranking<A>) -> Vec<String> {
                 c.coef_ci95[1],
                 c.p_value.map_or("n/a".into(), p_text)
             );
+            for caveat in &c.caveats {
+                s.push_str(&format!("; caveat: {caveat}"));
+            }
             match &c.separation {
                 Some(sep) => s.push_str(&format!(
                     "; cannot be told apart here from {}: {}",

@@ -58,6 +58,11 @@ pub struct Candidate<A = String> {
     /// apart (absent for one record).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub record_separations: Vec<super::RecordSeparation>,
+    /// For a suggestion: what it rests on that its p-value does not say
+    /// (the sensor's words, e.g. a regressor that sees a small part of the
+    /// vibration, or records of one vibration axis only); absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub caveats: Vec<String>,
 }
 
 /// A candidate the record does not excite (no variation on the validation rows).
@@ -294,6 +299,7 @@ fn single_candidates<E: Effect, A>(
                 alternatives: Vec::new(),
                 separation: None,
                 record_separations: Vec::new(),
+                caveats: Vec::new(),
                 collinear_with,
             }
         })

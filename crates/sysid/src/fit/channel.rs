@@ -215,12 +215,13 @@ fn check_effects<S: Sensor>(
 }
 
 /// One channel's network and effects, chosen and fitted on the windows
-/// `x_train` (rows `train` of the prepared windows `x`).
+/// `x_train` (rows `train` of the prepared windows `x`); the effects'
+/// coefficients estimated on rows `theta_rows`.
 pub(super) fn fit_channel<S: Sensor>(
     prepared: &Prepared<S>,
     x: MatRef<'_, f64>,
     x_train: &Mat<f64>,
-    train: &[usize],
+    (train, theta_rows): (&[usize], &[usize]),
     channel: usize,
     effects: &[S::Effect],
     settings: &FitSettings,
@@ -248,7 +249,11 @@ pub(super) fn fit_channel<S: Sensor>(
         (net, Vec::new())
     } else {
         let units: Vec<String> = effects.iter().map(Effect::unit).collect();
-        fit_partially_linear(x, &z, y, train, &units, settings, gap).map_err(fail)?
+        let rows = super::partial::Rows {
+            train,
+            theta: theta_rows,
+        };
+        fit_partially_linear(x, &z, y, rows, &units, settings, gap).map_err(fail)?
     };
     let width = model.widths().get(0);
     Ok(ChannelFit {

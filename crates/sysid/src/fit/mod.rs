@@ -83,7 +83,13 @@ pub fn fit_prepared<S: Sensor>(
         Some(name) => by_record_rows(prepared, name)?,
         None => split_rows(prepared, options.recipe.split)?,
     };
-    let mut model = fit_rows(prepared, &options.recipe, &train, &val, progress)?;
+    let mut model = fit_rows(
+        prepared,
+        &options.recipe,
+        (&train, &val),
+        Coef::AllRows,
+        progress,
+    )?;
     model.set_validated_on(options.validate_on.clone());
     Ok(model)
 }
@@ -120,7 +126,13 @@ pub(crate) fn record_names(records: &[(String, &Signals)]) -> Vec<String> {
 /// prediction from a model that did not see it.
 pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Model<S>, SysidError> {
     let (train, val) = model.rows(prepared)?;
-    fit_rows(prepared, &model.recipe(), &val, &train, &|_| {})
+    fit_rows(
+        prepared,
+        &model.recipe(),
+        (&val, &train),
+        Coef::AllRows,
+        &|_| {},
+    )
 }
 
 /// `model`'s recipe fitted again on `records` with windows of `length`
@@ -136,7 +148,7 @@ pub fn refit_with_window<S: Sensor>(
     recipe.preprocess.window = crate::WindowSpec::new(signals, length)?;
     let prepared = Prepared::new_many(model.sensor(), records, &recipe.preprocess)?;
     let (train, val) = split_rows(&prepared, recipe.split)?;
-    let mut trial = fit_rows(&prepared, &recipe, &train, &val, &|_| {})?;
+    let mut trial = fit_rows(&prepared, &recipe, (&train, &val), Coef::AllRows, &|_| {})?;
     trial.set_records(record_names(records));
     Ok(trial)
 }
@@ -197,11 +209,18 @@ pub fn leave_one_record_out<S: Sensor>(
     let mut out: Vec<Vec<RecordScore>> = vec![Vec::new(); prepared.sensor().channels().len()];
     for (name, _) in prepared.record_rows() {
         let (train, val) = by_record_rows(prepared, name)?;
-        let m = fit_rows(prepared, &options.recipe, &train, &val, &|_| {}).map_err(|e| {
-            SysidError::InRecord {
-                record: format!("leaving out {name}"),
-                source: Box::new(e),
-            }
+        // The left-out record judges the model: its rows estimate nothing,
+        // not even the effects' coefficients.
+        let m = fit_rows(
+            prepared,
+            &options.recipe,
+            (&train, &val),
+            Coef::TrainingRows,
+            &|_| {},
+        )
+        .map_err(|e| SysidError::InRecord {
+            record: format!("leaving out {name}"),
+            source: Box::new(e),
         })?;
         for (k, c) in m.channels().iter().enumerate() {
             out[k].push(RecordScore {
@@ -213,14 +232,29 @@ pub fn leave_one_record_out<S: Sensor>(
     Ok(out)
 }
 
+/// Which rows estimate the effects' coefficients.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Coef {
+    /// Training and validation rows of every record given: the estimate
+    /// the diagnosis makes (cross-fitted partialling over the whole
+    /// record), so the model stores one estimate of each coefficient, not a
+    /// noisier one from half the rows. A few coefficients estimated on the
+    /// validation rows barely flatter the validation rms; the network, which
+    /// could, still sees only the training rows.
+    AllRows,
+    /// Training rows only: where the validation rows judge a transfer
+    /// (leaving a record out).
+    TrainingRows,
+}
+
 /// A recipe fitted on explicit training and validation rows of data
 /// prepared with its pre-processing (the mirror trains on a model's
 /// validation rows; leaving a record out trains on the others).
 fn fit_rows<S: Sensor>(
     prepared: &Prepared<S>,
     recipe: &Recipe<S::Effect>,
-    train: &[usize],
-    val: &[usize],
+    (train, val): (&[usize], &[usize]),
+    coef: Coef,
     progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
     debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
@@ -235,6 +269,15 @@ fn fit_rows<S: Sensor>(
     let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
     inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
     let fit_on = if stride > 1 { &sel } else { &train };
+    let theta_rows: Vec<usize> = match coef {
+        Coef::AllRows => {
+            let mut all: Vec<usize> = train.iter().chain(&val).copied().collect();
+            all.sort_unstable();
+            all.dedup();
+            all.into_iter().step_by(stride).collect()
+        }
+        Coef::TrainingRows => fit_on.clone(),
+    };
     let x_fit = gather(x, fit_on);
     let fits: Vec<ChannelFit<S>> = (0..channels.len())
         .into_par_iter()
@@ -243,7 +286,7 @@ fn fit_rows<S: Sensor>(
                 prepared,
                 x,
                 &x_fit,
-                fit_on,
+                (fit_on, &theta_rows),
                 k,
                 recipe.effects_of(k),
                 settings,
