@@ -351,6 +351,11 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
         s(&calib),
         "--out",
         s(&model),
+        // Few centres: the harness allows each run 20 s on a loaded machine.
+        "--max-centres",
+        "8",
+        "--candidates",
+        "80",
     ]);
     assert_eq!(out.code, 0, "{}", out.stderr);
     assert!(out.stdout.contains("added g2=g_y"), "{}", out.stdout);
