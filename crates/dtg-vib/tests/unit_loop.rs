@@ -8,7 +8,9 @@
 //! takes `--unit` and refuses what is not observable in one line.
 //!
 //! Each CI test runs one fixed seed. The rates over seeds (false alarms on
-//! clean records, power, coverage) are the `#[ignore]`d test at the end:
+//! clean records, power, coverage) are the `#[ignore]`d test at the end
+//! (measured: no false alarm in 60 clean records, the hidden effects exactly
+//! in 60 of 60, coverage 77 of 80 intervals):
 //! `cargo test --release -p dtg-vib --test unit_loop -- --ignored --nocapture`.
 
 use cli_support::testing::{Binary, s, scratch_dir};
@@ -351,6 +353,11 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
         s(&calib),
         "--out",
         s(&model),
+        // Few centres: the harness allows each run 20 s on a loaded machine.
+        "--max-centres",
+        "8",
+        "--candidates",
+        "80",
     ]);
     assert_eq!(out.code, 0, "{}", out.stderr);
     assert!(out.stdout.contains("added g2=g_y"), "{}", out.stdout);
@@ -487,6 +494,14 @@ type ScenarioOf = fn(f64, u64, &[Hidden]) -> Scenario;
 /// The rates over seeds, per built-in unit: false alarms on clean twins
 /// (records with an effect added), power (runs finding exactly the hidden
 /// effects), and the 95% intervals' coverage of the truth.
+///
+/// Measured (20 seeds each, 60-s records, the loop's defaults):
+///
+/// | unit | false alarms (clean records with any suggestion) | exactly the hidden effects | 95% intervals covering the truth |
+/// |---|---|---|---|
+/// | tetra (g2=g_y 0.5, g3=temp 0.05) | 0/20 | 20/20 | 38/40 |
+/// | triad (gx=g_y 2.0, z test) | 0/20 | 20/20 | 19/20 |
+/// | dual-triad (gx2=g_x 0.5) | 0/20 | 20/20 | 20/20 |
 #[test]
 #[ignore = "statistical: 20 seeds per unit (UNIT_LOOP_SEEDS), minutes"]
 fn rates_over_seeds() {

@@ -103,29 +103,38 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
         }
         return Ok(());
     }
-    for (k, r) in e.rounds.iter().enumerate() {
-        print_round(k, r);
-    }
-    if e.converged {
-        println!(
-            "nothing new suggested: the loop stopped after {} round(s)",
-            e.rounds.len()
-        );
-    } else {
-        println!(
-            "stopped at --max-rounds {}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)",
-            a.max_rounds
-        );
-    }
-    if e.rounds.iter().any(|r| !r.added.is_empty()) {
-        println!("{WHICH_COEFFICIENT}");
-    }
+    print_rounds(&e.rounds, e.converged, a.max_rounds);
     print_fit(&e.model);
     println!("model: {} ({:.1} s)", f.out.display(), seconds);
     if let Some(p) = &page {
         println!("report: {}", p.display());
     }
     Ok(())
+}
+
+/// Every round, then why the loop stopped (and, when it added anything,
+/// which coefficient the final table holds).
+pub fn print_rounds<C: std::fmt::Display>(
+    rounds: &[sysid::explain::Round<C, nav_sensors::geometry::Axis>],
+    converged: bool,
+    max_rounds: u64,
+) {
+    for (k, r) in rounds.iter().enumerate() {
+        print_round(k, r);
+    }
+    if converged {
+        println!(
+            "nothing new suggested: the loop stopped after {} round(s)",
+            rounds.len()
+        );
+    } else {
+        println!(
+            "stopped at --max-rounds {max_rounds}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)"
+        );
+    }
+    if rounds.iter().any(|r| !r.added.is_empty()) {
+        println!("{WHICH_COEFFICIENT}");
+    }
 }
 
 /// Which of an added effect's two coefficients is which: the round's (the
@@ -170,7 +179,7 @@ struct ExplainReport<'a> {
 
 /// Round `k` (from 0): what it added, how each addition is told from its
 /// look-alikes, and the validation rms after it.
-pub fn print_round<C: std::fmt::Display>(
+fn print_round<C: std::fmt::Display>(
     k: usize,
     r: &sysid::explain::Round<C, nav_sensors::geometry::Axis>,
 ) {

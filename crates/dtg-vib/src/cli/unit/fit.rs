@@ -214,19 +214,7 @@ pub fn explain(
         return Ok(());
     }
     println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
-    for (k, r) in e.rounds.iter().enumerate() {
-        super::super::explain::print_round(k, r);
-    }
-    if e.converged {
-        println!(
-            "nothing new suggested: the loop stopped after {} round(s)",
-            e.rounds.len()
-        );
-    } else {
-        println!(
-            "stopped at --max-rounds {max_rounds}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)"
-        );
-    }
+    super::super::explain::print_rounds(&e.rounds, e.converged, max_rounds as u64);
     print_fit_channels(m.channels());
     println!("model: {} ({:.1} s)", a.out.display(), seconds);
     Ok(())

@@ -120,10 +120,7 @@ pub fn signals(records: &[(String, Record)]) -> Result<Vec<(String, Signals)>> {
         .collect()
 }
 
-/// Named signals as the loop borrows them.
-pub fn borrowed(named: &[(String, Signals)]) -> Vec<(String, &Signals)> {
-    named.iter().map(|(n, s)| (n.clone(), s)).collect()
-}
+pub use dtg_vib::paper_unit::borrowed;
 
 /// The unit's plug-in with its calibration file (checked against it) and
 /// rate reference.
