@@ -50,6 +50,7 @@ fn tables() -> Tables {
     for _ in 0..6 {
         words.extend([kind::LINEAR_G, 0, kind::QUADRATIC_G, 0]);
     }
+    words.extend([dtg_onboard::input::RAW, 0]); // the raw window, no smoother
     if words.len() % 2 == 1 {
         words.push(0);
     }

@@ -138,6 +138,11 @@ pub struct Preprocess {
     /// zero-phase.
     #[serde(default)]
     pub causal: bool,
+    /// What the networks read of the windows (`raw`: the window;
+    /// `statistics`: per signal the current sample, window mean and window
+    /// rms, in g). Absent in model files written before it: the window.
+    #[serde(default, skip_serializing_if = "sysid::ModelInput::is_raw")]
+    pub input: sysid::ModelInput,
 }
 
 impl Preprocess {
@@ -149,6 +154,7 @@ impl Preprocess {
             input_filter: self.input_filter,
             window: self.window.clone(),
             causal: self.causal,
+            input: self.input,
         }
     }
 
@@ -160,6 +166,7 @@ impl Preprocess {
             window: pre.window.clone(),
             rate_reference,
             causal: pre.causal,
+            input: pre.input,
         }
     }
 }

@@ -99,6 +99,25 @@ fn rich() -> &'static Path {
     })
 }
 
+/// A causal model on the statistics input (current sample, window mean and
+/// rms of ax, ay, az: 9 inputs) with an effect and the prediction smoother.
+fn statistics() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        fit(
+            "statistics.json",
+            &[
+                "--effects",
+                "g_S",
+                "--window-signals",
+                "ax,ay,az",
+                "--input",
+                "statistics",
+            ],
+        )
+    })
+}
+
 fn record() -> Record {
     Record::read_csv(sim().join("record.csv")).unwrap()
 }
@@ -128,7 +147,7 @@ fn step_against_batch(model_path: &Path) -> f64 {
 
 #[test]
 fn the_no_std_evaluator_equals_the_batch_pipeline() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let worst = step_against_batch(m);
         eprintln!("{}: largest |step − batch| = {worst:e} deg/h", m.display());
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
@@ -147,6 +166,16 @@ fn the_rich_model_uses_effects_extra_columns_and_two_signals() {
     assert_eq!(m.window_len(), 20);
     assert!(model.preprocess().input_filter.is_some());
     assert!(model.calibration().is_some());
+}
+
+#[test]
+fn the_statistics_model_reads_nine_inputs() {
+    // Guards the tests above: the statistics input is what they step.
+    let model = CompensationModel::load(statistics()).unwrap();
+    let t = dtg_vib::export::tables(&model).unwrap();
+    let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
+    assert_eq!(m.input_kind(), dtg_onboard::input::STATISTICS);
+    assert_eq!(m.input_dim(), 9);
 }
 
 #[test]
@@ -281,7 +310,7 @@ fn c_against_compensate(model: &Path, precision: &str) -> Option<f64> {
 
 #[test]
 fn the_exported_c_equals_compensate() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let Some(worst) = c_against_compensate(m, "f64") else {
             return;
         };
@@ -295,7 +324,7 @@ fn the_exported_c_equals_compensate() {
 
 #[test]
 fn the_f32_export_holds_to_a_thousandth_of_a_degree_per_hour() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let Some(worst) = c_against_compensate(m, "f32") else {
             return;
         };

@@ -45,6 +45,7 @@ pub mod example;
 pub mod explain;
 pub mod fit;
 pub mod inference;
+pub mod input;
 mod model;
 pub mod operating;
 mod prepared;
@@ -58,6 +59,7 @@ pub mod window;
 
 pub use error::SysidError;
 pub use fit::{FitStage, RecordScore, fit, fit_prepared, fit_records};
+pub use input::ModelInput;
 pub use model::{
     ChannelModel, ChannelModelOf, ChannelScores, INTERVAL_TOLERANCE, Model, ModelParts, score,
 };

@@ -261,7 +261,7 @@ impl<S: Sensor> Model<S> {
         if w.length() == 0 || w.signals().is_empty() {
             return Err("the window needs at least one sample of one signal".into());
         }
-        let dim = w.length() * w.signals().len();
+        let dim = self.preprocess.input.dim(w);
         for c in &self.channels {
             let ch = &c.channel;
             c.rbf
@@ -269,8 +269,9 @@ impl<S: Sensor> Model<S> {
                 .map_err(|e| format!("channel {ch}: {e}"))?;
             if c.rbf.dim() != dim {
                 return Err(format!(
-                    "channel {ch}: the network takes {} inputs but the window gives {} samples × {} signals = {dim}",
+                    "channel {ch}: the network takes {} inputs but the {} input of a window of {} samples × {} signals gives {dim}",
                     c.rbf.dim(),
+                    self.preprocess.input,
                     w.length(),
                     w.signals().len()
                 ));

@@ -85,7 +85,7 @@ impl<S: Sensor> Prepared<S> {
             )?);
         }
         let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
-        let windows = pre.window.build(&refs)?;
+        let windows = pre.input.build(&pre.window, &refs)?;
         Ok(Self {
             sensor: sensor.clone(),
             preprocess: pre.clone(),

@@ -42,6 +42,11 @@ pub struct FitArgs {
     /// Windowed signals, comma-separated (accelerometer axes or extra columns).
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
     pub window_signals: Vec<String>,
+    /// What the networks read of the windows: `raw` (the window itself, the
+    /// paper's) or `statistics` (per windowed signal: current sample, window
+    /// mean, window rms about the mean, in g: 3 inputs a signal).
+    #[arg(long, default_value = "raw", value_parser = ["raw", "statistics"])]
+    pub input: String,
     /// Training/validation split within each record: blocked (honest) or
     /// interleaved (the paper's); or by-record, with --validate-on.
     #[arg(long, default_value = "blocked")]
@@ -178,6 +183,7 @@ pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
             window: WindowSpec::new(a.window_signals.clone(), a.window)?,
             rate_reference,
             causal: a.causal,
+            input: a.input.parse()?,
         },
         effects,
         add,

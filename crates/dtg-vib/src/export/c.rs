@@ -2,7 +2,7 @@
 //! `step`), `dtg_model.c` (the tables as `static const` arrays and the same
 //! step as the `dtg-onboard` evaluator) and `main.c` (record CSV on standard
 //! input to the compensated CSV of `dtg-vib compensate` on standard output).
-//! Only `math.h` (`exp`, `fabs`); no dynamic memory, no globals but the
+//! Only `math.h` (`exp`, `fabs`, `sqrt`); no dynamic memory, no globals but the
 //! tables.
 
 use crate::model::CompensationModel;
@@ -119,6 +119,10 @@ struct Layout {
     kinds: Vec<usize>,
     indices: Vec<usize>,
     dim: usize,
+    /// The network's input kind (`dtg_onboard::input`) and the prediction
+    /// smoother's sections.
+    input: usize,
+    n_smooth: usize,
     dt: f64,
     frames: Vec<f64>,
     ls: Vec<f64>,
@@ -126,6 +130,7 @@ struct Layout {
     accel_cal: Vec<f64>,
     out_sos: Vec<f64>,
     in_sos: Vec<f64>,
+    smooth_sos: Vec<f64>,
     bias: Vec<f64>,
     coeff: Vec<f64>,
     params: Vec<f64>,
@@ -157,7 +162,13 @@ impl Layout {
         );
         let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
         let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-        let dim = l * n_signals;
+        let after = words(
+            b,
+            dtg_onboard::FIXED_HEADER_WORDS + n_signals + 2 * total_effects,
+            2,
+        );
+        let (input, n_smooth) = (after[0], after[1]);
+        let dim = m.input_dim();
         let mut at = 4 * hw;
         let mut take = |n: usize| {
             let v = floats(b, at, n);
@@ -174,6 +185,7 @@ impl Layout {
         };
         let out_sos = take(7 * n_sections);
         let in_sos = take(7 * n_in_sections);
+        let smooth_sos = take(7 * n_smooth);
         let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
             (vec![], vec![], vec![], vec![], vec![], vec![]);
         let mut param_offset = Vec::new();
@@ -209,6 +221,8 @@ impl Layout {
             kinds,
             indices,
             dim,
+            input,
+            n_smooth,
             dt,
             frames,
             ls,
@@ -216,6 +230,7 @@ impl Layout {
             accel_cal,
             out_sos,
             in_sos,
+            smooth_sos,
             bias,
             coeff,
             params,
@@ -231,15 +246,16 @@ impl Layout {
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
     let layout = Layout::read(&t.bytes)?;
-    let (real, exp, fabs) = match precision {
-        Precision::F64 => ("double", "exp", "fabs"),
-        Precision::F32 => ("float", "expf", "fabsf"),
+    let (real, exp, fabs, sqrt) = match precision {
+        Precision::F64 => ("double", "exp", "fabs", "sqrt"),
+        Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
     };
     let mut source = tables_c(&layout);
     source.push_str(
         &STEP_C
             .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}(")),
+            .replace("FABS(", &format!("{fabs}("))
+            .replace("SQRT(", &format!("{sqrt}(")),
     );
     Ok(CSources {
         header: header_h(&layout, &t.extra, real),
@@ -257,6 +273,8 @@ fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
         n_sections,
         n_in_sections,
         total_effects,
+        input,
+        n_smooth,
         ..
     } = layout;
     let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
@@ -283,6 +301,11 @@ typedef {real} dtg_real;
 #define DTG_N_SECTIONS {n_sections}
 #define DTG_N_IN_SECTIONS {n_in_sections}
 #define DTG_N_EFFECTS {total_effects}
+/* The network's input: 0 = the window, 1 = per signal its current sample,
+ * window mean and window rms about the mean. */
+#define DTG_INPUT_STATS {input}
+/* Second-order sections of the prediction smoother (network part only). */
+#define DTG_N_SMOOTH_SECTIONS {n_smooth}
 /* Extra columns, in the order dtg_step takes them. */
 #define DTG_EXTRA_NAMES {{{extra_names}}}
 
@@ -297,6 +320,9 @@ typedef struct {{
     dtg_real out_z[2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1];
     dtg_real in_z[2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1];
     dtg_real ring[DTG_N_SIGNALS][2 * DTG_WINDOW_LEN];
+    dtg_real sums[2 * DTG_N_SIGNALS];     /* running sum and sum of squares per signal */
+    dtg_real feat[3 * DTG_N_SIGNALS];     /* the statistics inputs */
+    dtg_real smooth_z[12 * DTG_N_SMOOTH_SECTIONS + 1];
 }} dtg_state;
 
 void dtg_init(dtg_state *s);
@@ -328,6 +354,7 @@ fn tables_c(layout: &Layout) -> String {
         accel_cal,
         out_sos,
         in_sos,
+        smooth_sos,
         signal_codes,
         n_effects,
         kinds,
@@ -360,6 +387,9 @@ static const dtg_real GYRO_CAL[6 * 19 + 1] = {gyro_cal};
 static const dtg_real ACCEL_CAL[3 * 8 + 1] = {accel_cal};
 static const dtg_real OUT_SOS[7 * DTG_N_SECTIONS + 1] = {out_sos};
 static const dtg_real IN_SOS[7 * DTG_N_IN_SECTIONS + 1] = {in_sos};
+#if DTG_N_SMOOTH_SECTIONS > 0
+static const dtg_real SMOOTH_SOS[7 * DTG_N_SMOOTH_SECTIONS + 1] = {smooth_sos};
+#endif
 static const int SIGNAL_CODE[DTG_N_SIGNALS] = {codes};
 static const int N_EFFECTS[6] = {n_eff};
 static const int EFFECT_OFFSET[6] = {e_off};
@@ -382,6 +412,7 @@ static const dtg_real CENTRES[{nc}] = {centres};
         accel_cal = arr(accel_cal),
         out_sos = arr(out_sos),
         in_sos = arr(in_sos),
+        smooth_sos = arr(smooth_sos),
         codes = iarr(signal_codes),
         n_eff = iarr(n_effects),
         e_off = iarr(&e_offsets),
@@ -415,6 +446,9 @@ void dtg_init(dtg_state *s) {
     for (i = 0; i < 2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1; i++) s->in_z[i] = R(0);
     for (i = 0; i < DTG_N_SIGNALS; i++)
         for (j = 0; j < 2 * DTG_WINDOW_LEN; j++) s->ring[i][j] = R(0);
+    for (i = 0; i < 2 * DTG_N_SIGNALS; i++) s->sums[i] = R(0);
+    for (i = 0; i < 3 * DTG_N_SIGNALS; i++) s->feat[i] = R(0);
+    for (i = 0; i < 12 * DTG_N_SMOOTH_SECTIONS + 1; i++) s->smooth_z[i] = R(0);
 }
 
 /* One value through a cascade of second-order sections (transposed direct
@@ -569,6 +603,22 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
         int code = SIGNAL_CODE[sig];
         dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
         v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
+        {
+            /* Running sums: the sample L steps back (0 while the window
+             * fills) leaves as this one enters. */
+            dtg_real old = s->ring[sig][s->ring_pos];
+            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
+            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
+#if DTG_INPUT_STATS
+            {
+                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
+                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
+                s->feat[3 * sig] = v;
+                s->feat[3 * sig + 1] = mean;
+                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
+            }
+#endif
+        }
         s->ring[sig][s->ring_pos] = v;
         s->ring[sig][s->ring_pos + l] = v;
     }
@@ -576,11 +626,26 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
     s->processed += 1;
     if (s->processed < l) return 0;
     for (c = 0; c < 6; c++) {
-        dtg_real y = BIAS[c] + linear[c];
+        /* Without a smoother the kernels add onto bias and effects. */
+        dtg_real net = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c];
         for (k = 0; k < N_CENTRES[c]; k++) {
             int kk = CENTRE_OFFSET[c] + k;
             const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
             dtg_real r2 = R(0), beta = WIDTH[kk];
+#if DTG_INPUT_STATS
+            {
+                dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
+                const dtg_real *x = s->feat;
+                for (i = 0; i + 4 <= DTG_DIM; i += 4) {
+                    d = x[i] - cen[i]; acc0 += d * d;
+                    d = x[i + 1] - cen[i + 1]; acc1 += d * d;
+                    d = x[i + 2] - cen[i + 2]; acc2 += d * d;
+                    d = x[i + 3] - cen[i + 3]; acc3 += d * d;
+                }
+                for (; i < DTG_DIM; i++) { d = x[i] - cen[i]; tail += d * d; }
+                r2 = (acc0 + acc1) + (acc2 + acc3) + tail;
+            }
+#else
             for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
                 const dtg_real *x = s->ring[sig] + s->ring_pos;
                 dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
@@ -594,9 +659,16 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
                 r2 += (acc0 + acc1) + (acc2 + acc3) + tail;
                 cen += l;
             }
-            y += EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
+#endif
+            net += EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
         }
-        rate_deg_h[c] = (double)(g[c] - y);
+#if DTG_N_SMOOTH_SECTIONS > 0
+        /* The prediction smoother, on the network part only. */
+        net = BIAS[c] + linear[c]
+              + cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
+                        net, s->processed == l);
+#endif
+        rate_deg_h[c] = (double)(g[c] - net);
     }
     for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
     return 1;

@@ -184,11 +184,22 @@ fn header_words(
         }
         params.push(p);
     }
+    words.extend(input_and_smoother_words(model));
     if !words.len().is_multiple_of(2) {
         words.push(0);
     }
     words[2] = words.len() as u32;
     Ok((words, params))
+}
+
+/// The words after the effect pairs: the network's input kind and the
+/// prediction smoother's sections.
+fn input_and_smoother_words(model: &CompensationModel) -> [u32; 2] {
+    let input = match model.preprocess().input {
+        sysid::ModelInput::Raw => dtg_onboard::input::RAW,
+        sysid::ModelInput::Statistics => dtg_onboard::input::STATISTICS,
+    };
+    [input, 0]
 }
 
 /// The sample interval, the channel frames, the least-squares rate
