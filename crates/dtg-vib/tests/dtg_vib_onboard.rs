@@ -113,6 +113,8 @@ fn statistics() -> &'static Path {
                 "ax,ay,az",
                 "--input",
                 "statistics",
+                "--smoother",
+                "0.2",
             ],
         )
     })
@@ -176,6 +178,7 @@ fn the_statistics_model_reads_nine_inputs() {
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert_eq!(m.input_kind(), dtg_onboard::input::STATISTICS);
     assert_eq!(m.input_dim(), 9);
+    assert_eq!(m.n_smoother_sections(), 1);
 }
 
 #[test]

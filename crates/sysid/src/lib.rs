@@ -54,6 +54,7 @@ mod recipe;
 pub mod residuals;
 mod sensor;
 mod signals;
+pub mod smoother;
 pub mod split;
 pub mod window;
 
@@ -70,4 +71,5 @@ pub use sensor::{
     Candidacy, Effect, Named, OperatingStats, Response, Sensor, SensorError, Separation, Wording,
 };
 pub use signals::{Signals, SignalsError};
+pub use smoother::Smoother;
 pub use window::{WindowError, WindowSpec, Windows};

@@ -3,6 +3,7 @@
 //! zero-phase or causal filtering.
 
 use crate::input::ModelInput;
+use crate::smoother::Smoother;
 use crate::window::WindowSpec;
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +66,10 @@ pub struct Preprocess {
     /// files written before the choice: the raw window.
     #[serde(default, skip_serializing_if = "ModelInput::is_raw")]
     pub input: ModelInput,
+    /// Low-pass of the network part of each prediction ([`Smoother`]), or
+    /// none (absent in files written before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub smoother: Option<Smoother>,
 }
 
 impl Default for Preprocess {
@@ -77,6 +82,7 @@ impl Default for Preprocess {
             window: WindowSpec::paper(),
             causal: false,
             input: ModelInput::Raw,
+            smoother: None,
         }
     }
 }

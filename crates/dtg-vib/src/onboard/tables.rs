@@ -128,6 +128,7 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
     let mut f = geometry_and_calibration(model);
     f.extend(sections(&out_filter));
     f.extend(sections(&in_filter));
+    f.extend(sections(&smoother_filter(model)));
     channel_floats(model, &params, &mut f)?;
     let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
     for w in &words {
@@ -199,7 +200,16 @@ fn input_and_smoother_words(model: &CompensationModel) -> [u32; 2] {
         sysid::ModelInput::Raw => dtg_onboard::input::RAW,
         sysid::ModelInput::Statistics => dtg_onboard::input::STATISTICS,
     };
-    [input, 0]
+    [
+        input,
+        smoother_filter(model).map_or(0, |f| f.sections().len()) as u32,
+    ]
+}
+
+/// The prediction smoother's filter, as the loop designs it.
+fn smoother_filter(model: &CompensationModel) -> Option<LowPass> {
+    let s = model.preprocess().smoother?;
+    s.design(model.dt_s()).ok()
 }
 
 /// The sample interval, the channel frames, the least-squares rate
