@@ -318,7 +318,8 @@ impl Judge {
                     .map_err(|e| adev_error(&e))?;
                 for (i, a) in adev.iter().enumerate() {
                     let ratio = a / before[i];
-                    if !(ratio <= c.worst_adev_ratio) {
+                    // The first ratio replaces the NaN start.
+                    if c.worst_adev_ratio.is_nan() || ratio > c.worst_adev_ratio {
                         c.worst_adev_ratio = ratio;
                         c.worst_channel = self.names[k].clone();
                         c.worst_tau_s = run.factors[i] as f64 * self.dt_s;
