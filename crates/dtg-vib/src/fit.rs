@@ -168,7 +168,18 @@ pub fn fit_records(
     if records.len() > 1 {
         model = model.with_records(records.iter().map(|(n, _)| n.clone()).collect());
     }
-    Ok((CompensationModel::of(model), prepared))
+    let model = CompensationModel::of(model);
+    // The records as the model reads them: its chosen input may not be
+    // the one they were prepared with.
+    let input = model.preprocess().input;
+    let prepared = match prepared.preprocess().input == input {
+        true => prepared,
+        false => Prepared::of(
+            prepared.inner().with_input(input)?,
+            model.preprocess().clone(),
+        )?,
+    };
+    Ok((model, prepared))
 }
 
 /// Each channel's validation rms on each record of `prepared`, for the

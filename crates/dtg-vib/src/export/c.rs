@@ -565,11 +565,26 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 }
 #endif
 
+/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
+ * the same way) keep the adds independent. */
+static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
+    dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
+    int i;
+    for (i = 0; i + 4 <= n; i += 4) {
+        d = x[i] - cen[i]; acc0 += d * d;
+        d = x[i + 1] - cen[i + 1]; acc1 += d * d;
+        d = x[i + 2] - cen[i + 2]; acc2 += d * d;
+        d = x[i + 3] - cen[i + 3]; acc3 += d * d;
+    }
+    for (; i < n; i++) { d = x[i] - cen[i]; tail += d * d; }
+    return (acc0 + acc1) + (acc2 + acc3) + tail;
+}
+
 /* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real a[3], g[6], linear[6];
     int first = s->processed == 0;
-    int i, k, c, e, sig;
+    int k, c, e, sig;
     const int l = DTG_WINDOW_LEN;
     for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
 #if DTG_CALIBRATED
@@ -633,30 +648,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
             const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
             dtg_real r2 = R(0), beta = WIDTH[kk];
 #if DTG_INPUT_STATS
-            {
-                dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
-                const dtg_real *x = s->feat;
-                for (i = 0; i + 4 <= DTG_DIM; i += 4) {
-                    d = x[i] - cen[i]; acc0 += d * d;
-                    d = x[i + 1] - cen[i + 1]; acc1 += d * d;
-                    d = x[i + 2] - cen[i + 2]; acc2 += d * d;
-                    d = x[i + 3] - cen[i + 3]; acc3 += d * d;
-                }
-                for (; i < DTG_DIM; i++) { d = x[i] - cen[i]; tail += d * d; }
-                r2 = (acc0 + acc1) + (acc2 + acc3) + tail;
-            }
+            r2 = sq_dist(s->feat, cen, DTG_DIM);
 #else
             for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                const dtg_real *x = s->ring[sig] + s->ring_pos;
-                dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
-                for (i = 0; i + 4 <= l; i += 4) {
-                    d = x[i] - cen[i]; acc0 += d * d;
-                    d = x[i + 1] - cen[i + 1]; acc1 += d * d;
-                    d = x[i + 2] - cen[i + 2]; acc2 += d * d;
-                    d = x[i + 3] - cen[i + 3]; acc3 += d * d;
-                }
-                for (; i < l; i++) { d = x[i] - cen[i]; tail += d * d; }
-                r2 += (acc0 + acc1) + (acc2 + acc3) + tail;
+                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
                 cen += l;
             }
 #endif

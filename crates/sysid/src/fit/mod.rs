@@ -104,6 +104,12 @@ pub fn fit_records<S: Sensor>(
     let prepared = Prepared::new_many(sensor, records, &options.recipe.preprocess)?;
     let mut model = fit_prepared(&prepared, options, progress)?;
     model.set_records(record_names(records));
+    // The records as the model reads them (a choice may have taken another input).
+    let input = model.preprocess().input;
+    let prepared = match prepared.preprocess().input == input {
+        true => prepared,
+        false => prepared.with_input(input)?,
+    };
     Ok((model, prepared))
 }
 
