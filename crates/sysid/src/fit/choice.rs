@@ -129,7 +129,7 @@ pub(super) fn fit_choosing<S: Sensor>(
     let judge = Judge::new(prepared, val)?;
     let mut candidates = Vec::new();
     let mut models = Vec::new();
-    for &input in &choice.inputs {
+    for (i, &input) in choice.inputs.iter().enumerate() {
         let p = if input == prepared.preprocess().input {
             prepared.clone()
         } else {
@@ -138,7 +138,9 @@ pub(super) fn fit_choosing<S: Sensor>(
         let mut r = recipe.clone();
         r.preprocess.input = input;
         r.preprocess.smoother = None;
-        let model = fit_rows_fixed(&p, &r, train, val, progress)?;
+        // Each channel is reported done once: by the first input's fit.
+        let quiet: super::Progress<'_, S::Channel> = &|_| {};
+        let model = fit_rows_fixed(&p, &r, train, val, if i == 0 { progress } else { quiet })?;
         let unsmoothed = model.predict(&p)?;
         let z: Vec<_> = model
             .channels()
