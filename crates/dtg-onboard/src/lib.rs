@@ -53,8 +53,9 @@ use fastexp::exp_neg;
 
 /// The first four bytes of the tables.
 pub const MAGIC: [u8; 4] = *b"DTGO";
-/// The layout version this crate reads and `dtg-vib export` writes.
-pub const VERSION: u32 = 1;
+/// The layout version this crate reads and `dtg-vib export` writes
+/// (2: the network's input kind and the prediction smoother).
+pub const VERSION: u32 = 2;
 
 /// Fixed header words before the per-model lists (see docs/formats.md).
 pub const FIXED_HEADER_WORDS: usize = 21;
@@ -72,6 +73,13 @@ pub const FLAG_FADE: u32 = 2;
 /// the scale (g), the tolerance and the width (in scales), the smoother's
 /// gain α; each channel's network mean (deg/h).
 pub const FADE_FLOATS: usize = 12 + 4 + 6;
+/// Network input kinds of the tables (the word after the effect pairs).
+pub mod input {
+    /// The window itself: L samples per signal, oldest first.
+    pub const RAW: u32 = 0;
+    /// Per signal: current sample, window mean, window rms about the mean.
+    pub const STATISTICS: u32 = 1;
+}
 
 /// Effect kinds of the tables.
 pub mod kind {
@@ -236,6 +244,17 @@ pub struct Model<'a> {
     /// State of the fade: a doubled ring of 2L per axis, the six held
     /// network parts, the smoothed weight.
     fade_state: usize,
+    /// The network's input ([`input`]) and its dimension.
+    input: u32,
+    dim: usize,
+    /// Sections of the prediction smoother (0: none), their floats, and the
+    /// state: per channel two per section.
+    n_smooth_sections: usize,
+    smoother: usize,
+    smooth_state: usize,
+    /// Running sums s₁, s₂ per signal, then the statistics inputs (3 per signal).
+    sums: usize,
+    features: usize,
 }
 
 impl<'a> Model<'a> {
@@ -293,11 +312,18 @@ impl<'a> Model<'a> {
                 w += 2;
             }
         }
+        let input = word(bytes, w)?;
+        let dim = match input {
+            input::RAW => window_len * n_signals,
+            input::STATISTICS => 3 * n_signals,
+            _ => return Err(Error::Header { word: w }),
+        };
+        let n_smooth_sections = word(bytes, w + 1)? as usize;
+        w += 2;
         if header_words < w || !header_words.is_multiple_of(2) {
             return Err(Error::Header { word: 2 });
         }
         let calibrated = flags & FLAG_CALIBRATION != 0;
-        let dim = window_len * n_signals;
         // Payload offsets, in bytes.
         let mut at = 4 * header_words;
         let mut take = |n: usize| {
@@ -315,6 +341,7 @@ impl<'a> Model<'a> {
         };
         let out_filter = take(SECTION * n_sections);
         let in_filter = take(SECTION * n_in_sections);
+        let smoother = take(SECTION * n_smooth_sections);
         let mut state = PENDING_EXTRA + n_extra;
         for (c, ch) in channels.iter_mut().enumerate() {
             ch.bias = take(1);
@@ -342,6 +369,14 @@ impl<'a> Model<'a> {
         if fade.is_some() {
             state += 2 * window_len * 3 + 6 + 1;
         }
+        let smooth_state = state;
+        state += 6 * 2 * n_smooth_sections;
+        let sums = state;
+        state += 2 * n_signals;
+        let features = state;
+        if input == input::STATISTICS {
+            state += 3 * n_signals;
+        }
         Ok(Self {
             bytes: &bytes[..need],
             calibrated,
@@ -364,6 +399,13 @@ impl<'a> Model<'a> {
             rings,
             fade,
             fade_state,
+            input,
+            dim,
+            n_smooth_sections,
+            smoother,
+            smooth_state,
+            sums,
+            features,
         })
     }
 
@@ -407,7 +449,7 @@ impl<'a> Model<'a> {
     /// weights counted from the tables, the calibration's Newton steps and
     /// the regressors estimated per operation.
     pub fn flops_per_step(&self) -> usize {
-        let dim = self.window_len * self.n_signals;
+        let dim = self.dim;
         let mut f = 0;
         if self.calibrated {
             // Triad: 3 passes × 3 axes × 4 Newton steps of ~25 flops.
@@ -426,12 +468,31 @@ impl<'a> Model<'a> {
             // smoothstep, the smoother, one hold per channel.
             f += 3 * (4 * self.window_len + 12) + 20 + 6 * 5;
         }
+        f += 6 * 9 * self.n_smooth_sections;
+        if self.input == input::STATISTICS {
+            f += 12 * self.n_signals;
+        }
         f + 9 * self.n_in_sections * self.n_signals
     }
 
     /// Whether the tables fade the network part outside the training range.
     pub fn fades(&self) -> bool {
         self.fade.is_some()
+    }
+
+    /// The network's input kind ([`input`]).
+    pub fn input_kind(&self) -> u32 {
+        self.input
+    }
+
+    /// The network's input dimension.
+    pub fn input_dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Second-order sections of the prediction smoother (0: none).
+    pub fn n_smoother_sections(&self) -> usize {
+        self.n_smooth_sections
     }
 
     #[inline(always)]
@@ -642,8 +703,22 @@ impl<'m, 's> Evaluator<'m, 's> {
             let s0 = m.in_state + 2 * m.n_in_sections * s;
             let v = cascade(&m, m.in_filter, m.n_in_sections, &mut st[s0..], v, first);
             let r = m.rings + 2 * l * s;
+            // The running sums: the sample L steps back (0 while the
+            // window fills) leaves as this one enters (sysid::input).
+            let old = st[r + self.ring_pos];
+            let sum = m.sums + 2 * s;
+            st[sum] = (st[sum] + v) - old;
+            st[sum + 1] = (st[sum + 1] + v * v) - old * old;
             st[r + self.ring_pos] = v;
             st[r + self.ring_pos + l] = v;
+            if m.input == input::STATISTICS {
+                let mean = st[sum] / l as f64;
+                let var = st[sum + 1] / l as f64 - mean * mean;
+                let f = m.features + 3 * s;
+                st[f] = v;
+                st[f + 1] = mean;
+                st[f + 2] = if var > 0.0 { sqrt(var) } else { 0.0 };
+            }
         }
         if m.fade.is_some() {
             let r = m.fade_state;
@@ -667,26 +742,48 @@ impl<'m, 's> Evaluator<'m, 's> {
             error_deg_h: [0.0; 6],
             accel_g: a,
         };
+        let first_prediction = self.processed == l as u64;
         for (c, ch) in m.channels.iter().enumerate() {
-            let mut y = m.f(ch.bias) + linear[c];
+            // Without a smoother the kernels add onto bias and effects, in
+            // the order tables of layout version 1 were evaluated.
+            let smoothed = m.n_smooth_sections > 0;
+            let mut y = if smoothed {
+                0.0
+            } else {
+                m.f(ch.bias) + linear[c]
+            };
             let mut net = 0.0;
             let mut centre = ch.centres;
             for k in 0..ch.n_centres {
                 let mut r2 = 0.0;
-                for s in 0..m.n_signals {
-                    let win = &st[m.rings + 2 * l * s + self.ring_pos..][..l];
-                    r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
-                    centre += 8 * l;
+                if m.input == input::STATISTICS {
+                    let x = &st[m.features..m.features + m.dim];
+                    r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
+                    centre += 8 * m.dim;
+                } else {
+                    for s in 0..m.n_signals {
+                        let win = &st[m.rings + 2 * l * s + self.ring_pos..][..l];
+                        r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
+                        centre += 8 * l;
+                    }
                 }
                 let beta = m.f(ch.widths + 8 * k);
                 let term = exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k);
                 y += term;
                 net += term;
             }
+            // The prediction smoother, on the network part only.
+            if smoothed {
+                let s0 = m.smooth_state + 2 * m.n_smooth_sections * c;
+                let n = m.n_smooth_sections;
+                net = cascade(&m, m.smoother, n, &mut st[s0..], net, first_prediction);
+                y = m.f(ch.bias) + linear[c] + net;
+            }
             if let (Some(w), Some(at)) = (weight, m.fade) {
-                // The held network part: the network itself at full weight,
-                // else moved toward it by the weight; a record's first
-                // output starts from the network's training mean.
+                // The held network part (after the smoother): the network
+                // itself at full weight, else moved toward it by the weight;
+                // a record's first output starts from the network's training
+                // mean.
                 let h = m.fade_state + 6 * l + c;
                 let before = if self.processed == l as u64 {
                     m.f(at + 8 * (16 + c))
@@ -987,12 +1084,12 @@ fn abs(x: f64) -> f64 {
 /// Tables of a small model for the examples: no calibration, one centre,
 /// a 4-sample window of `az`, no filters.
 #[doc(hidden)]
-pub fn doc_tables() -> [u8; 4 * 22 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)] {
-    let mut b = [0u8; 4 * 22 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)];
-    let words: [u32; 22] = [
+pub fn doc_tables() -> [u8; 4 * 24 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)] {
+    let mut b = [0u8; 4 * 24 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)];
+    let words: [u32; 24] = [
         u32::from_le_bytes(MAGIC),
         VERSION,
-        22,
+        24,
         0,
         0,
         0,
@@ -1012,11 +1109,13 @@ pub fn doc_tables() -> [u8; 4 * 22 + 8 * (1 + 54 + 18 + 6 * 3 + 6 * 4)] {
         1,
         1,
         2,
+        input::RAW,
+        0,
     ];
     for (i, w) in words.iter().enumerate() {
         b[4 * i..4 * i + 4].copy_from_slice(&w.to_le_bytes());
     }
-    let mut at = 4 * 22;
+    let mut at = 4 * 24;
     let mut put = |v: f64| {
         b[at..at + 8].copy_from_slice(&v.to_le_bytes());
         at += 8;
@@ -1061,6 +1160,17 @@ mod tests {
     }
 
     #[test]
+    fn sqrt_is_within_two_ulps_of_the_library() {
+        let mut x = 1e-30f64;
+        while x < 1e30 {
+            let (got, want) = (sqrt(x), x.sqrt());
+            let ulps = (got.to_bits() as i64 - want.to_bits() as i64).abs();
+            assert!(ulps <= 2, "x = {x}: {got} vs {want}");
+            x *= 1.37;
+        }
+    }
+
+    #[test]
     fn each_refusal_has_its_error() {
         let good = doc_tables();
         let m = Model::parse(&good).unwrap();
@@ -1071,11 +1181,11 @@ mod tests {
         assert_eq!(Model::parse(&bad).unwrap_err(), Error::Magic);
 
         let mut bad = good;
-        bad[4..8].copy_from_slice(&2u32.to_le_bytes());
+        bad[4..8].copy_from_slice(&(VERSION + 1).to_le_bytes());
         assert_eq!(
             Model::parse(&bad).unwrap_err(),
             Error::Version {
-                found: 2,
+                found: VERSION + 1,
                 supported: VERSION
             }
         );

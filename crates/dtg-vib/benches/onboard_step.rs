@@ -4,6 +4,11 @@
 //! channel (g_I and gg_IS). The tables are built here with seeded random
 //! centres (the cost of a step does not depend on their values).
 //!
+//! The same model on the statistics input (per axis: current sample, window
+//! mean, window rms: 9 inputs) with the 0.1-Hz prediction smoother is
+//! measured in the same run, and its step's ratio to the raw window's
+//! printed (a ratio taken in one run holds under load; absolute times do not).
+//!
 //! Measured: the `dtg-onboard` Rust evaluator (criterion), and the exported
 //! C compiled with `cc -O2 -std=c99` and timed in the same run by a small
 //! harness (median of 101 batches of 1000 steps); the ratio C/Rust is
@@ -29,7 +34,12 @@ const L: usize = 50;
 const SIGNALS: usize = 3;
 const STEPS: usize = 2000;
 
-fn tables() -> Tables {
+/// The tables of the benchmark's model on the network input `input`
+/// (`dtg_onboard::input`): the raw window has no smoother, the statistics
+/// input the 0.1-Hz prediction smoother.
+fn tables(input: u32) -> Tables {
+    let stats = input == dtg_onboard::input::STATISTICS;
+    let smoother = LowPass::butterworth(2, 0.1, 50.0).unwrap();
     let mut rng = Xoshiro256Plus::seed_from_u64(13);
     let lp = LowPass::butterworth(4, 5.0, 50.0).unwrap();
     let mut words: Vec<u32> = vec![
@@ -50,6 +60,7 @@ fn tables() -> Tables {
     for _ in 0..6 {
         words.extend([kind::LINEAR_G, 0, kind::QUADRATIC_G, 0]);
     }
+    words.extend([input, if stats { 1 } else { 0 }]);
     if words.len() % 2 == 1 {
         words.push(0);
     }
@@ -76,6 +87,11 @@ fn tables() -> Tables {
     for (s, z) in lp.sections().iter().zip(lp.steady_state()) {
         f.extend([s.b[0], s.b[1], s.b[2], s.a[0], s.a[1], z[0], z[1]]);
     }
+    if stats {
+        for (s, z) in smoother.sections().iter().zip(smoother.steady_state()) {
+            f.extend([s.b[0], s.b[1], s.b[2], s.a[0], s.a[1], z[0], z[1]]);
+        }
+    }
     for fr in &frames {
         f.push(rng.gen_range(-5.0..5.0)); // bias
         f.extend([0.8, -0.1]); // g_I, gg_IS coefficients
@@ -88,7 +104,16 @@ fn tables() -> Tables {
         for _ in 0..K {
             for s in 0..SIGNALS {
                 let g = if s == 2 { 1.0 } else { 0.0 };
-                f.extend((0..L).map(|_| g + rng.gen_range(-0.5..0.5)));
+                if stats {
+                    // Current sample, window mean, window rms.
+                    f.extend([
+                        g + rng.gen_range(-0.5..0.5),
+                        g + rng.gen_range(-0.05..0.05),
+                        rng.gen_range(0.0..0.3),
+                    ]);
+                } else {
+                    f.extend((0..L).map(|_| g + rng.gen_range(-0.5..0.5)));
+                }
             }
         }
     }
@@ -198,56 +223,81 @@ fn c_step_ns(t: &Tables, precision: Precision) -> Result<f64, String> {
 }
 
 fn bench(c: &mut Criterion) {
-    let t = tables();
-    let m = Model::parse(&t.bytes).unwrap();
-    let mut state = vec![0.0; m.state_len()];
-    let mut ev = Evaluator::new(m, &mut state).unwrap();
     let data = inputs();
-    for (g, a) in &data {
-        ev.step(g, a, &[]).unwrap();
-    }
-    let mut i = 0;
-    let mut group = c.benchmark_group("onboard");
-    group.measurement_time(Duration::from_secs(5));
-    group.bench_function("rust_step_k100_w50x3", |b| {
-        b.iter(|| {
-            let (g, a) = &data[i % STEPS];
-            i += 1;
-            black_box(ev.step(black_box(g), black_box(a), &[]).unwrap())
-        })
-    });
-    group.finish();
+    let mut medians = Vec::new();
+    for (name, input) in [
+        ("rust_step_k100_w50x3", dtg_onboard::input::RAW),
+        (
+            "rust_step_k100_stats3x3_smoothed",
+            dtg_onboard::input::STATISTICS,
+        ),
+    ] {
+        let t = tables(input);
+        let m = Model::parse(&t.bytes).unwrap();
+        let mut state = vec![0.0; m.state_len()];
+        let mut ev = Evaluator::new(m, &mut state).unwrap();
+        for (g, a) in &data {
+            ev.step(g, a, &[]).unwrap();
+        }
+        let mut i = 0;
+        let mut group = c.benchmark_group("onboard");
+        group.measurement_time(Duration::from_secs(5));
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let (g, a) = &data[i % STEPS];
+                i += 1;
+                black_box(ev.step(black_box(g), black_box(a), &[]).unwrap())
+            })
+        });
+        group.finish();
 
-    let dim = L * SIGNALS;
+        println!(
+            "{name}: tables {} bytes (centres {} bytes), state {} f64, {} flops per step",
+            m.size_bytes(),
+            6 * K * m.input_dim() * 8,
+            m.state_len(),
+            m.flops_per_step()
+        );
+        // The Rust median again, outside criterion, in the same units as the
+        // C harness (median of 101 batches of 1000 steps), for the ratios.
+        let mut times = Vec::new();
+        for _ in 0..101 {
+            let t0 = std::time::Instant::now();
+            for (g, a) in data.iter().take(1000) {
+                black_box(ev.step(g, a, &[]).unwrap());
+            }
+            times.push(t0.elapsed().as_nanos() as f64 / 1000.0);
+        }
+        times.sort_by(f64::total_cmp);
+        let rust = times[50];
+        println!("{name}: rust evaluator median {rust:.1} ns per step");
+        let mut c_ns = Vec::new();
+        for p in [Precision::F64, Precision::F32] {
+            match c_step_ns(&t, p) {
+                Ok(ns) => {
+                    println!(
+                        "{name}: C {p:?} (cc -O2 -std=c99) median {ns:.1} ns per step, {:.2}× the Rust evaluator",
+                        ns / rust
+                    );
+                    c_ns.push(Some(ns));
+                }
+                Err(e) => {
+                    println!("{name}: C {p:?} not measured ({e})");
+                    c_ns.push(None);
+                }
+            }
+        }
+        medians.push((rust, c_ns));
+    }
+    let (raw, stats) = (&medians[0], &medians[1]);
     println!(
-        "tables {} bytes (centres {} bytes), state {} f64, {} flops per step",
-        m.size_bytes(),
-        6 * K * dim * 8,
-        m.state_len(),
-        m.flops_per_step()
+        "statistics input + smoother against the raw window, same run: Rust {:.3}×{}",
+        stats.0 / raw.0,
+        match (raw.1[0], stats.1[0]) {
+            (Some(r), Some(s)) => format!(", C f64 {:.3}×", s / r),
+            _ => String::new(),
+        }
     );
-    // The Rust median again, outside criterion, in the same units as the C
-    // harness (median of 101 batches of 1000 steps), for the ratio.
-    let mut times = Vec::new();
-    for _ in 0..101 {
-        let t0 = std::time::Instant::now();
-        for (g, a) in data.iter().take(1000) {
-            black_box(ev.step(g, a, &[]).unwrap());
-        }
-        times.push(t0.elapsed().as_nanos() as f64 / 1000.0);
-    }
-    times.sort_by(f64::total_cmp);
-    let rust = times[50];
-    println!("rust evaluator: median {rust:.1} ns per step");
-    for p in [Precision::F64, Precision::F32] {
-        match c_step_ns(&t, p) {
-            Ok(ns) => println!(
-                "C {p:?} (cc -O2 -std=c99): median {ns:.1} ns per step, {:.2}× the Rust evaluator",
-                ns / rust
-            ),
-            Err(e) => println!("C {p:?}: not measured ({e})"),
-        }
-    }
 }
 
 criterion_group!(benches, bench);

@@ -12,7 +12,10 @@ use nav_sensors::calibration::Calibration;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 
-pub use sysid::fit::{MAX_SELECTION_ROWS, MIN_BLOCK_ROWS, RecordScore, selection_stride};
+pub use sysid::fit::{
+    Candidate, ChoiceReport, MAX_SELECTION_ROWS, MIN_BLOCK_ROWS, ModelChoice, RecordScore,
+    selection_stride,
+};
 pub use sysid::{CentreMethod, FitSettings, Recipe};
 
 /// Which stage of a fit is running, for progress display.
@@ -26,8 +29,10 @@ pub type FitStage = sysid::FitStage<Channel>;
 /// let o = dtg_vib::fit::FitOptions::default();
 /// assert_eq!(o.settings.max_centres, 60);
 /// assert!(o.effects.is_empty());
+/// // Input and smoother chosen by validation under the Allan constraint.
+/// assert_eq!(o.settings.choice, Some(dtg_vib::fit::ModelChoice::default()));
 /// ```
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FitOptions {
     /// Pre-processing (filter, window, rate reference).
     pub preprocess: Preprocess,
@@ -42,6 +47,24 @@ pub struct FitOptions {
     pub validate_on: Option<String>,
     /// How the networks are chosen (what the model keeps).
     pub settings: FitSettings,
+}
+
+impl Default for FitOptions {
+    /// The command line's defaults: the loop's, with the network input and
+    /// prediction smoother chosen (`fit --input auto --smoother auto`).
+    fn default() -> Self {
+        Self {
+            preprocess: Preprocess::default(),
+            effects: Vec::new(),
+            add: Vec::new(),
+            split: Holdout::default(),
+            validate_on: None,
+            settings: FitSettings {
+                choice: Some(ModelChoice::default()),
+                ..FitSettings::default()
+            },
+        }
+    }
 }
 
 impl FitOptions {
@@ -145,7 +168,18 @@ pub fn fit_records(
     if records.len() > 1 {
         model = model.with_records(records.iter().map(|(n, _)| n.clone()).collect());
     }
-    Ok((CompensationModel::of(model), prepared))
+    let model = CompensationModel::of(model);
+    // The records as the model reads them: its chosen input may not be
+    // the one they were prepared with.
+    let input = model.preprocess().input;
+    let prepared = match prepared.preprocess().input == input {
+        true => prepared,
+        false => Prepared::of(
+            prepared.inner().with_input(input)?,
+            model.preprocess().clone(),
+        )?,
+    };
+    Ok((model, prepared))
 }
 
 /// Each channel's validation rms on each record of `prepared`, for the

@@ -18,7 +18,7 @@ use nav_sensors::record::Record;
 use nav_sensors::sim::Site;
 use serde::{Deserialize, Serialize};
 
-pub use sysid::FilterSpec;
+pub use sysid::{FilterSpec, ModelInput, Smoother};
 
 /// The true angular rate the unit saw, if known; subtracted from every
 /// channel (eq. 4) so the model learns errors only. Without one, the constant
@@ -138,6 +138,16 @@ pub struct Preprocess {
     /// zero-phase.
     #[serde(default)]
     pub causal: bool,
+    /// What the networks read of the windows (`raw`: the window;
+    /// `statistics`: per signal the current sample, window mean and window
+    /// rms, in g). Absent in model files written before it: the window.
+    #[serde(default, skip_serializing_if = "sysid::ModelInput::is_raw")]
+    pub input: sysid::ModelInput,
+    /// 2nd-order Butterworth low-pass of the network part of each predicted
+    /// error (zero-phase, or causal in causal mode), or none (absent in
+    /// model files written before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub smoother: Option<sysid::Smoother>,
 }
 
 impl Preprocess {
@@ -149,6 +159,8 @@ impl Preprocess {
             input_filter: self.input_filter,
             window: self.window.clone(),
             causal: self.causal,
+            input: self.input,
+            smoother: self.smoother,
         }
     }
 
@@ -160,6 +172,8 @@ impl Preprocess {
             window: pre.window.clone(),
             rate_reference,
             causal: pre.causal,
+            input: pre.input,
+            smoother: pre.smoother,
         }
     }
 }

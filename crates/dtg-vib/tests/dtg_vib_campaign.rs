@@ -195,9 +195,25 @@ fn a_z_run_model_warns_on_the_flight_and_the_three_axis_model_holds_better() {
                 .sqrt()
         );
     }
+    // Before the fit chose its input and prediction smoother (issue 23)
+    // the z-only model multiplied the flight's residues 6.3× (pooled 1.96 →
+    // 12.35 deg/h) and the three-axis one 4.1× (→ 8.0), so the three-axis
+    // model "held better". With the choice the z-only model takes the
+    // statistics input and a 0.1-Hz smoother and holds far better (→ 2.56,
+    // 1.31×) while the three-axis model stays near 8 (its input and smoother
+    // change it little): neither should fly (docs/campaign.md), and the
+    // fade outside the training range (issue 23 §2) is what is left to do.
+    // What holds now: the z-only model no longer multiplies them by more than 2.
+    let before = (on_flight_z
+        .residues
+        .iter()
+        .map(|r| r.rms_before.powi(2))
+        .sum::<f64>()
+        / on_flight_z.residues.len() as f64)
+        .sqrt();
     assert!(
-        rxyz < rz,
-        "flight residue rms: z-only {rz:.4}, x+y+z {rxyz:.4} deg/h"
+        rz < 2.0 * before,
+        "flight residue rms: z-only {rz:.4} (before {before:.4}), x+y+z {rxyz:.4} deg/h"
     );
     // A shaker test does not move: no note there.
     let on_x = check(&model_z, &x.record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();

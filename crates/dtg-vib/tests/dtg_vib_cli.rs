@@ -882,8 +882,13 @@ fn a_hand_edited_model_that_disagrees_with_itself_is_refused() {
     let edits: [Edit; 4] = [
         (
             "window-length",
-            |m| m["model"]["preprocess"]["window"]["length"] = 10.into(),
-            "takes 50 inputs but the window gives 10 samples",
+            // The raw window's length: a statistics input's dimension
+            // does not depend on it, so the edit names the raw input too.
+            |m| {
+                m["model"]["preprocess"]["window"]["length"] = 10.into();
+                m["model"]["preprocess"]["input"] = "raw".into();
+            },
+            "the raw input of a window of 10 samples",
         ),
         (
             "window-zero",

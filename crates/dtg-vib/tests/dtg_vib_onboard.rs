@@ -99,6 +99,27 @@ fn rich() -> &'static Path {
     })
 }
 
+/// A causal model on the statistics input (current sample, window mean and
+/// rms of ax, ay, az: 9 inputs) with an effect and the prediction smoother.
+fn statistics() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        fit(
+            "statistics.json",
+            &[
+                "--effects",
+                "g_S",
+                "--window-signals",
+                "ax,ay,az",
+                "--input",
+                "statistics",
+                "--smoother",
+                "0.2",
+            ],
+        )
+    })
+}
+
 fn record() -> Record {
     Record::read_csv(sim().join("record.csv")).unwrap()
 }
@@ -151,7 +172,7 @@ fn step_against_batch_on(model_path: &Path, rec: &Record) -> f64 {
 
 #[test]
 fn the_no_std_evaluator_equals_the_batch_pipeline() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let worst = step_against_batch(m);
         eprintln!("{}: largest |step − batch| = {worst:e} deg/h", m.display());
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
@@ -200,6 +221,17 @@ fn the_rich_model_uses_effects_extra_columns_and_two_signals() {
     assert_eq!(m.window_len(), 20);
     assert!(model.preprocess().input_filter.is_some());
     assert!(model.calibration().is_some());
+}
+
+#[test]
+fn the_statistics_model_reads_nine_inputs() {
+    // Guards the tests above: the statistics input is what they step.
+    let model = CompensationModel::load(statistics()).unwrap();
+    let t = dtg_vib::export::tables(&model).unwrap();
+    let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
+    assert_eq!(m.input_kind(), dtg_onboard::input::STATISTICS);
+    assert_eq!(m.input_dim(), 9);
+    assert_eq!(m.n_smoother_sections(), 1);
 }
 
 #[test]
@@ -340,7 +372,7 @@ fn c_against_compensate_on(model: &Path, precision: &str, data: &Path) -> Option
 
 #[test]
 fn the_exported_c_equals_compensate() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let Some(worst) = c_against_compensate(m, "f64") else {
             return;
         };
@@ -368,7 +400,7 @@ fn the_exported_c_fades_as_compensate_does() {
 
 #[test]
 fn the_f32_export_holds_to_a_thousandth_of_a_degree_per_hour() {
-    for m in [plain(), rich()] {
+    for m in [plain(), rich(), statistics()] {
         let Some(worst) = c_against_compensate(m, "f32") else {
             return;
         };

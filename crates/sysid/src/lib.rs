@@ -45,6 +45,7 @@ pub mod example;
 pub mod explain;
 pub mod fit;
 pub mod inference;
+pub mod input;
 mod model;
 pub mod operating;
 mod prepared;
@@ -53,11 +54,13 @@ mod recipe;
 pub mod residuals;
 mod sensor;
 mod signals;
+pub mod smoother;
 pub mod split;
 pub mod window;
 
 pub use error::SysidError;
 pub use fit::{FitStage, RecordScore, fit, fit_prepared, fit_records};
+pub use input::ModelInput;
 pub use model::{
     ChannelModel, ChannelModelOf, ChannelScores, INTERVAL_TOLERANCE, Model, ModelParts, score,
 };
@@ -68,4 +71,5 @@ pub use sensor::{
     Candidacy, Effect, Named, OperatingStats, Response, Sensor, SensorError, Separation, Wording,
 };
 pub use signals::{Signals, SignalsError};
+pub use smoother::Smoother;
 pub use window::{WindowError, WindowSpec, Windows};

@@ -4,6 +4,7 @@
 //! are prepared exactly as the training records were.
 
 use crate::error::SysidError;
+use crate::fit::ChoiceReport;
 use crate::inference::Coefficient;
 use crate::operating::OperatingPoints;
 use crate::prepared::Prepared;
@@ -152,6 +153,10 @@ impl<C: Clone, E> ChannelModel<C, E> {
         &self.scores
     }
 
+    pub(crate) fn set_scores(&mut self, scores: ChannelScores) {
+        self.scores = scores;
+    }
+
     /// Predicted error on the rows of `windows` (rows × window dimension)
     /// with the effects' regressors `z` (rows × effects).
     pub fn predict_with(&self, windows: &Mat<f64>, z: &Mat<f64>) -> Vec<f64> {
@@ -186,6 +191,9 @@ pub struct ModelParts<S: Sensor> {
     /// Where the training windows sat (absent: the transfer check cannot
     /// say what is outside).
     pub operating_points: Option<OperatingPoints>,
+    /// The fit's choice of input and smoother, with every candidate's
+    /// figures (absent: the recipe's were taken as they were).
+    pub choice: Option<ChoiceReport>,
 }
 
 /// The channel models of a sensor and how their data were prepared.
@@ -213,6 +221,7 @@ pub struct Model<S: Sensor> {
     records: Vec<String>,
     validated_on: Option<String>,
     operating_points: Option<OperatingPoints>,
+    choice: Option<ChoiceReport>,
 }
 
 /// Relative tolerance on a record's sample interval against the model's.
@@ -233,6 +242,7 @@ impl<S: Sensor> Model<S> {
             records: parts.records,
             validated_on: parts.validated_on,
             operating_points: parts.operating_points,
+            choice: parts.choice,
         };
         m.check_consistency()?;
         Ok(m)
@@ -250,6 +260,7 @@ impl<S: Sensor> Model<S> {
             records: self.records,
             validated_on: self.validated_on,
             operating_points: self.operating_points,
+            choice: self.choice,
         }
     }
 
@@ -261,7 +272,7 @@ impl<S: Sensor> Model<S> {
         if w.length() == 0 || w.signals().is_empty() {
             return Err("the window needs at least one sample of one signal".into());
         }
-        let dim = w.length() * w.signals().len();
+        let dim = self.preprocess.input.dim(w);
         for c in &self.channels {
             let ch = &c.channel;
             c.rbf
@@ -269,8 +280,9 @@ impl<S: Sensor> Model<S> {
                 .map_err(|e| format!("channel {ch}: {e}"))?;
             if c.rbf.dim() != dim {
                 return Err(format!(
-                    "channel {ch}: the network takes {} inputs but the window gives {} samples × {} signals = {dim}",
+                    "channel {ch}: the network takes {} inputs but the {} input of a window of {} samples × {} signals gives {dim}",
                     c.rbf.dim(),
+                    self.preprocess.input,
                     w.length(),
                     w.signals().len()
                 ));
@@ -344,6 +356,24 @@ impl<S: Sensor> Model<S> {
         self.validated_on.as_deref()
     }
 
+    /// What the fit chose among its candidates' inputs and smoothers, and
+    /// each candidate's validation rms and worst Allan-deviation ratio.
+    pub fn choice(&self) -> Option<&ChoiceReport> {
+        self.choice.as_ref()
+    }
+
+    pub(crate) fn set_choice(&mut self, report: ChoiceReport) {
+        self.choice = Some(report);
+    }
+
+    pub(crate) fn set_smoother(&mut self, smoother: Option<crate::Smoother>) {
+        self.preprocess.smoother = smoother;
+    }
+
+    pub(crate) fn channels_mut(&mut self) -> &mut [ChannelModelOf<S>] {
+        &mut self.channels
+    }
+
     pub(crate) fn set_validated_on(&mut self, name: Option<String>) {
         self.validated_on = name;
     }
@@ -407,7 +437,11 @@ impl<S: Sensor> Model<S> {
         self.channels
             .iter()
             .enumerate()
-            .map(|(k, c)| Ok(c.predict_with(&w, &prepared.effect_matrix(k, &c.effects)?)))
+            .map(|(k, c)| {
+                let z = prepared.effect_matrix(k, &c.effects)?;
+                let y = c.predict_with(&w, &z);
+                crate::smoother::smoothed(&self.preprocess, self.dt_s, prepared, c, &z, y)
+            })
             .collect()
     }
 

@@ -75,17 +75,7 @@ impl<S: Sensor> Prepared<S> {
             .iter()
             .map(|y| apply(&filter, causal, y))
             .collect::<Result<Vec<_>, _>>()?;
-        let input_filter = design(pre.input_filter)?;
-        let mut signals = Vec::with_capacity(pre.window.signals().len());
-        for name in pre.window.signals() {
-            signals.push(apply(
-                &input_filter,
-                causal,
-                signal(sensor, &calibrated, name)?,
-            )?);
-        }
-        let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
-        let windows = pre.window.build(&refs)?;
+        let windows = inputs(sensor, &calibrated, pre)?;
         Ok(Self {
             sensor: sensor.clone(),
             preprocess: pre.clone(),
@@ -94,6 +84,28 @@ impl<S: Sensor> Prepared<S> {
             filter,
             targets,
             windows,
+        })
+    }
+
+    /// The same records with the network's input `input` (a fit's choice
+    /// tries each): only the inputs are formed again.
+    pub fn with_input(&self, input: crate::ModelInput) -> Result<Self, SysidError> {
+        let mut pre = self.preprocess.clone();
+        pre.input = input;
+        let windows = if self.parts.is_empty() {
+            inputs(&self.sensor, &self.calibrated, &pre)?
+        } else {
+            let parts = self
+                .parts
+                .iter()
+                .map(|p| inputs(&self.sensor, &p.calibrated, &pre))
+                .collect::<Result<Vec<_>, _>>()?;
+            Windows::concat(&parts)
+        };
+        Ok(Self {
+            preprocess: pre,
+            windows,
+            ..self.clone()
         })
     }
 
@@ -431,6 +443,29 @@ impl<S: Sensor> Prepared<S> {
             .find(|&k| h[half + k].abs() > 1e-3 * peak)
             .unwrap_or(0)
     }
+}
+
+/// The network's inputs of one calibrated record: its windowed signals
+/// through the input low-pass, formed as `pre.input` says.
+fn inputs<S: Sensor>(
+    sensor: &S,
+    calibrated: &Signals,
+    pre: &Preprocess,
+) -> Result<Windows, SysidError> {
+    let input_filter = pre
+        .input_filter
+        .map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
+        .transpose()?;
+    let mut signals = Vec::with_capacity(pre.window.signals().len());
+    for name in pre.window.signals() {
+        signals.push(apply(
+            &input_filter,
+            pre.causal,
+            signal(sensor, calibrated, name)?,
+        )?);
+    }
+    let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
+    Ok(pre.input.build(&pre.window, &refs)?)
 }
 
 /// `x` through the filter (forward–backward, or one causal pass), or as it

@@ -2,6 +2,8 @@
 //! and regressors, the low-pass of the windowed signals, the windows, and
 //! zero-phase or causal filtering.
 
+use crate::input::ModelInput;
+use crate::smoother::Smoother;
 use crate::window::WindowSpec;
 use serde::{Deserialize, Serialize};
 
@@ -59,6 +61,15 @@ pub struct Preprocess {
     /// forward–backward. Absent in files written before it: zero-phase.
     #[serde(default)]
     pub causal: bool,
+    /// What the network reads of the windows: the window itself or per
+    /// signal its current sample, mean and rms ([`ModelInput`]). Absent in
+    /// files written before the choice: the raw window.
+    #[serde(default, skip_serializing_if = "ModelInput::is_raw")]
+    pub input: ModelInput,
+    /// Low-pass of the network part of each prediction ([`Smoother`]), or
+    /// none (absent in files written before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub smoother: Option<Smoother>,
 }
 
 impl Default for Preprocess {
@@ -70,6 +81,8 @@ impl Default for Preprocess {
             input_filter: None,
             window: WindowSpec::paper(),
             causal: false,
+            input: ModelInput::Raw,
+            smoother: None,
         }
     }
 }

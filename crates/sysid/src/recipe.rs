@@ -60,6 +60,11 @@ pub struct FitSettings {
     pub kernel: Kernel,
     /// Seed of every random choice (candidate subsample, k-means).
     pub seed: u64,
+    /// The network inputs and prediction smoothers to choose among, by
+    /// validation rms under the Allan-deviation constraint
+    /// ([`crate::fit::ModelChoice`]); none: the pre-processing's as they are.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub choice: Option<crate::fit::ModelChoice>,
 }
 
 impl Default for FitSettings {
@@ -74,6 +79,7 @@ impl Default for FitSettings {
             inner_folds: 3,
             kernel: Kernel::Gaussian,
             seed: 1,
+            choice: None,
         }
     }
 }

@@ -232,6 +232,20 @@ impl Windows {
         }
     }
 
+    /// Rows written out one after another (`rows × dim` values), row `i`
+    /// belonging to sample `first + i`: the inputs of [`crate::ModelInput`]
+    /// that are not the window itself.
+    pub(crate) fn written(data: Vec<f64>, dim: usize, first: usize, rows: usize) -> Windows {
+        assert_eq!(data.len(), rows * dim, "rows × dim values");
+        Windows {
+            data,
+            dim,
+            first,
+            step: dim,
+            rows,
+        }
+    }
+
     /// The windows of several records of the same spec, one after another:
     /// row `i` of the result is sample `first_sample() + i` of the records
     /// laid end to end with each later record's first `first_sample()`

@@ -62,6 +62,9 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
         println!("{}", serde_json::to_string(&report)?);
     } else {
         print_fit(&model);
+        if let Some(c) = model.inner().choice() {
+            print_choice(c);
+        }
         if let Some(per) = &per_record {
             let names = nav_sensors::geometry::Channel::ALL.map(|c| c.name().to_string());
             print_record_scores(&names, per, a.cv.is_some());
@@ -69,6 +72,43 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
         println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
     }
     Ok(())
+}
+
+/// What the choice of input and smoother weighed: each candidate's mean
+/// validation rms and worst ADEV after/before, the chosen one marked, and
+/// what it cost and gained against the paper's model (raw, no smoother).
+pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
+    let label = sysid::Smoother::label;
+    println!(
+        "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",
+        c.chosen().input,
+        label(c.chosen().smoother),
+        c.candidates.len(),
+        c.adev_runs
+    );
+    println!(
+        "  input       smoother  val rms (deg/h)  worst ADEV after/before (channel, τ s)  passes"
+    );
+    for (i, k) in c.candidates.iter().enumerate() {
+        println!(
+            "{} {:<10}  {:<8}  {:>15.4}  {:>6.3} ({}, {:.2}){:>14}",
+            if i == c.chosen { "*" } else { " " },
+            k.input.to_string(),
+            label(k.smoother),
+            k.mean_val_rms,
+            k.worst_adev_ratio,
+            k.worst_channel,
+            k.worst_tau_s,
+            if k.passes { "yes" } else { "no" }
+        );
+    }
+    if let Some(b) = c.baseline() {
+        let w = c.chosen();
+        println!(
+            "  against raw/none: validation rms {:.4} → {:.4} deg/h, worst ADEV ratio {:.3} → {:.3}",
+            b.mean_val_rms, w.mean_val_rms, b.worst_adev_ratio, w.worst_adev_ratio
+        );
+    }
 }
 
 /// Validation rms of each channel on each record.
@@ -151,6 +191,14 @@ pub struct FitReport {
     /// `records` with `--cv records`.
     #[serde(skip_serializing_if = "Option::is_none")]
     cv: Option<String>,
+    /// The networks' input (`raw`, `statistics`).
+    input: sysid::ModelInput,
+    /// The prediction smoother's cut-off, Hz (null: none).
+    smoother_hz: Option<f64>,
+    /// What `--input auto` / `--smoother auto` chose among, with every
+    /// candidate's validation rms and worst Allan-deviation ratio.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    choice: Option<dtg_vib::fit::ChoiceReport>,
 }
 
 /// One channel of [`FitReport`].
@@ -191,7 +239,15 @@ impl FitReport {
             Some(name) => format!("by record (validated on {name})"),
             None => model.split().to_string(),
         };
-        Self::of_channels(model.channels(), split, fit_seconds)
+        Self::of_channels(model.channels(), split, fit_seconds).with_choice(model.inner())
+    }
+
+    /// The model's input, smoother and the fit's choice among candidates.
+    pub fn with_choice<S: sysid::Sensor>(mut self, model: &sysid::Model<S>) -> Self {
+        self.input = model.preprocess().input;
+        self.smoother_hz = model.preprocess().smoother.map(|s| s.cutoff_hz);
+        self.choice = model.choice().cloned();
+        self
     }
 
     /// Each channel's validation rms per record (`per`, in channel order),
@@ -251,6 +307,9 @@ impl FitReport {
             split,
             fit_seconds,
             cv: None,
+            input: sysid::ModelInput::default(),
+            smoother_hz: None,
+            choice: None,
         }
     }
 }

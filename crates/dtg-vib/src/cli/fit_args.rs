@@ -4,7 +4,7 @@
 use anyhow::Result;
 use clap::Args;
 use dtg_vib::effects::{ChannelEffect, Effect};
-use dtg_vib::fit::{CentreMethod, FitOptions, FitSettings};
+use dtg_vib::fit::{CentreMethod, FitOptions, FitSettings, ModelChoice};
 use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
 use dtg_vib::split::Holdout;
 use dtg_vib::window::WindowSpec;
@@ -46,6 +46,18 @@ pub struct FitArgs {
     /// Windowed signals, comma-separated (accelerometer axes or extra columns).
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
     pub window_signals: Vec<String>,
+    /// What the networks read of the windows: `raw` (the window itself, the
+    /// paper's), `statistics` (per windowed signal: current sample, window
+    /// mean, window rms about the mean, in g: 3 inputs a signal) or `auto`
+    /// (both tried: the lowest validation rms whose compensation keeps the
+    /// Allan deviation within its 68% interval at every τ).
+    #[arg(long, default_value = "auto", value_parser = ["auto", "raw", "statistics"])]
+    pub input: String,
+    /// Low-pass of the network part of each predicted error, Hz (2nd-order
+    /// Butterworth; zero-phase, or causal with --causal), `none`, or `auto`
+    /// (none, 0.5, 0.2, 0.1, 0.05 Hz tried, chosen as --input auto).
+    #[arg(long, default_value = "auto")]
+    pub smoother: String,
     /// Training/validation split within each record: blocked (honest) or
     /// interleaved (the paper's); or by-record, with --validate-on.
     #[arg(long, default_value = "blocked")]
@@ -202,6 +214,14 @@ pub fn fit_options_with<E, A>(
             window: WindowSpec::new(a.window_signals.clone(), a.window)?,
             rate_reference,
             causal: a.causal,
+            input: match a.input.as_str() {
+                "auto" => Default::default(),
+                i => i.parse()?,
+            },
+            smoother: match a.smoother.as_str() {
+                "auto" => None,
+                s => parse_smoother(s)?,
+            },
         },
         effects: Vec::new(),
         add: Vec::new(),
@@ -213,10 +233,39 @@ pub fn fit_options_with<E, A>(
             candidates: a.candidates,
             ridge: a.ridge,
             seed: a.seed,
+            choice: model_choice(a)?,
             ..FitSettings::default()
         },
     };
     Ok((effects, add, options))
+}
+
+/// The candidates of `--input` and `--smoother`: what each names, or every
+/// one for `auto`; none to choose among when both name one.
+fn model_choice(a: &FitArgs) -> Result<Option<ModelChoice>> {
+    if a.input != "auto" && a.smoother != "auto" {
+        return Ok(None);
+    }
+    let all = ModelChoice::default();
+    Ok(Some(ModelChoice {
+        inputs: match a.input.as_str() {
+            "auto" => all.inputs,
+            i => vec![i.parse()?],
+        },
+        smoothers: match a.smoother.as_str() {
+            "auto" => all.smoothers,
+            s => vec![parse_smoother(s)?],
+        },
+    }))
+}
+
+/// `--smoother`: `none` or a cut-off in Hz.
+fn parse_smoother(s: &str) -> Result<Option<dtg_vib::pipeline::Smoother>> {
+    if s.trim() == "none" {
+        return Ok(None);
+    }
+    let cutoff_hz = parse_hz(s).map_err(|e| anyhow::anyhow!("--smoother {s}: {e} (or none)"))?;
+    Ok(Some(dtg_vib::pipeline::Smoother { cutoff_hz }))
 }
 
 /// The name of the --data record that `path` names (the same file), for

@@ -2,7 +2,7 @@
 //! `step`), `dtg_model.c` (the tables as `static const` arrays and the same
 //! step as the `dtg-onboard` evaluator) and `main.c` (record CSV on standard
 //! input to the compensated CSV of `dtg-vib compensate` on standard output).
-//! Only `math.h` (`exp`, `fabs`); no dynamic memory, no globals but the
+//! Only `math.h` (`exp`, `fabs`, `sqrt`); no dynamic memory, no globals but the
 //! tables.
 
 use crate::model::CompensationModel;
@@ -119,6 +119,10 @@ struct Layout {
     kinds: Vec<usize>,
     indices: Vec<usize>,
     dim: usize,
+    /// The network's input kind (`dtg_onboard::input`) and the prediction
+    /// smoother's sections.
+    input: usize,
+    n_smooth: usize,
     dt: f64,
     frames: Vec<f64>,
     ls: Vec<f64>,
@@ -126,6 +130,7 @@ struct Layout {
     accel_cal: Vec<f64>,
     out_sos: Vec<f64>,
     in_sos: Vec<f64>,
+    smooth_sos: Vec<f64>,
     bias: Vec<f64>,
     coeff: Vec<f64>,
     params: Vec<f64>,
@@ -159,7 +164,13 @@ impl Layout {
         );
         let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
         let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-        let dim = l * n_signals;
+        let after = words(
+            b,
+            dtg_onboard::FIXED_HEADER_WORDS + n_signals + 2 * total_effects,
+            2,
+        );
+        let (input, n_smooth) = (after[0], after[1]);
+        let dim = m.input_dim();
         let mut at = 4 * hw;
         let mut take = |n: usize| {
             let v = floats(b, at, n);
@@ -176,6 +187,7 @@ impl Layout {
         };
         let out_sos = take(7 * n_sections);
         let in_sos = take(7 * n_in_sections);
+        let smooth_sos = take(7 * n_smooth);
         let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
             (vec![], vec![], vec![], vec![], vec![], vec![]);
         let mut param_offset = Vec::new();
@@ -216,6 +228,8 @@ impl Layout {
             kinds,
             indices,
             dim,
+            input,
+            n_smooth,
             dt,
             frames,
             ls,
@@ -223,6 +237,7 @@ impl Layout {
             accel_cal,
             out_sos,
             in_sos,
+            smooth_sos,
             bias,
             coeff,
             params,
@@ -267,6 +282,8 @@ fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
         n_in_sections,
         total_effects,
         fade,
+        input,
+        n_smooth,
         ..
     } = layout;
     let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
@@ -295,6 +312,11 @@ typedef {real} dtg_real;
 #define DTG_N_EFFECTS {total_effects}
 /* 1: outside the training range the network part holds (docs/formats.md). */
 #define DTG_FADE {fades}
+/* The network's input: 0 = the window, 1 = per signal its current sample,
+ * window mean and window rms about the mean. */
+#define DTG_INPUT_STATS {input}
+/* Second-order sections of the prediction smoother (network part only). */
+#define DTG_N_SMOOTH_SECTIONS {n_smooth}
 /* Extra columns, in the order dtg_step takes them. */
 #define DTG_EXTRA_NAMES {{{extra_names}}}
 
@@ -312,6 +334,9 @@ typedef struct {{
     dtg_real fade_ring[3][2 * DTG_WINDOW_LEN]; /* calibrated ax, ay, az: the per-axis range */
     dtg_real fade_h[6]; /* held network part per channel, deg/h */
     dtg_real fade_w;    /* smoothed weight of the network part */
+    dtg_real sums[2 * DTG_N_SIGNALS];     /* running sum and sum of squares per signal */
+    dtg_real feat[3 * DTG_N_SIGNALS];     /* the statistics inputs */
+    dtg_real smooth_z[12 * DTG_N_SMOOTH_SECTIONS + 1];
 }} dtg_state;
 
 void dtg_init(dtg_state *s);
@@ -344,6 +369,7 @@ fn tables_c(layout: &Layout) -> String {
         accel_cal,
         out_sos,
         in_sos,
+        smooth_sos,
         signal_codes,
         n_effects,
         kinds,
@@ -377,6 +403,9 @@ static const dtg_real GYRO_CAL[6 * 19 + 1] = {gyro_cal};
 static const dtg_real ACCEL_CAL[3 * 8 + 1] = {accel_cal};
 static const dtg_real OUT_SOS[7 * DTG_N_SECTIONS + 1] = {out_sos};
 static const dtg_real IN_SOS[7 * DTG_N_IN_SECTIONS + 1] = {in_sos};
+#if DTG_N_SMOOTH_SECTIONS > 0
+static const dtg_real SMOOTH_SOS[7 * DTG_N_SMOOTH_SECTIONS + 1] = {smooth_sos};
+#endif
 static const int SIGNAL_CODE[DTG_N_SIGNALS] = {codes};
 static const int N_EFFECTS[6] = {n_eff};
 static const int EFFECT_OFFSET[6] = {e_off};
@@ -402,6 +431,7 @@ static const dtg_real FADE[{nf}] = {fade};
         accel_cal = arr(accel_cal),
         out_sos = arr(out_sos),
         in_sos = arr(in_sos),
+        smooth_sos = arr(smooth_sos),
         codes = iarr(signal_codes),
         n_eff = iarr(n_effects),
         e_off = iarr(&e_offsets),
@@ -441,6 +471,9 @@ void dtg_init(dtg_state *s) {
         for (j = 0; j < 2 * DTG_WINDOW_LEN; j++) s->fade_ring[i][j] = R(0);
     for (i = 0; i < 6; i++) s->fade_h[i] = R(0);
     s->fade_w = R(0);
+    for (i = 0; i < 2 * DTG_N_SIGNALS; i++) s->sums[i] = R(0);
+    for (i = 0; i < 3 * DTG_N_SIGNALS; i++) s->feat[i] = R(0);
+    for (i = 0; i < 12 * DTG_N_SMOOTH_SECTIONS + 1; i++) s->smooth_z[i] = R(0);
 }
 
 #if DTG_FADE
@@ -600,11 +633,26 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 }
 #endif
 
+/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
+ * the same way) keep the adds independent. */
+static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
+    dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
+    int i;
+    for (i = 0; i + 4 <= n; i += 4) {
+        d = x[i] - cen[i]; acc0 += d * d;
+        d = x[i + 1] - cen[i + 1]; acc1 += d * d;
+        d = x[i + 2] - cen[i + 2]; acc2 += d * d;
+        d = x[i + 3] - cen[i + 3]; acc3 += d * d;
+    }
+    for (; i < n; i++) { d = x[i] - cen[i]; tail += d * d; }
+    return (acc0 + acc1) + (acc2 + acc3) + tail;
+}
+
 /* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real a[3], g[6], linear[6], w = R(1);
     int first = s->processed == 0;
-    int i, k, c, e, sig;
+    int k, c, e, sig;
     const int l = DTG_WINDOW_LEN;
     for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
 #if DTG_CALIBRATED
@@ -638,6 +686,22 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
         int code = SIGNAL_CODE[sig];
         dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
         v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
+        {
+            /* Running sums: the sample L steps back (0 while the window
+             * fills) leaves as this one enters. */
+            dtg_real old = s->ring[sig][s->ring_pos];
+            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
+            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
+#if DTG_INPUT_STATS
+            {
+                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
+                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
+                s->feat[3 * sig] = v;
+                s->feat[3 * sig + 1] = mean;
+                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
+            }
+#endif
+        }
         s->ring[sig][s->ring_pos] = v;
         s->ring[sig][s->ring_pos + l] = v;
     }
@@ -654,32 +718,34 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
     w = fade_weight(s, s->processed == l);
 #endif
     for (c = 0; c < 6; c++) {
-        dtg_real y = BIAS[c] + linear[c], net = R(0), term;
+        /* Without a smoother the kernels add onto bias and effects. */
+        dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0), term;
         for (k = 0; k < N_CENTRES[c]; k++) {
             int kk = CENTRE_OFFSET[c] + k;
             const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
             dtg_real r2 = R(0), beta = WIDTH[kk];
+#if DTG_INPUT_STATS
+            r2 = sq_dist(s->feat, cen, DTG_DIM);
+#else
             for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                const dtg_real *x = s->ring[sig] + s->ring_pos;
-                dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
-                for (i = 0; i + 4 <= l; i += 4) {
-                    d = x[i] - cen[i]; acc0 += d * d;
-                    d = x[i + 1] - cen[i + 1]; acc1 += d * d;
-                    d = x[i + 2] - cen[i + 2]; acc2 += d * d;
-                    d = x[i + 3] - cen[i + 3]; acc3 += d * d;
-                }
-                for (; i < l; i++) { d = x[i] - cen[i]; tail += d * d; }
-                r2 += (acc0 + acc1) + (acc2 + acc3) + tail;
+                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
                 cen += l;
             }
+#endif
             term = EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
             y += term;
             net += term;
         }
+#if DTG_N_SMOOTH_SECTIONS > 0
+        /* The prediction smoother, on the network part only. */
+        net = cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
+                      net, s->processed == l);
+        y = BIAS[c] + linear[c] + net;
+#endif
 #if DTG_FADE
         {
-            /* The held network part; the first output starts from the
-             * network's training mean. */
+            /* The held network part (after the smoother); the first output
+             * starts from the network's training mean. */
             dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
             s->fade_h[c] = w >= R(1) ? net : before + w * (net - before);
             y -= net - s->fade_h[c];

@@ -37,13 +37,37 @@ pub fn equations(model: &CompensationModel) -> String {
     let _ = writeln!(w, "\n## Low-pass of the windowed signals");
     filter_text(w, &pre.input_filter, pre.causal, model.dt_s());
     let win = &pre.window;
-    let _ = writeln!(
-        w,
-        "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
-        win.length(),
-        win.signals().join(", then "),
-        win.dim()
-    );
+    match pre.input {
+        sysid::ModelInput::Raw => {
+            let _ = writeln!(
+                w,
+                "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
+                win.length(),
+                win.signals().join(", then "),
+                win.dim()
+            );
+        }
+        sysid::ModelInput::Statistics => {
+            let _ = writeln!(
+                w,
+                "\n## Window\nx = for each of {} in turn: the current sample, the mean and the rms about the mean of its last {} samples (running sums s1 += v − v_old, s2 += v² − v_old²; mean = s1/L, rms = √max(s2/L − mean², 0)), g (or the column's unit); {} inputs",
+                win.signals().join(", "),
+                win.length(),
+                pre.input.dim(win)
+            );
+        }
+    }
+    if let Some(sm) = pre.smoother {
+        let _ = writeln!(
+            w,
+            "\n## Prediction smoother (the network part Σ wₖ·exp(…) only)"
+        );
+        let spec = crate::pipeline::FilterSpec {
+            order: sysid::smoother::SMOOTHER_ORDER,
+            cutoff_hz: sm.cutoff_hz,
+        };
+        filter_text(w, &Some(spec), pre.causal, model.dt_s());
+    }
     for c in model.channels() {
         channel_text(w, c);
     }

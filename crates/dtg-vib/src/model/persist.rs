@@ -9,6 +9,7 @@ use nav_sensors::calibration::Calibration;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use sysid::FitSettings;
+use sysid::fit::ChoiceReport;
 use sysid::operating::OperatingPoints;
 
 /// Version of the model file; bumped on any incompatible change.
@@ -41,6 +42,8 @@ struct ModelRef<'a> {
     validated_on: Option<&'a str>,
     #[serde(skip_serializing_if = "Option::is_none")]
     operating_points: Option<&'a OperatingPoints>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    choice: Option<&'a ChoiceReport>,
 }
 
 /// The model as read from a file (what older files lack has a default).
@@ -64,6 +67,10 @@ struct ModelOwned {
     /// cannot say what is outside).
     #[serde(default)]
     operating_points: Option<OperatingPoints>,
+    /// The fit's choice of input and smoother with every candidate's
+    /// figures (absent in older files and in fits told both).
+    #[serde(default)]
+    choice: Option<ChoiceReport>,
 }
 
 #[derive(Deserialize)]
@@ -97,6 +104,7 @@ impl CompensationModel {
                     records: m.records(),
                     validated_on: m.validated_on(),
                     operating_points: m.operating_points(),
+                    choice: m.choice(),
                 },
             },
         )
@@ -145,6 +153,7 @@ impl CompensationModel {
             records: m.records,
             validated_on: m.validated_on,
             operating_points: m.operating_points,
+            choice: m.choice,
         })
         .map_err(corrupt)?;
         Ok(CompensationModel::of(inner))

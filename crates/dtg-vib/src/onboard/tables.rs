@@ -133,6 +133,7 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
     let mut f = geometry_and_calibration(model);
     f.extend(sections(&out_filter));
     f.extend(sections(&in_filter));
+    f.extend(sections(&smoother_filter(model)));
     channel_floats(model, &params, &mut f)?;
     if let Some(block) = super::fade::fade_block(model)? {
         f.extend(block);
@@ -196,11 +197,31 @@ fn header_words(
         }
         params.push(p);
     }
+    words.extend(input_and_smoother_words(model));
     if !words.len().is_multiple_of(2) {
         words.push(0);
     }
     words[2] = words.len() as u32;
     Ok((words, params))
+}
+
+/// The words after the effect pairs: the network's input kind and the
+/// prediction smoother's sections.
+fn input_and_smoother_words(model: &CompensationModel) -> [u32; 2] {
+    let input = match model.preprocess().input {
+        sysid::ModelInput::Raw => dtg_onboard::input::RAW,
+        sysid::ModelInput::Statistics => dtg_onboard::input::STATISTICS,
+    };
+    [
+        input,
+        smoother_filter(model).map_or(0, |f| f.sections().len()) as u32,
+    ]
+}
+
+/// The prediction smoother's filter, as the loop designs it.
+fn smoother_filter(model: &CompensationModel) -> Option<LowPass> {
+    let s = model.preprocess().smoother?;
+    s.design(model.dt_s()).ok()
 }
 
 /// The sample interval, the channel frames, the least-squares rate

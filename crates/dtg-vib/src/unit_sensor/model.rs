@@ -54,6 +54,8 @@ struct ModelRef<'a> {
     validated_on: Option<&'a str>,
     #[serde(skip_serializing_if = "Option::is_none")]
     operating_points: Option<&'a OperatingPoints>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    choice: Option<&'a sysid::fit::ChoiceReport>,
 }
 
 #[derive(Deserialize)]
@@ -72,6 +74,8 @@ struct ModelOwned {
     validated_on: Option<String>,
     #[serde(default)]
     operating_points: Option<OperatingPoints>,
+    #[serde(default)]
+    choice: Option<sysid::fit::ChoiceReport>,
 }
 
 #[derive(Deserialize)]
@@ -132,6 +136,7 @@ impl UnitModel {
                     records: m.records(),
                     validated_on: m.validated_on(),
                     operating_points: m.operating_points(),
+                    choice: m.choice(),
                 },
             },
         )
@@ -178,6 +183,7 @@ impl UnitModel {
             records: m.records,
             validated_on: m.validated_on,
             operating_points: m.operating_points,
+            choice: m.choice,
         })
         .map_err(corrupt)?;
         Ok(Self { inner })

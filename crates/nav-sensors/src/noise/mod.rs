@@ -36,16 +36,12 @@
 //! assert!(terms.bias_instability.estimate().is_none());
 //! ```
 
-mod adev;
-mod curve;
-mod edf;
-mod error;
-mod identify;
 mod terms;
 
-pub use adev::{octave_factors, overlapping_adev};
-pub use curve::{AllanCurve, AllanPoint};
-pub use edf::{deviation_interval, edf_overlapping};
-pub use error::AllanError;
-pub use identify::{MIN_IDENTIFY_SAMPLES, PowerLaw, identify_noise};
+// The generic estimator lives in the `allan` crate (sysid's model choice
+// reads it too); its items are re-exported here, where they always were.
+pub use allan::{
+    AllanCurve, AllanError, AllanPoint, MIN_IDENTIFY_SAMPLES, PowerLaw, deviation_interval,
+    edf_overlapping, identify_noise, octave_factors, overlapping_adev,
+};
 pub use terms::{Estimate, FLICKER_FLOOR, NoiseTerm, NoiseTerms};

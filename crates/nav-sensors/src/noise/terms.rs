@@ -11,9 +11,7 @@
 //! point still gives (independent noises add in Allan variance, so no term
 //! can exceed what the curve's upper confidence limits allow at any τ).
 
-use super::curve::{AllanCurve, AllanPoint};
-use super::edf::{deviation_interval, edf_overlapping};
-use super::identify::PowerLaw;
+use allan::{AllanCurve, AllanPoint, PowerLaw, deviation_interval, edf_overlapping};
 use serde::Serialize;
 
 /// σ(τ) = 60·N/√τ: N (deg/√h) from σ (deg/h) at τ (s).

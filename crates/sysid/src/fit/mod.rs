@@ -14,6 +14,7 @@
 //! not make itself: the model's [`mirror`] and a [`refit_with_window`].
 
 mod channel;
+mod choice;
 mod network;
 mod partial;
 
@@ -32,6 +33,9 @@ use channel::{
 use rayon::prelude::*;
 use serde::Serialize;
 
+pub use choice::{
+    ADEV_CONFIDENCE, Candidate, ChoiceReport, MIN_ADEV_ROWS, ModelChoice, SMALLER_INPUT_TOLERANCE,
+};
 pub use partial::MIN_BLOCK_ROWS;
 
 /// Which stage of a fit is running, for progress display.
@@ -107,6 +111,12 @@ pub fn fit_records<S: Sensor>(
     let prepared = Prepared::new_many(sensor, records, &options.recipe.preprocess)?;
     let mut model = fit_prepared(&prepared, options, progress)?;
     model.set_records(record_names(records));
+    // The records as the model reads them (a choice may have taken another input).
+    let input = model.preprocess().input;
+    let prepared = match prepared.preprocess().input == input {
+        true => prepared,
+        false => prepared.with_input(input)?,
+    };
     Ok((model, prepared))
 }
 
@@ -126,13 +136,10 @@ pub(crate) fn record_names(records: &[(String, &Signals)]) -> Vec<String> {
 /// prediction from a model that did not see it.
 pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Model<S>, SysidError> {
     let (train, val) = model.rows(prepared)?;
-    fit_rows(
-        prepared,
-        &model.recipe(),
-        (&val, &train),
-        Coef::AllRows,
-        &|_| {},
-    )
+    // The model's own input and smoother, not a choice of its own.
+    let mut recipe = model.recipe();
+    recipe.settings.choice = None;
+    fit_rows(prepared, &recipe, (&val, &train), Coef::AllRows, &|_| {})
 }
 
 /// `model`'s recipe fitted again on `records` with windows of `length`
@@ -234,7 +241,7 @@ pub fn leave_one_record_out<S: Sensor>(
 
 /// Which rows estimate the effects' coefficients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Coef {
+pub(super) enum Coef {
     /// Training and validation rows of every record given: the estimate
     /// the diagnosis makes (cross-fitted partialling over the whole
     /// record), so the model stores one estimate of each coefficient, not a
@@ -249,8 +256,27 @@ enum Coef {
 
 /// A recipe fitted on explicit training and validation rows of data
 /// prepared with its pre-processing (the mirror trains on a model's
-/// validation rows; leaving a record out trains on the others).
+/// validation rows; leaving a record out trains on the others): with its
+/// settings' choice of input and smoother if it has one, else as it is.
 fn fit_rows<S: Sensor>(
+    prepared: &Prepared<S>,
+    recipe: &Recipe<S::Effect>,
+    (train, val): (&[usize], &[usize]),
+    coef: Coef,
+    progress: Progress<'_, S::Channel>,
+) -> Result<Model<S>, SysidError> {
+    if let Some(c) = &recipe.settings.choice {
+        return choice::fit_choosing(prepared, recipe, c, (train, val), coef, progress);
+    }
+    let mut model = fit_rows_fixed(prepared, recipe, (train, val), coef, progress)?;
+    if recipe.preprocess.smoother.is_some() {
+        choice::rescore(&mut model, prepared, train, val)?;
+    }
+    Ok(model)
+}
+
+/// [`fit_rows`] with the recipe's input and without rescoring for a smoother.
+fn fit_rows_fixed<S: Sensor>(
     prepared: &Prepared<S>,
     recipe: &Recipe<S::Effect>,
     (train, val): (&[usize], &[usize]),
@@ -329,6 +355,7 @@ fn fit_rows<S: Sensor>(
         records: Vec::new(),
         validated_on: None,
         operating_points,
+        choice: None,
     })
     .map_err(|reason| SysidError::InvalidOption {
         name: "fitted model",

@@ -217,9 +217,22 @@ pub fn predict_faded<S: Sensor>(
         model.operating_points().and_then(|o| o.range.as_ref()),
     ) {
         (Some(w), Some(range)) if w.weight.iter().any(|&v| v < 1.0) => {
-            let net = network_parts(model, &prepared.window_matrix());
             let parts: Vec<std::ops::Range<usize>> =
                 prepared.record_rows().into_iter().map(|(_, r)| r).collect();
+            // The fade holds the network part the prediction holds: after
+            // the prediction smoother, as onboard and the C export hold it.
+            let mut net = network_parts(model, &prepared.window_matrix());
+            if let Some(s) = &model.preprocess().smoother {
+                for r in &mut net {
+                    *r = crate::smoother::smooth_by_record(
+                        s,
+                        r,
+                        &parts,
+                        model.dt_s(),
+                        model.preprocess().causal,
+                    )?;
+                }
+            }
             unfaded
                 .iter()
                 .zip(&net)

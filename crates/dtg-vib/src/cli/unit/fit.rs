@@ -147,7 +147,8 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     notes.say_notes();
     let m = model.inner();
     if a.json {
-        let mut report = FitReport::of_channels(m.channels(), split_text(m), seconds);
+        let mut report =
+            FitReport::of_channels(m.channels(), split_text(m), seconds).with_choice(m);
         if let Some(per) = &per_record {
             report.set_records(per, a.cv.clone());
         }
@@ -208,7 +209,7 @@ pub fn explain(
             "unit": sensor.unit.name(),
             "rounds": &e.rounds,
             "converged": e.converged,
-            "final": FitReport::of_channels(m.channels(), split_text(m), seconds),
+            "final": FitReport::of_channels(m.channels(), split_text(m), seconds).with_choice(m),
         });
         println!("{v}");
         return Ok(());

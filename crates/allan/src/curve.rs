@@ -48,7 +48,7 @@ impl AllanCurve {
     /// factors `factors` (increasing), with intervals at `confidence`.
     ///
     /// ```
-    /// use nav_sensors::noise::{AllanCurve, PowerLaw};
+    /// use allan::{AllanCurve, PowerLaw};
     /// let y: Vec<f64> = (0..400).map(|k| ((k * 37) % 11) as f64).collect();
     /// let c = AllanCurve::new(&y, 1.0, &[1, 2, 4], 0.95).unwrap();
     /// assert_eq!(c.points.len(), 3);

@@ -19,7 +19,7 @@ use super::error::AllanError;
 /// a 15 deg/h Earth-rate offset does not cost digits.
 ///
 /// ```
-/// use nav_sensors::noise::overlapping_adev;
+/// use allan::overlapping_adev;
 /// // A ramp y_k = a·k·τ₀: consecutive m-means differ by a·mτ₀, so σ = a·τ/√2 exactly.
 /// let a = 0.5; // deg/h per s
 /// let y: Vec<f64> = (0..1000).map(|k| a * k as f64 * 0.02).collect();
@@ -78,7 +78,7 @@ pub fn overlapping_adev(y: &[f64], tau0_s: f64, factors: &[usize]) -> Result<Vec
 /// Always at least `[1]` when `n ≥ 3`; empty below.
 ///
 /// ```
-/// use nav_sensors::noise::octave_factors;
+/// use allan::octave_factors;
 /// assert_eq!(octave_factors(5000), vec![1, 2, 4, 8, 16, 32, 64, 128, 256]);
 /// assert_eq!(octave_factors(12), vec![1]);
 /// assert!(octave_factors(2).is_empty());

@@ -3,7 +3,7 @@
 /// Why an Allan deviation cannot be computed.
 ///
 /// ```
-/// use nav_sensors::noise::{overlapping_adev, AllanError};
+/// use allan::{overlapping_adev, AllanError};
 /// let err = overlapping_adev(&[1.0, 2.0], 0.02, &[1]).unwrap_err();
 /// assert!(matches!(err, AllanError::TooShort { .. }));
 /// ```

@@ -16,7 +16,7 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 /// the number of squared differences summed (N − 2m).
 ///
 /// ```
-/// use nav_sensors::noise::{edf_overlapping, PowerLaw};
+/// use allan::{edf_overlapping, PowerLaw};
 /// // White rate noise, 5000 samples: ≈ 3332 at m = 1, ≈ 27.3 at m = 256.
 /// assert!((edf_overlapping(5000, 1, PowerLaw::WhiteRate) - 3332.4).abs() < 0.1);
 /// assert!((edf_overlapping(5000, 256, PowerLaw::WhiteRate) - 27.3).abs() < 0.1);
@@ -64,7 +64,7 @@ pub fn edf_overlapping(samples: usize, m: usize, noise: PowerLaw) -> f64 {
 /// `[σ̂·√(edf/χ²_{(1+c)/2}), σ̂·√(edf/χ²_{(1−c)/2})]`.
 ///
 /// ```
-/// use nav_sensors::noise::deviation_interval;
+/// use allan::deviation_interval;
 /// let (lo, hi) = deviation_interval(1.0, 100.0, 0.683).unwrap();
 /// // Relative half-width ≈ 1/√(2·edf) = 7%.
 /// assert!(lo < 1.0 && hi > 1.0 && (lo - 0.93).abs() < 0.01 && (hi - 1.08).abs() < 0.01, "{lo} {hi}");

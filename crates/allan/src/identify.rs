@@ -42,7 +42,7 @@ impl PowerLaw {
     /// The noise of exponent `alpha`, clamped to [−2, 2].
     ///
     /// ```
-    /// use nav_sensors::noise::PowerLaw;
+    /// use allan::PowerLaw;
     /// assert_eq!(PowerLaw::from_alpha(0), PowerLaw::WhiteRate);
     /// assert_eq!(PowerLaw::from_alpha(-3), PowerLaw::RandomWalkRate);
     /// ```
@@ -68,7 +68,7 @@ pub const MIN_IDENTIFY_SAMPLES: usize = 30;
 /// [`MIN_IDENTIFY_SAMPLES`] averages remain.
 ///
 /// ```
-/// use nav_sensors::noise::{identify_noise, PowerLaw};
+/// use allan::{identify_noise, PowerLaw};
 /// use rand::SeedableRng;
 /// use rand_distr::{Distribution, StandardNormal};
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
