@@ -257,6 +257,59 @@ pub struct Model<'a> {
     features: usize,
 }
 
+/// The signal words and each channel's effect pairs of the header (after
+/// the fixed words), checked: the word after them, and each channel's
+/// number of effect parameters.
+fn effect_words(
+    bytes: &[u8],
+    channels: &mut [ChannelAt; 6],
+    n_signals: usize,
+    n_extra: usize,
+) -> Result<(usize, [usize; 6]), Error> {
+    let signal_words = FIXED_HEADER_WORDS;
+    for s in 0..n_signals {
+        if word(bytes, signal_words + s)? as usize >= 3 + n_extra {
+            return Err(Error::Header {
+                word: signal_words + s,
+            });
+        }
+    }
+    let mut w = signal_words + n_signals;
+    let mut params_len = [0usize; 6];
+    for (c, ch) in channels.iter_mut().enumerate() {
+        ch.effect_words = w;
+        for _ in 0..ch.n_effects {
+            let k = word(bytes, w)?;
+            let Some(p) = kind_params(k) else {
+                return Err(Error::Header { word: w });
+            };
+            if k == kind::COLUMN && word(bytes, w + 1)? as usize >= n_extra {
+                return Err(Error::Header { word: w + 1 });
+            }
+            params_len[c] += p;
+            w += 2;
+        }
+    }
+    Ok((w, params_len))
+}
+
+/// The two header words after the effect pairs (at `w`): the network's
+/// input kind with its dimension, and the prediction smoother's sections.
+fn input_words(
+    bytes: &[u8],
+    w: usize,
+    window_len: usize,
+    n_signals: usize,
+) -> Result<(u32, usize, usize), Error> {
+    let input = word(bytes, w)?;
+    let dim = match input {
+        input::RAW => window_len * n_signals,
+        input::STATISTICS => 3 * n_signals,
+        _ => return Err(Error::Header { word: w }),
+    };
+    Ok((input, dim, word(bytes, w + 1)? as usize))
+}
+
 impl<'a> Model<'a> {
     /// Checks the header and sizes of `bytes` (layout version [`VERSION`]).
     pub fn parse(bytes: &'a [u8]) -> Result<Self, Error> {
@@ -277,11 +330,10 @@ impl<'a> Model<'a> {
         let n_in_sections = word(bytes, 6)? as usize;
         let window_len = word(bytes, 7)? as usize;
         let n_signals = word(bytes, 8)? as usize;
-        if window_len == 0 {
-            return Err(Error::Header { word: 7 });
-        }
-        if n_signals == 0 {
-            return Err(Error::Header { word: 8 });
+        for (v, word) in [(window_len, 7), (n_signals, 8)] {
+            if v == 0 {
+                return Err(Error::Header { word });
+            }
         }
         let mut channels = [ChannelAt::default(); 6];
         for (c, ch) in channels.iter_mut().enumerate() {
@@ -289,38 +341,9 @@ impl<'a> Model<'a> {
             ch.n_centres = word(bytes, 15 + c)? as usize;
         }
         let signal_words = FIXED_HEADER_WORDS;
-        for s in 0..n_signals {
-            if word(bytes, signal_words + s)? as usize >= 3 + n_extra {
-                return Err(Error::Header {
-                    word: signal_words + s,
-                });
-            }
-        }
-        let mut w = signal_words + n_signals;
-        let mut params_len = [0usize; 6];
-        for (c, ch) in channels.iter_mut().enumerate() {
-            ch.effect_words = w;
-            for _ in 0..ch.n_effects {
-                let k = word(bytes, w)?;
-                let Some(p) = kind_params(k) else {
-                    return Err(Error::Header { word: w });
-                };
-                if k == kind::COLUMN && word(bytes, w + 1)? as usize >= n_extra {
-                    return Err(Error::Header { word: w + 1 });
-                }
-                params_len[c] += p;
-                w += 2;
-            }
-        }
-        let input = word(bytes, w)?;
-        let dim = match input {
-            input::RAW => window_len * n_signals,
-            input::STATISTICS => 3 * n_signals,
-            _ => return Err(Error::Header { word: w }),
-        };
-        let n_smooth_sections = word(bytes, w + 1)? as usize;
-        w += 2;
-        if header_words < w || !header_words.is_multiple_of(2) {
+        let (w, params_len) = effect_words(bytes, &mut channels, n_signals, n_extra)?;
+        let (input, dim, n_smooth_sections) = input_words(bytes, w, window_len, n_signals)?;
+        if header_words < w + 2 || !header_words.is_multiple_of(2) {
             return Err(Error::Header { word: 2 });
         }
         let calibrated = flags & FLAG_CALIBRATION != 0;
@@ -668,28 +691,7 @@ impl<'m, 's> Evaluator<'m, 's> {
         };
 
         // Effects, filtered, weighted: the linear part of each prediction.
-        let mut linear = [0.0; 6];
-        for (c, ch) in m.channels.iter().enumerate() {
-            let mut p = ch.params;
-            let mut sum = 0.0;
-            for e in 0..ch.n_effects {
-                let k = m.w(ch.effect_words + 2 * e);
-                let z = match k {
-                    kind::COLUMN => st[PENDING_EXTRA + m.w(ch.effect_words + 2 * e + 1) as usize],
-                    kind::LINEAR_G => dot3(&m, p, &a),
-                    kind::QUADRATIC_G => {
-                        let (pf, qf) = (dot3(&m, p, &a), dot3(&m, p + 24, &a));
-                        pf * qf + quad(&m, p, cov, p + 24)
-                    }
-                    _ => dot6(&m, p, &gyro) * dot6(&m, p + 48, &gyro),
-                };
-                p += 8 * kind_params(k).unwrap_or(0);
-                let s0 = ch.state + 2 * m.n_sections * e;
-                let z = cascade(&m, m.out_filter, m.n_sections, &mut st[s0..], z, first);
-                sum += z * m.f(ch.coefficients + 8 * e);
-            }
-            linear[c] = sum;
-        }
+        let linear = linear_parts(&m, st, (&a, &gyro, cov), first);
 
         // Window signals, filtered, into their windows.
         let l = m.window_len;
@@ -753,25 +755,10 @@ impl<'m, 's> Evaluator<'m, 's> {
                 m.f(ch.bias) + linear[c]
             };
             let mut net = 0.0;
-            let mut centre = ch.centres;
-            for k in 0..ch.n_centres {
-                let mut r2 = 0.0;
-                if m.input == input::STATISTICS {
-                    let x = &st[m.features..m.features + m.dim];
-                    r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
-                    centre += 8 * m.dim;
-                } else {
-                    for s in 0..m.n_signals {
-                        let win = &st[m.rings + 2 * l * s + self.ring_pos..][..l];
-                        r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
-                        centre += 8 * l;
-                    }
-                }
-                let beta = m.f(ch.widths + 8 * k);
-                let term = exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k);
+            network_terms(&m, ch, st, self.ring_pos, |term| {
                 y += term;
                 net += term;
-            }
+            });
             // The prediction smoother, on the network part only.
             if smoothed {
                 let s0 = m.smooth_state + 2 * m.n_smooth_sections * c;
@@ -801,6 +788,66 @@ impl<'m, 's> Evaluator<'m, 's> {
             out.rate_deg_h[c] = gyro[c] - y;
         }
         Some(out)
+    }
+}
+
+/// Each channel's effects through the output filter, weighted and summed:
+/// the linear part of its prediction (`inputs`: the calibrated specific
+/// force (g), the compensated gyro outputs (deg/h) and the within-interval
+/// covariance of the specific force).
+fn linear_parts(
+    m: &Model,
+    st: &mut [f64],
+    (a, gyro, cov): (&[f64; 3], &[f64; 6], &[[f64; 3]; 3]),
+    first: bool,
+) -> [f64; 6] {
+    let mut linear = [0.0; 6];
+    for (c, ch) in m.channels.iter().enumerate() {
+        let mut p = ch.params;
+        let mut sum = 0.0;
+        for e in 0..ch.n_effects {
+            let k = m.w(ch.effect_words + 2 * e);
+            let z = match k {
+                kind::COLUMN => st[PENDING_EXTRA + m.w(ch.effect_words + 2 * e + 1) as usize],
+                kind::LINEAR_G => dot3(m, p, a),
+                kind::QUADRATIC_G => {
+                    let (pf, qf) = (dot3(m, p, a), dot3(m, p + 24, a));
+                    pf * qf + quad(m, p, cov, p + 24)
+                }
+                _ => dot6(m, p, gyro) * dot6(m, p + 48, gyro),
+            };
+            p += 8 * kind_params(k).unwrap_or(0);
+            let s0 = ch.state + 2 * m.n_sections * e;
+            let z = cascade(m, m.out_filter, m.n_sections, &mut st[s0..], z, first);
+            sum += z * m.f(ch.coefficients + 8 * e);
+        }
+        linear[c] = sum;
+    }
+    linear
+}
+
+/// Each kernel term of channel `ch`'s network, in centre order, handed to
+/// `add` (the input: the statistics in `st`, or the windows of the rings
+/// whose oldest sample is at `ring_pos`).
+#[inline(always)]
+fn network_terms(m: &Model, ch: &ChannelAt, st: &[f64], ring_pos: usize, mut add: impl FnMut(f64)) {
+    let l = m.window_len;
+    let mut centre = ch.centres;
+    for k in 0..ch.n_centres {
+        let mut r2 = 0.0;
+        if m.input == input::STATISTICS {
+            let x = &st[m.features..m.features + m.dim];
+            r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
+            centre += 8 * m.dim;
+        } else {
+            for s in 0..m.n_signals {
+                let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
+                r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
+                centre += 8 * l;
+            }
+        }
+        let beta = m.f(ch.widths + 8 * k);
+        add(exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k));
     }
 }
 

@@ -103,12 +103,12 @@ impl std::fmt::Display for ModelInput {
 }
 
 impl std::str::FromStr for ModelInput {
-    type Err = crate::SysidError;
+    type Err = crate::error::SysidError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.trim() {
             "raw" => Ok(ModelInput::Raw),
             "statistics" => Ok(ModelInput::Statistics),
-            other => Err(crate::SysidError::InvalidOption {
+            other => Err(crate::error::SysidError::InvalidOption {
                 name: "input",
                 value: other.to_string(),
                 reason: "use raw or statistics",

@@ -39,6 +39,7 @@
 //! ```
 
 pub mod check;
+mod choice_report;
 pub mod diagnose;
 mod error;
 pub mod example;

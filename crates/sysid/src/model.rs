@@ -3,8 +3,8 @@
 //! windows; with the sensor and recipe it was fitted with, so new records
 //! are prepared exactly as the training records were.
 
+use crate::choice_report::ChoiceReport;
 use crate::error::SysidError;
-use crate::fit::ChoiceReport;
 use crate::inference::Coefficient;
 use crate::operating::OperatingPoints;
 use crate::prepared::Prepared;
@@ -366,7 +366,7 @@ impl<S: Sensor> Model<S> {
         self.choice = Some(report);
     }
 
-    pub(crate) fn set_smoother(&mut self, smoother: Option<crate::Smoother>) {
+    pub(crate) fn set_smoother(&mut self, smoother: Option<crate::smoother::Smoother>) {
         self.preprocess.smoother = smoother;
     }
 
@@ -434,13 +434,22 @@ impl<S: Sensor> Model<S> {
     /// channel order.
     pub fn predict(&self, prepared: &Prepared<S>) -> Result<Vec<Vec<f64>>, SysidError> {
         let w = prepared.window_matrix();
+        let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
         self.channels
             .iter()
             .enumerate()
             .map(|(k, c)| {
                 let z = prepared.effect_matrix(k, &c.effects)?;
                 let y = c.predict_with(&w, &z);
-                crate::smoother::smoothed(&self.preprocess, self.dt_s, prepared, c, &z, y)
+                crate::smoother::smoothed(
+                    self.preprocess.smoother.as_ref(),
+                    self.preprocess.causal,
+                    self.dt_s,
+                    &records,
+                    (c.bias(), &c.effect_coefficients()),
+                    &z,
+                    y,
+                )
             })
             .collect()
     }

@@ -27,6 +27,7 @@
 //! too.
 
 pub mod fade;
+pub mod fade_settings;
 pub mod range;
 
 use crate::error::SysidError;

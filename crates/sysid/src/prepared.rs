@@ -89,7 +89,7 @@ impl<S: Sensor> Prepared<S> {
 
     /// The same records with the network's input `input` (a fit's choice
     /// tries each): only the inputs are formed again.
-    pub fn with_input(&self, input: crate::ModelInput) -> Result<Self, SysidError> {
+    pub fn with_input(&self, input: crate::input::ModelInput) -> Result<Self, SysidError> {
         let mut pre = self.preprocess.clone();
         pre.input = input;
         let windows = if self.parts.is_empty() {

@@ -62,9 +62,9 @@ pub struct FitSettings {
     pub seed: u64,
     /// The network inputs and prediction smoothers to choose among, by
     /// validation rms under the Allan-deviation constraint
-    /// ([`crate::fit::ModelChoice`]); none: the pre-processing's as they are.
+    /// ([`ModelChoice`]); none: the pre-processing's as they are.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub choice: Option<crate::fit::ModelChoice>,
+    pub choice: Option<ModelChoice>,
 }
 
 impl Default for FitSettings {
@@ -195,6 +195,38 @@ impl<E> FitOptions<E> {
         Self {
             recipe: Recipe::new(channels),
             validate_on: None,
+        }
+    }
+}
+
+/// The candidates a fit chooses among (a setting: the model keeps it, so a
+/// refit by the explain loop chooses again).
+///
+/// ```
+/// let c = sysid::fit::ModelChoice::default();
+/// assert_eq!(c.inputs.len(), 2);
+/// assert_eq!(c.smoothers.len(), 5); // none, 0.5, 0.2, 0.1, 0.05 Hz
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelChoice {
+    /// Inputs tried.
+    pub inputs: Vec<crate::input::ModelInput>,
+    /// Smoothers tried (`None`: no smoother).
+    pub smoothers: Vec<Option<crate::smoother::Smoother>>,
+}
+
+impl Default for ModelChoice {
+    /// Both inputs, and no smoother or one of [`crate::smoother::SMOOTHER_LADDER_HZ`].
+    fn default() -> Self {
+        Self {
+            inputs: crate::input::ModelInput::ALL.to_vec(),
+            smoothers: std::iter::once(None)
+                .chain(
+                    crate::smoother::SMOOTHER_LADDER_HZ
+                        .iter()
+                        .map(|&cutoff_hz| Some(crate::smoother::Smoother { cutoff_hz })),
+                )
+                .collect(),
         }
     }
 }

@@ -75,21 +75,24 @@ impl Smoother {
     }
 }
 
-/// A channel's predictions `y` (on the rows of `prepared`, with the effects'
-/// regressors `z`) with their network part smoothed by the pre-processing's
-/// smoother, if any: bias and effects as they are.
-pub(crate) fn smoothed<S: crate::Sensor>(
-    pre: &crate::Preprocess,
+/// A channel's predictions `y` (one per row, the rows of `records`, each
+/// record's range; with the effects' regressors `z`, bias `bias` and effect
+/// coefficients `theta`) with their network part smoothed by `smoother`, if
+/// any (`causal`: one forward pass, else zero-phase): bias and effects as
+/// they are.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn smoothed(
+    smoother: Option<&Smoother>,
+    causal: bool,
     dt_s: f64,
-    prepared: &crate::Prepared<S>,
-    channel: &crate::ChannelModelOf<S>,
+    records: &[std::ops::Range<usize>],
+    (bias, theta): (f64, &[f64]),
     z: &faer::Mat<f64>,
     y: Vec<f64>,
 ) -> Result<Vec<f64>, SysidError> {
-    let Some(s) = &pre.smoother else {
+    let Some(s) = smoother else {
         return Ok(y);
     };
-    let (bias, theta) = (channel.bias(), channel.effect_coefficients());
     let linear: Vec<f64> = (0..y.len())
         .map(|i| {
             bias + theta
@@ -100,8 +103,7 @@ pub(crate) fn smoothed<S: crate::Sensor>(
         })
         .collect();
     let net: Vec<f64> = y.iter().zip(&linear).map(|(y, l)| y - l).collect();
-    let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
-    let smooth = smooth_by_record(s, &net, &records, dt_s, pre.causal)?;
+    let smooth = smooth_by_record(s, &net, records, dt_s, causal)?;
     Ok(linear.iter().zip(&smooth).map(|(l, n)| l + n).collect())
 }
 

@@ -9,6 +9,7 @@ use dtg_vib::report::write_diagnosis_report;
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
+use super::findings::print_diagnosis;
 use super::fit_args::once_each;
 use super::report::guard_report;
 use super::thresholds::Thresholds;
@@ -89,34 +90,4 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The diagnosis as `diagnose` prints it: each channel's rms, fit and
-/// suggestions with its findings, then what the words used mean.
-pub fn print_diagnosis<C: std::fmt::Display>(
-    d: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
-) {
-    for c in &d.channels {
-        println!(
-            "{:>3}: validation rms {:.4} deg/h, fit {:.1}%; suggested: {}",
-            c.channel,
-            c.rms,
-            c.compare.val_fit_percent,
-            if c.suggested.is_empty() {
-                "nothing".to_string()
-            } else {
-                c.suggested.join(", ")
-            }
-        );
-        for f in &c.findings {
-            println!("     {f}");
-        }
-    }
-    let terms = super::terms::diagnosis_terms(d);
-    if !terms.is_empty() {
-        println!("terms used above:");
-        for t in terms {
-            println!("  {t}");
-        }
-    }
 }

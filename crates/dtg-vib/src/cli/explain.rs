@@ -11,6 +11,7 @@ use nav_sensors::record::Record;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use super::findings::print_rounds;
 use super::fit::{FitReport, print_fit};
 use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
 use super::report::guard_report;
@@ -112,38 +113,6 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     Ok(())
 }
 
-/// Every round, then why the loop stopped (and, when it added anything,
-/// which coefficient the final table holds).
-pub fn print_rounds<C: std::fmt::Display>(
-    rounds: &[sysid::explain::Round<C, nav_sensors::geometry::Axis>],
-    converged: bool,
-    max_rounds: u64,
-) {
-    for (k, r) in rounds.iter().enumerate() {
-        print_round(k, r);
-    }
-    if converged {
-        println!(
-            "nothing new suggested: the loop stopped after {} round(s)",
-            rounds.len()
-        );
-    } else {
-        println!(
-            "stopped at --max-rounds {max_rounds}: the last diagnosis still suggests something (run `dtg-vib diagnose` on the model)"
-        );
-    }
-    if rounds.iter().any(|r| !r.added.is_empty()) {
-        println!("{WHICH_COEFFICIENT}");
-    }
-}
-
-/// Which of an added effect's two coefficients is which: the round's (the
-/// diagnosis's screening estimate) and the final table's (the one stored),
-/// both from every row of the record by cross-fitted partialling (issue 23
-/// §3), so they agree within their intervals; the stored one's interval
-/// also holds the spread over its three cuts.
-const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, cross-fitted on the record's two halves; the model below stores and compensates with the fit's, cross-fitted on the same rows (every row) over 4, 6 and 8 alternating spans, their spread in its interval: one effect estimated on the same rows, so the two agree within their intervals";
-
 /// A round's steps as lines that stay on the terminal (a round over several
 /// records takes tens of seconds), and the current one on the spinner;
 /// `fitted` counts the round's channels, which finish in any order.
@@ -175,67 +144,4 @@ struct ExplainReport<'a> {
     converged: bool,
     #[serde(rename = "final")]
     final_fit: FitReport,
-}
-
-/// Round `k` (from 0): what it added, how each addition is told from its
-/// look-alikes, and the validation rms after it.
-fn print_round<C: std::fmt::Display>(
-    k: usize,
-    r: &sysid::explain::Round<C, nav_sensors::geometry::Axis>,
-) {
-    println!("round {}:", k + 1);
-    if k == 0 {
-        println!("  fitted with the given effects");
-    }
-    for x in &r.added {
-        println!(
-            "  added {}={}: explains {:.0}% of what was left (p {}), coefficient {:.4} ± {:.4} {} (95% CI {:.4} to {:.4}){}",
-            x.channel,
-            x.effect,
-            100.0 * x.err,
-            dtg_vib::diagnose::p_text(x.p),
-            x.coef,
-            x.se,
-            x.unit,
-            x.ci95[0],
-            x.ci95[1],
-            if x.alternatives.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; this record cannot tell it from {}",
-                    x.alternatives.join(", ")
-                )
-            }
-        );
-    }
-    for x in r.added.iter().filter_map(|x| x.separation.as_ref()) {
-        println!("    {}", x.advice);
-    }
-    for x in &r.added {
-        for sep in &x.record_separations {
-            println!(
-                "    {} and {} are collinear on {} alone; {}",
-                x.effect,
-                sep.effect,
-                sep.collinear_on.join(", "),
-                if sep.separated_by.is_empty() {
-                    "the records together tell them apart".to_string()
-                } else {
-                    format!("{} told them apart", sep.separated_by.join(", "))
-                }
-            );
-        }
-    }
-    for x in &r.added {
-        for caveat in &x.caveats {
-            println!("    caveat on {}={}: {caveat}", x.channel, x.effect);
-        }
-    }
-    let rms: Vec<String> = r
-        .channels
-        .iter()
-        .map(|c| format!("{} {:.4}", c.channel, c.val_rms))
-        .collect();
-    println!("  validation rms (deg/h): {}", rms.join(", "));
 }

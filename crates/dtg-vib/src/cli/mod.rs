@@ -18,6 +18,7 @@ pub mod demo;
 pub mod diagnose;
 pub mod explain;
 pub mod export;
+pub mod findings;
 pub mod fit;
 pub mod fit_args;
 pub mod parse;

@@ -3,7 +3,7 @@
 //! (`sysid::operating::fade`), as the evaluator reads it
 //! (`dtg_onboard::FADE_FLOATS` numbers after the channels).
 
-use super::ExportError;
+use super::error::ExportError;
 use crate::model::CompensationModel;
 use nav_sensors::geometry::{Axis, Channel};
 

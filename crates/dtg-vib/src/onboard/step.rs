@@ -2,7 +2,8 @@
 //! `dtg-onboard` evaluator, as a flight computer would: what `compensate`
 //! does with a causal model, and what the exported C is checked against.
 
-use super::{ExportError, tables};
+use super::error::ExportError;
+use super::tables;
 use crate::error::DtgVibError;
 use crate::model::CompensationModel;
 use nav_sensors::record::Record;

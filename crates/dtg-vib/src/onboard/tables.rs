@@ -1,7 +1,7 @@
 //! A causal model as the flat tables the `dtg-onboard` evaluator and the
 //! exported C read (layout in docs/formats.md, "Onboard tables").
 
-use super::ExportError;
+use super::error::ExportError;
 use crate::effects::{Effect, rate_without_each_channel};
 use crate::model::CompensationModel;
 use crate::signal::LowPass;

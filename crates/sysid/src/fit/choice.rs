@@ -22,40 +22,9 @@ use crate::model::{Model, score};
 use crate::prepared::Prepared;
 use crate::recipe::Recipe;
 use crate::sensor::Sensor;
-use crate::smoother::{SMOOTHER_LADDER_HZ, Smoother, smoothed};
-use serde::{Deserialize, Serialize};
+use crate::smoother::{Smoother, smoothed};
 
-/// The candidates a fit chooses among (a setting: the model keeps it, so a
-/// refit by the explain loop chooses again).
-///
-/// ```
-/// let c = sysid::fit::ModelChoice::default();
-/// assert_eq!(c.inputs.len(), 2);
-/// assert_eq!(c.smoothers.len(), 5); // none, 0.5, 0.2, 0.1, 0.05 Hz
-/// ```
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ModelChoice {
-    /// Inputs tried.
-    pub inputs: Vec<ModelInput>,
-    /// Smoothers tried (`None`: no smoother).
-    pub smoothers: Vec<Option<Smoother>>,
-}
-
-impl Default for ModelChoice {
-    /// Both inputs, and no smoother or one of [`SMOOTHER_LADDER_HZ`].
-    fn default() -> Self {
-        Self {
-            inputs: ModelInput::ALL.to_vec(),
-            smoothers: std::iter::once(None)
-                .chain(
-                    SMOOTHER_LADDER_HZ
-                        .iter()
-                        .map(|&cutoff_hz| Some(Smoother { cutoff_hz })),
-                )
-                .collect(),
-        }
-    }
-}
+pub use crate::recipe::ModelChoice;
 
 /// Confidence of the interval of ADEV before that bounds ADEV after.
 pub const ADEV_CONFIDENCE: f64 = 0.683;
@@ -64,57 +33,7 @@ pub const ADEV_CONFIDENCE: f64 = 0.683;
 /// checked (shorter runs, as an interleaved split's, say nothing at τ).
 pub const MIN_ADEV_ROWS: usize = 200;
 
-/// One candidate of a choice, as judged on the validation rows.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Candidate {
-    /// The network's input.
-    pub input: ModelInput,
-    /// The prediction smoother.
-    pub smoother: Option<Smoother>,
-    /// Validation rms per channel (the filtered target against the
-    /// prediction), in the target's unit, the sensor's channel order.
-    pub val_rms: Vec<f64>,
-    /// Their mean: what the choice minimises.
-    pub mean_val_rms: f64,
-    /// Largest ADEV after / ADEV before over τ, channels and runs (NaN
-    /// when no run was long enough).
-    pub worst_adev_ratio: f64,
-    /// The channel where it was.
-    pub worst_channel: String,
-    /// The τ where it was, s.
-    pub worst_tau_s: f64,
-    /// Largest ratio of ADEV after to its bound, before × (1 + hw68): at
-    /// most 1 for a candidate that passes.
-    pub worst_excess: f64,
-    /// True when ADEV after stays within its bound everywhere.
-    pub passes: bool,
-}
-
-/// What a fit chose and why: every candidate's figures.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ChoiceReport {
-    /// The candidates, inputs outer, smoothers inner.
-    pub candidates: Vec<Candidate>,
-    /// Index of the chosen one.
-    pub chosen: usize,
-    /// Validation runs whose ADEV was checked (0: the choice is by rms only).
-    pub adev_runs: usize,
-}
-
-impl ChoiceReport {
-    /// The chosen candidate.
-    pub fn chosen(&self) -> &Candidate {
-        &self.candidates[self.chosen]
-    }
-
-    /// The candidate of the paper's model: raw window, no smoother (the
-    /// baseline the choice's cost and gain are told against).
-    pub fn baseline(&self) -> Option<&Candidate> {
-        self.candidates
-            .iter()
-            .find(|c| c.input == ModelInput::Raw && c.smoother.is_none())
-    }
-}
+pub use crate::choice_report::{Candidate, ChoiceReport};
 
 /// The recipe fitted once per candidate input, every smoother judged, the
 /// winner returned with its smoother set, scored with it, and the report.
@@ -154,16 +73,23 @@ pub(super) fn fit_choosing<S: Sensor>(
             .enumerate()
             .map(|(k, c)| p.effect_matrix(k, c.effects()))
             .collect::<Result<_, _>>()?;
+        let records: Vec<_> = p.record_rows().into_iter().map(|(_, r)| r).collect();
         for &smoother in &choice.smoothers {
-            let pre = crate::Preprocess {
-                smoother,
-                ..r.preprocess.clone()
-            };
             let predicted = model
                 .channels()
                 .iter()
                 .enumerate()
-                .map(|(k, c)| smoothed(&pre, model.dt_s(), &p, c, &z[k], unsmoothed[k].clone()))
+                .map(|(k, c)| {
+                    smoothed(
+                        smoother.as_ref(),
+                        r.preprocess.causal,
+                        model.dt_s(),
+                        &records,
+                        (c.bias(), &c.effect_coefficients()),
+                        &z[k],
+                        unsmoothed[k].clone(),
+                    )
+                })
                 .collect::<Result<Vec<_>, _>>()?;
             candidates.push(judge.candidate(&p, input, smoother, &predicted, train, val)?);
         }

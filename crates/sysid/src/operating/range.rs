@@ -14,7 +14,7 @@
 //! data the model was validated on are inside by construction, and a model
 //! applied to its own record is unchanged).
 
-use super::fade::FadeSettings;
+use super::fade_settings::FadeSettings;
 use crate::error::SysidError;
 use crate::prepared::Prepared;
 use crate::sensor::Sensor;

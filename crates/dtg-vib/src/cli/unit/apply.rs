@@ -35,7 +35,7 @@ pub fn diagnose(
         println!("{}", serde_json::to_string(&d)?);
         return Ok(());
     }
-    super::super::diagnose::print_diagnosis(&d);
+    super::super::findings::print_diagnosis(&d);
     Ok(())
 }
 

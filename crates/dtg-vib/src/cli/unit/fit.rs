@@ -215,7 +215,7 @@ pub fn explain(
         return Ok(());
     }
     println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
-    super::super::explain::print_rounds(&e.rounds, e.converged, max_rounds as u64);
+    super::super::findings::print_rounds(&e.rounds, e.converged, max_rounds as u64);
     print_fit_channels(m.channels());
     println!("model: {} ({:.1} s)", a.out.display(), seconds);
     Ok(())

@@ -1,0 +1,58 @@
+//! What a fit chose among its candidate inputs and smoothers, and why: the
+//! report a model stores ([`crate::fit`] makes it, the model keeps it).
+
+use crate::input::ModelInput;
+use crate::smoother::Smoother;
+use serde::{Deserialize, Serialize};
+
+/// One candidate of a choice, as judged on the validation rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Candidate {
+    /// The network's input.
+    pub input: ModelInput,
+    /// The prediction smoother.
+    pub smoother: Option<Smoother>,
+    /// Validation rms per channel (the filtered target against the
+    /// prediction), in the target's unit, the sensor's channel order.
+    pub val_rms: Vec<f64>,
+    /// Their mean: what the choice minimises.
+    pub mean_val_rms: f64,
+    /// Largest ADEV after / ADEV before over τ, channels and runs (NaN
+    /// when no run was long enough).
+    pub worst_adev_ratio: f64,
+    /// The channel where it was.
+    pub worst_channel: String,
+    /// The τ where it was, s.
+    pub worst_tau_s: f64,
+    /// Largest ratio of ADEV after to its bound, before × (1 + hw68): at
+    /// most 1 for a candidate that passes.
+    pub worst_excess: f64,
+    /// True when ADEV after stays within its bound everywhere.
+    pub passes: bool,
+}
+
+/// What a fit chose and why: every candidate's figures.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChoiceReport {
+    /// The candidates, inputs outer, smoothers inner.
+    pub candidates: Vec<Candidate>,
+    /// Index of the chosen one.
+    pub chosen: usize,
+    /// Validation runs whose ADEV was checked (0: the choice is by rms only).
+    pub adev_runs: usize,
+}
+
+impl ChoiceReport {
+    /// The chosen candidate.
+    pub fn chosen(&self) -> &Candidate {
+        &self.candidates[self.chosen]
+    }
+
+    /// The candidate of the paper's model: raw window, no smoother (the
+    /// baseline the choice's cost and gain are told against).
+    pub fn baseline(&self) -> Option<&Candidate> {
+        self.candidates
+            .iter()
+            .find(|c| c.input == ModelInput::Raw && c.smoother.is_none())
+    }
+}
