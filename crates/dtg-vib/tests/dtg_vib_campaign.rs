@@ -135,7 +135,7 @@ fn a_pair_collinear_on_the_z_run_is_named_by_the_three_axis_campaign() {
 }
 
 #[test]
-fn a_z_run_model_warns_on_the_flight_and_the_three_axis_model_holds_better() {
+fn a_z_run_model_warns_on_the_flight_and_its_fade_holds_the_residues() {
     let sim = |n: &str| simulate(&Scenario::builtin(n).unwrap()).unwrap();
     let (x, y, z, flight) = (sim("x-axis"), sim("y-axis"), sim("z-axis"), sim("flight"));
     let calibration = &z.calibration;
@@ -178,11 +178,21 @@ fn a_z_run_model_warns_on_the_flight_and_the_three_axis_model_holds_better() {
     let pooled =
         |c: &dtg_vib::check::TransferCheck| pooled_of(c.residues_unfaded.as_ref().unwrap());
     let (rz, rxyz) = (pooled(&on_flight_z), pooled(&on_flight_xyz));
-    // Faded outside its range, the z-only model leaves far less than as fitted.
+    let before = (on_flight_z
+        .residues
+        .iter()
+        .map(|r| r.rms_before.powi(2))
+        .sum::<f64>()
+        / on_flight_z.residues.len() as f64)
+        .sqrt();
+    // Faded outside its range, the z-only model leaves less than as fitted
+    // and adds at most a quarter to the flight's residues (measured: 1.96 →
+    // 2.04 deg/h faded, 2.56 as fitted; 12.35 as fitted with the paper's
+    // raw window and no smoother, before issue 23).
     let faded_z = pooled_of(&on_flight_z.residues);
     assert!(
-        faded_z < 0.5 * rz,
-        "z-only on the flight: faded {faded_z:.4}, as fitted {rz:.4}"
+        faded_z < rz && faded_z < 1.25 * before,
+        "z-only on the flight: faded {faded_z:.4}, as fitted {rz:.4}, before {before:.4}"
     );
     for (name, c) in [("z-only", &on_flight_z), ("x+y+z", &on_flight_xyz)] {
         eprintln!(
@@ -196,21 +206,12 @@ fn a_z_run_model_warns_on_the_flight_and_the_three_axis_model_holds_better() {
         );
     }
     // Before the fit chose its input and prediction smoother (issue 23)
-    // the z-only model multiplied the flight's residues 6.3× (pooled 1.96 →
-    // 12.35 deg/h) and the three-axis one 4.1× (→ 8.0), so the three-axis
-    // model "held better". With the choice the z-only model takes the
-    // statistics input and a 0.1-Hz smoother and holds far better (→ 2.56,
-    // 1.31×) while the three-axis model stays near 8 (its input and smoother
-    // change it little): neither should fly (docs/campaign.md), and the
-    // fade outside the training range (issue 23 §2) is what is left to do.
-    // What holds now: the z-only model no longer multiplies them by more than 2.
-    let before = (on_flight_z
-        .residues
-        .iter()
-        .map(|r| r.rms_before.powi(2))
-        .sum::<f64>()
-        / on_flight_z.residues.len() as f64)
-        .sqrt();
+    // the z-only model multiplied the flight's residues 6.3× as fitted
+    // (pooled 1.96 → 12.35 deg/h) and the three-axis one 4.1× (→ 8.0). With
+    // the choice the z-only model holds far better as fitted too (→ 2.56)
+    // while the three-axis model stays near 8: neither should fly
+    // (docs/campaign.md). What holds as fitted: the z-only model no longer
+    // multiplies them by more than 2.
     assert!(
         rz < 2.0 * before,
         "flight residue rms: z-only {rz:.4} (before {before:.4}), x+y+z {rxyz:.4} deg/h"

@@ -287,10 +287,14 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
         rate_reference: RateReference::None,
     };
     let sig = to_signals(&read.records[0]).unwrap();
+    // The options the paper's path defaults to: the fit chooses its input
+    // and prediction smoother (issue 23).
+    let mut options = sysid::FitOptions::<UnitEffect>::new(6);
+    options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
     let e = sysid::explain::explain(
         &sensor,
         &[("r".into(), &sig)],
-        &sysid::FitOptions::<UnitEffect>::new(6),
+        &options,
         &Default::default(),
         5,
         &|_| {},

@@ -18,14 +18,17 @@ pub struct Candidate {
     /// Their mean: what the choice minimises.
     pub mean_val_rms: f64,
     /// Largest ADEV after / ADEV before over τ, channels and runs (NaN
-    /// when no run was long enough).
+    /// when no run was long enough; `null` in a model file, read back as NaN).
+    #[serde(deserialize_with = "nan_when_null")]
     pub worst_adev_ratio: f64,
     /// The channel where it was.
     pub worst_channel: String,
-    /// The τ where it was, s.
+    /// The τ where it was, s (NaN, `null` in a file, when not judged).
+    #[serde(deserialize_with = "nan_when_null")]
     pub worst_tau_s: f64,
     /// Largest ratio of ADEV after to its bound, before × (1 + hw68): at
     /// most 1 for a candidate that passes.
+    #[serde(deserialize_with = "nan_when_null")]
     pub worst_excess: f64,
     /// True when ADEV after stays within its bound everywhere.
     pub passes: bool,
@@ -55,4 +58,10 @@ impl ChoiceReport {
             .iter()
             .find(|c| c.input == ModelInput::Raw && c.smoother.is_none())
     }
+}
+
+/// A number that JSON writes as `null` when it is NaN (serde_json has no
+/// NaN), read back as NaN, so a model whose choice judged no ADEV loads.
+fn nan_when_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
