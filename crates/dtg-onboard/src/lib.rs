@@ -759,18 +759,11 @@ impl<'m, 's> Evaluator<'m, 's> {
                 y += term;
                 net += term;
             });
-            // The prediction smoother, on the network part only.
-            if smoothed {
-                let s0 = m.smooth_state + 2 * m.n_smooth_sections * c;
-                let n = m.n_smooth_sections;
-                net = cascade(&m, m.smoother, n, &mut st[s0..], net, first_prediction);
-                y = m.f(ch.bias) + linear[c] + net;
-            }
             if let (Some(w), Some(at)) = (weight, m.fade) {
-                // The held network part (after the smoother): the network
-                // itself at full weight, else moved toward it by the weight;
-                // a record's first output starts from the network's training
-                // mean.
+                // The held network part: the network itself at full weight,
+                // else moved toward it by the weight; a record's first
+                // output starts from the network's training mean. It is
+                // held before the smoother (sysid::operating::fade).
                 let h = m.fade_state + 6 * l + c;
                 let before = if self.processed == l as u64 {
                     m.f(at + 8 * (16 + c))
@@ -782,7 +775,17 @@ impl<'m, 's> Evaluator<'m, 's> {
                 } else {
                     before + w * (net - before)
                 };
-                y -= net - st[h];
+                if !smoothed {
+                    y -= net - st[h];
+                }
+                net = st[h];
+            }
+            // The prediction smoother, on the network part only.
+            if smoothed {
+                let s0 = m.smooth_state + 2 * m.n_smooth_sections * c;
+                let n = m.n_smooth_sections;
+                net = cascade(&m, m.smoother, n, &mut st[s0..], net, first_prediction);
+                y = m.f(ch.bias) + linear[c] + net;
             }
             out.error_deg_h[c] = y;
             out.rate_deg_h[c] = gyro[c] - y;

@@ -736,23 +736,25 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
             y += term;
             net += term;
         }
+#if DTG_FADE
+        {
+            /* The held network part, before the smoother; the first output
+             * starts from the network's training mean. */
+            dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
+            s->fade_h[c] = w >= R(1) ? net : before + w * (net - before);
+#if DTG_N_SMOOTH_SECTIONS == 0
+            y -= net - s->fade_h[c];
+#endif
+            net = s->fade_h[c];
+        }
+#endif
 #if DTG_N_SMOOTH_SECTIONS > 0
         /* The prediction smoother, on the network part only. */
         net = cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
                       net, s->processed == l);
         y = BIAS[c] + linear[c] + net;
 #endif
-#if DTG_FADE
-        {
-            /* The held network part (after the smoother); the first output
-             * starts from the network's training mean. */
-            dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
-            s->fade_h[c] = w >= R(1) ? net : before + w * (net - before);
-            y -= net - s->fade_h[c];
-        }
-#else
         (void)net;
-#endif
         rate_deg_h[c] = (double)(g[c] - y);
     }
     for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];

@@ -180,34 +180,44 @@ pub fn predict_faded<S: Sensor>(
         (Some(w), Some(range)) if w.weight.iter().any(|&v| v < 1.0) => {
             let parts: Vec<std::ops::Range<usize>> =
                 prepared.record_rows().into_iter().map(|(_, r)| r).collect();
-            // The fade holds the network part the prediction holds: after
-            // the prediction smoother, as onboard and the C export hold it.
-            let mut net = network_parts(model, &prepared.window_matrix());
-            if let Some(s) = &model.preprocess().smoother {
-                for r in &mut net {
-                    *r = crate::smoother::smooth_by_record(
+            let net = network_parts(model, &prepared.window_matrix());
+            let held: Vec<Vec<f64>> = net
+                .iter()
+                .zip(&range.network_mean)
+                .map(|(r, &c)| {
+                    parts
+                        .iter()
+                        .flat_map(|rows| held_series(&r[rows.clone()], c, &w.weight[rows.clone()]))
+                        .collect()
+                })
+                .collect();
+            // The fade holds the network's own output, before the prediction
+            // smoother: a zero-phase smoother run over the unfaded network
+            // would carry what it extrapolates outside the range into the
+            // held value (onboard and the C export fade first too).
+            let smooth = |v: &[f64]| -> Result<Vec<f64>, SysidError> {
+                match &model.preprocess().smoother {
+                    Some(s) => crate::smoother::smooth_by_record(
                         s,
-                        r,
+                        v,
                         &parts,
                         model.dt_s(),
                         model.preprocess().causal,
-                    )?;
+                    ),
+                    None => Ok(v.to_vec()),
                 }
-            }
+            };
             unfaded
                 .iter()
-                .zip(&net)
-                .zip(&range.network_mean)
-                .map(|((p, r), &c)| {
-                    parts
-                        .iter()
-                        .flat_map(|rows| {
-                            let rows = rows.clone();
-                            fade_series(&p[rows.clone()], &r[rows.clone()], c, &w.weight[rows])
-                        })
-                        .collect()
+                .zip(net.iter().zip(&held))
+                .map(|(p, (r, h))| {
+                    let (r, h) = (smooth(r)?, smooth(h)?);
+                    Ok(p.iter()
+                        .zip(r.iter().zip(&h))
+                        .map(|(p, (r, h))| p - (r - h))
+                        .collect())
                 })
-                .collect()
+                .collect::<Result<Vec<Vec<f64>>, SysidError>>()?
         }
         _ => unfaded.clone(),
     };
@@ -236,6 +246,24 @@ pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
         .map(|((p, &r), &w)| {
             h = hold(h, r, w);
             p - (r - h)
+        })
+        .collect()
+}
+
+/// One record's held network part: the network `r` itself where the
+/// weight `w` is 1, else moved toward it by the weight, starting from `c`.
+///
+/// ```
+/// let h = sysid::operating::fade::held_series(&[1.0, 2.0, 3.0], 0.5, &[1.0, 0.0, 0.5]);
+/// assert_eq!(h, [1.0, 1.0, 2.0]);
+/// ```
+pub fn held_series(r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
+    let mut h = c;
+    r.iter()
+        .zip(w)
+        .map(|(&r, &w)| {
+            h = hold(h, r, w);
+            h
         })
         .collect()
 }
