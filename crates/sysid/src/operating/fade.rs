@@ -239,14 +239,10 @@ pub fn predict_faded<S: Sensor>(
 /// assert_eq!(out, [10.0, 10.0, 10.0]); // outside, the network holds its last value
 /// ```
 pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
-    let mut h = c;
     p.iter()
         .zip(r)
-        .zip(w)
-        .map(|((p, &r), &w)| {
-            h = hold(h, r, w);
-            p - (r - h)
-        })
+        .zip(held_series(r, c, w))
+        .map(|((p, r), h)| p - (r - h))
         .collect()
 }
 
