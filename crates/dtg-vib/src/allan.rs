@@ -21,8 +21,8 @@ use serde_json::Value;
 /// One series' curves and terms, before and (with a model) after.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SeriesAllan {
-    /// `X` … `Z1` or `K0` … `K5`.
-    pub name: &'static str,
+    /// `X` … `Z1` or `K0` … `K5` (a unit's gyro names, `P0`, …).
+    pub name: String,
     /// Curve before compensation (deg/h against s).
     pub before: AllanCurve,
     /// Noise terms read on `before`.
@@ -48,9 +48,17 @@ pub struct AllanAnalysis {
     pub compensated: bool,
     /// Gyro channels X, X1, Y, Y1, Z, Z1.
     pub channels: Vec<SeriesAllan>,
-    /// Parity residues K0 … K5 (eq. 6) of the same series.
+    /// Parity residues K0 … K5 (eq. 6) of the same series (a unit's P0, …;
+    /// none for a unit of three gyros).
     pub residues: Vec<SeriesAllan>,
+    /// What the residues are, in the residue figure's title: "eq. 6" for
+    /// the paper's K0 … K5, "V·m" for a unit's.
+    pub residue_source: &'static str,
 }
+
+/// A named series before and (with a model) after, deg/h, for
+/// [`AllanAnalysis::of_series`].
+pub type NamedSeries = (String, Vec<f64>, Option<Vec<f64>>);
 
 /// The six channel series before and (with a model) after, deg/h, and the
 /// first record sample they start at.
@@ -94,7 +102,7 @@ fn residue_series(ch: &[Vec<f64>; 6]) -> [Vec<f64>; 6] {
 }
 
 fn analyse_one(
-    name: &'static str,
+    name: String,
     before: &[f64],
     after: Option<&[f64]>,
     tau0_s: f64,
@@ -140,7 +148,7 @@ impl AllanAnalysis {
         for c in Channel::ALL {
             let k = c.index();
             channels.push(analyse_one(
-                c.name(),
+                c.name().to_string(),
                 &before[k],
                 after.as_ref().map(|a| a[k].as_slice()),
                 tau0_s,
@@ -151,7 +159,7 @@ impl AllanAnalysis {
         for r in Residue::ALL {
             let k = r.index();
             res.push(analyse_one(
-                r.name(),
+                r.name().to_string(),
                 &k_before[k],
                 k_after.as_ref().map(|a| a[k].as_slice()),
                 tau0_s,
@@ -166,6 +174,46 @@ impl AllanAnalysis {
             compensated: after.is_some(),
             channels,
             residues: res,
+            residue_source: "eq. 6",
+        })
+    }
+
+    /// The analysis of any unit's series: `channels` and `residues`, each
+    /// named with its curve before and (with a model) after, deg/h, sampled
+    /// every `tau0_s` from record sample `first_sample` on.
+    ///
+    /// ```
+    /// use dtg_vib::allan::AllanAnalysis;
+    /// let y: Vec<f64> = (0..400).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
+    /// let a = AllanAnalysis::of_series(0.02, 0, 0.683, vec![("g1".into(), y, None)], vec![]).unwrap();
+    /// assert_eq!((a.channels[0].name.as_str(), a.residues.len()), ("g1", 0));
+    /// assert!(!a.compensated);
+    /// ```
+    pub fn of_series(
+        tau0_s: f64,
+        first_sample: usize,
+        confidence: f64,
+        channels: Vec<NamedSeries>,
+        residues: Vec<NamedSeries>,
+    ) -> Result<Self, DtgVibError> {
+        let samples = channels.first().map_or(0, |(_, b, _)| b.len());
+        let compensated = channels.iter().any(|(_, _, a)| a.is_some());
+        let analyse = |v: Vec<NamedSeries>| {
+            v.into_iter()
+                .map(|(name, before, after)| {
+                    analyse_one(name, &before, after.as_deref(), tau0_s, confidence)
+                })
+                .collect::<Result<Vec<_>, _>>()
+        };
+        Ok(Self {
+            tau0_s,
+            first_sample,
+            samples,
+            confidence,
+            compensated,
+            channels: analyse(channels)?,
+            residues: analyse(residues)?,
+            residue_source: "V·m",
         })
     }
 
@@ -204,8 +252,8 @@ impl SeriesAllan {
                 .map(|t| f(t).estimate().map(|e| e.value)),
         };
         SeriesReport {
-            channel: is_channel.then_some(self.name),
-            residue: (!is_channel).then_some(self.name),
+            channel: is_channel.then_some(self.name.as_str()),
+            residue: (!is_channel).then_some(self.name.as_str()),
             tau_s: self.before.tau_s(),
             adev_before: self.before.adev(),
             adev_after: self.after.as_ref().map(AllanCurve::adev),
@@ -255,9 +303,9 @@ pub struct Units {
 #[derive(Debug, Serialize)]
 pub struct SeriesReport<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
-    channel: Option<&'static str>,
+    channel: Option<&'a str>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    residue: Option<&'static str>,
+    residue: Option<&'a str>,
     tau_s: Vec<f64>,
     adev_before: Vec<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]

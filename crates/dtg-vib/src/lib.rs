@@ -38,6 +38,8 @@ pub mod parity;
 pub mod pipeline;
 pub mod report;
 pub mod signal;
+pub mod unit_demo;
+pub mod unit_page;
 pub mod unit_sensor;
 
 pub use error::DtgVibError;

@@ -49,22 +49,24 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         Some(m) => super::unit::model_unit(m, unit.as_deref())?,
         None => None,
     };
-    if let Some(m) = &unit_model {
-        return Err(super::unit::not_yet("allan --model", m.unit()));
-    }
-    if let Some(u) = super::unit::chosen(unit.as_deref())? {
-        if report.is_some() {
-            return Err(super::unit::not_yet("allan --report", &u));
-        }
-        if model.is_some() {
-            return Err(super::unit::not_yet("allan --model", &u));
-        }
-        return super::unit::allan::allan(&u, &data, confidence, json, progress);
-    }
+    let chosen = match &unit_model {
+        Some(m) => Some(m.unit().clone()),
+        None if model.is_none() => super::unit::chosen(unit.as_deref())?,
+        None => None,
+    };
     guard_report(
         report.as_deref(),
         &[("--data", Some(&data)), ("--model", model.as_deref())],
     )?;
+    if let Some(u) = chosen {
+        let run = super::unit::allan::AllanRun {
+            model: unit_model.as_ref(),
+            confidence,
+            json,
+            report: report.as_deref(),
+        };
+        return super::unit::allan::allan(&u, &data, run, progress);
+    }
     let record = Record::read_csv(&data)?;
     let m = model.as_ref().map(CompensationModel::load).transpose()?;
     progress.say("computing Allan deviations");

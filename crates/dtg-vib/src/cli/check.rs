@@ -48,16 +48,15 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         report,
         unit,
     } = a;
-    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
-        if report.is_some() {
-            return Err(super::unit::not_yet("check --report", m.unit()));
-        }
-        return super::unit::apply::check(&m, &data, outside_threshold, json, progress);
-    }
+    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
     guard_report(
         report.as_deref(),
         &[("--model", Some(&model)), ("--data", Some(&data))],
     )?;
+    if let Some(m) = unit_model {
+        let page = report.as_deref().map(|dir| (model.as_path(), dir));
+        return super::unit::apply::check(&m, &data, outside_threshold, json, page, progress);
+    }
     let m = CompensationModel::load(&model)?;
     let record = Record::read_csv(&data)?;
     progress.say("applying the model");

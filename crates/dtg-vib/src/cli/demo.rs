@@ -14,8 +14,9 @@ pub struct DemoArgs {
     #[arg(long, default_value = "demo-out")]
     out: PathBuf,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
-    /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// triad, tetra, dual-triad); default paper. On another unit the demo
+    /// hides effects that suit it (tetra: g2=g_y and g3=col:temp; triad:
+    /// gx=g_y in a test along z; dual-triad: gx2=g_x) and runs the loop.
     #[arg(long)]
     unit: Option<String>,
 }
@@ -23,10 +24,11 @@ pub struct DemoArgs {
 /// Runs the demo into its directory and prints what it found.
 pub fn run(a: DemoArgs, progress: Progress) -> Result<()> {
     let DemoArgs { out, unit } = a;
-    if let Some(u) = super::unit::chosen(unit.as_deref())? {
-        return Err(super::unit::not_yet("demo", &u));
-    }
+    let chosen = super::unit::chosen(unit.as_deref())?;
     outfile::guard_dir("--out", &out, &[], &[])?;
+    if let Some(u) = chosen {
+        return super::unit::demo::run(&u, &out, progress);
+    }
     let summary = dtg_vib::demo::run(&out, &|step| progress.say(step.to_string()))?;
     drop(progress);
     print_demo(&summary);

@@ -49,16 +49,21 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         thresholds,
         unit,
     } = a;
-    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
-        if report.is_some() {
-            return Err(super::unit::not_yet("diagnose --report", m.unit()));
-        }
-        return super::unit::apply::diagnose(&m, &data, json, &thresholds.options(), progress);
-    }
+    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
     let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
         .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
         .collect();
     guard_report(report.as_deref(), &inputs)?;
+    if let Some(m) = unit_model {
+        return super::unit::apply::diagnose(
+            &m,
+            &data,
+            json,
+            &thresholds.options(),
+            report.as_deref(),
+            progress,
+        );
+    }
     once_each(&data)?;
     let m = CompensationModel::load(&model)?;
     let records = data

@@ -48,14 +48,13 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let f = &a.fit;
     if let Some(unit) = super::unit::chosen(f.unit.as_deref())? {
         explain_takes(f)?;
-        if a.report.is_some() {
-            return Err(super::unit::not_yet("explain --report", &unit));
-        }
+        guard_report(a.report.as_deref(), &fit_inputs(f))?;
         return super::unit::fit::explain(
             f,
             unit,
             &a.thresholds.options(),
             a.max_rounds as usize,
+            a.report.as_deref(),
             progress,
         );
     }

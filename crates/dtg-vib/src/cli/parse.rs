@@ -11,6 +11,16 @@ pub fn parse_alpha(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A noise level in deg/h: positive and finite.
+pub fn parse_sigma(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!(
+            "'{s}': a noise level must be a positive number of deg/h (the gyros' white noise per sample, e.g. 0.1)"
+        )),
+    }
+}
+
 /// A share of the rms, from 0 to below 1.
 pub fn parse_gain(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

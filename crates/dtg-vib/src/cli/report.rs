@@ -43,9 +43,7 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
         out,
         unit,
     } = a;
-    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
-        return Err(super::unit::not_yet("report", m.unit()));
-    }
+    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
     outfile::guard_dir(
         "--out",
         &out,
@@ -56,6 +54,9 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
             ("--baseline", baseline.as_deref()),
         ],
     )?;
+    if let Some(m) = unit_model {
+        return super::unit::report::report(&m, &model, &data, baseline.as_deref(), &out, progress);
+    }
     let m = CompensationModel::load(&model)?;
     let record = Record::read_csv(&data)?;
     progress.say("applying the model");

@@ -26,15 +26,52 @@ pub struct ResiduesArgs {
     /// fitted on another unit (the model stores it).
     #[arg(long)]
     unit: Option<String>,
+    /// Print one JSON object on stdout (units other than the paper's):
+    /// the residues' rms and what fault detection found.
+    #[arg(long)]
+    json: bool,
+    /// Fault detection (units of four gyros or more): the gyros' white
+    /// noise per sample, deg/h; default read from the record.
+    #[arg(long = "fdi-sigma", value_parser = super::parse::parse_sigma)]
+    fdi_sigma: Option<f64>,
+    /// Fault detection: the false-alarm probability per sample.
+    #[arg(long = "fdi-false-alarm", default_value_t = dtg_vib::unit_sensor::fdi::DEFAULT_FALSE_ALARM, value_parser = super::parse::parse_alpha)]
+    fdi_false_alarm: f64,
+}
+
+/// The flags only a unit other than the paper's takes, refused on the
+/// paper's path (whose output is a contract): which, and what to do.
+fn unit_only(a: &ResiduesArgs) -> Result<()> {
+    let given = [
+        ("--json", a.json),
+        ("--fdi-sigma", a.fdi_sigma.is_some()),
+        (
+            "--fdi-false-alarm",
+            a.fdi_false_alarm != dtg_vib::unit_sensor::fdi::DEFAULT_FALSE_ALARM,
+        ),
+    ];
+    if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+        anyhow::bail!(
+            "{flag}: residues takes it on the unit path only (--unit tetra, dual-triad or a unit file, or a model of one), so that the paper's residues output stays as it was; for the paper's geometry give --unit a copy of units/paper.toml with temperature = \"temp\" under [columns]"
+        );
+    }
+    Ok(())
 }
 
 /// Writes the residues and, with a model, prints their rms before and after.
 pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
+    let fdi = super::unit::residues::FdiOptions {
+        sigma: a.fdi_sigma,
+        false_alarm: a.fdi_false_alarm,
+    };
+    let json = a.json;
+    let paper_only = unit_only(&a);
     let ResiduesArgs {
         data,
         model,
         out,
         unit,
+        ..
     } = a;
     let unit_model = match &model {
         Some(m) => super::unit::model_unit(m, unit.as_deref())?,
@@ -51,8 +88,17 @@ pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
             &out,
             &[("--data", Some(&data)), ("--model", model.as_deref())],
         )?;
-        return super::unit::residues::residues(&u, unit_model.as_ref(), &data, &out, progress);
+        return super::unit::residues::residues(
+            &u,
+            unit_model.as_ref(),
+            &data,
+            &out,
+            fdi,
+            json,
+            progress,
+        );
     }
+    paper_only?;
     outfile::guard_file(
         "--out",
         &out,

@@ -53,7 +53,7 @@ fn term_lines(curve: &AllanCurve, terms: &NoiseTerms, when: &str) -> Vec<Series>
 }
 
 fn panel(s: &SeriesAllan) -> Panel {
-    let mut p = Panel::new(s.name, "τ (s)", "Allan deviation (deg/h)")
+    let mut p = Panel::new(s.name.as_str(), "τ (s)", "Allan deviation (deg/h)")
         .log_x()
         .log_y()
         .series(Series::line("before", s.before.tau_s(), s.before.adev()).colour(colours::BEFORE));
@@ -118,12 +118,19 @@ pub(super) fn figures(analysis: &AllanAnalysis) -> Vec<(Figure, &'static str)> {
         ),
         (
             figure(
-                "Overlapping Allan deviation, parity residues (eq. 6)",
+                &format!(
+                    "Overlapping Allan deviation, parity residues ({})",
+                    analysis.residue_source
+                ),
                 &analysis.residues,
             ),
             "allan_residues",
         ),
     ]
+    .into_iter()
+    // A unit of three gyros has no residue: no empty figure.
+    .filter(|(_, stem)| *stem != "allan_residues" || !analysis.residues.is_empty())
+    .collect()
 }
 
 /// One section per figure: its noise-term table, notes and figure.
@@ -141,6 +148,7 @@ pub(super) fn sections(analysis: &AllanAnalysis, drawn: &Drawn) -> Vec<Section> 
         ),
     ]
     .into_iter()
+    .filter(|(_, rows, _)| !rows.is_empty())
     .map(|(stem, rows, heading)| {
         let files = drawn.get(stem);
         let mut sec = Section::new(heading).table(table(rows, analysis.confidence));

@@ -8,13 +8,15 @@ mod common;
 mod diagnosis;
 mod paper;
 mod provenance;
+mod unit;
 
 pub use allan::write_allan_report;
-pub use diagnosis::write_diagnosis_report;
+pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
 pub use paper::{
     Baseline, DiagnosisExtra, NoiseFloor, ReportExtras, ReportSummary, build_report, write_report,
 };
 pub use provenance::Provenance;
+pub use unit::{FdiShown, ResidueRms, UnitReport, build_unit_report, write_unit_report};
 
 #[cfg(test)]
 mod tests {

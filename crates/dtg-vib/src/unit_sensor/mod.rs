@@ -11,13 +11,21 @@
 //! every other unit (and the paper's geometry under other names, units or
 //! column order).
 
+mod allan;
+mod applied;
 mod effect;
 mod error;
+pub mod fdi;
 mod model;
 mod observable;
 mod separate;
 mod signals;
 
+pub use allan::unit_allan;
+pub use applied::{
+    BeforeAfter, ChannelOnRecord, EffectRow, UnitApplied, compensated, gyros_before_after,
+    residue_series, residues_of,
+};
 pub use effect::{RATE_EFFECTS, UnitEffect, UnitEffectError};
 pub use error::UnitSensorError;
 pub use model::UnitModel;

@@ -151,8 +151,13 @@ impl UnitModel {
             reason,
         };
         check_header(&text, path)?;
-        let f: FileOwned = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
-        let m = f.model;
+        // The unit's keys are checked as it is read, before its file is
+        // known to it: its messages name this model file instead.
+        let stored = format!("the unit stored in {}", path.display());
+        let f: FileOwned = serde_json::from_str(&text)
+            .map_err(|e| corrupt(e.to_string().replace(STORED_UNIT, &stored)))?;
+        let mut m = f.model;
+        m.unit = m.unit.with_file(stored);
         let names = m.unit.gyro_names();
         if m.channels.len() != names.len()
             || m.channels
@@ -189,6 +194,10 @@ impl UnitModel {
         Ok(Self { inner })
     }
 }
+
+/// How a unit read from JSON names its file in messages
+/// (`nav_sensors::unit::Unit`'s deserialiser).
+const STORED_UNIT: &str = "<stored unit>";
 
 fn read(path: &Path) -> Result<String, DtgVibError> {
     std::fs::read_to_string(path).map_err(|source| DtgVibError::ModelIo {

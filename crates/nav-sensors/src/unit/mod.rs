@@ -510,6 +510,20 @@ impl Unit {
         &self.file
     }
 
+    /// The unit, with `file` as where messages say it was read from: a
+    /// unit stored in a model file is named by that file (its keys read
+    /// as `<stored unit>` until then).
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// let u = u.with_file("the unit stored in m.json");
+    /// assert_eq!(u.file(), "the unit stored in m.json");
+    /// ```
+    pub fn with_file(mut self, file: impl Into<String>) -> Self {
+        self.file = file.into();
+        self
+    }
+
     /// `[columns]`.
     ///
     /// ```

@@ -3,25 +3,25 @@
 
 use anyhow::Result;
 use cli_support::progress::Progress;
-use dtg_vib::unit_sensor::{UnitModel, to_record};
-use nav_sensors::record::Record;
+use dtg_vib::report::{Wording, write_diagnosis_report_of};
+use dtg_vib::unit_sensor::{UnitModel, compensated};
 use std::path::{Path, PathBuf};
-use sysid::Signals;
 
 use super::{Read, borrowed, read_records, signals};
 
 /// The records of a model's unit, segments at least two windows long.
-fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Read> {
+pub(super) fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Read> {
     let window = m.inner().preprocess().window.length();
     read_records(data, m.unit(), 2 * window)
 }
 
-/// `diagnose` of a unit's model.
+/// `diagnose` of a unit's model, and with `report` its diagnosis page.
 pub fn diagnose(
     m: &UnitModel,
     data: &[PathBuf],
     json: bool,
     options: &sysid::diagnose::DiagnoseOptions,
+    report: Option<&Path>,
     progress: Progress,
 ) -> Result<()> {
     let read = records_of(m, data)?;
@@ -29,22 +29,42 @@ pub fn diagnose(
     let named = signals(&read.records)?;
     progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
     let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), options)?;
+    let page = match report {
+        Some(dir) => {
+            progress.say("drawing figures");
+            Some(write_diagnosis_report_of(
+                &d,
+                options.rank.min_err(),
+                &Wording::of_unit(m.unit()),
+                dir,
+            )?)
+        }
+        None => None,
+    };
     drop(progress);
     read.say_notes();
     if json {
         println!("{}", serde_json::to_string(&d)?);
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
         return Ok(());
     }
     super::super::findings::print_diagnosis(&d);
+    if let Some(p) = &page {
+        println!("report: {}", p.display());
+    }
     Ok(())
 }
 
-/// `check` of a unit's model on a record (all its segments together).
+/// `check` of a unit's model on a record (all its segments together), and
+/// with `report` (the model's file and the page's directory) the unit's page.
 pub fn check(
     m: &UnitModel,
     data: &Path,
     outside_threshold: f64,
     json: bool,
+    report: Option<(&Path, &Path)>,
     progress: Progress,
 ) -> Result<()> {
     let read = records_of(m, &[data.to_path_buf()])?;
@@ -54,12 +74,31 @@ pub fn check(
     let prepared = m.inner().prepare_many(&borrowed(&named))?;
     let predicted = m.inner().predict(&prepared)?;
     let c = sysid::check::transfer(m.inner(), &prepared, &predicted, outside_threshold)?;
+    let page = match report {
+        Some((model, dir)) => {
+            progress.say("drawing figures");
+            let data = [data.to_path_buf()];
+            let page = dtg_vib::unit_page::Page {
+                model_path: model,
+                data: &data,
+                baseline: None,
+                lead: Vec::new(),
+                links: Vec::new(),
+                also_into: None,
+            };
+            Some(dtg_vib::unit_page::write_page(m, &read.records, page, dir)?.0)
+        }
+        None => None,
+    };
     drop(progress);
     read.say_notes();
     if json {
         let mut v = serde_json::to_value(&c)?;
         v["unit"] = serde_json::Value::String(m.unit().name().to_string());
         println!("{v}");
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
         return Ok(());
     }
     println!(
@@ -84,31 +123,10 @@ pub fn check(
     if let Some(note) = super::no_residue_note(m.unit()) {
         println!("{note}");
     }
+    if let Some(p) = &page {
+        println!("report: {}", p.display());
+    }
     Ok(())
-}
-
-/// A segment compensated: its calibrated outputs less the model's
-/// predicted error, from the first sample with a full window on.
-pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record> {
-    let prepared = m.inner().prepare(segment)?;
-    let predicted = m.inner().predict(&prepared)?;
-    let first = prepared.first_sample();
-    let calibrated = prepared.calibrated();
-    let gyros = m.unit().gyro_names();
-    let columns = calibrated
-        .columns()
-        .iter()
-        .map(|(n, v)| {
-            let tail = &v[first..];
-            let out = match gyros.iter().position(|g| g == n) {
-                Some(k) => tail.iter().zip(&predicted[k]).map(|(y, e)| y - e).collect(),
-                None => tail.to_vec(),
-            };
-            (n.clone(), out)
-        })
-        .collect();
-    let s = Signals::new(calibrated.t()[first..].to_vec(), columns)?;
-    Ok(to_record(m.unit(), &s)?)
 }
 
 /// `compensate` with a unit's model: every segment compensated, written

@@ -172,6 +172,7 @@ pub fn explain(
     unit: Unit,
     diagnose: &sysid::diagnose::DiagnoseOptions,
     max_rounds: usize,
+    report: Option<&std::path::Path>,
     progress: Progress,
 ) -> Result<()> {
     let Inputs {
@@ -201,10 +202,26 @@ pub fn explain(
     let seconds = start.elapsed().as_secs_f64();
     let model = UnitModel::of(e.model);
     model.save(&a.out)?;
+    let page = match report {
+        Some(dir) => {
+            progress.say("drawing figures");
+            let last = &e.rounds.last().expect("at least one round").diagnosis;
+            Some(dtg_vib::report::write_diagnosis_report_of(
+                last,
+                diagnose.rank.min_err(),
+                &dtg_vib::report::Wording::of_unit(&sensor.unit),
+                dir,
+            )?)
+        }
+        None => None,
+    };
     progress.clear();
     notes.say_notes();
     let m = model.inner();
     if a.json {
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
         let v = serde_json::json!({
             "unit": sensor.unit.name(),
             "rounds": &e.rounds,
@@ -218,5 +235,8 @@ pub fn explain(
     super::super::findings::print_rounds(&e.rounds, e.converged, max_rounds as u64);
     print_fit_channels(m.channels());
     println!("model: {} ({:.1} s)", a.out.display(), seconds);
+    if let Some(p) = &page {
+        println!("report: {}", p.display());
+    }
     Ok(())
 }

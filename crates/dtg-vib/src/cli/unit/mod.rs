@@ -6,7 +6,9 @@
 
 pub mod allan;
 pub mod apply;
+pub mod demo;
 pub mod fit;
+pub mod report;
 pub mod residues;
 
 use anyhow::{Result, anyhow, bail};
@@ -63,15 +65,6 @@ pub fn model_unit(path: &Path, arg: Option<&str>) -> Result<Option<UnitModel>> {
         );
     }
     Ok(None)
-}
-
-/// Refuses a command that cannot yet work on a unit other than the
-/// paper's, saying what does.
-pub fn not_yet(what: &str, unit: &Unit) -> anyhow::Error {
-    anyhow!(
-        "{what} is not available yet for the unit '{}': only for the paper's unit; simulate, fit, explain, diagnose, check, compensate, residues and allan take --unit",
-        unit.name()
-    )
 }
 
 /// Refuses each path given twice (a record fitted twice weighs double).

@@ -1,12 +1,14 @@
 //! One section per channel: the findings and the ranked candidate effects
 //! with their coefficients, intervals and p-values.
 
-use crate::diagnose::ChannelDiagnosis;
 use crate::report::common::fmt;
+use nav_sensors::geometry::Axis;
 use plot::{Section, Table};
+use std::fmt::Display;
+use sysid::diagnose::ChannelDiagnosis;
 
 /// The section of channel `c`.
-pub(super) fn section(c: &ChannelDiagnosis) -> Section {
+pub(super) fn section<C: Display>(c: &ChannelDiagnosis<C, Axis>) -> Section {
     let mut sec = Section::new(format!("Channel {}", c.channel));
     for line in &c.findings {
         sec = sec.text(line.clone());

@@ -2,13 +2,17 @@
 //! its top candidate, residual spectra, whiteness and independence tests,
 //! and measured against predicted.
 
-use crate::diagnose::{ChannelDiagnosis, Diagnosis};
 use crate::report::common::Drawn;
 use crate::report::common::{colours, positive_freq};
 use plot::{BarChart, Figure, Panel, Section, Series};
+use std::fmt::Display;
+use sysid::diagnose::{ChannelDiagnosis, Diagnosis};
 
 /// The section's figures, with their file stems.
-pub(super) fn figures(diag: &Diagnosis, min_err: f64) -> Vec<(Figure, &'static str)> {
+pub(super) fn figures<C: Display, A>(
+    diag: &Diagnosis<C, A>,
+    min_err: f64,
+) -> Vec<(Figure, &'static str)> {
     vec![
         (compare(diag), "diag_compare"),
         (top_candidates(diag), "diag_top_candidates"),
@@ -41,7 +45,7 @@ pub(super) fn figures(diag: &Diagnosis, min_err: f64) -> Vec<(Figure, &'static s
 }
 
 /// Measured against predicted, validation rows.
-fn compare(diag: &Diagnosis) -> Figure {
+fn compare<C: Display, A>(diag: &Diagnosis<C, A>) -> Figure {
     per_channel("Measured against predicted, validation rows", diag, |c| {
         let s = &c.series;
         Panel::new(
@@ -59,7 +63,7 @@ fn compare(diag: &Diagnosis) -> Figure {
 }
 
 /// The residual and its top candidate, scaled by its coefficient.
-fn top_candidates(diag: &Diagnosis) -> Figure {
+fn top_candidates<C: Display, A>(diag: &Diagnosis<C, A>) -> Figure {
     per_channel(
         "Residual and its top candidate effect (scaled by its coefficient)",
         diag,
@@ -88,7 +92,7 @@ fn top_candidates(diag: &Diagnosis) -> Figure {
 }
 
 /// A channel's residual spectrum against the white floor through the pre-filter.
-fn psd_panel(c: &ChannelDiagnosis) -> Panel {
+fn psd_panel<C: Display, A>(c: &ChannelDiagnosis<C, A>) -> Panel {
     let mut p = Panel::psd(format!("Channel {}", c.channel), "PSD ((deg/h)²/Hz)");
     if let Some(sp) = &c.series.spectrum {
         // The floor falls to nothing at Nyquist through the filter's |H|⁴:
@@ -110,7 +114,7 @@ fn psd_panel(c: &ChannelDiagnosis) -> Panel {
 }
 
 /// A channel's whiteness test: autocorrelation past the model's memory.
-fn whiteness_panel(c: &ChannelDiagnosis) -> Panel {
+fn whiteness_panel<C: Display, A>(c: &ChannelDiagnosis<C, A>) -> Panel {
     match c.checks.iter().find(|k| k.name == "whiteness") {
         Some(k) => {
             let dev: Vec<f64> = k
@@ -156,7 +160,7 @@ fn input_series(i: usize, label: &str, lags: Vec<f64>, values: Vec<f64>) -> Seri
 
 /// A channel's independence tests against every input (each acceleration
 /// axis and each extra column) in one panel, lags in seconds.
-fn independence_panel(c: &ChannelDiagnosis) -> Panel {
+fn independence_panel<C: Display, A>(c: &ChannelDiagnosis<C, A>) -> Panel {
     let t = &c.series.t;
     let dt = if t.len() > 1 { t[1] - t[0] } else { 1.0 };
     let tests: Vec<_> = c
@@ -199,7 +203,7 @@ fn independence_panel(c: &ChannelDiagnosis) -> Panel {
 }
 
 /// ERR of each channel's candidates, ranked, with the suggestion threshold.
-fn err(diag: &Diagnosis, min_err: f64) -> Figure {
+fn err<C: Display, A>(diag: &Diagnosis<C, A>, min_err: f64) -> Figure {
     let mut err_fig = Figure::new("Candidate effects: ERR on the validation residual");
     for c in &diag.channels {
         let items: Vec<(String, f64)> = c
@@ -233,10 +237,10 @@ pub(super) fn section(drawn: &Drawn, min_err: f64) -> Section {
 }
 
 /// One panel per channel under `title`.
-fn per_channel(
+fn per_channel<C, A>(
     title: &str,
-    diag: &Diagnosis,
-    panel: impl Fn(&ChannelDiagnosis) -> Panel,
+    diag: &Diagnosis<C, A>,
+    panel: impl Fn(&ChannelDiagnosis<C, A>) -> Panel,
 ) -> Figure {
     diag.channels
         .iter()

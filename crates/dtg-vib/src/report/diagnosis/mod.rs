@@ -13,13 +13,27 @@ use crate::diagnose::Diagnosis;
 use crate::error::DtgVibError;
 use crate::report::common::{Drawn, save_all};
 use plot::HtmlReport;
+use std::fmt::Display;
 use std::path::{Path, PathBuf};
+
+pub use reading::Wording;
 
 /// Writes the diagnosis figures and `index.html` into `dir`; `min_err` is
 /// the suggestion threshold drawn on the ERR charts.
 pub fn write_diagnosis_report(
     diag: &Diagnosis,
     min_err: f64,
+    dir: &Path,
+) -> Result<PathBuf, DtgVibError> {
+    write_diagnosis_report_of(diag, min_err, &Wording::paper(), dir)
+}
+
+/// [`write_diagnosis_report`] for the diagnosis of any unit's channels,
+/// its channels and candidates described by `wording`.
+pub fn write_diagnosis_report_of<C: Display>(
+    diag: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
+    min_err: f64,
+    wording: &Wording,
     dir: &Path,
 ) -> Result<PathBuf, DtgVibError> {
     let mut figs = figures::figures(diag, min_err);
@@ -29,7 +43,7 @@ pub fn write_diagnosis_report(
     let mut page = HtmlReport::new("Diagnosis: what the model is missing")
         .summary(overview::summary(diag))
         .section(overview::section(diag, &drawn))
-        .section(reading::section(diag, min_err));
+        .section(reading::section(diag, min_err, wording));
     for c in &diag.channels {
         page = page.section(channel::section(c));
     }

@@ -1,13 +1,18 @@
 //! Section "Overview": the page's summary (what to refit with), each
 //! channel's effects, rms, fit and suggestions, and the rms bars.
 
-use crate::diagnose::Diagnosis;
 use crate::report::common::{Drawn, fmt};
 use plot::{BarChart, Figure, Section, Table};
+use std::fmt::Display;
+use sysid::diagnose::Diagnosis;
 
 /// The validation rms bars (bias only against the model), with their stem.
-pub(super) fn figure(diag: &Diagnosis) -> (Figure, &'static str) {
-    let names: Vec<&str> = diag.channels.iter().map(|c| c.channel.name()).collect();
+pub(super) fn figure<C: Display, A>(diag: &Diagnosis<C, A>) -> (Figure, &'static str) {
+    let names: Vec<String> = diag
+        .channels
+        .iter()
+        .map(|c| c.channel.to_string())
+        .collect();
     (
         Figure::new("Validation residual rms").panel(
             BarChart::new("Per channel", "rms (deg/h)", names)
@@ -30,7 +35,7 @@ pub(super) fn figure(diag: &Diagnosis) -> (Figure, &'static str) {
 }
 
 /// The page's summary line: the refit the diagnosis suggests, if any.
-pub(super) fn summary(diag: &Diagnosis) -> String {
+pub(super) fn summary<C: Display, A>(diag: &Diagnosis<C, A>) -> String {
     let suggestions: Vec<String> = diag
         .channels
         .iter()
@@ -69,7 +74,7 @@ pub(in crate::report) fn failing_cell(failing: &[String]) -> String {
 }
 
 /// The section, once its figure is drawn.
-pub(super) fn section(diag: &Diagnosis, drawn: &Drawn) -> Section {
+pub(super) fn section<C: Display, A>(diag: &Diagnosis<C, A>, drawn: &Drawn) -> Section {
     let mut overview = Table::new([
         "channel",
         "effects",
@@ -80,7 +85,7 @@ pub(super) fn section(diag: &Diagnosis, drawn: &Drawn) -> Section {
     ]);
     for c in &diag.channels {
         overview = overview.row([
-            c.channel.name().to_string(),
+            c.channel.to_string(),
             list(&c.effects),
             fmt(c.rms),
             format!("{:.1}", c.compare.val_fit_percent),

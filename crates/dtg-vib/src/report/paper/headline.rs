@@ -312,11 +312,17 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
 
 /// The Allan sentences of both tables (gyro channels, parity residues).
 fn allan_worse(a: &AllanAnalysis) -> Vec<String> {
-    let rows = |v: &[SeriesAllan]| -> Vec<(&str, NoiseTerms, Option<NoiseTerms>)> {
+    fn rows(v: &[SeriesAllan]) -> Vec<(&str, NoiseTerms, Option<NoiseTerms>)> {
         v.iter()
-            .map(|s| (s.name, s.terms_before.clone(), s.terms_after.clone()))
+            .map(|s| {
+                (
+                    s.name.as_str(),
+                    s.terms_before.clone(),
+                    s.terms_after.clone(),
+                )
+            })
             .collect()
-    };
+    }
     let (channels, residues) = (rows(&a.channels), rows(&a.residues));
     allan_terms_worse(
         &[(&channels, "channels"), (&residues, "parity residues")],
