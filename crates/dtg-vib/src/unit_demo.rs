@@ -118,19 +118,32 @@ pub fn scenario(unit: &Unit) -> Result<(Scenario, Vec<Hidden>), DtgVibError> {
         });
     }
     if along_z {
-        s.vibration.drives.retain(|d| d.axis() != Axis::X);
-        for d in &mut s.vibration.drives {
-            if let Drive::Random {
-                axis: Axis::Y,
-                gain_db,
-                ..
-            } = d
-            {
-                *gain_db = -10.0;
-            }
-        }
+        shake_along_z(&mut s);
     }
     Ok((s, hidden))
+}
+
+/// The tri-axial test made a test along z: no drive on x, the drive on y
+/// 10 dB down (the fixture's cross-axis motion, independent of z's), so
+/// that a g-sensitivity to y is not a function of the az windows.
+///
+/// ```
+/// let mut s = nav_sensors::sim::Scenario::triaxial_hidden();
+/// dtg_vib::unit_demo::shake_along_z(&mut s);
+/// assert!(s.vibration.drives.iter().all(|d| d.axis() != nav_sensors::geometry::Axis::X));
+/// ```
+pub fn shake_along_z(s: &mut Scenario) {
+    s.vibration.drives.retain(|d| d.axis() != Axis::X);
+    for d in &mut s.vibration.drives {
+        if let Drive::Random {
+            axis: Axis::Y,
+            gain_db,
+            ..
+        } = d
+        {
+            *gain_db = -10.0;
+        }
+    }
 }
 
 /// An effect of the final model, against the truth if it was hidden.

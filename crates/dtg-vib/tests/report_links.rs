@@ -5,7 +5,7 @@
 //! own, then every written `.html` is read and each `href`, `src` and
 //! `srcset` that is not a web address must name a file that exists
 //! relative to the page, and each `#anchor` an `id` on the page it points
-//! into.
+//! into. The same for the pages of units other than the paper's.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -173,36 +173,21 @@ fn check_dir(dir: &Path) -> (Vec<Broken>, usize) {
 
 /// Runs `dtg-vib ARGS` in `cwd`.
 fn dtg(cwd: &Path, args: &[&str]) {
-    let out = Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-        .current_dir(cwd)
-        .arg("--quiet")
-        .args(args)
-        .output()
-        .expect("run dtg-vib");
-    assert!(
-        out.status.success(),
-        "dtg-vib {}: {}",
-        args.join(" "),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    dtg_out(cwd, args);
 }
 
-#[test]
-fn every_link_of_every_report_resolves_from_its_page() {
-    let tmp = tempfile::tempdir().unwrap();
-    // The commands run in `work/` and write into `../out/...`: a link written
-    // relative to where the command ran, not to the page, breaks here.
-    let work = tmp.path().join("work");
-    std::fs::create_dir_all(&work).unwrap();
-    let out = tmp.path().join("out");
-    dtg(&work, &["demo", "--out", "../out/demo"]);
+/// Runs every report writer but the demo (`report`, `diagnose --report`,
+/// `check --report`, `allan --report`, `explain --report`) in `work` on the
+/// demo written to `../out/demo`, with relative paths and one absolute;
+/// `explain` gets `explain_args` too.
+fn every_writer(work: &Path, out: &Path, explain_args: &[&str]) {
     let d = "../out/demo";
     let record = format!("{d}/simulation/record.csv");
     let calib = format!("{d}/simulation/calibration.json");
     let base = format!("{d}/baseline/model.json");
     let model = format!("{d}/final/model.json");
     dtg(
-        &work,
+        work,
         &[
             "report",
             "--model",
@@ -216,7 +201,7 @@ fn every_link_of_every_report_resolves_from_its_page() {
         ],
     );
     dtg(
-        &work,
+        work,
         &[
             "diagnose",
             "--model",
@@ -228,7 +213,7 @@ fn every_link_of_every_report_resolves_from_its_page() {
         ],
     );
     dtg(
-        &work,
+        work,
         &[
             "check", "--model", &model, "--data", &record, "--report", "check",
         ],
@@ -236,7 +221,7 @@ fn every_link_of_every_report_resolves_from_its_page() {
     // An absolute --report too.
     let allan = out.join("allan");
     dtg(
-        &work,
+        work,
         &[
             "allan",
             "--data",
@@ -247,24 +232,51 @@ fn every_link_of_every_report_resolves_from_its_page() {
             allan.to_str().unwrap(),
         ],
     );
-    dtg(
-        &work,
-        &[
-            "explain",
-            "--data",
-            &record,
-            "--calib",
-            &calib,
-            "--max-rounds",
-            "1",
-            "--max-centers",
-            "10",
-            "--out",
-            "../out/explained.json",
-            "--report",
-            "../out/explain",
-        ],
-    );
+    let mut explain = vec![
+        "explain",
+        "--data",
+        &record,
+        "--calib",
+        &calib,
+        "--max-rounds",
+        "1",
+        "--out",
+        "../out/explained.json",
+        "--report",
+        "../out/explain",
+    ];
+    explain.extend_from_slice(explain_args);
+    dtg(work, &explain);
+}
+
+/// Every page [`every_writer`] and the demo write exists.
+fn every_page_written(out: &Path, work: &Path) {
+    for page in [
+        "demo/index.html",
+        "demo/final/report/index.html",
+        "demo/baseline/report/index.html",
+        "demo/diagnosis/index.html",
+        "demo/final/diagnosis/index.html",
+        "report/deeper/index.html",
+        "diagnose/index.html",
+        "allan/index.html",
+        "explain/index.html",
+    ] {
+        assert!(out.join(page).exists(), "{page} not written");
+    }
+    assert!(work.join("check/index.html").exists());
+}
+
+#[test]
+fn every_link_of_every_report_resolves_from_its_page() {
+    let tmp = tempfile::tempdir().unwrap();
+    // The commands run in `work/` and write into `../out/...`: a link written
+    // relative to where the command ran, not to the page, breaks here.
+    let work = tmp.path().join("work");
+    std::fs::create_dir_all(&work).unwrap();
+    let out = tmp.path().join("out");
+    dtg(&work, &["demo", "--out", "../out/demo"]);
+    every_writer(&work, &out, &["--max-centers", "10"]);
 
     let mut broken = Vec::new();
     let mut checked = 0;
@@ -281,20 +293,7 @@ fn every_link_of_every_report_resolves_from_its_page() {
     let list: Vec<String> = broken.iter().map(ToString::to_string).collect();
     assert!(list.is_empty(), "broken links:\n{}", list.join("\n"));
     // Each writer wrote its page, and the demo's pages link each other.
-    for page in [
-        "demo/index.html",
-        "demo/final/report/index.html",
-        "demo/baseline/report/index.html",
-        "demo/diagnosis/index.html",
-        "demo/final/diagnosis/index.html",
-        "report/deeper/index.html",
-        "diagnose/index.html",
-        "allan/index.html",
-        "explain/index.html",
-    ] {
-        assert!(out.join(page).exists(), "{page} not written");
-    }
-    assert!(work.join("check/index.html").exists());
+    every_page_written(&out, &work);
     let fin = std::fs::read_to_string(out.join("demo/final/report/index.html")).unwrap();
     for link in [
         "href=\"../../baseline/report/index.html\"",
@@ -304,6 +303,66 @@ fn every_link_of_every_report_resolves_from_its_page() {
         assert!(fin.contains(link), "final report lacks {link}");
     }
     assert!(checked > 300, "only {checked} links checked");
+}
+
+/// Runs `dtg-vib ARGS` in `cwd` and returns its stdout.
+fn dtg_out(cwd: &Path, args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
+        .current_dir(cwd)
+        .arg("--quiet")
+        .args(args)
+        .output()
+        .expect("run dtg-vib");
+    assert!(
+        out.status.success(),
+        "dtg-vib {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The pages of a unit other than the paper's: `demo --unit` (tetra, and
+/// triad, which has no parity residue) and every report writer on the
+/// tetra demo's models, run as above; each page's links resolve, and the
+/// demo says what it hid and found.
+#[test]
+fn every_link_of_every_unit_report_resolves_from_its_page() {
+    let tmp = tempfile::tempdir().unwrap();
+    let work = tmp.path().join("work");
+    std::fs::create_dir_all(&work).unwrap();
+    let out = tmp.path().join("out");
+    let said = dtg_out(&work, &["demo", "--unit", "tetra", "--out", "../out/demo"]);
+    for line in [
+        "hidden from the calibration: g2=g_y (0.5 deg/h/g), g3=col:temp (0.05 deg/h/°C)",
+        "four gyros detect but cannot isolate",
+    ] {
+        assert!(said.contains(line), "{said}");
+    }
+    assert_eq!(said.matches("inside the interval").count(), 2, "{said}");
+    every_writer(&work, &out, &["--unit", "tetra", "--max-centres", "8"]);
+    let said = dtg_out(&work, &["demo", "--unit", "triad", "--out", "../out/triad"]);
+    assert!(said.contains("gx=g_y: "), "{said}");
+    let triad_page = std::fs::read_to_string(out.join("triad/index.html")).unwrap();
+    assert!(triad_page.contains("no parity residue"), "the triad's page");
+
+    let mut broken = Vec::new();
+    for dir in [&out, &work] {
+        broken.extend(check_dir(dir).0);
+    }
+    let list: Vec<String> = broken.iter().map(ToString::to_string).collect();
+    assert!(list.is_empty(), "broken links:\n{}", list.join("\n"));
+    every_page_written(&out, &work);
+    let fin = std::fs::read_to_string(out.join("demo/index.html")).unwrap();
+    for text in [
+        "href=\"final/diagnosis/index.html\"",
+        "Effects found",
+        "Parity residues",
+        "P0",
+        "Allan deviation",
+    ] {
+        assert!(fin.contains(text), "the demo's page lacks {text}");
+    }
 }
 
 #[test]

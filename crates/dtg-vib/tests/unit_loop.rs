@@ -54,20 +54,8 @@ fn triaxial(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
 /// a g-sensitivity to y is then not a function of the az windows the
 /// network sees (a g² along z would be, and would test nothing).
 fn along_z(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
-    use nav_sensors::geometry::Axis;
-    use nav_sensors::vibration::Drive;
     let mut s = triaxial(seconds, seed, hidden);
-    s.vibration.drives.retain(|d| d.axis() != Axis::X);
-    for d in &mut s.vibration.drives {
-        if let Drive::Random {
-            axis: Axis::Y,
-            gain_db,
-            ..
-        } = d
-        {
-            *gain_db = -10.0;
-        }
-    }
+    dtg_vib::unit_demo::shake_along_z(&mut s);
     s
 }
 
@@ -439,6 +427,12 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
     .unwrap();
     let e = DTG_VIB.refused(&["check", "--model", s(&model), "--data", s(&triad_log)]);
     assert!(e.contains("no column 'g1' (gyro[0].name"), "{e}");
+    // The unit read from the model is named by the model's file.
+    assert!(
+        e.contains(&format!("the unit stored in {}", model.display())),
+        "{e}"
+    );
+    assert!(!e.contains("<stored unit>"), "{e}");
 }
 
 /// Real logs: a moving triad without a rate reference is refused in one

@@ -1,0 +1,238 @@
+//! What the commands show of a unit other than the paper's beyond the fit:
+//! parity fault detection and isolation by `residues` (a step on one gyro
+//! of the dual triad is isolated to it; four gyros detect but cannot
+//! isolate; three have no test), its `--json` keys, and the refusals of
+//! the flags only the unit path takes and of a baseline of another unit.
+//! (The unit's pages and their links: `report_links`.)
+
+use cli_support::testing::{Binary, s, scratch_dir};
+use std::path::Path;
+
+const DTG_VIB: Binary = Binary::new(env!("CARGO_BIN_EXE_dtg-vib")).appending(&["--quiet"]);
+
+/// A 20-s clean tri-axial record of `unit` under `dir/NAME`.
+fn simulate(dir: &Path, unit: &str, name: &str) -> std::path::PathBuf {
+    let out = dir.join(name);
+    let r = DTG_VIB.check(&[
+        "simulate",
+        "--unit",
+        unit,
+        "--builtin",
+        "triaxial_clean",
+        "--duration",
+        "20",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    out
+}
+
+/// The record at `from` with `step` deg/h added to column `column` from
+/// the middle on, written to `to`.
+fn with_step(from: &Path, to: &Path, column: &str, step: f64) {
+    let text = std::fs::read_to_string(from).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let k = header.split(',').position(|c| c == column).unwrap();
+    let rows: Vec<&str> = lines.collect();
+    let mut out = format!("{header}\n");
+    for (i, row) in rows.iter().enumerate() {
+        let mut cells: Vec<String> = row.split(',').map(str::to_string).collect();
+        if i >= rows.len() / 2 {
+            let v: f64 = cells[k].parse().unwrap();
+            cells[k] = format!("{}", v + step);
+        }
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    std::fs::write(to, out).unwrap();
+}
+
+fn residues_json(unit: &str, data: &Path, out: &Path) -> serde_json::Value {
+    let r = DTG_VIB.check(&[
+        "residues",
+        "--unit",
+        unit,
+        "--data",
+        s(data),
+        "--out",
+        s(out),
+        "--json",
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    serde_json::from_str(&r.stdout).unwrap()
+}
+
+#[test]
+fn a_step_on_one_gyro_of_the_dual_triad_is_detected_and_isolated_to_it() {
+    let dir = scratch_dir("dtg-vib-unit-reports");
+    let sim = simulate(&dir, "dual-triad", "dual");
+    let clean = residues_json("dual-triad", &sim.join("record.csv"), &dir.join("c.csv"));
+    let faulty_csv = dir.join("faulty.csv");
+    // 30 deg/h on gy2 (deg/h, as the unit logs): far above the noise.
+    with_step(&sim.join("record.csv"), &faulty_csv, "gy2", 30.0);
+    let faulty = residues_json("dual-triad", &faulty_csv, &dir.join("f.csv"));
+    let f = &faulty["fdi"];
+    for key in [
+        "false_alarm_probability",
+        "sigma_deg_h",
+        "sigma_source",
+        "threshold_deg_h",
+        "isolation_possible",
+    ] {
+        assert!(f.get(key).is_some(), "fdi.{key} missing: {f}");
+    }
+    assert_eq!(f["sigma_source"], "estimated");
+    assert_eq!(f["isolation_possible"], true);
+    let (tests, alarms) = (
+        f["before"]["tests"].as_u64().unwrap(),
+        f["before"]["alarms"].as_u64().unwrap(),
+    );
+    let clean_alarms = clean["fdi"]["before"]["alarms"].as_u64().unwrap();
+    assert!(alarms * 5 >= tests * 2, "{alarms} of {tests}: {f}");
+    assert!(
+        alarms >= 10 * clean_alarms.max(1),
+        "{alarms} vs {clean_alarms}"
+    );
+    assert_eq!(f["before"]["most_isolated"], "gy2", "{f}");
+    assert!(f["before"]["isolated"]["gy2"].as_u64().unwrap() * 10 >= alarms * 9);
+    assert_eq!(faulty["residues"].as_array().unwrap().len(), 3);
+    // The text says it in a line.
+    let r = DTG_VIB.check(&[
+        "residues",
+        "--unit",
+        "dual-triad",
+        "--data",
+        s(&faulty_csv),
+        "--out",
+        s(&dir.join("f2.csv")),
+    ]);
+    assert!(r.stdout.contains("isolated to gy2"), "{}", r.stdout);
+}
+
+#[test]
+fn four_gyros_detect_three_have_no_test_and_unit_only_flags_are_refused() {
+    let dir = scratch_dir("dtg-vib-unit-reports");
+    let tetra = simulate(&dir, "tetra", "tetra");
+    let faulty = dir.join("tetra-faulty.csv");
+    with_step(&tetra.join("record.csv"), &faulty, "g3", 30.0);
+    let r = DTG_VIB.check(&[
+        "residues",
+        "--unit",
+        "tetra",
+        "--data",
+        s(&faulty),
+        "--out",
+        s(&dir.join("t.csv")),
+        "--fdi-sigma",
+        "0.5",
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert!(
+        r.stdout.contains("four gyros detect but cannot isolate"),
+        "{}",
+        r.stdout
+    );
+    assert!(r.stdout.contains("(--fdi-sigma)"), "{}", r.stdout);
+    let triad = simulate(&dir, "triad", "triad");
+    let e = DTG_VIB.refused(&[
+        "residues",
+        "--unit",
+        "triad",
+        "--data",
+        s(&triad.join("record.csv")),
+        "--out",
+        s(&dir.join("x.csv")),
+        "--json",
+    ]);
+    assert!(
+        e.contains(
+            "has 3 gyros: nothing is redundant, so it has no parity residue and no fault detection"
+        ),
+        "{e}"
+    );
+    // The paper's path keeps its output: the unit-only flags are refused.
+    let paper = dir.join("paper");
+    DTG_VIB.check(&[
+        "simulate",
+        "--builtin",
+        "triaxial_clean",
+        "--duration",
+        "5",
+        "--out",
+        s(&paper),
+    ]);
+    let (record, p_csv) = (paper.join("record.csv"), dir.join("p.csv"));
+    for flag in [
+        &["--json"][..],
+        &["--fdi-sigma", "0.2"],
+        &["--fdi-false-alarm", "0.01"],
+    ] {
+        let mut args = vec!["residues", "--data", s(&record), "--out", s(&p_csv)];
+        args.extend_from_slice(flag);
+        let e = DTG_VIB.refused(&args);
+        assert!(
+            e.contains(&format!(
+                "{}: residues takes it on the unit path only",
+                flag[0]
+            )),
+            "{e}"
+        );
+    }
+    let e = DTG_VIB.refused(&[
+        "residues",
+        "--unit",
+        "tetra",
+        "--data",
+        s(&faulty),
+        "--out",
+        s(&dir.join("t.csv")),
+        "--fdi-sigma",
+        "0",
+    ]);
+    assert!(
+        e.contains("a noise level must be a positive number of deg/h"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_baseline_of_another_unit_is_refused() {
+    let dir = scratch_dir("dtg-vib-unit-reports");
+    let mut models = Vec::new();
+    for unit in ["tetra", "triad"] {
+        let sim = simulate(&dir, unit, &format!("{unit}-b"));
+        let m = dir.join(format!("{unit}.json"));
+        let r = DTG_VIB.check(&[
+            "fit",
+            "--unit",
+            unit,
+            "--data",
+            s(&sim.join("record.csv")),
+            "--calib",
+            s(&sim.join("calibration.json")),
+            "--max-centres",
+            "4",
+            "--out",
+            s(&m),
+        ]);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        models.push((m, sim));
+    }
+    let e = DTG_VIB.refused(&[
+        "report",
+        "--model",
+        s(&models[0].0),
+        "--baseline",
+        s(&models[1].0),
+        "--data",
+        s(&models[0].1.join("record.csv")),
+        "--out",
+        s(&dir.join("rep")),
+    ]);
+    assert!(
+        e.contains("a baseline must be a model of the same unit"),
+        "{e}"
+    );
+}
