@@ -70,6 +70,26 @@ pub enum SysidError {
         /// What to check.
         hint: &'static str,
     },
+    /// The diagnosis's mirror (the recipe trained on the model's validation
+    /// rows) cannot be fitted: its inner folds, kept a leakage gap apart,
+    /// leave one of them no training rows. The model itself fitted; a
+    /// longer record, a shorter window or more validation rows let the
+    /// diagnosis run.
+    #[error(
+        "the diagnosis fits the model's mirror on its {n_val} validation windows, too few for {folds} cross-validation folds kept {gap} samples apart (a window of {window} samples plus the filter's reach of {filter_memory}): use a longer record, a shorter --window, a higher --cutoff or a smaller --train-fraction (the model itself fitted)"
+    )]
+    MirrorFoldsEmpty {
+        /// Folds asked for.
+        folds: usize,
+        /// The model's validation windows, the mirror's training rows.
+        n_val: usize,
+        /// The leakage gap, samples.
+        gap: usize,
+        /// The window length, samples.
+        window: usize,
+        /// The filter's reach, samples.
+        filter_memory: usize,
+    },
     /// The inner cross-validation's folds, kept a leakage gap apart, leave
     /// one of them no training rows.
     #[error(

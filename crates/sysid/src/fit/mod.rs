@@ -139,7 +139,24 @@ pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Mod
     // The model's own input and smoother, not a choice of its own.
     let mut recipe = model.recipe();
     recipe.settings.choice = None;
-    fit_rows(prepared, &recipe, (&val, &train), Coef::AllRows, &|_| {})
+    // The mirror trains on the validation rows: a short record's folds are
+    // too few there, not on the training rows the message would name.
+    fit_rows(prepared, &recipe, (&val, &train), Coef::AllRows, &|_| {}).map_err(|e| match e {
+        SysidError::InnerFoldsEmpty {
+            folds,
+            n_train,
+            gap,
+            window,
+            filter_memory,
+        } => SysidError::MirrorFoldsEmpty {
+            folds,
+            n_val: n_train,
+            gap,
+            window,
+            filter_memory,
+        },
+        e => e,
+    })
 }
 
 /// `model`'s recipe fitted again on `records` with windows of `length`

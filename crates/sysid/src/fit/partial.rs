@@ -284,4 +284,24 @@ mod tests {
         let c = &model.channel(0).coefficients().unwrap()[0];
         assert!(c.se > 0.0 && (c.value - 2.0).abs() < 0.3, "{c:?}");
     }
+
+    /// A short record with a long window (issue 22's 40-s record with
+    /// `--window 250`): the model fits, but the diagnosis's mirror, trained
+    /// on the validation rows, has too few for its folds; the refusal says
+    /// so and what helps (more validation rows), not "training windows".
+    #[test]
+    fn a_mirror_too_short_for_its_folds_is_named_as_the_mirror() {
+        let (model, prepared) = fit_line(1500, 200);
+        let e = crate::fit::mirror(&model, &prepared).unwrap_err();
+        assert!(
+            matches!(e, crate::SysidError::MirrorFoldsEmpty { .. }),
+            "{e:?}"
+        );
+        let text = e.to_string();
+        assert!(
+            text.starts_with("the diagnosis fits the model's mirror on its ")
+                && text.contains("a smaller --train-fraction"),
+            "{text}"
+        );
+    }
 }
