@@ -67,7 +67,7 @@ fn residues_json(unit: &str, data: &Path, out: &Path) -> serde_json::Value {
 #[test]
 fn a_step_on_one_gyro_of_the_dual_triad_is_detected_and_isolated_to_it() {
     let dir = scratch_dir("dtg-vib-unit-reports");
-    let sim = simulate(&dir, "dual-triad", "dual");
+    let sim = simulate(dir, "dual-triad", "dual");
     let clean = residues_json("dual-triad", &sim.join("record.csv"), &dir.join("c.csv"));
     let faulty_csv = dir.join("faulty.csv");
     // 30 deg/h on gy2 (deg/h, as the unit logs): far above the noise.
@@ -114,7 +114,7 @@ fn a_step_on_one_gyro_of_the_dual_triad_is_detected_and_isolated_to_it() {
 #[test]
 fn four_gyros_detect_three_have_no_test_and_unit_only_flags_are_refused() {
     let dir = scratch_dir("dtg-vib-unit-reports");
-    let tetra = simulate(&dir, "tetra", "tetra");
+    let tetra = simulate(dir, "tetra", "tetra");
     let faulty = dir.join("tetra-faulty.csv");
     with_step(&tetra.join("record.csv"), &faulty, "g3", 30.0);
     let r = DTG_VIB.check(&[
@@ -135,7 +135,7 @@ fn four_gyros_detect_three_have_no_test_and_unit_only_flags_are_refused() {
         r.stdout
     );
     assert!(r.stdout.contains("(--fdi-sigma)"), "{}", r.stdout);
-    let triad = simulate(&dir, "triad", "triad");
+    let triad = simulate(dir, "triad", "triad");
     let e = DTG_VIB.refused(&[
         "residues",
         "--unit",
@@ -202,7 +202,7 @@ fn a_baseline_of_another_unit_is_refused() {
     let dir = scratch_dir("dtg-vib-unit-reports");
     let mut models = Vec::new();
     for unit in ["tetra", "triad"] {
-        let sim = simulate(&dir, unit, &format!("{unit}-b"));
+        let sim = simulate(dir, unit, &format!("{unit}-b"));
         let m = dir.join(format!("{unit}.json"));
         let r = DTG_VIB.check(&[
             "fit",

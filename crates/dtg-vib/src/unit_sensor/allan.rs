@@ -12,6 +12,10 @@ use crate::error::DtgVibError;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
 
+/// Per gyro, the series before, after (with a model), and the first
+/// record sample they start at.
+type Series = (Vec<Vec<f64>>, Option<Vec<Vec<f64>>>, usize);
+
 /// Analyses one segment of `unit` (a record between time gaps), with
 /// intervals at `confidence`.
 pub fn unit_allan(
@@ -21,7 +25,7 @@ pub fn unit_allan(
     confidence: f64,
 ) -> Result<AllanAnalysis, DtgVibError> {
     let n = unit.gyros().len();
-    let (before, after, first): (Vec<Vec<f64>>, Option<Vec<Vec<f64>>>, usize) = match model {
+    let (before, after, first): Series = match model {
         None => (
             (0..n).map(|k| segment.gyro_at(k).to_vec()).collect(),
             None,
