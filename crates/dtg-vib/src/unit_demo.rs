@@ -402,7 +402,10 @@ pub fn found_text(f: &Found) -> String {
         (Some(t), Some(true)) => format!("; hidden {t}, inside the interval"),
         (Some(t), Some(false)) => format!("; hidden {t}, OUTSIDE the interval"),
         (Some(t), None) => format!("; hidden {t}"),
-        (None, _) => "; not hidden: a false alarm".into(),
+        // A unit file with channels named like the paper's takes the
+        // scenario's own paper coefficients too (docs/formats.md, the
+        // `[unit]` table): truth.json says whether one holds this effect.
+        (None, _) => "; not hidden by the demo: a false alarm, unless the scenario's own coefficients hold it (simulation/truth.json)".into(),
     };
     format!("{}={}: {coef}{truth}.", f.channel, f.effect)
 }
