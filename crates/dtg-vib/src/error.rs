@@ -79,9 +79,6 @@ pub enum DtgVibError {
     /// Writing a CSV failed.
     #[error(transparent)]
     Table(#[from] tabular::TableError),
-    /// Fault detection cannot be set up on this unit.
-    #[error("fault detection: {0}")]
-    Fdi(String),
     /// A unit's records or effects (the plug-in of any unit).
     #[error(transparent)]
     Unit(#[from] crate::unit_sensor::UnitSensorError),

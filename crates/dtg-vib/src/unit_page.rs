@@ -54,16 +54,18 @@ pub fn parity(
             after: Some(stats::rms(&pa[k])),
         })
         .collect();
-    let (test, setting) =
-        fdi::setting(unit, sigma, p_fa, &pb).map_err(|e| DtgVibError::Fdi(e.to_string()))?;
-    let found = vec![
-        ("as logged".to_string(), fdi::run(unit, &test, &g.before)),
-        ("compensated".to_string(), fdi::run(unit, &test, &g.after)),
-    ];
-    Ok(Parity {
-        residues,
-        fdi: Some(FdiShown { setting, found }),
-    })
+    // A record without noise (σ read as 0) has no threshold: the page
+    // shows the residues without the test rather than no page.
+    let fdi = fdi::setting(unit, sigma, p_fa, &pb)
+        .ok()
+        .map(|(test, setting)| FdiShown {
+            setting,
+            found: vec![
+                ("as logged".to_string(), fdi::run(unit, &test, &g.before)),
+                ("compensated".to_string(), fdi::run(unit, &test, &g.after)),
+            ],
+        });
+    Ok(Parity { residues, fdi })
 }
 
 /// What a unit's page is made of besides the model and its records.

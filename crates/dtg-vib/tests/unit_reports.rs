@@ -184,6 +184,15 @@ fn four_gyros_detect_three_have_no_test_and_unit_only_flags_are_refused() {
             "{e}"
         );
     }
+    let r = with_sigma("1e308");
+    assert_eq!(r.code, 1, "{}", r.stdout);
+    assert!(
+        r.stderr.contains(
+            "fault detection with --fdi-sigma 1e308 and --fdi-false-alarm 1e-3: threshold = inf"
+        ),
+        "{}",
+        r.stderr
+    );
     let r = with_sigma("0");
     assert_eq!(r.code, 2, "{}", r.stdout);
     let e = r.stderr;

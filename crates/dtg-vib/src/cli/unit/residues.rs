@@ -85,6 +85,18 @@ pub fn residues(
     };
     let pb = residues_of(unit, &before);
     let pa = after.as_ref().map(|a| residues_of(unit, a));
+    // Set up before anything is written: a threshold that overflows is the
+    // flags' fault, said with them.
+    let (test, setting) = fdi::setting(unit, options.sigma, options.false_alarm, &pb)
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "fault detection with --fdi-sigma {} and --fdi-false-alarm {}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
+                options
+                    .sigma
+                    .map_or("(read from the record)".to_string(), |v| format!("{v:e}")),
+                format!("{:e}", options.false_alarm)
+            )
+        })?;
     let mut header: Vec<String> = vec!["t".into()];
     header.extend(names.iter().cloned());
     let mut columns: Vec<&[f64]> = vec![&t];
@@ -95,7 +107,6 @@ pub fn residues(
     }
     let h: Vec<&str> = header.iter().map(String::as_str).collect();
     tabular::write_csv(out, &h, &columns)?;
-    let (test, setting) = fdi::setting(unit, options.sigma, options.false_alarm, &pb)?;
     let found_before = fdi::run(unit, &test, &before);
     let found_after = after.as_ref().map(|a| fdi::run(unit, &test, a));
     drop(progress);
