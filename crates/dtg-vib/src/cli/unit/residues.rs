@@ -90,11 +90,11 @@ pub fn residues(
     let (test, setting) = fdi::setting(unit, options.sigma, options.false_alarm, &pb)
         .map_err(|e| {
             anyhow::anyhow!(
-                "fault detection with --fdi-sigma {} and --fdi-false-alarm {}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
+                "fault detection with --fdi-sigma {} and --fdi-false-alarm {:e}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
                 options
                     .sigma
                     .map_or("(read from the record)".to_string(), |v| format!("{v:e}")),
-                format!("{:e}", options.false_alarm)
+                options.false_alarm
             )
         })?;
     let mut header: Vec<String> = vec!["t".into()];
