@@ -59,7 +59,7 @@ impl CSources {
 }
 
 /// A C array initialiser; a single 0 for an empty list (C99 has no empty arrays).
-fn arr(v: &[f64]) -> String {
+pub(super) fn arr(v: &[f64]) -> String {
     if v.is_empty() {
         return "{0}".into();
     }
@@ -75,7 +75,7 @@ fn arr(v: &[f64]) -> String {
     s
 }
 
-fn iarr(v: &[usize]) -> String {
+pub(super) fn iarr(v: &[usize]) -> String {
     if v.is_empty() {
         return "{0}".into();
     }
@@ -83,13 +83,13 @@ fn iarr(v: &[usize]) -> String {
     format!("{{{}}}", items.join(", "))
 }
 
-fn words(b: &[u8], from: usize, n: usize) -> Vec<usize> {
+pub(super) fn words(b: &[u8], from: usize, n: usize) -> Vec<usize> {
     (from..from + n)
         .map(|i| u32::from_le_bytes([b[4 * i], b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]]) as usize)
         .collect()
 }
 
-fn floats(b: &[u8], from_byte: usize, n: usize) -> Vec<f64> {
+pub(super) fn floats(b: &[u8], from_byte: usize, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| {
             let at = from_byte + 8 * i;
@@ -260,7 +260,7 @@ pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSource
     };
     let mut source = tables_c(&layout);
     source.push_str(
-        &STEP_C
+        &step_c()
             .replace("EXP(", &format!("{exp}("))
             .replace("FABS(", &format!("{fabs}("))
             .replace("SQRT(", &format!("{sqrt}(")),
@@ -454,7 +454,24 @@ static const dtg_real FADE[{nf}] = {fade};
     )
 }
 
-const STEP_C: &str = r#"
+/// The step code of the paper's C, in pieces that the C of any unit
+/// ([`super::c_unit`]) shares where it is the same text.
+fn step_c() -> String {
+    [
+        STEP_INIT_C,
+        EXCESS_C,
+        FADE_WEIGHT_C,
+        HELPERS_C,
+        CAL_HELPERS_C,
+        GYROS_C,
+        SQ_DIST_C,
+        PROCESS_C,
+    ]
+    .concat()
+}
+
+/// `dtg_init` of the paper's state.
+const STEP_INIT_C: &str = r#"
 void dtg_init(dtg_state *s) {
     int i, j;
     s->steps = 0;
@@ -476,13 +493,19 @@ void dtg_init(dtg_state *s) {
     for (i = 0; i < 12 * DTG_N_SMOOTH_SECTIONS + 1; i++) s->smooth_z[i] = R(0);
 }
 
-#if DTG_FADE
+"#;
+
+/// The fade's excess beyond an interval (opens `#if DTG_FADE`).
+pub(super) const EXCESS_C: &str = r#"#if DTG_FADE
 static dtg_real excess(dtg_real v, dtg_real lo, dtg_real hi) {
     dtg_real e = lo - v > v - hi ? lo - v : v - hi;
     return e > R(0) ? e : R(0);
 }
 
-/* The smoothed weight of the network part for the window ending at the
+"#;
+
+/// The paper's fade weight over the three axes (closes `#if DTG_FADE`).
+const FADE_WEIGHT_C: &str = r#"/* The smoothed weight of the network part for the window ending at the
  * newest sample (sysid::operating::fade): each axis's window mean and
  * level, the distance beyond the training range, a smoothstep, a one-pole. */
 static dtg_real fade_weight(dtg_state *s, int first) {
@@ -519,7 +542,10 @@ static dtg_real fade_weight(dtg_state *s, int first) {
 }
 #endif
 
-/* One value through a cascade of second-order sections (transposed direct
+"#;
+
+/// The cascade of sections, `dot3`, `quad`.
+pub(super) const HELPERS_C: &str = r#"/* One value through a cascade of second-order sections (transposed direct
  * form II); on the first step the states start in the steady state of x. */
 static dtg_real cascade(const dtg_real *sos, int n, dtg_real *z, dtg_real x, int first) {
     int i;
@@ -550,7 +576,10 @@ static dtg_real quad(const dtg_real *p, dtg_real c[3][3], const dtg_real *q) {
     return t0 * q[0] + t1 * q[1] + t2 * q[2];
 }
 
-#if DTG_CALIBRATED
+"#;
+
+/// The triad's inverse and a DTG's drift (opens `#if DTG_CALIBRATED`).
+pub(super) const CAL_HELPERS_C: &str = r#"#if DTG_CALIBRATED
 static void compensate_triad(const dtg_real *measured, dtg_real *a) {
     int pass, k, it;
     for (k = 0; k < 3; k++) a[k] = measured[k];
@@ -599,7 +628,10 @@ static dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const d
     return s;
 }
 
-static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
+"#;
+
+/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`).
+const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
     dtg_real current[6], next[6], rate[3];
     int pass, i, j, k, it;
     for (k = 0; k < 6; k++) current[k] = raw[k];
@@ -633,7 +665,10 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 }
 #endif
 
-/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
+"#;
+
+/// The squared distance of four partial sums.
+pub(super) const SQ_DIST_C: &str = r#"/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
  * the same way) keep the adds independent. */
 static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
@@ -648,7 +683,10 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     return (acc0 + acc1) + (acc2 + acc3) + tail;
 }
 
-/* Compensates the pending sample with its within-interval covariance. */
+"#;
+
+/// The paper's `process`, `dtg_step` and `dtg_flush`.
+const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real a[3], g[6], linear[6], w = R(1);
     int first = s->processed == 0;
