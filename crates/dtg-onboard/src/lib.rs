@@ -9,9 +9,13 @@
 //! the input windows) in a caller-provided `f64` buffer of
 //! [`Model::state_len`] elements, and [`Evaluator::step`] turns one period's
 //! raw gyro outputs (deg/h), accelerations (g) and extra columns into the
-//! six compensated rates (deg/h) of the period before: one period of
+//! compensated rates (deg/h) of the period before: one period of
 //! latency, because the g² terms' within-interval covariance of a sample is
-//! estimated from its two neighbours.
+//! estimated from its two neighbours. The paper's unit (six DTG channels)
+//! has layout [`VERSION`]; any other unit (up to [`MAX_CHANNELS`] DTG or
+//! rate-gyro channels, its own operators and calibration) layout
+//! [`UNIT_VERSION`]. Channels that share their centres and widths (the
+//! same numbers in the tables) take each kernel value computed once.
 //!
 //! Each sample goes through, in this order (the same as `dtg-vib
 //! compensate` on a causal model, which runs this code):
@@ -1184,6 +1188,10 @@ fn linear_parts(
     linear
 }
 
+/// Centres whose kernel arguments are gathered before their exponentials
+/// are taken in one loop (which then vectorises: `fastexp` has no branch).
+const KERNEL_BLOCK: usize = 32;
+
 /// Every channel's kernel terms, in centre order, added to its `ys` and
 /// `nets` (the input: the statistics in `st`, or the windows of the rings
 /// whose oldest sample is at `ring_pos`). Channels that share a centre set
@@ -1203,27 +1211,42 @@ fn network_terms(
         }
         let members = &m.members[c][..m.n_members[c]];
         let mut centre = ch.centres;
-        for k in 0..ch.n_centres {
-            let mut r2 = 0.0;
-            if m.input == input::STATISTICS {
-                let x = &st[m.features..m.features + m.dim];
-                r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
-                centre += 8 * m.dim;
-            } else {
-                for s in 0..m.n_signals {
-                    let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
-                    r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
-                    centre += 8 * l;
+        let mut k0 = 0;
+        while k0 < ch.n_centres {
+            let nb = KERNEL_BLOCK.min(ch.n_centres - k0);
+            let mut arg = [0.0; KERNEL_BLOCK];
+            for (j, a) in arg[..nb].iter_mut().enumerate() {
+                let mut r2 = 0.0;
+                if m.input == input::STATISTICS {
+                    let x = &st[m.features..m.features + m.dim];
+                    r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
+                    centre += 8 * m.dim;
+                } else {
+                    for s in 0..m.n_signals {
+                        let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
+                        r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
+                        centre += 8 * l;
+                    }
+                }
+                let beta = m.f(ch.widths + 8 * (k0 + j));
+                *a = -(r2 / (beta * beta));
+            }
+            let mut phi = [0.0; KERNEL_BLOCK];
+            for (p, a) in phi.iter_mut().zip(&arg) {
+                *p = exp_neg(*a);
+            }
+            for &j in members {
+                let (j, at) = (j as usize, m.channels[j as usize].weights + 8 * k0);
+                let weights = &m.bytes[at..at + 8 * nb];
+                for (p, w) in phi[..nb].iter().zip(weights.chunks_exact(8)) {
+                    let mut b = [0u8; 8];
+                    b.copy_from_slice(w);
+                    let term = p * f64::from_le_bytes(b);
+                    ys[j] += term;
+                    nets[j] += term;
                 }
             }
-            let beta = m.f(ch.widths + 8 * k);
-            let phi = exp_neg(-(r2 / (beta * beta)));
-            for &j in members {
-                let j = j as usize;
-                let term = phi * m.f(m.channels[j].weights + 8 * k);
-                ys[j] += term;
-                nets[j] += term;
-            }
+            k0 += nb;
         }
     }
 }
@@ -1676,6 +1699,19 @@ mod tests {
         bad[4 * 21..4 * 22].copy_from_slice(&3u32.to_le_bytes()); // signal 3: no extra column
         assert_eq!(Model::parse(&bad).unwrap_err(), Error::Header { word: 21 });
 
+        // Layout 3 with 17 channels: more than the evaluator holds.
+        let mut bad = good;
+        bad[4..8].copy_from_slice(&UNIT_VERSION.to_le_bytes());
+        bad[36..40].copy_from_slice(&17u32.to_le_bytes());
+        assert_eq!(
+            Model::parse(&bad).unwrap_err(),
+            Error::TooMany {
+                what: "channels",
+                found: 17,
+                max: MAX_CHANNELS
+            }
+        );
+
         let mut small = [0.0; 4];
         assert_eq!(
             Evaluator::new(m, &mut small).unwrap_err(),
@@ -1698,6 +1734,26 @@ mod tests {
                 have: 4
             }
         );
+    }
+
+    #[test]
+    fn channels_with_the_same_centres_and_widths_share_one_set() {
+        // doc_tables: every channel has the one centre of four 1 g samples
+        // and width 1 g; a channel with another width has a set of its own.
+        let b = doc_tables();
+        let m = Model::parse(&b).unwrap();
+        assert!((0..6).all(|c| m.centre_set(c) == 0));
+        let mut other = b;
+        let width_of_z = 4 * 24 + 8 * (1 + 54 + 18) + 4 * 7 * 8 + 8;
+        other[width_of_z..width_of_z + 8].copy_from_slice(&2.0f64.to_le_bytes());
+        let m2 = Model::parse(&other).unwrap();
+        assert_eq!(
+            (0..6)
+                .map(|c| m2.centre_set(c))
+                .collect::<std::vec::Vec<_>>(),
+            [0, 0, 0, 0, 4, 0]
+        );
+        assert!(m2.flops_per_step() > m.flops_per_step());
     }
 
     #[test]

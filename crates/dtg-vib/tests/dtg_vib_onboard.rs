@@ -814,3 +814,112 @@ fn the_unit_models_exercise_what_they_claim() {
     assert_eq!(o.n_effects(3), 2);
     let _ = gyro::DTG;
 }
+
+#[test]
+fn the_exported_c_equals_compensate_on_every_unit() {
+    for (m, sim) in unit_models() {
+        // The logs are in the unit's units: a difference in deg/s is 3600
+        // times as much in deg/h.
+        let to_deg_h = dtg_vib::unit_sensor::UnitModel::load(m)
+            .unwrap()
+            .unit()
+            .units()
+            .rate
+            .to_deg_h();
+        let data = sim.join("record.csv");
+        let outside = unit_outside(m, &data);
+        for (what, d) in [("", data), (" outside", outside)] {
+            let Some(worst) = c_against_compensate_on(m, "f64", &d) else {
+                return;
+            };
+            let worst = worst * to_deg_h;
+            eprintln!(
+                "{}{what}: largest |C − compensate| = {worst:e} deg/h",
+                m.display()
+            );
+            assert!(
+                worst <= EQUAL_DEG_H,
+                "{}{what}: {worst:e} deg/h",
+                m.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn text_export_of_a_unit_names_its_gyros_models_and_units() {
+    let out = ok(bin()
+        .args(["export", "--lang", "text", "--model"])
+        .arg(triad()));
+    for want in [
+        "of the unit 'triad",
+        "gyros gx, gy, gz (deg/s, times 3600 to deg/h)",
+        "gx: rate, input axis",
+        "error_gx [deg/h] =",
+        "deg/h/g)·LP[g_y]",
+        "## Training range and fade",
+    ] {
+        assert!(
+            out.contains(want),
+            "missing '{want}' in:\n{}",
+            &out[..out.len().min(3000)]
+        );
+    }
+}
+
+// Channels sharing one centre set (issue 25 §1): the evaluator and the C
+// compute each kernel value once and weight it per channel.
+
+/// The statistics model with every channel given channel X's network
+/// (centres, widths) and weights of its own (X's, scaled and shifted): the
+/// model the fit's one selection for channels sharing an input gives.
+fn shared() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        let text = std::fs::read_to_string(statistics()).unwrap();
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let channels = v["model"]["channels"].as_array_mut().unwrap();
+        let (rbf, width) = (channels[0]["rbf"].clone(), channels[0]["width"].clone());
+        for (c, ch) in channels.iter_mut().enumerate().skip(1) {
+            let mut r = rbf.clone();
+            for w in r["weights"]["data"].as_array_mut().unwrap() {
+                let x = w[0].as_f64().unwrap();
+                w[0] = serde_json::json!(x * (1.0 + 0.25 * c as f64) - 0.01 * c as f64);
+            }
+            ch["rbf"] = r;
+            ch["width"] = width.clone();
+        }
+        let p = dir().join("shared.json");
+        std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+        p
+    })
+}
+
+#[test]
+fn channels_sharing_a_centre_set_step_and_export_as_the_batch() {
+    let model = CompensationModel::load(shared()).unwrap();
+    let t = dtg_vib::export::tables(&model).unwrap();
+    let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
+    assert!((0..6).all(|c| m.centre_set(c) == 0), "one set");
+    let own = dtg_vib::export::tables(&CompensationModel::load(statistics()).unwrap()).unwrap();
+    let own = dtg_onboard::Model::parse(&own.bytes).unwrap();
+    assert!((0..6).all(|c| own.centre_set(c) == c), "six sets");
+    assert!(m.flops_per_step() < own.flops_per_step());
+    let c = dtg_vib::export::c_sources(&model, dtg_vib::export::Precision::F64).unwrap();
+    assert!(c.source.contains("CENTRE_SET[c] != c"), "the shared C");
+    for (what, rec) in [
+        ("", record()),
+        (" outside", Record::read_csv(outside_record()).unwrap()),
+    ] {
+        let worst = step_against_batch_on(shared(), &rec);
+        eprintln!("shared{what}: largest |step − batch| = {worst:e} deg/h");
+        assert!(worst <= EQUAL_DEG_H, "shared{what}: {worst:e} deg/h");
+    }
+    for data in [sim().join("record.csv"), outside_record().to_path_buf()] {
+        let Some(worst) = c_against_compensate_on(shared(), "f64", &data) else {
+            return;
+        };
+        eprintln!("shared: largest |C − compensate| = {worst:e} deg/h");
+        assert!(worst <= EQUAL_DEG_H, "shared C: {worst:e} deg/h");
+    }
+}

@@ -253,14 +253,26 @@ impl Layout {
 /// The C sources of any onboard tables (those of [`tables`], or tables built
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
-    let layout = Layout::read(&t.bytes)?;
+    let mut layout = Layout::read(&t.bytes)?;
     let (real, exp, fabs, sqrt) = match precision {
         Precision::F64 => ("double", "exp", "fabs", "sqrt"),
         Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
     };
+    // Channels that share a centre set compute each kernel value once; a
+    // model without (every model fitted before shared centres) keeps the
+    // C it always had, byte for byte.
+    let shared = super::c_shared::shared_sets(&t.bytes)?.map(|sets| {
+        let dim = layout.dim;
+        super::c_shared::dedupe(&mut layout.centres, &layout.n_centres, dim, &sets)
+    });
     let mut source = tables_c(&layout);
+    let mut step = step_c();
+    if let Some(arrays) = shared {
+        source.push_str(&arrays);
+        step = super::c_shared::step(&step);
+    }
     source.push_str(
-        &step_c()
+        &step
             .replace("EXP(", &format!("{exp}("))
             .replace("FABS(", &format!("{fabs}("))
             .replace("SQRT(", &format!("{sqrt}(")),

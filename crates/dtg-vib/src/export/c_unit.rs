@@ -8,6 +8,7 @@
 use super::c::{
     CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, floats, iarr, words,
 };
+use super::c_shared::SHARED_KERNELS;
 use crate::onboard::{ExportError, Tables};
 use dtg_onboard::{Model, UNIT_FIXED_HEADER_WORDS, gyro_cal_len, kind_params_of};
 use nav_sensors::unit::Unit;
@@ -201,6 +202,8 @@ pub fn unit_c_sources(
         GYROS_C,
         SQ_DIST_C,
         PROCESS_C,
+        SHARED_KERNELS,
+        PROCESS_TAIL_C,
     ]
     .concat();
     source.push_str(
@@ -374,9 +377,9 @@ static const dtg_real COEFF[DTG_N_EFFECTS + 1] = {coeff};
  * channel with the same centres and widths (whose kernel values it takes),
  * and where that set's centres start (in centres). */
 static const int N_CENTRES[N] = {n_cen};
-static const int WEIGHT_OFFSET[N] = {w_off};
+static const int CENTRE_OFFSET[N] = {w_off};
 static const int CENTRE_SET[N] = {sets};
-static const int CENTRE_OFFSET[N] = {c_off};
+static const int SET_OFFSET[N] = {c_off};
 static const dtg_real WIDTH[{nk}] = {widths};
 static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
@@ -404,7 +407,9 @@ static const dtg_real FADE[{nf}] = {fade};
         kinds = iarr(&layout.kinds),
         indices = iarr(&layout.indices),
         poff = iarr(&layout.param_offset),
-        np = layout.params.len().max(1),
+        // Room for a rate product's 2N reads past any effect's start, so
+        // that the compiler's bounds analysis of the unused kinds holds.
+        np = layout.params.len() + 2 * n,
         params = arr(&layout.params),
         bias = arr(&layout.bias),
         coeff = arr(&layout.coeff),
@@ -555,6 +560,7 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 
 "#;
 
+/// `process` up to its kernels.
 const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], double accel_out_g[NA]) {
     dtg_real f[3], a[NA], g[N], linear[N], ys[N], nets[N], w = R(1);
@@ -625,38 +631,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], doubl
 #if DTG_FADE
     w = fade_weight(s, s->processed == l);
 #endif
-    /* Without a smoother the kernels add onto bias and effects. */
-    for (c = 0; c < N; c++) {
-        ys[c] = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c];
-        nets[c] = R(0);
-    }
-    /* The kernels of each centre set once, times each sharing channel's weight. */
-    for (c = 0; c < N; c++) {
-        if (CENTRE_SET[c] != c) continue;
-        for (k = 0; k < N_CENTRES[c]; k++) {
-            const dtg_real *cen = CENTRES + (long)DTG_DIM * (CENTRE_OFFSET[c] + k);
-            dtg_real r2 = R(0), beta = WIDTH[WEIGHT_OFFSET[c] + k], phi;
-#if DTG_INPUT_STATS
-            r2 = sq_dist(s->feat, cen, DTG_DIM);
-#else
-            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
-                cen += l;
-            }
-#endif
-            phi = EXP(-(r2 / (beta * beta)));
-            for (j = c; j < N; j++) {
-                if (CENTRE_SET[j] == c) {
-                    dtg_real term = phi * WEIGHT[WEIGHT_OFFSET[j] + k];
-                    ys[j] += term;
-                    nets[j] += term;
-                }
-            }
-        }
-    }
-    for (c = 0; c < N; c++) {
-        dtg_real y = ys[c], net = nets[c];
-#if DTG_FADE
+"#;
+
+/// The rest of `process`, `dtg_step` and `dtg_flush`.
+const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
         {
             /* The held network part, before the smoother; the first output
              * starts from the network's training mean. */

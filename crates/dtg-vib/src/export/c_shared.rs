@@ -1,0 +1,130 @@
+//! The paper's C when its channels share centre sets (the fit's one
+//! selection for all channels that share an input, issue 25): each kernel
+//! value is computed once per set and weighted by every sharing channel,
+//! and a set's centres are written once. Only models with shared sets get
+//! this variant, so a model without keeps its C byte for byte.
+
+use super::c::iarr;
+use crate::onboard::ExportError;
+use dtg_onboard::Model;
+
+/// Each channel's centre set (the first channel with the same centres and
+/// widths, as the evaluator finds it), or `None` when no two share.
+pub(super) fn shared_sets(bytes: &[u8]) -> Result<Option<Vec<usize>>, ExportError> {
+    let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
+    let sets: Vec<usize> = (0..m.n_channels()).map(|c| m.centre_set(c)).collect();
+    Ok(sets
+        .iter()
+        .enumerate()
+        .any(|(c, &l)| l != c)
+        .then_some(sets))
+}
+
+/// Keeps in `centres` (every channel's block of `dim` numbers per centre,
+/// in channel order, `n_centres` each) only each set's first block, and
+/// returns the arrays the shared step reads besides: each channel's set and
+/// where its set's centres start in `CENTRES` (in centres).
+pub(super) fn dedupe(
+    centres: &mut Vec<f64>,
+    n_centres: &[usize],
+    dim: usize,
+    sets: &[usize],
+) -> String {
+    let mut kept = Vec::new();
+    let mut set_offset = vec![0usize; sets.len()];
+    let mut block = 0;
+    for (c, &l) in sets.iter().enumerate() {
+        if l == c {
+            set_offset[c] = kept.len() / dim.max(1);
+            kept.extend_from_slice(&centres[block * dim..(block + n_centres[c]) * dim]);
+        } else {
+            set_offset[c] = set_offset[l];
+        }
+        block += n_centres[c];
+    }
+    *centres = kept;
+    format!(
+        "/* Channels sharing centres and widths: each channel's set (the first channel\n * with the same ones), and where the set's centres start in CENTRES. */\n#define N 6\nstatic const int CENTRE_SET[N] = {};\nstatic const int SET_OFFSET[N] = {};\n",
+        iarr(sets),
+        iarr(&set_offset)
+    )
+}
+
+/// The paper's per-channel kernel loop, which the shared step replaces.
+const OWN_KERNELS: &str = r#"    for (c = 0; c < 6; c++) {
+        /* Without a smoother the kernels add onto bias and effects. */
+        dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0), term;
+        for (k = 0; k < N_CENTRES[c]; k++) {
+            int kk = CENTRE_OFFSET[c] + k;
+            const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
+            dtg_real r2 = R(0), beta = WIDTH[kk];
+#if DTG_INPUT_STATS
+            r2 = sq_dist(s->feat, cen, DTG_DIM);
+#else
+            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
+                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
+                cen += l;
+            }
+#endif
+            term = EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
+            y += term;
+            net += term;
+        }
+"#;
+
+/// The kernels of each set once, each value times every sharing channel's
+/// weight, added in centre order as the paper's loop adds them.
+/// N is the number of channels (6 here, `DTG_N_GYROS` in a unit's C),
+/// `CENTRE_OFFSET` where a channel's widths and weights start and
+/// `SET_OFFSET` where its set's centres start (in centres).
+pub(super) const SHARED_KERNELS: &str = r#"    /* Without a smoother the kernels add onto bias and effects. */
+    for (c = 0; c < N; c++) {
+        ys[c] = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c];
+        nets[c] = R(0);
+    }
+    /* The kernels of each centre set once, times each sharing channel's weight. */
+    for (c = 0; c < N; c++) {
+        if (CENTRE_SET[c] != c) continue;
+        for (k = 0; k < N_CENTRES[c]; k++) {
+            const dtg_real *cen = CENTRES + (long)DTG_DIM * (SET_OFFSET[c] + k);
+            dtg_real r2 = R(0), beta = WIDTH[CENTRE_OFFSET[c] + k], phi;
+#if DTG_INPUT_STATS
+            r2 = sq_dist(s->feat, cen, DTG_DIM);
+#else
+            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
+                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
+                cen += l;
+            }
+#endif
+            phi = EXP(-(r2 / (beta * beta)));
+            for (j = c; j < N; j++) {
+                if (CENTRE_SET[j] == c) {
+                    dtg_real term = phi * WEIGHT[CENTRE_OFFSET[j] + k];
+                    ys[j] += term;
+                    nets[j] += term;
+                }
+            }
+        }
+    }
+    for (c = 0; c < N; c++) {
+        dtg_real y = ys[c], net = nets[c];
+"#;
+
+/// The paper's step with the shared kernel loop in place of each
+/// channel's own.
+pub(super) fn step(step: &str) -> String {
+    let replaced = [
+        (OWN_KERNELS, SHARED_KERNELS),
+        (
+            "    dtg_real a[3], g[6], linear[6], w = R(1);\n",
+            "    dtg_real a[3], g[6], linear[6], ys[6], nets[6], w = R(1);\n",
+        ),
+        ("    int k, c, e, sig;\n", "    int k, c, e, sig, j;\n"),
+    ]
+    .iter()
+    .fold(step.to_string(), |s, (old, new)| {
+        debug_assert!(s.contains(old), "the paper's step changed: {old}");
+        s.replacen(old, new, 1)
+    });
+    replaced
+}
