@@ -140,20 +140,7 @@ fn calibration_text(w: &mut String, model: &CompensationModel) {
                 "accelerometers (static inverse of output/g = (1 + K1·1e-6)(K0 + a_i + K2·a_i² + K3·a_i³ + δo·a_p − δp·a_o + Kip·a_i·a_p + Kio·a_i·a_o), each coefficient ·1e-6):"
             );
             for a in Axis::ALL {
-                let c = cal.accel(a);
-                let _ = writeln!(
-                    w,
-                    "  {}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
-                    a.column(),
-                    c.bias_ug,
-                    c.scale_factor_ppm,
-                    c.k2_ug_per_g2,
-                    c.k3_ug_per_g3,
-                    c.misalignment_o_urad,
-                    c.misalignment_p_urad,
-                    c.kip_ug_per_g2,
-                    c.kio_ug_per_g2
-                );
+                accel_text(w, a.column(), &cal.accel(a));
             }
             let _ = writeln!(
                 w,
@@ -181,6 +168,22 @@ fn calibration_text(w: &mut String, model: &CompensationModel) {
             }
         }
     }
+}
+
+/// One accelerometer's calibration, with units.
+pub(super) fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficients) {
+    let _ = writeln!(
+        w,
+        "  {name}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
+        c.bias_ug,
+        c.scale_factor_ppm,
+        c.k2_ug_per_g2,
+        c.k3_ug_per_g3,
+        c.misalignment_o_urad,
+        c.misalignment_p_urad,
+        c.kip_ug_per_g2,
+        c.kio_ug_per_g2
+    );
 }
 
 /// One low-pass as its sections' difference equations.

@@ -2,7 +2,7 @@
 //! export --lang text` on a model of `fit --unit …`): the paper's text
 //! ([`super::text`]) with the unit's gyros, models and calibration.
 
-use super::text::{channel_text, equations_with};
+use super::text::{accel_text, channel_text, equations_with};
 use crate::unit_sensor::UnitModel;
 use nav_sensors::calibration::GyroCoefficients;
 use nav_sensors::dtg::DtgTerm;
@@ -67,18 +67,7 @@ fn calibration_text(w: &mut String, model: &UnitModel) {
         "accelerometers: the static triad inverse of the paper's unit when they are the unit's x, y, z axes (each coefficient ·1e-6), else as given; the specific force is their least-squares resolution in the unit frame"
     );
     for (name, c) in &cal.accels {
-        let _ = writeln!(
-            w,
-            "  {name}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
-            c.bias_ug,
-            c.scale_factor_ppm,
-            c.k2_ug_per_g2,
-            c.k3_ug_per_g3,
-            c.misalignment_o_urad,
-            c.misalignment_p_urad,
-            c.kip_ug_per_g2,
-            c.kio_ug_per_g2
-        );
+        accel_text(w, name, c);
     }
     let _ = writeln!(
         w,

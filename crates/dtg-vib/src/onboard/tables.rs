@@ -136,11 +136,35 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
     if let Some(block) = super::fade::fade_block(model)? {
         f.extend(block);
     }
+    assemble(&words, &f, extra)
+}
+
+/// An accelerometer's calibration in the layout's order.
+pub(super) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
+    [
+        c.bias_ug,
+        c.scale_factor_ppm,
+        c.k2_ug_per_g2,
+        c.k3_ug_per_g3,
+        c.misalignment_o_urad,
+        c.misalignment_p_urad,
+        c.kip_ug_per_g2,
+        c.kio_ug_per_g2,
+    ]
+}
+
+/// The tables' bytes: the header `words`, then the numbers `f`, checked by
+/// the evaluator (a refusal is an exporter bug).
+pub(super) fn assemble(
+    words: &[u32],
+    f: &[f64],
+    extra: Vec<String>,
+) -> Result<Tables, ExportError> {
     let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
-    for w in &words {
+    for w in words {
         bytes.extend(w.to_le_bytes());
     }
-    for v in &f {
+    for v in f {
         bytes.extend(v.to_le_bytes());
     }
     dtg_onboard::Model::parse(&bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
@@ -259,17 +283,7 @@ fn geometry_and_calibration(model: &CompensationModel) -> Vec<f64> {
             f.push(g.scale_factor_nonlinearity_ppm_per_deg_s);
         }
         for a in Axis::ALL {
-            let c = cal.accel(a);
-            f.extend([
-                c.bias_ug,
-                c.scale_factor_ppm,
-                c.k2_ug_per_g2,
-                c.k3_ug_per_g3,
-                c.misalignment_o_urad,
-                c.misalignment_p_urad,
-                c.kip_ug_per_g2,
-                c.kio_ug_per_g2,
-            ]);
+            f.extend(accel_floats(&cal.accel(a)));
         }
     }
     f

@@ -7,7 +7,8 @@
 
 use super::error::ExportError;
 use super::tables::{
-    Tables, input_and_smoother_words, input_filter, network_floats, sections, smoother_filter,
+    Tables, accel_floats, assemble, input_and_smoother_words, input_filter, network_floats,
+    sections, smoother_filter,
 };
 use crate::unit_sensor::{UnitEffect, UnitModel, rate_without};
 use dtg_onboard::{
@@ -241,15 +242,7 @@ pub fn unit_tables(model: &UnitModel) -> Result<Tables, ExportError> {
     if let Some(block) = fade {
         f.extend(block);
     }
-    let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
-    for w in &words {
-        bytes.extend(w.to_le_bytes());
-    }
-    for v in &f {
-        bytes.extend(v.to_le_bytes());
-    }
-    dtg_onboard::Model::parse(&bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-    Ok(Tables { bytes, extra })
+    assemble(&words, &f, extra)
 }
 
 /// The sample interval, the log's units, each gyro's (I, O, S) axes (a
@@ -314,16 +307,7 @@ fn geometry_and_calibration(model: &UnitModel, triad: Option<[usize; 3]>) -> Vec
                 .get(&unit.accels()[k].name)
                 .copied()
                 .unwrap_or_default();
-            f.extend([
-                c.bias_ug,
-                c.scale_factor_ppm,
-                c.k2_ug_per_g2,
-                c.k3_ug_per_g3,
-                c.misalignment_o_urad,
-                c.misalignment_p_urad,
-                c.kip_ug_per_g2,
-                c.kio_ug_per_g2,
-            ]);
+            f.extend(accel_floats(&c));
         }
     }
     f
