@@ -254,10 +254,6 @@ impl Layout {
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
     let mut layout = Layout::read(&t.bytes)?;
-    let (real, exp, fabs, sqrt) = match precision {
-        Precision::F64 => ("double", "exp", "fabs", "sqrt"),
-        Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
-    };
     // Channels that share a centre set compute each kernel value once; a
     // model without (every model fitted before shared centres) keeps the
     // C it always had, byte for byte.
@@ -271,17 +267,31 @@ pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSource
         source.push_str(&arrays);
         step = super::c_shared::step(&step);
     }
-    source.push_str(
-        &step
-            .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}("))
-            .replace("SQRT(", &format!("{sqrt}(")),
-    );
+    source.push_str(&with_maths(&step, precision));
     Ok(CSources {
-        header: header_h(&layout, &t.extra, real),
+        header: header_h(&layout, &t.extra, real_type(precision)),
         source,
         main: MAIN_C.to_string(),
     })
+}
+
+/// The C type of `precision`.
+pub(super) fn real_type(precision: Precision) -> &'static str {
+    match precision {
+        Precision::F64 => "double",
+        Precision::F32 => "float",
+    }
+}
+
+/// Step code with its `EXP(`, `FABS(` and `SQRT(` the maths of `precision`.
+pub(super) fn with_maths(step: &str, precision: Precision) -> String {
+    let (exp, fabs, sqrt) = match precision {
+        Precision::F64 => ("exp", "fabs", "sqrt"),
+        Precision::F32 => ("expf", "fabsf", "sqrtf"),
+    };
+    step.replace("EXP(", &format!("{exp}("))
+        .replace("FABS(", &format!("{fabs}("))
+        .replace("SQRT(", &format!("{sqrt}("))
 }
 
 /// `dtg_model.h`: the sizes, the state and the three calls.
@@ -478,6 +488,8 @@ fn step_c() -> String {
         GYROS_C,
         SQ_DIST_C,
         PROCESS_C,
+        OWN_KERNELS_C,
+        PROCESS_TAIL_C,
     ]
     .concat()
 }
@@ -697,7 +709,7 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
 
 "#;
 
-/// The paper's `process`, `dtg_step` and `dtg_flush`.
+/// The paper's `process` up to its kernels.
 const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real a[3], g[6], linear[6], w = R(1);
@@ -767,7 +779,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
 #if DTG_FADE
     w = fade_weight(s, s->processed == l);
 #endif
-    for (c = 0; c < 6; c++) {
+"#;
+
+/// Each channel's own kernel loop (a model without shared centre sets).
+pub(super) const OWN_KERNELS_C: &str = r#"    for (c = 0; c < 6; c++) {
         /* Without a smoother the kernels add onto bias and effects. */
         dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0), term;
         for (k = 0; k < N_CENTRES[c]; k++) {
@@ -786,7 +801,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
             y += term;
             net += term;
         }
-#if DTG_FADE
+"#;
+
+/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`.
+const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
         {
             /* The held network part, before the smoother; the first output
              * starts from the network's training mean. */

@@ -50,28 +50,6 @@ pub(super) fn dedupe(
     )
 }
 
-/// The paper's per-channel kernel loop, which the shared step replaces.
-const OWN_KERNELS: &str = r#"    for (c = 0; c < 6; c++) {
-        /* Without a smoother the kernels add onto bias and effects. */
-        dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0), term;
-        for (k = 0; k < N_CENTRES[c]; k++) {
-            int kk = CENTRE_OFFSET[c] + k;
-            const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
-            dtg_real r2 = R(0), beta = WIDTH[kk];
-#if DTG_INPUT_STATS
-            r2 = sq_dist(s->feat, cen, DTG_DIM);
-#else
-            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
-                cen += l;
-            }
-#endif
-            term = EXP(-(r2 / (beta * beta))) * WEIGHT[kk];
-            y += term;
-            net += term;
-        }
-"#;
-
 /// The kernels of each set once, each value times every sharing channel's
 /// weight, added in centre order as the paper's loop adds them.
 /// N is the number of channels (6 here, `DTG_N_GYROS` in a unit's C),
@@ -114,7 +92,7 @@ pub(super) const SHARED_KERNELS: &str = r#"    /* Without a smoother the kernels
 /// channel's own.
 pub(super) fn step(step: &str) -> String {
     let replaced = [
-        (OWN_KERNELS, SHARED_KERNELS),
+        (super::c::OWN_KERNELS_C, SHARED_KERNELS),
         (
             "    dtg_real a[3], g[6], linear[6], w = R(1);\n",
             "    dtg_real a[3], g[6], linear[6], ys[6], nets[6], w = R(1);\n",

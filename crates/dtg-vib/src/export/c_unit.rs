@@ -6,7 +6,8 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, floats, iarr, words,
+    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, floats, iarr,
+    real_type, with_maths, words,
 };
 use super::c_shared::SHARED_KERNELS;
 use crate::onboard::{ExportError, Tables};
@@ -188,10 +189,6 @@ pub fn unit_c_sources(
     precision: Precision,
 ) -> Result<CSources, ExportError> {
     let layout = UnitLayout::read(&t.bytes)?;
-    let (real, exp, fabs, sqrt) = match precision {
-        Precision::F64 => ("double", "exp", "fabs", "sqrt"),
-        Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
-    };
     let mut source = tables_c(&layout);
     let step = [
         INIT_C,
@@ -206,14 +203,9 @@ pub fn unit_c_sources(
         PROCESS_TAIL_C,
     ]
     .concat();
-    source.push_str(
-        &step
-            .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}("))
-            .replace("SQRT(", &format!("{sqrt}(")),
-    );
+    source.push_str(&with_maths(&step, precision));
     Ok(CSources {
-        header: header_h(&layout, &t.extra, unit, real),
+        header: header_h(&layout, &t.extra, unit, real_type(precision)),
         source,
         main: MAIN_C.to_string(),
     })
