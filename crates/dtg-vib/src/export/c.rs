@@ -5,9 +5,9 @@
 //! Only `math.h` (`exp`, `fabs`, `sqrt`); no dynamic memory, no globals but the
 //! tables.
 
+use super::layout::Layout;
 use crate::model::CompensationModel;
 use crate::onboard::{ExportError, Tables, tables};
-use dtg_onboard::{Model, kind_params};
 use std::fmt::Write;
 
 /// Arithmetic and table precision of the exported C.
@@ -104,167 +104,17 @@ pub fn c_sources(model: &CompensationModel, precision: Precision) -> Result<CSou
     c_sources_from_tables(&tables(model)?, precision)
 }
 
-/// The numbers of onboard tables, read back as the evaluator reads them.
-struct Layout {
-    calibrated: bool,
-    n_sections: usize,
-    n_in_sections: usize,
-    /// Window length, samples.
-    l: usize,
-    n_signals: usize,
-    n_effects: Vec<usize>,
-    n_centres: Vec<usize>,
-    signal_codes: Vec<usize>,
-    total_effects: usize,
-    kinds: Vec<usize>,
-    indices: Vec<usize>,
-    dim: usize,
-    /// The network's input kind (`dtg_onboard::input`) and the prediction
-    /// smoother's sections.
-    input: usize,
-    n_smooth: usize,
-    dt: f64,
-    frames: Vec<f64>,
-    ls: Vec<f64>,
-    gyro_cal: Vec<f64>,
-    accel_cal: Vec<f64>,
-    out_sos: Vec<f64>,
-    in_sos: Vec<f64>,
-    smooth_sos: Vec<f64>,
-    bias: Vec<f64>,
-    coeff: Vec<f64>,
-    params: Vec<f64>,
-    param_offset: Vec<usize>,
-    widths: Vec<f64>,
-    weights: Vec<f64>,
-    centres: Vec<f64>,
-    /// The fade block (empty: the tables do not fade).
-    fade: Vec<f64>,
-}
-
-impl Layout {
-    /// Reads the header words, then walks the payload as the evaluator does.
-    fn read(bytes: &[u8]) -> Result<Self, ExportError> {
-        let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-        let b = bytes;
-        let hw = words(b, 2, 1)[0];
-        let calibrated = words(b, 3, 1)[0] & dtg_onboard::FLAG_CALIBRATION as usize != 0;
-        let n_sections = words(b, 5, 1)[0];
-        let n_in_sections = words(b, 6, 1)[0];
-        let l = m.window_len();
-        let n_signals = words(b, 8, 1)[0];
-        let n_effects = words(b, 9, 6);
-        let n_centres = words(b, 15, 6);
-        let signal_codes = words(b, dtg_onboard::FIXED_HEADER_WORDS, n_signals);
-        let total_effects: usize = n_effects.iter().sum();
-        let pairs = words(
-            b,
-            dtg_onboard::FIXED_HEADER_WORDS + n_signals,
-            2 * total_effects,
-        );
-        let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
-        let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-        let after = words(
-            b,
-            dtg_onboard::FIXED_HEADER_WORDS + n_signals + 2 * total_effects,
-            2,
-        );
-        let (input, n_smooth) = (after[0], after[1]);
-        let dim = m.input_dim();
-        let mut at = 4 * hw;
-        let mut take = |n: usize| {
-            let v = floats(b, at, n);
-            at += 8 * n;
-            v
-        };
-        let dt = take(1)[0];
-        let frames = take(54);
-        let ls = take(18);
-        let (gyro_cal, accel_cal) = if calibrated {
-            (take(6 * 19), take(24))
-        } else {
-            (vec![], vec![])
-        };
-        let out_sos = take(7 * n_sections);
-        let in_sos = take(7 * n_in_sections);
-        let smooth_sos = take(7 * n_smooth);
-        let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
-            (vec![], vec![], vec![], vec![], vec![], vec![]);
-        let mut param_offset = Vec::new();
-        let mut e0 = 0;
-        for c in 0..6 {
-            bias.push(take(1)[0]);
-            coeff.extend(take(n_effects[c]));
-            let np: usize = kinds[e0..e0 + n_effects[c]]
-                .iter()
-                .map(|&k| kind_params(k as u32).unwrap_or(0))
-                .sum();
-            let mut off = params.len();
-            for &k in &kinds[e0..e0 + n_effects[c]] {
-                param_offset.push(off);
-                off += kind_params(k as u32).unwrap_or(0);
-            }
-            params.extend(take(np));
-            widths.extend(take(n_centres[c]));
-            weights.extend(take(n_centres[c]));
-            centres.extend(take(n_centres[c] * dim));
-            e0 += n_effects[c];
-        }
-        let fade = if m.fades() {
-            take(dtg_onboard::FADE_FLOATS)
-        } else {
-            vec![]
-        };
-        Ok(Self {
-            calibrated,
-            n_sections,
-            n_in_sections,
-            l,
-            n_signals,
-            n_effects,
-            n_centres,
-            signal_codes,
-            total_effects,
-            kinds,
-            indices,
-            dim,
-            input,
-            n_smooth,
-            dt,
-            frames,
-            ls,
-            gyro_cal,
-            accel_cal,
-            out_sos,
-            in_sos,
-            smooth_sos,
-            bias,
-            coeff,
-            params,
-            param_offset,
-            widths,
-            weights,
-            centres,
-            fade,
-        })
-    }
-}
-
 /// The C sources of any onboard tables (those of [`tables`], or tables built
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
-    let mut layout = Layout::read(&t.bytes)?;
+    let layout = Layout::read(&t.bytes)?;
+    let mut source = tables_c(&layout);
     // Channels that share a centre set compute each kernel value once; a
     // model without (every model fitted before shared centres) keeps the
     // C it always had, byte for byte.
-    let shared = super::c_shared::shared_sets(&t.bytes)?.map(|sets| {
-        let dim = layout.dim;
-        super::c_shared::dedupe(&mut layout.centres, &layout.n_centres, dim, &sets)
-    });
-    let mut source = tables_c(&layout);
     let mut step = step_c();
-    if let Some(arrays) = shared {
-        source.push_str(&arrays);
+    if layout.centre_set.iter().enumerate().any(|(c, &l)| l != c) {
+        source.push_str(&super::c_shared::arrays(&layout));
         step = super::c_shared::step(&step);
     }
     source.push_str(&with_maths(&step, precision));
@@ -302,12 +152,12 @@ fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
         n_signals,
         n_sections,
         n_in_sections,
-        total_effects,
         fade,
         input,
         n_smooth,
         ..
     } = layout;
+    let total_effects = layout.kinds.len();
     let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
     format!(
         r#"/* DTG vibration-error compensator, exported by `dtg-vib export --lang c`.

@@ -5,48 +5,16 @@
 //! this variant, so a model without keeps its C byte for byte.
 
 use super::c::iarr;
-use crate::onboard::ExportError;
-use dtg_onboard::Model;
+use super::layout::Layout;
 
-/// Each channel's centre set (the first channel with the same centres and
-/// widths, as the evaluator finds it), or `None` when no two share.
-pub(super) fn shared_sets(bytes: &[u8]) -> Result<Option<Vec<usize>>, ExportError> {
-    let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-    let sets: Vec<usize> = (0..m.n_channels()).map(|c| m.centre_set(c)).collect();
-    Ok(sets
-        .iter()
-        .enumerate()
-        .any(|(c, &l)| l != c)
-        .then_some(sets))
-}
-
-/// Keeps in `centres` (every channel's block of `dim` numbers per centre,
-/// in channel order, `n_centres` each) only each set's first block, and
-/// returns the arrays the shared step reads besides: each channel's set and
-/// where its set's centres start in `CENTRES` (in centres).
-pub(super) fn dedupe(
-    centres: &mut Vec<f64>,
-    n_centres: &[usize],
-    dim: usize,
-    sets: &[usize],
-) -> String {
-    let mut kept = Vec::new();
-    let mut set_offset = vec![0usize; sets.len()];
-    let mut block = 0;
-    for (c, &l) in sets.iter().enumerate() {
-        if l == c {
-            set_offset[c] = kept.len() / dim.max(1);
-            kept.extend_from_slice(&centres[block * dim..(block + n_centres[c]) * dim]);
-        } else {
-            set_offset[c] = set_offset[l];
-        }
-        block += n_centres[c];
-    }
-    *centres = kept;
+/// The arrays the shared step reads besides the paper's (whose `CENTRES`
+/// the layout holds once per set): each channel's set and where its set's
+/// centres start in `CENTRES` (in centres).
+pub(super) fn arrays(layout: &Layout) -> String {
     format!(
         "/* Channels sharing centres and widths: each channel's set (the first channel\n * with the same ones), and where the set's centres start in CENTRES. */\n#define N 6\nstatic const int CENTRE_SET[N] = {};\nstatic const int SET_OFFSET[N] = {};\n",
-        iarr(sets),
-        iarr(&set_offset)
+        iarr(&layout.centre_set),
+        iarr(&layout.centre_offset)
     )
 }
 
@@ -91,7 +59,7 @@ pub(super) const SHARED_KERNELS: &str = r#"    /* Without a smoother the kernels
 /// The paper's step with the shared kernel loop in place of each
 /// channel's own.
 pub(super) fn step(step: &str) -> String {
-    let replaced = [
+    [
         (super::c::OWN_KERNELS_C, SHARED_KERNELS),
         (
             "    dtg_real a[3], g[6], linear[6], w = R(1);\n",
@@ -103,6 +71,5 @@ pub(super) fn step(step: &str) -> String {
     .fold(step.to_string(), |s, (old, new)| {
         debug_assert!(s.contains(old), "the paper's step changed: {old}");
         s.replacen(old, new, 1)
-    });
-    replaced
+    })
 }

@@ -6,180 +6,13 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, floats, iarr,
-    real_type, with_maths, words,
+    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr, real_type,
+    with_maths,
 };
 use super::c_shared::SHARED_KERNELS;
+use super::layout::Layout;
 use crate::onboard::{ExportError, Tables};
-use dtg_onboard::{Model, UNIT_FIXED_HEADER_WORDS, gyro_cal_len, kind_params_of};
 use nav_sensors::unit::Unit;
-
-/// The numbers of unit tables, read back as the evaluator reads them.
-struct UnitLayout {
-    n: usize,
-    n_a: usize,
-    calibrated: bool,
-    triad: bool,
-    n_sections: usize,
-    n_in_sections: usize,
-    l: usize,
-    n_signals: usize,
-    n_effects: Vec<usize>,
-    n_centres: Vec<usize>,
-    models: Vec<usize>,
-    signal_codes: Vec<usize>,
-    kinds: Vec<usize>,
-    indices: Vec<usize>,
-    input: usize,
-    n_smooth: usize,
-    dim: usize,
-    dt: f64,
-    rate_to_deg_h: f64,
-    force_to_g: f64,
-    frames: Vec<f64>,
-    ls: Vec<f64>,
-    force_op: Vec<f64>,
-    gyro_cal: Vec<f64>,
-    cal_offset: Vec<usize>,
-    accel_cal: Vec<f64>,
-    out_sos: Vec<f64>,
-    in_sos: Vec<f64>,
-    smooth_sos: Vec<f64>,
-    bias: Vec<f64>,
-    coeff: Vec<f64>,
-    params: Vec<f64>,
-    param_offset: Vec<usize>,
-    widths: Vec<f64>,
-    weights: Vec<f64>,
-    /// The leaders' centre blocks only; each channel's block offset (in
-    /// centres) and its leader.
-    centres: Vec<f64>,
-    centre_offset: Vec<usize>,
-    centre_set: Vec<usize>,
-    fade: Vec<f64>,
-}
-
-impl UnitLayout {
-    fn read(bytes: &[u8]) -> Result<Self, ExportError> {
-        let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-        let b = bytes;
-        let (n, n_a) = (m.n_channels(), m.n_accels());
-        let flags = words(b, 3, 1)[0];
-        let calibrated = flags & dtg_onboard::FLAG_CALIBRATION as usize != 0;
-        let triad = flags & dtg_onboard::FLAG_ACCEL_TRIAD as usize != 0;
-        let n_sections = words(b, 5, 1)[0];
-        let n_in_sections = words(b, 6, 1)[0];
-        let n_signals = words(b, 8, 1)[0];
-        let w0 = UNIT_FIXED_HEADER_WORDS;
-        let n_effects = words(b, w0, n);
-        let n_centres = words(b, w0 + n, n);
-        let models = words(b, w0 + 2 * n, n);
-        let signal_codes = words(b, w0 + 3 * n, n_signals);
-        let total: usize = n_effects.iter().sum();
-        let pairs = words(b, w0 + 3 * n + n_signals, 2 * total);
-        let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
-        let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-        let after = words(b, w0 + 3 * n + n_signals + 2 * total, 2);
-        let dim = m.input_dim();
-        let mut at = 4 * words(b, 2, 1)[0];
-        let mut take = |k: usize| {
-            let v = floats(b, at, k);
-            at += 8 * k;
-            v
-        };
-        let dt = take(1)[0];
-        let scales = take(2);
-        let frames = take(9 * n);
-        let ls = take(3 * n);
-        let force_op = take(3 * n_a);
-        let (mut gyro_cal, mut cal_offset) = (vec![], vec![]);
-        if calibrated {
-            for &g in &models {
-                cal_offset.push(gyro_cal.len());
-                gyro_cal.extend(take(gyro_cal_len(g as u32).unwrap_or(0)));
-            }
-        } else {
-            cal_offset = vec![0; n];
-        }
-        let accel_cal = if triad { take(24) } else { vec![] };
-        let out_sos = take(7 * n_sections);
-        let in_sos = take(7 * n_in_sections);
-        let smooth_sos = take(7 * after[1]);
-        let (mut bias, mut coeff, mut params, mut widths, mut weights) =
-            (vec![], vec![], vec![], vec![], vec![]);
-        let (mut centres, mut centre_offset, mut centre_set) = (vec![], vec![], vec![]);
-        let mut param_offset = Vec::new();
-        let mut e0 = 0;
-        let mut leader_offset = vec![0; n];
-        for c in 0..n {
-            bias.push(take(1)[0]);
-            coeff.extend(take(n_effects[c]));
-            let mut np = 0;
-            for &k in &kinds[e0..e0 + n_effects[c]] {
-                param_offset.push(params.len() + np);
-                np += kind_params_of(k as u32, n).unwrap_or(0);
-            }
-            params.extend(take(np));
-            widths.extend(take(n_centres[c]));
-            weights.extend(take(n_centres[c]));
-            let block = take(n_centres[c] * dim);
-            let leader = m.centre_set(c);
-            if leader == c {
-                leader_offset[c] = centres.len() / dim.max(1);
-                centres.extend(block);
-            }
-            centre_offset.push(leader_offset[leader]);
-            centre_set.push(leader);
-            e0 += n_effects[c];
-        }
-        let fade = if m.fades() {
-            take(dtg_onboard::fade_floats(n_a, n))
-        } else {
-            vec![]
-        };
-        Ok(Self {
-            n,
-            n_a,
-            calibrated,
-            triad,
-            n_sections,
-            n_in_sections,
-            l: m.window_len(),
-            n_signals,
-            n_effects,
-            n_centres,
-            models,
-            signal_codes,
-            kinds,
-            indices,
-            input: after[0],
-            n_smooth: after[1],
-            dim,
-            dt,
-            rate_to_deg_h: scales[0],
-            force_to_g: scales[1],
-            frames,
-            ls,
-            force_op,
-            gyro_cal,
-            cal_offset,
-            accel_cal,
-            out_sos,
-            in_sos,
-            smooth_sos,
-            bias,
-            coeff,
-            params,
-            param_offset,
-            widths,
-            weights,
-            centres,
-            centre_offset,
-            centre_set,
-            fade,
-        })
-    }
-}
 
 /// The C sources of a unit model's onboard tables `t` (from
 /// [`crate::onboard::unit_tables`]); `unit` names the log's columns.
@@ -188,7 +21,7 @@ pub fn unit_c_sources(
     unit: &Unit,
     precision: Precision,
 ) -> Result<CSources, ExportError> {
-    let layout = UnitLayout::read(&t.bytes)?;
+    let layout = Layout::read(&t.bytes)?;
     let mut source = tables_c(&layout);
     let step = [
         INIT_C,
@@ -222,8 +55,8 @@ fn names(v: &[&str]) -> String {
 
 /// `dtg_model.h`: the sizes, the log's columns and units, the state and
 /// the three calls.
-fn header_h(layout: &UnitLayout, extra: &[String], unit: &Unit, real: &str) -> String {
-    let UnitLayout {
+fn header_h(layout: &Layout, extra: &[String], unit: &Unit, real: &str) -> String {
+    let Layout {
         n,
         n_a,
         dt,
@@ -323,7 +156,7 @@ int dtg_flush(dtg_state *s, double rate_deg_h[DTG_N_GYROS], double accel_out_g[D
 }
 
 /// The tables as C arrays, before the step code.
-fn tables_c(layout: &UnitLayout) -> String {
+fn tables_c(layout: &Layout) -> String {
     let n = layout.n;
     let c_offsets: Vec<usize> = (0..n).map(|c| layout.n_centres[..c].iter().sum()).collect();
     let e_offsets: Vec<usize> = (0..n).map(|c| layout.n_effects[..c].iter().sum()).collect();

@@ -5,6 +5,7 @@
 mod c;
 mod c_shared;
 mod c_unit;
+mod layout;
 mod text;
 mod text_unit;
 

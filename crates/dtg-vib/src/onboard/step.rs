@@ -66,10 +66,10 @@ pub fn step_unit_record(model: &UnitModel, record: &Record) -> Result<UnitSteppe
 
 /// The tables' extra columns of a record, in the tables' order.
 fn extra_series<'r>(t: &Tables, record: &'r Record) -> Result<Vec<&'r [f64]>, DtgVibError> {
-    Ok(t.extra
+    t.extra
         .iter()
         .map(|n| crate::pipeline::signal(record, n))
-        .collect::<Result<_, _>>()?)
+        .collect()
 }
 
 /// The record through the evaluator of tables `t`.
