@@ -9,9 +9,13 @@
 //! the input windows) in a caller-provided `f64` buffer of
 //! [`Model::state_len`] elements, and [`Evaluator::step`] turns one period's
 //! raw gyro outputs (deg/h), accelerations (g) and extra columns into the
-//! six compensated rates (deg/h) of the period before: one period of
+//! compensated rates (deg/h) of the period before: one period of
 //! latency, because the g² terms' within-interval covariance of a sample is
-//! estimated from its two neighbours.
+//! estimated from its two neighbours. The paper's unit (six DTG channels)
+//! has layout [`VERSION`]; any other unit (up to [`MAX_CHANNELS`] DTG or
+//! rate-gyro channels, its own operators and calibration) layout
+//! [`UNIT_VERSION`]. Channels that share their centres and widths (the
+//! same numbers in the tables) take each kernel value computed once.
 //!
 //! Each sample goes through, in this order (the same as `dtg-vib
 //! compensate` on a causal model, which runs this code):
@@ -53,32 +57,71 @@ use fastexp::exp_neg;
 
 /// The first four bytes of the tables.
 pub const MAGIC: [u8; 4] = *b"DTGO";
-/// The layout version this crate reads and `dtg-vib export` writes
-/// (2: the network's input kind and the prediction smoother).
+/// The layout version of the paper's unit (six DTG channels X … Z1, the
+/// paper's geometry and calibration) that `dtg-vib export` writes for its
+/// models (2: the network's input kind and the prediction smoother).
 pub const VERSION: u32 = 2;
+/// The layout version of any other unit (`dtg-vib fit --unit …`): n
+/// channels ([`MAX_CHANNELS`] at most), each a DTG or a rate gyro with its
+/// own calibration table, the unit's least-squares rate and specific-force
+/// operators, and the log's units (docs/formats.md, "Onboard tables").
+pub const UNIT_VERSION: u32 = 3;
 
-/// Fixed header words before the per-model lists (see docs/formats.md).
+/// Most channels (gyros) tables may have; the evaluator's arrays are this
+/// long, so a step needs no heap.
+pub const MAX_CHANNELS: usize = 16;
+/// Most accelerometers tables may have.
+pub const MAX_ACCELS: usize = 16;
+
+/// Fixed header words before the per-model lists of layout [`VERSION`]
+/// (see docs/formats.md).
 pub const FIXED_HEADER_WORDS: usize = 21;
+/// Fixed header words of layout [`UNIT_VERSION`] before its three
+/// per-channel lists (effects, centres, gyro model: n words each).
+pub const UNIT_FIXED_HEADER_WORDS: usize = 11;
 
 /// Flag bit: the tables hold a ground calibration.
 pub const FLAG_CALIBRATION: u32 = 1;
 
-/// Flag bit: the tables end with a fade block ([`FADE_FLOATS`] numbers):
+/// Flag bit: the tables end with a fade block ([`fade_floats`] numbers):
 /// outside the model's per-axis training range the network part holds
 /// (sysid::operating::fade).
 pub const FLAG_FADE: u32 = 2;
 
-/// `f64` numbers of the fade block: per axis x, y, z the window mean's
-/// smallest and largest and the window level's smallest and largest (g);
-/// the scale (g), the tolerance and the width (in scales), the smoother's
-/// gain α; each channel's network mean (deg/h).
+/// Flag bit (layout [`UNIT_VERSION`]): the accelerometers are the unit's
+/// x, y, z axes and the tables hold their triad calibration (3 × 8 numbers
+/// in x, y, z order); without it they pass through as given. Layout
+/// [`VERSION`] always calibrates its triad with the ground calibration.
+pub const FLAG_ACCEL_TRIAD: u32 = 4;
+
+/// `f64` numbers of the paper layout's fade block: per axis x, y, z the
+/// window mean's smallest and largest and the window level's smallest and
+/// largest (g); the scale (g), the tolerance and the width (in scales), the
+/// smoother's gain α; each channel's network mean (deg/h).
 pub const FADE_FLOATS: usize = 12 + 4 + 6;
+
+/// `f64` numbers of the fade block of `n_accels` operating signals and
+/// `n_channels` channels (the paper's: [`FADE_FLOATS`]).
+pub const fn fade_floats(n_accels: usize, n_channels: usize) -> usize {
+    4 * n_accels + 4 + n_channels
+}
+
 /// Network input kinds of the tables (the word after the effect pairs).
 pub mod input {
     /// The window itself: L samples per signal, oldest first.
     pub const RAW: u32 = 0;
     /// Per signal: current sample, window mean, window rms about the mean.
     pub const STATISTICS: u32 = 1;
+}
+
+/// Gyro models of layout [`UNIT_VERSION`] (one header word per channel).
+pub mod gyro {
+    /// One input axis of a two-axis DTG (IEEE Std 813): 19 calibration
+    /// numbers (the 18 terms of `DtgTerm::ALL`, the scale-factor nonlinearity).
+    pub const DTG: u32 = 0;
+    /// A single-axis rate gyro (IEEE Std 952 / 1431): 12 calibration numbers
+    /// (`RateTerm::ALL`: bias, scale factor, g_x … gg_yz, temp).
+    pub const RATE: u32 = 1;
 }
 
 /// Effect kinds of the tables.
@@ -89,18 +132,33 @@ pub mod kind {
     pub const LINEAR_G: u32 = 1;
     /// Quadratic in specific force: `z = (p·f)(q·f) + pᵀ C q` (6 parameters).
     pub const QUADRATIC_G: u32 = 2;
-    /// Product of rates: `z = (r·m)(s·m)` over the six calibrated outputs
-    /// (12 parameters).
+    /// Product of rates: `z = (r·m)(s·m)` over the calibrated outputs
+    /// (2 × the channels' parameters: 12 for the paper's six).
     pub const RATE_PRODUCT: u32 = 3;
 }
 
-/// Number of `f64` parameters of an effect kind.
+/// Number of `f64` parameters of an effect kind in the paper's layout.
 pub const fn kind_params(k: u32) -> Option<usize> {
+    kind_params_of(k, 6)
+}
+
+/// Number of `f64` parameters of an effect kind in tables of `n_channels`
+/// channels.
+pub const fn kind_params_of(k: u32, n_channels: usize) -> Option<usize> {
     match k {
         kind::COLUMN => Some(0),
         kind::LINEAR_G => Some(3),
         kind::QUADRATIC_G => Some(6),
-        kind::RATE_PRODUCT => Some(12),
+        kind::RATE_PRODUCT => Some(2 * n_channels),
+        _ => None,
+    }
+}
+
+/// `f64` numbers of a gyro model's calibration table.
+pub const fn gyro_cal_len(model: u32) -> Option<usize> {
+    match model {
+        gyro::DTG => Some(GYRO_CAL),
+        gyro::RATE => Some(RATE_CAL),
         _ => None,
     }
 }
@@ -108,6 +166,8 @@ pub const fn kind_params(k: u32) -> Option<usize> {
 /// `f64` numbers of a gyro's calibration: the 18 DTG terms, then the
 /// scale-factor nonlinearity.
 const GYRO_CAL: usize = 19;
+/// `f64` numbers of a rate gyro's calibration.
+const RATE_CAL: usize = 12;
 /// `f64` numbers of an accelerometer's calibration.
 const ACCEL_CAL: usize = 8;
 /// `f64` numbers of one second-order section: b0 b1 b2 a1 a2 zi1 zi2.
@@ -122,8 +182,17 @@ pub enum Error {
     Version {
         /// Version in the tables.
         found: u32,
-        /// The version read here.
+        /// The newest version read here ([`VERSION`] is read too).
         supported: u32,
+    },
+    /// More channels or accelerometers than the evaluator's arrays hold.
+    TooMany {
+        /// "channels" or "accelerometers".
+        what: &'static str,
+        /// How many the tables have.
+        found: usize,
+        /// The most read here ([`MAX_CHANNELS`], [`MAX_ACCELS`]).
+        max: usize,
     },
     /// The tables end before what their header announces.
     Truncated {
@@ -145,6 +214,16 @@ pub enum Error {
         /// Elements given.
         have: usize,
     },
+    /// A step was given another number of gyro outputs or accelerations
+    /// than the model has.
+    Sensors {
+        /// "gyro outputs" or "accelerations".
+        what: &'static str,
+        /// How many the model has.
+        need: usize,
+        /// How many were given.
+        have: usize,
+    },
     /// A step was given another number of extra columns than the model reads.
     Extra {
         /// Columns the model reads ([`Model::n_extra`]).
@@ -160,8 +239,15 @@ impl core::fmt::Display for Error {
             Error::Magic => f.write_str("not onboard tables (the bytes do not start with DTGO)"),
             Error::Version { found, supported } => write!(
                 f,
-                "onboard tables of layout version {found}; this evaluator reads version {supported}: export the model again"
+                "onboard tables of layout version {found}; this evaluator reads versions {VERSION} to {supported}: export the model again"
             ),
+            Error::TooMany { what, found, max } => write!(
+                f,
+                "onboard tables of {found} {what}; this evaluator holds at most {max}"
+            ),
+            Error::Sensors { what, need, have } => {
+                write!(f, "{have} {what} given; the model has {need}")
+            }
             Error::Truncated { need, have } => write!(
                 f,
                 "onboard tables are {have} bytes, their header announces {need}: the file is cut short"
@@ -215,34 +301,62 @@ struct ChannelAt {
     centres: usize,
     /// First output-filter state of this channel's effects.
     state: usize,
+    /// The gyro's model ([`gyro`]) and the byte offset of its calibration.
+    model: u32,
+    cal: usize,
 }
 
 /// A model's tables, checked once; cheap to copy.
 #[derive(Debug, Clone, Copy)]
 pub struct Model<'a> {
     bytes: &'a [u8],
+    /// Layout version ([`VERSION`] or [`UNIT_VERSION`]).
+    version: u32,
     calibrated: bool,
+    /// The accelerometers are calibrated as the x, y, z triad.
+    accel_triad: bool,
     n_extra: usize,
     n_sections: usize,
     n_in_sections: usize,
     window_len: usize,
     n_signals: usize,
     signal_words: usize,
+    /// Channels (gyros) and accelerometers.
+    n_channels: usize,
+    n_accels: usize,
     dt_s: f64,
+    /// The log's rate unit in deg/h and specific-force unit in g (1 and 1
+    /// for the paper's layout).
+    rate_to_deg_h: f64,
+    force_to_g: f64,
     frames: usize,
     ls: usize,
-    gyro_cal: usize,
+    /// Byte offset of the specific-force operator (3 × n_accels), `None`
+    /// for the paper's layout (ax, ay, az are x, y, z).
+    force_op: Option<usize>,
     accel_cal: usize,
     out_filter: usize,
     in_filter: usize,
-    channels: [ChannelAt; 6],
+    channels: [ChannelAt; MAX_CHANNELS],
+    /// Per channel the first channel with the same centres and widths (its
+    /// kernel values are computed once per step for all of them), and the
+    /// channels that share each leader's set.
+    leader: [usize; MAX_CHANNELS],
+    members: [[u8; MAX_CHANNELS]; MAX_CHANNELS],
+    n_members: [usize; MAX_CHANNELS],
     state_len: usize,
+    /// State slots of the pending sample's calibrated accelerometers (the
+    /// specific force itself in the paper's layout), raw gyro outputs and
+    /// extra columns.
+    st_accel: usize,
+    st_gyro: usize,
+    st_extra: usize,
     in_state: usize,
     rings: usize,
     /// Byte offset of the fade block, if the tables have one.
     fade: Option<usize>,
-    /// State of the fade: a doubled ring of 2L per axis, the six held
-    /// network parts, the smoothed weight.
+    /// State of the fade: a doubled ring of 2L per accelerometer, the held
+    /// network part per channel, the smoothed weight.
     fade_state: usize,
     /// The network's input ([`input`]) and its dimension.
     input: u32,
@@ -257,30 +371,30 @@ pub struct Model<'a> {
     features: usize,
 }
 
-/// The signal words and each channel's effect pairs of the header (after
-/// the fixed words), checked: the word after them, and each channel's
+/// The signal words and each channel's effect pairs of the header (from
+/// word `signal_words`), checked: the word after them, and each channel's
 /// number of effect parameters.
 fn effect_words(
     bytes: &[u8],
-    channels: &mut [ChannelAt; 6],
-    n_signals: usize,
-    n_extra: usize,
-) -> Result<(usize, [usize; 6]), Error> {
-    let signal_words = FIXED_HEADER_WORDS;
+    channels: &mut [ChannelAt],
+    signal_words: usize,
+    (n_signals, n_accels, n_extra): (usize, usize, usize),
+) -> Result<(usize, [usize; MAX_CHANNELS]), Error> {
+    let n_channels = channels.len();
     for s in 0..n_signals {
-        if word(bytes, signal_words + s)? as usize >= 3 + n_extra {
+        if word(bytes, signal_words + s)? as usize >= n_accels + n_extra {
             return Err(Error::Header {
                 word: signal_words + s,
             });
         }
     }
     let mut w = signal_words + n_signals;
-    let mut params_len = [0usize; 6];
+    let mut params_len = [0usize; MAX_CHANNELS];
     for (c, ch) in channels.iter_mut().enumerate() {
         ch.effect_words = w;
         for _ in 0..ch.n_effects {
             let k = word(bytes, w)?;
-            let Some(p) = kind_params(k) else {
+            let Some(p) = kind_params_of(k, n_channels) else {
                 return Err(Error::Header { word: w });
             };
             if k == kind::COLUMN && word(bytes, w + 1)? as usize >= n_extra {
@@ -310,17 +424,108 @@ fn input_words(
     Ok((input, dim, word(bytes, w + 1)? as usize))
 }
 
+/// The header's sizes before the per-channel lists: channels and
+/// accelerometers, and where each channel's effect count, centre count and
+/// gyro model words are (`None`: all DTG, the paper's layout).
+struct Counts {
+    n_channels: usize,
+    n_accels: usize,
+    effects_at: usize,
+    centres_at: usize,
+    models_at: Option<usize>,
+    signal_words: usize,
+}
+
+fn counts(bytes: &[u8], version: u32) -> Result<Counts, Error> {
+    if version == VERSION {
+        return Ok(Counts {
+            n_channels: 6,
+            n_accels: 3,
+            effects_at: 9,
+            centres_at: 15,
+            models_at: None,
+            signal_words: FIXED_HEADER_WORDS,
+        });
+    }
+    let n_channels = word(bytes, 9)? as usize;
+    let n_accels = word(bytes, 10)? as usize;
+    if n_channels > MAX_CHANNELS {
+        return Err(Error::TooMany {
+            what: "channels",
+            found: n_channels,
+            max: MAX_CHANNELS,
+        });
+    }
+    if n_accels > MAX_ACCELS {
+        return Err(Error::TooMany {
+            what: "accelerometers",
+            found: n_accels,
+            max: MAX_ACCELS,
+        });
+    }
+    for (v, word) in [(n_channels, 9), (n_accels, 10)] {
+        if v == 0 {
+            return Err(Error::Header { word });
+        }
+    }
+    let w = UNIT_FIXED_HEADER_WORDS;
+    Ok(Counts {
+        n_channels,
+        n_accels,
+        effects_at: w,
+        centres_at: w + n_channels,
+        models_at: Some(w + 2 * n_channels),
+        signal_words: w + 3 * n_channels,
+    })
+}
+
+/// Per channel the first channel whose centres and widths are the same
+/// bytes (its leader), and each leader's members in channel order.
+type Sharing = (
+    [usize; MAX_CHANNELS],
+    [[u8; MAX_CHANNELS]; MAX_CHANNELS],
+    [usize; MAX_CHANNELS],
+);
+
+fn sharing(bytes: &[u8], channels: &[ChannelAt], dim: usize) -> Sharing {
+    let mut leader = [0usize; MAX_CHANNELS];
+    let mut members = [[0u8; MAX_CHANNELS]; MAX_CHANNELS];
+    let mut n_members = [0usize; MAX_CHANNELS];
+    let block = |ch: &ChannelAt| {
+        let k = ch.n_centres;
+        (
+            &bytes[ch.widths..ch.widths + 8 * k],
+            &bytes[ch.centres..ch.centres + 8 * k * dim],
+        )
+    };
+    for (c, ch) in channels.iter().enumerate() {
+        let l = (0..c)
+            .find(|&p| {
+                leader[p] == p
+                    && channels[p].n_centres == ch.n_centres
+                    && ch.n_centres > 0
+                    && block(&channels[p]) == block(ch)
+            })
+            .unwrap_or(c);
+        leader[c] = l;
+        members[l][n_members[l]] = c as u8;
+        n_members[l] += 1;
+    }
+    (leader, members, n_members)
+}
+
 impl<'a> Model<'a> {
-    /// Checks the header and sizes of `bytes` (layout version [`VERSION`]).
+    /// Checks the header and sizes of `bytes` (layout version [`VERSION`]
+    /// or [`UNIT_VERSION`]).
     pub fn parse(bytes: &'a [u8]) -> Result<Self, Error> {
         if bytes.len() < 4 || bytes[..4] != MAGIC {
             return Err(Error::Magic);
         }
         let version = word(bytes, 1)?;
-        if version != VERSION {
+        if version != VERSION && version != UNIT_VERSION {
             return Err(Error::Version {
                 found: version,
-                supported: VERSION,
+                supported: UNIT_VERSION,
             });
         }
         let header_words = word(bytes, 2)? as usize;
@@ -335,18 +540,43 @@ impl<'a> Model<'a> {
                 return Err(Error::Header { word });
             }
         }
-        let mut channels = [ChannelAt::default(); 6];
-        for (c, ch) in channels.iter_mut().enumerate() {
-            ch.n_effects = word(bytes, 9 + c)? as usize;
-            ch.n_centres = word(bytes, 15 + c)? as usize;
+        let n = counts(bytes, version)?;
+        let mut channels = [ChannelAt::default(); MAX_CHANNELS];
+        for (c, ch) in channels[..n.n_channels].iter_mut().enumerate() {
+            ch.n_effects = word(bytes, n.effects_at + c)? as usize;
+            ch.n_centres = word(bytes, n.centres_at + c)? as usize;
+            ch.model = match n.models_at {
+                None => gyro::DTG,
+                Some(at) => word(bytes, at + c)?,
+            };
+            if gyro_cal_len(ch.model).is_none() {
+                return Err(Error::Header {
+                    word: n.models_at.unwrap_or(0) + c,
+                });
+            }
         }
-        let signal_words = FIXED_HEADER_WORDS;
-        let (w, params_len) = effect_words(bytes, &mut channels, n_signals, n_extra)?;
+        let signal_words = n.signal_words;
+        let (w, params_len) = effect_words(
+            bytes,
+            &mut channels[..n.n_channels],
+            signal_words,
+            (n_signals, n.n_accels, n_extra),
+        )?;
         let (input, dim, n_smooth_sections) = input_words(bytes, w, window_len, n_signals)?;
         if header_words < w + 2 || !header_words.is_multiple_of(2) {
             return Err(Error::Header { word: 2 });
         }
+        let unit = version == UNIT_VERSION;
         let calibrated = flags & FLAG_CALIBRATION != 0;
+        let accel_triad = if unit {
+            flags & FLAG_ACCEL_TRIAD != 0
+        } else {
+            calibrated
+        };
+        if accel_triad && n.n_accels != 3 {
+            return Err(Error::Header { word: 3 });
+        }
+        let (nc, na) = (n.n_channels, n.n_accels);
         // Payload offsets, in bytes.
         let mut at = 4 * header_words;
         let mut take = |n: usize| {
@@ -355,18 +585,23 @@ impl<'a> Model<'a> {
             here
         };
         let dt_at = take(1);
-        let frames = take(54);
-        let ls = take(18);
-        let (gyro_cal, accel_cal) = if calibrated {
-            (take(6 * GYRO_CAL), take(3 * ACCEL_CAL))
-        } else {
-            (0, 0)
-        };
+        let scales = unit.then(|| take(2));
+        let frames = take(9 * nc);
+        let ls = take(3 * nc);
+        let force_op = unit.then(|| take(3 * na));
+        if calibrated {
+            for ch in channels[..nc].iter_mut() {
+                ch.cal = take(gyro_cal_len(ch.model).unwrap_or(0));
+            }
+        }
+        let accel_cal = if accel_triad { take(3 * ACCEL_CAL) } else { 0 };
         let out_filter = take(SECTION * n_sections);
         let in_filter = take(SECTION * n_in_sections);
         let smoother = take(SECTION * n_smooth_sections);
-        let mut state = PENDING_EXTRA + n_extra;
-        for (c, ch) in channels.iter_mut().enumerate() {
+        let (st_accel, st_gyro) = if unit { (6, 6 + na) } else { (0, 6) };
+        let st_extra = st_gyro + nc;
+        let mut state = st_extra + n_extra;
+        for (c, ch) in channels[..nc].iter_mut().enumerate() {
             ch.bias = take(1);
             ch.coefficients = take(ch.n_effects);
             ch.params = take(params_len[c]);
@@ -376,7 +611,7 @@ impl<'a> Model<'a> {
             ch.state = state;
             state += 2 * n_sections * ch.n_effects;
         }
-        let fade = (flags & FLAG_FADE != 0).then(|| take(FADE_FLOATS));
+        let fade = (flags & FLAG_FADE != 0).then(|| take(fade_floats(na, nc)));
         let need = at;
         if bytes.len() < need {
             return Err(Error::Truncated {
@@ -390,34 +625,47 @@ impl<'a> Model<'a> {
         state += 2 * window_len * n_signals;
         let fade_state = state;
         if fade.is_some() {
-            state += 2 * window_len * 3 + 6 + 1;
+            state += 2 * window_len * na + nc + 1;
         }
         let smooth_state = state;
-        state += 6 * 2 * n_smooth_sections;
+        state += nc * 2 * n_smooth_sections;
         let sums = state;
         state += 2 * n_signals;
         let features = state;
         if input == input::STATISTICS {
             state += 3 * n_signals;
         }
+        let (leader, members, n_members) = sharing(bytes, &channels[..nc], dim);
         Ok(Self {
             bytes: &bytes[..need],
+            version,
             calibrated,
+            accel_triad,
             n_extra,
             n_sections,
             n_in_sections,
             window_len,
             n_signals,
             signal_words,
+            n_channels: nc,
+            n_accels: na,
             dt_s: rd(bytes, dt_at),
+            rate_to_deg_h: scales.map_or(1.0, |s| rd(bytes, s)),
+            force_to_g: scales.map_or(1.0, |s| rd(bytes, s + 8)),
             frames,
             ls,
-            gyro_cal,
+            force_op,
             accel_cal,
             out_filter,
             in_filter,
             channels,
+            leader,
+            members,
+            n_members,
             state_len: state,
+            st_accel,
+            st_gyro,
+            st_extra,
             in_state,
             rings,
             fade,
@@ -457,7 +705,8 @@ impl<'a> Model<'a> {
         self.dt_s
     }
 
-    /// Centres of one channel (0..6 = X, X1, Y, Y1, Z, Z1).
+    /// Centres of one channel (0..6 = X, X1, Y, Y1, Z, Z1 in the paper's
+    /// layout; the unit's gyros in its file's order otherwise).
     pub fn n_centres(&self, channel: usize) -> usize {
         self.channels[channel].n_centres
     }
@@ -467,31 +716,68 @@ impl<'a> Model<'a> {
         self.channels[channel].n_effects
     }
 
+    /// Channels (gyros): 6 in the paper's layout.
+    pub fn n_channels(&self) -> usize {
+        self.n_channels
+    }
+
+    /// Accelerometers a step takes: 3 in the paper's layout.
+    pub fn n_accels(&self) -> usize {
+        self.n_accels
+    }
+
+    /// The layout version of the tables ([`VERSION`] or [`UNIT_VERSION`]).
+    pub fn version(&self) -> u32 {
+        self.version
+    }
+
+    /// The log's rate unit in deg/h and its specific-force unit in g (what
+    /// a log's gyro and accelerometer columns are multiplied by before a
+    /// step; 1 and 1 in the paper's layout).
+    pub fn log_units(&self) -> (f64, f64) {
+        (self.rate_to_deg_h, self.force_to_g)
+    }
+
+    /// The first channel whose centres and widths channel `channel` shares
+    /// (itself if none): the kernel values of a shared set are computed
+    /// once per step.
+    pub fn centre_set(&self, channel: usize) -> usize {
+        self.leader[channel]
+    }
+
     /// Floating-point operations of one step (a multiply-add is two; `exp`,
     /// `/` and `fabs` count one each): the RBF sums, filters and effect
     /// weights counted from the tables, the calibration's Newton steps and
-    /// the regressors estimated per operation.
+    /// the regressors estimated per operation. A channel sharing another's
+    /// centres costs one multiply-add per centre.
     pub fn flops_per_step(&self) -> usize {
         let dim = self.dim;
+        let (nc, na) = (self.n_channels, self.n_accels);
         let mut f = 0;
         if self.calibrated {
-            // Triad: 3 passes × 3 axes × 4 Newton steps of ~25 flops.
-            f += 3 * 3 * 4 * 25 + 3;
-            // Two passes: rate (36) + 6 × (resolve 3×3×5 + cov 6×15 + drift
-            // 2×36 + Newton 4×12).
-            f += 2 * (36 + 6 * (45 + 90 + 72 + 48 + 4));
+            if self.accel_triad {
+                // Triad: 3 passes × 3 axes × 4 Newton steps of ~25 flops.
+                f += 3 * 3 * 4 * 25 + 3;
+            }
+            // Two passes: rate (3 × 2n) + n × (resolve 3×3×5 + cov 6×15 +
+            // drift 2×36 + Newton 4×12).
+            f += 2 * (3 * 2 * nc + nc * (45 + 90 + 72 + 48 + 4));
         }
         f += 9 * 6; // covariance
-        for c in &self.channels {
-            f += 2 + 2 * c.n_effects + 9 * self.n_sections * c.n_effects + 20 * c.n_effects;
-            f += c.n_centres * (3 * dim + 6);
+        for (c, ch) in self.channels[..nc].iter().enumerate() {
+            f += 2 + 2 * ch.n_effects + 9 * self.n_sections * ch.n_effects + 20 * ch.n_effects;
+            f += if self.leader[c] == c {
+                ch.n_centres * (3 * dim + 6)
+            } else {
+                2 * ch.n_centres
+            };
         }
         if self.fade.is_some() {
             // Per axis: mean and variance over the window, the excesses; the
             // smoothstep, the smoother, one hold per channel.
-            f += 3 * (4 * self.window_len + 12) + 20 + 6 * 5;
+            f += na * (4 * self.window_len + 12) + 20 + nc * 5;
         }
-        f += 6 * 9 * self.n_smooth_sections;
+        f += nc * 9 * self.n_smooth_sections;
         if self.input == input::STATISTICS {
             f += 12 * self.n_signals;
         }
@@ -531,16 +817,40 @@ impl<'a> Model<'a> {
     }
 }
 
-/// One step's result.
+/// One step's result. Only the first [`Output::n_channels`] (and
+/// [`Output::n_accels`]) entries are the model's; the rest are zero.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Output {
-    /// Compensated rates X, X1, Y, Y1, Z, Z1, deg/h: the calibrated outputs
+    /// Compensated rates (X, X1, Y, Y1, Z, Z1 in the paper's layout; the
+    /// unit's gyros in its order otherwise), deg/h: the calibrated outputs
     /// minus the predicted errors.
-    pub rate_deg_h: [f64; 6],
+    pub rate_deg_h: [f64; MAX_CHANNELS],
     /// The predicted vibration errors, deg/h.
-    pub error_deg_h: [f64; 6],
-    /// Calibrated accelerations x, y, z, g.
-    pub accel_g: [f64; 3],
+    pub error_deg_h: [f64; MAX_CHANNELS],
+    /// Calibrated accelerations (x, y, z; the unit's accelerometers in its
+    /// order), g.
+    pub accel_g: [f64; MAX_ACCELS],
+    /// Channels of the model.
+    pub n_channels: usize,
+    /// Accelerometers of the model.
+    pub n_accels: usize,
+}
+
+impl Output {
+    /// The compensated rates of the model's channels, deg/h.
+    pub fn rates(&self) -> &[f64] {
+        &self.rate_deg_h[..self.n_channels]
+    }
+
+    /// The predicted errors of the model's channels, deg/h.
+    pub fn errors(&self) -> &[f64] {
+        &self.error_deg_h[..self.n_channels]
+    }
+
+    /// The calibrated accelerations of the model's accelerometers, g.
+    pub fn accels(&self) -> &[f64] {
+        &self.accel_g[..self.n_accels]
+    }
 }
 
 /// The compensator's state over a model.
@@ -560,12 +870,12 @@ pub struct Evaluator<'m, 's> {
     ring_pos: usize,
 }
 
-/// State slots: calibrated accelerations of the pending sample and the one
-/// before it, the pending sample's raw gyro outputs, then its extra columns.
-const PENDING_ACCEL: usize = 0;
-const EARLIER_ACCEL: usize = 3;
-const PENDING_GYRO: usize = 6;
-const PENDING_EXTRA: usize = 12;
+/// State slots: the calibrated specific force (unit frame, g) of the
+/// pending sample and of the one before it; the other slots (the pending
+/// sample's accelerometers, raw gyro outputs, extra columns) are the
+/// model's (`Model::st_*`).
+const PENDING_FORCE: usize = 0;
+const EARLIER_FORCE: usize = 3;
 
 impl<'m, 's> Evaluator<'m, 's> {
     /// An evaluator at rest; `state` needs [`Model::state_len`] elements
@@ -602,47 +912,55 @@ impl<'m, 's> Evaluator<'m, 's> {
         self.steps
     }
 
-    /// One output period: raw gyro outputs X, X1, Y, Y1, Z, Z1 (deg/h), raw
-    /// accelerations x, y, z (g) and the model's extra columns (in the
-    /// exporter's order, [`Model::n_extra`] of them) of sample n; returns
-    /// the output of sample n − 1, or `None` while the windows fill (the
-    /// first output, of sample [`Model::window_len`] − 1, comes with sample
-    /// `window_len`). A non-finite input makes every later output
-    /// non-finite (the filters keep it): reset.
+    /// One output period: raw gyro outputs (X, X1, Y, Y1, Z, Z1 in the
+    /// paper's layout; the unit's gyros in its order), deg/h, raw
+    /// accelerations (x, y, z; the unit's accelerometers), g, and the
+    /// model's extra columns (in the exporter's order, [`Model::n_extra`]
+    /// of them) of sample n; returns the output of sample n − 1, or `None`
+    /// while the windows fill (the first output, of sample
+    /// [`Model::window_len`] − 1, comes with sample `window_len`). A
+    /// non-finite input makes every later output non-finite (the filters
+    /// keep it): reset.
     pub fn step(
         &mut self,
-        gyro_deg_h: &[f64; 6],
-        accel_g: &[f64; 3],
+        gyro_deg_h: &[f64],
+        accel_g: &[f64],
         extra: &[f64],
     ) -> Result<Option<Output>, Error> {
         let m = self.model;
+        let (nc, na) = (m.n_channels, m.n_accels);
         if extra.len() != m.n_extra {
             return Err(Error::Extra {
                 need: m.n_extra,
                 have: extra.len(),
             });
         }
-        let a = if m.calibrated {
-            compensate_triad(&m, accel_g)
-        } else {
-            *accel_g
-        };
+        for (what, need, have) in [
+            ("gyro outputs", nc, gyro_deg_h.len()),
+            ("accelerations", na, accel_g.len()),
+        ] {
+            if need != have {
+                return Err(Error::Sensors { what, need, have });
+            }
+        }
+        let mut cal = [0.0; MAX_ACCELS];
+        let f = calibrated_force(&m, accel_g, &mut cal[..na]);
         let out = if self.steps >= 1 {
             // The pending sample's covariance, centred: n − 2, n − 1, n (zero
             // for the first sample, which has one neighbour, as in the batch).
             let cov = if self.steps >= 2 {
                 let st = &*self.state;
                 let earlier = [
-                    st[EARLIER_ACCEL],
-                    st[EARLIER_ACCEL + 1],
-                    st[EARLIER_ACCEL + 2],
+                    st[EARLIER_FORCE],
+                    st[EARLIER_FORCE + 1],
+                    st[EARLIER_FORCE + 2],
                 ];
                 let pending = [
-                    st[PENDING_ACCEL],
-                    st[PENDING_ACCEL + 1],
-                    st[PENDING_ACCEL + 2],
+                    st[PENDING_FORCE],
+                    st[PENDING_FORCE + 1],
+                    st[PENDING_FORCE + 2],
                 ];
-                covariance(&earlier, &pending, &a)
+                covariance(&earlier, &pending, &f)
             } else {
                 [[0.0; 3]; 3]
             };
@@ -651,10 +969,13 @@ impl<'m, 's> Evaluator<'m, 's> {
             None
         };
         let st = &mut *self.state;
-        st.copy_within(PENDING_ACCEL..PENDING_ACCEL + 3, EARLIER_ACCEL);
-        st[PENDING_ACCEL..PENDING_ACCEL + 3].copy_from_slice(&a);
-        st[PENDING_GYRO..PENDING_GYRO + 6].copy_from_slice(gyro_deg_h);
-        st[PENDING_EXTRA..PENDING_EXTRA + m.n_extra].copy_from_slice(extra);
+        st.copy_within(PENDING_FORCE..PENDING_FORCE + 3, EARLIER_FORCE);
+        st[PENDING_FORCE..PENDING_FORCE + 3].copy_from_slice(&f);
+        if m.st_accel != PENDING_FORCE {
+            st[m.st_accel..m.st_accel + na].copy_from_slice(&cal[..na]);
+        }
+        st[m.st_gyro..m.st_gyro + nc].copy_from_slice(gyro_deg_h);
+        st[m.st_extra..m.st_extra + m.n_extra].copy_from_slice(extra);
         self.steps += 1;
         Ok(out)
     }
@@ -675,32 +996,33 @@ impl<'m, 's> Evaluator<'m, 's> {
     /// Compensates the pending sample with its covariance `cov`.
     fn process(&mut self, cov: &[[f64; 3]; 3]) -> Option<Output> {
         let m = self.model;
+        let (nc, na) = (m.n_channels, m.n_accels);
         let first = self.processed == 0;
         let st = &mut *self.state;
-        let a = [
-            st[PENDING_ACCEL],
-            st[PENDING_ACCEL + 1],
-            st[PENDING_ACCEL + 2],
+        let f = [
+            st[PENDING_FORCE],
+            st[PENDING_FORCE + 1],
+            st[PENDING_FORCE + 2],
         ];
-        let mut raw = [0.0; 6];
-        raw.copy_from_slice(&st[PENDING_GYRO..PENDING_GYRO + 6]);
-        let gyro = if m.calibrated {
-            compensate_gyros(&m, &raw, &a, cov)
-        } else {
-            raw
-        };
+        let mut a = [0.0; MAX_ACCELS];
+        a[..na].copy_from_slice(&st[m.st_accel..m.st_accel + na]);
+        let mut gyro = [0.0; MAX_CHANNELS];
+        gyro[..nc].copy_from_slice(&st[m.st_gyro..m.st_gyro + nc]);
+        if m.calibrated {
+            compensate_gyros(&m, &mut gyro[..nc], &f, cov);
+        }
 
         // Effects, filtered, weighted: the linear part of each prediction.
-        let linear = linear_parts(&m, st, (&a, &gyro, cov), first);
+        let linear = linear_parts(&m, st, (&f, &gyro[..nc], cov), first);
 
         // Window signals, filtered, into their windows.
         let l = m.window_len;
         for s in 0..m.n_signals {
             let code = m.w(m.signal_words + s) as usize;
-            let v = if code < 3 {
+            let v = if code < na {
                 a[code]
             } else {
-                st[PENDING_EXTRA + code - 3]
+                st[m.st_extra + code - na]
             };
             let s0 = m.in_state + 2 * m.n_in_sections * s;
             let v = cascade(&m, m.in_filter, m.n_in_sections, &mut st[s0..], v, first);
@@ -716,15 +1038,15 @@ impl<'m, 's> Evaluator<'m, 's> {
             if m.input == input::STATISTICS {
                 let mean = st[sum] / l as f64;
                 let var = st[sum + 1] / l as f64 - mean * mean;
-                let f = m.features + 3 * s;
-                st[f] = v;
-                st[f + 1] = mean;
-                st[f + 2] = if var > 0.0 { sqrt(var) } else { 0.0 };
+                let feat = m.features + 3 * s;
+                st[feat] = v;
+                st[feat + 1] = mean;
+                st[feat + 2] = if var > 0.0 { sqrt(var) } else { 0.0 };
             }
         }
         if m.fade.is_some() {
             let r = m.fade_state;
-            for (k, v) in a.iter().enumerate() {
+            for (k, v) in a[..na].iter().enumerate() {
                 st[r + 2 * l * k + self.ring_pos] = *v;
                 st[r + 2 * l * k + self.ring_pos + l] = *v;
             }
@@ -740,33 +1062,35 @@ impl<'m, 's> Evaluator<'m, 's> {
 
         // Predictions.
         let mut out = Output {
-            rate_deg_h: [0.0; 6],
-            error_deg_h: [0.0; 6],
+            rate_deg_h: [0.0; MAX_CHANNELS],
+            error_deg_h: [0.0; MAX_CHANNELS],
             accel_g: a,
+            n_channels: nc,
+            n_accels: na,
         };
         let first_prediction = self.processed == l as u64;
-        for (c, ch) in m.channels.iter().enumerate() {
-            // Without a smoother the kernels add onto bias and effects, in
-            // the order tables of layout version 1 were evaluated.
-            let smoothed = m.n_smooth_sections > 0;
-            let mut y = if smoothed {
-                0.0
-            } else {
-                m.f(ch.bias) + linear[c]
-            };
-            let mut net = 0.0;
-            network_terms(&m, ch, st, self.ring_pos, |term| {
-                y += term;
-                net += term;
-            });
+        // Without a smoother the kernels add onto bias and effects, in
+        // the order tables of layout version 1 were evaluated.
+        let smoothed = m.n_smooth_sections > 0;
+        let mut ys = [0.0; MAX_CHANNELS];
+        let mut nets = [0.0; MAX_CHANNELS];
+        if !smoothed {
+            for (c, ch) in m.channels[..nc].iter().enumerate() {
+                ys[c] = m.f(ch.bias) + linear[c];
+            }
+        }
+        network_terms(&m, st, self.ring_pos, &mut ys, &mut nets);
+        let na4 = 4 * na;
+        for (c, ch) in m.channels[..nc].iter().enumerate() {
+            let (mut y, mut net) = (ys[c], nets[c]);
             if let (Some(w), Some(at)) = (weight, m.fade) {
                 // The held network part: the network itself at full weight,
                 // else moved toward it by the weight; a record's first
                 // output starts from the network's training mean. It is
                 // held before the smoother (sysid::operating::fade).
-                let h = m.fade_state + 6 * l + c;
+                let h = m.fade_state + 2 * l * na + c;
                 let before = if self.processed == l as u64 {
-                    m.f(at + 8 * (16 + c))
+                    m.f(at + 8 * (na4 + 4 + c))
                 } else {
                     st[h]
                 };
@@ -794,6 +1118,40 @@ impl<'m, 's> Evaluator<'m, 's> {
     }
 }
 
+/// The calibrated specific force (unit frame, g) of one sample's raw
+/// accelerations, and its calibrated accelerometers in `cal`: the triad's
+/// static inverse when the tables calibrate it (on x, y, z ordered through
+/// the specific-force operator, a permutation then), else the accelerations
+/// as given through the operator (the paper's layout: ax, ay, az are x, y, z).
+fn calibrated_force(m: &Model, raw: &[f64], cal: &mut [f64]) -> [f64; 3] {
+    let mut f = match m.force_op {
+        None => [raw[0], raw[1], raw[2]],
+        Some(op) => {
+            let mut f = [0.0; 3];
+            for (i, v) in f.iter_mut().enumerate() {
+                *v = dotn(m, op + 8 * m.n_accels * i, raw);
+            }
+            f
+        }
+    };
+    if m.accel_triad {
+        f = compensate_triad(m, &f);
+    }
+    match (m.force_op, m.accel_triad) {
+        (Some(op), true) => {
+            // The operator is a permutation: each accelerometer is one axis.
+            for (k, c) in cal.iter_mut().enumerate() {
+                *c = (0..3)
+                    .map(|i| m.f(op + 8 * (m.n_accels * i + k)) * f[i])
+                    .fold(0.0, |s, v| s + v);
+            }
+        }
+        (Some(_), false) => cal.copy_from_slice(raw),
+        (None, _) => cal.copy_from_slice(&f),
+    }
+    f
+}
+
 /// Each channel's effects through the output filter, weighted and summed:
 /// the linear part of its prediction (`inputs`: the calibrated specific
 /// force (g), the compensated gyro outputs (deg/h) and the within-interval
@@ -801,25 +1159,26 @@ impl<'m, 's> Evaluator<'m, 's> {
 fn linear_parts(
     m: &Model,
     st: &mut [f64],
-    (a, gyro, cov): (&[f64; 3], &[f64; 6], &[[f64; 3]; 3]),
+    (a, gyro, cov): (&[f64; 3], &[f64], &[[f64; 3]; 3]),
     first: bool,
-) -> [f64; 6] {
-    let mut linear = [0.0; 6];
-    for (c, ch) in m.channels.iter().enumerate() {
+) -> [f64; MAX_CHANNELS] {
+    let mut linear = [0.0; MAX_CHANNELS];
+    let nc = m.n_channels;
+    for (c, ch) in m.channels[..nc].iter().enumerate() {
         let mut p = ch.params;
         let mut sum = 0.0;
         for e in 0..ch.n_effects {
             let k = m.w(ch.effect_words + 2 * e);
             let z = match k {
-                kind::COLUMN => st[PENDING_EXTRA + m.w(ch.effect_words + 2 * e + 1) as usize],
+                kind::COLUMN => st[m.st_extra + m.w(ch.effect_words + 2 * e + 1) as usize],
                 kind::LINEAR_G => dot3(m, p, a),
                 kind::QUADRATIC_G => {
                     let (pf, qf) = (dot3(m, p, a), dot3(m, p + 24, a));
                     pf * qf + quad(m, p, cov, p + 24)
                 }
-                _ => dot6(m, p, gyro) * dot6(m, p + 48, gyro),
+                _ => dotn(m, p, gyro) * dotn(m, p + 8 * nc, gyro),
             };
-            p += 8 * kind_params(k).unwrap_or(0);
+            p += 8 * kind_params_of(k, nc).unwrap_or(0);
             let s0 = ch.state + 2 * m.n_sections * e;
             let z = cascade(m, m.out_filter, m.n_sections, &mut st[s0..], z, first);
             sum += z * m.f(ch.coefficients + 8 * e);
@@ -829,28 +1188,66 @@ fn linear_parts(
     linear
 }
 
-/// Each kernel term of channel `ch`'s network, in centre order, handed to
-/// `add` (the input: the statistics in `st`, or the windows of the rings
-/// whose oldest sample is at `ring_pos`).
+/// Centres whose kernel arguments are gathered before their exponentials
+/// are taken in one loop (which then vectorises: `fastexp` has no branch).
+const KERNEL_BLOCK: usize = 32;
+
+/// Every channel's kernel terms, in centre order, added to its `ys` and
+/// `nets` (the input: the statistics in `st`, or the windows of the rings
+/// whose oldest sample is at `ring_pos`). Channels that share a centre set
+/// take each kernel value computed once, times their own weight.
 #[inline(always)]
-fn network_terms(m: &Model, ch: &ChannelAt, st: &[f64], ring_pos: usize, mut add: impl FnMut(f64)) {
+fn network_terms(
+    m: &Model,
+    st: &[f64],
+    ring_pos: usize,
+    ys: &mut [f64; MAX_CHANNELS],
+    nets: &mut [f64; MAX_CHANNELS],
+) {
     let l = m.window_len;
-    let mut centre = ch.centres;
-    for k in 0..ch.n_centres {
-        let mut r2 = 0.0;
-        if m.input == input::STATISTICS {
-            let x = &st[m.features..m.features + m.dim];
-            r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
-            centre += 8 * m.dim;
-        } else {
-            for s in 0..m.n_signals {
-                let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
-                r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
-                centre += 8 * l;
-            }
+    for (c, ch) in m.channels[..m.n_channels].iter().enumerate() {
+        if m.leader[c] != c {
+            continue;
         }
-        let beta = m.f(ch.widths + 8 * k);
-        add(exp_neg(-(r2 / (beta * beta))) * m.f(ch.weights + 8 * k));
+        let members = &m.members[c][..m.n_members[c]];
+        let mut centre = ch.centres;
+        let mut k0 = 0;
+        while k0 < ch.n_centres {
+            let nb = KERNEL_BLOCK.min(ch.n_centres - k0);
+            let mut arg = [0.0; KERNEL_BLOCK];
+            for (j, a) in arg[..nb].iter_mut().enumerate() {
+                let mut r2 = 0.0;
+                if m.input == input::STATISTICS {
+                    let x = &st[m.features..m.features + m.dim];
+                    r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
+                    centre += 8 * m.dim;
+                } else {
+                    for s in 0..m.n_signals {
+                        let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
+                        r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
+                        centre += 8 * l;
+                    }
+                }
+                let beta = m.f(ch.widths + 8 * (k0 + j));
+                *a = -(r2 / (beta * beta));
+            }
+            let mut phi = [0.0; KERNEL_BLOCK];
+            for (p, a) in phi.iter_mut().zip(&arg) {
+                *p = exp_neg(*a);
+            }
+            for &j in members {
+                let (j, at) = (j as usize, m.channels[j as usize].weights + 8 * k0);
+                let weights = &m.bytes[at..at + 8 * nb];
+                for (p, w) in phi[..nb].iter().zip(weights.chunks_exact(8)) {
+                    let mut b = [0u8; 8];
+                    b.copy_from_slice(w);
+                    let term = p * f64::from_le_bytes(b);
+                    ys[j] += term;
+                    nets[j] += term;
+                }
+            }
+            k0 += nb;
+        }
     }
 }
 
@@ -862,9 +1259,10 @@ fn network_terms(m: &Model, ch: &ChannelAt, st: &[f64], ring_pos: usize, mut add
 fn fade_weight(m: &Model, at: usize, st: &mut [f64], pos: usize, first: bool) -> f64 {
     let l = m.window_len;
     let n = l as f64;
-    let scale = m.f(at + 8 * 12);
+    let na4 = 4 * m.n_accels;
+    let scale = m.f(at + 8 * na4);
     let mut d2 = 0.0;
-    for k in 0..3 {
+    for k in 0..m.n_accels {
         let win = &st[m.fade_state + 2 * l * k + pos..][..l];
         let mut sum = 0.0;
         for v in win {
@@ -881,7 +1279,11 @@ fn fade_weight(m: &Model, at: usize, st: &mut [f64], pos: usize, first: bool) ->
         let el = excess(level, m.f(b + 16), m.f(b + 24)) / scale;
         d2 += em * em + el * el;
     }
-    let (tolerance, width, alpha) = (m.f(at + 8 * 13), m.f(at + 8 * 14), m.f(at + 8 * 15));
+    let (tolerance, width, alpha) = (
+        m.f(at + 8 * (na4 + 1)),
+        m.f(at + 8 * (na4 + 2)),
+        m.f(at + 8 * (na4 + 3)),
+    );
     let d = sqrt(d2);
     let w0 = if d <= tolerance {
         1.0
@@ -890,7 +1292,7 @@ fn fade_weight(m: &Model, at: usize, st: &mut [f64], pos: usize, first: bool) ->
         let u = if u < 1.0 { u } else { 1.0 };
         1.0 - u * u * (3.0 - 2.0 * u)
     };
-    let ws = m.fade_state + 6 * l + 6;
+    let ws = m.fade_state + 2 * l * m.n_accels + m.n_channels;
     st[ws] = if first {
         w0
     } else {
@@ -976,7 +1378,7 @@ fn dot3(m: &Model, at: usize, v: &[f64; 3]) -> f64 {
 }
 
 #[inline(always)]
-fn dot6(m: &Model, at: usize, v: &[f64; 6]) -> f64 {
+fn dotn(m: &Model, at: usize, v: &[f64]) -> f64 {
     let mut s = 0.0;
     for (j, x) in v.iter().enumerate() {
         s += m.f(at + 8 * j) * x;
@@ -1058,71 +1460,116 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Each gyro's inverse DTG model, two passes (nav_sensors Calibration::compensate).
-fn compensate_gyros(m: &Model, raw: &[f64; 6], f: &[f64; 3], cov: &[[f64; 3]; 3]) -> [f64; 6] {
-    let mut current = *raw;
+/// Each gyro's inverse model, two passes (nav_sensors Calibration::compensate
+/// and UnitCalibration::compensate): `gyro` holds the raw outputs and is
+/// left holding the calibrated ones.
+fn compensate_gyros(m: &Model, gyro: &mut [f64], f: &[f64; 3], cov: &[[f64; 3]; 3]) {
+    let n = gyro.len();
+    let mut raw = [0.0; MAX_CHANNELS];
+    raw[..n].copy_from_slice(gyro);
     for _ in 0..2 {
         let mut rate = [0.0; 3];
         for (i, r) in rate.iter_mut().enumerate() {
-            *r = dot6(m, m.ls + 8 * 6 * i, &current);
+            *r = dotn(m, m.ls + 8 * n * i, gyro);
         }
-        let mut next = [0.0; 6];
-        for (k, out) in next.iter_mut().enumerate() {
-            let (ia, oa, sa) = (axis(m, k, 0), axis(m, k, 1), axis(m, k, 2));
-            let w = [dot(&ia, &rate), dot(&oa, &rate), dot(&sa, &rate)];
-            let fr = [dot(&ia, f), dot(&oa, f), dot(&sa, f)];
-            let cv = [
-                quad_v(&ia, cov, &ia),
-                quad_v(&oa, cov, &oa),
-                quad_v(&sa, cov, &sa),
-                quad_v(&ia, cov, &oa),
-                quad_v(&ia, cov, &sa),
-                quad_v(&oa, cov, &sa),
-            ];
-            let o = m.gyro_cal + 8 * GYRO_CAL * k;
-            let drift = |wi: f64| {
-                const PER_S: f64 = 1.0 / 3600.0;
-                let r = [
-                    1.0,
-                    1e-6 * wi,
-                    1e-6 * w[1],
-                    1e-6 * w[2],
-                    fr[0],
-                    fr[1],
-                    fr[2],
-                    fr[0] * fr[0] + cv[0],
-                    fr[1] * fr[1] + cv[1],
-                    fr[2] * fr[2] + cv[2],
-                    fr[0] * fr[1] + cv[3],
-                    fr[0] * fr[2] + cv[4],
-                    fr[1] * fr[2] + cv[5],
-                    (wi * PER_S) * (w[1] * PER_S),
-                    (wi * PER_S) * (w[2] * PER_S),
-                    (w[1] * PER_S) * (w[2] * PER_S),
-                    0.0,
-                    0.0,
-                ];
-                let mut s = 0.0;
-                for (t, rv) in r.iter().enumerate() {
-                    s += rv * m.f(o + 8 * t);
-                }
-                s
+        let mut next = [0.0; MAX_CHANNELS];
+        for (k, out) in next[..n].iter_mut().enumerate() {
+            let ch = &m.channels[k];
+            *out = if ch.model == gyro::RATE {
+                rate_inverse(m, ch.cal, raw[k], f, cov)
+            } else {
+                dtg_inverse(m, k, raw[k], &rate, f, cov)
             };
-            let nl = m.f(o + 8 * 18);
-            let measured = raw[k];
-            let a0 = drift(0.0);
-            let b = 1.0 + drift(1.0) - a0;
-            let mut wi = (measured - a0) / b;
-            for _ in 0..4 {
-                let fx = a0 + b * wi + 1e-6 * nl * abs(wi / 3600.0) * wi - measured;
-                let df = b + 2e-6 * nl * abs(wi / 3600.0);
-                wi -= fx / df;
-            }
-            *out = wi;
         }
-        current = next;
+        gyro.copy_from_slice(&next[..n]);
     }
-    current
+}
+
+/// A rate gyro's inverse (nav_sensors RateCoefficients::compensate_deg_h):
+/// the drift at zero rate from its table at `o` (`RateTerm::ALL` order),
+/// removed, divided by the scale factor. It needs no rate.
+fn rate_inverse(m: &Model, o: usize, measured: f64, f: &[f64; 3], cov: &[[f64; 3]; 3]) -> f64 {
+    let r = [
+        1.0,
+        0.0,
+        f[0],
+        f[1],
+        f[2],
+        f[0] * f[0] + cov[0][0],
+        f[1] * f[1] + cov[1][1],
+        f[2] * f[2] + cov[2][2],
+        f[0] * f[1] + cov[0][1],
+        f[0] * f[2] + cov[0][2],
+        f[1] * f[2] + cov[1][2],
+        0.0,
+    ];
+    let mut drift = 0.0;
+    for (t, rv) in r.iter().enumerate() {
+        drift += m.f(o + 8 * t) * rv;
+    }
+    (measured - drift) / (1.0 + 1e-6 * m.f(o + 8))
+}
+
+/// Channel `k`'s inverse DTG model (nav_sensors DtgCoefficients::compensate_deg_h)
+/// at the least-squares `rate`.
+fn dtg_inverse(
+    m: &Model,
+    k: usize,
+    measured: f64,
+    rate: &[f64; 3],
+    f: &[f64; 3],
+    cov: &[[f64; 3]; 3],
+) -> f64 {
+    let (ia, oa, sa) = (axis(m, k, 0), axis(m, k, 1), axis(m, k, 2));
+    let w = [dot(&ia, rate), dot(&oa, rate), dot(&sa, rate)];
+    let fr = [dot(&ia, f), dot(&oa, f), dot(&sa, f)];
+    let cv = [
+        quad_v(&ia, cov, &ia),
+        quad_v(&oa, cov, &oa),
+        quad_v(&sa, cov, &sa),
+        quad_v(&ia, cov, &oa),
+        quad_v(&ia, cov, &sa),
+        quad_v(&oa, cov, &sa),
+    ];
+    let o = m.channels[k].cal;
+    let drift = |wi: f64| {
+        const PER_S: f64 = 1.0 / 3600.0;
+        let r = [
+            1.0,
+            1e-6 * wi,
+            1e-6 * w[1],
+            1e-6 * w[2],
+            fr[0],
+            fr[1],
+            fr[2],
+            fr[0] * fr[0] + cv[0],
+            fr[1] * fr[1] + cv[1],
+            fr[2] * fr[2] + cv[2],
+            fr[0] * fr[1] + cv[3],
+            fr[0] * fr[2] + cv[4],
+            fr[1] * fr[2] + cv[5],
+            (wi * PER_S) * (w[1] * PER_S),
+            (wi * PER_S) * (w[2] * PER_S),
+            (w[1] * PER_S) * (w[2] * PER_S),
+            0.0,
+            0.0,
+        ];
+        let mut s = 0.0;
+        for (t, rv) in r.iter().enumerate() {
+            s += rv * m.f(o + 8 * t);
+        }
+        s
+    };
+    let nl = m.f(o + 8 * 18);
+    let a0 = drift(0.0);
+    let b = 1.0 + drift(1.0) - a0;
+    let mut wi = (measured - a0) / b;
+    for _ in 0..4 {
+        let fx = a0 + b * wi + 1e-6 * nl * abs(wi / 3600.0) * wi - measured;
+        let df = b + 2e-6 * nl * abs(wi / 3600.0);
+        wi -= fx / df;
+    }
+    wi
 }
 
 /// |x|, exactly (clears the sign bit).
@@ -1231,12 +1678,12 @@ mod tests {
         assert_eq!(Model::parse(&bad).unwrap_err(), Error::Magic);
 
         let mut bad = good;
-        bad[4..8].copy_from_slice(&(VERSION + 1).to_le_bytes());
+        bad[4..8].copy_from_slice(&9u32.to_le_bytes());
         assert_eq!(
             Model::parse(&bad).unwrap_err(),
             Error::Version {
-                found: VERSION + 1,
-                supported: VERSION
+                found: 9,
+                supported: UNIT_VERSION
             }
         );
 
@@ -1252,6 +1699,19 @@ mod tests {
         bad[4 * 21..4 * 22].copy_from_slice(&3u32.to_le_bytes()); // signal 3: no extra column
         assert_eq!(Model::parse(&bad).unwrap_err(), Error::Header { word: 21 });
 
+        // Layout 3 with 17 channels: more than the evaluator holds.
+        let mut bad = good;
+        bad[4..8].copy_from_slice(&UNIT_VERSION.to_le_bytes());
+        bad[36..40].copy_from_slice(&17u32.to_le_bytes());
+        assert_eq!(
+            Model::parse(&bad).unwrap_err(),
+            Error::TooMany {
+                what: "channels",
+                found: 17,
+                max: MAX_CHANNELS
+            }
+        );
+
         let mut small = [0.0; 4];
         assert_eq!(
             Evaluator::new(m, &mut small).unwrap_err(),
@@ -1266,6 +1726,34 @@ mod tests {
             ev.step(&[0.0; 6], &[0.0; 3], &[1.0]).unwrap_err(),
             Error::Extra { need: 0, have: 1 }
         );
+        assert_eq!(
+            ev.step(&[0.0; 4], &[0.0; 3], &[]).unwrap_err(),
+            Error::Sensors {
+                what: "gyro outputs",
+                need: 6,
+                have: 4
+            }
+        );
+    }
+
+    #[test]
+    fn channels_with_the_same_centres_and_widths_share_one_set() {
+        // doc_tables: every channel has the one centre of four 1 g samples
+        // and width 1 g; a channel with another width has a set of its own.
+        let b = doc_tables();
+        let m = Model::parse(&b).unwrap();
+        assert!((0..6).all(|c| m.centre_set(c) == 0));
+        let mut other = b;
+        let width_of_z = 4 * 24 + 8 * (1 + 54 + 18) + 4 * 7 * 8 + 8;
+        other[width_of_z..width_of_z + 8].copy_from_slice(&2.0f64.to_le_bytes());
+        let m2 = Model::parse(&other).unwrap();
+        assert_eq!(
+            (0..6)
+                .map(|c| m2.centre_set(c))
+                .collect::<std::vec::Vec<_>>(),
+            [0, 0, 0, 0, 4, 0]
+        );
+        assert!(m2.flops_per_step() > m.flops_per_step());
     }
 
     #[test]

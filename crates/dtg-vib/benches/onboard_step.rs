@@ -36,8 +36,11 @@ const STEPS: usize = 2000;
 
 /// The tables of the benchmark's model on the network input `input`
 /// (`dtg_onboard::input`): the raw window has no smoother, the statistics
-/// input the 0.1-Hz prediction smoother.
-fn tables(input: u32) -> Tables {
+/// input the 0.1-Hz prediction smoother. With `shared`, every channel has
+/// channel X's centres and widths (its own weights), as the fit's one
+/// selection for channels sharing an input gives: the kernel values are
+/// then computed once per step.
+fn tables(input: u32, shared: bool) -> Tables {
     let stats = input == dtg_onboard::input::STATISTICS;
     let smoother = LowPass::butterworth(2, 0.1, 50.0).unwrap();
     let mut rng = Xoshiro256Plus::seed_from_u64(13);
@@ -92,6 +95,7 @@ fn tables(input: u32) -> Tables {
             f.extend([s.b[0], s.b[1], s.b[2], s.a[0], s.a[1], z[0], z[1]]);
         }
     }
+    let mut first: Option<(Vec<f64>, Vec<f64>)> = None;
     for fr in &frames {
         f.push(rng.gen_range(-5.0..5.0)); // bias
         f.extend([0.8, -0.1]); // g_I, gg_IS coefficients
@@ -99,23 +103,32 @@ fn tables(input: u32) -> Tables {
         f.extend([
             fr.input.x, fr.input.y, fr.input.z, fr.spin.x, fr.spin.y, fr.spin.z,
         ]);
-        f.extend((0..K).map(|_| rng.gen_range(2.0..6.0)));
-        f.extend((0..K).map(|_| rng.gen_range(-1.0..1.0)));
+        let widths: Vec<f64> = (0..K).map(|_| rng.gen_range(2.0..6.0)).collect();
+        let weights: Vec<f64> = (0..K).map(|_| rng.gen_range(-1.0..1.0)).collect();
+        let mut centres = Vec::new();
         for _ in 0..K {
             for s in 0..SIGNALS {
                 let g = if s == 2 { 1.0 } else { 0.0 };
                 if stats {
                     // Current sample, window mean, window rms.
-                    f.extend([
+                    centres.extend([
                         g + rng.gen_range(-0.5..0.5),
                         g + rng.gen_range(-0.05..0.05),
                         rng.gen_range(0.0..0.3),
                     ]);
                 } else {
-                    f.extend((0..L).map(|_| g + rng.gen_range(-0.5..0.5)));
+                    centres.extend((0..L).map(|_| g + rng.gen_range(-0.5..0.5)));
                 }
             }
         }
+        let (widths, centres) = match (&first, shared) {
+            (Some((w, c)), true) => (w.clone(), c.clone()),
+            _ => (widths, centres),
+        };
+        first.get_or_insert((widths.clone(), centres.clone()));
+        f.extend(widths);
+        f.extend(weights);
+        f.extend(centres);
     }
     let mut bytes = Vec::new();
     for w in &words {
@@ -225,14 +238,20 @@ fn c_step_ns(t: &Tables, precision: Precision) -> Result<f64, String> {
 fn bench(c: &mut Criterion) {
     let data = inputs();
     let mut medians = Vec::new();
-    for (name, input) in [
-        ("rust_step_k100_w50x3", dtg_onboard::input::RAW),
+    for (name, input, shared) in [
+        ("rust_step_k100_w50x3", dtg_onboard::input::RAW, false),
         (
             "rust_step_k100_stats3x3_smoothed",
             dtg_onboard::input::STATISTICS,
+            false,
+        ),
+        (
+            "rust_step_k100_stats3x3_smoothed_shared",
+            dtg_onboard::input::STATISTICS,
+            true,
         ),
     ] {
-        let t = tables(input);
+        let t = tables(input, shared);
         let m = Model::parse(&t.bytes).unwrap();
         let mut state = vec![0.0; m.state_len()];
         let mut ev = Evaluator::new(m, &mut state).unwrap();
@@ -251,6 +270,12 @@ fn bench(c: &mut Criterion) {
         });
         group.finish();
 
+        let sets = (0..6).filter(|&c| m.centre_set(c) == c).count();
+        assert_eq!(
+            sets,
+            if shared { 1 } else { 6 },
+            "the evaluator finds the sets"
+        );
         println!(
             "{name}: tables {} bytes (centres {} bytes), state {} f64, {} flops per step",
             m.size_bytes(),
@@ -289,14 +314,26 @@ fn bench(c: &mut Criterion) {
         }
         medians.push((rust, c_ns));
     }
-    let (raw, stats) = (&medians[0], &medians[1]);
-    println!(
-        "statistics input + smoother against the raw window, same run: Rust {:.3}×{}",
-        stats.0 / raw.0,
-        match (raw.1[0], stats.1[0]) {
-            (Some(r), Some(s)) => format!(", C f64 {:.3}×", s / r),
-            _ => String::new(),
-        }
+    let ratio = |what: &str, a: &(f64, Vec<Option<f64>>), b: &(f64, Vec<Option<f64>>)| {
+        println!(
+            "{what}, same run: Rust {:.3}×{}",
+            b.0 / a.0,
+            match (a.1[0], b.1[0]) {
+                (Some(r), Some(s)) => format!(", C f64 {:.3}×", s / r),
+                _ => String::new(),
+            }
+        );
+    };
+    let (raw, stats, shared) = (&medians[0], &medians[1], &medians[2]);
+    ratio(
+        "statistics input + smoother against the raw window",
+        raw,
+        stats,
+    );
+    ratio(
+        "one centre set for the six channels against six (statistics input)",
+        stats,
+        shared,
     );
 }
 

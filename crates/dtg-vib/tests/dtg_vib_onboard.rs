@@ -546,3 +546,380 @@ fn export_usage_errors_are_one_line_with_the_fix() {
         assert!(new.join(f).is_file(), "{f}");
     }
 }
+
+// Units other than the paper's (issue 22): layout version 3, n channels,
+// the unit's calibration and effects, checked against the batch and against
+// `dtg-vib compensate --unit` as the paper's models are.
+
+/// The paper's geometry as a unit file in deg/s and m/s² (not the paper's
+/// format, so it takes the unit path): DTG channels with their own axes.
+fn dtg_unit_file() -> &'static Path {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        let text = nav_sensors::unit::Unit::builtin_toml("paper")
+            .unwrap()
+            .replace("name = \"paper:", "name = \"paper in deg/s:")
+            .replace("rate = \"deg/h\"", "rate = \"deg/s\"")
+            .replace("specific_force = \"g\"", "specific_force = \"m/s^2\"");
+        let p = dir().join("dtg-deg-s.toml");
+        std::fs::write(&p, text).unwrap();
+        p
+    })
+}
+
+/// A simulated test of `unit` (a built-in name or a file) on `builtin`.
+fn unit_sim(unit: &str, builtin: &str) -> PathBuf {
+    let d = dir().join(format!(
+        "sim-{}-{builtin}",
+        Path::new(unit).file_stem().unwrap().to_str().unwrap()
+    ));
+    if !d.join("record.csv").is_file() {
+        ok(bin()
+            .args(["simulate", "--unit", unit, "--builtin", builtin, "--out"])
+            .arg(&d));
+    }
+    d
+}
+
+/// A causal model of `unit` on its simulated `builtin` test, with `extra`
+/// fit arguments.
+fn unit_fit(name: &str, unit: &str, builtin: &str, extra: &[&str]) -> PathBuf {
+    let s = unit_sim(unit, builtin);
+    let out = dir().join(name);
+    ok(bin()
+        .args(["fit", "--causal", "--max-centers", "20", "--unit", unit])
+        .arg("--data")
+        .arg(s.join("record.csv"))
+        .arg("--calib")
+        .arg(s.join("calibration.json"))
+        .args(extra)
+        .arg("--out")
+        .arg(&out));
+    out
+}
+
+/// tetra: rate-gyro effects (g_y on g2, gg_zz on g1), a temperature column
+/// on g3, the raw window of az.
+fn tetra() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        unit_fit(
+            "tetra.json",
+            "tetra",
+            "triaxial_hidden",
+            &[
+                "--add-effect",
+                "g2=g_y",
+                "--add-effect",
+                "g1=gg_zz",
+                "--add-effect",
+                "g3=col:temp",
+            ],
+        )
+    })
+}
+
+/// triad (deg/s and m/s²): an effect, two windowed signals and the input
+/// low-pass.
+fn triad() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        unit_fit(
+            "triad.json",
+            "triad",
+            "z-axis",
+            &[
+                "--add-effect",
+                "gx=g_y",
+                "--window",
+                "20",
+                "--window-signals",
+                "ay,az",
+                "--input-cutoff",
+                "10",
+            ],
+        )
+    })
+}
+
+/// dual-triad: six channels on the statistics input with the prediction
+/// smoother and a g² effect.
+fn dual_triad() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        unit_fit(
+            "dual-triad.json",
+            "dual-triad",
+            "triaxial_hidden",
+            &[
+                "--add-effect",
+                "gx2=gg_xy",
+                "--window-signals",
+                "ax,ay,az",
+                "--input",
+                "statistics",
+                "--smoother",
+                "0.2",
+            ],
+        )
+    })
+}
+
+/// The paper's DTGs as a unit in deg/s: DTG calibration and effects in
+/// each channel's own axes.
+fn dtg_unit() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        let u = dtg_unit_file().to_str().unwrap();
+        unit_fit(
+            "dtg-unit.json",
+            u,
+            "triaxial_hidden",
+            &["--effects", "g_S", "--add-effect", "Y1=gg_IS"],
+        )
+    })
+}
+
+/// A unit's record with its specific force along x shifted by 2 g (in the
+/// log's units) from sample 2000 to 3500: outside the training range.
+fn unit_outside(model: &Path, data: &Path) -> PathBuf {
+    let m = dtg_vib::unit_sensor::UnitModel::load(model).unwrap();
+    let text = std::fs::read_to_string(data).unwrap();
+    let col = text
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|c| c == m.unit().accels()[0].name)
+        .unwrap();
+    let shift = 2.0 / m.unit().units().specific_force.to_g();
+    let mut out = String::new();
+    for (i, line) in text.lines().enumerate() {
+        if (2001..=3500).contains(&i) {
+            let mut cells: Vec<String> = line.split(',').map(String::from).collect();
+            cells[col] = (cells[col].parse::<f64>().unwrap() + shift).to_string();
+            out.push_str(&cells.join(","));
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    let p = dir().join(format!(
+        "outside-{}.csv",
+        model.file_stem().unwrap().to_str().unwrap()
+    ));
+    std::fs::write(&p, out).unwrap();
+    p
+}
+
+/// Largest |step − batch| of a unit model's predicted errors and
+/// compensated rates on the log at `data` (every segment), and the smallest
+/// fade weight the batch saw.
+fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
+    use dtg_vib::unit_sensor::{UnitModel, to_signals};
+    let m = UnitModel::load(model_path).unwrap();
+    let read = Record::read_with_unit(data, m.unit()).unwrap();
+    let (mut worst, mut lowest) = (0.0f64, 1.0f64);
+    for rec in &read.records {
+        let signals = to_signals(rec).unwrap();
+        let prepared = m.inner().prepare(&signals).unwrap();
+        let batch = m.compensation(&prepared).unwrap();
+        if let Some(w) = sysid::operating::fade::weights(m.inner(), &prepared).unwrap() {
+            lowest = w.weight.iter().fold(lowest, |a, &b| a.min(b));
+        }
+        let stepped = dtg_vib::onboard::step_unit_record(&m, rec).unwrap();
+        let first = prepared.first_sample();
+        assert_eq!(stepped.first_sample, first);
+        for (k, name) in m.unit().gyro_names().iter().enumerate() {
+            assert_eq!(stepped.error_deg_h[k].len(), batch[k].len());
+            let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
+            for (i, (s, b)) in stepped.error_deg_h[k].iter().zip(&batch[k]).enumerate() {
+                worst = worst.max((s - b).abs());
+                worst = worst.max((stepped.rate_deg_h[k][i] - (calibrated[i] - b)).abs());
+            }
+        }
+        for (k, name) in m.unit().accel_names().iter().enumerate() {
+            let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
+            for (s, b) in stepped.accel_g[k].iter().zip(calibrated) {
+                worst = worst.max((s - b).abs());
+            }
+        }
+    }
+    (worst, lowest)
+}
+
+fn unit_models() -> [(&'static Path, PathBuf); 4] {
+    [
+        (tetra(), unit_sim("tetra", "triaxial_hidden")),
+        (triad(), unit_sim("triad", "z-axis")),
+        (dual_triad(), unit_sim("dual-triad", "triaxial_hidden")),
+        (
+            dtg_unit(),
+            unit_sim(dtg_unit_file().to_str().unwrap(), "triaxial_hidden"),
+        ),
+    ]
+}
+
+#[test]
+fn the_no_std_evaluator_equals_the_batch_on_every_unit() {
+    for (m, sim) in unit_models() {
+        let data = sim.join("record.csv");
+        let (worst, _) = unit_step_against_batch(m, &data);
+        eprintln!("{}: largest |step − batch| = {worst:e} deg/h", m.display());
+        assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+        let out = unit_outside(m, &data);
+        let (worst, lowest) = unit_step_against_batch(m, &out);
+        eprintln!(
+            "{} outside: largest |step − batch| = {worst:e} deg/h, weight down to {lowest}",
+            m.display()
+        );
+        assert!(lowest < 1e-3, "{}: the fade must act", m.display());
+        assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+    }
+}
+
+#[test]
+fn the_unit_models_exercise_what_they_claim() {
+    // Guards the tests above and below.
+    use dtg_onboard::{Model, UNIT_VERSION, gyro, input};
+    use dtg_vib::unit_sensor::UnitModel;
+    let parsed = |p: &Path| {
+        let m = UnitModel::load(p).unwrap();
+        let t = dtg_vib::export::unit_tables(&m).unwrap();
+        (m, t)
+    };
+    let (m, t) = parsed(tetra());
+    let o = Model::parse(&t.bytes).unwrap();
+    assert_eq!(
+        (o.version(), o.n_channels(), o.n_accels()),
+        (UNIT_VERSION, 4, 3)
+    );
+    assert_eq!(t.extra, ["temp"]);
+    assert!(m.inner().sensor().calibration.is_some() && o.fades());
+    assert_eq!((o.n_effects(0), o.n_effects(1), o.n_effects(2)), (1, 1, 1));
+    let (_, t) = parsed(triad());
+    let o = Model::parse(&t.bytes).unwrap();
+    assert_eq!(o.log_units(), (3600.0, 1.0 / 9.80665));
+    assert_eq!(o.window_len(), 20);
+    let (_, t) = parsed(dual_triad());
+    let o = Model::parse(&t.bytes).unwrap();
+    assert_eq!((o.n_channels(), o.input_kind()), (6, input::STATISTICS));
+    assert_eq!(o.n_smoother_sections(), 1);
+    let (m, t) = parsed(dtg_unit());
+    let o = Model::parse(&t.bytes).unwrap();
+    assert!(matches!(
+        m.unit().gyros()[0].model,
+        nav_sensors::unit::GyroModel::Dtg { .. }
+    ));
+    assert_eq!(o.n_effects(3), 2);
+    let _ = gyro::DTG;
+}
+
+#[test]
+fn the_exported_c_equals_compensate_on_every_unit() {
+    for (m, sim) in unit_models() {
+        // The logs are in the unit's units: a difference in deg/s is 3600
+        // times as much in deg/h.
+        let to_deg_h = dtg_vib::unit_sensor::UnitModel::load(m)
+            .unwrap()
+            .unit()
+            .units()
+            .rate
+            .to_deg_h();
+        let data = sim.join("record.csv");
+        let outside = unit_outside(m, &data);
+        for (what, d) in [("", data), (" outside", outside)] {
+            let Some(worst) = c_against_compensate_on(m, "f64", &d) else {
+                return;
+            };
+            let worst = worst * to_deg_h;
+            eprintln!(
+                "{}{what}: largest |C − compensate| = {worst:e} deg/h",
+                m.display()
+            );
+            assert!(
+                worst <= EQUAL_DEG_H,
+                "{}{what}: {worst:e} deg/h",
+                m.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn text_export_of_a_unit_names_its_gyros_models_and_units() {
+    let out = ok(bin()
+        .args(["export", "--lang", "text", "--model"])
+        .arg(triad()));
+    for want in [
+        "of the unit 'triad",
+        "gyros gx, gy, gz (deg/s, times 3600 to deg/h)",
+        "gx: rate, input axis",
+        "error_gx [deg/h] =",
+        "deg/h/g)·LP[g_y]",
+        "## Training range and fade",
+    ] {
+        assert!(
+            out.contains(want),
+            "missing '{want}' in:\n{}",
+            &out[..out.len().min(3000)]
+        );
+    }
+}
+
+// Channels sharing one centre set (issue 25 §1): the evaluator and the C
+// compute each kernel value once and weight it per channel.
+
+/// The statistics model with every channel given channel X's network
+/// (centres, widths) and weights of its own (X's, scaled and shifted): the
+/// model the fit's one selection for channels sharing an input gives.
+fn shared() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        let text = std::fs::read_to_string(statistics()).unwrap();
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let channels = v["model"]["channels"].as_array_mut().unwrap();
+        let (rbf, width) = (channels[0]["rbf"].clone(), channels[0]["width"].clone());
+        for (c, ch) in channels.iter_mut().enumerate().skip(1) {
+            let mut r = rbf.clone();
+            for w in r["weights"]["data"].as_array_mut().unwrap() {
+                let x = w[0].as_f64().unwrap();
+                w[0] = serde_json::json!(x * (1.0 + 0.25 * c as f64) - 0.01 * c as f64);
+            }
+            ch["rbf"] = r;
+            ch["width"] = width.clone();
+        }
+        let p = dir().join("shared.json");
+        std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+        p
+    })
+}
+
+#[test]
+fn channels_sharing_a_centre_set_step_and_export_as_the_batch() {
+    let model = CompensationModel::load(shared()).unwrap();
+    let t = dtg_vib::export::tables(&model).unwrap();
+    let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
+    assert!((0..6).all(|c| m.centre_set(c) == 0), "one set");
+    let own = dtg_vib::export::tables(&CompensationModel::load(statistics()).unwrap()).unwrap();
+    let own = dtg_onboard::Model::parse(&own.bytes).unwrap();
+    assert!((0..6).all(|c| own.centre_set(c) == c), "six sets");
+    assert!(m.flops_per_step() < own.flops_per_step());
+    let c = dtg_vib::export::c_sources(&model, dtg_vib::export::Precision::F64).unwrap();
+    assert!(c.source.contains("CENTRE_SET[c] != c"), "the shared C");
+    for (what, rec) in [
+        ("", record()),
+        (" outside", Record::read_csv(outside_record()).unwrap()),
+    ] {
+        let worst = step_against_batch_on(shared(), &rec);
+        eprintln!("shared{what}: largest |step − batch| = {worst:e} deg/h");
+        assert!(worst <= EQUAL_DEG_H, "shared{what}: {worst:e} deg/h");
+    }
+    for data in [sim().join("record.csv"), outside_record().to_path_buf()] {
+        let Some(worst) = c_against_compensate_on(shared(), "f64", &data) else {
+            return;
+        };
+        eprintln!("shared: largest |C − compensate| = {worst:e} deg/h");
+        assert!(worst <= EQUAL_DEG_H, "shared C: {worst:e} deg/h");
+    }
+}

@@ -35,11 +35,23 @@ const EQUATIONS_FILE: &str = "equations.txt";
 /// Writes the C sources and tables, or the equations.
 pub fn run(a: ExportArgs) -> Result<()> {
     if let Some(m) = super::unit::model_unit(&a.model, a.unit.as_deref())? {
-        return Err(anyhow::anyhow!(
-            "export: {} is a model of the unit '{}': the C and onboard export is written for the paper's six channels and cannot export another unit yet; use the model with dtg-vib compensate --model",
-            a.model.display(),
-            m.unit().name()
-        ));
+        return match a.lang.as_str() {
+            "text" => write_text(
+                &dtg_vib::export::unit_equations(&m),
+                &a.model,
+                a.out.as_deref(),
+            ),
+            "c" => {
+                let Some(out) = &a.out else {
+                    anyhow::bail!("--lang c writes files: give the directory with --out DIR");
+                };
+                let precision: dtg_vib::export::Precision = a.precision.parse()?;
+                let tables = dtg_vib::export::unit_tables(&m)?;
+                let c = dtg_vib::export::unit_c_sources(&tables, m.unit(), precision)?;
+                write_c(&c, &tables, &a.model, out)
+            }
+            other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
+        };
     }
     let model = CompensationModel::load(&a.model)?;
     match a.lang.as_str() {
@@ -57,7 +69,11 @@ pub fn run(a: ExportArgs) -> Result<()> {
 /// The equations on stdout, or into `out/equations.txt` (never over the
 /// model), saying where they went.
 fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Result<()> {
-    let equations = dtg_vib::export::equations(model);
+    write_text(&dtg_vib::export::equations(model), model_path, out)
+}
+
+/// `equations` on stdout, or into `out/equations.txt`.
+fn write_text(equations: &str, model_path: &Path, out: Option<&Path>) -> Result<()> {
     let Some(out) = out else {
         print!("{equations}");
         return Ok(());
@@ -78,10 +94,20 @@ fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Res
 /// and cost per step.
 fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) -> Result<()> {
     let precision: dtg_vib::export::Precision = precision.parse()?;
-    let files = ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"];
-    outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
     let c = dtg_vib::export::c_sources(model, precision)?;
     let tables = dtg_vib::export::tables(model)?;
+    write_c(&c, &tables, model_path, out)
+}
+
+/// Writes C sources and tables into `out` and says what they hold.
+fn write_c(
+    c: &dtg_vib::export::CSources,
+    tables: &dtg_vib::export::Tables,
+    model_path: &Path,
+    out: &Path,
+) -> Result<()> {
+    let files = ["dtg_model.h", "dtg_model.c", "main.c", "model.dtgo"];
+    outfile::guard_dir("--out", out, &files, &[("--model", Some(model_path))])?;
     let sources = c.files().map(|(name, text)| (name, text.as_bytes()));
     write_files(
         out,

@@ -5,9 +5,9 @@
 //! Only `math.h` (`exp`, `fabs`, `sqrt`); no dynamic memory, no globals but the
 //! tables.
 
+use super::layout::Layout;
 use crate::model::CompensationModel;
 use crate::onboard::{ExportError, Tables, tables};
-use dtg_onboard::{Model, kind_params};
 use std::fmt::Write;
 
 /// Arithmetic and table precision of the exported C.
@@ -59,7 +59,7 @@ impl CSources {
 }
 
 /// A C array initialiser; a single 0 for an empty list (C99 has no empty arrays).
-fn arr(v: &[f64]) -> String {
+pub(super) fn arr(v: &[f64]) -> String {
     if v.is_empty() {
         return "{0}".into();
     }
@@ -75,7 +75,7 @@ fn arr(v: &[f64]) -> String {
     s
 }
 
-fn iarr(v: &[usize]) -> String {
+pub(super) fn iarr(v: &[usize]) -> String {
     if v.is_empty() {
         return "{0}".into();
     }
@@ -83,13 +83,13 @@ fn iarr(v: &[usize]) -> String {
     format!("{{{}}}", items.join(", "))
 }
 
-fn words(b: &[u8], from: usize, n: usize) -> Vec<usize> {
+pub(super) fn words(b: &[u8], from: usize, n: usize) -> Vec<usize> {
     (from..from + n)
         .map(|i| u32::from_le_bytes([b[4 * i], b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]]) as usize)
         .collect()
 }
 
-fn floats(b: &[u8], from_byte: usize, n: usize) -> Vec<f64> {
+pub(super) fn floats(b: &[u8], from_byte: usize, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| {
             let at = from_byte + 8 * i;
@@ -104,172 +104,44 @@ pub fn c_sources(model: &CompensationModel, precision: Precision) -> Result<CSou
     c_sources_from_tables(&tables(model)?, precision)
 }
 
-/// The numbers of onboard tables, read back as the evaluator reads them.
-struct Layout {
-    calibrated: bool,
-    n_sections: usize,
-    n_in_sections: usize,
-    /// Window length, samples.
-    l: usize,
-    n_signals: usize,
-    n_effects: Vec<usize>,
-    n_centres: Vec<usize>,
-    signal_codes: Vec<usize>,
-    total_effects: usize,
-    kinds: Vec<usize>,
-    indices: Vec<usize>,
-    dim: usize,
-    /// The network's input kind (`dtg_onboard::input`) and the prediction
-    /// smoother's sections.
-    input: usize,
-    n_smooth: usize,
-    dt: f64,
-    frames: Vec<f64>,
-    ls: Vec<f64>,
-    gyro_cal: Vec<f64>,
-    accel_cal: Vec<f64>,
-    out_sos: Vec<f64>,
-    in_sos: Vec<f64>,
-    smooth_sos: Vec<f64>,
-    bias: Vec<f64>,
-    coeff: Vec<f64>,
-    params: Vec<f64>,
-    param_offset: Vec<usize>,
-    widths: Vec<f64>,
-    weights: Vec<f64>,
-    centres: Vec<f64>,
-    /// The fade block (empty: the tables do not fade).
-    fade: Vec<f64>,
-}
-
-impl Layout {
-    /// Reads the header words, then walks the payload as the evaluator does.
-    fn read(bytes: &[u8]) -> Result<Self, ExportError> {
-        let m = Model::parse(bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-        let b = bytes;
-        let hw = words(b, 2, 1)[0];
-        let calibrated = words(b, 3, 1)[0] & dtg_onboard::FLAG_CALIBRATION as usize != 0;
-        let n_sections = words(b, 5, 1)[0];
-        let n_in_sections = words(b, 6, 1)[0];
-        let l = m.window_len();
-        let n_signals = words(b, 8, 1)[0];
-        let n_effects = words(b, 9, 6);
-        let n_centres = words(b, 15, 6);
-        let signal_codes = words(b, dtg_onboard::FIXED_HEADER_WORDS, n_signals);
-        let total_effects: usize = n_effects.iter().sum();
-        let pairs = words(
-            b,
-            dtg_onboard::FIXED_HEADER_WORDS + n_signals,
-            2 * total_effects,
-        );
-        let kinds: Vec<usize> = pairs.iter().step_by(2).copied().collect();
-        let indices: Vec<usize> = pairs.iter().skip(1).step_by(2).copied().collect();
-        let after = words(
-            b,
-            dtg_onboard::FIXED_HEADER_WORDS + n_signals + 2 * total_effects,
-            2,
-        );
-        let (input, n_smooth) = (after[0], after[1]);
-        let dim = m.input_dim();
-        let mut at = 4 * hw;
-        let mut take = |n: usize| {
-            let v = floats(b, at, n);
-            at += 8 * n;
-            v
-        };
-        let dt = take(1)[0];
-        let frames = take(54);
-        let ls = take(18);
-        let (gyro_cal, accel_cal) = if calibrated {
-            (take(6 * 19), take(24))
-        } else {
-            (vec![], vec![])
-        };
-        let out_sos = take(7 * n_sections);
-        let in_sos = take(7 * n_in_sections);
-        let smooth_sos = take(7 * n_smooth);
-        let (mut bias, mut coeff, mut params, mut widths, mut weights, mut centres) =
-            (vec![], vec![], vec![], vec![], vec![], vec![]);
-        let mut param_offset = Vec::new();
-        let mut e0 = 0;
-        for c in 0..6 {
-            bias.push(take(1)[0]);
-            coeff.extend(take(n_effects[c]));
-            let np: usize = kinds[e0..e0 + n_effects[c]]
-                .iter()
-                .map(|&k| kind_params(k as u32).unwrap_or(0))
-                .sum();
-            let mut off = params.len();
-            for &k in &kinds[e0..e0 + n_effects[c]] {
-                param_offset.push(off);
-                off += kind_params(k as u32).unwrap_or(0);
-            }
-            params.extend(take(np));
-            widths.extend(take(n_centres[c]));
-            weights.extend(take(n_centres[c]));
-            centres.extend(take(n_centres[c] * dim));
-            e0 += n_effects[c];
-        }
-        let fade = if m.fades() {
-            take(dtg_onboard::FADE_FLOATS)
-        } else {
-            vec![]
-        };
-        Ok(Self {
-            calibrated,
-            n_sections,
-            n_in_sections,
-            l,
-            n_signals,
-            n_effects,
-            n_centres,
-            signal_codes,
-            total_effects,
-            kinds,
-            indices,
-            dim,
-            input,
-            n_smooth,
-            dt,
-            frames,
-            ls,
-            gyro_cal,
-            accel_cal,
-            out_sos,
-            in_sos,
-            smooth_sos,
-            bias,
-            coeff,
-            params,
-            param_offset,
-            widths,
-            weights,
-            centres,
-            fade,
-        })
-    }
-}
-
 /// The C sources of any onboard tables (those of [`tables`], or tables built
 /// by hand, as the step bench does).
 pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSources, ExportError> {
     let layout = Layout::read(&t.bytes)?;
-    let (real, exp, fabs, sqrt) = match precision {
-        Precision::F64 => ("double", "exp", "fabs", "sqrt"),
-        Precision::F32 => ("float", "expf", "fabsf", "sqrtf"),
-    };
     let mut source = tables_c(&layout);
-    source.push_str(
-        &STEP_C
-            .replace("EXP(", &format!("{exp}("))
-            .replace("FABS(", &format!("{fabs}("))
-            .replace("SQRT(", &format!("{sqrt}(")),
-    );
+    // Channels that share a centre set compute each kernel value once; a
+    // model without (every model fitted before shared centres) keeps the
+    // C it always had, byte for byte.
+    let mut step = step_c();
+    if layout.centre_set.iter().enumerate().any(|(c, &l)| l != c) {
+        source.push_str(&super::c_shared::arrays(&layout));
+        step = super::c_shared::step(&step);
+    }
+    source.push_str(&with_maths(&step, precision));
     Ok(CSources {
-        header: header_h(&layout, &t.extra, real),
+        header: header_h(&layout, &t.extra, real_type(precision)),
         source,
         main: MAIN_C.to_string(),
     })
+}
+
+/// The C type of `precision`.
+pub(super) fn real_type(precision: Precision) -> &'static str {
+    match precision {
+        Precision::F64 => "double",
+        Precision::F32 => "float",
+    }
+}
+
+/// Step code with its `EXP(`, `FABS(` and `SQRT(` the maths of `precision`.
+pub(super) fn with_maths(step: &str, precision: Precision) -> String {
+    let (exp, fabs, sqrt) = match precision {
+        Precision::F64 => ("exp", "fabs", "sqrt"),
+        Precision::F32 => ("expf", "fabsf", "sqrtf"),
+    };
+    step.replace("EXP(", &format!("{exp}("))
+        .replace("FABS(", &format!("{fabs}("))
+        .replace("SQRT(", &format!("{sqrt}("))
 }
 
 /// `dtg_model.h`: the sizes, the state and the three calls.
@@ -280,12 +152,12 @@ fn header_h(layout: &Layout, extra: &[String], real: &str) -> String {
         n_signals,
         n_sections,
         n_in_sections,
-        total_effects,
         fade,
         input,
         n_smooth,
         ..
     } = layout;
+    let total_effects = layout.kinds.len();
     let names: Vec<String> = extra.iter().map(|n| format!("\"{n}\"")).collect();
     format!(
         r#"/* DTG vibration-error compensator, exported by `dtg-vib export --lang c`.
@@ -454,7 +326,26 @@ static const dtg_real FADE[{nf}] = {fade};
     )
 }
 
-const STEP_C: &str = r#"
+/// The step code of the paper's C, in pieces that the C of any unit
+/// ([`super::c_unit`]) shares where it is the same text.
+fn step_c() -> String {
+    [
+        STEP_INIT_C,
+        EXCESS_C,
+        FADE_WEIGHT_C,
+        HELPERS_C,
+        CAL_HELPERS_C,
+        GYROS_C,
+        SQ_DIST_C,
+        PROCESS_C,
+        OWN_KERNELS_C,
+        PROCESS_TAIL_C,
+    ]
+    .concat()
+}
+
+/// `dtg_init` of the paper's state.
+const STEP_INIT_C: &str = r#"
 void dtg_init(dtg_state *s) {
     int i, j;
     s->steps = 0;
@@ -476,13 +367,19 @@ void dtg_init(dtg_state *s) {
     for (i = 0; i < 12 * DTG_N_SMOOTH_SECTIONS + 1; i++) s->smooth_z[i] = R(0);
 }
 
-#if DTG_FADE
+"#;
+
+/// The fade's excess beyond an interval (opens `#if DTG_FADE`).
+pub(super) const EXCESS_C: &str = r#"#if DTG_FADE
 static dtg_real excess(dtg_real v, dtg_real lo, dtg_real hi) {
     dtg_real e = lo - v > v - hi ? lo - v : v - hi;
     return e > R(0) ? e : R(0);
 }
 
-/* The smoothed weight of the network part for the window ending at the
+"#;
+
+/// The paper's fade weight over the three axes (closes `#if DTG_FADE`).
+const FADE_WEIGHT_C: &str = r#"/* The smoothed weight of the network part for the window ending at the
  * newest sample (sysid::operating::fade): each axis's window mean and
  * level, the distance beyond the training range, a smoothstep, a one-pole. */
 static dtg_real fade_weight(dtg_state *s, int first) {
@@ -519,7 +416,10 @@ static dtg_real fade_weight(dtg_state *s, int first) {
 }
 #endif
 
-/* One value through a cascade of second-order sections (transposed direct
+"#;
+
+/// The cascade of sections, `dot3`, `quad`.
+pub(super) const HELPERS_C: &str = r#"/* One value through a cascade of second-order sections (transposed direct
  * form II); on the first step the states start in the steady state of x. */
 static dtg_real cascade(const dtg_real *sos, int n, dtg_real *z, dtg_real x, int first) {
     int i;
@@ -550,7 +450,10 @@ static dtg_real quad(const dtg_real *p, dtg_real c[3][3], const dtg_real *q) {
     return t0 * q[0] + t1 * q[1] + t2 * q[2];
 }
 
-#if DTG_CALIBRATED
+"#;
+
+/// The triad's inverse and a DTG's drift (opens `#if DTG_CALIBRATED`).
+pub(super) const CAL_HELPERS_C: &str = r#"#if DTG_CALIBRATED
 static void compensate_triad(const dtg_real *measured, dtg_real *a) {
     int pass, k, it;
     for (k = 0; k < 3; k++) a[k] = measured[k];
@@ -599,7 +502,10 @@ static dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const d
     return s;
 }
 
-static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
+"#;
+
+/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`).
+const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
     dtg_real current[6], next[6], rate[3];
     int pass, i, j, k, it;
     for (k = 0; k < 6; k++) current[k] = raw[k];
@@ -633,7 +539,10 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 }
 #endif
 
-/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
+"#;
+
+/// The squared distance of four partial sums.
+pub(super) const SQ_DIST_C: &str = r#"/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
  * the same way) keep the adds independent. */
 static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
@@ -648,7 +557,10 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     return (acc0 + acc1) + (acc2 + acc3) + tail;
 }
 
-/* Compensates the pending sample with its within-interval covariance. */
+"#;
+
+/// The paper's `process` up to its kernels.
+const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
 static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real a[3], g[6], linear[6], w = R(1);
     int first = s->processed == 0;
@@ -717,7 +629,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
 #if DTG_FADE
     w = fade_weight(s, s->processed == l);
 #endif
-    for (c = 0; c < 6; c++) {
+"#;
+
+/// Each channel's own kernel loop (a model without shared centre sets).
+pub(super) const OWN_KERNELS_C: &str = r#"    for (c = 0; c < 6; c++) {
         /* Without a smoother the kernels add onto bias and effects. */
         dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0), term;
         for (k = 0; k < N_CENTRES[c]; k++) {
@@ -736,7 +651,10 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
             y += term;
             net += term;
         }
-#if DTG_FADE
+"#;
+
+/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`.
+const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
         {
             /* The held network part, before the smoother; the first output
              * starts from the network's training mean. */

@@ -4,21 +4,41 @@ use crate::model::CompensationModel;
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::{Axis, Channel};
 use std::fmt::Write;
+use sysid::operating::OperatingPoints;
 
 /// The model written out: pre-processing, calibration, filter coefficients,
 /// and per channel the effect terms with their coefficients and the RBF sum
 /// with its centres, width and weights. Works on zero-phase and causal models.
 pub fn equations(model: &CompensationModel) -> String {
-    let mut s = String::new();
-    let pre = model.preprocess();
-    let w = &mut s;
-    let _ = writeln!(w, "# dtg-vib compensation model");
-    let _ = writeln!(
-        w,
-        "output period: {} s ({} Hz)",
+    equations_with(
+        "# dtg-vib compensation model",
         model.dt_s(),
-        1.0 / model.dt_s()
-    );
+        model.inner().preprocess(),
+        &|w| calibration_text(w, model),
+        &|w| {
+            for c in model.channels() {
+                channel_text(w, c);
+            }
+        },
+        model.operating_points(),
+    )
+}
+
+/// The equations of any model: its title line, output period and
+/// pre-processing, what `calibration` and `channels` write, and the
+/// training range of `points`.
+pub(super) fn equations_with(
+    title: &str,
+    dt_s: f64,
+    pre: &sysid::Preprocess,
+    calibration: &dyn Fn(&mut String),
+    channels: &dyn Fn(&mut String),
+    points: Option<&OperatingPoints>,
+) -> String {
+    let mut s = String::new();
+    let w = &mut s;
+    let _ = writeln!(w, "{title}");
+    let _ = writeln!(w, "output period: {} s ({} Hz)", dt_s, 1.0 / dt_s);
     let _ = writeln!(
         w,
         "mode: {}",
@@ -28,14 +48,14 @@ pub fn equations(model: &CompensationModel) -> String {
             "zero-phase (forward-backward low-pass; needs the whole record)"
         }
     );
-    calibration_text(w, model);
+    calibration(w);
     let _ = writeln!(
         w,
         "\n## Low-pass of the effect terms (and of the fit targets)"
     );
-    filter_text(w, &pre.filter, pre.causal, model.dt_s());
+    filter_text(w, &pre.filter, pre.causal, dt_s);
     let _ = writeln!(w, "\n## Low-pass of the windowed signals");
-    filter_text(w, &pre.input_filter, pre.causal, model.dt_s());
+    filter_text(w, &pre.input_filter, pre.causal, dt_s);
     let win = &pre.window;
     match pre.input {
         sysid::ModelInput::Raw => {
@@ -66,19 +86,17 @@ pub fn equations(model: &CompensationModel) -> String {
             order: sysid::smoother::SMOOTHER_ORDER,
             cutoff_hz: sm.cutoff_hz,
         };
-        filter_text(w, &Some(spec), pre.causal, model.dt_s());
+        filter_text(w, &Some(spec), pre.causal, dt_s);
     }
-    for c in model.channels() {
-        channel_text(w, c);
-    }
-    range_text(w, model);
+    channels(w);
+    range_text(w, points);
     s
 }
 
 /// The training range and the fade of the network part beyond it
 /// (sysid::operating::fade); nothing for a model without one.
-fn range_text(w: &mut String, model: &CompensationModel) {
-    let Some(r) = model.operating_points().and_then(|o| o.range.as_ref()) else {
+pub(super) fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
+    let Some(r) = points.and_then(|o| o.range.as_ref()) else {
         return;
     };
     let _ = writeln!(
@@ -122,20 +140,7 @@ fn calibration_text(w: &mut String, model: &CompensationModel) {
                 "accelerometers (static inverse of output/g = (1 + K1·1e-6)(K0 + a_i + K2·a_i² + K3·a_i³ + δo·a_p − δp·a_o + Kip·a_i·a_p + Kio·a_i·a_o), each coefficient ·1e-6):"
             );
             for a in Axis::ALL {
-                let c = cal.accel(a);
-                let _ = writeln!(
-                    w,
-                    "  {}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
-                    a.column(),
-                    c.bias_ug,
-                    c.scale_factor_ppm,
-                    c.k2_ug_per_g2,
-                    c.k3_ug_per_g3,
-                    c.misalignment_o_urad,
-                    c.misalignment_p_urad,
-                    c.kip_ug_per_g2,
-                    c.kio_ug_per_g2
-                );
+                accel_text(w, a.column(), &cal.accel(a));
             }
             let _ = writeln!(
                 w,
@@ -165,8 +170,29 @@ fn calibration_text(w: &mut String, model: &CompensationModel) {
     }
 }
 
+/// One accelerometer's calibration, with units.
+pub(super) fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficients) {
+    let _ = writeln!(
+        w,
+        "  {name}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
+        c.bias_ug,
+        c.scale_factor_ppm,
+        c.k2_ug_per_g2,
+        c.k3_ug_per_g3,
+        c.misalignment_o_urad,
+        c.misalignment_p_urad,
+        c.kip_ug_per_g2,
+        c.kio_ug_per_g2
+    );
+}
+
 /// One low-pass as its sections' difference equations.
-fn filter_text(w: &mut String, f: &Option<crate::pipeline::FilterSpec>, causal: bool, dt_s: f64) {
+pub(super) fn filter_text(
+    w: &mut String,
+    f: &Option<crate::pipeline::FilterSpec>,
+    causal: bool,
+    dt_s: f64,
+) {
     match f {
         None => {
             let _ = writeln!(w, "none");
@@ -202,7 +228,10 @@ fn filter_text(w: &mut String, f: &Option<crate::pipeline::FilterSpec>, causal: 
 
 /// One channel's equation: its effects with their coefficients and the
 /// RBF sum with every centre, width and weight.
-fn channel_text(w: &mut String, c: &crate::model::ChannelModel) {
+pub(super) fn channel_text<C: std::fmt::Display + Clone, E: sysid::Effect>(
+    w: &mut String,
+    c: &sysid::ChannelModel<C, E>,
+) {
     let ch = c.channel();
     let rbf = c.rbf();
     let _ = writeln!(w, "\n## Channel {ch}");

@@ -1,8 +1,6 @@
 //! Why a model cannot be laid out as onboard tables (and so be exported or
 //! run on-line).
 
-use nav_sensors::geometry::Channel;
-
 /// Why a model cannot be exported.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ExportError {
@@ -14,12 +12,24 @@ pub enum ExportError {
     /// Something the onboard layout does not carry.
     #[error("channel {channel}: {what} cannot be exported (the onboard evaluator has {supported})")]
     Unsupported {
-        /// The channel.
-        channel: Channel,
+        /// The channel (its name: X … Z1, or a unit's gyro).
+        channel: String,
         /// What the model has.
         what: String,
         /// What is supported instead.
         supported: &'static str,
+    },
+    /// More channels or accelerometers than the onboard layout holds.
+    #[error(
+        "the unit has {found} {what}; the onboard evaluator and the exported C hold at most {max} (dtg_onboard::MAX_CHANNELS, MAX_ACCELS): compensate this unit with dtg-vib compensate --model"
+    )]
+    TooMany {
+        /// "gyros" or "accelerometers".
+        what: &'static str,
+        /// How many the unit has.
+        found: usize,
+        /// The most the layout holds.
+        max: usize,
     },
     /// The tables were refused by the evaluator (an exporter bug).
     #[error("the exported tables do not read back: {0}")]

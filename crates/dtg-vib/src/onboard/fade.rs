@@ -1,38 +1,64 @@
 //! The fade block of the onboard tables: the model's per-axis training
 //! range and how its network part fades beyond it
 //! (`sysid::operating::fade`), as the evaluator reads it
-//! (`dtg_onboard::FADE_FLOATS` numbers after the channels).
+//! (`dtg_onboard::fade_floats` numbers after the channels).
 
 use super::error::ExportError;
 use crate::model::CompensationModel;
 use nav_sensors::geometry::{Axis, Channel};
+use sysid::operating::OperatingPoints;
 
 /// The fade block of a model with a training range (`None` without one:
 /// the tables then do not fade, as the model does not).
 pub(super) fn fade_block(model: &CompensationModel) -> Result<Option<Vec<f64>>, ExportError> {
-    let Some(range) = model.operating_points().and_then(|o| o.range.as_ref()) else {
+    let axes: Vec<String> = Axis::ALL.iter().map(|a| a.column().to_string()).collect();
+    fade_block_of(
+        model.operating_points(),
+        model.preprocess().window.length(),
+        model.dt_s(),
+        (&axes, Channel::ALL.len()),
+        (
+            Channel::X.to_string(),
+            "a training range over ax, ay, az windows of the model's length",
+        ),
+    )
+}
+
+/// The fade block of a training range over the operating `signals` (the
+/// accelerometers the evaluator rings) of a model of `n_channels`
+/// channels, `window`-sample windows and output period `dt_s`; a range
+/// the layout cannot carry is refused naming `channel` and what is
+/// `supported`.
+pub(super) fn fade_block_of(
+    points: Option<&OperatingPoints>,
+    window: usize,
+    dt_s: f64,
+    (signals, n_channels): (&[String], usize),
+    (channel, supported): (String, &'static str),
+) -> Result<Option<Vec<f64>>, ExportError> {
+    let Some(range) = points.and_then(|o| o.range.as_ref()) else {
         return Ok(None);
     };
     let unsupported = |what: String| ExportError::Unsupported {
-        channel: Channel::X,
+        channel: channel.clone(),
         what,
-        supported: "a training range over ax, ay, az windows of the model's length",
+        supported,
     };
-    if range.window != model.preprocess().window.length() {
+    if range.window != window {
         return Err(unsupported(format!(
             "a training range over {}-sample windows",
             range.window
         )));
     }
-    let axes: Vec<String> = Axis::ALL.iter().map(|a| a.column().to_string()).collect();
-    if range.signals != axes || range.check(&axes, 6).is_err() {
+    if range.signals != signals || range.check(signals, n_channels).is_err() {
         return Err(unsupported(format!(
             "a training range over {}",
             range.signals.join(", ")
         )));
     }
-    let mut f = Vec::with_capacity(dtg_onboard::FADE_FLOATS);
-    for k in 0..3 {
+    let n_a = signals.len();
+    let mut f = Vec::with_capacity(dtg_onboard::fade_floats(n_a, n_channels));
+    for k in 0..n_a {
         f.extend([
             range.mean_min[k],
             range.mean_max[k],
@@ -44,9 +70,9 @@ pub(super) fn fade_block(model: &CompensationModel) -> Result<Option<Vec<f64>>, 
         range.scale,
         range.tolerance,
         range.fade.width,
-        range.fade.alpha(model.dt_s()),
+        range.fade.alpha(dt_s),
     ]);
     f.extend(&range.network_mean);
-    debug_assert_eq!(f.len(), dtg_onboard::FADE_FLOATS);
+    debug_assert_eq!(f.len(), dtg_onboard::fade_floats(n_a, n_channels));
     Ok(Some(f))
 }

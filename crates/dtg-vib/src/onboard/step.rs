@@ -3,9 +3,11 @@
 //! does with a causal model, and what the exported C is checked against.
 
 use super::error::ExportError;
-use super::tables;
+use super::tables::{Tables, tables};
+use super::unit_tables::unit_tables;
 use crate::error::DtgVibError;
 use crate::model::CompensationModel;
+use crate::unit_sensor::UnitModel;
 use nav_sensors::record::Record;
 
 /// A record run through the onboard evaluator, from the first sample with a
@@ -22,44 +24,89 @@ pub struct Stepped {
     pub accel_g: [Vec<f64>; 3],
 }
 
+/// A record of any unit run through the onboard evaluator, from the first
+/// sample with a full window on: per channel (the unit's gyros) and per
+/// accelerometer, in the unit's order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnitStepped {
+    /// Record sample of the first output.
+    pub first_sample: usize,
+    /// Compensated rates per channel, deg/h.
+    pub rate_deg_h: Vec<Vec<f64>>,
+    /// Predicted errors per channel, deg/h.
+    pub error_deg_h: Vec<Vec<f64>>,
+    /// Calibrated accelerations per accelerometer, g.
+    pub accel_g: Vec<Vec<f64>>,
+}
+
 /// Runs a causal model over a record sample by sample with the `dtg-onboard`
 /// evaluator, as a flight computer would.
 pub fn step_record(model: &CompensationModel, record: &Record) -> Result<Stepped, DtgVibError> {
     let t = tables(model)?;
-    let m = dtg_onboard::Model::parse(&t.bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
-    let extra_cols: Vec<&[f64]> = t
-        .extra
+    let extra = extra_series(&t, record)?;
+    let s = run(&t, record, &extra)?;
+    let mut rates = s.rate_deg_h.into_iter();
+    let mut errors = s.error_deg_h.into_iter();
+    let mut accels = s.accel_g.into_iter();
+    Ok(Stepped {
+        first_sample: s.first_sample,
+        rate_deg_h: std::array::from_fn(|_| rates.next().unwrap_or_default()),
+        error_deg_h: std::array::from_fn(|_| errors.next().unwrap_or_default()),
+        accel_g: std::array::from_fn(|_| accels.next().unwrap_or_default()),
+    })
+}
+
+/// [`step_record`] for a causal model of any unit, on one segment of a
+/// log read with its unit (deg/h and g).
+pub fn step_unit_record(model: &UnitModel, record: &Record) -> Result<UnitStepped, DtgVibError> {
+    let t = unit_tables(model)?;
+    let extra = extra_series(&t, record)?;
+    run(&t, record, &extra)
+}
+
+/// The tables' extra columns of a record, in the tables' order.
+fn extra_series<'r>(t: &Tables, record: &'r Record) -> Result<Vec<&'r [f64]>, DtgVibError> {
+    t.extra
         .iter()
         .map(|n| crate::pipeline::signal(record, n))
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+/// The record through the evaluator of tables `t`.
+fn run(t: &Tables, record: &Record, extra_cols: &[&[f64]]) -> Result<UnitStepped, DtgVibError> {
+    let tables_error = |e: dtg_onboard::Error| ExportError::Tables(e.to_string());
+    let m = dtg_onboard::Model::parse(&t.bytes).map_err(tables_error)?;
+    let (n_g, n_a) = (m.n_channels(), m.n_accels());
     let mut state = vec![0.0; m.state_len()];
-    let mut ev = dtg_onboard::Evaluator::new(m, &mut state)
-        .map_err(|e| ExportError::Tables(e.to_string()))?;
-    let mut out = Stepped {
+    let mut ev = dtg_onboard::Evaluator::new(m, &mut state).map_err(tables_error)?;
+    let mut out = UnitStepped {
         first_sample: m.window_len() - 1,
-        rate_deg_h: Default::default(),
-        error_deg_h: Default::default(),
-        accel_g: Default::default(),
+        rate_deg_h: vec![Vec::new(); n_g],
+        error_deg_h: vec![Vec::new(); n_g],
+        accel_g: vec![Vec::new(); n_a],
     };
-    let mut extra = vec![0.0; t.extra.len()];
     let mut push = |o: dtg_onboard::Output| {
-        for k in 0..6 {
+        for k in 0..n_g {
             out.rate_deg_h[k].push(o.rate_deg_h[k]);
             out.error_deg_h[k].push(o.error_deg_h[k]);
         }
-        for k in 0..3 {
+        for k in 0..n_a {
             out.accel_g[k].push(o.accel_g[k]);
         }
     };
+    let (mut extra, mut gyro, mut accel) =
+        (vec![0.0; t.extra.len()], vec![0.0; n_g], vec![0.0; n_a]);
     for i in 0..record.len() {
-        for (e, c) in extra.iter_mut().zip(&extra_cols) {
+        for (e, c) in extra.iter_mut().zip(extra_cols) {
             *e = c[i];
         }
-        let a = record.accel_sample(i);
-        let o = ev
-            .step(&record.gyro_sample(i), &[a.x, a.y, a.z], &extra)
-            .map_err(|e| ExportError::Tables(e.to_string()))?;
-        if let Some(o) = o {
+        for (k, g) in gyro.iter_mut().enumerate() {
+            *g = record.gyro_at(k)[i];
+        }
+        for (k, a) in accel.iter_mut().enumerate() {
+            *a = record.accel_at(k)[i];
+        }
+        if let Some(o) = ev.step(&gyro, &accel, &extra).map_err(tables_error)? {
             push(o);
         }
     }

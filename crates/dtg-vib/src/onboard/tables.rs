@@ -62,7 +62,7 @@ fn effect_entry(
                 Ok((kind::RATE_PRODUCT, 0, p))
             } else {
                 Err(ExportError::Unsupported {
-                    channel,
+                    channel: channel.to_string(),
                     what: format!("effect {id}"),
                     supported: "g_*, gg_*, ai_* and col:NAME effects",
                 })
@@ -95,7 +95,9 @@ pub fn extra_columns(model: &CompensationModel) -> Vec<String> {
     out
 }
 
-fn sections(lp: &Option<LowPass>) -> Vec<f64> {
+/// A low-pass's sections as the layout's numbers (b0 b1 b2 a1 a2 and the
+/// steady state of a unit input, each).
+pub(super) fn sections(lp: &Option<LowPass>) -> Vec<f64> {
     let Some(lp) = lp else { return vec![] };
     let zi = lp.steady_state();
     lp.sections()
@@ -114,35 +116,55 @@ pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
         return Err(ExportError::NotCausal);
     }
     let extra = extra_columns(model);
-    let rate = 1.0 / model.dt_s();
-    let design = |f: &Option<crate::pipeline::FilterSpec>| {
-        f.map(|f| LowPass::butterworth(f.order, f.cutoff_hz, rate))
-            .transpose()
-            .map_err(|e| ExportError::Tables(e.to_string()))
-    };
     // The effects are subtracted unfiltered (θ·z, as the batch
     // compensation does): their coefficients were estimated on the filtered
     // output and regressors alike, and the filtered regressor would leave
     // the effect's part above the cut-off in the output. The targets'
     // filter is then nothing the evaluator runs.
     let out_filter: Option<LowPass> = None;
-    let in_filter = design(&pre.input_filter)?;
+    let in_filter = input_filter(&pre.input_filter, model.dt_s())?;
     let n_sections = out_filter.as_ref().map_or(0, |f| f.sections().len());
     let n_in_sections = in_filter.as_ref().map_or(0, |f| f.sections().len());
     let (words, params) = header_words(model, &extra, [n_sections, n_in_sections])?;
     let mut f = geometry_and_calibration(model);
     f.extend(sections(&out_filter));
     f.extend(sections(&in_filter));
-    f.extend(sections(&smoother_filter(model)));
-    channel_floats(model, &params, &mut f)?;
+    f.extend(sections(&smoother_filter(pre.smoother, model.dt_s())));
+    for (c, p) in model.channels().iter().zip(&params) {
+        network_floats(c, p, &mut f)?;
+    }
     if let Some(block) = super::fade::fade_block(model)? {
         f.extend(block);
     }
+    assemble(&words, &f, extra)
+}
+
+/// An accelerometer's calibration in the layout's order.
+pub(super) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
+    [
+        c.bias_ug,
+        c.scale_factor_ppm,
+        c.k2_ug_per_g2,
+        c.k3_ug_per_g3,
+        c.misalignment_o_urad,
+        c.misalignment_p_urad,
+        c.kip_ug_per_g2,
+        c.kio_ug_per_g2,
+    ]
+}
+
+/// The tables' bytes: the header `words`, then the numbers `f`, checked by
+/// the evaluator (a refusal is an exporter bug).
+pub(super) fn assemble(
+    words: &[u32],
+    f: &[f64],
+    extra: Vec<String>,
+) -> Result<Tables, ExportError> {
     let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
-    for w in &words {
+    for w in words {
         bytes.extend(w.to_le_bytes());
     }
-    for v in &f {
+    for v in f {
         bytes.extend(v.to_le_bytes());
     }
     dtg_onboard::Model::parse(&bytes).map_err(|e| ExportError::Tables(e.to_string()))?;
@@ -197,7 +219,11 @@ fn header_words(
         }
         params.push(p);
     }
-    words.extend(input_and_smoother_words(model));
+    words.extend(input_and_smoother_words(
+        pre.input,
+        pre.smoother,
+        model.dt_s(),
+    ));
     if !words.len().is_multiple_of(2) {
         words.push(0);
     }
@@ -207,21 +233,34 @@ fn header_words(
 
 /// The words after the effect pairs: the network's input kind and the
 /// prediction smoother's sections.
-fn input_and_smoother_words(model: &CompensationModel) -> [u32; 2] {
-    let input = match model.preprocess().input {
+pub(super) fn input_and_smoother_words(
+    input: sysid::ModelInput,
+    smoother: Option<sysid::Smoother>,
+    dt_s: f64,
+) -> [u32; 2] {
+    let input = match input {
         sysid::ModelInput::Raw => dtg_onboard::input::RAW,
         sysid::ModelInput::Statistics => dtg_onboard::input::STATISTICS,
     };
     [
         input,
-        smoother_filter(model).map_or(0, |f| f.sections().len()) as u32,
+        smoother_filter(smoother, dt_s).map_or(0, |f| f.sections().len()) as u32,
     ]
 }
 
 /// The prediction smoother's filter, as the loop designs it.
-fn smoother_filter(model: &CompensationModel) -> Option<LowPass> {
-    let s = model.preprocess().smoother?;
-    s.design(model.dt_s()).ok()
+pub(super) fn smoother_filter(smoother: Option<sysid::Smoother>, dt_s: f64) -> Option<LowPass> {
+    smoother?.design(dt_s).ok()
+}
+
+/// The causal low-pass of the windowed signals, as the loop designs it.
+pub(super) fn input_filter(
+    spec: &Option<sysid::FilterSpec>,
+    dt_s: f64,
+) -> Result<Option<LowPass>, ExportError> {
+    spec.map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / dt_s))
+        .transpose()
+        .map_err(|e| ExportError::Tables(e.to_string()))
 }
 
 /// The sample interval, the channel frames, the least-squares rate
@@ -244,65 +283,54 @@ fn geometry_and_calibration(model: &CompensationModel) -> Vec<f64> {
             f.push(g.scale_factor_nonlinearity_ppm_per_deg_s);
         }
         for a in Axis::ALL {
-            let c = cal.accel(a);
-            f.extend([
-                c.bias_ug,
-                c.scale_factor_ppm,
-                c.k2_ug_per_g2,
-                c.k3_ug_per_g3,
-                c.misalignment_o_urad,
-                c.misalignment_p_urad,
-                c.kip_ug_per_g2,
-                c.kio_ug_per_g2,
-            ]);
+            f.extend(accel_floats(&cal.accel(a)));
         }
     }
     f
 }
 
-/// Each channel's bias, effect coefficients and parameters, widths, weights
-/// and centres; refuses what the evaluator does not compute.
-fn channel_floats(
-    model: &CompensationModel,
-    params: &[Vec<f64>],
+/// One channel's bias, effect coefficients and parameters `p`, widths,
+/// weights and centres; refuses what the evaluator does not compute (a
+/// kernel other than the Gaussian, input scaling, a polynomial tail).
+pub(super) fn network_floats<C: std::fmt::Display + Clone, E>(
+    c: &sysid::ChannelModel<C, E>,
+    p: &[f64],
     f: &mut Vec<f64>,
 ) -> Result<(), ExportError> {
-    for (c, p) in model.channels().iter().zip(params) {
-        let ch = c.channel();
-        let rbf = c.rbf();
-        let unsupported = |what: String, supported| ExportError::Unsupported {
-            channel: ch,
-            what,
-            supported,
-        };
-        if rbf.kernel() != rbf::Kernel::Gaussian {
-            return Err(unsupported(
-                format!("the {:?} kernel", rbf.kernel()),
-                "the Gaussian kernel",
-            ));
-        }
-        if rbf.scaling().is_some() {
-            return Err(unsupported(
-                "input scaling".into(),
-                "unscaled windows (dtg-vib fit does not scale)",
-            ));
-        }
-        // A unit-box tail (rbf's `degree`) has its own map and terms that
-        // the onboard layout does not carry; dtg-vib fit never sets one, but
-        // a model file may come from elsewhere.
-        if rbf.tail().is_some() || rbf.degree().is_some() {
-            return Err(unsupported("a polynomial tail".into(), "no tail"));
-        }
-        f.push(c.bias());
-        f.extend(c.effect_coefficients());
-        f.extend(p);
-        let k = rbf.n_centres();
-        f.extend((0..k).map(|j| rbf.widths().get(j)));
-        f.extend((0..k).map(|j| rbf.weights()[(j, 0)]));
-        let centres = rbf.centres();
-        for j in 0..k {
-            f.extend((0..centres.ncols()).map(|d| centres[(j, d)]));
-        }
+    let ch = c.channel().to_string();
+    let rbf = c.rbf();
+    let unsupported = |what: String, supported| ExportError::Unsupported {
+        channel: ch.clone(),
+        what,
+        supported,
+    };
+    if rbf.kernel() != rbf::Kernel::Gaussian {
+        return Err(unsupported(
+            format!("the {:?} kernel", rbf.kernel()),
+            "the Gaussian kernel",
+        ));
+    }
+    if rbf.scaling().is_some() {
+        return Err(unsupported(
+            "input scaling".into(),
+            "unscaled windows (dtg-vib fit does not scale)",
+        ));
+    }
+    // A unit-box tail (rbf's `degree`) has its own map and terms that
+    // the onboard layout does not carry; dtg-vib fit never sets one, but
+    // a model file may come from elsewhere.
+    if rbf.tail().is_some() || rbf.degree().is_some() {
+        return Err(unsupported("a polynomial tail".into(), "no tail"));
+    }
+    f.push(c.bias());
+    f.extend(c.effect_coefficients());
+    f.extend(p);
+    let k = rbf.n_centres();
+    f.extend((0..k).map(|j| rbf.widths().get(j)));
+    f.extend((0..k).map(|j| rbf.weights()[(j, 0)]));
+    let centres = rbf.centres();
+    for j in 0..k {
+        f.extend((0..centres.ncols()).map(|d| centres[(j, d)]));
     }
     Ok(())
 }

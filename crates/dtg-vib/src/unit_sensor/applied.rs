@@ -12,12 +12,14 @@ use nav_sensors::unit::Unit;
 use sysid::Signals;
 use sysid::inference::Coefficient;
 
-/// A segment compensated: its calibrated outputs less the model's
-/// predicted error, from the first sample with a full window on, in the
-/// unit's column names (deg/h and g inside).
+/// A segment compensated: its calibrated outputs less what compensation
+/// subtracts (the prediction, its network part faded outside the training
+/// range, the effects unfiltered: as for the paper's unit and onboard),
+/// from the first sample with a full window on, in the unit's column names
+/// (deg/h and g inside).
 pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record, DtgVibError> {
     let prepared = m.inner().prepare(segment)?;
-    let predicted = m.inner().predict(&prepared)?;
+    let predicted = m.compensation(&prepared)?;
     let first = prepared.first_sample();
     let calibrated = prepared.calibrated();
     let gyros = m.unit().gyro_names();

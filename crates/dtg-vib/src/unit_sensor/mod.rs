@@ -132,7 +132,7 @@ impl UnitSensor {
 /// For gyro `j`, the least-squares rate operator of the other gyros (row j
 /// of H zeroed), or `None` when they do not span three dimensions (a unit
 /// of three gyros): a channel's own output never enters its regressors.
-fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
+pub(crate) fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
     let mut h = unit.measurement_matrix().clone();
     h.row_mut(j).fill(0.0);
     let svd = h.clone().svd(true, true);

@@ -104,6 +104,24 @@ impl UnitModel {
         &self.inner.sensor().unit
     }
 
+    /// What compensation subtracts from each calibrated output, deg/h, in
+    /// the unit's channel order: the prediction with its network part faded
+    /// outside the training range and the effects unfiltered (θ·z), as
+    /// [`crate::model::CompensationModel::compensation`] for the paper's
+    /// unit; the onboard evaluator computes the same.
+    pub fn compensation(
+        &self,
+        prepared: &sysid::Prepared<UnitSensor>,
+    ) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        let above = self.inner.effects_above_band(prepared)?;
+        let predicted = sysid::operating::fade::predict_faded(&self.inner, prepared)?.predicted;
+        Ok(predicted
+            .iter()
+            .zip(&above)
+            .map(|(p, a)| p.iter().zip(a).map(|(p, a)| p + a).collect())
+            .collect())
+    }
+
     /// Whether the model file at `path` stores a unit (a model of a unit
     /// other than the paper's); an unreadable file says so.
     pub fn has_unit(path: &Path) -> Result<bool, DtgVibError> {

@@ -1,0 +1,75 @@
+//! The paper's C when its channels share centre sets (the fit's one
+//! selection for all channels that share an input, issue 25): each kernel
+//! value is computed once per set and weighted by every sharing channel,
+//! and a set's centres are written once. Only models with shared sets get
+//! this variant, so a model without keeps its C byte for byte.
+
+use super::c::iarr;
+use super::layout::Layout;
+
+/// The arrays the shared step reads besides the paper's (whose `CENTRES`
+/// the layout holds once per set): each channel's set and where its set's
+/// centres start in `CENTRES` (in centres).
+pub(super) fn arrays(layout: &Layout) -> String {
+    format!(
+        "/* Channels sharing centres and widths: each channel's set (the first channel\n * with the same ones), and where the set's centres start in CENTRES. */\n#define N 6\nstatic const int CENTRE_SET[N] = {};\nstatic const int SET_OFFSET[N] = {};\n",
+        iarr(&layout.centre_set),
+        iarr(&layout.centre_offset)
+    )
+}
+
+/// The kernels of each set once, each value times every sharing channel's
+/// weight, added in centre order as the paper's loop adds them.
+/// N is the number of channels (6 here, `DTG_N_GYROS` in a unit's C),
+/// `CENTRE_OFFSET` where a channel's widths and weights start and
+/// `SET_OFFSET` where its set's centres start (in centres).
+pub(super) const SHARED_KERNELS: &str = r#"    /* Without a smoother the kernels add onto bias and effects. */
+    for (c = 0; c < N; c++) {
+        ys[c] = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c];
+        nets[c] = R(0);
+    }
+    /* The kernels of each centre set once, times each sharing channel's weight. */
+    for (c = 0; c < N; c++) {
+        if (CENTRE_SET[c] != c) continue;
+        for (k = 0; k < N_CENTRES[c]; k++) {
+            const dtg_real *cen = CENTRES + (long)DTG_DIM * (SET_OFFSET[c] + k);
+            dtg_real r2 = R(0), beta = WIDTH[CENTRE_OFFSET[c] + k], phi;
+#if DTG_INPUT_STATS
+            r2 = sq_dist(s->feat, cen, DTG_DIM);
+#else
+            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
+                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
+                cen += l;
+            }
+#endif
+            phi = EXP(-(r2 / (beta * beta)));
+            for (j = c; j < N; j++) {
+                if (CENTRE_SET[j] == c) {
+                    dtg_real term = phi * WEIGHT[CENTRE_OFFSET[j] + k];
+                    ys[j] += term;
+                    nets[j] += term;
+                }
+            }
+        }
+    }
+    for (c = 0; c < N; c++) {
+        dtg_real y = ys[c], net = nets[c];
+"#;
+
+/// The paper's step with the shared kernel loop in place of each
+/// channel's own.
+pub(super) fn step(step: &str) -> String {
+    [
+        (super::c::OWN_KERNELS_C, SHARED_KERNELS),
+        (
+            "    dtg_real a[3], g[6], linear[6], w = R(1);\n",
+            "    dtg_real a[3], g[6], linear[6], ys[6], nets[6], w = R(1);\n",
+        ),
+        ("    int k, c, e, sig;\n", "    int k, c, e, sig, j;\n"),
+    ]
+    .iter()
+    .fold(step.to_string(), |s, (old, new)| {
+        debug_assert!(s.contains(old), "the paper's step changed: {old}");
+        s.replacen(old, new, 1)
+    })
+}
