@@ -71,7 +71,8 @@ pub const FLAG_FADE: u32 = 2;
 /// `f64` numbers of the fade block: per axis x, y, z the window mean's
 /// smallest and largest and the window level's smallest and largest (g);
 /// the scale (g), the tolerance and the width (in scales), the smoother's
-/// gain α; each channel's network mean (deg/h).
+/// gain α; each channel's network mean (deg/h; kept in the layout, not
+/// read: the fade holds from a record's first network output).
 pub const FADE_FLOATS: usize = 12 + 4 + 6;
 /// Network input kinds of the tables (the word after the effect pairs).
 pub mod input {
@@ -760,25 +761,28 @@ impl<'m, 's> Evaluator<'m, 's> {
                 net += term;
             });
             if let (Some(w), Some(at)) = (weight, m.fade) {
-                // The held network part: the network itself at full weight,
-                // else moved toward it by the weight; a record's first
-                // output starts from the network's training mean. It is
-                // held before the smoother (sysid::operating::fade).
+                // The held network part follows the network by the weight's
+                // one-pole while the weight is 1 and stays below; the output
+                // cross-fades from it to the network by the weight. A
+                // record starts it at its first network output. Before the
+                // smoother (sysid::operating::fade).
                 let h = m.fade_state + 6 * l + c;
                 let before = if self.processed == l as u64 {
-                    m.f(at + 8 * (16 + c))
+                    net
                 } else {
                     st[h]
                 };
-                st[h] = if w >= 1.0 {
+                let faded = if w >= 1.0 {
+                    st[h] = before + m.f(at + 8 * 15) * (net - before);
                     net
                 } else {
+                    st[h] = before;
                     before + w * (net - before)
                 };
                 if !smoothed {
-                    y -= net - st[h];
+                    y -= net - faded;
                 }
-                net = st[h];
+                net = faded;
             }
             // The prediction smoother, on the network part only.
             if smoothed {
