@@ -71,8 +71,8 @@ pub const FLAG_FADE: u32 = 2;
 /// `f64` numbers of the fade block: per axis x, y, z the window mean's
 /// smallest and largest and the window level's smallest and largest (g);
 /// the scale (g), the tolerance and the width (in scales), the smoother's
-/// gain α; each channel's network mean (deg/h; kept in the layout, not
-/// read: the fade holds from a record's first network output).
+/// gain α; each channel's network at rest, where a record's hold starts
+/// (deg/h).
 pub const FADE_FLOATS: usize = 12 + 4 + 6;
 /// Network input kinds of the tables (the word after the effect pairs).
 pub mod input {
@@ -764,11 +764,11 @@ impl<'m, 's> Evaluator<'m, 's> {
                 // The held network part follows the network by the weight's
                 // one-pole while the weight is 1 and stays below; the output
                 // cross-fades from it to the network by the weight. A
-                // record starts it at its first network output. Before the
-                // smoother (sysid::operating::fade).
+                // record starts it at the network's value at rest. Before
+                // the smoother (sysid::operating::fade).
                 let h = m.fade_state + 6 * l + c;
                 let before = if self.processed == l as u64 {
-                    net
+                    m.f(at + 8 * (16 + c))
                 } else {
                     st[h]
                 };

@@ -421,7 +421,7 @@ static const dtg_real WIDTH[{nk}] = {widths};
 static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
 /* Per axis: mean min, max, level min, max (g); scale (g), tolerance, width,
- * smoother gain; each channel's network mean (deg/h; not read). */
+ * smoother gain; each channel's network at rest (deg/h). */
 static const dtg_real FADE[{nf}] = {fade};
 "#,
         cal = *calibrated as i32,
@@ -741,9 +741,9 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], doubl
             /* The held network part follows the network by the weight's
              * one-pole at full weight and stays below it; the output
              * cross-fades from it to the network by the weight. A record
-             * starts it at its first network output. Before the smoother
+             * starts it at the network's value at rest. Before the smoother
              * (sysid::operating::fade). */
-            dtg_real before = s->processed == l ? net : s->fade_h[c];
+            dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
             dtg_real faded = w >= R(1) ? net : before + w * (net - before);
             s->fade_h[c] = w >= R(1) ? before + FADE[15] * (net - before) : before;
 #if DTG_N_SMOOTH_SECTIONS == 0

@@ -95,7 +95,7 @@ fn range_text(w: &mut String, model: &CompensationModel) {
     }
     let _ = writeln!(
         w,
-        "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀ (gain α), τ = {} s\nheld h_c from the record's first rbf_c; at w = 1 error_c uses rbf_c and h_c ← h_c + α·(rbf_c − h_c), below it h_c stays and error_c uses h_c + w·(rbf_c − h_c) in place of the RBF sum (network means over the training windows, not used by the fade: {})",
+        "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀ (gain α), τ = {} s\nheld h_c from the network at rest {}; at w = 1 error_c uses rbf_c and h_c ← h_c + α·(rbf_c − h_c), below it h_c stays and error_c uses h_c + w·(rbf_c − h_c) in place of the RBF sum",
         r.scale,
         r.tolerance,
         r.tolerance + r.fade.width,

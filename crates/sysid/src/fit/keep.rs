@@ -118,7 +118,8 @@ pub(super) fn keep_networks<S: Sensor>(
     let mut parts = model.into_parts();
     for d in &dropped {
         let k = d.channel;
-        parts.channels[k] = without_network(prepared, &parts.channels[k], k, train, &parts.settings)?;
+        parts.channels[k] =
+            without_network(prepared, &parts.channels[k], k, train, &parts.settings)?;
         if let Some(range) = parts
             .operating_points
             .as_mut()

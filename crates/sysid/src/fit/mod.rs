@@ -344,7 +344,9 @@ fn fit_rows_fixed<S: Sensor>(
     let mut trained = vec![false; prepared.rows()];
     train.iter().for_each(|&r| trained[r] = true);
     let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
-    let means = crate::operating::fade::network_means::<S>(&fitted, x, &train);
+    // The network at rest: where a record that starts outside holds it.
+    let rest = crate::operating::fade::rest_rows(prepared, length, &train)?;
+    let means = crate::operating::fade::network_means::<S>(&fitted, x, &rest);
     operating_points.range = Some(TrainingRange::from_training(
         prepared, length, &train, &others, means,
     )?);

@@ -15,9 +15,10 @@
 //! Inside (`w = 1`) the prediction is the fitted model's, to the bit;
 //! outside (`w = 0`) the network part is the average it gave over the last
 //! window inside, so leaving the range adds no step; between, a cross-fade.
-//! A record starts its hold from the network's first output: what the model
-//! says where the record begins (a flight on the ground, tilted beyond a
-//! level shaker's range, sits close to it).
+//! A record starts its hold from the network at rest: its mean over the
+//! quietest tenth of the training windows
+//! ([`TrainingRange::network_mean`](super::range::TrainingRange::network_mean),
+//! [`rest_rows`]).
 //!
 //! Why so (docs/campaign.md §6): the weight is a share of the network, not
 //! a rate. A hold that moved toward the network by `w` every sample (as it
@@ -25,13 +26,12 @@
 //! cent, so a record just beyond the range held the network's
 //! extrapolation there: on the campaign's x run the z run's model held the
 //! network of the −6 dB level, which went the wrong way, and added 2.4% of
-//! spread (3.2% on the y run). And a record that started outside held the
-//! network's mean over the training windows
-//! ([`TrainingRange::network_mean`](super::range::TrainingRange::network_mean)),
-//! an average over the shaker's levels, several deg/h from what the network
-//! says at rest: with the share-not-rate fade, that start took the z run's
-//! model from 1.96 to 7.39 deg/h pooled residue rms on the flight; from the
-//! first output, 1.52.
+//! spread (3.2% on the y run). And a record that starts outside cannot
+//! hold the network's mean over all training windows (an average over the
+//! shaker's levels, several deg/h from what it says at rest: the flight's
+//! pooled residue rms rose from 1.96 to 7.39 deg/h with the z run's model)
+//! nor its first output (on a record far outside, extrapolation: −31.5
+//! deg/h of offset on `triaxial_clean`, docs/dtg-vib.md).
 //! The mean offset such a hold leaves is one the model cannot know: `check`
 //! reports it beside the rms and calls the record outside.
 //!
@@ -201,11 +201,12 @@ pub fn predict_faded<S: Sensor>(
             let alpha = range.fade.alpha(model.dt_s());
             let held: Vec<Vec<f64>> = net
                 .iter()
-                .map(|r| {
+                .zip(&range.network_mean)
+                .map(|(r, &c)| {
                     parts
                         .iter()
                         .flat_map(|rows| {
-                            held_series(&r[rows.clone()], &w.weight[rows.clone()], alpha)
+                            held_series(&r[rows.clone()], c, &w.weight[rows.clone()], alpha)
                         })
                         .collect()
                 })
@@ -248,36 +249,36 @@ pub fn predict_faded<S: Sensor>(
 }
 
 /// One record's prediction `p` with its network part `r` faded by the
-/// weights `w` (the hold following the network by `alpha` while the weight
-/// is 1): `p − r + ` [`held_series`]; exactly `p` where `w = 1`.
+/// weights `w` (the hold starting at `c` and following the network by
+/// `alpha` while the weight is 1): `p − r + ` [`held_series`]; exactly `p`
+/// where `w = 1`.
 ///
 /// ```
 /// let p = [10.0, 11.0, 12.0];
 /// let r = [1.0, 2.0, 3.0]; // the network's share of p
-/// let out = sysid::operating::fade::fade_series(&p, &r, &[1.0, 0.0, 0.0], 1.0);
+/// let out = sysid::operating::fade::fade_series(&p, &r, 0.5, &[1.0, 0.0, 0.0], 1.0);
 /// assert_eq!(out, [10.0, 10.0, 10.0]); // outside, the network holds its last value
 /// ```
-pub fn fade_series(p: &[f64], r: &[f64], w: &[f64], alpha: f64) -> Vec<f64> {
+pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64], alpha: f64) -> Vec<f64> {
     p.iter()
         .zip(r)
-        .zip(held_series(r, w, alpha))
+        .zip(held_series(r, c, w, alpha))
         .map(|((p, r), h)| p - (r - h))
         .collect()
 }
 
 /// One record's faded network part: the network `r` itself where the
 /// weight `w` is 1, else the cross-fade `h + w·(r − h)` of the held part
-/// `h` (starting at the record's first network output, following `r` by
-/// the one-pole gain `alpha` while the weight is 1, frozen below) toward the
-/// network.
+/// `h` (starting at `c`, following `r` by the one-pole gain `alpha` while
+/// the weight is 1, frozen below) toward the network.
 ///
 /// ```
-/// let f = sysid::operating::fade::held_series(&[1.0, 3.0, 5.0, 2.0], &[1.0, 1.0, 0.0, 0.5], 0.5);
+/// let f = sysid::operating::fade::held_series(&[1.0, 3.0, 5.0, 2.0], 1.0, &[1.0, 1.0, 0.0, 0.5], 0.5);
 /// // Inside the network itself, the hold half way from 1 to 3; then held.
 /// assert_eq!(f, [1.0, 3.0, 2.0, 2.0]);
 /// ```
-pub fn held_series(r: &[f64], w: &[f64], alpha: f64) -> Vec<f64> {
-    let mut h = r.first().copied().unwrap_or_default();
+pub fn held_series(r: &[f64], c: f64, w: &[f64], alpha: f64) -> Vec<f64> {
+    let mut h = c;
     r.iter()
         .zip(w)
         .map(|(&r, &w)| {
@@ -305,6 +306,29 @@ pub fn hold(h: f64, r: f64, w: f64, alpha: f64) -> (f64, f64) {
     } else {
         (h, h + w * (r - h))
     }
+}
+
+/// Share of the training windows, the quietest, over which the network's
+/// value at rest is averaged.
+pub const REST_SHARE: f64 = 0.1;
+
+/// The quietest [`REST_SHARE`] of rows `rows` (windows of `length`
+/// samples): those with the smallest summed variance of the operating
+/// signals, in row order; at least one.
+pub fn rest_rows<S: Sensor>(
+    prepared: &Prepared<S>,
+    length: usize,
+    rows: &[usize],
+) -> Result<Vec<usize>, SysidError> {
+    let k = prepared.sensor().operating_signals().len();
+    let stats = statistics(prepared, length, rows)?;
+    let level = |s: &Vec<f64>| s[k..].iter().map(|l| l * l).sum::<f64>();
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by(|&a, &b| level(&stats[a]).total_cmp(&level(&stats[b])));
+    let n = ((rows.len() as f64 * REST_SHARE).ceil() as usize).clamp(1, rows.len().max(1));
+    let mut rest: Vec<usize> = order.into_iter().take(n).map(|i| rows[i]).collect();
+    rest.sort_unstable();
+    Ok(rest)
 }
 
 /// The network means over rows `rows` of every channel, for
@@ -346,12 +370,15 @@ mod tests {
     fn outside_the_network_part_holds_and_inside_it_is_untouched() {
         let p = [5.0, 6.0, 7.0, 8.0];
         let r = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(fade_series(&p, &r, &[1.0; 4], 1.0), p);
+        assert_eq!(fade_series(&p, &r, 0.0, &[1.0; 4], 1.0), p);
         // Half weight: half the network's move since the hold, which stays.
-        let out = fade_series(&p, &r, &[1.0, 0.5, 0.5, 0.0], 1.0);
+        let out = fade_series(&p, &r, 0.0, &[1.0, 0.5, 0.5, 0.0], 1.0);
         assert_eq!(out, [5.0, 5.5, 6.0, 5.0]);
-        // A record that starts outside holds the network's first output.
-        assert_eq!(fade_series(&p, &r, &[0.0; 4], 1.0), [5.0, 5.0, 5.0, 5.0]);
+        // A record that starts outside holds the network at rest, c.
+        assert_eq!(
+            fade_series(&p, &r, 0.25, &[0.0; 4], 1.0),
+            [4.25, 4.25, 4.25, 4.25]
+        );
     }
 
     /// A weight is a share of the network, not a rate: a record that stays
@@ -361,7 +388,7 @@ mod tests {
     fn a_small_weight_keeps_a_small_share_of_the_network() {
         let r: Vec<f64> = (0..1000).map(|i| if i < 10 { 0.0 } else { 10.0 }).collect();
         let w: Vec<f64> = (0..1000).map(|i| if i < 10 { 1.0 } else { 0.1 }).collect();
-        let h = held_series(&r, &w, 0.02);
+        let h = held_series(&r, 0.0, &w, 0.02);
         assert_eq!(h[..10], [0.0; 10]);
         assert!(
             h[10..].iter().all(|&v| (v - 1.0).abs() < 1e-12),

@@ -106,12 +106,9 @@ pub struct TrainingRange {
     /// How the network part fades beyond it.
     pub fade: FadeSettings,
     /// Each channel's network part (the RBF sum without bias and effects)
-    /// averaged over the training windows, in the target's unit. Reported
-    /// (the text export) and kept in the onboard tables' fade block, whose
-    /// layout it is part of; the fade no longer starts from it but from a
-    /// record's first network output (an average over the shaker's levels
-    /// sits several deg/h from what the network says at rest:
-    /// [`fade`](super::fade)).
+    /// at rest: averaged over the quietest tenth of the training windows
+    /// ([`fade::rest_rows`](super::fade::rest_rows)), in the target's unit;
+    /// a record's hold starts there ([`fade`](super::fade)).
     pub network_mean: Vec<f64>,
 }
 
