@@ -13,7 +13,7 @@ the mean of the six squares) before, after with the fade (`residues`) and
 without (`residues_unfaded`)."""
 import json, math, os, sys
 
-MODELS = ("z", "xyz", "xyz-effects")
+MODELS = ("z", "xyz", "xyz-effects", "xyz-axes")
 RUNS = ("x-axis", "y-axis", "z-axis", "flight")
 
 

@@ -97,7 +97,8 @@ pub const FLAG_ACCEL_TRIAD: u32 = 4;
 /// `f64` numbers of the paper layout's fade block: per axis x, y, z the
 /// window mean's smallest and largest and the window level's smallest and
 /// largest (g); the scale (g), the tolerance and the width (in scales), the
-/// smoother's gain α; each channel's network mean (deg/h).
+/// smoother's gain α; each channel's network at rest, where a record's
+/// hold starts (deg/h).
 pub const FADE_FLOATS: usize = 12 + 4 + 6;
 
 /// `f64` numbers of the fade block of `n_accels` operating signals and
@@ -1084,25 +1085,28 @@ impl<'m, 's> Evaluator<'m, 's> {
         for (c, ch) in m.channels[..nc].iter().enumerate() {
             let (mut y, mut net) = (ys[c], nets[c]);
             if let (Some(w), Some(at)) = (weight, m.fade) {
-                // The held network part: the network itself at full weight,
-                // else moved toward it by the weight; a record's first
-                // output starts from the network's training mean. It is
-                // held before the smoother (sysid::operating::fade).
+                // The held network part follows the network by the weight's
+                // one-pole while the weight is 1 and stays below; the output
+                // cross-fades from it to the network by the weight. A
+                // record starts it at the network's value at rest. Before
+                // the smoother (sysid::operating::fade).
                 let h = m.fade_state + 2 * l * na + c;
                 let before = if self.processed == l as u64 {
                     m.f(at + 8 * (na4 + 4 + c))
                 } else {
                     st[h]
                 };
-                st[h] = if w >= 1.0 {
+                let faded = if w >= 1.0 {
+                    st[h] = before + m.f(at + 8 * (na4 + 3)) * (net - before);
                     net
                 } else {
+                    st[h] = before;
                     before + w * (net - before)
                 };
                 if !smoothed {
-                    y -= net - st[h];
+                    y -= net - faded;
                 }
-                net = st[h];
+                net = faded;
             }
             // The prediction smoother, on the network part only.
             if smoothed {

@@ -186,12 +186,14 @@ fn a_z_run_model_warns_on_the_flight_and_its_fade_holds_the_residues() {
         / on_flight_z.residues.len() as f64)
         .sqrt();
     // Faded outside its range, the z-only model leaves less than as fitted
-    // and adds at most a quarter to the flight's residues (measured: 1.96 →
-    // 2.04 deg/h faded, 2.56 as fitted; 12.35 as fitted with the paper's
-    // raw window and no smoother, before issue 23).
+    // and less than before: it holds what its network said on the ground
+    // (measured: 1.96 → 1.52 deg/h faded, 2.56 as fitted; 12.35 as fitted
+    // with the paper's raw window and no smoother, before issue 23; 2.10
+    // faded when the hold moved toward the network by the weight each
+    // sample).
     let faded_z = pooled_of(&on_flight_z.residues);
     assert!(
-        faded_z < rz && faded_z < 1.25 * before,
+        faded_z < rz && faded_z < before,
         "z-only on the flight: faded {faded_z:.4}, as fitted {rz:.4}, before {before:.4}"
     );
     for (name, c) in [("z-only", &on_flight_z), ("x+y+z", &on_flight_xyz)] {
@@ -219,4 +221,26 @@ fn a_z_run_model_warns_on_the_flight_and_its_fade_holds_the_residues() {
     // A shaker test does not move: no note there.
     let on_x = check(&model_z, &x.record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
     assert!(on_x.note.is_none(), "{:?}", on_x.note);
+
+    // Issue 23's transfer bound: on every shaker run, each channel's spread
+    // after (about its own mean) is at most 1.02× its rms before, for the
+    // z-only model (faded on the x and y runs) and the three-run one (whose
+    // networks that added spread on a run they were fitted on are shrunk
+    // to zero). Measured (docs/campaign.md §6): at most 1.001×; before the
+    // fade cross-faded and the networks were judged per record, 1.032× and
+    // 1.034×.
+    for (name, model) in [("z-only", &model_z), ("x+y+z", &model_xyz)] {
+        for (run, sim) in [("x", &x), ("y", &y), ("z", &z)] {
+            let c = check(model, &sim.record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
+            for ch in &c.channels {
+                assert!(
+                    ch.spread_after <= 1.02 * ch.rms_before,
+                    "{name} model on the {run} run, {}: spread after {:.4} against rms before {:.4} deg/h",
+                    ch.channel,
+                    ch.spread_after,
+                    ch.rms_before
+                );
+            }
+        }
+    }
 }

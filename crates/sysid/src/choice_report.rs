@@ -43,6 +43,12 @@ pub struct ChoiceReport {
     pub chosen: usize,
     /// Validation runs whose ADEV was checked (0: the choice is by rms only).
     pub adev_runs: usize,
+    /// The channels whose network was shrunk to zero after the choice, each
+    /// with why (it added variation on a record's validation rows, or did
+    /// not lower the validation rms: `sysid::fit`'s keep step); empty when
+    /// none was.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub networks_shrunk: Vec<String>,
 }
 
 impl ChoiceReport {

@@ -109,6 +109,9 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
             b.mean_val_rms, w.mean_val_rms, b.worst_adev_ratio, w.worst_adev_ratio
         );
     }
+    for s in &c.networks_shrunk {
+        println!("  network shrunk to zero (bias and effects kept): {s}");
+    }
 }
 
 /// Validation rms of each channel on each record.

@@ -209,7 +209,7 @@ static const dtg_real WIDTH[{nk}] = {widths};
 static const dtg_real WEIGHT[{nk}] = {weights};
 static const dtg_real CENTRES[{nc}] = {centres};
 /* Per accelerometer: mean min, max, level min, max (g); scale (g),
- * tolerance, width, smoother gain; each channel's network mean (deg/h). */
+ * tolerance, width, smoother gain; each channel's network at rest (deg/h). */
 static const dtg_real FADE[{nf}] = {fade};
 "#,
         cal = layout.calibrated as i32,
@@ -461,14 +461,18 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], doubl
 /// The rest of `process`, `dtg_step` and `dtg_flush`.
 const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
         {
-            /* The held network part, before the smoother; the first output
-             * starts from the network's training mean. */
+            /* The held network part follows the network by the weight's
+             * one-pole at full weight and stays below it; the output
+             * cross-fades from it to the network by the weight. A record
+             * starts it at the network's value at rest. Before the smoother
+             * (sysid::operating::fade). */
             dtg_real before = s->processed == l ? FADE[4 * NA + 4 + c] : s->fade_h[c];
-            s->fade_h[c] = w >= R(1) ? net : before + w * (net - before);
+            dtg_real faded = w >= R(1) ? net : before + w * (net - before);
+            s->fade_h[c] = w >= R(1) ? before + FADE[4 * NA + 3] * (net - before) : before;
 #if DTG_N_SMOOTH_SECTIONS == 0
-            y -= net - s->fade_h[c];
+            y -= net - faded;
 #endif
-            net = s->fade_h[c];
+            net = faded;
         }
 #endif
 #if DTG_N_SMOOTH_SECTIONS > 0

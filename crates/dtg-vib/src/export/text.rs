@@ -113,7 +113,7 @@ pub(super) fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
     }
     let _ = writeln!(
         w,
-        "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀, τ = {} s\nh_c = rbf_c at w = 1, else h_c + w·(rbf_c − h_c) (from the network mean {}); error_c uses h_c in place of the RBF sum",
+        "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀ (gain α), τ = {} s\nheld h_c from the network at rest {}; at w = 1 error_c uses rbf_c and h_c ← h_c + α·(rbf_c − h_c), below it h_c stays and error_c uses h_c + w·(rbf_c − h_c) in place of the RBF sum",
         r.scale,
         r.tolerance,
         r.tolerance + r.fade.width,

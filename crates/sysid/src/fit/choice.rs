@@ -110,6 +110,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         candidates,
         chosen,
         adev_runs: judge.runs.len(),
+        networks_shrunk: Vec::new(),
     });
     Ok(model)
 }

@@ -15,6 +15,7 @@
 
 mod channel;
 mod choice;
+mod keep;
 mod network;
 mod partial;
 
@@ -282,14 +283,17 @@ fn fit_rows<S: Sensor>(
     coef: Coef,
     progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
-    if let Some(c) = &recipe.settings.choice {
-        return choice::fit_choosing(prepared, recipe, c, (train, val), coef, progress);
-    }
-    let mut model = fit_rows_fixed(prepared, recipe, (train, val), coef, progress)?;
-    if recipe.preprocess.smoother.is_some() {
-        choice::rescore(&mut model, prepared, train, val)?;
-    }
-    Ok(model)
+    let model = match &recipe.settings.choice {
+        Some(c) => choice::fit_choosing(prepared, recipe, c, (train, val), coef, progress)?,
+        None => {
+            let mut model = fit_rows_fixed(prepared, recipe, (train, val), coef, progress)?;
+            if recipe.preprocess.smoother.is_some() {
+                choice::rescore(&mut model, prepared, train, val)?;
+            }
+            model
+        }
+    };
+    keep::apply(model, prepared, train, val)
 }
 
 /// [`fit_rows`] with the recipe's input and without rescoring for a smoother.
@@ -357,7 +361,9 @@ fn fit_rows_fixed<S: Sensor>(
     let mut trained = vec![false; prepared.rows()];
     train.iter().for_each(|&r| trained[r] = true);
     let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
-    let means = crate::operating::fade::network_means::<S>(&fitted, x, &train);
+    // The network at rest: where a record that starts outside holds it.
+    let rest = crate::operating::fade::rest_rows(prepared, length, &train)?;
+    let means = crate::operating::fade::network_means::<S>(&fitted, x, &rest);
     operating_points.range = Some(TrainingRange::from_training(
         prepared, length, &train, &others, means,
     )?);

@@ -7,14 +7,31 @@
 //! part stops following its input (its variation fades to zero) and the
 //! effects stay:
 //!
-//! `ŷ[n] = bias + Σ θⱼ zⱼ[n] + h[n]`,   `h[n] = h[n−1] + w[n]·(rbf(x[n]) − h[n−1])`,
+//! `ŷ[n] = bias + Σ θⱼ zⱼ[n] + h[n] + w[n]·(rbf(x[n]) − h[n])`,
 //!
-//! with `w` the fade weight. Inside (`w = 1`) `h` is the network itself
-//! and the prediction the fitted model's, to the bit; outside (`w = 0`)
-//! `h` holds the last value the network gave inside, so leaving the range
-//! adds no step; a record that starts outside starts from the network's
-//! mean over the training windows
-//! ([`TrainingRange::network_mean`](super::range::TrainingRange::network_mean)).
+//! with `w` the fade weight and `h` the held network part: while the weight
+//! is 1, `h` follows the network by the weight's own one-pole
+//! (`h ← h + α·(rbf − h)`, a window's average of it), and below 1 it stays.
+//! Inside (`w = 1`) the prediction is the fitted model's, to the bit;
+//! outside (`w = 0`) the network part is the average it gave over the last
+//! window inside, so leaving the range adds no step; between, a cross-fade.
+//! A record starts its hold from the network at rest: its mean over the
+//! quietest tenth of the training windows
+//! ([`TrainingRange::network_mean`](super::range::TrainingRange::network_mean),
+//! [`rest_rows`]).
+//!
+//! Why so (docs/campaign.md §6): the weight is a share of the network, not
+//! a rate. A hold that moved toward the network by `w` every sample (as it
+//! did) followed it within a few samples at any weight above a few per
+//! cent, so a record just beyond the range held the network's
+//! extrapolation there: on the campaign's x run the z run's model held the
+//! network of the −6 dB level, which went the wrong way, and added 2.4% of
+//! spread (3.2% on the y run). And a record that starts outside cannot
+//! hold the network's mean over all training windows (an average over the
+//! shaker's levels, several deg/h from what it says at rest: the flight's
+//! pooled residue rms rose from 1.96 to 7.39 deg/h with the z run's model)
+//! nor its first output (on a record far outside, extrapolation: −31.5
+//! deg/h of offset on `triaxial_clean`, docs/dtg-vib.md).
 //! The mean offset such a hold leaves is one the model cannot know: `check`
 //! reports it beside the rms and calls the record outside.
 //!
@@ -181,13 +198,16 @@ pub fn predict_faded<S: Sensor>(
             let parts: Vec<std::ops::Range<usize>> =
                 prepared.record_rows().into_iter().map(|(_, r)| r).collect();
             let net = network_parts(model, &prepared.window_matrix());
+            let alpha = range.fade.alpha(model.dt_s());
             let held: Vec<Vec<f64>> = net
                 .iter()
                 .zip(&range.network_mean)
                 .map(|(r, &c)| {
                     parts
                         .iter()
-                        .flat_map(|rows| held_series(&r[rows.clone()], c, &w.weight[rows.clone()]))
+                        .flat_map(|rows| {
+                            held_series(&r[rows.clone()], c, &w.weight[rows.clone()], alpha)
+                        })
                         .collect()
                 })
                 .collect();
@@ -229,46 +249,86 @@ pub fn predict_faded<S: Sensor>(
 }
 
 /// One record's prediction `p` with its network part `r` faded by the
-/// weights `w`: `p − (r − h)` with `h` the held network part (module docs),
-/// starting from `c`; exactly `p` where `w = 1`.
+/// weights `w` (the hold starting at `c` and following the network by
+/// `alpha` while the weight is 1): `p − r + ` [`held_series`]; exactly `p`
+/// where `w = 1`.
 ///
 /// ```
 /// let p = [10.0, 11.0, 12.0];
 /// let r = [1.0, 2.0, 3.0]; // the network's share of p
-/// let out = sysid::operating::fade::fade_series(&p, &r, 0.5, &[1.0, 0.0, 0.0]);
+/// let out = sysid::operating::fade::fade_series(&p, &r, 0.5, &[1.0, 0.0, 0.0], 1.0);
 /// assert_eq!(out, [10.0, 10.0, 10.0]); // outside, the network holds its last value
 /// ```
-pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
+pub fn fade_series(p: &[f64], r: &[f64], c: f64, w: &[f64], alpha: f64) -> Vec<f64> {
     p.iter()
         .zip(r)
-        .zip(held_series(r, c, w))
+        .zip(held_series(r, c, w, alpha))
         .map(|((p, r), h)| p - (r - h))
         .collect()
 }
 
-/// One record's held network part: the network `r` itself where the
-/// weight `w` is 1, else moved toward it by the weight, starting from `c`.
+/// One record's faded network part: the network `r` itself where the
+/// weight `w` is 1, else the cross-fade `h + w·(r − h)` of the held part
+/// `h` (starting at `c`, following `r` by the one-pole gain `alpha` while
+/// the weight is 1, frozen below) toward the network.
 ///
 /// ```
-/// let h = sysid::operating::fade::held_series(&[1.0, 2.0, 3.0], 0.5, &[1.0, 0.0, 0.5]);
-/// assert_eq!(h, [1.0, 1.0, 2.0]);
+/// let f = sysid::operating::fade::held_series(&[1.0, 3.0, 5.0, 2.0], 1.0, &[1.0, 1.0, 0.0, 0.5], 0.5);
+/// // Inside the network itself, the hold half way from 1 to 3; then held.
+/// assert_eq!(f, [1.0, 3.0, 2.0, 2.0]);
 /// ```
-pub fn held_series(r: &[f64], c: f64, w: &[f64]) -> Vec<f64> {
+pub fn held_series(r: &[f64], c: f64, w: &[f64], alpha: f64) -> Vec<f64> {
     let mut h = c;
     r.iter()
         .zip(w)
         .map(|(&r, &w)| {
-            h = hold(h, r, w);
-            h
+            let out;
+            (h, out) = hold(h, r, w, alpha);
+            out
         })
         .collect()
 }
 
-/// The held network part after one more sample: the network `r` itself at
-/// full weight (exactly), else `h` moved toward it by the weight.
+/// One sample of the fade of the network part `r` at weight `w`, from the
+/// held part `h`: the next held part and the faded network part. At full
+/// weight the output is `r` exactly and the hold follows it by `alpha`;
+/// below, the hold stays and the output cross-fades.
+///
+/// ```
+/// use sysid::operating::fade::hold;
+/// assert_eq!(hold(0.0, 2.0, 1.0, 0.25), (0.5, 2.0));
+/// assert_eq!(hold(0.5, 2.0, 0.5, 0.25), (0.5, 1.25));
+/// ```
 #[inline]
-pub fn hold(h: f64, r: f64, w: f64) -> f64 {
-    if w >= 1.0 { r } else { h + w * (r - h) }
+pub fn hold(h: f64, r: f64, w: f64, alpha: f64) -> (f64, f64) {
+    if w >= 1.0 {
+        (h + alpha * (r - h), r)
+    } else {
+        (h, h + w * (r - h))
+    }
+}
+
+/// Share of the training windows, the quietest, over which the network's
+/// value at rest is averaged.
+pub const REST_SHARE: f64 = 0.1;
+
+/// The quietest [`REST_SHARE`] of rows `rows` (windows of `length`
+/// samples): those with the smallest summed variance of the operating
+/// signals, in row order; at least one.
+pub fn rest_rows<S: Sensor>(
+    prepared: &Prepared<S>,
+    length: usize,
+    rows: &[usize],
+) -> Result<Vec<usize>, SysidError> {
+    let k = prepared.sensor().operating_signals().len();
+    let stats = statistics(prepared, length, rows)?;
+    let level = |s: &Vec<f64>| s[k..].iter().map(|l| l * l).sum::<f64>();
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by(|&a, &b| level(&stats[a]).total_cmp(&level(&stats[b])));
+    let n = ((rows.len() as f64 * REST_SHARE).ceil() as usize).clamp(1, rows.len().max(1));
+    let mut rest: Vec<usize> = order.into_iter().take(n).map(|i| rows[i]).collect();
+    rest.sort_unstable();
+    Ok(rest)
 }
 
 /// The network means over rows `rows` of every channel, for
@@ -310,14 +370,30 @@ mod tests {
     fn outside_the_network_part_holds_and_inside_it_is_untouched() {
         let p = [5.0, 6.0, 7.0, 8.0];
         let r = [1.0, 2.0, 3.0, 4.0];
-        assert_eq!(fade_series(&p, &r, 0.0, &[1.0; 4]), p);
-        // Half weight: the held part moves half way toward the network.
-        let out = fade_series(&p, &r, 0.0, &[1.0, 0.5, 0.5, 0.0]);
-        assert_eq!(out, [5.0, 5.5, 6.25, 6.25]);
-        // A record that starts outside starts from the training mean c.
+        assert_eq!(fade_series(&p, &r, 0.0, &[1.0; 4], 1.0), p);
+        // Half weight: half the network's move since the hold, which stays.
+        let out = fade_series(&p, &r, 0.0, &[1.0, 0.5, 0.5, 0.0], 1.0);
+        assert_eq!(out, [5.0, 5.5, 6.0, 5.0]);
+        // A record that starts outside holds the network at rest, c.
         assert_eq!(
-            fade_series(&p, &r, 0.25, &[0.0; 4]),
+            fade_series(&p, &r, 0.25, &[0.0; 4], 1.0),
             [4.25, 4.25, 4.25, 4.25]
+        );
+    }
+
+    /// A weight is a share of the network, not a rate: a record that stays
+    /// just beyond the range (weight 0.1) keeps 10% of the network's move,
+    /// however long it stays (the hold used to follow it all the way).
+    #[test]
+    fn a_small_weight_keeps_a_small_share_of_the_network() {
+        let r: Vec<f64> = (0..1000).map(|i| if i < 10 { 0.0 } else { 10.0 }).collect();
+        let w: Vec<f64> = (0..1000).map(|i| if i < 10 { 1.0 } else { 0.1 }).collect();
+        let h = held_series(&r, 0.0, &w, 0.02);
+        assert_eq!(h[..10], [0.0; 10]);
+        assert!(
+            h[10..].iter().all(|&v| (v - 1.0).abs() < 1e-12),
+            "{:?}",
+            &h[995..]
         );
     }
 }

@@ -106,8 +106,9 @@ pub struct TrainingRange {
     /// How the network part fades beyond it.
     pub fade: FadeSettings,
     /// Each channel's network part (the RBF sum without bias and effects)
-    /// averaged over the training windows, in the target's unit: outside the
-    /// range the network part fades toward this constant.
+    /// at rest: averaged over the quietest tenth of the training windows
+    /// ([`fade::rest_rows`](super::fade::rest_rows)), in the target's unit;
+    /// a record's hold starts there ([`fade`](super::fade)).
     pub network_mean: Vec<f64>,
 }
 
