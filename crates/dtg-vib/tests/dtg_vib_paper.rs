@@ -50,15 +50,25 @@ fn short_fit() -> (
         ..Scenario::default()
     })
     .unwrap();
-    let options = FitOptions {
+    let model = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        &short_options(),
+        &|_| {},
+    )
+    .unwrap();
+    (sim, model)
+}
+
+/// At most 10 centres.
+fn short_options() -> FitOptions {
+    FitOptions {
         settings: FitSettings {
             max_centres: 10,
             ..FitSettings::default()
         },
         ..FitOptions::default()
-    };
-    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-    (sim, model)
+    }
 }
 
 #[test]
@@ -122,7 +132,14 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
 /// basis (bias and kernels), which another channel's weights would not be.
 #[test]
 fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
-    let (sim, model) = short_fit();
+    let sim = simulate(&Scenario {
+        duration_s: 30.0,
+        ..Scenario::default()
+    })
+    .unwrap();
+    let mut options = short_options();
+    options.settings.shared_centres = true;
+    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
     assert!(model.fit_settings().shared_centres);
     let first = &model.channels()[0];
     let applied = Applied::new(&model, &sim.record).unwrap();

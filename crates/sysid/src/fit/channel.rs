@@ -233,10 +233,9 @@ pub(super) fn fit_channel<S: Sensor>(
     prepared: &Prepared<S>,
     x: MatRef<'_, f64>,
     x_train: &Mat<f64>,
-    (train, theta_rows): (&[usize], &[usize]),
+    (train, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,
     effects: &[S::Effect],
-    known: Option<&[Coefficient]>,
     settings: &FitSettings,
 ) -> Result<ChannelFit<S>, SysidError> {
     let effects = effects.to_vec();

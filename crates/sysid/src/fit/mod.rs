@@ -373,10 +373,13 @@ fn fit_rows_predicting<S: Sensor>(
                     prepared,
                     x,
                     &x_fit,
-                    (fit_on, &theta_rows),
+                    (
+                        fit_on,
+                        &theta_rows,
+                        coef.stored(k, recipe.effects_of(k).len()),
+                    ),
                     k,
                     recipe.effects_of(k),
-                    coef.stored(k, recipe.effects_of(k).len()),
                     settings,
                 );
                 progress(FitStage::ChannelDone(channels[k].clone()));

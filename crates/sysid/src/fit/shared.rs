@@ -42,7 +42,7 @@ enum Partialled<S: Sensor> {
         theta: Vec<f64>,
         coefficients: Vec<Coefficient>,
     },
-    Alone(ChannelFit<S>),
+    Alone(Box<ChannelFit<S>>),
 }
 
 /// Every channel of `recipe` fitted with one centre selection on the
@@ -66,10 +66,9 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
                 prepared,
                 x,
                 x_fit,
-                (fit_on, theta_rows),
+                (fit_on, theta_rows, known(k)),
                 k,
                 recipe.effects_of(k),
-                known(k),
                 settings,
             )
         })
@@ -110,7 +109,7 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
     let mut out = Vec::with_capacity(n_channels);
     for (k, part) in parts.into_iter().enumerate() {
         out.push(match part {
-            Partialled::Alone(f) => f,
+            Partialled::Alone(f) => *f,
             Partialled::Shared {
                 channel,
                 effects,
@@ -144,10 +143,9 @@ fn partial_out<S: Sensor>(
     prepared: &Prepared<S>,
     x: MatRef<'_, f64>,
     x_fit: &Mat<f64>,
-    (fit_on, theta_rows): (&[usize], &[usize]),
+    (fit_on, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
     k: usize,
     effects: &[S::Effect],
-    known: Option<&[Coefficient]>,
     settings: &FitSettings,
 ) -> Result<Partialled<S>, SysidError> {
     let effects = effects.to_vec();
@@ -202,13 +200,12 @@ fn partial_out<S: Sensor>(
             prepared,
             x,
             x_fit,
-            (fit_on, theta_rows),
+            (fit_on, theta_rows, None),
             k,
             &effects,
-            None,
             settings,
         )
-        .map(Partialled::Alone),
+        .map(|f| Partialled::Alone(Box::new(f))),
     }
 }
 
