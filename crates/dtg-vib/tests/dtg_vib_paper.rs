@@ -4,6 +4,7 @@
 
 use dtg_vib::apply::Applied;
 use dtg_vib::fit::{FitOptions, FitSettings, fit};
+use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{Scenario, simulate};
 
 #[test]
@@ -39,21 +40,40 @@ fn residues_fall_at_least_threefold_on_blocked_validation() {
     }
 }
 
-#[test]
-fn a_saved_model_compensates_identically_after_loading() {
+/// A 30-s default test fitted with at most 10 centres.
+fn short_fit() -> (
+    nav_sensors::sim::Simulation,
+    dtg_vib::model::CompensationModel,
+) {
     let sim = simulate(&Scenario {
         duration_s: 30.0,
         ..Scenario::default()
     })
     .unwrap();
-    let options = FitOptions {
+    let model = fit(
+        &sim.record,
+        Some(&sim.calibration),
+        &short_options(),
+        &|_| {},
+    )
+    .unwrap();
+    (sim, model)
+}
+
+/// At most 10 centres.
+fn short_options() -> FitOptions {
+    FitOptions {
         settings: FitSettings {
             max_centres: 10,
             ..FitSettings::default()
         },
         ..FitOptions::default()
-    };
-    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    }
+}
+
+#[test]
+fn a_saved_model_compensates_identically_after_loading() {
+    let (sim, model) = short_fit();
     let path = std::env::temp_dir().join(format!("dtg-vib-model-{}.json", std::process::id()));
     model.save(&path).unwrap();
     let back = dtg_vib::model::CompensationModel::load(&path).unwrap();
@@ -104,4 +124,62 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
         assert_eq!(own.scores(c.channel()), *c.scores());
     }
     std::fs::remove_dir_all(dir).ok();
+}
+
+/// Issue 25 §1: the six channels share one centre selection (equal centres
+/// and width), and each keeps its own least-squares weights on it: on its
+/// training rows the residual is orthogonal to every column of the shared
+/// basis (bias and kernels), which another channel's weights would not be.
+#[test]
+fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
+    let sim = simulate(&Scenario {
+        duration_s: 30.0,
+        ..Scenario::default()
+    })
+    .unwrap();
+    let mut options = short_options();
+    options.settings.shared_centres = true;
+    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    assert!(model.fit_settings().shared_centres);
+    let first = &model.channels()[0];
+    let applied = Applied::new(&model, &sim.record).unwrap();
+    let windows = applied.prepared.window_matrix();
+    let rows = &applied.train;
+    let x = faer::Mat::from_fn(rows.len(), windows.ncols(), |i, j| windows[(rows[i], j)]);
+    let basis = first.rbf().features(x.as_ref());
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let own_residual_gradient = |weights_of: &dtg_vib::model::ChannelModel, y_of: Channel| {
+        let rbf = weights_of.rbf();
+        let y: Vec<f64> = rows
+            .iter()
+            .map(|&r| applied.prepared.target(y_of)[r])
+            .collect();
+        let r: Vec<f64> = (0..rows.len())
+            .map(|i| {
+                let fit = rbf.bias().unwrap()[0]
+                    + (0..rbf.n_centres())
+                        .map(|k| basis[(i, k + 1)] * rbf.weights()[(k, 0)])
+                        .sum::<f64>();
+                y[i] - fit
+            })
+            .collect();
+        let worst = (0..basis.ncols())
+            .map(|j| {
+                (0..rows.len())
+                    .map(|i| basis[(i, j)] * r[i])
+                    .sum::<f64>()
+                    .abs()
+            })
+            .fold(0.0, f64::max);
+        worst / (basis.norm_l2() * norm(&y))
+    };
+    for c in model.channels() {
+        assert_eq!(c.rbf().centres(), first.rbf().centres(), "{}", c.channel());
+        assert_eq!(c.width(), first.width(), "{}", c.channel());
+        let own = own_residual_gradient(c, c.channel());
+        assert!(own < 1e-7, "{}: {own:e}", c.channel());
+    }
+    // X's weights are not a least-squares fit of X1: each channel has its own.
+    let (x_model, x1) = (&model.channels()[0], model.channels()[1].channel());
+    assert!(own_residual_gradient(x_model, x1) > 1e-4);
 }

@@ -230,7 +230,7 @@ pub struct Separation<A = String> {
 /// assert!(c.covers(0.3), "{c:?}");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub trait Sensor: Clone + Sync {
+pub trait Sensor: Clone + Send + Sync {
     /// A channel: what one model is fitted to.
     type Channel: Clone
         + PartialEq

@@ -78,6 +78,11 @@ pub struct FitArgs {
     /// OLS candidate centres: a seeded subsample of this many training windows.
     #[arg(long, default_value_t = 400, value_parser = parse_count, allow_hyphen_values = true)]
     pub candidates: usize,
+    /// Choose centres, width and number of centres once for all channels,
+    /// on their targets together (each keeps its own weights), instead of
+    /// for each channel on its own.
+    #[arg(long = "shared-centres", visible_alias = "shared-centers")]
+    pub shared_centres: bool,
     /// Low-pass cut-off of outputs and effects, Hz (zero-phase Butterworth).
     #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter", value_parser = parse_hz, allow_hyphen_values = true)]
     pub cutoff: f64,
@@ -234,6 +239,7 @@ pub fn fit_options_with<E, A>(
             ridge: a.ridge,
             seed: a.seed,
             choice: model_choice(a)?,
+            shared_centres: a.shared_centres,
             ..FitSettings::default()
         },
     };

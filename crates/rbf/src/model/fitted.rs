@@ -532,6 +532,134 @@ impl RbfModel {
         self
     }
 
+    /// Output `j` of a model of several outputs as a model of its own: the
+    /// same centres, widths and input scaling, and that output's column of
+    /// the weights, bias, tail and linear coefficients. Each output of a
+    /// multi-output fit was solved by its own least squares on the shared
+    /// columns, so the model is the one a fit of that target alone on these
+    /// centres gives. Its [`RbfModel::selection`], if any, is the shared
+    /// one (ERRs summed over every output).
+    ///
+    /// # Panics
+    /// If `j` is not below [`RbfModel::n_outputs`].
+    ///
+    /// ```
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// let x = Mat::from_fn(60, 1, |i, _| i as f64 / 10.0);
+    /// let y = Mat::from_fn(60, 2, |i, j| (x[(i, 0)] * (j + 1) as f64).sin());
+    /// let p = rbf::RbfParams::new().centres(rbf::CentreSelection::ols(8))
+    ///     .width(rbf::WidthRule::Fixed(1.0)).parallelism(Par::Seq).check().unwrap();
+    /// let both = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// let second = both.output(1);
+    /// assert_eq!((second.n_outputs(), second.centres()), (1, both.centres()));
+    /// let (a, b) = (both.predict(x.as_ref()), second.predict(x.as_ref()));
+    /// // The same numbers, up to the rounding of a one-column product.
+    /// assert!((0..60).all(|i| (a[(i, 1)] - b[(i, 0)]).abs() < 1e-12));
+    /// ```
+    #[track_caller]
+    pub fn output(&self, j: usize) -> Self {
+        assert!(
+            j < self.n_outputs,
+            "output {j} of a model of {} outputs",
+            self.n_outputs
+        );
+        let column = |m: &Mat<f64>| m.as_ref().subcols(j, 1).to_owned();
+        RbfModel {
+            n_outputs: 1,
+            weights: column(&self.weights),
+            bias: self.bias.as_ref().map(|b| vec![b[j]]),
+            tail: self.tail.as_ref().map(column),
+            linear: column(&self.linear),
+            poly: self.poly.as_ref().map(|p| PolyFit {
+                coefficients: column(&p.coefficients),
+                ..p.clone()
+            }),
+            ..self.clone()
+        }
+    }
+
+    /// The networks of several models as one model of all their outputs, when
+    /// they share kernel, centres, widths, input scaling and polynomial
+    /// degree (as the outputs of one [`RbfModel::output`] split do): its
+    /// prediction computes the kernel columns once for every output. Their
+    /// linear regressors are left out (add each model's zθ yourself);
+    /// `None` when the models do not share their centres or one has several
+    /// outputs.
+    ///
+    /// ```
+    /// use faer::{Mat, Par};
+    /// use linfa::ParamGuard;
+    /// let x = Mat::from_fn(60, 1, |i, _| i as f64 / 10.0);
+    /// let y = Mat::from_fn(60, 2, |i, j| (x[(i, 0)] * (j + 1) as f64).sin());
+    /// let p = rbf::RbfParams::new().centres(rbf::CentreSelection::ols(8))
+    ///     .width(rbf::WidthRule::Fixed(1.0)).parallelism(Par::Seq).check().unwrap();
+    /// let both = p.fit(x.as_ref(), y.as_ref()).unwrap();
+    /// let (a, b) = (both.output(0), both.output(1));
+    /// let again = rbf::RbfModel::stacked(&[&a, &b]).unwrap();
+    /// assert_eq!(again.predict(x.as_ref()), both.predict(x.as_ref()));
+    /// assert!(rbf::RbfModel::stacked(&[&both]).is_none(), "a model of two outputs");
+    /// ```
+    pub fn stacked(models: &[&RbfModel]) -> Option<RbfModel> {
+        let first = *models.first()?;
+        let same = |m: &RbfModel| {
+            m.n_outputs == 1
+                && m.kernel == first.kernel
+                && m.dim == first.dim
+                && m.centres == first.centres
+                && m.widths == first.widths
+                && m.scaling == first.scaling
+                && m.tail.is_some() == first.tail.is_some()
+                && m.bias.is_some() == first.bias.is_some()
+                && match (&m.poly, &first.poly) {
+                    (None, None) => true,
+                    (Some(a), Some(b)) => {
+                        a.degree == b.degree && a.shift == b.shift && a.scale == b.scale
+                    }
+                    _ => false,
+                }
+        };
+        if !models.iter().all(|m| same(m)) {
+            return None;
+        }
+        let q = models.len();
+        let join = |col: &dyn Fn(&RbfModel) -> MatRef<'_, f64>| {
+            let rows = col(first).nrows();
+            Mat::from_fn(rows, q, |i, o| col(models[o])[(i, 0)])
+        };
+        Some(RbfModel {
+            n_outputs: q,
+            weights: join(&|m| m.weights.as_ref()),
+            bias: first.bias.as_ref().map(|_| {
+                models
+                    .iter()
+                    .map(|m| m.bias.as_ref().map_or(0.0, |b| b[0]))
+                    .collect()
+            }),
+            tail: first.tail.as_ref().map(|_| {
+                join(&|m| {
+                    m.tail
+                        .as_ref()
+                        .expect("checked: every model has a tail")
+                        .as_ref()
+                })
+            }),
+            linear: Mat::zeros(0, q),
+            poly: first.poly.as_ref().map(|p| PolyFit {
+                coefficients: join(&|m| {
+                    m.poly
+                        .as_ref()
+                        .expect("checked: every model has the tail")
+                        .coefficients
+                        .as_ref()
+                }),
+                ..p.clone()
+            }),
+            selection: None,
+            ..first.clone()
+        })
+    }
+
     /// Predictions (n × q) for inputs `x` (n × d), with faer's global parallelism.
     /// Non-finite inputs give non-finite predictions.
     ///

@@ -30,13 +30,13 @@ impl<S: Sensor> ChannelFit<S> {
     /// True when the effects' coefficients were estimated (by partialling
     /// out) and stay fixed in the network's refit; as
     /// [`ChannelModel::coefficients`] tells.
-    fn theta_fixed(&self) -> bool {
+    pub(super) fn theta_fixed(&self) -> bool {
         self.coefficients.len() == self.effects.len() && !self.effects.is_empty()
     }
 }
 
 /// The channel's name, for errors.
-fn name<S: Sensor>(prepared: &Prepared<S>, channel: usize) -> String {
+pub(super) fn name<S: Sensor>(prepared: &Prepared<S>, channel: usize) -> String {
     prepared
         .sensor()
         .channels()
@@ -44,18 +44,17 @@ fn name<S: Sensor>(prepared: &Prepared<S>, channel: usize) -> String {
         .map_or_else(|| channel.to_string(), ToString::to_string)
 }
 
-/// The channel model of a fit, scored on the training and validation rows.
+/// The channel model of a fit, scored on the training and validation rows
+/// from its predictions `yhat` on every row.
 pub(super) fn scored<S: Sensor>(
     prepared: &Prepared<S>,
-    x: MatRef<'_, f64>,
     train: &[usize],
     val: &[usize],
     f: ChannelFit<S>,
+    yhat: &[f64],
 ) -> Result<ChannelModelOf<S>, SysidError> {
     let y = prepared.target(f.channel);
-    let yhat = f.model.predict_with_linear(x, f.z.as_ref());
-    let yhat: Vec<f64> = (0..yhat.nrows()).map(|i| yhat[(i, 0)]).collect();
-    let scores = score(y, &yhat, train, val);
+    let scores = score(y, yhat, train, val);
     let channel = prepared.sensor().channels()[f.channel].clone();
     Ok(ChannelModel::new(
         channel,
@@ -65,6 +64,19 @@ pub(super) fn scored<S: Sensor>(
         scores,
         f.coefficients,
     ))
+}
+
+/// Every fit's predictions on the rows of `x` (the kernels computed once
+/// for fits that share centres).
+pub(super) fn predictions<S: Sensor>(fits: &[ChannelFit<S>], x: MatRef<'_, f64>) -> Vec<Vec<f64>> {
+    let networks: Vec<&rbf::RbfModel> = fits.iter().map(|f| &f.model).collect();
+    let mut out = crate::model::network_outputs(&networks, x);
+    for (y, f) in out.iter_mut().zip(fits) {
+        let t = f.model.linear_coefficients();
+        let theta: Vec<f64> = (0..t.nrows()).map(|j| t[(j, 0)]).collect();
+        crate::model::add_effects(y, &f.z, &theta);
+    }
+    out
 }
 
 /// A channel fit whose centres and width were chosen on a subsample, with
@@ -175,7 +187,7 @@ pub(super) fn inner_folds_fit<S: Sensor>(
 /// Refuses effects the training rows cannot estimate: not excited there
 /// (the sensor says why), constant (the bias absorbs them), or a
 /// combination of the bias and the effects before them.
-fn check_effects<S: Sensor>(
+pub(super) fn check_effects<S: Sensor>(
     prepared: &Prepared<S>,
     channel: usize,
     effects: &[S::Effect],
@@ -221,7 +233,7 @@ pub(super) fn fit_channel<S: Sensor>(
     prepared: &Prepared<S>,
     x: MatRef<'_, f64>,
     x_train: &Mat<f64>,
-    (train, theta_rows): (&[usize], &[usize]),
+    (train, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,
     effects: &[S::Effect],
     settings: &FitSettings,
@@ -252,6 +264,7 @@ pub(super) fn fit_channel<S: Sensor>(
         let rows = super::partial::Rows {
             train,
             theta: theta_rows,
+            known,
         };
         fit_partially_linear(x, &z, y, rows, &units, settings, gap).map_err(fail)?
     };
@@ -337,7 +350,8 @@ mod tests {
             };
             let x = prepared.window_view();
             let f = refit_weights(&prepared, x, &train, f, &recipe.settings).unwrap();
-            let again = scored(&prepared, x, &train, &val, f).unwrap();
+            let yhat = predictions(std::slice::from_ref(&f), x);
+            let again = scored(&prepared, &train, &val, f, &yhat[0]).unwrap();
             let (a, b) = (m.rbf(), again.rbf());
             assert_eq!(a.centres(), b.centres());
             assert_eq!(a.linear_coefficients(), b.linear_coefficients());

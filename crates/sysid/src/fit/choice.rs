@@ -15,7 +15,7 @@
 //! The network is fitted once per input; the smoothers only post-process
 //! its predictions, so the ladder costs no fit.
 
-use super::fit_rows_fixed;
+use super::fit_rows_predicting;
 use crate::error::SysidError;
 use crate::input::ModelInput;
 use crate::model::{Model, score};
@@ -23,6 +23,8 @@ use crate::prepared::Prepared;
 use crate::recipe::Recipe;
 use crate::sensor::Sensor;
 use crate::smoother::{Smoother, smoothed};
+use rayon::prelude::*;
+use std::borrow::Cow;
 
 pub use crate::recipe::ModelChoice;
 
@@ -42,62 +44,70 @@ pub(super) fn fit_choosing<S: Sensor>(
     recipe: &Recipe<S::Effect>,
     choice: &ModelChoice,
     (train, val): (&[usize], &[usize]),
-    coef: super::Coef,
+    coef: super::Coef<'_>,
     progress: super::Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
     let judge = Judge::new(prepared, val)?;
-    let mut candidates = Vec::new();
-    let mut models = Vec::new();
-    for (i, &input) in choice.inputs.iter().enumerate() {
+    let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
+    // Per input: its candidates, and the model with its unsmoothed
+    // predictions and effect columns (the winner is smoothed and scored
+    // from them, without predicting again).
+    let try_input = |i: usize, input: ModelInput| -> Result<_, SysidError> {
+        // The records as they are for their own input, not a copy of them;
+        // another input's are dropped once judged.
         let p = if input == prepared.preprocess().input {
-            prepared.clone()
+            Cow::Borrowed(prepared)
         } else {
-            prepared.with_input(input)?
+            Cow::Owned(prepared.with_input(input)?)
         };
         let mut r = recipe.clone();
         r.preprocess.input = input;
         r.preprocess.smoother = None;
         // Each channel is reported done once: by the first input's fit.
         let quiet: super::Progress<'_, S::Channel> = &|_| {};
-        let model = fit_rows_fixed(
+        let (model, unsmoothed) = fit_rows_predicting(
             &p,
             &r,
             (train, val),
             coef,
             if i == 0 { progress } else { quiet },
         )?;
-        let unsmoothed = model.predict(&p)?;
         let z: Vec<_> = model
             .channels()
             .iter()
             .enumerate()
             .map(|(k, c)| p.effect_matrix(k, c.effects()))
             .collect::<Result<_, _>>()?;
-        let records: Vec<_> = p.record_rows().into_iter().map(|(_, r)| r).collect();
-        for &smoother in &choice.smoothers {
-            let predicted = model
-                .channels()
-                .iter()
-                .enumerate()
-                .map(|(k, c)| {
-                    smoothed(
-                        smoother.as_ref(),
-                        r.preprocess.causal,
-                        model.dt_s(),
-                        &records,
-                        (c.bias(), &c.effect_coefficients()),
-                        &z[k],
-                        unsmoothed[k].clone(),
-                    )
-                })
-                .collect::<Result<Vec<_>, _>>()?;
-            candidates.push(judge.candidate(&p, input, smoother, &predicted, train, val)?);
-        }
-        models.push((model, p));
-    }
+        let candidates = choice
+            .smoothers
+            .iter()
+            .map(|&smoother| {
+                let predicted = smoothed_all(&model, smoother, &records, &z, &unsmoothed)?;
+                judge.candidate(&p, input, smoother, &predicted, train, val)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((candidates, (model, unsmoothed, z)))
+    };
+    // A small record's inputs are fitted side by side (each fit alone keeps
+    // two cores only partly busy); a large one's one after the other, so
+    // its fit never holds both inputs' records and predictions.
+    let inputs: Vec<(usize, ModelInput)> = choice.inputs.iter().copied().enumerate().collect();
+    let results: Vec<_> = if prepared.rows() <= PARALLEL_INPUTS_MAX_ROWS {
+        inputs
+            .into_par_iter()
+            .map(|(i, input)| try_input(i, input))
+            .collect::<Result<_, _>>()?
+    } else {
+        inputs
+            .into_iter()
+            .map(|(i, input)| try_input(i, input))
+            .collect::<Result<_, _>>()?
+    };
+    let (candidates, mut tried): (Vec<Vec<Candidate>>, Vec<_>) = results.into_iter().unzip();
+    let candidates: Vec<Candidate> = candidates.into_iter().flatten().collect();
     let chosen = pick(&candidates);
     let winner = &candidates[chosen];
-    let (mut model, p) = models.swap_remove(
+    let (mut model, unsmoothed, z) = tried.swap_remove(
         choice
             .inputs
             .iter()
@@ -105,7 +115,10 @@ pub(super) fn fit_choosing<S: Sensor>(
             .expect("the winner's input was tried"),
     );
     model.set_smoother(winner.smoother);
-    rescore(&mut model, &p, train, val)?;
+    let predicted = smoothed_all(&model, winner.smoother, &records, &z, &unsmoothed)?;
+    for (k, c) in model.channels_mut().iter_mut().enumerate() {
+        c.set_scores(score(prepared.target(k), &predicted[k], train, val));
+    }
     model.set_choice(ChoiceReport {
         candidates,
         chosen,
@@ -113,6 +126,38 @@ pub(super) fn fit_choosing<S: Sensor>(
         networks_shrunk: Vec::new(),
     });
     Ok(model)
+}
+
+/// Rows up to which a choice fits its inputs in parallel: the demo's record
+/// (about 5,000) is far below, a 1M-row record (whose fit must stay within
+/// 1 GiB) far above.
+pub const PARALLEL_INPUTS_MAX_ROWS: usize = 100_000;
+
+/// Every channel's prediction of `model` with `smoother` applied to its
+/// unsmoothed predictions (effect columns `z`).
+fn smoothed_all<S: Sensor>(
+    model: &Model<S>,
+    smoother: Option<Smoother>,
+    records: &[std::ops::Range<usize>],
+    z: &[faer::Mat<f64>],
+    unsmoothed: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>, SysidError> {
+    model
+        .channels()
+        .par_iter()
+        .enumerate()
+        .map(|(k, c)| {
+            smoothed(
+                smoother.as_ref(),
+                model.preprocess().causal,
+                model.dt_s(),
+                records,
+                (c.bias(), &c.effect_coefficients()),
+                &z[k],
+                unsmoothed[k].clone(),
+            )
+        })
+        .collect()
 }
 
 /// Relative validation rms a smaller input may cost and still be chosen

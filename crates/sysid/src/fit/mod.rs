@@ -18,6 +18,7 @@ mod choice;
 mod keep;
 mod network;
 mod partial;
+mod shared;
 
 use crate::error::SysidError;
 use crate::model::{ChannelModelOf, Model, ModelParts};
@@ -29,7 +30,8 @@ use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::split::{by_record_rows, split_rows};
 use channel::{
-    ChannelFit, fit_channel, gather, inner_folds_fit, refit_weights, scored, windows_vary,
+    ChannelFit, fit_channel, gather, inner_folds_fit, predictions, refit_weights, scored,
+    windows_vary,
 };
 use rayon::prelude::*;
 use serde::Serialize;
@@ -140,9 +142,17 @@ pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Mod
     // The model's own input and smoother, not a choice of its own.
     let mut recipe = model.recipe();
     recipe.settings.choice = None;
+    // The effects' coefficients are the model's: the same rows cross-fitted
+    // the same way would give the same numbers (one estimate of each), so
+    // the mirror fits only its networks.
+    let stored: Vec<Vec<crate::inference::Coefficient>> = model
+        .channels()
+        .iter()
+        .map(|c| c.coefficients().map(<[_]>::to_vec).unwrap_or_default())
+        .collect();
     // The mirror trains on the validation rows: a short record's folds are
     // too few there, not on the training rows the message would name.
-    fit_rows(prepared, &recipe, (&val, &train), Coef::AllRows, &|_| {}).map_err(|e| match e {
+    fit_rows(prepared, &recipe, (&val, &train), Coef::Stored(&stored), &|_| {}).map_err(|e| match e {
         SysidError::InnerFoldsEmpty {
             folds,
             n_train,
@@ -258,8 +268,8 @@ pub fn leave_one_record_out<S: Sensor>(
 }
 
 /// Which rows estimate the effects' coefficients.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Coef {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Coef<'a> {
     /// Training and validation rows of every record given: the estimate
     /// the diagnosis makes (cross-fitted partialling over the whole
     /// record), so the model stores one estimate of each coefficient, not a
@@ -270,6 +280,24 @@ pub(super) enum Coef {
     /// Training rows only: where the validation rows judge a transfer
     /// (leaving a record out).
     TrainingRows,
+    /// Each channel's coefficients already estimated on every row (a
+    /// model's, for its mirror), in the channel order; a channel without
+    /// them (no effects, or none estimated) is estimated as with `AllRows`.
+    Stored(&'a [Vec<crate::inference::Coefficient>]),
+}
+
+impl Coef<'_> {
+    /// Channel `channel`'s stored coefficients, when there is one for each
+    /// of its `n_effects` effects.
+    fn stored(&self, channel: usize, n_effects: usize) -> Option<&[crate::inference::Coefficient]> {
+        match self {
+            Coef::Stored(all) => all
+                .get(channel)
+                .filter(|c| c.len() == n_effects && n_effects > 0)
+                .map(Vec::as_slice),
+            _ => None,
+        }
+    }
 }
 
 /// A recipe fitted on explicit training and validation rows of data
@@ -280,7 +308,7 @@ fn fit_rows<S: Sensor>(
     prepared: &Prepared<S>,
     recipe: &Recipe<S::Effect>,
     (train, val): (&[usize], &[usize]),
-    coef: Coef,
+    coef: Coef<'_>,
     progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
     let model = match &recipe.settings.choice {
@@ -300,10 +328,22 @@ fn fit_rows<S: Sensor>(
 fn fit_rows_fixed<S: Sensor>(
     prepared: &Prepared<S>,
     recipe: &Recipe<S::Effect>,
-    (train, val): (&[usize], &[usize]),
-    coef: Coef,
+    rows: (&[usize], &[usize]),
+    coef: Coef<'_>,
     progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
+    fit_rows_predicting(prepared, recipe, rows, coef, progress).map(|(model, _)| model)
+}
+
+/// [`fit_rows_fixed`], with the model's unsmoothed predictions on every row
+/// of `prepared` (per channel), which scored it.
+fn fit_rows_predicting<S: Sensor>(
+    prepared: &Prepared<S>,
+    recipe: &Recipe<S::Effect>,
+    (train, val): (&[usize], &[usize]),
+    coef: Coef<'_>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<(Model<S>, Vec<Vec<f64>>), SysidError> {
     debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
     let settings = &recipe.settings;
     let channels = prepared.sensor().channels();
@@ -317,7 +357,7 @@ fn fit_rows_fixed<S: Sensor>(
     inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
     let fit_on = if stride > 1 { &sel } else { &train };
     let theta_rows: Vec<usize> = match coef {
-        Coef::AllRows => {
+        Coef::AllRows | Coef::Stored(_) => {
             let mut all: Vec<usize> = train.iter().chain(&val).copied().collect();
             all.sort_unstable();
             all.dedup();
@@ -326,33 +366,59 @@ fn fit_rows_fixed<S: Sensor>(
         Coef::TrainingRows => fit_on.clone(),
     };
     let x_fit = gather(x, fit_on);
-    let fits: Vec<ChannelFit<S>> = (0..channels.len())
-        .into_par_iter()
-        .map(|k| {
-            let m = fit_channel(
+    let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
+        true => {
+            let fits = shared::fit_channels_shared(
                 prepared,
                 x,
                 &x_fit,
                 (fit_on, &theta_rows),
-                k,
-                recipe.effects_of(k),
-                settings,
-            );
-            progress(FitStage::ChannelDone(channels[k].clone()));
-            m
-        })
-        .collect::<Result<_, _>>()?;
+                recipe,
+                &|k| coef.stored(k, recipe.effects_of(k).len()),
+            )?;
+            channels
+                .iter()
+                .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
+            fits
+        }
+        false => (0..channels.len())
+            .into_par_iter()
+            .map(|k| {
+                let m = fit_channel(
+                    prepared,
+                    x,
+                    &x_fit,
+                    (
+                        fit_on,
+                        &theta_rows,
+                        coef.stored(k, recipe.effects_of(k).len()),
+                    ),
+                    k,
+                    recipe.effects_of(k),
+                    settings,
+                );
+                progress(FitStage::ChannelDone(channels[k].clone()));
+                m
+            })
+            .collect::<Result<_, _>>()?,
+    };
     drop(x_fit);
     // On a subsample, the weights are solved again on every training row,
     // over row blocks (memory independent of the number of rows), before
-    // the channel is scored.
+    // the channel is scored: for channels that share centres, in one solve.
+    let fits = match (stride, settings.shared_centres) {
+        (1, _) => fits,
+        (_, true) => shared::refit_weights_shared(prepared, x, &train, fits, settings)?,
+        (_, false) => fits
+            .into_par_iter()
+            .map(|f| refit_weights(prepared, x, &train, f, settings))
+            .collect::<Result<_, _>>()?,
+    };
+    let yhat = predictions(&fits, x);
     let fitted: Vec<ChannelModelOf<S>> = fits
-        .into_par_iter()
-        .map(|f| match stride {
-            1 => scored(prepared, x, &train, &val, f),
-            _ => refit_weights(prepared, x, &train, f, settings)
-                .and_then(|f| scored(prepared, x, &train, &val, f)),
-        })
+        .into_iter()
+        .zip(&yhat)
+        .map(|(f, y)| scored(prepared, &train, &val, f, y))
         .collect::<Result<_, _>>()?;
     let length = recipe.preprocess.window.length();
     let mut operating_points = OperatingPoints::from_training(prepared, length, &train, &val)?;
@@ -368,7 +434,7 @@ fn fit_rows_fixed<S: Sensor>(
         prepared, length, &train, &others, means,
     )?);
     let operating_points = Some(operating_points);
-    Model::from_parts(ModelParts {
+    let model = Model::from_parts(ModelParts {
         sensor: prepared.sensor().clone(),
         preprocess: recipe.preprocess.clone(),
         dt_s: prepared.calibrated().dt(),
@@ -384,7 +450,8 @@ fn fit_rows_fixed<S: Sensor>(
         name: "fitted model",
         value: reason,
         reason: "a fit gave an inconsistent model (a bug: please report it)",
-    })
+    })?;
+    Ok((model, yhat))
 }
 
 /// Training windows above which cross-validation and centre selection run on

@@ -3,6 +3,7 @@
 
 use crate::recipe::{CentreMethod, FitSettings};
 use faer::{MatRef, Par};
+use rayon::prelude::*;
 use rbf::{
     Candidates, CentreSelection, Grid, KMeansSettings, ParamGuard, RbfParams, Sizes, Split,
     WidthRule,
@@ -28,6 +29,24 @@ pub(super) fn fit_network(
     y: MatRef<'_, f64>,
     gap: usize,
 ) -> Result<rbf::RbfModel, rbf::RbfError> {
+    let chosen = choose_network(settings, x, z, y, gap)?;
+    fit_chosen(settings, &chosen, x, z, y)
+}
+
+/// What the cross-validation of [`fit_network`] chose: the number of
+/// centres and the width rule (a multiple of the rows' median distance).
+#[derive(Debug, Clone)]
+struct Chosen {
+    n_centres: usize,
+    width: WidthRule,
+}
+
+/// The network's parameters for `settings`, `k` centres and `width`.
+fn params(
+    settings: &FitSettings,
+    k: usize,
+    width: WidthRule,
+) -> Result<rbf::RbfValidParams, rbf::RbfError> {
     let selection = |k: usize| match settings.centres {
         CentreMethod::Ols => CentreSelection::Ols {
             max_centres: k,
@@ -39,48 +58,90 @@ pub(super) fn fit_network(
         },
         CentreMethod::KMeans => CentreSelection::KMeans(KMeansSettings::new(k)),
     };
-    let params = |k: usize, width: WidthRule| {
-        RbfParams::new()
-            .kernel(settings.kernel)
-            .centres(selection(k))
-            .width(width)
-            .ridge(settings.ridge)
-            .seed(settings.seed)
-            .parallelism(Par::Seq)
-            .check()
-            .map_err(rbf::RbfError::from)
-    };
+    RbfParams::new()
+        .kernel(settings.kernel)
+        .centres(selection(k))
+        .width(width)
+        .ridge(settings.ridge)
+        .seed(settings.seed)
+        .parallelism(Par::Seq)
+        .check()
+        .map_err(rbf::RbfError::from)
+}
+
+/// The network chosen by [`choose_network`] fitted on the given rows; its
+/// number of centres at most half the rows.
+fn fit_chosen(
+    settings: &FitSettings,
+    chosen: &Chosen,
+    x: MatRef<'_, f64>,
+    z: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+) -> Result<rbf::RbfModel, rbf::RbfError> {
+    let k = chosen.n_centres.min(x.nrows() / 2).max(1);
+    params(settings, k, chosen.width.clone())?.fit_with_linear(x, z, y)
+}
+
+/// The number of centres and width of [`fit_network`], by blocked
+/// cross-validation over the settings' widths and a ladder of sizes.
+fn choose_network(
+    settings: &FitSettings,
+    x: MatRef<'_, f64>,
+    z: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+    gap: usize,
+) -> Result<Chosen, rbf::RbfError> {
     let widths: Vec<WidthRule> = settings
         .width_scales
         .iter()
         .map(|&s| WidthRule::MedianPairwise { scale: s })
         .collect();
     let max_k = settings.max_centres.min(x.nrows() / 2).max(1);
-    let grid = Grid {
-        widths: widths.clone(),
-        sizes: Sizes::Centres(size_ladder(max_k)),
-        ridges: vec![],
+    let split = Split::Blocked {
+        k: settings.inner_folds,
+        gap,
     };
-    let report = rbf::grid_search_with_linear(
-        &params(max_k, widths[0].clone())?,
-        x,
-        z,
-        y,
-        &Split::Blocked {
-            k: settings.inner_folds,
-            gap,
-        },
-        &grid,
-    )?;
-    let best = match report.best() {
-        Some(b) => b,
-        None => {
-            let first_error = report.points.into_iter().find_map(|p| p.result.err());
-            return Err(first_error.unwrap_or(rbf::RbfError::FoldFailed {
-                reason: "no grid point".into(),
-            }));
-        }
+    // One grid per width, in parallel (a shared selection is one network
+    // for every channel, so the channels no longer keep both cores busy);
+    // the points come back in the width-major order of one grid, and the
+    // first lowest mean validation NMSE wins, as in one grid.
+    let reports: Vec<rbf::GridReport> = widths
+        .par_iter()
+        .map(|w| {
+            let grid = Grid {
+                widths: vec![w.clone()],
+                sizes: Sizes::Centres(size_ladder(max_k)),
+                ridges: vec![],
+            };
+            let p = params(settings, max_k, w.clone())?;
+            rbf::grid_search_with_linear(&p, x, z, y, &split, &grid)
+        })
+        .collect::<Result<_, _>>()?;
+    let points: Vec<rbf::GridPoint> = reports.into_iter().flat_map(|r| r.points).collect();
+    // One target: its validation NMSE, as the library's grid. Several
+    // (a shared selection): the mean over channels of the validation rms,
+    // in the targets' one unit, as the summed ERR weighs them; the mean
+    // NMSE let a channel the network cannot help (NMSE near 1 everywhere,
+    // rising a little with every centre) hold every channel at 2 centres on
+    // the three-record campaign (X +51%, Z +41%).
+    let criterion = |r: &rbf::CvReport| match y.ncols() {
+        1 => r.mean.nmse,
+        _ => r.mean.rmse,
     };
-    let k = best.n_centres.unwrap_or(max_k);
-    params(k, best.width.clone())?.fit_with_linear(x, z, y)
+    let best = points
+        .iter()
+        .filter_map(|p| p.result.as_ref().ok().map(|r| (p, criterion(r))))
+        .filter(|(_, v)| v.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(p, _)| (p.n_centres, p.width.clone()));
+    let Some((n_centres, width)) = best else {
+        let first_error = points.into_iter().find_map(|p| p.result.err());
+        return Err(first_error.unwrap_or(rbf::RbfError::FoldFailed {
+            reason: "no grid point".into(),
+        }));
+    };
+    Ok(Chosen {
+        n_centres: n_centres.unwrap_or(max_k),
+        width,
+    })
 }

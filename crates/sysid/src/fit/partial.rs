@@ -9,6 +9,7 @@ use super::network::fit_network;
 use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
 use crate::recipe::FitSettings;
 use faer::{Mat, MatRef};
+use rayon::prelude::*;
 use rbf::Split;
 
 /// The rows of a partially linear fit.
@@ -20,6 +21,9 @@ pub(super) struct Rows<'a> {
     /// training and validation rows of every record, as the diagnosis
     /// estimates them, or the training rows alone.
     pub(super) theta: &'a [usize],
+    /// The coefficients already estimated on those rows (a model's, for its
+    /// mirror): taken as they are instead of cross-fitted again.
+    pub(super) known: Option<&'a [Coefficient]>,
 }
 
 /// How the training rows are cut for cross-fitting: into this many spans of
@@ -85,55 +89,86 @@ pub(super) fn fit_partially_linear(
 ) -> Result<(rbf::RbfModel, Vec<Coefficient>), rbf::RbfError> {
     let p = units.len();
     let train = rows.train;
-    let cuts: Vec<Blocks> = CROSS_FIT_CHUNKS
-        .iter()
-        .filter_map(|&k| Blocks::alternating(rows.theta, gap, k))
-        .filter(|b| {
-            block_fits(b.first.len(), settings, gap) && block_fits(b.second.len(), settings, gap)
-        })
-        .collect();
-    let mut fits = Vec::with_capacity(cuts.len());
-    for b in &cuts {
-        if let Some(f) = cross_fit(x, z, y, b, settings, gap)? {
-            fits.push(f);
-        }
-    }
-    let inference = combine_splits(&fits);
     let x_train = gather(x, train);
     let z_train = gather(z.as_ref(), train);
     let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
-    let (model, fit) = match inference {
+    let network_on = |theta: &Mat<f64>| {
+        let y_adj = &y_train - &z_train * theta;
+        fit_network(
+            settings,
+            x_train.as_ref(),
+            Mat::<f64>::zeros(train.len(), 0).as_ref(),
+            y_adj.as_ref(),
+            gap,
+        )
+        .map(|net| net.with_linear(theta.as_ref()))
+    };
+    if let Some(known) = rows.known.filter(|c| c.len() == p) {
+        let theta = Mat::from_fn(p, 1, |j, _| known[j].value);
+        return Ok((network_on(&theta)?, known.to_vec()));
+    }
+    let (model, fit) = match cross_fitted_theta(x, z, y, rows.theta, settings, gap)? {
         Some(f) => {
             let theta = Mat::from_fn(p, 1, |j, _| f.coef[j]);
-            let y_adj = &y_train - &z_train * &theta;
-            let net = fit_network(
-                settings,
-                x_train.as_ref(),
-                Mat::<f64>::zeros(train.len(), 0).as_ref(),
-                y_adj.as_ref(),
-                gap,
-            )?;
-            (net.with_linear(theta.as_ref()), Some(f))
+            (network_on(&theta)?, Some(f))
         }
         None => joint_fit(x, z, y, train, settings, gap)?,
     };
     let theta = model.linear_coefficients();
-    // No interval rather than a made-up one when the regression of the
-    // residuals failed (the model file then carries none).
-    let coefficients = match &fit {
+    let values: Vec<f64> = (0..p).map(|j| theta[(j, 0)]).collect();
+    Ok((model, coefficients(units, fit.as_ref(), &values)))
+}
+
+/// θ (with its HAC errors) by cross-fitted partialling out on `theta_rows`
+/// (the first half of [`fit_partially_linear`]), or `None` when no cut
+/// leaves both blocks long enough for their own cross-validation or the
+/// regression of the residuals fails.
+pub(super) fn cross_fitted_theta(
+    x: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    theta_rows: &[usize],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Option<HacFit>, rbf::RbfError> {
+    let cuts: Vec<Blocks> = CROSS_FIT_CHUNKS
+        .iter()
+        .filter_map(|&k| Blocks::alternating(theta_rows, gap, k))
+        .filter(|b| {
+            block_fits(b.first.len(), settings, gap) && block_fits(b.second.len(), settings, gap)
+        })
+        .collect();
+    // The cuts are independent fits: in parallel, combined in their order.
+    let fits: Vec<Option<HacFit>> = cuts
+        .par_iter()
+        .map(|b| cross_fit(x, z, y, b, settings, gap))
+        .collect::<Result<_, _>>()?;
+    let fits: Vec<HacFit> = fits.into_iter().flatten().collect();
+    Ok(combine_splits(&fits))
+}
+
+/// The stored coefficients (values `theta`, each in its unit of `units`)
+/// with the intervals of the regression `fit`: none rather than a made-up
+/// one when the regression of the residuals failed (the model file then
+/// carries none).
+pub(super) fn coefficients(
+    units: &[String],
+    fit: Option<&HacFit>,
+    theta: &[f64],
+) -> Vec<Coefficient> {
+    match fit {
         Some(f) => units
             .iter()
             .enumerate()
             .map(|(j, unit)| {
                 // Centred on the stored value (θ itself, or the joint fit's in the fallback).
                 let half = f.interval(j, 0.95).map(|b| b - f.coef[j]);
-                let v = theta[(j, 0)];
+                let v = theta[j];
                 Coefficient::new(v, f.se[j], [v + half[0], v + half[1]], unit.as_str())
             })
             .collect(),
         None => Vec::new(),
-    };
-    Ok((model, coefficients))
+    }
 }
 
 /// Whether a block of `n` rows can choose its own network: at least

@@ -178,6 +178,40 @@ pub fn residual_times_input_variance(e: &[f64], u: &[f64], tau: usize) -> f64 {
     assert_eq!(e.len(), u.len(), "series lengths differ");
     let n = e.len();
     assert!(tau < n, "lag {tau} must be below the series length {n}");
+    residual_times_input_variance_with(e, u, &InputAutocovariance::new(u), tau)
+}
+
+/// u's lagged mean products `Σ u_t u_{t+k} / N` for every lag the Bartlett
+/// sum of [`residual_times_input_variance`] reads: they do not depend on
+/// τ, so a test over many lags works them out once.
+pub(crate) struct InputAutocovariance(Vec<f64>);
+
+impl InputAutocovariance {
+    pub(crate) fn new(u: &[f64]) -> Self {
+        let n = u.len();
+        let k_max = bartlett_truncation(n).min(n);
+        Self((0..k_max.max(1)).map(|k| lagged(u, k, n)).collect())
+    }
+}
+
+/// `Σ x_t x_{t+k} / len`.
+fn lagged(x: &[f64], k: usize, len: usize) -> f64 {
+    x[..x.len() - k]
+        .iter()
+        .zip(&x[k..])
+        .map(|(a, b)| a * b)
+        .sum::<f64>()
+        / len as f64
+}
+
+/// [`residual_times_input_variance`] with u's lagged products worked out.
+pub(crate) fn residual_times_input_variance_with(
+    e: &[f64],
+    u: &[f64],
+    u_acov: &InputAutocovariance,
+    tau: usize,
+) -> f64 {
+    let n = e.len();
     let p: Vec<f64> = e[..n - tau]
         .iter()
         .zip(&e[tau..])
@@ -185,18 +219,10 @@ pub fn residual_times_input_variance(e: &[f64], u: &[f64], tau: usize) -> f64 {
         .collect();
     let m = p.len();
     let k_max = bartlett_truncation(n).min(m);
-    let lagged = |x: &[f64], k: usize, len: usize| {
-        x[..x.len() - k]
-            .iter()
-            .zip(&x[k..])
-            .map(|(a, b)| a * b)
-            .sum::<f64>()
-            / len as f64
-    };
-    let mut s = lagged(u, 0, n) * lagged(&p, 0, m);
+    let mut s = u_acov.0[0] * lagged(&p, 0, m);
     for k in 1..k_max {
         let taper = 1.0 - k as f64 / k_max as f64;
-        s += 2.0 * taper * lagged(u, k, n) * lagged(&p, k, m);
+        s += 2.0 * taper * u_acov.0[k] * lagged(&p, k, m);
     }
     let eu = e.iter().zip(u).map(|(a, b)| a * b);
     let mean_eu = eu.clone().sum::<f64>() / n as f64;

@@ -9,8 +9,8 @@
 //! under the null, because e·u and e are not two independent series.
 
 use super::correlation::{
-    autocorrelation, bartlett_auto_variance, bartlett_cross_variance, bartlett_truncation,
-    cross_correlation, residual_times_input_variance,
+    InputAutocovariance, autocorrelation, bartlett_auto_variance, bartlett_cross_variance,
+    bartlett_truncation, cross_correlation, residual_times_input_variance_with,
 };
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, Normal};
@@ -259,7 +259,8 @@ fn cross_test(
 
 /// Billings–Voon ρ_e(eu)(τ) on τ = 0..=max_lag, reported as lags
 /// 1..=max_lag+1 of e·u against e (as before), with the variance under the
-/// null that e is independent of u ([`residual_times_input_variance`]), not
+/// null that e is independent of u
+/// ([`residual_times_input_variance`](super::residual_times_input_variance)), not
 /// Bartlett's formula for two independent series: e·u and e share e.
 fn residual_times_input_test(
     ec: &[f64],
@@ -273,9 +274,11 @@ fn residual_times_input_test(
     let r = cross_correlation(&eu, ec, top);
     let lags: Vec<i64> = (1..=top as i64).collect();
     let values: Vec<f64> = lags.iter().map(|&l| r[top + l as usize]).collect();
+    // u's lagged products are the same at every τ: worked out once.
+    let u_acov = InputAutocovariance::new(uc);
     let sigma: Vec<f64> = lags
         .iter()
-        .map(|&l| residual_times_input_variance(ec, uc, l as usize).sqrt())
+        .map(|&l| residual_times_input_variance_with(ec, uc, &u_acov, l as usize).sqrt())
         .collect();
     let m = lags.len();
     verdict(
