@@ -152,7 +152,14 @@ pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Mod
         .collect();
     // The mirror trains on the validation rows: a short record's folds are
     // too few there, not on the training rows the message would name.
-    fit_rows(prepared, &recipe, (&val, &train), Coef::Stored(&stored), &|_| {}).map_err(|e| match e {
+    fit_rows(
+        prepared,
+        &recipe,
+        (&val, &train),
+        Coef::Stored(&stored),
+        &|_| {},
+    )
+    .map_err(|e| match e {
         SysidError::InnerFoldsEmpty {
             folds,
             n_train,
