@@ -132,11 +132,10 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
 /// basis (bias and kernels), which another channel's weights would not be.
 #[test]
 fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
-    let sim = simulate(&Scenario {
-        duration_s: 30.0,
-        ..Scenario::default()
-    })
-    .unwrap();
+    // The demo's record: its vibration levels change, so the networks have
+    // something to predict and the keep step leaves them (on a record of
+    // one level a network adds nothing to the bias and is shrunk to zero).
+    let sim = simulate(&Scenario::builtin("demo").unwrap()).unwrap();
     let mut options = short_options();
     options.settings.shared_centres = true;
     let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
@@ -173,13 +172,35 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
             .fold(0.0, f64::max);
         worst / (basis.norm_l2() * norm(&y))
     };
+    // A channel whose network the keep step shrank to zero (its weights
+    // solved against a constant, zero to rounding) is no least-squares fit
+    // on the basis; the others are, and most channels keep theirs here.
+    let shrunk = |c: &dtg_vib::model::ChannelModel| {
+        let scale = 1.0 + c.rbf().bias().unwrap()[0].abs();
+        c.rbf()
+            .weights()
+            .col(0)
+            .iter()
+            .all(|w| w.abs() < 1e-9 * scale)
+    };
+    let mut kept = Vec::new();
     for c in model.channels() {
         assert_eq!(c.rbf().centres(), first.rbf().centres(), "{}", c.channel());
         assert_eq!(c.width(), first.width(), "{}", c.channel());
+        if shrunk(c) {
+            continue;
+        }
         let own = own_residual_gradient(c, c.channel());
         assert!(own < 1e-7, "{}: {own:e}", c.channel());
+        kept.push(c);
     }
-    // X's weights are not a least-squares fit of X1: each channel has its own.
-    let (x_model, x1) = (&model.channels()[0], model.channels()[1].channel());
-    assert!(own_residual_gradient(x_model, x1) > 1e-4);
+    assert!(
+        kept.len() >= 3,
+        "only {} channels kept a network",
+        kept.len()
+    );
+    // One channel's weights are not a least-squares fit of another: each
+    // channel has its own.
+    let (a, b) = (kept[0], kept[1].channel());
+    assert!(own_residual_gradient(a, b) > 1e-4);
 }
