@@ -47,7 +47,8 @@ pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record, DtgVibErr
 /// use nav_sensors::record::Record;
 /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
 /// let csv = "t,g1,g2,g3,g4,ax,ay,az\n0,1,1,1,1,0,0,1\n0.02,1,1,1,5,0,0,1\n";
-/// let r = Record::from_reader_with_unit(csv.as_bytes(), "r.csv", &u).unwrap();
+/// let mut read = Record::from_reader_with_unit(csv.as_bytes(), "r.csv", &u).unwrap();
+/// let r = read.records.remove(0); // one segment: no gap in the times
 /// let p = dtg_vib::unit_sensor::residue_series(&u, &r);
 /// assert_eq!((p.len(), p[0].len()), (1, 2));
 /// assert!(p[0][1].abs() > p[0][0].abs()); // a step on g4 shows in P0
