@@ -339,6 +339,7 @@ fn step_c() -> String {
         SQ_DIST_C,
         PROCESS_C,
         OWN_KERNELS_C,
+        &fade_and_smoother_c("16 + c", "15"),
         PROCESS_TAIL_C,
     ]
     .concat()
@@ -653,17 +654,28 @@ pub(super) const OWN_KERNELS_C: &str = r#"    for (c = 0; c < 6; c++) {
         }
 "#;
 
-/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`.
-const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
+/// The end of a channel's step, the same text in the paper's C and any
+/// unit's: the fade's cross-fade of the held network part
+/// (sysid::operating::fade), then the prediction smoother on the network
+/// part. `rest` and `gain` index the FADE table: a channel's network at rest
+/// and the hold's one-pole gain.
+pub(super) fn fade_and_smoother_c(rest: &str, gain: &str) -> String {
+    FADE_AND_SMOOTHER_C
+        .replace("{rest}", rest)
+        .replace("{gain}", gain)
+}
+
+/// [`fade_and_smoother_c`]'s text, `{rest}` and `{gain}` to fill.
+const FADE_AND_SMOOTHER_C: &str = r#"#if DTG_FADE
         {
             /* The held network part follows the network by the weight's
              * one-pole at full weight and stays below it; the output
              * cross-fades from it to the network by the weight. A record
              * starts it at the network's value at rest. Before the smoother
              * (sysid::operating::fade). */
-            dtg_real before = s->processed == l ? FADE[16 + c] : s->fade_h[c];
+            dtg_real before = s->processed == l ? FADE[{rest}] : s->fade_h[c];
             dtg_real faded = w >= R(1) ? net : before + w * (net - before);
-            s->fade_h[c] = w >= R(1) ? before + FADE[15] * (net - before) : before;
+            s->fade_h[c] = w >= R(1) ? before + FADE[{gain}] * (net - before) : before;
 #if DTG_N_SMOOTH_SECTIONS == 0
             y -= net - faded;
 #endif
@@ -677,7 +689,11 @@ const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
         y = BIAS[c] + linear[c] + net;
 #endif
         (void)net;
-        rate_deg_h[c] = (double)(g[c] - y);
+"#;
+
+/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`, after
+/// [`fade_and_smoother_c`].
+const PROCESS_TAIL_C: &str = r#"        rate_deg_h[c] = (double)(g[c] - y);
     }
     for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
     return 1;

@@ -6,8 +6,8 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr, real_type,
-    with_maths,
+    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, fade_and_smoother_c,
+    iarr, real_type, with_maths,
 };
 use super::c_shared::SHARED_KERNELS;
 use super::layout::Layout;
@@ -33,6 +33,7 @@ pub fn unit_c_sources(
         SQ_DIST_C,
         PROCESS_C,
         SHARED_KERNELS,
+        &fade_and_smoother_c("4 * NA + 4 + c", "4 * NA + 3"),
         PROCESS_TAIL_C,
     ]
     .concat();
@@ -458,31 +459,9 @@ static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], doubl
 #endif
 "#;
 
-/// The rest of `process`, `dtg_step` and `dtg_flush`.
-const PROCESS_TAIL_C: &str = r#"#if DTG_FADE
-        {
-            /* The held network part follows the network by the weight's
-             * one-pole at full weight and stays below it; the output
-             * cross-fades from it to the network by the weight. A record
-             * starts it at the network's value at rest. Before the smoother
-             * (sysid::operating::fade). */
-            dtg_real before = s->processed == l ? FADE[4 * NA + 4 + c] : s->fade_h[c];
-            dtg_real faded = w >= R(1) ? net : before + w * (net - before);
-            s->fade_h[c] = w >= R(1) ? before + FADE[4 * NA + 3] * (net - before) : before;
-#if DTG_N_SMOOTH_SECTIONS == 0
-            y -= net - faded;
-#endif
-            net = faded;
-        }
-#endif
-#if DTG_N_SMOOTH_SECTIONS > 0
-        /* The prediction smoother, on the network part only. */
-        net = cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
-                      net, s->processed == l);
-        y = BIAS[c] + linear[c] + net;
-#endif
-        (void)net;
-        (void)w;
+/// The rest of `process`, `dtg_step` and `dtg_flush`, after
+/// [`super::c::fade_and_smoother_c`].
+const PROCESS_TAIL_C: &str = r#"        (void)w;
         rate_deg_h[c] = (double)(g[c] - y);
     }
     for (k = 0; k < NA; k++) accel_out_g[k] = (double)a[k];
