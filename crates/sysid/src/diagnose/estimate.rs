@@ -96,13 +96,18 @@ mod tests {
     use crate::input::ModelInput;
     use crate::{FitOptions, Model};
 
-    fn fit_line(effects: Vec<Slope>, input: ModelInput) -> (Model<Line>, Prepared<Line>) {
+    fn fit_line(
+        effects: Vec<Slope>,
+        input: ModelInput,
+        shared: bool,
+    ) -> (Model<Line>, Prepared<Line>) {
         let rec = line_record(3000, 2.0, 7);
         let mut options = FitOptions::new(1);
         options.recipe.preprocess = Line::preprocess();
         options.recipe.preprocess.input = input;
         options.recipe.effects[0] = effects;
         options.recipe.settings.max_centres = 5;
+        options.recipe.settings.shared_centres = shared;
         let (model, _) = crate::fit_records(&Line, &[("r".into(), &rec)], &options, &|_| {})
             .expect("the line fits");
         let prepared = model.prepare(&rec).expect("the record prepares");
@@ -111,11 +116,17 @@ mod tests {
 
     /// One estimate: a suggestion restated by the diagnosis of a model
     /// without it is the coefficient, standard error and interval the refit
-    /// with it stores, whatever input the network reads.
+    /// with it stores, whatever input the network reads, per channel or
+    /// with the shared selection (`--shared-centres`).
     #[test]
     fn a_suggestion_is_stated_as_the_refit_stores_it() {
-        for input in [ModelInput::Raw, ModelInput::Statistics] {
-            let (base, prepared) = fit_line(Vec::new(), input);
+        for (input, shared) in [
+            (ModelInput::Raw, false),
+            (ModelInput::Statistics, false),
+            (ModelInput::Raw, true),
+            (ModelInput::Statistics, true),
+        ] {
+            let (base, prepared) = fit_line(Vec::new(), input, shared);
             let (train, val) = base.rows(&prepared).unwrap();
             let raw = crate::fit::raw_windows(&prepared).unwrap();
             assert_eq!(raw.is_some(), input == ModelInput::Statistics);
@@ -136,7 +147,8 @@ mod tests {
             restate(&est, &prepared, 0, base.channel(0), &ranked, &mut ranking).unwrap();
             let stated = &ranking.candidates[0];
 
-            let (refit, _) = fit_line(vec![Slope], input);
+            let (refit, _) = fit_line(vec![Slope], input, shared);
+            assert_eq!(refit.settings().shared_centres, shared);
             let stored = &refit.channel(0).coefficients().unwrap()[0];
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-12);
             assert!(
