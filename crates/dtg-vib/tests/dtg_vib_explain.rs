@@ -245,9 +245,10 @@ fn intervals_cover_the_true_coefficients_on_a_few_seeds() {
 /// g² term (issue 23's acceptance), every refit within 1.1× its clean twin.
 ///
 /// Measured with the coefficients cross-fitted on every row (4, 6 and 8
-/// alternating spans, their spread in the interval): Y1=gg_IS 94/100,
-/// Z=col:temp 98/100; worst refit channel 1.016× its clean twin's
-/// validation rms. With the record cut in two halves only (the
+/// alternating spans, their spread in the interval, partialled with the
+/// raw window whatever the network's input): Y1=gg_IS 94/100,
+/// Z=col:temp 98/100; worst refit channel 1.007× its clean twin's
+/// validation rms (1.016× partialled with the chosen input). With the record cut in two halves only (the
 /// diagnosis's cut) the intervals were too narrow: Y1=gg_IS 85%,
 /// Z=col:temp 73% over 78 seeds.
 #[test]

@@ -58,11 +58,10 @@ pub fn print_rounds<C: std::fmt::Display>(
 }
 
 /// Which of an added effect's two coefficients is which: the round's (the
-/// diagnosis's screening estimate) and the final table's (the one stored),
-/// both from every row of the record by cross-fitted partialling (issue 23
-/// §3), so they agree within their intervals; the stored one's interval
-/// also holds the spread over its three cuts.
-const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, cross-fitted on the record's two halves; the model below stores and compensates with the fit's, cross-fitted on the same rows (every row) over 4, 6 and 8 alternating spans, their spread in its interval: one effect estimated on the same rows, so the two agree within their intervals";
+/// diagnosis's statement of its suggestion) and the final table's (the one
+/// stored) are one estimator's (issue 23 §3): the same number unless a
+/// later round added to the channel.
+const WHICH_COEFFICIENT: &str = "coefficients: a round's is the diagnosis's estimate, made as the fit makes it (every row, cross-fitted over 4, 6 and 8 alternating spans, their spread in its interval; its p-value is the ranking's test on the record's two halves); the model below stores and compensates with the fit's: the same number unless a later round added another effect to the channel";
 
 /// Round `k` (from 0): what it added, how each addition is told from its
 /// look-alikes, and the validation rms after it.

@@ -5,6 +5,7 @@
 
 use super::context::Context;
 use super::crossfit::CrossFit;
+use super::estimate::{Estimator, restate};
 use super::{Ranking, Unexcited, rank, record_separations};
 use crate::error::SysidError;
 use crate::model::ChannelModelOf;
@@ -25,7 +26,7 @@ pub(super) fn rank_candidates<S: Sensor>(
     prepared: &Prepared<S>,
     (train, val): (&[usize], &[usize]),
     cross: &CrossFit<'_, S>,
-    ctx: &Context,
+    (ctx, est): (&Context, &Estimator<'_>),
     opts: &super::DiagnoseOptions,
 ) -> Result<Ranked<S::Axis>, SysidError> {
     let ch = cross.channel;
@@ -64,6 +65,7 @@ pub(super) fn rank_candidates<S: Sensor>(
     separate_groups(prepared.sensor(), ch, &mut ranking, &ranked, ctx);
     separate_by_record(prepared, cross, &mut ranking, &ranked, opts);
     add_caveats(prepared, ch, &mut ranking, &ranked, cross);
+    restate(est, prepared, ch, model, &ranked, &mut ranking)?;
     ranking.unexcited.extend(not_excited);
     Ok(Ranked { ranking, series })
 }

@@ -15,6 +15,7 @@ mod candidates;
 mod checks;
 mod context;
 mod crossfit;
+mod estimate;
 mod findings;
 mod locate;
 mod rank;
@@ -173,6 +174,15 @@ pub fn diagnose_prepared<S: Sensor>(
     let mirror_predictions = mirror.predict(prepared)?;
     let x = prepared.window_matrix();
     let context = Context::new(prepared, &val)?;
+    let raw = crate::fit::raw_windows(prepared)?;
+    let estimator = estimate::Estimator {
+        x: raw
+            .as_ref()
+            .map_or(prepared.window_view(), |p| p.window_view()),
+        settings: model.settings(),
+        rows: crate::fit::theta_rows(&train, &val),
+        gap: crate::split::leakage_gap(prepared),
+    };
     // The suggestion threshold is shared over the model's channels.
     let options = DiagnoseOptions {
         rank: RankOptions {
@@ -212,7 +222,7 @@ pub fn diagnose_prepared<S: Sensor>(
                 &predictions[i],
                 rows,
                 &halves,
-                &context,
+                (&context, &estimator),
                 &options,
             )
         })
@@ -276,14 +286,14 @@ fn diagnose_channel<S: Sensor>(
     predicted: &[f64],
     (train, val): (&[usize], &[usize]),
     cross: &CrossFit<'_, S>,
-    ctx: &Context,
+    (ctx, est): (&Context, &estimate::Estimator<'_>),
     opts: &DiagnoseOptions,
 ) -> Result<ChannelDiagnosis<S::Channel, S::Axis>, SysidError> {
     let y = prepared.target(cross.channel);
     let residual: Vec<f64> = val.iter().map(|&r| y[r] - predicted[r]).collect();
     let compare = crate::model::score(y, predicted, train, val);
     let candidates::Ranked { ranking, series } =
-        candidates::rank_candidates(model, prepared, (train, val), cross, ctx, opts)?;
+        candidates::rank_candidates(model, prepared, (train, val), cross, (ctx, est), opts)?;
     let (checks, failing) = checks::correlation_checks(&residual, ctx, opts);
 
     // Where it fails.

@@ -25,9 +25,13 @@ pub struct Candidate<A = String> {
     /// on its own (error-reduction ratio, 0 to 1).
     pub err: f64,
     /// Coefficient of the effect on the residual, in `unit`: given the
-    /// candidates picked before it if it was picked, alone otherwise.
+    /// candidates picked before it if it was picked, alone otherwise. For
+    /// a suggestion of a diagnosis, the fit's estimate instead: what the
+    /// refit will store (every row, the fit's cuts; `diagnose` module
+    /// `estimate`).
     pub coef: f64,
-    /// Standard error of `coef` (Newey–West), in `unit`.
+    /// Standard error of `coef` (Newey–West; for a suggestion, the fit's,
+    /// with the spread between its cuts), in `unit`.
     pub coef_se: f64,
     /// 95% confidence interval of `coef`, in `unit`.
     pub coef_ci95: [f64; 2],
@@ -40,7 +44,9 @@ pub struct Candidate<A = String> {
     /// Its ERR given the effects picked before it (forward selection), if picked.
     pub conditional_err: Option<f64>,
     /// Two-sided p-value of its coefficient given the picks before it
-    /// (Newey–West t on the long-run variance's degrees of freedom), if picked.
+    /// (Newey–West t on the long-run variance's degrees of freedom), if
+    /// picked: the ranking's test, on the cross-fitted residual of the
+    /// model and its mirror, which decides the suggestion.
     pub p_value: Option<f64>,
     /// Whether it passes the significance and size thresholds.
     pub significant: bool,

@@ -228,10 +228,10 @@ pub(super) fn check_effects<S: Sensor>(
 
 /// One channel's network and effects, chosen and fitted on the windows
 /// `x_train` (rows `train` of the prepared windows `x`); the effects'
-/// coefficients estimated on rows `theta_rows`.
+/// coefficients estimated on rows `theta_rows` of the raw windows `x_theta`.
 pub(super) fn fit_channel<S: Sensor>(
     prepared: &Prepared<S>,
-    x: MatRef<'_, f64>,
+    (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     x_train: &Mat<f64>,
     (train, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,
@@ -266,7 +266,7 @@ pub(super) fn fit_channel<S: Sensor>(
             theta: theta_rows,
             known,
         };
-        fit_partially_linear(x, &z, y, rows, &units, settings, gap).map_err(fail)?
+        fit_partially_linear((x, x_theta), &z, y, rows, &units, settings, gap).map_err(fail)?
     };
     let width = model.widths().get(0);
     Ok(ChannelFit {

@@ -40,6 +40,7 @@ pub use choice::{
     ADEV_CONFIDENCE, Candidate, ChoiceReport, MIN_ADEV_ROWS, ModelChoice, SMALLER_INPUT_TOLERANCE,
 };
 pub use partial::MIN_BLOCK_ROWS;
+pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
 
 /// Which stage of a fit is running, for progress display.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -364,20 +365,27 @@ fn fit_rows_predicting<S: Sensor>(
     inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
     let fit_on = if stride > 1 { &sel } else { &train };
     let theta_rows: Vec<usize> = match coef {
-        Coef::AllRows | Coef::Stored(_) => {
-            let mut all: Vec<usize> = train.iter().chain(&val).copied().collect();
-            all.sort_unstable();
-            all.dedup();
-            all.into_iter().step_by(stride).collect()
-        }
+        Coef::AllRows | Coef::Stored(_) => partial::theta_rows(&train, &val),
         Coef::TrainingRows => fit_on.clone(),
     };
+    // The effects are partialled out with the raw windows whatever the
+    // input (one estimate of each coefficient, whichever input the choice
+    // takes); they are prepared only when some channel cross-fits.
+    let cross_fits = (0..channels.len()).any(|k| {
+        let n = recipe.effects_of(k).len();
+        n > 0 && coef.stored(k, n).is_none()
+    });
+    let raw = match cross_fits {
+        true => partial::raw_windows(prepared)?,
+        false => None,
+    };
+    let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
     let x_fit = gather(x, fit_on);
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
         true => {
             let fits = shared::fit_channels_shared(
                 prepared,
-                x,
+                (x, x_theta),
                 &x_fit,
                 (fit_on, &theta_rows),
                 recipe,
@@ -393,7 +401,7 @@ fn fit_rows_predicting<S: Sensor>(
             .map(|k| {
                 let m = fit_channel(
                     prepared,
-                    x,
+                    (x, x_theta),
                     &x_fit,
                     (
                         fit_on,

@@ -6,8 +6,12 @@
 
 use super::channel::gather;
 use super::network::fit_network;
+use crate::error::SysidError;
 use crate::inference::{Blocks, Coefficient, HacFit, hac_regression, residualise};
+use crate::input::ModelInput;
+use crate::prepared::Prepared;
 use crate::recipe::FitSettings;
+use crate::sensor::Sensor;
 use faer::{Mat, MatRef};
 use rayon::prelude::*;
 use rbf::Split;
@@ -55,6 +59,29 @@ fn combine_splits(fits: &[HacFit]) -> Option<HacFit> {
     Some(out)
 }
 
+/// The rows the effects' coefficients are estimated on when every row
+/// counts (the fit's default, and the diagnosis's statement of a
+/// suggestion): the training and validation rows in time order, at the
+/// stride the network's selection uses ([`super::selection_stride`]).
+pub(crate) fn theta_rows(train: &[usize], val: &[usize]) -> Vec<usize> {
+    let stride = super::selection_stride(train.len());
+    let mut all: Vec<usize> = train.iter().chain(val).copied().collect();
+    all.sort_unstable();
+    all.dedup();
+    all.into_iter().step_by(stride).collect()
+}
+
+/// The raw windows of `prepared` when its input is not the raw window
+/// (`None` when it is: its own windows are the ones).
+pub(crate) fn raw_windows<S: Sensor>(
+    prepared: &Prepared<S>,
+) -> Result<Option<Prepared<S>>, SysidError> {
+    match prepared.preprocess().input {
+        ModelInput::Raw => Ok(None),
+        _ => prepared.with_input(ModelInput::Raw).map(Some),
+    }
+}
+
 /// Fewest rows in each cross-fitting block: each block's network is chosen
 /// by its own cross-validation, which needs a few hundred windows.
 pub const MIN_BLOCK_ROWS: usize = 200;
@@ -70,6 +97,10 @@ pub const MIN_BLOCK_ROWS: usize = 200;
 /// effects' residuals over both blocks, with Newey–West standard errors.
 /// The final network is fitted to y − Zθ on all training rows.
 ///
+/// The networks that partial the effects out read `x_theta`, the raw
+/// windows ([`cross_fitted_theta`]); the final network (and the joint fit
+/// of the fallback) reads `x`, the model's input.
+///
 /// A cut is used only if each block is long enough for its own blocked
 /// cross-validation with the leakage gap: a long window's gap (250 samples)
 /// leaves the middle fold of a 772-row block no training rows, and such a
@@ -79,7 +110,7 @@ pub const MIN_BLOCK_ROWS: usize = 200;
 /// and the network in one solve) and θ's standard errors come from the same
 /// regression in-sample (Frisch–Waugh–Lovell), which is optimistic.
 pub(super) fn fit_partially_linear(
-    x: MatRef<'_, f64>,
+    (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     z: &Mat<f64>,
     y: &[f64],
     rows: Rows<'_>,
@@ -107,7 +138,7 @@ pub(super) fn fit_partially_linear(
         let theta = Mat::from_fn(p, 1, |j, _| known[j].value);
         return Ok((network_on(&theta)?, known.to_vec()));
     }
-    let (model, fit) = match cross_fitted_theta(x, z, y, rows.theta, settings, gap)? {
+    let (model, fit) = match cross_fitted_theta(x_theta, z, y, rows.theta, settings, gap)? {
         Some(f) => {
             let theta = Mat::from_fn(p, 1, |j, _| f.coef[j]);
             (network_on(&theta)?, Some(f))
@@ -120,11 +151,22 @@ pub(super) fn fit_partially_linear(
 }
 
 /// θ (with its HAC errors) by cross-fitted partialling out on `theta_rows`
-/// (the first half of [`fit_partially_linear`]), or `None` when no cut
-/// leaves both blocks long enough for their own cross-validation or the
-/// regression of the residuals fails.
-pub(super) fn cross_fitted_theta(
-    x: MatRef<'_, f64>,
+/// of the windows `x_theta` (the first half of [`fit_partially_linear`]:
+/// every cut of [`CROSS_FIT_CHUNKS`] whose blocks can choose their own
+/// network, the cuts' spread in the errors), or `None` when no cut leaves
+/// both blocks long enough for their own cross-validation or the regression
+/// of the residuals fails.
+///
+/// This is the one estimator of a coefficient: the fit stores it (one
+/// channel at a time or with a shared selection), and the diagnosis states
+/// a suggested effect's coefficient with it, on the rows and settings the
+/// refit will use, so the two say the same. `x_theta` is the raw window
+/// whatever input the network reads ([`raw_windows`]): the estimate must not
+/// depend on which input the model choice then takes (on the demo the
+/// statistics input's networks put `col:temp` at 0.47, 0.48 and 2.13 over
+/// the three cuts, the raw window's at 0.78, 0.36 and 0.65).
+pub(crate) fn cross_fitted_theta(
+    x_theta: MatRef<'_, f64>,
     z: &Mat<f64>,
     y: &[f64],
     theta_rows: &[usize],
@@ -141,7 +183,7 @@ pub(super) fn cross_fitted_theta(
     // The cuts are independent fits: in parallel, combined in their order.
     let fits: Vec<Option<HacFit>> = cuts
         .par_iter()
-        .map(|b| cross_fit(x, z, y, b, settings, gap))
+        .map(|b| cross_fit(x_theta, z, y, b, settings, gap))
         .collect::<Result<_, _>>()?;
     let fits: Vec<HacFit> = fits.into_iter().flatten().collect();
     Ok(combine_splits(&fits))

@@ -47,10 +47,11 @@ enum Partialled<S: Sensor> {
 
 /// Every channel of `recipe` fitted with one centre selection on the
 /// windows `x_fit` (rows `fit_on` of `x`), effects' coefficients estimated
-/// on `theta_rows`; in the sensor's channel order.
+/// on `theta_rows` of the raw windows `x_theta` (as a per-channel fit
+/// estimates them); in the sensor's channel order.
 pub(super) fn fit_channels_shared<'a, S: Sensor>(
     prepared: &Prepared<S>,
-    x: MatRef<'_, f64>,
+    (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     x_fit: &Mat<f64>,
     (fit_on, theta_rows): (&[usize], &[usize]),
     recipe: &Recipe<S::Effect>,
@@ -64,7 +65,7 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
         .map(|k| {
             partial_out(
                 prepared,
-                x,
+                (x, x_theta),
                 x_fit,
                 (fit_on, theta_rows, known(k)),
                 k,
@@ -137,11 +138,11 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
 }
 
 /// Channel `k`'s effects checked on the selection rows and partialled out
-/// (θ by cross-fitting on `theta_rows`), or, when they cannot be
-/// cross-fitted, the channel fitted alone.
+/// (θ by cross-fitting on `theta_rows` of the raw windows `x_theta`), or,
+/// when they cannot be cross-fitted, the channel fitted alone.
 fn partial_out<S: Sensor>(
     prepared: &Prepared<S>,
-    x: MatRef<'_, f64>,
+    (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     x_fit: &Mat<f64>,
     (fit_on, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
     k: usize,
@@ -178,7 +179,7 @@ fn partial_out<S: Sensor>(
     }
     let y = prepared.target(k);
     let gap = leakage_gap(prepared);
-    let hac = cross_fitted_theta(x, &z, y, theta_rows, settings, gap).map_err(|source| {
+    let hac = cross_fitted_theta(x_theta, &z, y, theta_rows, settings, gap).map_err(|source| {
         SysidError::Fit {
             channel: name(prepared, k),
             source,
@@ -198,7 +199,7 @@ fn partial_out<S: Sensor>(
         }
         None => fit_channel(
             prepared,
-            x,
+            (x, x_theta),
             x_fit,
             (fit_on, theta_rows, None),
             k,
