@@ -16,6 +16,7 @@
 mod channel;
 mod choice;
 mod keep;
+mod memo;
 mod network;
 mod partial;
 mod shared;
@@ -30,8 +31,7 @@ use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::split::{by_record_rows, split_rows};
 use channel::{
-    ChannelFit, fit_channel, gather, inner_folds_fit, predictions, refit_weights, scored,
-    windows_vary,
+    ChannelFit, gather, inner_folds_fit, predictions, refit_weights, scored, windows_vary,
 };
 use rayon::prelude::*;
 use serde::Serialize;
@@ -373,6 +373,9 @@ fn fit_rows_predicting<S: Sensor>(
         Coef::TrainingRows => fit_on.clone(),
     };
     let x_fit = gather(x, fit_on);
+    let remembered = (!settings.shared_centres)
+        .then(|| memo::Records::of(prepared, x))
+        .flatten();
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
         true => {
             let fits = shared::fit_channels_shared(
@@ -391,7 +394,8 @@ fn fit_rows_predicting<S: Sensor>(
         false => (0..channels.len())
             .into_par_iter()
             .map(|k| {
-                let m = fit_channel(
+                let m = memo::fit_channel_remembered(
+                    remembered,
                     prepared,
                     x,
                     &x_fit,
