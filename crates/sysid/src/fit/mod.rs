@@ -15,6 +15,7 @@
 
 mod channel;
 mod choice;
+mod input_sample;
 mod keep;
 mod memo;
 mod network;
@@ -37,7 +38,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 pub use choice::{
-    ADEV_CONFIDENCE, Candidate, ChoiceReport, MIN_ADEV_ROWS, ModelChoice, SMALLER_INPUT_TOLERANCE,
+    ADEV_CONFIDENCE, Candidate, ChoiceReport, InputSample, MIN_ADEV_ROWS, ModelChoice,
+    SMALLER_INPUT_TOLERANCE,
 };
 pub use partial::MIN_BLOCK_ROWS;
 
