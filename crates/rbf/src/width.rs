@@ -137,7 +137,7 @@ impl WidthRule {
                 per_centre(nn, scale)
             }
             WidthRule::MedianPairwise { scale } => {
-                let med = median_pairwise_distance(centres, MEDIAN_SUBSAMPLE, 0).unwrap_or(0.0);
+                let med = median_remembered(centres).unwrap_or(0.0);
                 if med > 0.0 {
                     Ok(Widths::Uniform(scale * med))
                 } else {
@@ -234,6 +234,48 @@ fn per_centre(mut w: Vec<f64>, scale: f64) -> Result<Widths, WidthError> {
         *v *= scale;
     }
     Ok(Widths::PerCentre(w))
+}
+
+/// [`median_pairwise_distance`] of `centres` (on [`MEDIAN_SUBSAMPLE`] of
+/// them), remembered within the process by a 128-bit digest of their
+/// values: a cross-validation asks it for the same candidates once per
+/// width scale, and a fit of several targets on the same inputs once per
+/// target; the distances are O(m²·d) where the digest is O(m·d).
+fn median_remembered(centres: MatRef<'_, f64>) -> Option<f64> {
+    use std::hash::{DefaultHasher, Hasher};
+    use std::sync::Mutex;
+    /// A digest of the centres and their median.
+    type Seen = ((u64, u64), Option<f64>);
+    static SEEN: Mutex<Vec<Seen>> = Mutex::new(Vec::new());
+    const CAPACITY: usize = 256;
+    let (mut a, mut b) = (DefaultHasher::new(), DefaultHasher::new());
+    b.write_u64(0x9e37_79b9_7f4a_7c15);
+    for h in [&mut a, &mut b] {
+        h.write_usize(centres.nrows());
+        h.write_usize(centres.ncols());
+    }
+    for i in 0..centres.nrows() {
+        for j in 0..centres.ncols() {
+            let w = centres[(i, j)].to_bits();
+            a.write_u64(w);
+            b.write_u64(w);
+        }
+    }
+    let key = (a.finish(), b.finish());
+    let lock = || {
+        SEEN.lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    };
+    if let Some(&(_, med)) = lock().iter().find(|(k, _)| *k == key) {
+        return med;
+    }
+    let med = median_pairwise_distance(centres, MEDIAN_SUBSAMPLE, 0);
+    let mut seen = lock();
+    if seen.len() >= CAPACITY {
+        seen.remove(0);
+    }
+    seen.push((key, med));
+    med
 }
 
 #[cfg(test)]

@@ -49,6 +49,26 @@ pub struct ChoiceReport {
     /// none was.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub networks_shrunk: Vec<String>,
+    /// On a large record, the input was chosen on a sample of it
+    /// (`sysid::fit`'s input sample) and only that input was fitted on the
+    /// whole record: the sample's rows and its candidates (every input and
+    /// smoother). `candidates` then holds the chosen input's only. Absent
+    /// when every input was fitted on the whole record.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub input_sample: Option<InputSample>,
+}
+
+/// The sample of a large record a choice of input was made on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InputSample {
+    /// Rows of the sample (windows, in every chunk together).
+    pub rows: usize,
+    /// Chunks of contiguous rows, spread over the record.
+    pub chunks: usize,
+    /// Every candidate as judged on the sample, inputs outer, smoothers inner.
+    pub candidates: Vec<Candidate>,
+    /// Index of the one chosen there (its input was then fitted on the record).
+    pub chosen: usize,
 }
 
 impl ChoiceReport {

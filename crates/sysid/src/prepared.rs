@@ -62,8 +62,17 @@ impl<S: Sensor> Prepared<S> {
     /// Calibrates `raw` (the sensor's), takes the targets, filters and forms
     /// windows.
     pub fn new(sensor: &S, raw: &Signals, pre: &Preprocess) -> Result<Self, SysidError> {
-        let causal = pre.causal;
         let calibrated = sensor.calibrate(raw).map_err(sensor_error)?;
+        Self::from_calibrated(sensor, calibrated, pre)
+    }
+
+    /// [`Prepared::new`] on a record already calibrated by `sensor`.
+    fn from_calibrated(
+        sensor: &S,
+        calibrated: Signals,
+        pre: &Preprocess,
+    ) -> Result<Self, SysidError> {
+        let causal = pre.causal;
         let design = |f: Option<crate::preprocess::FilterSpec>| {
             f.map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
                 .transpose()
@@ -167,19 +176,58 @@ impl<S: Sensor> Prepared<S> {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self::concat(prepared, records))
+        let names = records.iter().map(|(name, _)| name.clone()).collect();
+        Ok(Self::concat(prepared, names))
+    }
+
+    /// `chunks` spans of `rows_each` rows (fewer where a record ends first)
+    /// spread evenly over the rows, each prepared again on its own from its
+    /// calibrated samples (filters and windows restart in it) and laid end
+    /// to end, named `sample 1`, `sample 2`, …: a small stand-in for a large
+    /// record, on which a choice is cheap to make. `None` when the records
+    /// are too short for a chunk of more than half of `rows_each` rows.
+    pub(crate) fn sample(
+        &self,
+        chunks: usize,
+        rows_each: usize,
+    ) -> Result<Option<Self>, SysidError> {
+        let (n, first) = (self.rows(), self.first_sample());
+        let span = n / chunks.max(1);
+        if span < rows_each {
+            return Ok(None);
+        }
+        let mut prepared = Vec::with_capacity(chunks);
+        for c in 0..chunks {
+            // Each chunk in the middle of its span of rows.
+            let row = c * span + (span - rows_each) / 2;
+            let (record, sample) = self.locate(row);
+            let from = sample - first;
+            let to = (sample + rows_each).min(record.len());
+            if to - sample < rows_each / 2 {
+                return Ok(None);
+            }
+            let columns = record
+                .columns()
+                .iter()
+                .map(|(name, v)| (name.clone(), v[from..to].to_vec()))
+                .collect();
+            let part = Signals::new(record.t()[from..to].to_vec(), columns)?;
+            prepared.push(Self::from_calibrated(&self.sensor, part, &self.preprocess)?);
+        }
+        let names = (1..=chunks).map(|c| format!("sample {c}")).collect();
+        Ok(Some(Self::concat(prepared, names)))
     }
 
     /// Prepared records laid end to end, each later one without its warm-up.
-    fn concat(prepared: Vec<Self>, records: &[(String, &Signals)]) -> Self {
+    fn concat(prepared: Vec<Self>, names: Vec<String>) -> Self {
         let first = prepared[0].first_sample();
         let trim = |k: usize| if k == 0 { 0 } else { first };
         let mut parts = Vec::with_capacity(prepared.len());
         let mut row = 0;
-        for (p, (name, _)) in prepared.iter().zip(records) {
+        for (p, name) in prepared.iter().zip(names) {
             let rows = p.rows();
             parts.push(Part {
-                name: name.clone(),
+                name,
                 calibrated: p.calibrated.clone(),
                 rows: row..row + rows,
             });

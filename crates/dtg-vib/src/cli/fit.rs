@@ -102,6 +102,26 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
             if k.passes { "yes" } else { "no" }
         );
     }
+    if let Some(s) = &c.input_sample {
+        let best = |input| {
+            s.candidates
+                .iter()
+                .filter(|k| k.input == input)
+                .map(|k| k.mean_val_rms)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let inputs: Vec<String> = sysid::ModelInput::ALL
+            .iter()
+            .filter(|&&i| best(i).is_finite())
+            .map(|&i| format!("{i} {:.4}", best(i)))
+            .collect();
+        println!(
+            "  the input was chosen on a sample of {} rows ({} chunks spread over the record; best validation rms there: {} deg/h), and only it was fitted on the whole record",
+            s.rows,
+            s.chunks,
+            inputs.join(", ")
+        );
+    }
     if let Some(b) = c.baseline() {
         let w = c.chosen();
         println!(

@@ -34,7 +34,7 @@ pub(super) struct Context {
     /// test on their own. With several records, the ends of each record.
     pub(super) steady: Vec<usize>,
     pub(super) band_edges: Vec<f64>,
-    pub(super) shape: Box<dyn Fn(f64) -> f64>,
+    pub(super) shape: Box<dyn Fn(f64) -> f64 + Send + Sync>,
 }
 
 impl Context {
@@ -76,7 +76,7 @@ impl Context {
         if cutoff < nyquist {
             band_edges.push(nyquist);
         }
-        let shape: Box<dyn Fn(f64) -> f64> = match prepared.filter() {
+        let shape: Box<dyn Fn(f64) -> f64 + Send + Sync> = match prepared.filter() {
             Some(f) => {
                 let f = f.clone();
                 Box::new(move |hz| f.gain_at(hz).powi(4))

@@ -34,6 +34,7 @@ use crate::residuals::CorrelationCheck;
 use crate::sensor::{Effect, Sensor};
 use context::Context;
 use crossfit::{CrossFit, Half};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Diagnosis settings.
@@ -191,9 +192,11 @@ pub fn diagnose_prepared<S: Sensor>(
         },
         ..*options
     };
+    // The channels are independent: in parallel (the mirror's fit before
+    // this keeps both cores busy, this part did not).
     let channels = model
         .channels()
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(i, c)| {
             let halves = CrossFit {

@@ -35,7 +35,7 @@ pub const ADEV_CONFIDENCE: f64 = 0.683;
 /// checked (shorter runs, as an interleaved split's, say nothing at τ).
 pub const MIN_ADEV_ROWS: usize = 200;
 
-pub use crate::choice_report::{Candidate, ChoiceReport};
+pub use crate::choice_report::{Candidate, ChoiceReport, InputSample};
 
 /// The recipe fitted once per candidate input, every smoother judged, the
 /// winner returned with its smoother set, scored with it, and the report.
@@ -47,6 +47,9 @@ pub(super) fn fit_choosing<S: Sensor>(
     coef: super::Coef<'_>,
     progress: super::Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
+    // A large record's input is chosen on a sample of it, then fitted alone.
+    let sampled = super::input_sample::choose_input(prepared, recipe, choice)?;
+    let choice = sampled.as_ref().map_or(choice, |(c, _)| c);
     let judge = Judge::new(prepared, val)?;
     let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
     // Per input: its candidates, and the model with its unsmoothed
@@ -124,6 +127,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         chosen,
         adev_runs: judge.runs.len(),
         networks_shrunk: Vec::new(),
+        input_sample: sampled.map(|(_, s)| s),
     });
     Ok(model)
 }

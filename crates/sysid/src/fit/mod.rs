@@ -15,7 +15,9 @@
 
 mod channel;
 mod choice;
+mod input_sample;
 mod keep;
+mod memo;
 mod network;
 mod partial;
 mod shared;
@@ -30,14 +32,14 @@ use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::split::{by_record_rows, split_rows};
 use channel::{
-    ChannelFit, fit_channel, gather, inner_folds_fit, predictions, refit_weights, scored,
-    windows_vary,
+    ChannelFit, gather, inner_folds_fit, predictions, refit_weights, scored, windows_vary,
 };
 use rayon::prelude::*;
 use serde::Serialize;
 
 pub use choice::{
-    ADEV_CONFIDENCE, Candidate, ChoiceReport, MIN_ADEV_ROWS, ModelChoice, SMALLER_INPUT_TOLERANCE,
+    ADEV_CONFIDENCE, Candidate, ChoiceReport, InputSample, MIN_ADEV_ROWS, ModelChoice,
+    SMALLER_INPUT_TOLERANCE,
 };
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
@@ -381,6 +383,9 @@ fn fit_rows_predicting<S: Sensor>(
     };
     let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
     let x_fit = gather(x, fit_on);
+    let remembered = (!settings.shared_centres)
+        .then(|| memo::Records::of(prepared, x))
+        .flatten();
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
         true => {
             let fits = shared::fit_channels_shared(
@@ -399,7 +404,8 @@ fn fit_rows_predicting<S: Sensor>(
         false => (0..channels.len())
             .into_par_iter()
             .map(|k| {
-                let m = fit_channel(
+                let m = memo::fit_channel_remembered(
+                    remembered,
                     prepared,
                     (x, x_theta),
                     &x_fit,

@@ -1,0 +1,224 @@
+//! Channel fits remembered within a process, by what they are a function of.
+//!
+//! The explain loop fits the same channel on the same rows several times:
+//! the refit with a suggested effect refits every channel although only the
+//! one given the effect changed, and the refit's mirror fits again the
+//! networks the baseline's mirror fitted. A channel's fit is a pure function
+//! of its windows, target, effect columns, rows, settings and stored
+//! coefficients (every random choice is seeded), so a fit asked again with
+//! the same inputs is taken from here, bit for bit the one computed before.
+//!
+//! The key holds 128-bit digests of the arrays, not the arrays. Records of
+//! more than [`MAX_ROWS`] rows are not remembered: hashing their windows
+//! would cost time and nothing there is refitted.
+
+use super::channel::{ChannelFit, fit_channel};
+use crate::error::SysidError;
+use crate::inference::Coefficient;
+use crate::prepared::Prepared;
+use crate::recipe::FitSettings;
+use crate::sensor::{Effect, Sensor};
+use crate::split::leakage_gap;
+use faer::{Mat, MatRef};
+use std::collections::VecDeque;
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::sync::Mutex;
+
+/// Largest record (rows of windows) whose channel fits are remembered.
+pub const MAX_ROWS: usize = 100_000;
+
+/// Channel fits remembered; the oldest is dropped beyond this (the demo's
+/// loop asks for about 50 distinct ones, each a few hundred kB at most).
+const CAPACITY: usize = 96;
+
+/// A 128-bit digest: two SipHashes of the same words, salted apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Digest(u64, u64);
+
+struct Digester(DefaultHasher, DefaultHasher);
+
+impl Digester {
+    fn new() -> Self {
+        let mut second = DefaultHasher::new();
+        0x9e37_79b9_7f4a_7c15_u64.hash(&mut second);
+        Self(DefaultHasher::new(), second)
+    }
+
+    fn word(&mut self, w: u64) {
+        self.0.write_u64(w);
+        self.1.write_u64(w);
+    }
+
+    fn f64s(&mut self, v: impl Iterator<Item = f64>) {
+        let mut n = 0u64;
+        for x in v {
+            self.word(x.to_bits());
+            n += 1;
+        }
+        self.word(n);
+    }
+
+    fn usizes(&mut self, v: &[usize]) {
+        v.iter().for_each(|&r| self.word(r as u64));
+        self.word(v.len() as u64);
+    }
+
+    fn text(&mut self, s: &str) {
+        s.hash(&mut self.0);
+        s.hash(&mut self.1);
+    }
+
+    fn matrix(&mut self, m: MatRef<'_, f64>) {
+        self.word(m.nrows() as u64);
+        self.word(m.ncols() as u64);
+        for i in 0..m.nrows() {
+            self.f64s((0..m.ncols()).map(|j| m[(i, j)]));
+        }
+    }
+
+    fn finish(&self) -> Digest {
+        Digest(self.0.finish(), self.1.finish())
+    }
+}
+
+/// What every channel of one fit shares: the sensor type, the
+/// pre-processing that made the windows (the smoother aside: it only
+/// post-processes predictions), the windows themselves and the leakage gap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Records(Digest);
+
+impl Records {
+    /// `None` above [`MAX_ROWS`] rows.
+    pub(super) fn of<S: Sensor>(prepared: &Prepared<S>, x: MatRef<'_, f64>) -> Option<Self> {
+        if x.nrows() > MAX_ROWS {
+            return None;
+        }
+        let mut d = Digester::new();
+        d.text(std::any::type_name::<S>());
+        let mut pre = prepared.preprocess().clone();
+        pre.smoother = None;
+        d.text(&format!("{pre:?}"));
+        d.word(leakage_gap(prepared) as u64);
+        d.word(prepared.first_sample() as u64);
+        d.matrix(x);
+        Some(Self(d.finish()))
+    }
+}
+
+/// One channel fit's key: [`Records`] and everything of the channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Key(Digest, Digest);
+
+struct Entry {
+    key: Key,
+    z: Mat<f64>,
+    width: f64,
+    model: rbf::RbfModel,
+    coefficients: Vec<Coefficient>,
+}
+
+static FITS: Mutex<VecDeque<Entry>> = Mutex::new(VecDeque::new());
+
+/// [`fit_channel`], taken from the fits remembered when one with the same
+/// inputs was made before (`records` none: always computed).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fit_channel_remembered<S: Sensor>(
+    records: Option<Records>,
+    prepared: &Prepared<S>,
+    x: MatRef<'_, f64>,
+    x_train: &Mat<f64>,
+    rows: (&[usize], &[usize], Option<&[Coefficient]>),
+    channel: usize,
+    effects: &[S::Effect],
+    settings: &FitSettings,
+) -> Result<ChannelFit<S>, SysidError> {
+    let fit = || fit_channel(prepared, x, x_train, rows, channel, effects, settings);
+    let Some(records) = records else {
+        return fit();
+    };
+    let key = Key(
+        records.0,
+        channel_digest(prepared, rows, channel, effects, settings)?,
+    );
+    let found = lock().iter().find(|e| e.key == key).map(|e| ChannelFit {
+        channel,
+        effects: effects.to_vec(),
+        z: e.z.clone(),
+        width: e.width,
+        model: e.model.clone(),
+        coefficients: e.coefficients.clone(),
+    });
+    if let Some(f) = found {
+        return Ok(f);
+    }
+    let f = fit()?;
+    let mut fits = lock();
+    if !fits.iter().any(|e| e.key == key) {
+        if fits.len() >= CAPACITY {
+            fits.pop_front();
+        }
+        fits.push_back(Entry {
+            key,
+            z: f.z.clone(),
+            width: f.width,
+            model: f.model.clone(),
+            coefficients: f.coefficients.clone(),
+        });
+    }
+    Ok(f)
+}
+
+/// The store; a panic elsewhere while it was held leaves it usable (an
+/// entry is pushed whole or not at all).
+fn lock() -> std::sync::MutexGuard<'static, VecDeque<Entry>> {
+    FITS.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn channel_digest<S: Sensor>(
+    prepared: &Prepared<S>,
+    (train, theta_rows, known): (&[usize], &[usize], Option<&[Coefficient]>),
+    channel: usize,
+    effects: &[S::Effect],
+    settings: &FitSettings,
+) -> Result<Digest, SysidError> {
+    let mut d = Digester::new();
+    d.word(channel as u64);
+    d.f64s(prepared.target(channel).iter().copied());
+    for e in effects {
+        d.text(&e.id());
+    }
+    d.word(effects.len() as u64);
+    if !effects.is_empty() {
+        d.matrix(prepared.effect_matrix(channel, effects)?.as_ref());
+    }
+    d.usizes(train);
+    d.usizes(theta_rows);
+    d.text(&format!("{known:?}"));
+    // The choice only says which inputs and smoothers a fit tries; the
+    // channel fit reads the rest.
+    let settings = FitSettings {
+        choice: None,
+        ..settings.clone()
+    };
+    d.text(&format!("{settings:?}"));
+    Ok(d.finish())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn digests_tell_arrays_apart() {
+        let digest = |v: &[f64]| {
+            let mut d = Digester::new();
+            d.f64s(v.iter().copied());
+            d.finish()
+        };
+        assert_eq!(digest(&[1.0, 2.0]), digest(&[1.0, 2.0]));
+        assert_ne!(digest(&[1.0, 2.0]), digest(&[2.0, 1.0]));
+        assert_ne!(digest(&[0.0]), digest(&[-0.0]));
+        assert_ne!(digest(&[1.0]), digest(&[1.0, 1.0]));
+    }
+}
