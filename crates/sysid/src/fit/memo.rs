@@ -89,7 +89,12 @@ pub(super) struct Records(Digest);
 
 impl Records {
     /// `None` above [`MAX_ROWS`] rows.
-    pub(super) fn of<S: Sensor>(prepared: &Prepared<S>, x: MatRef<'_, f64>) -> Option<Self> {
+    /// `x_theta` is what the effects are partialled out with (the raw
+    /// windows, or `x` itself when no channel cross-fits).
+    pub(super) fn of<S: Sensor>(
+        prepared: &Prepared<S>,
+        (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
+    ) -> Option<Self> {
         if x.nrows() > MAX_ROWS {
             return None;
         }
@@ -101,6 +106,7 @@ impl Records {
         d.word(leakage_gap(prepared) as u64);
         d.word(prepared.first_sample() as u64);
         d.matrix(x);
+        d.matrix(x_theta);
         Some(Self(d.finish()))
     }
 }
@@ -125,7 +131,7 @@ static FITS: Mutex<VecDeque<Entry>> = Mutex::new(VecDeque::new());
 pub(super) fn fit_channel_remembered<S: Sensor>(
     records: Option<Records>,
     prepared: &Prepared<S>,
-    x: MatRef<'_, f64>,
+    x: (MatRef<'_, f64>, MatRef<'_, f64>),
     x_train: &Mat<f64>,
     rows: (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,

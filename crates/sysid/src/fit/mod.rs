@@ -384,7 +384,7 @@ fn fit_rows_predicting<S: Sensor>(
     let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
     let x_fit = gather(x, fit_on);
     let remembered = (!settings.shared_centres)
-        .then(|| memo::Records::of(prepared, x))
+        .then(|| memo::Records::of(prepared, (x, x_theta)))
         .flatten();
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
         true => {
