@@ -64,6 +64,57 @@ pub fn exp_neg(x: f64) -> f64 {
     if x < -708.0 { 0.0 } else { p * scale }
 }
 
+/// eˣ for x ≤ 0 in fewer operations than [`exp_neg`], for the onboard step's
+/// kernels (the exported C has the same routine, constant for constant, so
+/// the two give the same bits): the same reduction x = n ln 2 + r, then a
+/// degree-11 polynomial fitted to eʳ on |r| ≤ ln 2 / 2 (Chebyshev, 3·10⁻¹⁸
+/// relative), evaluated by Estrin's scheme (24 flops against 29). Within
+/// 4 ulps of `f64::exp` (tested); below −708 it gives 0; NaN gives NaN.
+/// Branch-free, so loops over it vectorise.
+///
+/// ```
+/// assert_eq!(fastexp::exp_neg11(0.0), 1.0);
+/// assert!((fastexp::exp_neg11(-1.0) - (-1.0f64).exp()).abs() < 1e-15);
+/// assert_eq!(fastexp::exp_neg11(-800.0), 0.0);
+/// ```
+#[inline(always)]
+pub fn exp_neg11(x: f64) -> f64 {
+    const LOG2E: f64 = core::f64::consts::LOG2_E;
+    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    // eʳ ≈ Σ Cₖ rᵏ (mpmath chebyfit at 50 digits, rounded to the nearest double).
+    const C: [f64; 12] = [
+        1.0,
+        1.0,
+        f64::from_bits(0x3fe0_0000_0000_0011),
+        f64::from_bits(0x3fc5_5555_5555_555a),
+        f64::from_bits(0x3fa5_5555_5554_f0cf),
+        f64::from_bits(0x3f81_1111_1110_f225),
+        f64::from_bits(0x3f56_c16c_187f_be02),
+        f64::from_bits(0x3f2a_01a0_1b14_378f),
+        f64::from_bits(0x3efa_0199_1ac8_730a),
+        f64::from_bits(0x3ec7_1ddf_5749_d126),
+        f64::from_bits(0x3e92_8b40_57f4_4145),
+        f64::from_bits(0x3e5a_f631_d005_9bec),
+    ];
+    let xc = if x < -708.0 { -708.0 } else { x };
+    let t = xc * LOG2E + SHIFT;
+    let n = t - SHIFT;
+    let r = (xc - n * LN2_HI) - n * LN2_LO;
+    // Estrin's scheme in three groups of four: a short dependency chain, so
+    // that the lanes of a vectorised loop are not waiting on one another.
+    let r2 = r * r;
+    let r4 = r2 * r2;
+    let q0 = (C[0] + C[1] * r) + (C[2] + C[3] * r) * r2;
+    let q1 = (C[4] + C[5] * r) + (C[6] + C[7] * r) * r2;
+    let q2 = (C[8] + C[9] * r) + (C[10] + C[11] * r) * r2;
+    let p = q0 + (q1 + q2 * r4) * r4;
+    let ni = t.to_bits().wrapping_sub(SHIFT.to_bits());
+    let scale = f64::from_bits(ni.wrapping_add(1023) << 52);
+    if x < -708.0 { 0.0 } else { p * scale }
+}
+
 #[cfg(test)]
 extern crate std;
 
@@ -95,5 +146,32 @@ mod tests {
         assert_eq!(exp_neg(0.0), 1.0);
         assert_eq!(exp_neg(-800.0), 0.0);
         assert_eq!(exp_neg(-f64::INFINITY), 0.0);
+    }
+
+    /// The shorter polynomial stays within 4 ulps of libm's too, and gives 0
+    /// below −708 and NaN for NaN.
+    #[test]
+    fn degree_eleven_exponential_matches_libm() {
+        let mut worst: f64 = 0.0;
+        let mut x = 0.0f64;
+        while x > -708.0 {
+            for dx in [0.0, -1e-300, -0.123_456_789, -0.5, -0.346_573_590_279_972_6] {
+                let v = x + dx;
+                if !(-708.0..=0.0).contains(&v) {
+                    continue;
+                }
+                let (a, b) = (exp_neg11(v), v.exp());
+                worst = worst.max(((a - b) / b).abs());
+            }
+            x -= 0.0037;
+        }
+        assert!(
+            worst <= 4.0 * f64::EPSILON,
+            "worst relative error {worst:e}"
+        );
+        assert_eq!(exp_neg11(0.0), 1.0);
+        assert_eq!(exp_neg11(-800.0), 0.0);
+        assert_eq!(exp_neg11(-f64::INFINITY), 0.0);
+        assert!(exp_neg11(f64::NAN).is_nan());
     }
 }
