@@ -50,10 +50,11 @@
 
 #![no_std]
 #![forbid(unsafe_code)]
-// One dependency, itself no_std and dependency-free: `fastexp`, the
-// exponential the desktop's kernels use, so both give the same bits. The rest
-// needs only `+ − × ÷`, comparisons and bit operations.
-use fastexp::exp_neg;
+// One dependency, itself no_std and dependency-free: `fastexp`, whose
+// `exp_neg11` (a few ulps from the desktop's `exp_neg`, in fewer operations)
+// the exported C writes out constant for constant, so Rust and C give the
+// same bits. The rest needs only `+ − × ÷`, comparisons and bit operations.
+use fastexp::exp_neg11;
 
 /// The first four bytes of the tables.
 pub const MAGIC: [u8; 4] = *b"DTGO";
@@ -300,6 +301,9 @@ struct ChannelAt {
     widths: usize,
     weights: usize,
     centres: usize,
+    /// State offset of its centre set in lane order (a leader's, with the
+    /// statistics input: [`fill_lanes`]).
+    lanes: usize,
     /// First output-filter state of this channel's effects.
     state: usize,
     /// The gyro's model ([`gyro`]) and the byte offset of its calibration.
@@ -637,6 +641,14 @@ impl<'a> Model<'a> {
             state += 3 * n_signals;
         }
         let (leader, members, n_members) = sharing(bytes, &channels[..nc], dim);
+        if input == input::STATISTICS {
+            for (c, ch) in channels[..nc].iter_mut().enumerate() {
+                if leader[c] == c {
+                    ch.lanes = state;
+                    state += lane_blocks(ch.n_centres) * (dim + 1) * LANES;
+                }
+            }
+        }
         Ok(Self {
             bytes: &bytes[..need],
             version,
@@ -891,6 +903,7 @@ impl<'m, 's> Evaluator<'m, 's> {
         }
         let state = &mut state[..need];
         state.fill(0.0);
+        fill_lanes(&model, state);
         Ok(Self {
             model,
             state,
@@ -903,6 +916,7 @@ impl<'m, 's> Evaluator<'m, 's> {
     /// Back to rest, as after [`Evaluator::new`].
     pub fn reset(&mut self) {
         self.state.fill(0.0);
+        fill_lanes(&self.model, self.state);
         self.steps = 0;
         self.processed = 0;
         self.ring_pos = 0;
@@ -1192,14 +1206,90 @@ fn linear_parts(
     linear
 }
 
-/// Centres whose kernel arguments are gathered before their exponentials
-/// are taken in one loop (which then vectorises: `fastexp` has no branch).
+/// Centres taken together. Their squared distances are summed side by side
+/// ([`LANES`] centres at a time, one input number against each in turn, so
+/// that vector lanes work on several centres), their exponentials taken in
+/// one branch-free loop over the block, and each sharing channel's weighted
+/// terms kept in one partial sum per lane; the exported C takes the same
+/// blocks and lanes.
 const KERNEL_BLOCK: usize = 32;
+/// Centres whose distances are summed side by side and whose weighted
+/// terms keep one partial sum each (the exported C's `DTG_LANES`; the
+/// centres of a statistics model are laid out in blocks of this many).
+pub const LANES: usize = 8;
 
-/// Every channel's kernel terms, in centre order, added to its `ys` and
-/// `nets` (the input: the statistics in `st`, or the windows of the rings
-/// whose oldest sample is at `ring_pos`). Channels that share a centre set
-/// take each kernel value computed once, times their own weight.
+/// The table's `f64`s from byte `at`, `n` of them, as 8-byte chunks.
+#[inline(always)]
+fn f64s(bytes: &[u8], at: usize, n: usize) -> &[[u8; 8]] {
+    bytes[at..at + 8 * n].as_chunks::<8>().0
+}
+
+/// The lanes of a block summed pairwise (the C sums them in this order).
+#[inline(always)]
+fn lane_sum(a: &[f64; LANES]) -> f64 {
+    let mut v = *a;
+    let mut w = LANES;
+    while w > 1 {
+        w /= 2;
+        for i in 0..w {
+            v[i] += v[i + w];
+        }
+    }
+    v[0]
+}
+
+/// −‖x − cᵢ‖²/βᵢ² of [`LANES`] centres in lane order (`block`: input
+/// number j of centre i at `j·LANES + i`, then the 1/βᵢ²), each distance
+/// summed in input order: the loop over the centres is the inner one, so
+/// that it runs in vector lanes.
+#[inline(always)]
+fn lanes_arg(block: &[f64], x: &[f64], dim: usize, arg: &mut [f64; LANES]) {
+    let block = &block[..(dim + 1) * LANES];
+    let mut r2 = [0.0; LANES];
+    for (j, &xj) in x[..dim].iter().enumerate() {
+        for (r, c) in r2.iter_mut().zip(&block[j * LANES..(j + 1) * LANES]) {
+            let d = xj - c;
+            *r += d * d;
+        }
+    }
+    for ((a, r), w) in arg.iter_mut().zip(&r2).zip(&block[dim * LANES..]) {
+        *a = -(r * w);
+    }
+}
+
+/// Centre blocks of [`LANES`] for `n` centres.
+const fn lane_blocks(n: usize) -> usize {
+    n.div_ceil(LANES)
+}
+
+/// Each centre set of a statistics model into the state in lane order, for
+/// [`lanes_arg`]: per block of [`LANES`] centres, input number j of each
+/// centre, then each centre's 1/β²; zeros in the lanes past the last centre.
+/// (The exported C has the same numbers as constant arrays.)
+fn fill_lanes(m: &Model, st: &mut [f64]) {
+    if m.input != input::STATISTICS {
+        return;
+    }
+    let dim = m.dim;
+    for (c, ch) in m.channels[..m.n_channels].iter().enumerate() {
+        if m.leader[c] != c {
+            continue;
+        }
+        for k in 0..ch.n_centres {
+            let at = ch.lanes + (k / LANES) * (dim + 1) * LANES + k % LANES;
+            for j in 0..dim {
+                st[at + j * LANES] = m.f(ch.centres + 8 * (k * dim + j));
+            }
+            let beta = m.f(ch.widths + 8 * k);
+            st[at + dim * LANES] = 1.0 / (beta * beta);
+        }
+    }
+}
+
+/// Every channel's kernel terms added to its `ys` and `nets` (the input:
+/// the statistics in `st`, or the windows of the rings whose oldest sample
+/// is at `ring_pos`). Channels that share a centre set take each kernel
+/// value computed once, times their own weight.
 #[inline(always)]
 fn network_terms(
     m: &Model,
@@ -1208,49 +1298,76 @@ fn network_terms(
     ys: &mut [f64; MAX_CHANNELS],
     nets: &mut [f64; MAX_CHANNELS],
 ) {
-    let l = m.window_len;
+    const B: usize = KERNEL_BLOCK;
+    let (l, dim) = (m.window_len, m.dim);
     for (c, ch) in m.channels[..m.n_channels].iter().enumerate() {
         if m.leader[c] != c {
             continue;
         }
         let members = &m.members[c][..m.n_members[c]];
-        let mut centre = ch.centres;
+        let n = ch.n_centres;
+        let widths = f64s(m.bytes, ch.widths, n);
+        let mut acc = [[0.0; LANES]; MAX_CHANNELS];
         let mut k0 = 0;
-        while k0 < ch.n_centres {
-            let nb = KERNEL_BLOCK.min(ch.n_centres - k0);
-            let mut arg = [0.0; KERNEL_BLOCK];
-            for (j, a) in arg[..nb].iter_mut().enumerate() {
-                let mut r2 = 0.0;
-                if m.input == input::STATISTICS {
-                    let x = &st[m.features..m.features + m.dim];
-                    r2 = sq_dist(&m.bytes[centre..centre + 8 * m.dim], x);
-                    centre += 8 * m.dim;
-                } else {
-                    for s in 0..m.n_signals {
-                        let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
-                        r2 += sq_dist(&m.bytes[centre..centre + 8 * l], win);
-                        centre += 8 * l;
+        while k0 < n {
+            let nb = B.min(n - k0);
+            // −‖x − cᵢ‖²/βᵢ²; 0 in the lanes past the last centre (whose
+            // weight is 0).
+            let mut arg = [0.0; B];
+            if m.input == input::STATISTICS {
+                let x = &st[m.features..m.features + dim];
+                let stride = (dim + 1) * LANES;
+                let first = k0 / LANES;
+                let lanes = arg.as_chunks_mut::<LANES>().0;
+                for (lb, arg) in lanes[..lane_blocks(nb)].iter_mut().enumerate() {
+                    let block = &st[ch.lanes + (first + lb) * stride..][..stride];
+                    if dim == 9 {
+                        // Three signals' statistics: the loops unrolled.
+                        lanes_arg(block, x, 9, arg);
+                    } else {
+                        lanes_arg(block, x, dim, arg);
                     }
                 }
-                let beta = m.f(ch.widths + 8 * (k0 + j));
-                *a = -(r2 / (beta * beta));
+            } else {
+                for (i, a) in arg[..nb].iter_mut().enumerate() {
+                    let mut at = ch.centres + 8 * dim * (k0 + i);
+                    let mut r2 = 0.0;
+                    for s in 0..m.n_signals {
+                        let win = &st[m.rings + 2 * l * s + ring_pos..][..l];
+                        r2 += sq_dist(&m.bytes[at..at + 8 * l], win);
+                        at += 8 * l;
+                    }
+                    let beta = f64::from_le_bytes(widths[k0 + i]);
+                    *a = -(r2 / (beta * beta));
+                }
             }
-            let mut phi = [0.0; KERNEL_BLOCK];
+            let mut phi = [0.0; B];
             for (p, a) in phi.iter_mut().zip(&arg) {
-                *p = exp_neg(*a);
+                *p = exp_neg11(*a);
             }
-            for &j in members {
-                let (j, at) = (j as usize, m.channels[j as usize].weights + 8 * k0);
-                let weights = &m.bytes[at..at + 8 * nb];
-                for (p, w) in phi[..nb].iter().zip(weights.chunks_exact(8)) {
-                    let mut b = [0u8; 8];
-                    b.copy_from_slice(w);
-                    let term = p * f64::from_le_bytes(b);
-                    ys[j] += term;
-                    nets[j] += term;
+            for (a, &j) in acc.iter_mut().zip(members) {
+                let weights = f64s(m.bytes, m.channels[j as usize].weights, n);
+                let mut w = [0.0; B];
+                for (wi, v) in w[..nb].iter_mut().zip(&weights[k0..k0 + nb]) {
+                    *wi = f64::from_le_bytes(*v);
+                }
+                for (p, w) in phi
+                    .as_chunks::<LANES>()
+                    .0
+                    .iter()
+                    .zip(w.as_chunks::<LANES>().0)
+                {
+                    for ((a, p), w) in a.iter_mut().zip(p).zip(w) {
+                        *a += p * w;
+                    }
                 }
             }
             k0 += nb;
+        }
+        for (a, &j) in acc.iter().zip(members) {
+            let sum = lane_sum(a);
+            ys[j as usize] += sum;
+            nets[j as usize] += sum;
         }
     }
 }
@@ -1426,24 +1543,36 @@ fn covariance(m0: &[f64; 3], m1: &[f64; 3], m2: &[f64; 3]) -> [[f64; 3]; 3] {
     c
 }
 
-/// The accelerometer triad's static inverse (nav_sensors::accel::compensate_triad).
+/// Newton's iterations (the calibration's inverses) stop once the next
+/// step would be within this many ulps of the estimate (its residual is
+/// checked before the division), or after four as in the batch: later
+/// steps would move only the last bits, so the two agree to a few ulps, and
+/// an inverse takes one division where the batch takes four.
+const NEWTON_SETTLED: f64 = 4.0 * f64::EPSILON;
+
+/// The accelerometer triad's static inverse (nav_sensors::accel::compensate_triad:
+/// three Gauss–Seidel sweeps, Newton on each axis). A sweep after the first
+/// starts each axis's Newton at the last sweep's root, which the µg-sized
+/// coupling moves only slightly.
 fn compensate_triad(m: &Model, measured: &[f64; 3]) -> [f64; 3] {
     let mut a = *measured;
-    for _ in 0..3 {
+    let cal = |k: usize, i: usize| m.f(m.accel_cal + 8 * (ACCEL_CAL * k + i));
+    let target: [f64; 3] = core::array::from_fn(|k| measured[k] / (1.0 + 1e-6 * cal(k, 1)));
+    for sweep in 0..3 {
         for k in 0..3 {
-            let o = m.accel_cal + 8 * ACCEL_CAL * k;
-            let c = |i: usize| m.f(o + 8 * i);
-            let (bias, sf, k2, k3, mo, mp, kip, kio) =
-                (c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7));
+            let c = |i: usize| cal(k, i);
+            let (bias, k2, k3, mo, mp, kip, kio) = (c(0), c(2), c(3), c(4), c(5), c(6), c(7));
             let (ap, ao) = (a[(k + 1) % 3], a[(k + 2) % 3]);
-            let target = measured[k] / (1.0 + 1e-6 * sf);
-            let mut x = target;
+            let mut x = if sweep == 0 { target[k] } else { a[k] };
             for _ in 0..4 {
                 let core = 1e-6
                     * (bias + x * x * (k2 + k3 * x) + mo * ap - mp * ao
                         + x * (kip * ap + kio * ao));
-                let g = x + core - target;
+                let g = x + core - target[k];
                 let dg = 1.0 + 1e-6 * (2.0 * k2 * x + 3.0 * k3 * x * x + kip * ap + kio * ao);
+                if abs(g) <= NEWTON_SETTLED * abs(dg * x) {
+                    break;
+                }
                 x -= g / dg;
             }
             a[k] = x;
@@ -1569,8 +1698,12 @@ fn dtg_inverse(
     let b = 1.0 + drift(1.0) - a0;
     let mut wi = (measured - a0) / b;
     for _ in 0..4 {
-        let fx = a0 + b * wi + 1e-6 * nl * abs(wi / 3600.0) * wi - measured;
-        let df = b + 2e-6 * nl * abs(wi / 3600.0);
+        let per_s = abs(wi) * (1.0 / 3600.0);
+        let fx = a0 + b * wi + 1e-6 * nl * per_s * wi - measured;
+        let df = b + 2e-6 * nl * per_s;
+        if abs(fx) <= NEWTON_SETTLED * abs(df * wi) {
+            break;
+        }
         wi -= fx / df;
     }
     wi
@@ -1647,7 +1780,7 @@ mod tests {
     fn exp_neg_is_within_four_ulps_of_the_c_library() {
         let mut x = 0.0f64;
         while x > -720.0 {
-            let (got, want) = (exp_neg(x), x.exp());
+            let (got, want) = (exp_neg11(x), x.exp());
             let ulps = (got.to_bits() as i64 - want.to_bits() as i64).abs();
             assert!(
                 ulps <= 4 || want < f64::MIN_POSITIVE * 16.0,
@@ -1655,8 +1788,8 @@ mod tests {
             );
             x -= 0.0123;
         }
-        assert_eq!(exp_neg(0.0), 1.0);
-        assert_eq!(exp_neg(-1000.0), 0.0);
+        assert_eq!(exp_neg11(0.0), 1.0);
+        assert_eq!(exp_neg11(-1000.0), 0.0);
         assert_eq!(abs(-2.5), 2.5);
     }
 
@@ -1784,11 +1917,96 @@ mod tests {
             let r2: f64 = az[i - 3..=i].iter().map(|a| (a - 1.0) * (a - 1.0)).sum();
             let o = o.unwrap();
             for c in 0..6 {
-                let want = c as f64 + 0.5 * exp_neg(-r2);
+                let want = c as f64 + 0.5 * exp_neg11(-r2);
                 assert!((o.error_deg_h[c] - want).abs() < 1e-15, "{i} {c}");
                 assert!((o.rate_deg_h[c] - (10.0 - want)).abs() < 1e-14);
             }
         }
         assert_eq!(ev.steps(), 0, "flush leaves the evaluator at rest");
+    }
+
+    /// doc_tables with the statistics input (current, mean, rms of a
+    /// 4-sample az window) and `k` centres on every channel: centre i at
+    /// (1 + i/k, 1, 0.1·i/k), width 1 + i/k, weight (−1)ⁱ/(i + 1).
+    fn statistics_tables(k: usize) -> std::vec::Vec<u8> {
+        let mut words = std::vec::Vec::from(&doc_tables()[..4 * 24]);
+        let mut put_word =
+            |i: usize, v: u32| words[4 * i..4 * i + 4].copy_from_slice(&v.to_le_bytes());
+        for c in 0..6 {
+            put_word(15 + c, k as u32);
+        }
+        put_word(22, input::STATISTICS);
+        let mut b = words;
+        let mut put = |v: f64| b.extend(v.to_le_bytes());
+        put(0.02);
+        for _ in 0..72 {
+            put(0.0);
+        }
+        for c in 0..6 {
+            put(c as f64);
+            for i in 0..k {
+                put(1.0 + i as f64 / k as f64);
+            }
+            for i in 0..k {
+                put(if i % 2 == 0 { 1.0 } else { -1.0 } / (i + 1) as f64);
+            }
+            for i in 0..k {
+                let u = i as f64 / k as f64;
+                put(1.0 + u);
+                put(1.0);
+                put(0.1 * u);
+            }
+        }
+        b
+    }
+
+    #[test]
+    fn the_statistics_kernels_in_lanes_are_the_sum_and_survive_a_reset() {
+        // 13 centres: one whole block of lanes and a part block.
+        let k = 13;
+        let b = statistics_tables(k);
+        let m = Model::parse(&b).unwrap();
+        assert_eq!((m.input_dim(), m.centre_set(5)), (3, 0));
+        let mut state = std::vec![0.0; m.state_len()];
+        let mut ev = Evaluator::new(m, &mut state).unwrap();
+        let az = [1.0, 1.3, 0.8, 1.1, 0.9, 1.6, 1.2];
+        let mut runs = std::vec::Vec::new();
+        for _ in 0..2 {
+            let mut outs = std::vec::Vec::new();
+            for (i, a) in az.iter().enumerate() {
+                let o = ev.step(&[10.0; 6], &[0.0, 0.0, *a], &[]).unwrap();
+                if i > 0 {
+                    outs.push(o);
+                }
+            }
+            outs.push(ev.flush());
+            runs.push(outs);
+        }
+        assert_eq!(runs[0], runs[1], "a flushed evaluator steps as a new one");
+        for (i, o) in runs[0].iter().enumerate().skip(3) {
+            let w = &az[i - 3..=i];
+            let mean = w.iter().sum::<f64>() / 4.0;
+            let rms = (w.iter().map(|v| v * v).sum::<f64>() / 4.0 - mean * mean).sqrt();
+            let x = [az[i], mean, rms];
+            let net: f64 = (0..k)
+                .map(|j| {
+                    let u = j as f64 / k as f64;
+                    let c = [1.0 + u, 1.0, 0.1 * u];
+                    let r2: f64 = (0..3).map(|d| (x[d] - c[d]) * (x[d] - c[d])).sum();
+                    let beta = 1.0 + u;
+                    let wt = if j % 2 == 0 { 1.0 } else { -1.0 } / (j + 1) as f64;
+                    wt * (-r2 / (beta * beta)).exp()
+                })
+                .sum();
+            let o = o.unwrap();
+            for c in 0..6 {
+                let want = c as f64 + net;
+                assert!(
+                    (o.error_deg_h[c] - want).abs() < 1e-13,
+                    "{i} {c}: {} vs {want}",
+                    o.error_deg_h[c]
+                );
+            }
+        }
     }
 }

@@ -11,8 +11,11 @@
 //!
 //! Measured: the `dtg-onboard` Rust evaluator (criterion), and the exported
 //! C compiled with `cc -O2 -std=c99` and timed in the same run by a small
-//! harness (median of 101 batches of 1000 steps); the ratio C/Rust is
-//! printed with the table size, the state size and the flops per step.
+//! harness (median of 1001 batches of 100 steps: a batch short against the
+//! scheduler's time slice, so that a loaded machine delays few batches); the
+//! ratio C/Rust is printed with the table size, the state size and the flops
+//! per step. `ONBOARD_TABLES_DIR=dir` also writes each model's tables there
+//! (for a profiler or another evaluator).
 //!
 //! ```sh
 //! CARGO_TARGET_DIR=... cargo bench -p dtg-vib --bench onboard_step
@@ -170,7 +173,7 @@ static int cmp(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 int main(void) {
-    enum { BATCHES = 101, PER = 1000 };
+    enum { BATCHES = 1001, PER = 100 };
     static double gyro[PER][6], acc[PER][3];
     double times[BATCHES], rate[6], a_out[3], sink = 0;
     dtg_state s;
@@ -195,10 +198,11 @@ int main(void) {
 }
 "#;
 
-/// Median ns per step of the exported C, or why it was not measured.
-fn c_step_ns(t: &Tables, precision: Precision) -> Result<f64, String> {
+/// Median ns per step of the exported C of the bench `name`, or why it was
+/// not measured (the sources stay in the temporary directory named).
+fn c_step_ns(name: &str, t: &Tables, precision: Precision) -> Result<f64, String> {
     let dir = std::env::temp_dir().join(format!(
-        "dtg-onboard-bench-{}-{precision:?}",
+        "dtg-onboard-bench-{}-{name}-{precision:?}",
         std::process::id()
     ));
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
@@ -252,6 +256,14 @@ fn bench(c: &mut Criterion) {
         ),
     ] {
         let t = tables(input, shared);
+        if let Some(dir) = std::env::var_os("ONBOARD_TABLES_DIR") {
+            // The tables for a profiler or an evaluator outside this bench.
+            std::fs::write(
+                std::path::Path::new(&dir).join(format!("{name}.dtgo")),
+                &t.bytes,
+            )
+            .expect("ONBOARD_TABLES_DIR is writable");
+        }
         let m = Model::parse(&t.bytes).unwrap();
         let mut state = vec![0.0; m.state_len()];
         let mut ev = Evaluator::new(m, &mut state).unwrap();
@@ -284,21 +296,21 @@ fn bench(c: &mut Criterion) {
             m.flops_per_step()
         );
         // The Rust median again, outside criterion, in the same units as the
-        // C harness (median of 101 batches of 1000 steps), for the ratios.
+        // C harness (median of 1001 batches of 100 steps), for the ratios.
         let mut times = Vec::new();
-        for _ in 0..101 {
+        for _ in 0..1001 {
             let t0 = std::time::Instant::now();
-            for (g, a) in data.iter().take(1000) {
+            for (g, a) in data.iter().take(100) {
                 black_box(ev.step(g, a, &[]).unwrap());
             }
-            times.push(t0.elapsed().as_nanos() as f64 / 1000.0);
+            times.push(t0.elapsed().as_nanos() as f64 / 100.0);
         }
         times.sort_by(f64::total_cmp);
-        let rust = times[50];
+        let rust = times[500];
         println!("{name}: rust evaluator median {rust:.1} ns per step");
         let mut c_ns = Vec::new();
         for p in [Precision::F64, Precision::F32] {
-            match c_step_ns(&t, p) {
+            match c_step_ns(name, &t, p) {
                 Ok(ns) => {
                     println!(
                         "{name}: C {p:?} (cc -O2 -std=c99) median {ns:.1} ns per step, {:.2}× the Rust evaluator",

@@ -3,6 +3,7 @@
 //! reviewable equations; for the paper's unit and for any unit.
 
 mod c;
+mod c_lanes;
 mod c_shared;
 mod c_unit;
 mod layout;
