@@ -124,6 +124,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         chosen,
         adev_runs: judge.runs.len(),
         networks_shrunk: Vec::new(),
+        bias_instability_raised: Vec::new(),
     });
     Ok(model)
 }

@@ -15,7 +15,9 @@
 
 mod channel;
 mod choice;
+mod judged;
 mod keep;
+mod keep_bi;
 mod network;
 mod partial;
 mod shared;
