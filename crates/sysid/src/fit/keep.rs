@@ -89,6 +89,10 @@ pub(super) struct Shrunk {
     pub(super) reason: String,
 }
 
+/// The model after the keep step, its shrunk channels and the bias
+/// instabilities left raised.
+type Kept<S> = (Model<S>, Vec<Shrunk>, Vec<String>);
+
 /// The model with each channel's network scaled to the share it keeps
 /// (see the module), the channels scaled, and the bias instabilities left
 /// raised ([`super::keep_bi::Held::raised`]).
@@ -97,7 +101,7 @@ pub(super) fn keep_networks<S: Sensor>(
     prepared: &Prepared<S>,
     train: &[usize],
     val: &[usize],
-) -> Result<(Model<S>, Vec<Shrunk>, Vec<String>), SysidError> {
+) -> Result<Kept<S>, SysidError> {
     let predicted = model.predict(prepared)?;
     let records = prepared.record_rows();
     let n = model.channels().len();
