@@ -292,6 +292,15 @@ impl sysid::Sensor for PaperUnit {
             _ => Vec::new(),
         }
     }
+
+    /// The parity residues K0 … K5 (eq. 6): the fit's keep step holds each
+    /// to a bias instability no higher than before, as each channel.
+    fn residues(&self) -> Vec<(String, Vec<f64>)> {
+        nav_sensors::geometry::Residue::ALL
+            .iter()
+            .map(|r| (r.name().to_string(), r.coefficients().to_vec()))
+            .collect()
+    }
 }
 
 /// Smallest spread an operating point's coordinate is divided by, g: a

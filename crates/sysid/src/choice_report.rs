@@ -43,10 +43,11 @@ pub struct ChoiceReport {
     pub chosen: usize,
     /// Validation runs whose ADEV was checked (0: the choice is by rms only).
     pub adev_runs: usize,
-    /// The channels whose network was shrunk to zero after the choice, each
-    /// with why (it added variation on a record's validation rows, or did
-    /// not lower the validation rms: `sysid::fit`'s keep step); empty when
-    /// none was.
+    /// The channels whose network keeps less than all of its output after
+    /// the choice (`CHANNEL to zero: …` or `CHANNEL × SHARE: …`), each with
+    /// why (it added variation on a record's validation rows, did not lower
+    /// the validation rms, or raised a channel's or residue's bias
+    /// instability: `sysid::fit`'s keep step); empty when none was.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub networks_shrunk: Vec<String>,
     /// On a large record, the input was chosen on a sample of it
@@ -56,6 +57,12 @@ pub struct ChoiceReport {
     /// when every input was fitted on the whole record.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub input_sample: Option<InputSample>,
+    /// A channel's or residue's bias instability that compensation raises
+    /// on a record and the keep step left so, with why (lowering the
+    /// networks that raise it would cost their channels validation rms
+    /// beyond its interval); empty when none was.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bias_instability_raised: Vec<String>,
 }
 
 /// The sample of a large record a choice of input was made on.

@@ -343,4 +343,14 @@ pub trait Sensor: Clone + Send + Sync {
         let _ = (records, channel, effect);
         Vec::new()
     }
+
+    /// Named linear combinations of the channels' targets that are read as
+    /// series of their own (an inertial unit's parity residues): each a name
+    /// and one weight per channel, in [`Sensor::channels`] order. The fit's
+    /// keep step holds each of them, as it holds each channel, to a bias
+    /// instability no higher after compensation than before. None by
+    /// default.
+    fn residues(&self) -> Vec<(String, Vec<f64>)> {
+        Vec::new()
+    }
 }

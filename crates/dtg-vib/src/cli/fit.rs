@@ -130,7 +130,10 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
         );
     }
     for s in &c.networks_shrunk {
-        println!("  network shrunk to zero (bias and effects kept): {s}");
+        println!("  network shrunk (bias and effects kept): {s}");
+    }
+    for s in &c.bias_instability_raised {
+        println!("  bias instability raised: {s}");
     }
 }
 

@@ -364,4 +364,17 @@ impl sysid::Sensor for UnitSensor {
     ) -> Separation<Axis> {
         separate::separation(&self.unit, channel, group, kappa, operating)
     }
+
+    /// The unit's parity residues (eq. 6's for the paper's geometry, the
+    /// rows of V otherwise): the fit's keep step holds each to a bias
+    /// instability no higher than before, as each gyro.
+    fn residues(&self) -> Vec<(String, Vec<f64>)> {
+        let g = self.unit.geometry();
+        let c = g.residue_coefficients();
+        g.residue_names()
+            .iter()
+            .enumerate()
+            .map(|(r, name)| (name.clone(), (0..c.ncols()).map(|j| c[(r, j)]).collect()))
+            .collect()
+    }
 }

@@ -128,6 +128,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         adev_runs: judge.runs.len(),
         networks_shrunk: Vec::new(),
         input_sample: sampled.map(|(_, s)| s),
+        bias_instability_raised: Vec::new(),
     });
     Ok(model)
 }

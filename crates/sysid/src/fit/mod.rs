@@ -16,7 +16,9 @@
 mod channel;
 mod choice;
 mod input_sample;
+mod judged;
 mod keep;
+mod keep_bi;
 mod memo;
 mod network;
 mod partial;
