@@ -6,7 +6,10 @@ use crate::smoother::Smoother;
 use serde::{Deserialize, Serialize};
 
 /// One candidate of a choice, as judged on the validation rows.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+///
+/// Two candidates are equal when every figure is, a NaN (not judged) equal
+/// to a NaN: a report read back from a model file equals the one written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Candidate {
     /// The network's input.
     pub input: ModelInput,
@@ -32,6 +35,26 @@ pub struct Candidate {
     pub worst_excess: f64,
     /// True when ADEV after stays within its bound everywhere.
     pub passes: bool,
+}
+
+impl PartialEq for Candidate {
+    fn eq(&self, other: &Self) -> bool {
+        let same = |a: f64, b: f64| a == b || (a.is_nan() && b.is_nan());
+        self.input == other.input
+            && self.smoother == other.smoother
+            && self.val_rms.len() == other.val_rms.len()
+            && self
+                .val_rms
+                .iter()
+                .zip(&other.val_rms)
+                .all(|(a, b)| same(*a, *b))
+            && same(self.mean_val_rms, other.mean_val_rms)
+            && same(self.worst_adev_ratio, other.worst_adev_ratio)
+            && self.worst_channel == other.worst_channel
+            && same(self.worst_tau_s, other.worst_tau_s)
+            && same(self.worst_excess, other.worst_excess)
+            && self.passes == other.passes
+    }
 }
 
 /// What a fit chose and why: every candidate's figures.

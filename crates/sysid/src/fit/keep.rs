@@ -28,6 +28,7 @@
 //! ([`ADEV_CONFIDENCE`]).
 
 use super::choice::{ADEV_CONFIDENCE, MIN_ADEV_ROWS};
+use crate::choice_report::{Candidate, ChoiceReport};
 use crate::error::SysidError;
 use crate::model::{ChannelModel, Model};
 use crate::prepared::Prepared;
@@ -59,21 +60,54 @@ pub(super) fn apply<S: Sensor>(
     if !shrunk.is_empty() {
         super::choice::rescore(&mut model, p, train, val)?;
     }
-    if let Some(mut report) = model.choice().cloned() {
-        report.bias_instability_raised = raised;
-        report.networks_shrunk = shrunk
-            .iter()
-            .map(|d| {
-                let name = model.channels()[d.channel].channel();
-                match d.share {
-                    0.0 => format!("{name} to zero: {}", d.reason),
-                    t => format!("{name} × {t:.3}: {}", d.reason),
-                }
-            })
-            .collect();
-        model.set_choice(report);
-    }
+    // A fit with a fixed input and smoother has no choice to report; what
+    // the keep step did is still the model's to say, so it gets a report
+    // of that one candidate (judged by rms only).
+    let mut report = model
+        .choice()
+        .cloned()
+        .unwrap_or_else(|| fixed_report(&model));
+    report.bias_instability_raised = raised;
+    report.networks_shrunk = shrunk
+        .iter()
+        .map(|d| {
+            let name = model.channels()[d.channel].channel();
+            match d.share {
+                0.0 => format!("{name} to zero: {}", d.reason),
+                t => format!("{name} × {t:.3}: {}", d.reason),
+            }
+        })
+        .collect();
+    model.set_choice(report);
     Ok(model)
+}
+
+/// The report of a fit that chose nothing: its one candidate, the model's
+/// input and smoother with its validation rms, no run judged by ADEV.
+fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
+    let val_rms: Vec<f64> = model
+        .channels()
+        .iter()
+        .map(|c| c.scores().val_rms)
+        .collect();
+    ChoiceReport {
+        candidates: vec![Candidate {
+            input: model.preprocess().input,
+            smoother: model.preprocess().smoother,
+            mean_val_rms: val_rms.iter().sum::<f64>() / val_rms.len().max(1) as f64,
+            val_rms,
+            worst_adev_ratio: f64::NAN,
+            worst_channel: String::new(),
+            worst_tau_s: f64::NAN,
+            worst_excess: 0.0,
+            passes: true,
+        }],
+        chosen: 0,
+        adev_runs: 0,
+        networks_shrunk: Vec::new(),
+        input_sample: None,
+        bias_instability_raised: Vec::new(),
+    }
 }
 
 /// A channel whose network keeps less than all of its output, and why.
