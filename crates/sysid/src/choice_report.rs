@@ -99,6 +99,27 @@ pub struct InputSample {
     pub candidates: Vec<Candidate>,
     /// Index of the one chosen there (its input was then fitted on the record).
     pub chosen: usize,
+    /// The sample fitted again with one centre selection for every channel
+    /// (the chosen input, every smoother), and whether the record was then
+    /// fitted so. Absent when the recipe asked for one selection itself.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shared_centres: Option<SharedCentresTrial>,
+}
+
+/// One centre selection for every channel against one per channel, as
+/// judged on a large record's sample.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SharedCentresTrial {
+    /// The chosen candidate's mean validation rms with a selection per
+    /// channel, in the target's unit.
+    pub per_channel_mean_val_rms: f64,
+    /// The same with one selection for all channels.
+    pub shared_mean_val_rms: f64,
+    /// True when the record was fitted with one selection: its mean
+    /// validation rms on the sample is within `sysid::fit`'s
+    /// `SHARED_CENTRES_TOLERANCE` of the per-channel one's, and it keeps
+    /// the Allan deviation within its bound if the per-channel one does.
+    pub taken: bool,
 }
 
 impl ChoiceReport {

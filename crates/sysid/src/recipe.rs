@@ -232,6 +232,15 @@ pub struct ModelChoice {
     pub inputs: Vec<crate::input::ModelInput>,
     /// Smoothers tried (`None`: no smoother).
     pub smoothers: Vec<Option<crate::smoother::Smoother>>,
+    /// On a record large enough to choose on a sample, also try one centre
+    /// selection for every channel there, and fit the record so where it
+    /// costs at most `SHARED_CENTRES_TOLERANCE` ([`crate::fit`]).
+    #[serde(default = "yes")]
+    pub try_shared_centres: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Default for ModelChoice {
@@ -246,6 +255,7 @@ impl Default for ModelChoice {
                         .map(|&cutoff_hz| Some(crate::smoother::Smoother { cutoff_hz })),
                 )
                 .collect(),
+            try_shared_centres: true,
         }
     }
 }

@@ -121,6 +121,17 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
             s.chunks,
             inputs.join(", ")
         );
+        if let Some(t) = &s.shared_centres {
+            println!(
+                "  one centre selection for all channels on that sample: mean validation rms {:.4} against {:.4} deg/h with one per channel; {}",
+                t.shared_mean_val_rms,
+                t.per_channel_mean_val_rms,
+                match t.taken {
+                    true => "the record was fitted with one (within 1%)",
+                    false => "the record was fitted with one per channel",
+                }
+            );
+        }
     }
     if let Some(b) = c.baseline() {
         let w = c.chosen();

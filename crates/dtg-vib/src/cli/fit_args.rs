@@ -83,6 +83,16 @@ pub struct FitArgs {
     /// for each channel on its own.
     #[arg(long = "shared-centres", visible_alias = "shared-centers")]
     pub shared_centres: bool,
+    /// Choose centres for each channel on its own, also on a record of
+    /// more than 100,000 rows (where one selection for all channels is
+    /// otherwise tried on a sample and taken when it costs ≤ 1% of
+    /// validation rms there).
+    #[arg(
+        long = "centres-per-channel",
+        visible_alias = "centers-per-channel",
+        conflicts_with = "shared_centres"
+    )]
+    pub centres_per_channel: bool,
     /// Low-pass cut-off of outputs and effects, Hz (zero-phase Butterworth).
     #[arg(long, default_value_t = 5.0, conflicts_with = "no_filter", value_parser = parse_hz, allow_hyphen_values = true)]
     pub cutoff: f64,
@@ -262,6 +272,7 @@ fn model_choice(a: &FitArgs) -> Result<Option<ModelChoice>> {
             "auto" => all.smoothers,
             s => vec![parse_smoother(s)?],
         },
+        try_shared_centres: !a.centres_per_channel,
     }))
 }
 

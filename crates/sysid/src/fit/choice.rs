@@ -35,7 +35,7 @@ pub const ADEV_CONFIDENCE: f64 = 0.683;
 /// checked (shorter runs, as an interleaved split's, say nothing at τ).
 pub const MIN_ADEV_ROWS: usize = 200;
 
-pub use crate::choice_report::{Candidate, ChoiceReport, InputSample};
+pub use crate::choice_report::{Candidate, ChoiceReport, InputSample, SharedCentresTrial};
 
 /// The recipe fitted once per candidate input, every smoother judged, the
 /// winner returned with its smoother set, scored with it, and the report.
@@ -50,6 +50,10 @@ pub(super) fn fit_choosing<S: Sensor>(
     // A large record's input is chosen on a sample of it, then fitted alone.
     let sampled = super::input_sample::choose_input(prepared, recipe, choice)?;
     let choice = sampled.as_ref().map_or(choice, |(c, _)| c);
+    let shared_taken = sampled
+        .as_ref()
+        .and_then(|(_, s)| s.shared_centres.as_ref())
+        .is_some_and(|t| t.taken);
     let judge = Judge::new(prepared, val)?;
     let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
     // Per input: its candidates, and the model with its unsmoothed
@@ -64,6 +68,7 @@ pub(super) fn fit_choosing<S: Sensor>(
             Cow::Owned(prepared.with_input(input)?)
         };
         let mut r = recipe.clone();
+        r.settings.shared_centres |= shared_taken;
         r.preprocess.input = input;
         r.preprocess.smoother = None;
         // Each channel is reported done once: by the first input's fit.

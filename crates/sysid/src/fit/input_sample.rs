@@ -9,9 +9,15 @@
 //! record the choice is first made on a few chunks of it spread over its
 //! length, each prepared as a record of its own, and only the winning input
 //! is fitted on the whole record, where its smoothers are judged again.
+//!
+//! The sample also decides whether the channels share one centre
+//! selection: it is fitted again with one, and where that costs at most
+//! [`SHARED_CENTRES_TOLERANCE`] of the mean validation rms the record is
+//! fitted so (one selection instead of one per channel halves the fit's
+//! time, and the onboard step computes the kernels once).
 
 use super::choice::{PARALLEL_INPUTS_MAX_ROWS, fit_choosing};
-use crate::choice_report::InputSample;
+use crate::choice_report::{InputSample, SharedCentresTrial};
 use crate::error::SysidError;
 use crate::prepared::Prepared;
 use crate::recipe::{ModelChoice, Recipe};
@@ -27,6 +33,11 @@ pub const SAMPLE_CHUNKS: usize = 4;
 /// validation half is a run of 1,250 rows, long enough for the Allan
 /// deviation to a tenth of it.
 pub const SAMPLE_CHUNK_ROWS: usize = 2_500;
+
+/// How much higher (relatively) the sample's mean validation rms may be
+/// with one centre selection for every channel than with one per channel
+/// for the record to be fitted with one: 1%.
+pub const SHARED_CENTRES_TOLERANCE: f64 = 0.01;
 
 /// On a record of more than [`PARALLEL_INPUTS_MAX_ROWS`] rows with more
 /// than one input to choose from: the choice narrowed to the input chosen
@@ -59,6 +70,31 @@ pub(super) fn choose_input<S: Sensor>(
     let narrowed = ModelChoice {
         inputs: vec![report.chosen().input],
         smoothers: choice.smoothers.clone(),
+        try_shared_centres: false,
+    };
+    let shared_centres = match recipe.settings.shared_centres || !choice.try_shared_centres {
+        true => None,
+        false => {
+            let mut shared = recipe.clone();
+            shared.settings.shared_centres = true;
+            let one = fit_choosing(
+                &sample,
+                &shared,
+                &narrowed,
+                (&train, &val),
+                super::Coef::AllRows,
+                &|_| {},
+            )?;
+            one.choice().map(|r| {
+                let (own, one) = (report.chosen(), r.chosen());
+                SharedCentresTrial {
+                    per_channel_mean_val_rms: own.mean_val_rms,
+                    shared_mean_val_rms: one.mean_val_rms,
+                    taken: one.mean_val_rms <= own.mean_val_rms * (1.0 + SHARED_CENTRES_TOLERANCE)
+                        && (one.passes || !own.passes),
+                }
+            })
+        }
     };
     Ok(Some((
         narrowed,
@@ -67,6 +103,7 @@ pub(super) fn choose_input<S: Sensor>(
             chunks: SAMPLE_CHUNKS,
             candidates: report.candidates.clone(),
             chosen: report.chosen,
+            shared_centres,
         },
     )))
 }
@@ -105,8 +142,8 @@ mod tests {
     }
 
     /// Above 100,000 rows the choice fits only the input chosen on the
-    /// sample, and the report keeps every candidate of the sample; below,
-    /// every input is fitted on the record.
+    /// sample, and the report keeps every candidate of the sample and the
+    /// shared-centre trial; below, every input is fitted on the record.
     #[test]
     fn a_large_records_input_is_chosen_on_a_sample() {
         let mut options = FitOptions::new(1);
@@ -131,6 +168,15 @@ mod tests {
                 .all(|c| c.input == sample.candidates[sample.chosen].input)
         );
         assert_eq!(large.preprocess().input, report.chosen().input);
+        // The sample also tried one centre selection for every channel, and
+        // the record was fitted as it decided.
+        let trial = sample.shared_centres.as_ref().expect("a shared trial");
+        assert_eq!(
+            trial.taken,
+            trial.shared_mean_val_rms
+                <= trial.per_channel_mean_val_rms * (1.0 + SHARED_CENTRES_TOLERANCE)
+        );
+        assert_eq!(large.settings().shared_centres, trial.taken);
         let small = fit(20_000);
         let report = small.choice().unwrap();
         assert!(report.input_sample.is_none());

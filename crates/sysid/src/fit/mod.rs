@@ -41,8 +41,9 @@ use serde::Serialize;
 
 pub use choice::{
     ADEV_CONFIDENCE, Candidate, ChoiceReport, InputSample, MIN_ADEV_ROWS, ModelChoice,
-    SMALLER_INPUT_TOLERANCE,
+    SMALLER_INPUT_TOLERANCE, SharedCentresTrial,
 };
+pub use input_sample::SHARED_CENTRES_TOLERANCE;
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
 
