@@ -122,6 +122,24 @@ pub struct SharedCentresTrial {
     pub taken: bool,
 }
 
+impl Candidate {
+    /// A candidate with its validation rms per channel and no run judged
+    /// by ADEV yet (ratios NaN, passing).
+    pub fn unjudged(input: ModelInput, smoother: Option<Smoother>, val_rms: Vec<f64>) -> Self {
+        Self {
+            input,
+            smoother,
+            mean_val_rms: stats::mean(&val_rms),
+            val_rms,
+            worst_adev_ratio: f64::NAN,
+            worst_channel: String::new(),
+            worst_tau_s: f64::NAN,
+            worst_excess: 0.0,
+            passes: true,
+        }
+    }
+}
+
 impl ChoiceReport {
     /// The chosen candidate.
     pub fn chosen(&self) -> &Candidate {

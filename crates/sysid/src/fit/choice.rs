@@ -286,17 +286,7 @@ impl Judge {
             .enumerate()
             .map(|(k, p)| score(prepared.target(k), p, train, val).val_rms)
             .collect();
-        let mut c = Candidate {
-            input,
-            smoother,
-            mean_val_rms: stats::mean(&val_rms),
-            val_rms,
-            worst_adev_ratio: f64::NAN,
-            worst_channel: String::new(),
-            worst_tau_s: f64::NAN,
-            worst_excess: 0.0,
-            passes: true,
-        };
+        let mut c = Candidate::unjudged(input, smoother, val_rms);
         for run in &self.runs {
             for (k, (y, before, bound)) in run.before.iter().enumerate() {
                 let after: Vec<f64> = y

@@ -91,17 +91,11 @@ fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
         .map(|c| c.scores().val_rms)
         .collect();
     ChoiceReport {
-        candidates: vec![Candidate {
-            input: model.preprocess().input,
-            smoother: model.preprocess().smoother,
-            mean_val_rms: val_rms.iter().sum::<f64>() / val_rms.len().max(1) as f64,
+        candidates: vec![Candidate::unjudged(
+            model.preprocess().input,
+            model.preprocess().smoother,
             val_rms,
-            worst_adev_ratio: f64::NAN,
-            worst_channel: String::new(),
-            worst_tau_s: f64::NAN,
-            worst_excess: 0.0,
-            passes: true,
-        }],
+        )],
         chosen: 0,
         adev_runs: 0,
         networks_shrunk: Vec::new(),
