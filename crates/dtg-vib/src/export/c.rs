@@ -6,6 +6,7 @@
 //! exponential is written out, [`super::c_lanes`]); no dynamic memory, no
 //! globals but the tables.
 
+use super::c_process::{Shape, flush_c, process_c};
 use super::layout::Layout;
 use crate::model::CompensationModel;
 use crate::onboard::{ExportError, Tables, tables};
@@ -113,16 +114,18 @@ pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSource
     // Channels that share a centre set compute each kernel value once; a
     // model without (every model fitted before shared centres) keeps the
     // C it always had, byte for byte.
-    let mut step = step_c(precision);
     let shared = layout.centre_set.iter().enumerate().any(|(c, &l)| l != c);
     // The statistics input's kernels run in lanes over centre sets
     // (super::c_lanes), a set of one channel when none is shared.
-    if shared || layout.input == dtg_onboard::input::STATISTICS as usize {
+    let sets = shared || layout.input == dtg_onboard::input::STATISTICS as usize;
+    if sets {
         source.push_str(&super::c_shared::arrays(&layout));
         source.push_str(&super::c_lanes::arrays(&layout));
-        step = super::c_shared::step(&step);
     }
-    source.push_str(&with_maths(&step, precision));
+    source.push_str(&with_maths(
+        &step_c(precision, Shape::paper(sets)),
+        precision,
+    ));
     Ok(CSources {
         header: header_h(&layout, &t.extra, real_type(precision)),
         source,
@@ -337,7 +340,7 @@ static const dtg_real FADE[{nf}] = {fade};
 
 /// The step code of the paper's C, in pieces that the C of any unit
 /// ([`super::c_unit`]) shares where it is the same text.
-fn step_c(precision: Precision) -> String {
+fn step_c(precision: Precision, shape: Shape) -> String {
     [
         STEP_INIT_C,
         EXCESS_C,
@@ -347,10 +350,9 @@ fn step_c(precision: Precision) -> String {
         GYROS_C,
         SQ_DIST_C,
         &super::c_lanes::kernels(precision),
-        PROCESS_C,
-        OWN_KERNELS_C,
-        &fade_and_smoother_c("16 + c", "15"),
-        PROCESS_TAIL_C,
+        &process_c(shape),
+        STEP_C,
+        &flush_c(shape),
     ]
     .concat()
 }
@@ -582,148 +584,9 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
 
 "#;
 
-/// The paper's `process` up to its kernels.
-const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
-static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real a[3], g[6], linear[6], w = R(1);
-    int first = s->processed == 0;
-    int k, c, e, sig;
-    const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
-#if DTG_CALIBRATED
-    compensate_gyros(s->pending_gyro, a, cov, g);
-#else
-    for (k = 0; k < 6; k++) g[k] = s->pending_gyro[k];
-#endif
-    for (c = 0; c < 6; c++) {
-        dtg_real sum = R(0);
-        for (e = 0; e < N_EFFECTS[c]; e++) {
-            int idx = EFFECT_OFFSET[c] + e;
-            const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
-            dtg_real z;
-            switch (EFFECT_KIND[idx]) {
-            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
-            case 1: z = dot3(p, a); break;
-            case 2: z = dot3(p, a) * dot3(p + 3, a) + quad(p, cov, p + 3); break;
-            default: {
-                dtg_real r = R(0), q = R(0);
-                for (k = 0; k < 6; k++) r += p[k] * g[k];
-                for (k = 0; k < 6; k++) q += p[6 + k] * g[k];
-                z = r * q;
-            }
-            }
-            z = cascade(OUT_SOS, DTG_N_SECTIONS, s->out_z + 2 * DTG_N_SECTIONS * idx, z, first);
-            sum += z * COEFF[idx];
-        }
-        linear[c] = sum;
-    }
-    for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-        int code = SIGNAL_CODE[sig];
-        dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
-        v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
-        {
-            /* Running sums: the sample L steps back (0 while the window
-             * fills) leaves as this one enters. */
-            dtg_real old = s->ring[sig][s->ring_pos];
-            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
-            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
-#if DTG_INPUT_STATS
-            {
-                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
-                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
-                s->feat[3 * sig] = v;
-                s->feat[3 * sig + 1] = mean;
-                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
-            }
-#endif
-        }
-        s->ring[sig][s->ring_pos] = v;
-        s->ring[sig][s->ring_pos + l] = v;
-    }
-#if DTG_FADE
-    for (k = 0; k < 3; k++) {
-        s->fade_ring[k][s->ring_pos] = a[k];
-        s->fade_ring[k][s->ring_pos + l] = a[k];
-    }
-#endif
-    s->ring_pos = (s->ring_pos + 1) % l;
-    s->processed += 1;
-    if (s->processed < l) return 0;
-#if DTG_FADE
-    w = fade_weight(s, s->processed == l);
-#endif
-"#;
-
-/// Each channel's own kernel loop (a raw-window model without shared
-/// centre sets).
-pub(super) const OWN_KERNELS_C: &str = r#"    for (c = 0; c < 6; c++) {
-        /* Without a smoother the kernels add onto bias and effects. */
-        dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0);
-        dtg_real acc[DTG_LANES];
-        for (k = 0; k < DTG_LANES; k++) acc[k] = R(0);
-        for (k = 0; k < N_CENTRES[c]; k++) {
-            int kk = CENTRE_OFFSET[c] + k;
-            const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
-            dtg_real r2 = R(0), beta = WIDTH[kk], arg;
-            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
-                cen += l;
-            }
-            arg = -(r2 / (beta * beta));
-            /* One partial sum per lane, as the Rust evaluator keeps them. */
-            acc[k % DTG_LANES] += (arg < R(-708) ? R(0) : EXP_NEG(arg)) * WEIGHT[kk];
-        }
-        lane_sum(acc);
-        y += acc[0];
-        net += acc[0];
-"#;
-
-/// The end of a channel's step, the same text in the paper's C and any
-/// unit's: the fade's cross-fade of the held network part
-/// (sysid::operating::fade), then the prediction smoother on the network
-/// part. `rest` and `gain` index the FADE table: a channel's network at rest
-/// and the hold's one-pole gain.
-pub(super) fn fade_and_smoother_c(rest: &str, gain: &str) -> String {
-    FADE_AND_SMOOTHER_C
-        .replace("{rest}", rest)
-        .replace("{gain}", gain)
-}
-
-/// [`fade_and_smoother_c`]'s text, `{rest}` and `{gain}` to fill.
-const FADE_AND_SMOOTHER_C: &str = r#"#if DTG_FADE
-        {
-            /* The held network part follows the network by the weight's
-             * one-pole at full weight and stays below it; the output
-             * cross-fades from it to the network by the weight. A record
-             * starts it at the network's value at rest. Before the smoother
-             * (sysid::operating::fade). */
-            dtg_real before = s->processed == l ? FADE[{rest}] : s->fade_h[c];
-            dtg_real faded = w >= R(1) ? net : before + w * (net - before);
-            s->fade_h[c] = w >= R(1) ? before + FADE[{gain}] * (net - before) : before;
-#if DTG_N_SMOOTH_SECTIONS == 0
-            y -= net - faded;
-#endif
-            net = faded;
-        }
-#endif
-#if DTG_N_SMOOTH_SECTIONS > 0
-        /* The prediction smoother, on the network part only. */
-        net = cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
-                      net, s->processed == l);
-        y = BIAS[c] + linear[c] + net;
-#endif
-        (void)net;
-"#;
-
-/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`, after
-/// [`fade_and_smoother_c`].
-const PROCESS_TAIL_C: &str = r#"        rate_deg_h[c] = (double)(g[c] - y);
-    }
-    for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
-    return 1;
-}
-
-int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
+/// The paper's `dtg_step`: the triad calibrated, the covariance of the
+/// pending sample, `process`.
+const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
              const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real raw_a[3], a[3], cov[3][3];
     int i, j, k, out = 0;
@@ -758,14 +621,6 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
     return out;
 }
 
-int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real cov[3][3];
-    int i, j, out = 0;
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
-    dtg_init(s);
-    return out;
-}
 "#;
 
 const MAIN_C: &str = r#"/* Reads a record CSV (t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra...]) on standard

@@ -6,10 +6,10 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, fade_and_smoother_c,
-    iarr, real_type, with_maths,
+    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr, real_type,
+    with_maths,
 };
-use super::c_shared::SHARED_KERNELS;
+use super::c_process::{Shape, flush_c, process_c};
 use super::layout::Layout;
 use crate::onboard::{ExportError, Tables};
 use nav_sensors::unit::Unit;
@@ -33,10 +33,9 @@ pub fn unit_c_sources(
         GYROS_C,
         SQ_DIST_C,
         &super::c_lanes::kernels(precision),
-        PROCESS_C,
-        SHARED_KERNELS,
-        &fade_and_smoother_c("4 * NA + 4 + c", "4 * NA + 3"),
-        PROCESS_TAIL_C,
+        &process_c(Shape::unit()),
+        STEP_C,
+        &flush_c(Shape::unit()),
     ]
     .concat();
     source.push_str(&with_maths(&step, precision));
@@ -392,89 +391,9 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 
 "#;
 
-/// `process` up to its kernels.
-const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
-static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real f[3], a[NA], g[N], linear[N], ys[N], nets[N], w = R(1);
-    int first = s->processed == 0;
-    int k, c, e, sig, j;
-    const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) f[k] = s->force[k];
-    for (k = 0; k < NA; k++) a[k] = s->pending_accel[k];
-#if DTG_CALIBRATED
-    compensate_gyros(s->pending_gyro, f, cov, g);
-#else
-    for (k = 0; k < N; k++) g[k] = s->pending_gyro[k];
-#endif
-    for (c = 0; c < N; c++) {
-        dtg_real sum = R(0);
-        for (e = 0; e < N_EFFECTS[c]; e++) {
-            int idx = EFFECT_OFFSET[c] + e;
-            const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
-            dtg_real z;
-            switch (EFFECT_KIND[idx]) {
-            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
-            case 1: z = dot3(p, f); break;
-            case 2: z = dot3(p, f) * dot3(p + 3, f) + quad(p, cov, p + 3); break;
-            default: {
-                dtg_real r = R(0), q = R(0);
-                for (k = 0; k < N; k++) r += p[k] * g[k];
-                for (k = 0; k < N; k++) q += p[N + k] * g[k];
-                z = r * q;
-            }
-            }
-            z = cascade(OUT_SOS, DTG_N_SECTIONS, s->out_z + 2 * DTG_N_SECTIONS * idx, z, first);
-            sum += z * COEFF[idx];
-        }
-        linear[c] = sum;
-    }
-    for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-        int code = SIGNAL_CODE[sig];
-        dtg_real v = code < NA ? a[code] : s->pending_extra[code - NA];
-        v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
-        {
-            /* Running sums: the sample L steps back (0 while the window
-             * fills) leaves as this one enters. */
-            dtg_real old = s->ring[sig][s->ring_pos];
-            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
-            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
-#if DTG_INPUT_STATS
-            {
-                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
-                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
-                s->feat[3 * sig] = v;
-                s->feat[3 * sig + 1] = mean;
-                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
-            }
-#endif
-        }
-        s->ring[sig][s->ring_pos] = v;
-        s->ring[sig][s->ring_pos + l] = v;
-    }
-#if DTG_FADE
-    for (k = 0; k < NA; k++) {
-        s->fade_ring[k][s->ring_pos] = a[k];
-        s->fade_ring[k][s->ring_pos + l] = a[k];
-    }
-#endif
-    s->ring_pos = (s->ring_pos + 1) % l;
-    s->processed += 1;
-    if (s->processed < l) return 0;
-#if DTG_FADE
-    w = fade_weight(s, s->processed == l);
-#endif
-"#;
-
-/// The rest of `process`, `dtg_step` and `dtg_flush`, after
-/// [`super::c::fade_and_smoother_c`].
-const PROCESS_TAIL_C: &str = r#"        (void)w;
-        rate_deg_h[c] = (double)(g[c] - y);
-    }
-    for (k = 0; k < NA; k++) accel_out_g[k] = (double)a[k];
-    return 1;
-}
-
-int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
+/// A unit's `dtg_step`: the specific force from the accelerometers, the
+/// triad calibrated on it, the covariance of the pending sample, `process`.
+const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
              const double *extra, double rate_deg_h[N], double accel_out_g[NA]) {
     dtg_real raw_a[NA], f[3], cal[NA], cov[3][3];
     int i, j, k, out = 0;
@@ -526,14 +445,6 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
     return out;
 }
 
-int dtg_flush(dtg_state *s, double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real cov[3][3];
-    int i, j, out = 0;
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
-    dtg_init(s);
-    return out;
-}
 "#;
 
 const MAIN_C: &str = r#"/* Reads a log of the unit (its time column, gyros, accelerometers and any
