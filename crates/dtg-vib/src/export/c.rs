@@ -465,7 +465,7 @@ static inline dtg_real quad(const dtg_real *p, dtg_real c[3][3], const dtg_real 
 
 "#;
 
-/// The triad's inverse and a DTG's drift (opens `#if DTG_CALIBRATED`).
+/// The triad's inverse and a DTG's drift terms (opens `#if DTG_CALIBRATED`).
 pub(super) const CAL_HELPERS_C: &str = r#"#if DTG_CALIBRATED
 /* Newton stops once its next step would be within 4 ulps of the estimate
  * (the residual checked before the division), or after four steps. */
@@ -496,40 +496,64 @@ static void compensate_triad(const dtg_real *measured, dtg_real *a) {
     }
 }
 
-static inline dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv) {
+/* A DTG's drift terms (DtgTerm order) at the rate wi about its input axis:
+ * w the rates about its I, O, S axes, fr the specific force along them, cv
+ * their covariances; term t at r[t * stride]. */
+static inline void drift_terms(dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv, dtg_real *r, int stride) {
     const dtg_real per_s = R(1) / R(3600);
+    r[0 * stride] = R(1);
+    r[1 * stride] = R(1e-6) * wi;
+    r[2 * stride] = R(1e-6) * w[1];
+    r[3 * stride] = R(1e-6) * w[2];
+    r[4 * stride] = fr[0];
+    r[5 * stride] = fr[1];
+    r[6 * stride] = fr[2];
+    r[7 * stride] = fr[0] * fr[0] + cv[0];
+    r[8 * stride] = fr[1] * fr[1] + cv[1];
+    r[9 * stride] = fr[2] * fr[2] + cv[2];
+    r[10 * stride] = fr[0] * fr[1] + cv[3];
+    r[11 * stride] = fr[0] * fr[2] + cv[4];
+    r[12 * stride] = fr[1] * fr[2] + cv[5];
+    r[13 * stride] = (wi * per_s) * (w[1] * per_s);
+    r[14 * stride] = (wi * per_s) * (w[2] * per_s);
+    r[15 * stride] = (w[1] * per_s) * (w[2] * per_s);
+    r[16 * stride] = R(0);
+    r[17 * stride] = R(0);
+}
+
+"#;
+
+/// A DTG's drift at one rate: its terms (from [`CAL_HELPERS_C`]) times its
+/// calibration, summed in term order (the C of a unit; the paper's sums
+/// six gyros side by side in [`GYROS_C`]).
+pub(super) const DRIFT_C: &str = r#"static inline dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv) {
     dtg_real r[18];
     dtg_real s = R(0);
     int t;
-    r[0] = R(1);
-    r[1] = R(1e-6) * wi;
-    r[2] = R(1e-6) * w[1];
-    r[3] = R(1e-6) * w[2];
-    r[4] = fr[0];
-    r[5] = fr[1];
-    r[6] = fr[2];
-    r[7] = fr[0] * fr[0] + cv[0];
-    r[8] = fr[1] * fr[1] + cv[1];
-    r[9] = fr[2] * fr[2] + cv[2];
-    r[10] = fr[0] * fr[1] + cv[3];
-    r[11] = fr[0] * fr[2] + cv[4];
-    r[12] = fr[1] * fr[2] + cv[5];
-    r[13] = (wi * per_s) * (w[1] * per_s);
-    r[14] = (wi * per_s) * (w[2] * per_s);
-    r[15] = (w[1] * per_s) * (w[2] * per_s);
-    r[16] = R(0);
-    r[17] = R(0);
+    drift_terms(wi, w, fr, cv, r, 1);
     for (t = 0; t < 18; t++) s += r[t] * c[t];
     return s;
 }
 
 "#;
 
-/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`).
-const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
-    dtg_real current[6], next[6], rate[3];
-    int pass, i, j, k, it;
+/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`): the twelve
+/// drift sums of a pass (a0 and the drift at unit rate for each gyro) term
+/// by term with the gyros side by side, a loop the compiler vectorises,
+/// instead of one gyro's two sums after another's (each sum is a chain of
+/// 18 dependent adds: a tenth of the step). Each sum adds the same terms in
+/// the same order as [`DRIFT_C`], so the bits are the same.
+const GYROS_C: &str = r#"/* The six DTGs' inverse, two passes (the least-squares rate from the raw
+ * outputs, then from the first pass's). A gyro's drift at wi = 0 and at
+ * wi = 1 (a0, and b = 1 + drift(1) - a0) are sums of 18 terms; the twelve
+ * sums run side by side, term by term with the gyros in lanes, each added
+ * in the order drift() adds it; then Newton on each gyro. */
+static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
+    dtg_real current[6], next[6], rate[3], cal[18 * 6], r0[18 * 6], r1[18 * 6], s0[6], s1[6];
+    int pass, i, j, k, it, t;
     for (k = 0; k < 6; k++) current[k] = raw[k];
+    for (k = 0; k < 6; k++)
+        for (t = 0; t < 18; t++) cal[6 * t + k] = GYRO_CAL[19 * k + t];
     for (pass = 0; pass < 2; pass++) {
         for (i = 0; i < 3; i++) {
             dtg_real s = R(0);
@@ -538,15 +562,22 @@ const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const
         }
         for (k = 0; k < 6; k++) {
             const dtg_real *ia = FRAMES + 9 * k, *oa = ia + 3, *sa = ia + 6;
-            const dtg_real *c = GYRO_CAL + 19 * k;
-            dtg_real w[3], fr[3], cv[6], a0, b, wi, nl = c[18];
+            dtg_real w[3], fr[3], cv[6];
             w[0] = dot3(ia, rate); w[1] = dot3(oa, rate); w[2] = dot3(sa, rate);
             fr[0] = dot3(ia, f); fr[1] = dot3(oa, f); fr[2] = dot3(sa, f);
             cv[0] = quad(ia, cov, ia); cv[1] = quad(oa, cov, oa); cv[2] = quad(sa, cov, sa);
             cv[3] = quad(ia, cov, oa); cv[4] = quad(ia, cov, sa); cv[5] = quad(oa, cov, sa);
-            a0 = drift(c, R(0), w, fr, cv);
-            b = R(1) + drift(c, R(1), w, fr, cv) - a0;
-            wi = (raw[k] - a0) / b;
+            drift_terms(R(0), w, fr, cv, r0 + k, 6);
+            drift_terms(R(1), w, fr, cv, r1 + k, 6);
+        }
+        for (k = 0; k < 6; k++) s0[k] = s1[k] = R(0);
+        for (t = 0; t < 18; t++)
+            for (k = 0; k < 6; k++) {
+                s0[k] += r0[6 * t + k] * cal[6 * t + k];
+                s1[k] += r1[6 * t + k] * cal[6 * t + k];
+            }
+        for (k = 0; k < 6; k++) {
+            dtg_real a0 = s0[k], b = R(1) + s1[k] - a0, wi = (raw[k] - a0) / b, nl = GYRO_CAL[19 * k + 18];
             for (it = 0; it < 4; it++) {
                 dtg_real per_s = FABS(wi) * (R(1) / R(3600));
                 dtg_real fx = a0 + b * wi + R(1e-6) * nl * per_s * wi - raw[k];

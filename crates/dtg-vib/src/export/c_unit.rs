@@ -6,8 +6,8 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr, real_type,
-    with_maths,
+    CAL_HELPERS_C, CSources, DRIFT_C, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr,
+    real_type, with_maths,
 };
 use super::c_process::{Shape, flush_c, process_c};
 use super::layout::Layout;
@@ -30,6 +30,7 @@ pub fn unit_c_sources(
         FADE_WEIGHT_C,
         HELPERS_C,
         CAL_HELPERS_C,
+        DRIFT_C,
         GYROS_C,
         SQ_DIST_C,
         &super::c_lanes::kernels(precision),
