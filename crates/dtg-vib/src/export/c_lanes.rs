@@ -137,7 +137,8 @@ static double exp_neg11(double x) {
 /// compiler keeps them in vector registers and pairs them into vector
 /// operations; an array of sums indexed in a loop stayed in memory, each
 /// add waiting on the store before it: a fifth of the step), the
-/// exponentials of the chunk in one loop, each value times every sharing
+/// exponentials of the chunk's blocks (not of all four: a set of 100
+/// centres has 13 blocks, its last chunk one), each value times every sharing
 /// channel's weight into that channel's partial sum of its lane; the lanes
 /// are added pairwise at the end onto `ys` and `nets`. The eight sums are
 /// written out for [`LANES`] = 8.
@@ -159,8 +160,6 @@ static void lane_kernels(const dtg_real *x, dtg_real *ys, dtg_real *nets) {
             const dtg_real *blk = LANE_CENTRES + (long)STRIDE * (LANE_SET_BLOCK[c] + b0);
             dtg_real arg[CHUNK], xc[CHUNK], phi[CHUNK];
             int blocks = nb - b0 < BLOCKS ? nb - b0 : BLOCKS;
-            /* Past the set's last block: 0 (exp 1, weight 0). */
-            for (i = 0; i < CHUNK; i++) arg[i] = R(0);
             for (b = 0; b < blocks; b++) {
                 const dtg_real *cb = blk + STRIDE * b, *inv = cb + DTG_DIM * DTG_LANES;
                 dtg_real r0 = R(0), r1 = R(0), r2 = R(0), r3 = R(0), r4 = R(0), r5 = R(0), r6 = R(0),
@@ -179,11 +178,16 @@ static void lane_kernels(const dtg_real *x, dtg_real *ys, dtg_real *nets) {
                 ab[0] = -(r0 * inv[0]); ab[1] = -(r1 * inv[1]); ab[2] = -(r2 * inv[2]); ab[3] = -(r3 * inv[3]);
                 ab[4] = -(r4 * inv[4]); ab[5] = -(r5 * inv[5]); ab[6] = -(r6 * inv[6]); ab[7] = -(r7 * inv[7]);
             }
-            /* The clamp and the underflow to 0 in loops of their own, so that
+            /* The chunk's blocks only (a set's last chunk may hold one); the
+             * clamp and the underflow to 0 in loops of their own, so that
              * each loop stays one the compiler vectorises. */
-            for (i = 0; i < CHUNK; i++) xc[i] = arg[i] < R(-708) ? R(-708) : arg[i];
-            for (i = 0; i < CHUNK; i++) phi[i] = EXP_NEG(xc[i]);
-            for (i = 0; i < CHUNK; i++) phi[i] = arg[i] < R(-708) ? R(0) : phi[i];
+            for (b = 0; b < blocks; b++) {
+                const dtg_real *ab = arg + b * DTG_LANES;
+                dtg_real *xb = xc + b * DTG_LANES, *pb = phi + b * DTG_LANES;
+                for (i = 0; i < DTG_LANES; i++) xb[i] = ab[i] < R(-708) ? R(-708) : ab[i];
+                for (i = 0; i < DTG_LANES; i++) pb[i] = EXP_NEG(xb[i]);
+                for (i = 0; i < DTG_LANES; i++) pb[i] = ab[i] < R(-708) ? R(0) : pb[i];
+            }
             for (j = c; j < N; j++) {
                 if (CENTRE_SET[j] != c) continue;
                 for (b = 0; b < blocks; b++) {
