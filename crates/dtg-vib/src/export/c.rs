@@ -6,7 +6,7 @@
 //! exponential is written out, [`super::c_lanes`]); no dynamic memory, no
 //! globals but the tables.
 
-use super::c_process::{Shape, flush_c, process_c};
+use super::c_process::{Shape, fade_weight_c, process_c, step_end_c};
 use super::layout::Layout;
 use crate::model::CompensationModel;
 use crate::onboard::{ExportError, Tables, tables};
@@ -344,7 +344,7 @@ fn step_c(precision: Precision, shape: Shape) -> String {
     [
         STEP_INIT_C,
         EXCESS_C,
-        FADE_WEIGHT_C,
+        &fade_weight_c(shape),
         HELPERS_C,
         CAL_HELPERS_C,
         GYROS_C,
@@ -352,7 +352,7 @@ fn step_c(precision: Precision, shape: Shape) -> String {
         &super::c_lanes::kernels(precision),
         &process_c(shape),
         STEP_C,
-        &flush_c(shape),
+        &step_end_c(shape),
     ]
     .concat()
 }
@@ -388,46 +388,6 @@ static dtg_real excess(dtg_real v, dtg_real lo, dtg_real hi) {
     dtg_real e = lo - v > v - hi ? lo - v : v - hi;
     return e > R(0) ? e : R(0);
 }
-
-"#;
-
-/// The paper's fade weight over the three axes (closes `#if DTG_FADE`).
-const FADE_WEIGHT_C: &str = r#"/* The smoothed weight of the network part for the window ending at the
- * newest sample (sysid::operating::fade): each axis's window mean and
- * level, the distance beyond the training range, a smoothstep, a one-pole. */
-static dtg_real fade_weight(dtg_state *s, int first) {
-    const int l = DTG_WINDOW_LEN;
-    dtg_real d2 = R(0), d, w0, u;
-    int k, i;
-    for (k = 0; k < 3; k++) {
-        const dtg_real *x = s->fade_ring[k] + s->ring_pos;
-        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
-        for (i = 0; i < l; i++) sum += x[i];
-        mean = sum / R(l);
-        for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
-        level = SQRT(ss / R(l));
-        em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[12];
-        el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[12];
-        d2 += em * em + el * el;
-    }
-    d = SQRT(d2);
-    if (d <= FADE[13]) {
-        w0 = R(1);
-    } else {
-        u = (d - FADE[13]) / FADE[14];
-        if (u > R(1)) u = R(1);
-        w0 = R(1) - u * u * (R(3) - R(2) * u);
-    }
-    if (first) {
-        s->fade_w = w0;
-    } else {
-        /* Within 1e-9 of its input the one-pole takes it. */
-        dtg_real w = s->fade_w + FADE[15] * (w0 - s->fade_w);
-        s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
-    }
-    return s->fade_w;
-}
-#endif
 
 "#;
 
@@ -615,8 +575,8 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
 
 "#;
 
-/// The paper's `dtg_step`: the triad calibrated, the covariance of the
-/// pending sample, `process`.
+/// The paper's `dtg_step` up to the pending sample's covariance
+/// ([`super::c_process::step_end_c`]): the triad calibrated.
 const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
              const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real raw_a[3], a[3], cov[3][3];
@@ -627,31 +587,6 @@ const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[6], c
 #else
     for (k = 0; k < 3; k++) a[k] = raw_a[k];
 #endif
-    if (s->steps >= 1) {
-        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
-         * for the first sample, which has one neighbour. */
-        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-        if (s->steps >= 2) {
-            dtg_real c1[3], c2[3];
-            for (k = 0; k < 3; k++) {
-                c1[k] = (a[k] - s->prev_accel[3 + k]) / R(2);
-                c2[k] = (a[k] + s->prev_accel[3 + k] - R(2) * s->prev_accel[k]) / R(2);
-            }
-            for (i = 0; i < 3; i++)
-                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
-        }
-        out = process(s, cov, rate_deg_h, accel_out_g);
-    }
-    for (k = 0; k < 3; k++) {
-        s->prev_accel[3 + k] = s->prev_accel[k];
-        s->prev_accel[k] = a[k];
-    }
-    for (k = 0; k < 6; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
-    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
-    s->steps += 1;
-    return out;
-}
-
 "#;
 
 const MAIN_C: &str = r#"/* Reads a record CSV (t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra...]) on standard

@@ -1,12 +1,13 @@
-//! The per-sample `process` of the exported C (and `dtg_flush`, which
-//! calls it): one text for the paper's layout ([`super::c`]: six channels,
-//! three accelerometers whose calibrated values are the specific force,
-//! sizes written as numbers) and a unit's ([`super::c_unit`]: `N` gyros,
-//! `NA` accelerometers, the specific force `f` apart from them), filled in
-//! by [`Shape`]. Each fill gives its layout's C byte for byte as it was
-//! when the two were written apart.
+//! The per-sample `process` of the exported C, the fade weight it takes,
+//! and the end of `dtg_step` and `dtg_flush` that call it: one text for
+//! the paper's layout ([`super::c`]: six channels, three accelerometers
+//! whose calibrated values are the specific force, sizes written as
+//! numbers) and a unit's ([`super::c_unit`]: `N` gyros, `NA`
+//! accelerometers, the specific force `f` apart from them), filled in by
+//! [`Shape`]. Each fill gives its layout's C byte for byte as it was when
+//! the two were written apart.
 
-/// Which C `process` to write.
+/// Which layout's C to write.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Shape {
     /// A unit's layout (else the paper's).
@@ -52,10 +53,26 @@ impl Shape {
                     "    for (k = 0; k < {NA}; k++) a[k] = s->pending_accel[k];\n",
                 ),
             ),
-            // The FADE table: a channel's network at rest, the hold's gain.
-            ("{rest}", if unit { "4 * NA + 4 + c" } else { "16 + c" }),
+            (
+                "{fade_doc}",
+                if unit { UNIT_FADE_DOC } else { PAPER_FADE_DOC },
+            ),
+            // The FADE table after the per-axis ranges: the scale, the
+            // tolerance, the width, the hold's gain, each channel's
+            // network at rest.
+            ("{scale}", if unit { "4 * NA" } else { "12" }),
+            ("{tol}", if unit { "4 * NA + 1" } else { "13" }),
+            ("{width}", if unit { "4 * NA + 2" } else { "14" }),
             ("{gain}", if unit { "4 * NA + 3" } else { "15" }),
+            ("{rest}", if unit { "4 * NA + 4 + c" } else { "16 + c" }),
             ("{void_w}", pick(unit, "        (void)w;\n")),
+            (
+                "{store_accel}",
+                pick(
+                    unit,
+                    "    for (k = 0; k < {NA}; k++) s->pending_accel[k] = cal[k];\n",
+                ),
+            ),
             ("{NA}", if unit { "NA" } else { "3" }),
             ("{N}", if unit { "N" } else { "6" }),
             ("{F}", if unit { "f" } else { "a" }),
@@ -63,6 +80,12 @@ impl Shape {
         .iter()
         .fold(text.to_string(), |s, (mark, by)| s.replace(mark, by))
     }
+}
+
+/// `fade_weight` (closes `#if DTG_FADE`, which
+/// [`super::c::EXCESS_C`] opens).
+pub(super) fn fade_weight_c(shape: Shape) -> String {
+    shape.fill(FADE_WEIGHT_C)
 }
 
 /// `process`: the effects, the window, the kernels (each channel's own or
@@ -76,10 +99,63 @@ pub(super) fn process_c(shape: Shape) -> String {
     shape.fill(&[PROCESS_C, kernels, FADE_AND_SMOOTHER_C, PROCESS_END_C].concat())
 }
 
-/// `dtg_flush` (after the layout's `dtg_step`).
-pub(super) fn flush_c(shape: Shape) -> String {
-    shape.fill(FLUSH_C)
+/// The end of `dtg_step` after the layout's own start (the pending
+/// sample's covariance, `process`, the state moved on one sample), then
+/// `dtg_flush`.
+pub(super) fn step_end_c(shape: Shape) -> String {
+    shape.fill(&[STEP_END_C, FLUSH_C].concat())
 }
+
+/// The smoothed weight of the network part (sysid::operating::fade), over
+/// the paper's three axes or a unit's `NA` accelerometers.
+const FADE_WEIGHT_C: &str = r#"{fade_doc}static dtg_real fade_weight(dtg_state *s, int first) {
+    const int l = DTG_WINDOW_LEN;
+    dtg_real d2 = R(0), d, w0, u;
+    int k, i;
+    for (k = 0; k < {NA}; k++) {
+        const dtg_real *x = s->fade_ring[k] + s->ring_pos;
+        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
+        for (i = 0; i < l; i++) sum += x[i];
+        mean = sum / R(l);
+        for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
+        level = SQRT(ss / R(l));
+        em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[{scale}];
+        el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[{scale}];
+        d2 += em * em + el * el;
+    }
+    d = SQRT(d2);
+    if (d <= FADE[{tol}]) {
+        w0 = R(1);
+    } else {
+        u = (d - FADE[{tol}]) / FADE[{width}];
+        if (u > R(1)) u = R(1);
+        w0 = R(1) - u * u * (R(3) - R(2) * u);
+    }
+    if (first) {
+        s->fade_w = w0;
+    } else {
+        /* Within 1e-9 of its input the one-pole takes it. */
+        dtg_real w = s->fade_w + FADE[{gain}] * (w0 - s->fade_w);
+        s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
+    }
+    return s->fade_w;
+}
+#endif
+
+"#;
+
+/// [`FADE_WEIGHT_C`]'s comment for the paper's C.
+const PAPER_FADE_DOC: &str = r#"/* The smoothed weight of the network part for the window ending at the
+ * newest sample (sysid::operating::fade): each axis's window mean and
+ * level, the distance beyond the training range, a smoothstep, a one-pole. */
+"#;
+
+/// [`FADE_WEIGHT_C`]'s comment for a unit's C.
+const UNIT_FADE_DOC: &str = r#"/* The smoothed weight of the network part for the window ending at the
+ * newest sample (sysid::operating::fade): each accelerometer's window mean
+ * and level, the distance beyond the training range, a smoothstep, a
+ * one-pole. */
+"#;
 
 /// `process` up to its kernels; the pending sample's calibrated
 /// accelerations `a`, its specific force `{F}` (the paper's `a`).
@@ -216,6 +292,36 @@ const PROCESS_END_C: &str = r#"{void_w}        rate_deg_h[c] = (double)(g[c] - y
 
 "#;
 
+/// `dtg_step` from the pending sample's covariance on: the covariance
+/// centred on it (n−2, n−1, n) from the specific force `{F}`, `process`, the
+/// state moved on one sample.
+const STEP_END_C: &str = r#"    if (s->steps >= 1) {
+        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
+         * for the first sample, which has one neighbour. */
+        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
+        if (s->steps >= 2) {
+            dtg_real c1[3], c2[3];
+            for (k = 0; k < 3; k++) {
+                c1[k] = ({F}[k] - s->{force_state}[3 + k]) / R(2);
+                c2[k] = ({F}[k] + s->{force_state}[3 + k] - R(2) * s->{force_state}[k]) / R(2);
+            }
+            for (i = 0; i < 3; i++)
+                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
+        }
+        out = process(s, cov, rate_deg_h, accel_out_g);
+    }
+    for (k = 0; k < 3; k++) {
+        s->{force_state}[3 + k] = s->{force_state}[k];
+        s->{force_state}[k] = {F}[k];
+    }
+{store_accel}    for (k = 0; k < {N}; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
+    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
+    s->steps += 1;
+    return out;
+}
+
+"#;
+
 const FLUSH_C: &str = r#"int dtg_flush(dtg_state *s, double rate_deg_h[{N}], double accel_out_g[{NA}]) {
     dtg_real cov[3][3];
     int i, j, out = 0;
@@ -233,11 +339,24 @@ mod tests {
     #[test]
     fn every_mark_is_filled_in_every_shape() {
         for shape in [Shape::paper(false), Shape::paper(true), Shape::unit()] {
-            let c = process_c(shape) + &flush_c(shape);
-            for mark in ["{N}", "{NA}", "{F}", "{j}", "{rest}", "{gain}", "{void_w}"] {
+            let c = fade_weight_c(shape) + &process_c(shape) + &step_end_c(shape);
+            for mark in [
+                "{N}",
+                "{NA}",
+                "{F}",
+                "{j}",
+                "{rest}",
+                "{gain}",
+                "{void_w}",
+                "{scale}",
+                "{tol}",
+                "{width}",
+                "{fade_doc}",
+            ] {
                 assert!(!c.contains(mark), "{shape:?}: {mark} left");
             }
             assert!(!c.contains("{force_") && !c.contains("{shared_") && !c.contains("{load_"));
+            assert!(!c.contains("{store_"));
         }
         // The paper's sizes are numbers, a unit's its macros.
         assert!(process_c(Shape::paper(true)).contains("double rate_deg_h[6]"));
