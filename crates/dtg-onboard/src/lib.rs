@@ -1341,8 +1341,11 @@ fn network_terms(
                     *a = -(r2 / (beta * beta));
                 }
             }
+            // The chunk's blocks only: a set's last chunk may hold one of
+            // its four (past them phi stays 0, times a weight of 0).
             let mut phi = [0.0; B];
-            for (p, a) in phi.iter_mut().zip(&arg) {
+            let live = lane_blocks(nb) * LANES;
+            for (p, a) in phi[..live].iter_mut().zip(&arg) {
                 *p = exp_neg11(*a);
             }
             for (a, &j) in acc.iter_mut().zip(members) {

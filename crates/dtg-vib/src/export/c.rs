@@ -6,6 +6,7 @@
 //! exponential is written out, [`super::c_lanes`]); no dynamic memory, no
 //! globals but the tables.
 
+use super::c_process::{Shape, fade_weight_c, process_c, step_end_c};
 use super::layout::Layout;
 use crate::model::CompensationModel;
 use crate::onboard::{ExportError, Tables, tables};
@@ -113,16 +114,18 @@ pub fn c_sources_from_tables(t: &Tables, precision: Precision) -> Result<CSource
     // Channels that share a centre set compute each kernel value once; a
     // model without (every model fitted before shared centres) keeps the
     // C it always had, byte for byte.
-    let mut step = step_c(precision);
     let shared = layout.centre_set.iter().enumerate().any(|(c, &l)| l != c);
     // The statistics input's kernels run in lanes over centre sets
     // (super::c_lanes), a set of one channel when none is shared.
-    if shared || layout.input == dtg_onboard::input::STATISTICS as usize {
+    let sets = shared || layout.input == dtg_onboard::input::STATISTICS as usize;
+    if sets {
         source.push_str(&super::c_shared::arrays(&layout));
         source.push_str(&super::c_lanes::arrays(&layout));
-        step = super::c_shared::step(&step);
     }
-    source.push_str(&with_maths(&step, precision));
+    source.push_str(&with_maths(
+        &step_c(precision, Shape::paper(sets)),
+        precision,
+    ));
     Ok(CSources {
         header: header_h(&layout, &t.extra, real_type(precision)),
         source,
@@ -337,20 +340,19 @@ static const dtg_real FADE[{nf}] = {fade};
 
 /// The step code of the paper's C, in pieces that the C of any unit
 /// ([`super::c_unit`]) shares where it is the same text.
-fn step_c(precision: Precision) -> String {
+fn step_c(precision: Precision, shape: Shape) -> String {
     [
         STEP_INIT_C,
         EXCESS_C,
-        FADE_WEIGHT_C,
+        &fade_weight_c(shape),
         HELPERS_C,
         CAL_HELPERS_C,
         GYROS_C,
         SQ_DIST_C,
         &super::c_lanes::kernels(precision),
-        PROCESS_C,
-        OWN_KERNELS_C,
-        &fade_and_smoother_c("16 + c", "15"),
-        PROCESS_TAIL_C,
+        &process_c(shape),
+        STEP_C,
+        &step_end_c(shape),
     ]
     .concat()
 }
@@ -389,46 +391,6 @@ static dtg_real excess(dtg_real v, dtg_real lo, dtg_real hi) {
 
 "#;
 
-/// The paper's fade weight over the three axes (closes `#if DTG_FADE`).
-const FADE_WEIGHT_C: &str = r#"/* The smoothed weight of the network part for the window ending at the
- * newest sample (sysid::operating::fade): each axis's window mean and
- * level, the distance beyond the training range, a smoothstep, a one-pole. */
-static dtg_real fade_weight(dtg_state *s, int first) {
-    const int l = DTG_WINDOW_LEN;
-    dtg_real d2 = R(0), d, w0, u;
-    int k, i;
-    for (k = 0; k < 3; k++) {
-        const dtg_real *x = s->fade_ring[k] + s->ring_pos;
-        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
-        for (i = 0; i < l; i++) sum += x[i];
-        mean = sum / R(l);
-        for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
-        level = SQRT(ss / R(l));
-        em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[12];
-        el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[12];
-        d2 += em * em + el * el;
-    }
-    d = SQRT(d2);
-    if (d <= FADE[13]) {
-        w0 = R(1);
-    } else {
-        u = (d - FADE[13]) / FADE[14];
-        if (u > R(1)) u = R(1);
-        w0 = R(1) - u * u * (R(3) - R(2) * u);
-    }
-    if (first) {
-        s->fade_w = w0;
-    } else {
-        /* Within 1e-9 of its input the one-pole takes it. */
-        dtg_real w = s->fade_w + FADE[15] * (w0 - s->fade_w);
-        s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
-    }
-    return s->fade_w;
-}
-#endif
-
-"#;
-
 /// The cascade of sections, `dot3`, `quad`.
 pub(super) const HELPERS_C: &str = r#"/* One value through a cascade of second-order sections (transposed direct
  * form II); on the first step the states start in the steady state of x. */
@@ -463,7 +425,7 @@ static inline dtg_real quad(const dtg_real *p, dtg_real c[3][3], const dtg_real 
 
 "#;
 
-/// The triad's inverse and a DTG's drift (opens `#if DTG_CALIBRATED`).
+/// The triad's inverse and a DTG's drift terms (opens `#if DTG_CALIBRATED`).
 pub(super) const CAL_HELPERS_C: &str = r#"#if DTG_CALIBRATED
 /* Newton stops once its next step would be within 4 ulps of the estimate
  * (the residual checked before the division), or after four steps. */
@@ -494,40 +456,64 @@ static void compensate_triad(const dtg_real *measured, dtg_real *a) {
     }
 }
 
-static inline dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv) {
+/* A DTG's drift terms (DtgTerm order) at the rate wi about its input axis:
+ * w the rates about its I, O, S axes, fr the specific force along them, cv
+ * their covariances; term t at r[t * stride]. */
+static inline void drift_terms(dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv, dtg_real *r, int stride) {
     const dtg_real per_s = R(1) / R(3600);
+    r[0 * stride] = R(1);
+    r[1 * stride] = R(1e-6) * wi;
+    r[2 * stride] = R(1e-6) * w[1];
+    r[3 * stride] = R(1e-6) * w[2];
+    r[4 * stride] = fr[0];
+    r[5 * stride] = fr[1];
+    r[6 * stride] = fr[2];
+    r[7 * stride] = fr[0] * fr[0] + cv[0];
+    r[8 * stride] = fr[1] * fr[1] + cv[1];
+    r[9 * stride] = fr[2] * fr[2] + cv[2];
+    r[10 * stride] = fr[0] * fr[1] + cv[3];
+    r[11 * stride] = fr[0] * fr[2] + cv[4];
+    r[12 * stride] = fr[1] * fr[2] + cv[5];
+    r[13 * stride] = (wi * per_s) * (w[1] * per_s);
+    r[14 * stride] = (wi * per_s) * (w[2] * per_s);
+    r[15 * stride] = (w[1] * per_s) * (w[2] * per_s);
+    r[16 * stride] = R(0);
+    r[17 * stride] = R(0);
+}
+
+"#;
+
+/// A DTG's drift at one rate: its terms (from [`CAL_HELPERS_C`]) times its
+/// calibration, summed in term order (the C of a unit; the paper's sums
+/// six gyros side by side in [`GYROS_C`]).
+pub(super) const DRIFT_C: &str = r#"static inline dtg_real drift(const dtg_real *c, dtg_real wi, const dtg_real *w, const dtg_real *fr, const dtg_real *cv) {
     dtg_real r[18];
     dtg_real s = R(0);
     int t;
-    r[0] = R(1);
-    r[1] = R(1e-6) * wi;
-    r[2] = R(1e-6) * w[1];
-    r[3] = R(1e-6) * w[2];
-    r[4] = fr[0];
-    r[5] = fr[1];
-    r[6] = fr[2];
-    r[7] = fr[0] * fr[0] + cv[0];
-    r[8] = fr[1] * fr[1] + cv[1];
-    r[9] = fr[2] * fr[2] + cv[2];
-    r[10] = fr[0] * fr[1] + cv[3];
-    r[11] = fr[0] * fr[2] + cv[4];
-    r[12] = fr[1] * fr[2] + cv[5];
-    r[13] = (wi * per_s) * (w[1] * per_s);
-    r[14] = (wi * per_s) * (w[2] * per_s);
-    r[15] = (w[1] * per_s) * (w[2] * per_s);
-    r[16] = R(0);
-    r[17] = R(0);
+    drift_terms(wi, w, fr, cv, r, 1);
     for (t = 0; t < 18; t++) s += r[t] * c[t];
     return s;
 }
 
 "#;
 
-/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`).
-const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
-    dtg_real current[6], next[6], rate[3];
-    int pass, i, j, k, it;
+/// The paper's six DTGs' inverse (closes `#if DTG_CALIBRATED`): the twelve
+/// drift sums of a pass (a0 and the drift at unit rate for each gyro) term
+/// by term with the gyros side by side, a loop the compiler vectorises,
+/// instead of one gyro's two sums after another's (each sum is a chain of
+/// 18 dependent adds: a tenth of the step). Each sum adds the same terms in
+/// the same order as [`DRIFT_C`], so the bits are the same.
+const GYROS_C: &str = r#"/* The six DTGs' inverse, two passes (the least-squares rate from the raw
+ * outputs, then from the first pass's). A gyro's drift at wi = 0 and at
+ * wi = 1 (a0, and b = 1 + drift(1) - a0) are sums of 18 terms; the twelve
+ * sums run side by side, term by term with the gyros in lanes, each added
+ * in the order drift() adds it; then Newton on each gyro. */
+static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real cov[3][3], dtg_real *out) {
+    dtg_real current[6], next[6], rate[3], cal[18 * 6], r0[18 * 6], r1[18 * 6], s0[6], s1[6];
+    int pass, i, j, k, it, t;
     for (k = 0; k < 6; k++) current[k] = raw[k];
+    for (k = 0; k < 6; k++)
+        for (t = 0; t < 18; t++) cal[6 * t + k] = GYRO_CAL[19 * k + t];
     for (pass = 0; pass < 2; pass++) {
         for (i = 0; i < 3; i++) {
             dtg_real s = R(0);
@@ -536,15 +522,22 @@ const GYROS_C: &str = r#"static void compensate_gyros(const dtg_real *raw, const
         }
         for (k = 0; k < 6; k++) {
             const dtg_real *ia = FRAMES + 9 * k, *oa = ia + 3, *sa = ia + 6;
-            const dtg_real *c = GYRO_CAL + 19 * k;
-            dtg_real w[3], fr[3], cv[6], a0, b, wi, nl = c[18];
+            dtg_real w[3], fr[3], cv[6];
             w[0] = dot3(ia, rate); w[1] = dot3(oa, rate); w[2] = dot3(sa, rate);
             fr[0] = dot3(ia, f); fr[1] = dot3(oa, f); fr[2] = dot3(sa, f);
             cv[0] = quad(ia, cov, ia); cv[1] = quad(oa, cov, oa); cv[2] = quad(sa, cov, sa);
             cv[3] = quad(ia, cov, oa); cv[4] = quad(ia, cov, sa); cv[5] = quad(oa, cov, sa);
-            a0 = drift(c, R(0), w, fr, cv);
-            b = R(1) + drift(c, R(1), w, fr, cv) - a0;
-            wi = (raw[k] - a0) / b;
+            drift_terms(R(0), w, fr, cv, r0 + k, 6);
+            drift_terms(R(1), w, fr, cv, r1 + k, 6);
+        }
+        for (k = 0; k < 6; k++) s0[k] = s1[k] = R(0);
+        for (t = 0; t < 18; t++)
+            for (k = 0; k < 6; k++) {
+                s0[k] += r0[6 * t + k] * cal[6 * t + k];
+                s1[k] += r1[6 * t + k] * cal[6 * t + k];
+            }
+        for (k = 0; k < 6; k++) {
+            dtg_real a0 = s0[k], b = R(1) + s1[k] - a0, wi = (raw[k] - a0) / b, nl = GYRO_CAL[19 * k + 18];
             for (it = 0; it < 4; it++) {
                 dtg_real per_s = FABS(wi) * (R(1) / R(3600));
                 dtg_real fx = a0 + b * wi + R(1e-6) * nl * per_s * wi - raw[k];
@@ -582,148 +575,9 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
 
 "#;
 
-/// The paper's `process` up to its kernels.
-const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
-static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real a[3], g[6], linear[6], w = R(1);
-    int first = s->processed == 0;
-    int k, c, e, sig;
-    const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) a[k] = s->prev_accel[k];
-#if DTG_CALIBRATED
-    compensate_gyros(s->pending_gyro, a, cov, g);
-#else
-    for (k = 0; k < 6; k++) g[k] = s->pending_gyro[k];
-#endif
-    for (c = 0; c < 6; c++) {
-        dtg_real sum = R(0);
-        for (e = 0; e < N_EFFECTS[c]; e++) {
-            int idx = EFFECT_OFFSET[c] + e;
-            const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
-            dtg_real z;
-            switch (EFFECT_KIND[idx]) {
-            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
-            case 1: z = dot3(p, a); break;
-            case 2: z = dot3(p, a) * dot3(p + 3, a) + quad(p, cov, p + 3); break;
-            default: {
-                dtg_real r = R(0), q = R(0);
-                for (k = 0; k < 6; k++) r += p[k] * g[k];
-                for (k = 0; k < 6; k++) q += p[6 + k] * g[k];
-                z = r * q;
-            }
-            }
-            z = cascade(OUT_SOS, DTG_N_SECTIONS, s->out_z + 2 * DTG_N_SECTIONS * idx, z, first);
-            sum += z * COEFF[idx];
-        }
-        linear[c] = sum;
-    }
-    for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-        int code = SIGNAL_CODE[sig];
-        dtg_real v = code < 3 ? a[code] : s->pending_extra[code - 3];
-        v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
-        {
-            /* Running sums: the sample L steps back (0 while the window
-             * fills) leaves as this one enters. */
-            dtg_real old = s->ring[sig][s->ring_pos];
-            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
-            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
-#if DTG_INPUT_STATS
-            {
-                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
-                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
-                s->feat[3 * sig] = v;
-                s->feat[3 * sig + 1] = mean;
-                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
-            }
-#endif
-        }
-        s->ring[sig][s->ring_pos] = v;
-        s->ring[sig][s->ring_pos + l] = v;
-    }
-#if DTG_FADE
-    for (k = 0; k < 3; k++) {
-        s->fade_ring[k][s->ring_pos] = a[k];
-        s->fade_ring[k][s->ring_pos + l] = a[k];
-    }
-#endif
-    s->ring_pos = (s->ring_pos + 1) % l;
-    s->processed += 1;
-    if (s->processed < l) return 0;
-#if DTG_FADE
-    w = fade_weight(s, s->processed == l);
-#endif
-"#;
-
-/// Each channel's own kernel loop (a raw-window model without shared
-/// centre sets).
-pub(super) const OWN_KERNELS_C: &str = r#"    for (c = 0; c < 6; c++) {
-        /* Without a smoother the kernels add onto bias and effects. */
-        dtg_real y = DTG_N_SMOOTH_SECTIONS > 0 ? R(0) : BIAS[c] + linear[c], net = R(0);
-        dtg_real acc[DTG_LANES];
-        for (k = 0; k < DTG_LANES; k++) acc[k] = R(0);
-        for (k = 0; k < N_CENTRES[c]; k++) {
-            int kk = CENTRE_OFFSET[c] + k;
-            const dtg_real *cen = CENTRES + (long)DTG_DIM * kk;
-            dtg_real r2 = R(0), beta = WIDTH[kk], arg;
-            for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-                r2 += sq_dist(s->ring[sig] + s->ring_pos, cen, l);
-                cen += l;
-            }
-            arg = -(r2 / (beta * beta));
-            /* One partial sum per lane, as the Rust evaluator keeps them. */
-            acc[k % DTG_LANES] += (arg < R(-708) ? R(0) : EXP_NEG(arg)) * WEIGHT[kk];
-        }
-        lane_sum(acc);
-        y += acc[0];
-        net += acc[0];
-"#;
-
-/// The end of a channel's step, the same text in the paper's C and any
-/// unit's: the fade's cross-fade of the held network part
-/// (sysid::operating::fade), then the prediction smoother on the network
-/// part. `rest` and `gain` index the FADE table: a channel's network at rest
-/// and the hold's one-pole gain.
-pub(super) fn fade_and_smoother_c(rest: &str, gain: &str) -> String {
-    FADE_AND_SMOOTHER_C
-        .replace("{rest}", rest)
-        .replace("{gain}", gain)
-}
-
-/// [`fade_and_smoother_c`]'s text, `{rest}` and `{gain}` to fill.
-const FADE_AND_SMOOTHER_C: &str = r#"#if DTG_FADE
-        {
-            /* The held network part follows the network by the weight's
-             * one-pole at full weight and stays below it; the output
-             * cross-fades from it to the network by the weight. A record
-             * starts it at the network's value at rest. Before the smoother
-             * (sysid::operating::fade). */
-            dtg_real before = s->processed == l ? FADE[{rest}] : s->fade_h[c];
-            dtg_real faded = w >= R(1) ? net : before + w * (net - before);
-            s->fade_h[c] = w >= R(1) ? before + FADE[{gain}] * (net - before) : before;
-#if DTG_N_SMOOTH_SECTIONS == 0
-            y -= net - faded;
-#endif
-            net = faded;
-        }
-#endif
-#if DTG_N_SMOOTH_SECTIONS > 0
-        /* The prediction smoother, on the network part only. */
-        net = cascade(SMOOTH_SOS, DTG_N_SMOOTH_SECTIONS, s->smooth_z + 2 * DTG_N_SMOOTH_SECTIONS * c,
-                      net, s->processed == l);
-        y = BIAS[c] + linear[c] + net;
-#endif
-        (void)net;
-"#;
-
-/// The rest of the paper's `process`, `dtg_step` and `dtg_flush`, after
-/// [`fade_and_smoother_c`].
-const PROCESS_TAIL_C: &str = r#"        rate_deg_h[c] = (double)(g[c] - y);
-    }
-    for (k = 0; k < 3; k++) accel_out_g[k] = (double)a[k];
-    return 1;
-}
-
-int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
+/// The paper's `dtg_step` up to the pending sample's covariance
+/// ([`super::c_process::step_end_c`]): the triad calibrated.
+const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
              const double *extra, double rate_deg_h[6], double accel_out_g[3]) {
     dtg_real raw_a[3], a[3], cov[3][3];
     int i, j, k, out = 0;
@@ -733,39 +587,6 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[6], const double accel_g[3],
 #else
     for (k = 0; k < 3; k++) a[k] = raw_a[k];
 #endif
-    if (s->steps >= 1) {
-        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
-         * for the first sample, which has one neighbour. */
-        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-        if (s->steps >= 2) {
-            dtg_real c1[3], c2[3];
-            for (k = 0; k < 3; k++) {
-                c1[k] = (a[k] - s->prev_accel[3 + k]) / R(2);
-                c2[k] = (a[k] + s->prev_accel[3 + k] - R(2) * s->prev_accel[k]) / R(2);
-            }
-            for (i = 0; i < 3; i++)
-                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
-        }
-        out = process(s, cov, rate_deg_h, accel_out_g);
-    }
-    for (k = 0; k < 3; k++) {
-        s->prev_accel[3 + k] = s->prev_accel[k];
-        s->prev_accel[k] = a[k];
-    }
-    for (k = 0; k < 6; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
-    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
-    s->steps += 1;
-    return out;
-}
-
-int dtg_flush(dtg_state *s, double rate_deg_h[6], double accel_out_g[3]) {
-    dtg_real cov[3][3];
-    int i, j, out = 0;
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
-    dtg_init(s);
-    return out;
-}
 "#;
 
 const MAIN_C: &str = r#"/* Reads a record CSV (t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra...]) on standard

@@ -12,6 +12,9 @@ use super::c::{Precision, arr, iarr};
 use super::layout::Layout;
 use dtg_onboard::LANES;
 
+// LANE_KERNELS_C names one distance sum per lane.
+const _: () = assert!(LANES == 8, "write LANE_KERNELS_C's sums for the new LANES");
+
 /// `text` (the raw window's centre arrays) for a raw-window model; nothing
 /// for a statistics model, whose kernels read only the lane arrays.
 pub(super) fn raw_only(layout: &Layout, text: String) -> String {
@@ -129,12 +132,16 @@ static double exp_neg11(double x) {
 "#;
 
 /// Each centre set's kernels a chunk of four blocks of lanes (32 centres,
-/// the Rust evaluator's `KERNEL_BLOCK`) at a time: the distances input
-/// number by input number over the chunk (a lane's sum is touched once in
-/// sixteen vector adds, so the adds do not wait on one another), the
-/// exponentials of the chunk in one loop, each value times every sharing
+/// the Rust evaluator's `KERNEL_BLOCK`) at a time: a block's eight
+/// distances in eight named sums, input number by input number (the
+/// compiler keeps them in vector registers and pairs them into vector
+/// operations; an array of sums indexed in a loop stayed in memory, each
+/// add waiting on the store before it: a fifth of the step), the
+/// exponentials of the chunk's blocks (not of all four: a set of 100
+/// centres has 13 blocks, its last chunk one), each value times every sharing
 /// channel's weight into that channel's partial sum of its lane; the lanes
-/// are added pairwise at the end onto `ys` and `nets`.
+/// are added pairwise at the end onto `ys` and `nets`. The eight sums are
+/// written out for [`LANES`] = 8.
 const LANE_KERNELS_C: &str = r#"/* Adds each channel's kernel terms to ys[c] and nets[c] (x: the statistics
  * inputs), as the Rust evaluator's network_terms does, operation for
  * operation: per centre, its squared distance summed over the inputs in
@@ -151,31 +158,36 @@ static void lane_kernels(const dtg_real *x, dtg_real *ys, dtg_real *nets) {
         nb = (N_CENTRES[c] + DTG_LANES - 1) / DTG_LANES;
         for (b0 = 0; b0 < nb; b0 += BLOCKS) {
             const dtg_real *blk = LANE_CENTRES + (long)STRIDE * (LANE_SET_BLOCK[c] + b0);
-            dtg_real r2[CHUNK], arg[CHUNK], xc[CHUNK], phi[CHUNK];
+            dtg_real arg[CHUNK], xc[CHUNK], phi[CHUNK];
             int blocks = nb - b0 < BLOCKS ? nb - b0 : BLOCKS;
-            for (i = 0; i < CHUNK; i++) r2[i] = R(0);
-            /* Past the set's last block: 0 (exp 1, weight 0). */
-            for (i = 0; i < CHUNK; i++) arg[i] = R(0);
-            for (d = 0; d < DTG_DIM; d++) {
-                const dtg_real xd = x[d];
-                for (b = 0; b < blocks; b++) {
-                    const dtg_real *cd = blk + STRIDE * b + d * DTG_LANES;
-                    dtg_real *rb = r2 + b * DTG_LANES;
-                    for (i = 0; i < DTG_LANES; i++) {
-                        dtg_real t = xd - cd[i];
-                        rb[i] += t * t;
-                    }
-                }
-            }
             for (b = 0; b < blocks; b++) {
-                const dtg_real *inv = blk + STRIDE * b + DTG_DIM * DTG_LANES;
-                for (i = 0; i < DTG_LANES; i++) arg[b * DTG_LANES + i] = -(r2[b * DTG_LANES + i] * inv[i]);
+                const dtg_real *cb = blk + STRIDE * b, *inv = cb + DTG_DIM * DTG_LANES;
+                dtg_real r0 = R(0), r1 = R(0), r2 = R(0), r3 = R(0), r4 = R(0), r5 = R(0), r6 = R(0),
+                         r7 = R(0), t, *ab = arg + b * DTG_LANES;
+                for (d = 0; d < DTG_DIM; d++) {
+                    const dtg_real xd = x[d], *cd = cb + d * DTG_LANES;
+                    t = xd - cd[0]; r0 += t * t;
+                    t = xd - cd[1]; r1 += t * t;
+                    t = xd - cd[2]; r2 += t * t;
+                    t = xd - cd[3]; r3 += t * t;
+                    t = xd - cd[4]; r4 += t * t;
+                    t = xd - cd[5]; r5 += t * t;
+                    t = xd - cd[6]; r6 += t * t;
+                    t = xd - cd[7]; r7 += t * t;
+                }
+                ab[0] = -(r0 * inv[0]); ab[1] = -(r1 * inv[1]); ab[2] = -(r2 * inv[2]); ab[3] = -(r3 * inv[3]);
+                ab[4] = -(r4 * inv[4]); ab[5] = -(r5 * inv[5]); ab[6] = -(r6 * inv[6]); ab[7] = -(r7 * inv[7]);
             }
-            /* The clamp and the underflow to 0 in loops of their own, so that
+            /* The chunk's blocks only (a set's last chunk may hold one); the
+             * clamp and the underflow to 0 in loops of their own, so that
              * each loop stays one the compiler vectorises. */
-            for (i = 0; i < CHUNK; i++) xc[i] = arg[i] < R(-708) ? R(-708) : arg[i];
-            for (i = 0; i < CHUNK; i++) phi[i] = EXP_NEG(xc[i]);
-            for (i = 0; i < CHUNK; i++) phi[i] = arg[i] < R(-708) ? R(0) : phi[i];
+            for (b = 0; b < blocks; b++) {
+                const dtg_real *ab = arg + b * DTG_LANES;
+                dtg_real *xb = xc + b * DTG_LANES, *pb = phi + b * DTG_LANES;
+                for (i = 0; i < DTG_LANES; i++) xb[i] = ab[i] < R(-708) ? R(-708) : ab[i];
+                for (i = 0; i < DTG_LANES; i++) pb[i] = EXP_NEG(xb[i]);
+                for (i = 0; i < DTG_LANES; i++) pb[i] = ab[i] < R(-708) ? R(0) : pb[i];
+            }
             for (j = c; j < N; j++) {
                 if (CENTRE_SET[j] != c) continue;
                 for (b = 0; b < blocks; b++) {

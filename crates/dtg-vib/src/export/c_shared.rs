@@ -25,7 +25,8 @@ pub(super) fn arrays(layout: &Layout) -> String {
 }
 
 /// The kernels of each set once, each value times every sharing channel's
-/// weight, added in centre order as the paper's loop adds them.
+/// weight, added in centre order as the paper's loop adds them (the kernel
+/// part of [`super::c_process::process_c`] for shared sets).
 /// N is the number of channels (6 here, `DTG_N_GYROS` in a unit's C),
 /// `CENTRE_OFFSET` where a channel's widths and weights start and
 /// `SET_OFFSET` where its set's centres start (in centres).
@@ -69,21 +70,3 @@ pub(super) const SHARED_KERNELS: &str = r#"    /* Without a smoother the kernels
     for (c = 0; c < N; c++) {
         dtg_real y = ys[c], net = nets[c];
 "#;
-
-/// The paper's step with the shared kernel loop in place of each
-/// channel's own.
-pub(super) fn step(step: &str) -> String {
-    [
-        (super::c::OWN_KERNELS_C, SHARED_KERNELS),
-        (
-            "    dtg_real a[3], g[6], linear[6], w = R(1);\n",
-            "    dtg_real a[3], g[6], linear[6], ys[6], nets[6], w = R(1);\n",
-        ),
-        ("    int k, c, e, sig;\n", "    int k, c, e, sig, j;\n"),
-    ]
-    .iter()
-    .fold(step.to_string(), |s, (old, new)| {
-        debug_assert!(s.contains(old), "the paper's step changed: {old}");
-        s.replacen(old, new, 1)
-    })
-}

@@ -6,10 +6,10 @@
 //! unit's column names and units, as `dtg-vib compensate --unit` does.
 
 use super::c::{
-    CAL_HELPERS_C, CSources, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, fade_and_smoother_c,
-    iarr, real_type, with_maths,
+    CAL_HELPERS_C, CSources, DRIFT_C, EXCESS_C, HELPERS_C, Precision, SQ_DIST_C, arr, iarr,
+    real_type, with_maths,
 };
-use super::c_shared::SHARED_KERNELS;
+use super::c_process::{Shape, fade_weight_c, process_c, step_end_c};
 use super::layout::Layout;
 use crate::onboard::{ExportError, Tables};
 use nav_sensors::unit::Unit;
@@ -27,16 +27,16 @@ pub fn unit_c_sources(
     let step = [
         INIT_C,
         EXCESS_C,
-        FADE_WEIGHT_C,
+        &fade_weight_c(Shape::unit()),
         HELPERS_C,
         CAL_HELPERS_C,
+        DRIFT_C,
         GYROS_C,
         SQ_DIST_C,
         &super::c_lanes::kernels(precision),
-        PROCESS_C,
-        SHARED_KERNELS,
-        &fade_and_smoother_c("4 * NA + 4 + c", "4 * NA + 3"),
-        PROCESS_TAIL_C,
+        &process_c(Shape::unit()),
+        STEP_C,
+        &step_end_c(Shape::unit()),
     ]
     .concat();
     source.push_str(&with_maths(&step, precision));
@@ -282,46 +282,6 @@ void dtg_init(dtg_state *s) {
 
 "#;
 
-const FADE_WEIGHT_C: &str = r#"/* The smoothed weight of the network part for the window ending at the
- * newest sample (sysid::operating::fade): each accelerometer's window mean
- * and level, the distance beyond the training range, a smoothstep, a
- * one-pole. */
-static dtg_real fade_weight(dtg_state *s, int first) {
-    const int l = DTG_WINDOW_LEN;
-    dtg_real d2 = R(0), d, w0, u;
-    int k, i;
-    for (k = 0; k < NA; k++) {
-        const dtg_real *x = s->fade_ring[k] + s->ring_pos;
-        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
-        for (i = 0; i < l; i++) sum += x[i];
-        mean = sum / R(l);
-        for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
-        level = SQRT(ss / R(l));
-        em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[4 * NA];
-        el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[4 * NA];
-        d2 += em * em + el * el;
-    }
-    d = SQRT(d2);
-    if (d <= FADE[4 * NA + 1]) {
-        w0 = R(1);
-    } else {
-        u = (d - FADE[4 * NA + 1]) / FADE[4 * NA + 2];
-        if (u > R(1)) u = R(1);
-        w0 = R(1) - u * u * (R(3) - R(2) * u);
-    }
-    if (first) {
-        s->fade_w = w0;
-    } else {
-        /* Within 1e-9 of its input the one-pole takes it. */
-        dtg_real w = s->fade_w + FADE[4 * NA + 3] * (w0 - s->fade_w);
-        s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
-    }
-    return s->fade_w;
-}
-#endif
-
-"#;
-
 const GYROS_C: &str = r#"/* A rate gyro's inverse: the drift at zero rate removed, divided by the
  * scale factor (RateTerm::ALL order: bias, scale factor, g_x ... gg_yz, temp). */
 static dtg_real rate_inverse(const dtg_real *c, dtg_real measured, const dtg_real *f, dtg_real cov[3][3]) {
@@ -392,89 +352,10 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real co
 
 "#;
 
-/// `process` up to its kernels.
-const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance. */
-static int process(dtg_state *s, dtg_real cov[3][3], double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real f[3], a[NA], g[N], linear[N], ys[N], nets[N], w = R(1);
-    int first = s->processed == 0;
-    int k, c, e, sig, j;
-    const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) f[k] = s->force[k];
-    for (k = 0; k < NA; k++) a[k] = s->pending_accel[k];
-#if DTG_CALIBRATED
-    compensate_gyros(s->pending_gyro, f, cov, g);
-#else
-    for (k = 0; k < N; k++) g[k] = s->pending_gyro[k];
-#endif
-    for (c = 0; c < N; c++) {
-        dtg_real sum = R(0);
-        for (e = 0; e < N_EFFECTS[c]; e++) {
-            int idx = EFFECT_OFFSET[c] + e;
-            const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
-            dtg_real z;
-            switch (EFFECT_KIND[idx]) {
-            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
-            case 1: z = dot3(p, f); break;
-            case 2: z = dot3(p, f) * dot3(p + 3, f) + quad(p, cov, p + 3); break;
-            default: {
-                dtg_real r = R(0), q = R(0);
-                for (k = 0; k < N; k++) r += p[k] * g[k];
-                for (k = 0; k < N; k++) q += p[N + k] * g[k];
-                z = r * q;
-            }
-            }
-            z = cascade(OUT_SOS, DTG_N_SECTIONS, s->out_z + 2 * DTG_N_SECTIONS * idx, z, first);
-            sum += z * COEFF[idx];
-        }
-        linear[c] = sum;
-    }
-    for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
-        int code = SIGNAL_CODE[sig];
-        dtg_real v = code < NA ? a[code] : s->pending_extra[code - NA];
-        v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
-        {
-            /* Running sums: the sample L steps back (0 while the window
-             * fills) leaves as this one enters. */
-            dtg_real old = s->ring[sig][s->ring_pos];
-            s->sums[2 * sig] = (s->sums[2 * sig] + v) - old;
-            s->sums[2 * sig + 1] = (s->sums[2 * sig + 1] + v * v) - old * old;
-#if DTG_INPUT_STATS
-            {
-                dtg_real mean = s->sums[2 * sig] / (dtg_real)l;
-                dtg_real var = s->sums[2 * sig + 1] / (dtg_real)l - mean * mean;
-                s->feat[3 * sig] = v;
-                s->feat[3 * sig + 1] = mean;
-                s->feat[3 * sig + 2] = var > R(0) ? SQRT(var) : R(0);
-            }
-#endif
-        }
-        s->ring[sig][s->ring_pos] = v;
-        s->ring[sig][s->ring_pos + l] = v;
-    }
-#if DTG_FADE
-    for (k = 0; k < NA; k++) {
-        s->fade_ring[k][s->ring_pos] = a[k];
-        s->fade_ring[k][s->ring_pos + l] = a[k];
-    }
-#endif
-    s->ring_pos = (s->ring_pos + 1) % l;
-    s->processed += 1;
-    if (s->processed < l) return 0;
-#if DTG_FADE
-    w = fade_weight(s, s->processed == l);
-#endif
-"#;
-
-/// The rest of `process`, `dtg_step` and `dtg_flush`, after
-/// [`super::c::fade_and_smoother_c`].
-const PROCESS_TAIL_C: &str = r#"        (void)w;
-        rate_deg_h[c] = (double)(g[c] - y);
-    }
-    for (k = 0; k < NA; k++) accel_out_g[k] = (double)a[k];
-    return 1;
-}
-
-int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
+/// A unit's `dtg_step` up to the pending sample's covariance
+/// ([`super::c_process::step_end_c`]): the specific force from the
+/// accelerometers, the triad calibrated on it.
+const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
              const double *extra, double rate_deg_h[N], double accel_out_g[NA]) {
     dtg_real raw_a[NA], f[3], cal[NA], cov[3][3];
     int i, j, k, out = 0;
@@ -500,40 +381,6 @@ int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
 #else
     for (k = 0; k < NA; k++) cal[k] = raw_a[k];
 #endif
-    if (s->steps >= 1) {
-        /* The pending sample's covariance, centred on it (n-2, n-1, n); zero
-         * for the first sample, which has one neighbour. */
-        for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-        if (s->steps >= 2) {
-            dtg_real c1[3], c2[3];
-            for (k = 0; k < 3; k++) {
-                c1[k] = (f[k] - s->force[3 + k]) / R(2);
-                c2[k] = (f[k] + s->force[3 + k] - R(2) * s->force[k]) / R(2);
-            }
-            for (i = 0; i < 3; i++)
-                for (j = 0; j < 3; j++) cov[i][j] = c1[i] * c1[j] / R(12) + c2[i] * c2[j] / R(180);
-        }
-        out = process(s, cov, rate_deg_h, accel_out_g);
-    }
-    for (k = 0; k < 3; k++) {
-        s->force[3 + k] = s->force[k];
-        s->force[k] = f[k];
-    }
-    for (k = 0; k < NA; k++) s->pending_accel[k] = cal[k];
-    for (k = 0; k < N; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
-    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
-    s->steps += 1;
-    return out;
-}
-
-int dtg_flush(dtg_state *s, double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real cov[3][3];
-    int i, j, out = 0;
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) cov[i][j] = R(0);
-    if (s->steps >= 1) out = process(s, cov, rate_deg_h, accel_out_g);
-    dtg_init(s);
-    return out;
-}
 "#;
 
 const MAIN_C: &str = r#"/* Reads a log of the unit (its time column, gyros, accelerometers and any

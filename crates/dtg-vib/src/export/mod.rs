@@ -4,6 +4,7 @@
 
 mod c;
 mod c_lanes;
+mod c_process;
 mod c_shared;
 mod c_unit;
 mod layout;
