@@ -1573,7 +1573,10 @@ fn window_signals_auto_takes_the_vibrating_axes_and_a_named_list_is_kept() {
     let shares: Vec<f64> = (0..3)
         .map(|k| w["signals"][k]["share"].as_f64().unwrap())
         .collect();
-    assert!(shares[0] < 0.1 && shares[1] < 0.1 && shares[2] == 1.0, "{w}");
+    assert!(
+        shares[0] < 0.1 && shares[1] < 0.1 && shares[2] == 1.0,
+        "{w}"
+    );
     // The same record with az's vibration copied onto ax: auto takes both.
     let shaken = variant("shaken-x.csv", |lines| {
         for line in lines.iter_mut().skip(1) {
@@ -1596,12 +1599,24 @@ fn window_signals_auto_takes_the_vibrating_axes_and_a_named_list_is_kept() {
     // A named list means exactly that list, and the report chooses nothing.
     let named = fit_on("window-az.json", &["--window-signals", "az"]);
     assert_eq!(signals(&named), ["az"]);
-    assert!(named["model"]["choice"]["window_signals"].is_null(), "{named}");
+    assert!(
+        named["model"]["choice"]["window_signals"].is_null(),
+        "{named}"
+    );
     // `fit` prints one line of what auto measured.
     let out = dir().join("window-auto-print.json");
     let printed = ok(&[
-        "fit", "--data", &shaken, "--max-centers", "5", "--input", "raw", "--smoother", "none",
-        "--out", out.to_str().unwrap(),
+        "fit",
+        "--data",
+        &shaken,
+        "--max-centers",
+        "5",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+        "--out",
+        out.to_str().unwrap(),
     ]);
     let line = printed
         .lines()

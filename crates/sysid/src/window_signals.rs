@@ -375,9 +375,15 @@ mod tests {
             ),
             "{err}"
         );
-        assert!(err.to_string().contains("none of ax, ay, az varies"), "{err}");
+        assert!(
+            err.to_string().contains("none of ax, ay, az varies"),
+            "{err}"
+        );
         let err = choose_among(&[], &[("flat".into(), &flat)], 0.05, "g").unwrap_err();
-        assert!(err.to_string().contains("names no vibration-input signal"), "{err}");
+        assert!(
+            err.to_string().contains("names no vibration-input signal"),
+            "{err}"
+        );
     }
 
     #[test]

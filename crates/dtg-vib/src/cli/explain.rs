@@ -113,7 +113,12 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     }
     print_rounds(&e.rounds, e.converged, a.max_rounds);
     print_fit(&e.model);
-    if let Some(w) = e.model.inner().choice().and_then(|c| c.window_signals.as_ref()) {
+    if let Some(w) = e
+        .model
+        .inner()
+        .choice()
+        .and_then(|c| c.window_signals.as_ref())
+    {
         println!("{}", w.line());
     }
     println!("model: {} ({:.1} s)", f.out.display(), seconds);

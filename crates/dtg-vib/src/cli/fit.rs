@@ -98,7 +98,12 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
     if let Some(w) = &c.window_signals {
         println!("{}", w.line());
     }
-    if c.adev_runs == 0 && c.candidates.len() == 1 && c.networks_shrunk.is_empty() && c.bias_instability_raised.is_empty() && c.input_sample.is_none() {
+    if c.adev_runs == 0
+        && c.candidates.len() == 1
+        && c.networks_shrunk.is_empty()
+        && c.bias_instability_raised.is_empty()
+        && c.input_sample.is_none()
+    {
         // Only the window was chosen: no input or smoother to tell of.
         return;
     }
