@@ -74,7 +74,7 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
     let fitted = AtomicUsize::new(0);
-    let e = dtg_vib::explain::explain_records(
+    let mut e = dtg_vib::explain::explain_records(
         &named,
         calibration.as_ref(),
         &options,
@@ -83,7 +83,6 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
         &|stage| show_stage(&progress, &fitted, stage),
     )?;
     let seconds = start.elapsed().as_secs_f64();
-    let mut e = e;
     e.model = with_window_signals(e.model, window);
     e.model.save(&f.out)?;
     let page = match &a.report {

@@ -15,6 +15,7 @@ use super::super::fit::{FitReport, print_fit_channels, print_record_scores};
 use super::super::fit_args::{
     FitArgs, check_against_record, fit_inputs, fit_options_with, window_signals,
 };
+use super::{borrowed, check_observable, read_records, sensor, signals};
 
 /// The line that says which signals the records chose for the window, if they did.
 fn print_window_signals(m: &sysid::Model<UnitSensor>) {
@@ -22,7 +23,6 @@ fn print_window_signals(m: &sysid::Model<UnitSensor>) {
         println!("{}", w.line());
     }
 }
-use super::{borrowed, check_observable, read_records, sensor, signals};
 
 /// The loop's options for the unit, and the rate reference, from the fit
 /// flags: `--effects` must suit every channel, `--add-effect CHANNEL=ID`
