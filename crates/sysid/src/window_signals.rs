@@ -205,26 +205,27 @@ pub fn choose_among(
     }
     // rms[k][r]: signal k on record r.
     let mut rms = vec![Vec::with_capacity(records.len()); names.len()];
-    for (record, s) in records {
-        for (k, name) in names.iter().enumerate() {
-            let column = s.column(name).ok_or_else(|| {
-                SysidError::WindowSignal {
-                    name: name.clone(),
-                    operating: names.to_vec(),
-                    available: Vec::new(),
-                }
-                .in_record(record, records.len())
-            })?;
-            rms[k].push(dynamic_rms(column));
-        }
-    }
     let mut share: Vec<Option<f64>> = vec![None; names.len()];
-    for r in 0..records.len() {
-        let strongest = (0..names.len()).map(|k| rms[k][r]).fold(0.0, f64::max);
-        if strongest >= scale && strongest > 0.0 {
-            for (k, s) in share.iter_mut().enumerate() {
-                let here = rms[k][r] / strongest;
-                *s = Some(s.map_or(here, |s: f64| s.max(here)));
+    for (record, s) in records {
+        let here = names
+            .iter()
+            .map(|name| {
+                let column = s.column(name).ok_or_else(|| {
+                    SysidError::WindowSignal {
+                        name: name.clone(),
+                        operating: names.to_vec(),
+                        available: Vec::new(),
+                    }
+                    .in_record(record, records.len())
+                })?;
+                Ok(dynamic_rms(column))
+            })
+            .collect::<Result<Vec<f64>, SysidError>>()?;
+        let strongest = here.iter().copied().fold(0.0, f64::max);
+        for (k, r) in here.into_iter().enumerate() {
+            rms[k].push(r);
+            if strongest >= scale && strongest > 0.0 {
+                share[k] = Some(share[k].map_or(r / strongest, |s| s.max(r / strongest)));
             }
         }
     }
@@ -240,7 +241,7 @@ pub fn choose_among(
         let best = (0..names.len())
             .max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
             .expect("at least one signal");
-        if !(peak(best) > 0.0) {
+        if peak(best) <= 0.0 {
             return Err(WindowSignalsError::Constant {
                 signals: names.to_vec(),
             }
