@@ -10,10 +10,11 @@ network part (`fade_weight_mean`), the worst channel's spread after over its
 rms before with the fade (`spread_after`) and without (`spread_after_unfaded`),
 each channel's `mean_after` (faded), and the pooled parity residue rms (√ of
 the mean of the six squares) before, after with the fade (`residues`) and
-without (`residues_unfaded`)."""
+without (`residues_unfaded`). A second table gives every channel's spread
+after over its rms before (fade on), and each model's window signals."""
 import json, math, os, sys
 
-MODELS = ("z", "xyz", "xyz-effects", "xyz-axes")
+MODELS = ("z", "xyz", "xyz-effects", "xyz-az")
 RUNS = ("x-axis", "y-axis", "z-axis", "flight")
 
 
@@ -39,3 +40,12 @@ for m in MODELS:
               f"| {j['fade_weight_mean']:.3f} | {worst(ch, 'spread_after')} | {worst(ch, 'spread_after_unfaded')} "
               f"| {means} | {pooled(j['residues'], 'rms_before'):.2f} → {pooled(j['residues'], 'rms_after'):.2f} "
               f"| {pooled(j['residues_unfaded'], 'rms_after'):.2f} |")
+
+print()
+print("| model | window | checked on | " + " | ".join(c["channel"] for c in json.load(open(os.path.join(d, "check-z-x-axis.json")))["channels"]) + " |")
+print("|---|---|---|" + "---|" * 6)
+for m in MODELS:
+    window = ",".join(json.load(open(os.path.join(d, f"{m}.json")))["model"]["preprocess"]["window"]["signals"])
+    for r in RUNS:
+        ch = json.load(open(os.path.join(d, f"check-{m}-{r}.json")))["channels"]
+        print(f"| {m} | {window} | {r} | " + " | ".join(f"{c['spread_after'] / c['rms_before']:.3f}" for c in ch) + " |")

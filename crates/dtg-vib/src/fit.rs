@@ -182,6 +182,31 @@ pub fn fit_records(
     Ok((model, prepared))
 }
 
+/// The window's signals chosen from the training records, each calibrated
+/// (`fit --window-signals auto`): the accelerometer axes whose vibration is
+/// significant in some record ([`sysid::window_signals`]).
+///
+/// ```
+/// let z = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario::paper_z_random())?;
+/// let c = dtg_vib::fit::choose_window_signals(&[("z".into(), &z.record)], Some(&z.calibration))?;
+/// assert_eq!(c.taken, ["az"]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn choose_window_signals(
+    records: &[(String, &Record)],
+    calibration: Option<&Calibration>,
+) -> Result<sysid::window_signals::WindowSignalsChoice, DtgVibError> {
+    let unit = crate::paper_unit::PaperUnit {
+        calibration: calibration.cloned(),
+        rate_reference: Default::default(),
+    };
+    let signals = crate::paper_unit::named_signals(records)?;
+    Ok(sysid::window_signals::choose(
+        &unit,
+        &crate::paper_unit::borrowed(&signals),
+    )?)
+}
+
 /// Each channel's validation rms on each record of `prepared`, for the
 /// validation rows the model was fitted with (X, X1, Y, Y1, Z, Z1 order); a
 /// record without validation rows (it only trained) is left out.

@@ -1557,3 +1557,100 @@ fn a_closed_pipe_ends_the_program_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(!stderr.contains("Broken pipe"), "{stderr}");
 }
+
+#[test]
+fn window_signals_auto_takes_the_vibrating_axes_and_a_named_list_is_kept() {
+    let signals = |m: &serde_json::Value| -> Vec<String> {
+        serde_json::from_value(m["model"]["preprocess"]["window"]["signals"].clone()).unwrap()
+    };
+    let fast = ["--input", "raw", "--smoother", "none"];
+    // The demo record vibrates along z alone (ax 5%, ay 3% of az's): auto,
+    // the default, takes az, and the model's choice report says why.
+    let m = fitted("window-auto.json", &fast);
+    assert_eq!(signals(&m), ["az"]);
+    let w = &m["model"]["choice"]["window_signals"];
+    assert_eq!(w["taken"], serde_json::json!(["az"]));
+    let shares: Vec<f64> = (0..3)
+        .map(|k| w["signals"][k]["share"].as_f64().unwrap())
+        .collect();
+    assert!(
+        shares[0] < 0.1 && shares[1] < 0.1 && shares[2] == 1.0,
+        "{w}"
+    );
+    // The same record with az's vibration copied onto ax: auto takes both.
+    let shaken = variant("shaken-x.csv", |lines| {
+        for line in lines.iter_mut().skip(1) {
+            let mut cells: Vec<String> = line.split(',').map(String::from).collect();
+            let az: f64 = cells[9].parse().unwrap();
+            cells[7] = format!("{}", az - 1.0);
+            *line = cells.join(",");
+        }
+    });
+    let fit_on = |name: &str, args: &[&str]| -> serde_json::Value {
+        let out = dir().join(name);
+        let mut all = vec!["fit", "--data", shaken.as_str(), "--max-centers", "5"];
+        all.extend_from_slice(&fast);
+        all.extend_from_slice(args);
+        all.extend(["--out", out.to_str().unwrap()]);
+        ok(&all);
+        serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap()
+    };
+    assert_eq!(signals(&fit_on("window-auto-x.json", &[])), ["ax", "az"]);
+    // A named list means exactly that list, and the report chooses nothing.
+    let named = fit_on("window-az.json", &["--window-signals", "az"]);
+    assert_eq!(signals(&named), ["az"]);
+    assert!(
+        named["model"]["choice"]["window_signals"].is_null(),
+        "{named}"
+    );
+    // `fit` prints one line of what auto measured.
+    let out = dir().join("window-auto-print.json");
+    let printed = ok(&[
+        "fit",
+        "--data",
+        &shaken,
+        "--max-centers",
+        "5",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let line = printed
+        .lines()
+        .find(|l| l.starts_with("window signals: "))
+        .unwrap_or_else(|| panic!("no window line: {printed}"));
+    assert!(line.starts_with("window signals: ax,az (auto;"), "{line}");
+}
+
+#[test]
+fn window_signals_auto_refuses_what_it_cannot_choose() {
+    // Every accelerometer axis constant: no window can vary.
+    let still = variant("still.csv", |lines| {
+        for line in lines.iter_mut().skip(1) {
+            let mut cells: Vec<String> = line.split(',').map(String::from).collect();
+            cells[7] = "0".into();
+            cells[8] = "0".into();
+            cells[9] = "1".into();
+            *line = cells.join(",");
+        }
+    });
+    let cases = [
+        fit_refusal(
+            "auto with every axis constant",
+            &still,
+            &[],
+            &["--window-signals auto", "none of ax, ay, az varies"],
+        ),
+        fit_refusal(
+            "auto beside a signal",
+            &record(),
+            &["--window-signals", "auto,ax"],
+            &["--window-signals auto,ax", "auto alone"],
+        ),
+    ];
+    let b = broken(&cases);
+    assert!(b.is_empty(), "{}", b.join("\n"));
+}

@@ -3,6 +3,7 @@
 
 use crate::input::ModelInput;
 use crate::smoother::Smoother;
+use crate::window_signals::WindowSignalsChoice;
 use serde::{Deserialize, Serialize};
 
 /// One candidate of a choice, as judged on the validation rows.
@@ -86,6 +87,11 @@ pub struct ChoiceReport {
     /// beyond its interval); empty when none was.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bias_instability_raised: Vec<String>,
+    /// The window's signals chosen from the training records, with each
+    /// signal's dynamic rms there (`--window-signals auto`,
+    /// [`crate::window_signals`]); absent when the recipe named them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window_signals: Option<WindowSignalsChoice>,
 }
 
 /// The sample of a large record a choice of input was made on.

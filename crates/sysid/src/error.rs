@@ -129,6 +129,9 @@ pub enum SysidError {
         /// The record's extra columns.
         available: Vec<String>,
     },
+    /// The window's signals could not be chosen from the records.
+    #[error(transparent)]
+    WindowSignals(#[from] crate::window_signals::WindowSignalsError),
     /// Too few windows to train and validate.
     #[error("{what}: {have} windows, need at least {need} ({hint})")]
     TooFewSamples {

@@ -58,6 +58,7 @@ mod signals;
 pub mod smoother;
 pub mod split;
 pub mod window;
+pub mod window_signals;
 
 pub use error::SysidError;
 pub use fit::{FitStage, RecordScore, fit, fit_prepared, fit_records};

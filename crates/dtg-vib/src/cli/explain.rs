@@ -12,8 +12,8 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::findings::print_rounds;
-use super::fit::{FitReport, print_fit};
-use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
+use super::fit::{FitReport, print_fit, with_window_signals};
+use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records, window_signals};
 use super::report::guard_report;
 use super::thresholds::Thresholds;
 
@@ -61,14 +61,20 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
     guard_report(a.report.as_deref(), &fit_inputs(f))?;
     explain_takes(f)?;
-    let options = fit_options(f)?;
+    let mut options = fit_options(f)?;
     let records = read_records(f)?;
     let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
     let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
+    let window = window_signals(f, &mut options.preprocess.window, || {
+        Ok(dtg_vib::fit::choose_window_signals(
+            &named,
+            calibration.as_ref(),
+        )?)
+    })?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
     let fitted = AtomicUsize::new(0);
-    let e = dtg_vib::explain::explain_records(
+    let mut e = dtg_vib::explain::explain_records(
         &named,
         calibration.as_ref(),
         &options,
@@ -77,6 +83,7 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
         &|stage| show_stage(&progress, &fitted, stage),
     )?;
     let seconds = start.elapsed().as_secs_f64();
+    e.model = with_window_signals(e.model, window);
     e.model.save(&f.out)?;
     let page = match &a.report {
         Some(dir) => {
@@ -105,6 +112,14 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     }
     print_rounds(&e.rounds, e.converged, a.max_rounds);
     print_fit(&e.model);
+    if let Some(w) = e
+        .model
+        .inner()
+        .choice()
+        .and_then(|c| c.window_signals.as_ref())
+    {
+        println!("{}", w.line());
+    }
     println!("model: {} ({:.1} s)", f.out.display(), seconds);
     if let Some(p) = &page {
         println!("report: {}", p.display());

@@ -9,7 +9,20 @@ use dtg_vib::model::CompensationModel;
 use nav_sensors::calibration::Calibration;
 use nav_sensors::record::Record;
 
-use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records};
+use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records, window_signals};
+use dtg_vib::fit::choose_window_signals;
+
+/// The paper unit's model with the choice of its window's signals in its
+/// report, when the records chose them.
+pub fn with_window_signals(
+    model: CompensationModel,
+    window: Option<sysid::window_signals::WindowSignalsChoice>,
+) -> CompensationModel {
+    match window {
+        Some(w) => CompensationModel::of(model.inner().clone().with_window_signals(w)),
+        None => model,
+    }
+}
 
 /// Fits, saves the model and prints its scores.
 pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
@@ -17,12 +30,15 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
         return super::unit::fit::fit(&a, unit, progress);
     }
     outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
-    let options = fit_options(&a)?;
+    let mut options = fit_options(&a)?;
     let records = read_records(&a)?;
     let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let start = std::time::Instant::now();
     let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
+    let window = window_signals(&a, &mut options.preprocess.window, || {
+        Ok(choose_window_signals(&named, calibration.as_ref())?)
+    })?;
     let (model, prepared) = fit_records(
         &named,
         calibration.as_ref(),
@@ -35,6 +51,7 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
             }
         },
     )?;
+    let model = with_window_signals(model, window);
     let per_record = match a.cv.is_some() {
         true => {
             progress.say("leaving one record out");
@@ -78,6 +95,18 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
 /// validation rms and worst ADEV after/before, the chosen one marked, and
 /// what it cost and gained against the paper's model (raw, no smoother).
 pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
+    if let Some(w) = &c.window_signals {
+        println!("{}", w.line());
+    }
+    if c.adev_runs == 0
+        && c.candidates.len() == 1
+        && c.networks_shrunk.is_empty()
+        && c.bias_instability_raised.is_empty()
+        && c.input_sample.is_none()
+    {
+        // Only the window was chosen: no input or smoother to tell of.
+        return;
+    }
     let label = sysid::Smoother::label;
     println!(
         "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",

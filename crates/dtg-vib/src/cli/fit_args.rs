@@ -43,8 +43,12 @@ pub struct FitArgs {
     /// Window length, samples (the paper: 50).
     #[arg(long, default_value_t = 50, value_parser = parse_count, allow_hyphen_values = true)]
     pub window: usize,
-    /// Windowed signals, comma-separated (accelerometer axes or extra columns).
-    #[arg(long = "window-signals", value_delimiter = ',', default_value = "az")]
+    /// Windowed signals, comma-separated (accelerometer axes or extra
+    /// columns), or `auto`: every accelerometer axis whose dynamic rms is at
+    /// least 0.2 × the strongest axis's in some training record that
+    /// vibrates (its strongest axis ≥ 0.05 g); a z-shaker record takes az,
+    /// the paper's window.
+    #[arg(long = "window-signals", value_delimiter = ',', default_value = "auto")]
     pub window_signals: Vec<String>,
     /// What the networks read of the windows: `raw` (the window itself, the
     /// paper's), `statistics` (per windowed signal: current sample, window
@@ -226,7 +230,14 @@ pub fn fit_options_with<E, A>(
         preprocess: Preprocess {
             filter,
             input_filter,
-            window: WindowSpec::new(a.window_signals.clone(), a.window)?,
+            // With auto, the paper's signal until the records choose (window_signals).
+            window: WindowSpec::new(
+                match window_auto(a)? {
+                    true => vec!["az".to_string()],
+                    false => a.window_signals.clone(),
+                },
+                a.window,
+            )?,
             rate_reference,
             causal: a.causal,
             input: match a.input.as_str() {
@@ -254,6 +265,36 @@ pub fn fit_options_with<E, A>(
         },
     };
     Ok((effects, add, options))
+}
+
+/// True for `--window-signals auto` (the default); `auto` beside a signal
+/// is refused.
+pub fn window_auto(a: &FitArgs) -> Result<bool> {
+    let auto = a.window_signals.iter().any(|s| s.trim() == "auto");
+    if auto && a.window_signals.len() > 1 {
+        anyhow::bail!(
+            "--window-signals {}: auto chooses the signals itself; give auto alone or a list of signals",
+            a.window_signals.join(",")
+        );
+    }
+    Ok(auto)
+}
+
+/// With `--window-signals auto`, the window's signals the records choose
+/// (`choose`, the sensor's [`sysid::window_signals::choose`]) put into
+/// `window`, and the choice to keep in the model's report; otherwise
+/// `window` as the flags said and nothing.
+pub fn window_signals(
+    a: &FitArgs,
+    window: &mut WindowSpec,
+    choose: impl FnOnce() -> Result<sysid::window_signals::WindowSignalsChoice>,
+) -> Result<Option<sysid::window_signals::WindowSignalsChoice>> {
+    if !window_auto(a)? {
+        return Ok(None);
+    }
+    let c = choose()?;
+    *window = WindowSpec::new(c.taken.clone(), window.length())?;
+    Ok(Some(c))
 }
 
 /// The candidates of `--input` and `--smoother`: what each names, or every

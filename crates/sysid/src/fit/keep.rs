@@ -84,7 +84,7 @@ pub(super) fn apply<S: Sensor>(
 
 /// The report of a fit that chose nothing: its one candidate, the model's
 /// input and smoother with its validation rms, no run judged by ADEV.
-fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
+pub(crate) fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
     let val_rms: Vec<f64> = model
         .channels()
         .iter()
@@ -101,6 +101,7 @@ fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
         networks_shrunk: Vec::new(),
         input_sample: None,
         bias_instability_raised: Vec::new(),
+        window_signals: None,
     }
 }
 

@@ -44,6 +44,7 @@ pub use choice::{
     SMALLER_INPUT_TOLERANCE, SharedCentresTrial,
 };
 pub use input_sample::SHARED_CENTRES_TOLERANCE;
+pub(crate) use keep::fixed_report;
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
 

@@ -12,8 +12,17 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use sysid::Sensor;
 
 use super::super::fit::{FitReport, print_fit_channels, print_record_scores};
-use super::super::fit_args::{FitArgs, check_against_record, fit_inputs, fit_options_with};
+use super::super::fit_args::{
+    FitArgs, check_against_record, fit_inputs, fit_options_with, window_signals,
+};
 use super::{borrowed, check_observable, read_records, sensor, signals};
+
+/// The line that says which signals the records chose for the window, if they did.
+fn print_window_signals(m: &sysid::Model<UnitSensor>) {
+    if let Some(w) = m.choice().and_then(|c| c.window_signals.as_ref()) {
+        println!("{}", w.line());
+    }
+}
 
 /// The loop's options for the unit, and the rate reference, from the fit
 /// flags: `--effects` must suit every channel, `--add-effect CHANNEL=ID`
@@ -79,11 +88,13 @@ struct Inputs {
     options: sysid::FitOptions<UnitEffect>,
     records: Vec<(String, Record)>,
     notes: super::Read,
+    /// The window's signals the records chose (`--window-signals auto`).
+    window: Option<sysid::window_signals::WindowSignalsChoice>,
 }
 
 fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
     outfile::guard_file("--out", &a.out, &fit_inputs(a))?;
-    let (options, reference) = unit_fit_options(a, &unit)?;
+    let (mut options, reference) = unit_fit_options(a, &unit)?;
     let sensor = sensor(unit, a.calib.as_deref(), reference)?;
     let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
     for (_, r) in &read.records {
@@ -91,11 +102,16 @@ fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
     }
     check_observable(&sensor, &read.records)?;
     let records = std::mem::take(&mut read.records);
+    let window = window_signals(a, &mut options.recipe.preprocess.window, || {
+        let named = signals(&records)?;
+        Ok(sysid::window_signals::choose(&sensor, &borrowed(&named))?)
+    })?;
     Ok(Inputs {
         sensor,
         options,
         records,
         notes: read,
+        window,
     })
 }
 
@@ -114,6 +130,7 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
         options,
         records,
         notes,
+        window,
     } = inputs(a, unit)?;
     let named = signals(&records)?;
     let n = sensor.unit.gyros().len();
@@ -129,6 +146,9 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
         })?;
     if records.len() > 1 {
         model = model.with_records(records.iter().map(|(n, _)| n.clone()).collect());
+    }
+    if let Some(w) = window {
+        model = model.with_window_signals(w);
     }
     // Each record's (or log segment's) validation rms; with --cv records,
     // each validated by a model fitted on the others.
@@ -158,6 +178,7 @@ pub fn fit(a: &FitArgs, unit: Unit, progress: Progress) -> Result<()> {
     } else {
         println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
         print_fit_channels(m.channels());
+        print_window_signals(m);
         if let Some(per) = &per_record {
             print_record_scores(&sensor.channels(), per, a.cv.is_some());
         }
@@ -180,6 +201,7 @@ pub fn explain(
         options,
         records,
         notes,
+        window,
     } = inputs(a, unit)?;
     let named = signals(&records)?;
     let start = std::time::Instant::now();
@@ -200,7 +222,10 @@ pub fn explain(
         },
     )?;
     let seconds = start.elapsed().as_secs_f64();
-    let model = UnitModel::of(e.model);
+    let model = UnitModel::of(match window {
+        Some(w) => e.model.with_window_signals(w),
+        None => e.model,
+    });
     model.save(&a.out)?;
     let page = match report {
         Some(dir) => {
@@ -234,6 +259,7 @@ pub fn explain(
     println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
     super::super::findings::print_rounds(&e.rounds, e.converged, max_rounds as u64);
     print_fit_channels(m.channels());
+    print_window_signals(m);
     println!("model: {} ({:.1} s)", a.out.display(), seconds);
     if let Some(p) = &page {
         println!("report: {}", p.display());
