@@ -15,6 +15,7 @@
 
 mod channel;
 mod choice;
+mod digest;
 mod input_sample;
 mod judged;
 mod keep;
@@ -23,6 +24,7 @@ mod memo;
 mod network;
 mod partial;
 mod shared;
+mod theta_memo;
 
 use crate::error::SysidError;
 use crate::model::{ChannelModelOf, Model, ModelParts};

@@ -173,6 +173,22 @@ pub(crate) fn cross_fitted_theta(
     settings: &FitSettings,
     gap: usize,
 ) -> Result<Option<HacFit>, rbf::RbfError> {
+    // Asked again with the same rows (the refit of a suggestion the
+    // diagnosis stated, once per input tried): the estimate made before.
+    super::theta_memo::remembered((x_theta, z, y), theta_rows, settings, gap, || {
+        estimate_theta(x_theta, z, y, theta_rows, settings, gap)
+    })
+}
+
+/// [`cross_fitted_theta`], computed.
+fn estimate_theta(
+    x_theta: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    theta_rows: &[usize],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Option<HacFit>, rbf::RbfError> {
     let cuts: Vec<Blocks> = CROSS_FIT_CHUNKS
         .iter()
         .filter_map(|&k| Blocks::alternating(theta_rows, gap, k))
