@@ -12,7 +12,7 @@
 //! more than [`MAX_ROWS`] rows are not remembered: hashing their windows
 //! would cost time and nothing there is refitted.
 
-use super::channel::{ChannelFit, fit_channel};
+use super::channel::ChannelFit;
 use super::digest::{Digest, Digester};
 use crate::error::SysidError;
 use crate::inference::Coefficient;
@@ -89,7 +89,7 @@ impl Records {
 
 /// One channel fit's key: [`Records`] and everything of the channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Key(Digest, Digest);
+pub(super) struct Key(Digest, Digest);
 
 struct Entry {
     key: Key,
@@ -101,22 +101,19 @@ struct Entry {
 
 static FITS: Mutex<VecDeque<Entry>> = Mutex::new(VecDeque::new());
 
-/// [`fit_channel`], taken from the fits remembered when one with the same
-/// inputs was made before (`records` none: always computed).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn fit_channel_remembered<S: Sensor>(
+/// A channel fit's key (none when `records` is none) and the fit
+/// remembered under it, if any: a fit asked again ([`super::batched`]) is
+/// taken from here instead of computed.
+pub(super) fn recall<S: Sensor>(
     records: Option<Records>,
     prepared: &Prepared<S>,
-    x: (MatRef<'_, f64>, MatRef<'_, f64>),
-    x_train: &Mat<f64>,
     rows: (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,
     effects: &[S::Effect],
     settings: &FitSettings,
-) -> Result<ChannelFit<S>, SysidError> {
-    let fit = || fit_channel(prepared, x, x_train, rows, channel, effects, settings);
+) -> Result<(Option<Key>, Option<ChannelFit<S>>), SysidError> {
     let Some(records) = records else {
-        return fit();
+        return Ok((None, None));
     };
     let key = Key(
         records.of_channel(effects.len(), rows.2),
@@ -130,10 +127,14 @@ pub(super) fn fit_channel_remembered<S: Sensor>(
         model: e.model.clone(),
         coefficients: e.coefficients.clone(),
     });
-    if let Some(f) = found {
-        return Ok(f);
-    }
-    let f = fit()?;
+    Ok((Some(key), found))
+}
+
+/// Remembers a channel fit under `key` (none: not remembered).
+pub(super) fn remember<S: Sensor>(key: Option<Key>, f: &ChannelFit<S>) {
+    let Some(key) = key else {
+        return;
+    };
     let mut fits = lock();
     if !fits.iter().any(|e| e.key == key) {
         if fits.len() >= CAPACITY {
@@ -147,7 +148,6 @@ pub(super) fn fit_channel_remembered<S: Sensor>(
             coefficients: f.coefficients.clone(),
         });
     }
-    Ok(f)
 }
 
 /// The store; a panic elsewhere while it was held leaves it usable (an

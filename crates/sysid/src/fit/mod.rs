@@ -13,6 +13,7 @@
 //! This is also the layer the diagnosis asks for the fits it needs and does
 //! not make itself: the model's [`mirror`] and a [`refit_with_window`].
 
+mod batched;
 mod channel;
 mod choice;
 mod digest;
@@ -406,27 +407,22 @@ fn fit_rows_predicting<S: Sensor>(
                 .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
             fits
         }
-        false => (0..channels.len())
-            .into_par_iter()
-            .map(|k| {
-                let m = memo::fit_channel_remembered(
-                    remembered,
-                    prepared,
-                    (x, x_theta),
-                    &x_fit,
-                    (
-                        fit_on,
-                        &theta_rows,
-                        coef.stored(k, recipe.effects_of(k).len()),
-                    ),
-                    k,
-                    recipe.effects_of(k),
-                    settings,
-                );
-                progress(FitStage::ChannelDone(channels[k].clone()));
-                m
-            })
-            .collect::<Result<_, _>>()?,
+        false => {
+            // Each channel's own network, their candidate columns computed once.
+            let fits = batched::fit_channels(
+                remembered,
+                prepared,
+                (x, x_theta),
+                &x_fit,
+                (fit_on, &theta_rows),
+                recipe,
+                &|k| coef.stored(k, recipe.effects_of(k).len()),
+            )?;
+            channels
+                .iter()
+                .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
+            fits
+        }
     };
     drop(x_fit);
     // On a subsample, the weights are solved again on every training row,
