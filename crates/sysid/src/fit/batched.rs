@@ -31,14 +31,17 @@ use rbf::{Grid, Sizes, Split, WidthRule};
 /// what its network is fitted to.
 enum Before<S: Sensor> {
     Done(Box<ChannelFit<S>>),
-    Network {
-        key: Option<memo::Key>,
-        effects: Vec<S::Effect>,
-        z: Mat<f64>,
-        /// The target (less Zθ) on the training rows.
-        y: Mat<f64>,
-        theta: Option<Theta>,
-    },
+    Network(Box<Pending<S>>),
+}
+
+/// A channel whose network is still to be chosen.
+struct Pending<S: Sensor> {
+    key: Option<memo::Key>,
+    effects: Vec<S::Effect>,
+    z: Mat<f64>,
+    /// The target (less Zθ) on the training rows.
+    y: Mat<f64>,
+    theta: Option<Theta>,
 }
 
 /// Every channel of `recipe` fitted as [`memo::fit_channel_remembered`]
@@ -73,13 +76,13 @@ pub(super) fn fit_channels<'a, S: Sensor>(
             let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
             check_effects(prepared, k, &effects, z_train.as_ref(), train)?;
             if effects.is_empty() {
-                return Ok(Before::Network {
+                return Ok(Before::Network(Box::new(Pending {
                     key,
                     effects,
                     z,
                     y: y_train,
                     theta: None,
-                });
+                })));
             }
             let gap = leakage_gap(prepared);
             let rows = Rows {
@@ -108,22 +111,22 @@ pub(super) fn fit_channels<'a, S: Sensor>(
                 memo::remember(key, &f);
                 return Ok(Before::Done(Box::new(f)));
             };
-            Ok(Before::Network {
+            Ok(Before::Network(Box::new(Pending {
                 key,
                 effects,
                 y: adjusted(&y_train, &z_train, t),
                 z,
                 theta: Some(theta),
-            })
+            })))
         })
         .collect::<Result<_, SysidError>>()?;
     let pending: Vec<usize> = (0..n_channels)
-        .filter(|&k| matches!(before[k], Before::Network { .. }))
+        .filter(|&k| matches!(before[k], Before::Network(_)))
         .collect();
     let mut y = Mat::<f64>::zeros(train.len(), pending.len());
     for (c, &k) in pending.iter().enumerate() {
-        if let Before::Network { y: yk, .. } = &before[k] {
-            y.as_mut().col_mut(c).copy_from(yk.col(0));
+        if let Before::Network(p) = &before[k] {
+            y.as_mut().col_mut(c).copy_from(p.y.col(0));
         }
     }
     let mut networks = fit_networks(
@@ -137,13 +140,14 @@ pub(super) fn fit_channels<'a, S: Sensor>(
     for (k, b) in before.into_iter().enumerate() {
         out.push(match b {
             Before::Done(f) => *f,
-            Before::Network {
-                key,
-                effects,
-                z,
-                theta,
-                ..
-            } => {
+            Before::Network(p) => {
+                let Pending {
+                    key,
+                    effects,
+                    z,
+                    theta,
+                    ..
+                } = *p;
                 let net = networks
                     .next()
                     .expect("a network for every pending channel")

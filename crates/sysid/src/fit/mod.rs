@@ -392,38 +392,24 @@ fn fit_rows_predicting<S: Sensor>(
     let remembered = (!settings.shared_centres)
         .then(|| memo::Records::of(prepared, (x, x_theta)))
         .flatten();
+    let known = |k: usize| coef.stored(k, recipe.effects_of(k).len());
+    let rows = (fit_on.as_slice(), theta_rows.as_slice());
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
-        true => {
-            let fits = shared::fit_channels_shared(
-                prepared,
-                (x, x_theta),
-                &x_fit,
-                (fit_on, &theta_rows),
-                recipe,
-                &|k| coef.stored(k, recipe.effects_of(k).len()),
-            )?;
-            channels
-                .iter()
-                .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
-            fits
-        }
-        false => {
-            // Each channel's own network, their candidate columns computed once.
-            let fits = batched::fit_channels(
-                remembered,
-                prepared,
-                (x, x_theta),
-                &x_fit,
-                (fit_on, &theta_rows),
-                recipe,
-                &|k| coef.stored(k, recipe.effects_of(k).len()),
-            )?;
-            channels
-                .iter()
-                .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
-            fits
-        }
+        true => shared::fit_channels_shared(prepared, (x, x_theta), &x_fit, rows, recipe, &known)?,
+        // Each channel's own network, their candidate columns computed once.
+        false => batched::fit_channels(
+            remembered,
+            prepared,
+            (x, x_theta),
+            &x_fit,
+            rows,
+            recipe,
+            &known,
+        )?,
     };
+    channels
+        .iter()
+        .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
     drop(x_fit);
     // On a subsample, the weights are solved again on every training row,
     // over row blocks (memory independent of the number of rows), before
