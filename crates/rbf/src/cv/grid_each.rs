@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::grid::{
     Axes, Grid, GridPoint, GridReport, Results, best_point, grid_search_with_linear, ols_fold,
 };
-use super::validate::Part;
+use super::validate::{Part, take_rows};
 use crate::check::first_non_finite;
 use crate::model::{CentreSelection, OlsInputs, RbfError, RbfValidParams};
 use crate::split::Split;
@@ -67,44 +67,35 @@ pub fn grid_search_each_with_linear(
     }
     let folds = split.folds(x.nrows())?;
     let axes = Axes::of(params, grid)?;
-    // Per target, per fold: its training and validation rows.
-    let parts: Vec<Vec<(Part, Part)>> = (0..q)
-        .map(|t| {
-            let yt = y.subcols(t, 1);
-            folds
-                .iter()
-                .map(|f| {
-                    (
-                        Part::new(x, z, yt, &f.train),
-                        Part::new(x, z, yt, &f.validation),
-                    )
-                })
-                .collect()
-        })
-        .collect();
     let mut points: Vec<Vec<GridPoint>> = (0..q).map(|_| Vec::new()).collect();
     for width in &axes.widths {
         let pw = params.with_width(width.clone());
         let mut results: Vec<Results> = (0..q)
             .map(|_| Results::new(axes.sizes.len(), axes.ridges.len()))
             .collect();
-        for f in 0..folds.len() {
-            let train = &parts[0][f].0;
-            let (tx, tz) = (train.x.as_ref(), train.z.as_ref());
+        for fold in &folds {
+            let (tx, tz) = (take_rows(x, &fold.train), take_rows(z, &fold.train));
             // Inputs a selection would refuse, or cannot work out, are left
             // to each target's own run, which says why as it does alone.
-            let finite = first_non_finite(tx).is_none() && first_non_finite(tz).is_none();
+            let finite =
+                first_non_finite(tx.as_ref()).is_none() && first_non_finite(tz.as_ref()).is_none();
             let inputs = finite
-                .then(|| OlsInputs::new(&pw, tx, tz, None).ok())
+                .then(|| OlsInputs::new(&pw, tx.as_ref(), tz.as_ref(), None).ok())
                 .flatten();
+            drop((tx, tz));
             let columns = inputs.as_ref().and_then(|s| s.shared_columns(&pw));
             let shared = inputs
                 .as_ref()
                 .map(|s| (s, columns.as_ref().map(|m| m.as_ref())));
-            results
-                .par_iter_mut()
-                .zip(&parts)
-                .for_each(|(res, p)| ols_fold(&pw, &axes, &p[f].0, &p[f].1, res, shared));
+            // Each target's rows of the fold are gathered while its selection
+            // runs, not held for every target at once (a large record's
+            // selection rows are 30 MB a copy).
+            results.par_iter_mut().enumerate().for_each(|(t, res)| {
+                let yt = y.subcols(t, 1);
+                let train = Part::new(x, z, yt, &fold.train);
+                let val = Part::new(x, z, yt, &fold.validation);
+                ols_fold(&pw, &axes, &train, &val, res, shared);
+            });
         }
         for (t, r) in results.into_iter().enumerate() {
             r.into_points(width, &axes, &mut points[t]);
