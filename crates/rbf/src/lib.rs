@@ -74,7 +74,7 @@ pub use select::ols;
 pub use cv::{
     CvReport, Fold, FoldReport, Grid, GridPoint, GridReport, Holdout, Sizes, Split, SplitError,
     cross_validate, cross_validate_folds, cross_validate_with_linear, grid_search,
-    grid_search_with_linear, holdout,
+    grid_search_each_with_linear, grid_search_with_linear, holdout,
 };
 pub use design::{KernelColumns, Widths, kernel_matrix, kernel_matrix_into};
 pub use estimate::{

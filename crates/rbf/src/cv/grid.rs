@@ -8,7 +8,7 @@
 use faer::{Mat, MatRef};
 
 use super::validate::{CvReport, FoldReport, Part, fold_report};
-use crate::model::{CentreSelection, OlsStage, RbfError, RbfValidParams};
+use crate::model::{CentreSelection, OlsInputs, OlsStage, RbfError, RbfValidParams};
 use crate::split::Split;
 use crate::width::WidthRule;
 
@@ -210,7 +210,7 @@ pub fn grid_search_with_linear(
         let mut results = Results::new(axes.sizes.len(), axes.ridges.len());
         for (train, val) in &parts {
             if matches!(pw.centres(), CentreSelection::Ols { .. }) {
-                ols_fold(&pw, &axes, train, val, &mut results);
+                ols_fold(&pw, &axes, train, val, &mut results, None);
             } else {
                 fixed_fold(&pw, &axes, train, val, &mut results);
             }
@@ -222,15 +222,15 @@ pub fn grid_search_with_linear(
 }
 
 /// The grid's axes, with the params' own width and ridge where the grid gives none.
-struct Axes {
-    widths: Vec<WidthRule>,
+pub(super) struct Axes {
+    pub(super) widths: Vec<WidthRule>,
     /// (n_centres, tol) per size.
-    sizes: Vec<(Option<usize>, Option<f64>)>,
-    ridges: Vec<f64>,
+    pub(super) sizes: Vec<(Option<usize>, Option<f64>)>,
+    pub(super) ridges: Vec<f64>,
 }
 
 impl Axes {
-    fn of(params: &RbfValidParams, grid: &Grid) -> Result<Self, RbfError> {
+    pub(super) fn of(params: &RbfValidParams, grid: &Grid) -> Result<Self, RbfError> {
         let is_ols = matches!(params.centres(), CentreSelection::Ols { .. });
         if matches!(grid.sizes, Sizes::Tolerances(_)) && !is_ols {
             return Err(RbfError::GridMismatch {
@@ -261,10 +261,10 @@ impl Axes {
 }
 
 /// The fold reports of one width: `[size][ridge]`, or the first error of that point.
-struct Results(Vec<Vec<Result<Vec<FoldReport>, RbfError>>>);
+pub(super) struct Results(Vec<Vec<Result<Vec<FoldReport>, RbfError>>>);
 
 impl Results {
-    fn new(sizes: usize, ridges: usize) -> Self {
+    pub(super) fn new(sizes: usize, ridges: usize) -> Self {
         Self(
             (0..sizes)
                 .map(|_| (0..ridges).map(|_| Ok(Vec::new())).collect())
@@ -294,7 +294,7 @@ impl Results {
     }
 
     /// The grid points of `width`, in size then ridge order.
-    fn into_points(self, width: &WidthRule, axes: &Axes, points: &mut Vec<GridPoint>) {
+    pub(super) fn into_points(self, width: &WidthRule, axes: &Axes, points: &mut Vec<GridPoint>) {
         for (si, row) in self.0.into_iter().enumerate() {
             for (ri, res) in row.into_iter().enumerate() {
                 points.push(GridPoint {
@@ -310,8 +310,16 @@ impl Results {
 }
 
 /// One fold with OLS: one forward selection up to the largest size (or smallest ρ),
-/// every size read off its path, the weights re-solved per ridge.
-fn ols_fold(pw: &RbfValidParams, axes: &Axes, train: &Part, val: &Part, results: &mut Results) {
+/// every size read off its path, the weights re-solved per ridge; on the
+/// inputs `shared` when several targets share them.
+pub(super) fn ols_fold(
+    pw: &RbfValidParams,
+    axes: &Axes,
+    train: &Part,
+    val: &Part,
+    results: &mut Results,
+    shared: Option<(&OlsInputs, Option<MatRef<'_, f64>>)>,
+) {
     let CentreSelection::Ols {
         max_centres, tol, ..
     } = pw.centres()
@@ -331,7 +339,11 @@ fn ols_fold(pw: &RbfValidParams, axes: &Axes, train: &Part, val: &Part, results:
         .reduce(f64::min)
         .unwrap_or(*tol);
     let (tx, tz, ty) = (train.x.as_ref(), train.z.as_ref(), train.y.as_ref());
-    let stage = match OlsStage::run(pw, tx, tz, ty, k_max, rho, None) {
+    let stage = match shared {
+        Some(s) => OlsStage::run_on(pw, s, tx, tz, ty, k_max, rho),
+        None => OlsStage::run(pw, tx, tz, ty, k_max, rho, None),
+    };
+    let stage = match stage {
         Ok(stage) => stage,
         Err(e) => return results.fail(0..sizes.len(), &e),
     };
@@ -377,7 +389,7 @@ fn fixed_fold(pw: &RbfValidParams, axes: &Axes, train: &Part, val: &Part, result
 }
 
 /// The point of lowest finite mean validation NMSE among those that succeeded.
-fn best_point(points: &[GridPoint]) -> Option<usize> {
+pub(super) fn best_point(points: &[GridPoint]) -> Option<usize> {
     points
         .iter()
         .enumerate()

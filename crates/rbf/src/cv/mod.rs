@@ -7,10 +7,12 @@
 //! [`Split::Interleaved`] reproduces the seed paper's alternate-vector split.
 
 mod grid;
+mod grid_each;
 mod validate;
 
 pub use crate::split::{Fold, Holdout, Split, SplitError, holdout};
 pub use grid::{Grid, GridPoint, GridReport, Sizes, grid_search, grid_search_with_linear};
+pub use grid_each::grid_search_each_with_linear;
 pub use validate::{
     CvReport, FoldReport, cross_validate, cross_validate_folds, cross_validate_with_linear,
 };

@@ -6,7 +6,8 @@ use faer::{Mat, MatRef};
 
 use super::error::RbfError;
 use super::fitted::{RbfModel, Selection};
-use super::hyperparams::{Candidates, CentreSelection, RbfValidParams};
+use super::hyperparams::{CentreSelection, RbfValidParams};
+use super::ols_inputs::OlsInputs;
 use super::poly::{PolyTail, kernel_coordinates, monomials, unit_box};
 use super::progress::{Progress, Stage};
 use super::scaling::Scaling;
@@ -15,7 +16,7 @@ use crate::design::{KernelColumns, Widths, kernel_matrix, kernel_matrix_into};
 use crate::estimate::{InterpolationOptions, LstsqOptions, StreamingLstsq, interpolate, lstsq};
 use crate::select::kmeans::kmeans_centres;
 use crate::select::ols::{
-    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, StreamPrecision,
+    OlsOptions, OlsPath, OlsProgress, SizeRule, StopReason, StreamPrecision, forward_select,
     forward_select_columns, forward_select_owned,
 };
 use crate::select::random::random_subset;
@@ -30,6 +31,7 @@ fn report(progress: Observer<'_>, stage: Stage, done: usize, total: usize) {
 
 /// Standardised inputs and the fixed columns [1 | x | z] (or [monomials | z] with a
 /// polynomial tail) of a fit.
+#[derive(Clone)]
 pub(crate) struct Design {
     pub(crate) scaling: Option<Scaling>,
     pub(crate) xs: Mat<f64>,
@@ -42,7 +44,7 @@ pub(crate) struct Design {
 }
 
 impl Design {
-    fn new(params: &RbfValidParams, x: MatRef<'_, f64>, z: MatRef<'_, f64>) -> Self {
+    pub(crate) fn new(params: &RbfValidParams, x: MatRef<'_, f64>, z: MatRef<'_, f64>) -> Self {
         if let Some(degree) = params.degree {
             return Self::with_poly(params, degree, x, z);
         }
@@ -108,7 +110,7 @@ impl Design {
         }
     }
 
-    fn standardised(&self, points: MatRef<'_, f64>) -> Mat<f64> {
+    pub(crate) fn standardised(&self, points: MatRef<'_, f64>) -> Mat<f64> {
         kernel_coordinates(
             self.scaling.as_ref(),
             self.poly.as_ref().map(|(_, shift, _)| shift.as_slice()),
@@ -116,13 +118,13 @@ impl Design {
         )
     }
 
-    fn n(&self) -> usize {
+    pub(crate) fn n(&self) -> usize {
         self.xs.nrows()
     }
 }
 
 #[track_caller]
-fn check_inputs(
+pub(crate) fn check_inputs(
     x: MatRef<'_, f64>,
     z: MatRef<'_, f64>,
     y: MatRef<'_, f64>,
@@ -156,7 +158,11 @@ fn check_inputs(
     Ok(())
 }
 
-fn check_dim(what: &'static str, points: MatRef<'_, f64>, d: usize) -> Result<(), RbfError> {
+pub(crate) fn check_dim(
+    what: &'static str,
+    points: MatRef<'_, f64>,
+    d: usize,
+) -> Result<(), RbfError> {
     if points.ncols() != d {
         return Err(RbfError::Dimension {
             what,
@@ -167,7 +173,7 @@ fn check_dim(what: &'static str, points: MatRef<'_, f64>, d: usize) -> Result<()
     Ok(())
 }
 
-fn rows(m: MatRef<'_, f64>, idx: &[usize]) -> Mat<f64> {
+pub(crate) fn rows(m: MatRef<'_, f64>, idx: &[usize]) -> Mat<f64> {
     Mat::from_fn(idx.len(), m.ncols(), |i, k| m[(idx[i], k)])
 }
 
@@ -256,72 +262,58 @@ impl OlsStage {
         progress: Observer<'_>,
     ) -> Result<Self, RbfError> {
         check_inputs(x, z, y)?;
-        let CentreSelection::Ols {
-            regularisation,
-            candidates,
-            ..
-        } = &params.centres
-        else {
-            unreachable!("OlsStage::run needs OLS centre selection")
+        let inputs = OlsInputs::new(params, x, z, progress)?;
+        Self::select(params, inputs, None, y, max_terms, tol, progress)
+    }
+
+    /// [`Self::run`] on inputs worked out once for several selections
+    /// (`inputs`, and the candidates' kernel columns when shared): the same
+    /// checks of `x`, `z` and `y`, the same selection.
+    #[allow(clippy::too_many_arguments)] // internal: run's arguments and what is shared
+    pub(crate) fn run_on(
+        params: &RbfValidParams,
+        (inputs, columns): (&OlsInputs, Option<MatRef<'_, f64>>),
+        x: MatRef<'_, f64>,
+        z: MatRef<'_, f64>,
+        y: MatRef<'_, f64>,
+        max_terms: usize,
+        tol: f64,
+    ) -> Result<Self, RbfError> {
+        check_inputs(x, z, y)?;
+        Self::select(params, inputs.for_one(), columns, y, max_terms, tol, None)
+    }
+
+    /// The forward selection on `inputs` (the part of a run that reads the
+    /// targets `y`, already checked), its candidate columns generated on
+    /// demand or read from `columns` ([`OlsInputs::shared_columns`]).
+    #[allow(clippy::too_many_arguments)] // internal: run's arguments, split at the targets
+    pub(crate) fn select(
+        params: &RbfValidParams,
+        inputs: OlsInputs,
+        columns: Option<MatRef<'_, f64>>,
+        y: MatRef<'_, f64>,
+        max_terms: usize,
+        tol: f64,
+        progress: Observer<'_>,
+    ) -> Result<Self, RbfError> {
+        let CentreSelection::Ols { regularisation, .. } = &params.centres else {
+            unreachable!("OlsStage::select needs OLS centre selection")
         };
-        let design = Design::new(params, x, z);
-        let (n, d, p) = (design.n(), x.ncols(), design.forced.ncols());
-        if n < p + 1 {
-            return Err(RbfError::TooFewSamples {
-                samples: n,
-                needed: p + 1,
-            });
-        }
-        // Selection rows: every row, or a seeded subsample (sorted, so the selection
-        // sees the rows in their order). Candidates are drawn from every row.
-        let sub: Option<Vec<usize>> = match params.selection_rows {
-            Some(s) if s.max(p + 1) < n => Some(random_subset(
-                n,
-                s.max(p + 1),
-                params.seed ^ SELECTION_ROWS_SEED,
-            )),
-            _ => None,
-        };
-        let (cands, labels) = match candidates {
-            Candidates::TrainingVectors => match &sub {
-                None => (design.xs.clone(), (0..n).collect::<Vec<_>>()),
-                Some(idx) => (rows(design.xs.as_ref(), idx), idx.clone()),
-            },
-            Candidates::Subsample { size } => {
-                let idx = random_subset(n, (*size).min(n), params.seed);
-                (rows(design.xs.as_ref(), &idx), idx)
-            }
-            Candidates::Given(c) => {
-                check_dim("candidate centres", c.as_ref(), d)?;
-                (design.standardised(c.as_ref()), (0..c.nrows()).collect())
-            }
-        };
-        let (xs_sel, forced_sel, y_sel) = match &sub {
-            None => (None, None, None),
-            Some(idx) => (
-                Some(rows(design.xs.as_ref(), idx)),
-                Some(rows(design.forced.as_ref(), idx)),
-                Some(rows(y, idx)),
-            ),
-        };
+        let OlsInputs {
+            design,
+            cands,
+            labels,
+            sub,
+            xs_sel,
+            forced_sel,
+            widths,
+        } = inputs;
+        let y_sel = sub.as_ref().map(|idx| rows(y, idx));
         let xs_sel = xs_sel.as_ref().map_or(design.xs.as_ref(), |m| m.as_ref());
         let forced_sel = forced_sel
             .as_ref()
             .map_or(design.forced.as_ref(), |m| m.as_ref());
         let y_sel = y_sel.as_ref().map_or(y, |m| m.as_ref());
-        let (entry_bytes, what) = match params.ols_stream {
-            StreamPrecision::F32 => (4, "f32 copy of the OLS candidate kernel columns"),
-            StreamPrecision::F64 => (8, "OLS candidate kernel matrix"),
-        };
-        crate::memory::check_entries(
-            xs_sel.nrows(),
-            cands.nrows(),
-            entry_bytes,
-            crate::memory::available_bytes(),
-            what,
-        )?;
-        report(progress, Stage::Widths, 0, 1);
-        let widths = params.width.widths(cands.as_ref(), params.par)?;
         report(progress, Stage::KernelMatrix, 0, 1);
         let forward = |pr: OlsProgress| report(progress, Stage::Selection, pr.picks, pr.max_terms);
         let mut opts = OlsOptions::new(max_terms)
@@ -333,14 +325,20 @@ impl OlsStage {
             opts = opts.progress(&forward);
         }
         // f32 streaming generates the kernel columns block by block into their f32 copy
-        // and again for the few evaluated exactly: no f64 candidate matrix is held.
-        let path = match params.ols_stream {
-            StreamPrecision::F32 => {
+        // and again for the few evaluated exactly: no f64 candidate matrix is held,
+        // unless a store of them is shared by several selections (its columns are
+        // the generated ones bit for bit, whatever the batch: tests/kernel_columns_batches.rs).
+        let path = match (params.ols_stream, columns) {
+            (StreamPrecision::F32, Some(store)) => forward_select(store, forced_sel, y_sel, &opts)?,
+            (StreamPrecision::F32, None) => {
                 let columns =
                     KernelColumns::new(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
                 forward_select_columns(&columns, forced_sel, y_sel, &opts)?
             }
-            StreamPrecision::F64 => {
+            (StreamPrecision::F64, Some(store)) => {
+                forward_select_owned(store.to_owned(), forced_sel, y_sel, &opts)?
+            }
+            (StreamPrecision::F64, None) => {
                 let phi_all =
                     kernel_matrix(xs_sel, cands.as_ref(), params.kernel, &widths, params.par);
                 forward_select_owned(phi_all, forced_sel, y_sel, &opts)?
@@ -426,7 +424,7 @@ impl OlsStage {
 
 /// Seed offset of the selection-row subsample (distinct from the candidate subsample's
 /// draw with the same seed).
-const SELECTION_ROWS_SEED: u64 = 0x5e1e_c7ed_0000_0001;
+pub(crate) const SELECTION_ROWS_SEED: u64 = 0x5e1e_c7ed_0000_0001;
 
 /// Rows per block of the streaming weight solve: the block's kernel columns and design
 /// rows stay within a few MB whatever n is.

@@ -12,6 +12,7 @@ mod fitted;
 mod hyperparams;
 mod linfa_impl;
 mod matser;
+mod ols_inputs;
 mod persist;
 mod poly;
 mod progress;
@@ -26,3 +27,4 @@ pub use progress::{Progress, Stage};
 pub use scaling::Scaling;
 
 pub(crate) use algorithm::OlsStage;
+pub(crate) use ols_inputs::OlsInputs;

@@ -12,7 +12,8 @@
 //! more than [`MAX_ROWS`] rows are not remembered: hashing their windows
 //! would cost time and nothing there is refitted.
 
-use super::channel::{ChannelFit, fit_channel};
+use super::channel::ChannelFit;
+use super::digest::{Digest, Digester};
 use crate::error::SysidError;
 use crate::inference::Coefficient;
 use crate::prepared::Prepared;
@@ -21,7 +22,6 @@ use crate::sensor::{Effect, Sensor};
 use crate::split::leakage_gap;
 use faer::{Mat, MatRef};
 use std::collections::VecDeque;
-use std::hash::{DefaultHasher, Hash, Hasher};
 use std::sync::Mutex;
 
 /// Largest record (rows of windows) whose channel fits are remembered.
@@ -31,61 +31,22 @@ pub const MAX_ROWS: usize = 100_000;
 /// loop asks for about 50 distinct ones, each a few hundred kB at most).
 const CAPACITY: usize = 96;
 
-/// A 128-bit digest: two SipHashes of the same words, salted apart.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Digest(u64, u64);
-
-struct Digester(DefaultHasher, DefaultHasher);
-
-impl Digester {
-    fn new() -> Self {
-        let mut second = DefaultHasher::new();
-        0x9e37_79b9_7f4a_7c15_u64.hash(&mut second);
-        Self(DefaultHasher::new(), second)
-    }
-
-    fn word(&mut self, w: u64) {
-        self.0.write_u64(w);
-        self.1.write_u64(w);
-    }
-
-    fn f64s(&mut self, v: impl Iterator<Item = f64>) {
-        let mut n = 0u64;
-        for x in v {
-            self.word(x.to_bits());
-            n += 1;
-        }
-        self.word(n);
-    }
-
-    fn usizes(&mut self, v: &[usize]) {
-        v.iter().for_each(|&r| self.word(r as u64));
-        self.word(v.len() as u64);
-    }
-
-    fn text(&mut self, s: &str) {
-        s.hash(&mut self.0);
-        s.hash(&mut self.1);
-    }
-
-    fn matrix(&mut self, m: MatRef<'_, f64>) {
-        self.word(m.nrows() as u64);
-        self.word(m.ncols() as u64);
-        for i in 0..m.nrows() {
-            self.f64s((0..m.ncols()).map(|j| m[(i, j)]));
-        }
-    }
-
-    fn finish(&self) -> Digest {
-        Digest(self.0.finish(), self.1.finish())
-    }
-}
-
 /// What every channel of one fit shares: the sensor type, the
 /// pre-processing that made the windows (the smoother aside: it only
-/// post-processes predictions), the windows themselves and the leakage gap.
+/// post-processes predictions), the windows themselves and the leakage gap;
+/// with and without the windows the effects are partialled out with.
+///
+/// A channel whose fit does not partial effects out (none, or their
+/// coefficients given) never reads those windows, and its key leaves them
+/// out: the demo's refit gives one channel an effect, so the statistics
+/// input's fit then prepares the raw windows for it, and the five channels
+/// without effects, keyed with them, were fitted again (2.5 s of 22 s of
+/// network fits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Records(Digest);
+pub(super) struct Records {
+    windows: Digest,
+    with_theta: Digest,
+}
 
 impl Records {
     /// `None` above [`MAX_ROWS`] rows.
@@ -106,14 +67,29 @@ impl Records {
         d.word(leakage_gap(prepared) as u64);
         d.word(prepared.first_sample() as u64);
         d.matrix(x);
+        let windows = d.finish();
         d.matrix(x_theta);
-        Some(Self(d.finish()))
+        Some(Self {
+            windows,
+            with_theta: d.finish(),
+        })
+    }
+
+    /// The digest a channel's key holds: the windows it partials its
+    /// effects out with only when it does (effects without coefficients
+    /// given for each).
+    fn of_channel(&self, n_effects: usize, known: Option<&[Coefficient]>) -> Digest {
+        let partials = n_effects > 0 && known.is_none_or(|c| c.len() != n_effects);
+        match partials {
+            true => self.with_theta,
+            false => self.windows,
+        }
     }
 }
 
 /// One channel fit's key: [`Records`] and everything of the channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Key(Digest, Digest);
+pub(super) struct Key(Digest, Digest);
 
 struct Entry {
     key: Key,
@@ -125,25 +101,22 @@ struct Entry {
 
 static FITS: Mutex<VecDeque<Entry>> = Mutex::new(VecDeque::new());
 
-/// [`fit_channel`], taken from the fits remembered when one with the same
-/// inputs was made before (`records` none: always computed).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn fit_channel_remembered<S: Sensor>(
+/// A channel fit's key (none when `records` is none) and the fit
+/// remembered under it, if any: a fit asked again ([`super::batched`]) is
+/// taken from here instead of computed.
+pub(super) fn recall<S: Sensor>(
     records: Option<Records>,
     prepared: &Prepared<S>,
-    x: (MatRef<'_, f64>, MatRef<'_, f64>),
-    x_train: &Mat<f64>,
     rows: (&[usize], &[usize], Option<&[Coefficient]>),
     channel: usize,
     effects: &[S::Effect],
     settings: &FitSettings,
-) -> Result<ChannelFit<S>, SysidError> {
-    let fit = || fit_channel(prepared, x, x_train, rows, channel, effects, settings);
+) -> Result<(Option<Key>, Option<ChannelFit<S>>), SysidError> {
     let Some(records) = records else {
-        return fit();
+        return Ok((None, None));
     };
     let key = Key(
-        records.0,
+        records.of_channel(effects.len(), rows.2),
         channel_digest(prepared, rows, channel, effects, settings)?,
     );
     let found = lock().iter().find(|e| e.key == key).map(|e| ChannelFit {
@@ -154,10 +127,14 @@ pub(super) fn fit_channel_remembered<S: Sensor>(
         model: e.model.clone(),
         coefficients: e.coefficients.clone(),
     });
-    if let Some(f) = found {
-        return Ok(f);
-    }
-    let f = fit()?;
+    Ok((Some(key), found))
+}
+
+/// Remembers a channel fit under `key` (none: not remembered).
+pub(super) fn remember<S: Sensor>(key: Option<Key>, f: &ChannelFit<S>) {
+    let Some(key) = key else {
+        return;
+    };
     let mut fits = lock();
     if !fits.iter().any(|e| e.key == key) {
         if fits.len() >= CAPACITY {
@@ -171,7 +148,6 @@ pub(super) fn fit_channel_remembered<S: Sensor>(
             coefficients: f.coefficients.clone(),
         });
     }
-    Ok(f)
 }
 
 /// The store; a panic elsewhere while it was held leaves it usable (an
@@ -209,22 +185,4 @@ fn channel_digest<S: Sensor>(
     };
     d.text(&format!("{settings:?}"));
     Ok(d.finish())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn digests_tell_arrays_apart() {
-        let digest = |v: &[f64]| {
-            let mut d = Digester::new();
-            d.f64s(v.iter().copied());
-            d.finish()
-        };
-        assert_eq!(digest(&[1.0, 2.0]), digest(&[1.0, 2.0]));
-        assert_ne!(digest(&[1.0, 2.0]), digest(&[2.0, 1.0]));
-        assert_ne!(digest(&[0.0]), digest(&[-0.0]));
-        assert_ne!(digest(&[1.0]), digest(&[1.0, 1.0]));
-    }
 }

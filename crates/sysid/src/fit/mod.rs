@@ -13,8 +13,10 @@
 //! This is also the layer the diagnosis asks for the fits it needs and does
 //! not make itself: the model's [`mirror`] and a [`refit_with_window`].
 
+mod batched;
 mod channel;
 mod choice;
+mod digest;
 mod input_sample;
 mod judged;
 mod keep;
@@ -23,6 +25,7 @@ mod memo;
 mod network;
 mod partial;
 mod shared;
+mod theta_memo;
 
 use crate::error::SysidError;
 use crate::model::{ChannelModelOf, Model, ModelParts};
@@ -390,43 +393,24 @@ fn fit_rows_predicting<S: Sensor>(
     let remembered = (!settings.shared_centres)
         .then(|| memo::Records::of(prepared, (x, x_theta)))
         .flatten();
+    let known = |k: usize| coef.stored(k, recipe.effects_of(k).len());
+    let rows = (fit_on.as_slice(), theta_rows.as_slice());
     let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
-        true => {
-            let fits = shared::fit_channels_shared(
-                prepared,
-                (x, x_theta),
-                &x_fit,
-                (fit_on, &theta_rows),
-                recipe,
-                &|k| coef.stored(k, recipe.effects_of(k).len()),
-            )?;
-            channels
-                .iter()
-                .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
-            fits
-        }
-        false => (0..channels.len())
-            .into_par_iter()
-            .map(|k| {
-                let m = memo::fit_channel_remembered(
-                    remembered,
-                    prepared,
-                    (x, x_theta),
-                    &x_fit,
-                    (
-                        fit_on,
-                        &theta_rows,
-                        coef.stored(k, recipe.effects_of(k).len()),
-                    ),
-                    k,
-                    recipe.effects_of(k),
-                    settings,
-                );
-                progress(FitStage::ChannelDone(channels[k].clone()));
-                m
-            })
-            .collect::<Result<_, _>>()?,
+        true => shared::fit_channels_shared(prepared, (x, x_theta), &x_fit, rows, recipe, &known)?,
+        // Each channel's own network, their candidate columns computed once.
+        false => batched::fit_channels(
+            remembered,
+            prepared,
+            (x, x_theta),
+            &x_fit,
+            rows,
+            recipe,
+            &known,
+        )?,
     };
+    channels
+        .iter()
+        .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
     drop(x_fit);
     // On a subsample, the weights are solved again on every training row,
     // over row blocks (memory independent of the number of rows), before

@@ -10,7 +10,7 @@ use rbf::{
 };
 
 /// Numbers of centres tried: a roughly geometric ladder up to `max`.
-fn size_ladder(max: usize) -> Vec<usize> {
+pub(super) fn size_ladder(max: usize) -> Vec<usize> {
     let mut v: Vec<usize> = [2, 5, 10, 15, 20, 30, 40, 60, 80, 100, 150, 200, 300]
         .into_iter()
         .filter(|&k| k < max)
@@ -36,13 +36,13 @@ pub(super) fn fit_network(
 /// What the cross-validation of [`fit_network`] chose: the number of
 /// centres and the width rule (a multiple of the rows' median distance).
 #[derive(Debug, Clone)]
-struct Chosen {
+pub(super) struct Chosen {
     n_centres: usize,
     width: WidthRule,
 }
 
 /// The network's parameters for `settings`, `k` centres and `width`.
-fn params(
+pub(super) fn params(
     settings: &FitSettings,
     k: usize,
     width: WidthRule,
@@ -71,7 +71,7 @@ fn params(
 
 /// The network chosen by [`choose_network`] fitted on the given rows; its
 /// number of centres at most half the rows.
-fn fit_chosen(
+pub(super) fn fit_chosen(
     settings: &FitSettings,
     chosen: &Chosen,
     x: MatRef<'_, f64>,
@@ -118,13 +118,23 @@ fn choose_network(
         })
         .collect::<Result<_, _>>()?;
     let points: Vec<rbf::GridPoint> = reports.into_iter().flat_map(|r| r.points).collect();
+    best_of(points, y.ncols(), max_k)
+}
+
+/// The grid point of lowest criterion among `points` (every width's, in the
+/// width-major order of one grid) for `n_targets` targets.
+pub(super) fn best_of(
+    points: Vec<rbf::GridPoint>,
+    n_targets: usize,
+    max_k: usize,
+) -> Result<Chosen, rbf::RbfError> {
     // One target: its validation NMSE, as the library's grid. Several
     // (a shared selection): the mean over channels of the validation rms,
     // in the targets' one unit, as the summed ERR weighs them; the mean
     // NMSE let a channel the network cannot help (NMSE near 1 everywhere,
     // rising a little with every centre) hold every channel at 2 centres on
     // the three-record campaign (X +51%, Z +41%).
-    let criterion = |r: &rbf::CvReport| match y.ncols() {
+    let criterion = |r: &rbf::CvReport| match n_targets {
         1 => r.mean.nmse,
         _ => r.mean.rmse,
     };

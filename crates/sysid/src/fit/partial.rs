@@ -120,34 +120,97 @@ pub(super) fn fit_partially_linear(
 ) -> Result<(rbf::RbfModel, Vec<Coefficient>), rbf::RbfError> {
     let p = units.len();
     let train = rows.train;
+    let theta = theta_of(x_theta, z, y, rows, p, settings, gap)?;
+    let Some(t) = theta.values() else {
+        let (model, fit) = joint_fit(x, z, y, train, settings, gap)?;
+        let theta = model.linear_coefficients();
+        let values: Vec<f64> = (0..p).map(|j| theta[(j, 0)]).collect();
+        return Ok((model, coefficients(units, fit.as_ref(), &values)));
+    };
     let x_train = gather(x, train);
     let z_train = gather(z.as_ref(), train);
     let y_train = Mat::from_fn(train.len(), 1, |i, _| y[train[i]]);
-    let network_on = |theta: &Mat<f64>| {
-        let y_adj = &y_train - &z_train * theta;
-        fit_network(
-            settings,
-            x_train.as_ref(),
-            Mat::<f64>::zeros(train.len(), 0).as_ref(),
-            y_adj.as_ref(),
-            gap,
-        )
-        .map(|net| net.with_linear(theta.as_ref()))
-    };
+    let y_adj = adjusted(&y_train, &z_train, t);
+    let net = fit_network(
+        settings,
+        x_train.as_ref(),
+        Mat::<f64>::zeros(train.len(), 0).as_ref(),
+        y_adj.as_ref(),
+        gap,
+    )?;
+    Ok(theta.with_network(net, units))
+}
+
+/// The effects' coefficients of a partially linear fit, before its network.
+pub(super) enum Theta {
+    /// Given (a model's own, for its mirror): taken as they are.
+    Given(Mat<f64>, Vec<Coefficient>),
+    /// Cross-fitted ([`cross_fitted_theta`]).
+    CrossFitted(Mat<f64>, HacFit),
+    /// Blocks too short to cross-fit: θ and the network in one solve.
+    Joint,
+}
+
+impl Theta {
+    /// θ as a column, none for a joint fit.
+    pub(super) fn values(&self) -> Option<&Mat<f64>> {
+        match self {
+            Theta::Given(t, _) | Theta::CrossFitted(t, _) => Some(t),
+            Theta::Joint => None,
+        }
+    }
+
+    /// The model of a network fitted to [`adjusted`] with these
+    /// coefficients, and the coefficients it stores.
+    ///
+    /// # Panics
+    /// For [`Theta::Joint`], which has no network of its own.
+    pub(super) fn with_network(
+        self,
+        net: rbf::RbfModel,
+        units: &[String],
+    ) -> (rbf::RbfModel, Vec<Coefficient>) {
+        match self {
+            Theta::Given(t, known) => (net.with_linear(t.as_ref()), known),
+            Theta::CrossFitted(t, f) => {
+                let model = net.with_linear(t.as_ref());
+                let theta = model.linear_coefficients();
+                let values: Vec<f64> = (0..units.len()).map(|j| theta[(j, 0)]).collect();
+                let coefficients = coefficients(units, Some(&f), &values);
+                (model, coefficients)
+            }
+            Theta::Joint => unreachable!("a joint fit has no network of its own"),
+        }
+    }
+}
+
+/// The `p` effects' coefficients of a partially linear fit: the given ones,
+/// or cross-fitted on `rows.theta` of `x_theta`, or none (a joint fit).
+pub(super) fn theta_of(
+    x_theta: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    rows: Rows<'_>,
+    p: usize,
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Theta, rbf::RbfError> {
     if let Some(known) = rows.known.filter(|c| c.len() == p) {
         let theta = Mat::from_fn(p, 1, |j, _| known[j].value);
-        return Ok((network_on(&theta)?, known.to_vec()));
+        return Ok(Theta::Given(theta, known.to_vec()));
     }
-    let (model, fit) = match cross_fitted_theta(x_theta, z, y, rows.theta, settings, gap)? {
-        Some(f) => {
-            let theta = Mat::from_fn(p, 1, |j, _| f.coef[j]);
-            (network_on(&theta)?, Some(f))
-        }
-        None => joint_fit(x, z, y, train, settings, gap)?,
-    };
-    let theta = model.linear_coefficients();
-    let values: Vec<f64> = (0..p).map(|j| theta[(j, 0)]).collect();
-    Ok((model, coefficients(units, fit.as_ref(), &values)))
+    Ok(
+        match cross_fitted_theta(x_theta, z, y, rows.theta, settings, gap)? {
+            Some(f) => Theta::CrossFitted(Mat::from_fn(p, 1, |j, _| f.coef[j]), f),
+            None => Theta::Joint,
+        },
+    )
+}
+
+/// What a partially linear fit's network is fitted to: y − Zθ on the
+/// training rows.
+pub(super) fn adjusted(y_train: &Mat<f64>, z_train: &Mat<f64>, theta: &Mat<f64>) -> Mat<f64> {
+    y_train - z_train * theta
 }
 
 /// θ (with its HAC errors) by cross-fitted partialling out on `theta_rows`
@@ -166,6 +229,22 @@ pub(super) fn fit_partially_linear(
 /// statistics input's networks put `col:temp` at 0.47, 0.48 and 2.13 over
 /// the three cuts, the raw window's at 0.78, 0.36 and 0.65).
 pub(crate) fn cross_fitted_theta(
+    x_theta: MatRef<'_, f64>,
+    z: &Mat<f64>,
+    y: &[f64],
+    theta_rows: &[usize],
+    settings: &FitSettings,
+    gap: usize,
+) -> Result<Option<HacFit>, rbf::RbfError> {
+    // Asked again with the same rows (the refit of a suggestion the
+    // diagnosis stated, once per input tried): the estimate made before.
+    super::theta_memo::remembered((x_theta, z, y), theta_rows, settings, gap, || {
+        estimate_theta(x_theta, z, y, theta_rows, settings, gap)
+    })
+}
+
+/// [`cross_fitted_theta`], computed.
+fn estimate_theta(
     x_theta: MatRef<'_, f64>,
     z: &Mat<f64>,
     y: &[f64],

@@ -37,13 +37,10 @@ pub fn autocorrelation(x: &[f64], max_lag: usize) -> Vec<f64> {
     let Some((c, ss)) = centred(x) else {
         return r;
     };
-    for (tau, rt) in r.iter_mut().enumerate().skip(1) {
-        *rt = c[..c.len() - tau]
-            .iter()
-            .zip(&c[tau..])
-            .map(|(a, b)| a * b)
-            .sum::<f64>()
-            / ss;
+    let mut sums = vec![0.0; max_lag + 1];
+    super::lag_sums::lag_sums_into(&c, &mut sums);
+    for (rt, s) in r.iter_mut().zip(&sums).skip(1) {
+        *rt = s / ss;
     }
     r
 }
@@ -190,18 +187,10 @@ impl InputAutocovariance {
     pub(crate) fn new(u: &[f64]) -> Self {
         let n = u.len();
         let k_max = bartlett_truncation(n).min(n);
-        Self((0..k_max.max(1)).map(|k| lagged(u, k, n)).collect())
+        let mut sums = vec![0.0; k_max.max(1)];
+        super::lag_sums::lag_sums_into(u, &mut sums);
+        Self(sums.into_iter().map(|s| s / n as f64).collect())
     }
-}
-
-/// `Σ x_t x_{t+k} / len`.
-fn lagged(x: &[f64], k: usize, len: usize) -> f64 {
-    x[..x.len() - k]
-        .iter()
-        .zip(&x[k..])
-        .map(|(a, b)| a * b)
-        .sum::<f64>()
-        / len as f64
 }
 
 /// [`residual_times_input_variance`] with u's lagged products worked out.
@@ -219,10 +208,13 @@ pub(crate) fn residual_times_input_variance_with(
         .collect();
     let m = p.len();
     let k_max = bartlett_truncation(n).min(m);
-    let mut s = u_acov.0[0] * lagged(&p, 0, m);
+    let mut sums = vec![0.0; k_max.max(1)];
+    super::lag_sums::lag_sums_into(&p, &mut sums);
+    let lagged = |k: usize| sums[k] / m as f64;
+    let mut s = u_acov.0[0] * lagged(0);
     for k in 1..k_max {
         let taper = 1.0 - k as f64 / k_max as f64;
-        s += 2.0 * taper * u_acov.0[k] * lagged(&p, k, m);
+        s += 2.0 * taper * u_acov.0[k] * lagged(k);
     }
     let eu = e.iter().zip(u).map(|(a, b)| a * b);
     let mean_eu = eu.clone().sum::<f64>() / n as f64;

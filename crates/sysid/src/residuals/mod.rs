@@ -3,6 +3,7 @@
 //! (whiteness, independence, Billings–Voon) with named verdicts.
 
 mod correlation;
+mod lag_sums;
 mod validity;
 
 pub use correlation::{
