@@ -65,7 +65,7 @@ fn main() {
         last = Some(kmeans_centres(x.as_ref(), &settings, 42, Par::Seq).unwrap());
         km_t.push(t.elapsed().as_secs_f64());
         let p = RbfParams::new()
-            .centres(CentreSelection::KMeans(settings.clone()))
+            .centres(CentreSelection::KMeans(settings))
             .width(WidthRule::Fixed(width))
             .seed(42)
             .parallelism(Par::Seq)
