@@ -233,16 +233,6 @@ pub fn kernel_matrix_into(
 }
 
 widest! {
-    /// v ← max(v + ‖x̃ᵢ‖² + ‖c̃‖², 0): a column of −2x̃·c̃ products made squared
-    /// distances (tiny negative results of the cancellation clamped).
-    fn add_norms(col: &mut [f64], xn: &[f64], cn: f64) {
-        for (v, &xi) in col.iter_mut().zip(xn) {
-            *v = (*v + xi + cn).max(0.0);
-        }
-    }
-}
-
-widest! {
     /// A column shifted, `dst = src − shift`, its squares added to the rows' norms.
     fn shift_column(dst: &mut [f64], src: &[f64], shift: f64, norms: &mut [f64]) {
         for ((v, &x), norm) in dst.iter_mut().zip(src).zip(norms.iter_mut()) {
@@ -291,56 +281,6 @@ fn product_tiles(
     let samples = Shifted::new(x, shift);
     let (cs, cn) = samples.centres(centres);
     samples.tiles(cs.as_ref(), &cn, out, par, finish);
-}
-
-/// Squared distances D[i, j] = ‖x_i − c_j‖² by the product formula of [`kernel_matrix`]
-/// (the same code: one faer product after shifting both sets by the centres' mean, tiny
-/// negative results clamped to 0). k-means assigns samples with it, again and again for
-/// the same samples: the shifted copy of the samples is kept and refilled instead of
-/// allocated at every call (a fresh megabyte a call was page faults: the first fit of a
-/// process took twice as long as the next).
-pub(crate) struct Distances {
-    samples: Shifted,
-}
-
-impl Distances {
-    pub(crate) fn new() -> Self {
-        Self {
-            samples: Shifted {
-                xs: Mat::zeros(0, 0),
-                xn: Vec::new(),
-                shift: Vec::new(),
-            },
-        }
-    }
-
-    /// The distances of the rows of `x` to the rows of `centres` (n × m) into `out`.
-    ///
-    /// # Panics
-    /// If `x` and `centres` have different numbers of columns, or `out` is not n × m.
-    #[track_caller]
-    pub(crate) fn fill(
-        &mut self,
-        x: MatRef<'_, f64>,
-        centres: MatRef<'_, f64>,
-        out: MatMut<'_, f64>,
-        par: Par,
-    ) {
-        check_shapes(x, centres, (out.nrows(), out.ncols()));
-        if x.nrows() == 0 || centres.nrows() == 0 {
-            return;
-        }
-        let (d, m) = (x.ncols(), centres.nrows());
-        let shift: Vec<f64> = (0..d)
-            .map(|k| (0..m).map(|j| centres[(j, k)]).sum::<f64>() / m as f64)
-            .collect();
-        self.samples.refill(x, shift);
-        let (cs, cn) = self.samples.centres(centres);
-        self.samples
-            .tiles(cs.as_ref(), &cn, out, par, |_, col, xn, cn| {
-                add_norms(col, xn, cn)
-            });
-    }
 }
 
 /// Samples shifted by a fixed point (the centres' mean), with their squared norms: the
@@ -535,27 +475,6 @@ mod tests {
                                 "{k} {i} {j}"
                             );
                         }
-                    }
-                }
-            }
-        }
-    }
-
-    /// The squared distances k-means uses come from the same product code and agree with
-    /// direct sums, also far from the origin, whatever the parallelism.
-    #[test]
-    fn squared_distances_match_direct_sums() {
-        for &(n, m, d, off) in &[(9, 4, 3, 0.0), (300, 130, 7, 1e4), (5, 1, 0, 0.0)] {
-            let x = random(n, d, off, 4);
-            let c = random(m, d, off, 5);
-            for par in [Par::Seq, Par::rayon(2)] {
-                let mut out = Mat::zeros(n, m);
-                Distances::new().fill(x.as_ref(), c.as_ref(), out.as_mut(), par);
-                for i in 0..n {
-                    for j in 0..m {
-                        let want = (0..d).map(|t| (x[(i, t)] - c[(j, t)]).powi(2)).sum::<f64>();
-                        assert!((out[(i, j)] - want).abs() <= 1e-9 * (1.0 + want), "{i} {j}");
-                        assert!(out[(i, j)] >= 0.0);
                     }
                 }
             }

@@ -20,7 +20,7 @@ use crate::check::positive;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum KMeansAlgorithm {
-    /// [`lloyd`]: distances by one faer product per iteration, centroids as plain means,
+    /// [`lloyd`]: distances by one f32 faer product per iteration (near ties in f64), centroids as plain means,
     /// scikit-learn's stopping rule (`tolerance` relative to the mean feature variance).
     /// Parallel as the fit's [`Par`].
     #[default]

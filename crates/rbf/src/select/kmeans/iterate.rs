@@ -1,10 +1,10 @@
-//! Lloyd's iterations: assignment by one faer product, deterministic relocation of
+//! Lloyd's iterations: assignment by one f32 faer product checked in f64, deterministic relocation of
 //! empty clusters, centroids as plain means, scikit-learn's stopping rule.
 
 use faer::{Mat, MatRef, Par};
 
 use super::KMeansCentres;
-use crate::design::Distances;
+use super::assign::Assigner;
 use crate::widest::widest;
 
 /// Mean squared distance of the rows of `x` to their assigned centres, computed
@@ -27,9 +27,10 @@ pub(super) fn inertia(x: MatRef<'_, f64>, centres: MatRef<'_, f64>, memberships:
 /// Lloyd's algorithm from the centres `start` (k × d), standard as in scikit-learn's
 /// `KMeans(algorithm="lloyd")`:
 ///
-/// 1. *assignment*: the squared distances of every sample to every centroid come from
-///    one faer product (‖x‖² + ‖c‖² − 2·X·Cᵀ, the kernel matrices' code, parallel as
-///    `par`); each sample goes to its nearest centroid, the lowest index on a tie;
+/// 1. *assignment*: every sample's nearest centroid, the lowest index on a tie, from
+///    one f32 faer product of the mean-shifted samples and centroids (parallel as
+///    `par`), the samples whose two nearest centroids f32 cannot tell apart checked
+///    by f64 distances computed directly (`assign.rs`);
 /// 2. *empty clusters* (deterministic): each cluster left without a sample, in index
 ///    order, takes the sample farthest from its centroid among clusters with at least
 ///    two members (the lowest index on a tie) — scikit-learn relocates empty centres to
@@ -80,8 +81,7 @@ pub fn lloyd(
     let tol = tolerance * mean_variance(x);
     let mut centres = start.to_owned();
     let mut next = Mat::<f64>::zeros(k, d);
-    let mut dist = Mat::<f64>::zeros(n, k);
-    let mut work = Distances::new();
+    let mut assigner = Assigner::new(x);
     let mut labels = vec![0usize; n];
     let mut nearest = vec![0.0; n];
     let mut previous = vec![usize::MAX; n];
@@ -93,16 +93,13 @@ pub fn lloyd(
     let mut iterations = 0;
     while iterations < max_iterations {
         iterations += 1;
-        assign(
-            x,
-            centres.as_ref(),
-            &mut work,
-            &mut dist,
-            &mut labels,
-            &mut nearest,
-            par,
-        );
-        relocate_empty(&mut labels, &mut nearest, &mut counts);
+        assigner.assign(x, centres.as_ref(), &mut labels, par);
+        count(&labels, &mut counts);
+        if counts.contains(&0) {
+            // the relocation needs every sample's distance to its centroid
+            to_own(rows.as_ref(), centres.as_ref(), &labels, &mut nearest);
+            relocate_empty(&mut labels, &mut nearest, &mut counts);
+        }
         means(rows.as_ref(), &labels, &counts, &mut sums, &mut next);
         let shift = (0..d)
             .map(|t| {
@@ -122,15 +119,7 @@ pub fn lloyd(
         previous.copy_from_slice(&labels);
     }
     if !unchanged {
-        assign(
-            x,
-            centres.as_ref(),
-            &mut work,
-            &mut dist,
-            &mut labels,
-            &mut nearest,
-            par,
-        );
+        assigner.assign(x, centres.as_ref(), &mut labels, par);
     }
     KMeansCentres {
         inertia: inertia(x, centres.as_ref(), &labels),
@@ -157,58 +146,21 @@ fn mean_variance(x: MatRef<'_, f64>) -> f64 {
     total / d as f64
 }
 
-/// Nearest centroid (lowest index on a tie) and its squared distance, for every sample.
-fn assign(
-    x: MatRef<'_, f64>,
-    centres: MatRef<'_, f64>,
-    work: &mut Distances,
-    dist: &mut Mat<f64>,
-    labels: &mut [usize],
-    nearest: &mut [f64],
-    par: Par,
-) {
-    work.fill(x, centres, dist.as_mut(), par);
-    let (n, k) = (dist.nrows(), dist.ncols());
-    let dist = dist.as_ref();
-    let column = |j: usize| {
-        dist.col(j)
-            .try_as_col_major()
-            .expect("an owned matrix has contiguous columns")
-            .as_slice()
-    };
-    // rows in chunks, columns swept in order: contiguous reads, branch-free selects
-    let argmin = |start: usize, labels: &mut [usize], nearest: &mut [f64]| {
-        let rows = start..start + labels.len();
-        nearest.copy_from_slice(&column(0)[rows.clone()]);
-        labels.fill(0);
-        for j in 1..k {
-            nearer(labels, nearest, &column(j)[rows.clone()], j);
-        }
-    };
-    let threads = par.degree();
-    const MIN_ROWS: usize = 256;
-    if threads <= 1 || n <= MIN_ROWS {
-        argmin(0, labels, nearest);
-    } else {
-        use rayon::prelude::*;
-        let chunk = n.div_ceil(threads).max(MIN_ROWS);
-        labels
-            .par_chunks_mut(chunk)
-            .zip(nearest.par_chunks_mut(chunk))
-            .enumerate()
-            .for_each(|(c, (l, m))| argmin(c * chunk, l, m));
+/// The members of every cluster.
+fn count(labels: &[usize], counts: &mut [usize]) {
+    counts.fill(0);
+    for &l in labels {
+        counts[l] += 1;
     }
 }
 
-widest! {
-    /// Samples closer to centroid `j` (squared distances `dist`) than to the nearest so
-    /// far take it: branch-free selects, the earlier centroid kept on a tie.
-    fn nearer(labels: &mut [usize], nearest: &mut [f64], dist: &[f64], j: usize) {
-        for ((l, m), &v) in labels.iter_mut().zip(nearest.iter_mut()).zip(dist) {
-            let closer = v < *m;
-            *m = if closer { v } else { *m };
-            *l = if closer { j } else { *l };
-        }
+/// Every sample's squared distance to its centroid, computed directly (`rows`: the
+/// samples as columns, d × n).
+fn to_own(rows: MatRef<'_, f64>, centres: MatRef<'_, f64>, labels: &[usize], out: &mut [f64]) {
+    for (i, (&a, o)) in labels.iter().zip(out.iter_mut()).enumerate() {
+        *o = (0..rows.nrows())
+            .map(|t| (rows[(t, i)] - centres[(a, t)]).powi(2))
+            .sum();
     }
 }
 
@@ -216,10 +168,7 @@ widest! {
 /// the sample farthest from its centroid among clusters with at least two members
 /// (the lowest index on a tie). With k ≤ n such a cluster always exists.
 fn relocate_empty(labels: &mut [usize], nearest: &mut [f64], counts: &mut [usize]) {
-    counts.fill(0);
-    for &l in labels.iter() {
-        counts[l] += 1;
-    }
+    count(labels, counts);
     for j in 0..counts.len() {
         if counts[j] > 0 {
             continue;

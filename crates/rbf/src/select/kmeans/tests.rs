@@ -219,3 +219,32 @@ fn memberships_and_inertia_belong_to_the_final_centres() {
         assert!((r.inertia - total / 500.0).abs() < 1e-12, "{alg}");
     }
 }
+
+/// The f32 product cannot tell two centroids 10⁻³ apart at 1000 from the samples'
+/// mean (its error there is about 10⁻², the distances differ by 10⁻⁶): the samples
+/// between them are checked in f64 and go to the nearer one, at every iteration.
+#[test]
+fn near_ties_are_decided_in_f64() {
+    let mut rows = vec![[0.0, 0.0]; 10];
+    rows.extend((0..=20).map(|s| [1000.0, s as f64 * 5e-5]));
+    let x = Mat::from_fn(rows.len(), 2, |i, t| rows[i][t]);
+    let start = mat![[0.0, 0.0], [1000.0, 0.0], [1000.0, 1e-3]];
+    for max_iterations in [1, 2, 100] {
+        let r = lloyd(x.as_ref(), start.as_ref(), max_iterations, 1e-4, Par::Seq);
+        for i in 0..x.nrows() {
+            let d2 = |c: usize| {
+                (0..2)
+                    .map(|t| (x[(i, t)] - r.centres[(c, t)]).powi(2))
+                    .sum::<f64>()
+            };
+            let best = (0..3).map(d2).fold(f64::INFINITY, f64::min);
+            assert!(
+                d2(r.memberships[i]) <= best,
+                "{max_iterations} iterations, sample {i}: {:?}",
+                r.memberships
+            );
+        }
+        // both near centroids keep members
+        assert!(r.memberships.contains(&1) && r.memberships.contains(&2));
+    }
+}
