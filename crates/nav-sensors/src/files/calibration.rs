@@ -169,14 +169,7 @@ impl Calibration {
     /// ```
     pub fn compensate(&self, record: &Record) -> Record {
         let n = record.len();
-        let accel_coefficients = Axis::ALL.map(|a| self.accel(a));
-        let mut accel: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
-        for i in 0..n {
-            let a = compensate_triad(&accel_coefficients, &record.accel_sample(i));
-            for k in 0..3 {
-                accel[k].push(a[k]);
-            }
-        }
+        let accel = self.compensate_accel(record);
         let frames = ChannelFrame::all();
         // The gyro output holds the interval mean of each g² product; the
         // product of the accelerometers' interval means misses the
@@ -204,5 +197,38 @@ impl Calibration {
             gyro = next;
         }
         record.with_gyro(gyro).with_accel(accel)
+    }
+
+    /// The accelerometer triad of `record` compensated (x, y, z, in g), as
+    /// [`Calibration::compensate`] gives it, without the gyros: what reads
+    /// only the specific force (the window's axes) need not pay for the
+    /// gyro model.
+    ///
+    /// ```
+    /// use nav_sensors::accel::AccelCoefficients;
+    /// use nav_sensors::calibration::Calibration;
+    /// use nav_sensors::geometry::Axis;
+    /// use nav_sensors::record::Record;
+    /// let rec = Record::new(vec![0.02, 0.04], std::array::from_fn(|_| vec![0.0; 2]),
+    ///     [vec![0.1; 2], vec![0.0; 2], vec![1.0; 2]], vec![]).unwrap();
+    /// let mut cal = Calibration::ideal();
+    /// cal.accels.insert(Axis::Z, AccelCoefficients { bias_ug: 500.0, ..Default::default() });
+    /// let full = cal.compensate(&rec);
+    /// let accel = cal.compensate_accel(&rec);
+    /// for a in Axis::ALL {
+    ///     assert_eq!(accel[a.index()], full.accel(a));
+    /// }
+    /// ```
+    pub fn compensate_accel(&self, record: &Record) -> [Vec<f64>; 3] {
+        let n = record.len();
+        let coefficients = Axis::ALL.map(|a| self.accel(a));
+        let mut accel: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
+        for i in 0..n {
+            let a = compensate_triad(&coefficients, &record.accel_sample(i));
+            for k in 0..3 {
+                accel[k].push(a[k]);
+            }
+        }
+        accel
     }
 }
