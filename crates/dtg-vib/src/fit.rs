@@ -210,7 +210,24 @@ pub fn choose_window_signals(
         .iter()
         .map(|(n, r)| {
             let accel = match calibration {
-                Some(c) => c.compensate_accel(r),
+                Some(c) => {
+                    let accel = c.compensate_accel(r);
+                    crate::paper_unit::check_calibrated_accel(
+                        r.t(),
+                        &accel.each_ref().map(|a| &a[..]),
+                    )
+                    .map_err(|e| {
+                        let e = sysid::SysidError::Sensor(Box::new(e));
+                        match records.len() {
+                            1 => e,
+                            _ => sysid::SysidError::InRecord {
+                                record: n.clone(),
+                                source: Box::new(e),
+                            },
+                        }
+                    })?;
+                    accel
+                }
                 None => Axis::ALL.map(|a| r.accel(a).to_vec()),
             };
             let columns = names.iter().cloned().zip(accel).collect();

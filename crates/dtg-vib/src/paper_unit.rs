@@ -318,8 +318,10 @@ fn is_anisoinertia(e: &Effect) -> bool {
 /// The record's values are within ±1e150 (the reader refuses more), but a
 /// calibration's polynomial terms (an accelerometer's k3·a³, a gyro's g²
 /// sensitivities) can carry them past what the filter and the fit can square.
+const CALIBRATED_HINT: &str = "the calibration's coefficients or the record's values are out of range: check the units of both";
+
 fn check_calibrated(calibrated: &Record) -> Result<(), DtgVibError> {
-    let hint = "the calibration's coefficients or the record's values are out of range: check the units of both";
+    let hint = CALIBRATED_HINT;
     let t = calibrated.t();
     for ch in Channel::ALL {
         check_range(
@@ -329,12 +331,18 @@ fn check_calibrated(calibrated: &Record) -> Result<(), DtgVibError> {
             hint,
         )?;
     }
-    for axis in Axis::ALL {
+    check_calibrated_accel(t, &Axis::ALL.map(|a| calibrated.accel(a)))
+}
+
+/// [`check_calibrated`]'s test of the accelerometer triad (x, y, z) alone:
+/// the first value non-finite or beyond ±1e150, with its column and time.
+pub(crate) fn check_calibrated_accel(t: &[f64], accel: &[&[f64]; 3]) -> Result<(), DtgVibError> {
+    for (axis, a) in Axis::ALL.iter().zip(accel) {
         check_range(
             || format!("column '{}' after calibration", axis.column()),
-            calibrated.accel(axis),
+            a,
             t,
-            hint,
+            CALIBRATED_HINT,
         )?;
     }
     Ok(())
