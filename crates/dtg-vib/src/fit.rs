@@ -204,7 +204,7 @@ pub fn choose_window_signals(
     };
     // Only the accelerometers are read: calibrating them alone, as the full
     // calibration does, spares the gyro model's two passes over every row
-    // (3 of the 1M-row fit's 17 s).
+    // (about 3 s on a 1M-row record).
     let names = unit.operating_signals();
     let accels = records
         .iter()

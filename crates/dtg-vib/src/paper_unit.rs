@@ -315,11 +315,12 @@ fn is_anisoinertia(e: &Effect) -> bool {
     matches!(e, Effect::Term(t) if DtgTerm::ANISOINERTIA.contains(t))
 }
 
+/// What to check when a calibrated value is out of range.
+const CALIBRATED_HINT: &str = "the calibration's coefficients or the record's values are out of range: check the units of both";
+
 /// The record's values are within ±1e150 (the reader refuses more), but a
 /// calibration's polynomial terms (an accelerometer's k3·a³, a gyro's g²
 /// sensitivities) can carry them past what the filter and the fit can square.
-const CALIBRATED_HINT: &str = "the calibration's coefficients or the record's values are out of range: check the units of both";
-
 fn check_calibrated(calibrated: &Record) -> Result<(), DtgVibError> {
     let hint = CALIBRATED_HINT;
     let t = calibrated.t();
