@@ -217,14 +217,7 @@ pub fn choose_window_signals(
                         &accel.each_ref().map(|a| &a[..]),
                     )
                     .map_err(|e| {
-                        let e = sysid::SysidError::Sensor(Box::new(e));
-                        match records.len() {
-                            1 => e,
-                            _ => sysid::SysidError::InRecord {
-                                record: n.clone(),
-                                source: Box::new(e),
-                            },
-                        }
+                        sysid::SysidError::Sensor(Box::new(e)).in_record(n, records.len())
                     })?;
                     accel
                 }

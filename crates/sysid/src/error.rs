@@ -207,7 +207,7 @@ pub enum SysidError {
 impl SysidError {
     /// The error in record `name` of several (`count` records given): one
     /// record's error is said as it is.
-    pub(crate) fn in_record(self, name: &str, count: usize) -> Self {
+    pub fn in_record(self, name: &str, count: usize) -> Self {
         match count {
             1 => self,
             _ => SysidError::InRecord {
