@@ -30,6 +30,7 @@ pub mod error;
 pub mod explain;
 pub mod export;
 pub mod fit;
+pub mod fleet;
 pub mod model;
 mod numfmt;
 pub mod onboard;

@@ -37,5 +37,6 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Allan(a) => cli::allan::run(a, progress),
         Command::Export(a) => cli::export::run(a),
         Command::Demo(a) => cli::demo::run(a, progress),
+        Command::Fleet(a) => cli::fleet::run(a, progress),
     }
 }

@@ -1,6 +1,6 @@
 //! The summary statistics the workspace's crates share: [`mean`],
-//! [`variance`], [`std_dev`] and [`rms`] of a slice, and the [`correlation`]
-//! of two, in one place so that a
+//! [`variance`], [`std_dev`] and [`rms`] of a slice, the [`correlation`]
+//! of two, and the robust pair [`median`] and [`mad`], in one place so that a
 //! figure printed by one crate and checked by another is computed the same
 //! way, to the bit.
 //!
@@ -91,3 +91,53 @@ pub fn correlation(a: &[f64], b: &[f64]) -> f64 {
         sab / (saa * sbb).sqrt()
     }
 }
+
+/// The median: the middle value of the sorted slice, or the mean of the two
+/// middle ones for an even count; NaN for an empty slice or one holding a
+/// NaN (a NaN has no place in an order).
+///
+/// ```
+/// assert_eq!(stats::median(&[3.0, 1.0, 2.0]), 2.0);
+/// assert_eq!(stats::median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
+/// assert!(stats::median(&[]).is_nan());
+/// assert!(stats::median(&[1.0, f64::NAN]).is_nan());
+/// ```
+#[cfg(feature = "std")]
+pub fn median(x: &[f64]) -> f64 {
+    if x.is_empty() || x.iter().any(|v| v.is_nan()) {
+        return f64::NAN;
+    }
+    let mut s = x.to_vec();
+    s.sort_by(f64::total_cmp);
+    let n = s.len();
+    match n % 2 {
+        1 => s[n / 2],
+        _ => 0.5 * (s[n / 2 - 1] + s[n / 2]),
+    }
+}
+
+/// The median absolute deviation about the median, `median(|x − median(x)|)`,
+/// unscaled: for normal data `1.4826 · mad` ([`MAD_TO_SIGMA`]) estimates the
+/// standard deviation, and one outlier, however far, moves it by at most
+/// one rank.
+///
+/// ```
+/// assert_eq!(stats::mad(&[1.0, 2.0, 3.0, 4.0, 100.0]), 1.0);
+/// assert_eq!(stats::mad(&[5.0; 3]), 0.0);
+/// assert!(stats::mad(&[]).is_nan());
+/// ```
+#[cfg(feature = "std")]
+pub fn mad(x: &[f64]) -> f64 {
+    let m = median(x);
+    let dev: Vec<f64> = x.iter().map(|v| (v - m).abs()).collect();
+    median(&dev)
+}
+
+/// `1 / Φ⁻¹(3/4)`: the factor that makes [`mad`] a consistent estimate of
+/// the standard deviation of normal data.
+///
+/// ```
+/// // Φ⁻¹(3/4) = 0.674489750196…
+/// assert!((stats::MAD_TO_SIGMA * 0.674_489_750_196_081_7 - 1.0).abs() < 1e-12);
+/// ```
+pub const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;

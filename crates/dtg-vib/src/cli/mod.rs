@@ -21,6 +21,7 @@ pub mod export;
 pub mod findings;
 pub mod fit;
 pub mod fit_args;
+pub mod fleet;
 pub mod parse;
 pub mod report;
 pub mod residues;
@@ -88,4 +89,6 @@ pub enum Command {
     Export(export::ExportArgs),
     /// The main job on a built-in default: simulate, fit, compensate, report, diagnose, refit.
     Demo(demo::DemoArgs),
+    /// A lot of units: one unit's task, every task here, a Slurm or Kubernetes plan, the lot's summary.
+    Fleet(fleet::FleetArgs),
 }
