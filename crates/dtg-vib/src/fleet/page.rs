@@ -11,31 +11,50 @@ fn num(x: f64) -> String {
     format!("{x:.4}")
 }
 
-/// The strip plot of one group: units along x in the lot's order, each
-/// coefficient a dot with its interval, the median and median ± threshold
-/// robust standard deviations as lines.
-fn strip(g: &Group, threshold: f64) -> Figure {
-    let x: Vec<f64> = (1..=g.members.len()).map(|i| i as f64).collect();
+/// The strip plot of one group: each unit at its place in the manifest,
+/// its coefficient a dot with its interval (out of family in another
+/// colour), the median and median ± threshold robust standard deviations
+/// as lines.
+fn strip(g: &Group, s: &Summary) -> Figure {
+    let place = |id: &str| {
+        s.units
+            .iter()
+            .position(|u| u.id == id)
+            .map_or(f64::NAN, |k| k as f64 + 1.0)
+    };
+    let out = |id: &str| {
+        s.out_of_family
+            .iter()
+            .any(|o| o.unit == id && o.channel == g.channel && o.effect == g.effect)
+    };
     let (mut bx, mut by) = (Vec::new(), Vec::new());
-    for (i, m) in g.members.iter().enumerate() {
+    let (mut x, mut y, mut ox, mut oy) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for m in &g.members {
+        let at = place(&m.unit);
         // One segment per unit: a NaN between them breaks the line.
-        bx.extend([x[i], x[i], f64::NAN]);
+        bx.extend([at, at, f64::NAN]);
         by.extend([m.ci95[0], m.ci95[1], f64::NAN]);
+        match out(&m.unit) {
+            true => (ox.push(at), oy.push(m.value)),
+            false => (x.push(at), y.push(m.value)),
+        };
     }
-    let y: Vec<f64> = g.members.iter().map(|m| m.value).collect();
     let mut p = Panel::new(
         format!("{} on {}", g.effect, g.channel),
-        "unit (the manifest's order)",
+        "unit (its entry in the manifest, from 1)",
         format!("coefficient ({})", g.unit),
     )
     .series(Series::line("95% interval", bx, by).colour(0))
-    .series(Series::points("coefficient", x, y).colour(0))
-    .ref_line(g.median, "lot median");
+    .series(Series::points("coefficient", x, y).colour(0));
+    if !ox.is_empty() {
+        p = p.series(Series::points("out of family", ox, oy).colour(1));
+    }
+    p = p.ref_line(g.median, "lot median");
     if g.judged {
-        let w = threshold * g.robust_sigma;
+        let w = s.threshold * g.robust_sigma;
         p = p
-            .ref_line(g.median + w, format!("median ± {threshold} robust σ"))
-            .ref_line(g.median - w, "");
+            .ref_line(g.median + w, format!("median + {} robust σ", s.threshold))
+            .ref_line(g.median - w, format!("median − {} robust σ", s.threshold));
     }
     Figure::new(format!("{} on {} across the lot", g.effect, g.channel)).panel(p)
 }
@@ -89,7 +108,7 @@ fn verdicts(s: &Summary) -> Vec<Section> {
 
 fn group_section(g: &Group, s: &Summary, figures: &Path) -> Result<Section, SummaryError> {
     let stem = format!("{}_{}", g.channel, g.effect.replace([':', '/'], "_"));
-    let files = strip(g, s.threshold)
+    let files = strip(g, s)
         .save(figures, &stem)
         .map_err(|e| SummaryError::Page(e.to_string()))?;
     let mut t = Table::new(["unit", "value", "95% interval", "robust z"]);

@@ -226,6 +226,13 @@ pub fn write(
     cost: &Cost,
 ) -> Result<Plan, super::layout::LayoutError> {
     let r = Requests::of(cost);
+    // The engine runs elsewhere, from another folder: every path absolute.
+    let out = &Layout::new(std::path::absolute(out.root()).map_err(|source| {
+        super::layout::LayoutError::Io {
+            path: out.root().to_path_buf(),
+            source,
+        }
+    })?);
     let plan_dir = out.root().join("plan");
     let io = |path: &Path| {
         let path = path.to_path_buf();
