@@ -22,14 +22,14 @@ fn job_schema() -> jsonschema::Validator {
 
 fn errors(v: &jsonschema::Validator, job: &Value) -> Vec<String> {
     v.iter_errors(job)
-        .map(|e| format!("{}: {e}", e.instance_path))
+        .map(|e| format!("{}: {e}", e.instance_path()))
         .collect()
 }
 
 #[test]
 fn the_kubernetes_plan_is_an_indexed_job_the_schema_takes_with_a_measured_tasks_requests() {
     let tmp = tempfile::tempdir().unwrap();
-    let lot = lot(&tmp.path().join("lot"), 3, &[], &[], 10.0, "");
+    let lot = lot(&tmp.path().join("lot"), 3, &[], &[], 20.0, "");
     let out = tmp.path().join("out");
     let p = dtg(&[
         "--quiet",
@@ -102,7 +102,7 @@ fn the_kubernetes_plan_is_an_indexed_job_the_schema_takes_with_a_measured_tasks_
 #[test]
 fn the_slurm_plan_is_a_job_array_with_the_measured_requests() {
     let tmp = tempfile::tempdir().unwrap();
-    let lot = lot(&tmp.path().join("lot"), 3, &[], &[], 10.0, "");
+    let lot = lot(&tmp.path().join("lot"), 3, &[], &[], 20.0, "");
     let out = tmp.path().join("out");
     let o = out.to_str().unwrap();
     let m = lot.manifest.to_str().unwrap();

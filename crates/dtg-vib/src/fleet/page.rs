@@ -96,7 +96,7 @@ fn verdicts(s: &Summary) -> Vec<Section> {
     }
     vec![
         Section::new("Out of family").text(format!(
-            "A unit is out of family when its robust z (distance to the lot's median over 1.4826 × the median absolute deviation) is beyond {} and its own 95% interval excludes the lot's median; judged over {} units or more. {} found.",
+            "A unit is out of family when its robust z (distance to the lot's median over the lot's robust spread between units, 1.4826 × the median absolute deviation less the typical measurement variance, combined with the unit's own standard error) is beyond {} and its own 95% interval excludes the lot's median; judged over {} units or more. {} found.",
             s.threshold, s.min_units, s.out_of_family.len()
         )).table(ooft),
         Section::new("Failing the specification")
