@@ -34,6 +34,7 @@ fi
 export CARGO_TARGET_DIR=$root/target
 export PYO3_PYTHON=$venv/bin/python
 export PYO3_BUILD_EXTENSION_MODULE=1
+export PATH=$venv/bin:$PATH   # the pinned maturin, which pip's build runs
 (cd python && cargo fmt --check && cargo clippy --release --all-targets -- -D warnings)
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-deps --no-build-isolation --force-reinstall ./python

@@ -48,7 +48,11 @@ where
 }
 
 /// A value checked by one of the command's value parsers (`--ridge`, `--tol`, …).
-fn checked<T>(name: &str, value: impl ToString, parse: fn(&str) -> Result<T, String>) -> PyResult<T> {
+fn checked<T>(
+    name: &str,
+    value: impl ToString,
+    parse: fn(&str) -> Result<T, String>,
+) -> PyResult<T> {
     let text = value.to_string();
     parse(&text).map_err(|e| invalid(name, &text, e))
 }
@@ -68,10 +72,7 @@ impl FitArgs {
                 .map(|k| checked("max_centers", k, parse_count))
                 .transpose()?,
             ridge: checked("ridge", self.ridge, parse_ridge)?,
-            tol: self
-                .tol
-                .map(|t| checked("tol", t, parse_tol))
-                .transpose()?,
+            tol: self.tol.map(|t| checked("tol", t, parse_tol)).transpose()?,
             degree: self
                 .degree
                 .map(|d| parsed::<PolyTail>("degree", d))
@@ -99,7 +100,10 @@ fn default_size(s: &FitSettings, rows: usize, dim: usize) -> PyResult<Option<usi
     if matches!(s.stop, Some(StopArg::K(_))) {
         return Ok(None);
     }
-    let most = s.build(rows, s.width.rule()).map_err(raise)?.most_centres(rows, dim, 0);
+    let most = s
+        .build(rows, s.width.rule())
+        .map_err(raise)?
+        .most_centres(rows, dim, 0);
     Ok((1..k).contains(&most).then_some(most))
 }
 
@@ -127,7 +131,9 @@ pub fn fit_rbf(
     }
     let params = settings.params(rows, dim).map_err(raise)?;
     let fitted = detached(py, |checkpoint| {
-        train::fit(&settings, &params, x.as_ref(), y.as_ref(), &|_| checkpoint.check())
+        train::fit(&settings, &params, x.as_ref(), y.as_ref(), &|_| {
+            checkpoint.check()
+        })
     })?
     .map_err(raise)?;
     Ok(RbfModel {
@@ -238,14 +244,23 @@ impl RbfModel {
     }
 
     /// Pickling: the JSON, which predicts bit-identically once read back.
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let from_json = py.get_type::<RbfModel>().getattr("from_json")?;
         Ok((from_json, PyTuple::new(py, [self.to_json()?])?))
     }
 
     /// Writes the `rbf` command's model file (`rbf predict --model` reads it),
     /// atomically.
-    fn save(&self, path: PathBuf, inputs: Vec<String>, target: String, data: String) -> PyResult<()> {
+    fn save(
+        &self,
+        path: PathBuf,
+        inputs: Vec<String>,
+        target: String,
+        data: String,
+    ) -> PyResult<()> {
         SavedModel {
             target,
             inputs,

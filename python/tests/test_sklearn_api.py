@@ -36,6 +36,7 @@ def test_cross_val_score_and_grid_search():
     assert grid.best_estimator_.n_features_in_ == 5
 
 
+@pytest.mark.filterwarnings("ignore:X does not have valid feature names")
 def test_dataframe_in_sets_feature_names_and_checks_them():
     X, y = friedman(200)
     df = pd.DataFrame(X, columns=["a", "b", "c", "d", "e"])
