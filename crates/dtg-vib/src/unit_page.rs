@@ -9,27 +9,16 @@
 
 use crate::allan::AllanAnalysis;
 use crate::error::DtgVibError;
+pub use crate::report::Parity;
 use crate::report::{
-    DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, PageNumbers, Provenance, ReportExtras,
-    ResidueRms, build_page, fault_detection,
+    DiagnosisExtra, Evaluated, NoiseFloor, PageNumbers, Provenance, ReportExtras, build_page,
+    parity_on_samples,
 };
 use crate::unit_sensor::fdi::DEFAULT_FALSE_ALARM;
-use crate::unit_sensor::{
-    UnitModel, UnitSensor, gyros_before_after, residues_of, to_signals, unit_allan,
-};
+use crate::unit_sensor::{UnitModel, UnitSensor, gyros_before_after, to_signals, unit_allan};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
-
-/// The parity residues' rms before and after on every sample, and fault
-/// detection on the record as logged and compensated.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Parity {
-    /// Each residue's rms (none for three gyros).
-    pub residues: Vec<ResidueRms>,
-    /// Fault detection (four gyros or more).
-    pub fdi: Option<FdiShown>,
-}
 
 /// The residues and fault detection of `m` on `records` (segments of its
 /// unit's logs), every sample from the model's first full window on; σ
@@ -49,19 +38,7 @@ pub fn parity(
         });
     }
     let g = gyros_before_after(m, records)?;
-    let (pb, pa) = (residues_of(unit, &g.before), residues_of(unit, &g.after));
-    let residues = unit
-        .residue_names()
-        .iter()
-        .enumerate()
-        .map(|(k, n)| ResidueRms {
-            name: n.clone(),
-            before: stats::rms(&pb[k]),
-            after: Some(stats::rms(&pa[k])),
-        })
-        .collect();
-    let fdi = fault_detection(unit, &g.before, &g.after, sigma, p_fa);
-    Ok(Parity { residues, fdi })
+    Ok(parity_on_samples(unit, &g.before, &g.after, sigma, p_fa))
 }
 
 /// What a unit's page is made of besides the model and its records.
@@ -203,7 +180,7 @@ pub fn write_page(
         links: page.links,
         diagnosis: page.diagnosis,
         noise_floor: page.noise_floor,
-        fdi: parity.fdi.as_ref(),
+        parity: Some(&parity),
         lead: page.lead,
     };
     let base_on = base

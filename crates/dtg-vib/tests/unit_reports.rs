@@ -294,7 +294,10 @@ fn tetras_final_page_has_every_section_and_figure_of_the_papers() {
         t_figures.len()
     );
     let missing: Vec<&String> = p_sections.difference(&t_sections).collect();
-    assert!(missing.is_empty(), "sections missing for tetra: {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "sections missing for tetra: {missing:?}"
+    );
     let missing: Vec<&String> = p_figures.difference(&t_figures).collect();
     assert!(missing.is_empty(), "figures missing for tetra: {missing:?}");
     // The union of the two pages before issue 33: the paper's twelve
@@ -317,7 +320,13 @@ fn tetras_final_page_has_every_section_and_figure_of_the_papers() {
     }
     assert!(t_figures.len() >= 11, "{t_figures:?}");
     let page = std::fs::read_to_string(tetra.join("index.html")).unwrap();
-    assert!(page.contains("fault detection, compensated: "), "fault detection");
+    assert!(
+        page.contains("fault detection, compensated: "),
+        "fault detection"
+    );
     let page = std::fs::read_to_string(paper.join("index.html")).unwrap();
-    assert!(page.contains("fault detection, compensated: "), "the paper's too");
+    assert!(
+        page.contains("fault detection, compensated: "),
+        "the paper's too"
+    );
 }

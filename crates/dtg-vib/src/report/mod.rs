@@ -13,8 +13,8 @@ mod provenance;
 
 pub use allan::write_allan_report;
 pub use compensation::{
-    DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, PageNumbers, ReportExtras, ResidueRms,
-    build_page, fault_detection,
+    DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, PageNumbers, Parity, ReportExtras, ResidueRms,
+    build_page, parity_on_samples,
 };
 pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
 pub use paper_model::{Baseline, ReportSummary, build_report, write_report};

@@ -4,7 +4,7 @@
 //! goes once `demo`, `report` and `check --report` build the paper's page
 //! from its unit model through [`crate::unit_page::write_page`].
 
-use super::compensation::{Evaluated, ReportExtras, build_page, fault_detection};
+use super::compensation::{Evaluated, ReportExtras, build_page, parity_on_samples};
 use crate::allan::AllanAnalysis;
 use crate::apply::Applied;
 use crate::error::DtgVibError;
@@ -73,7 +73,8 @@ fn evaluated<'a>(
 /// Draws the figures into `dir` and returns the page (not yet written:
 /// [`HtmlReport::write`] it into `dir`, or into a parent of `dir`, whence its
 /// figure links still resolve) with the summary; `index` is `dir/index.html`.
-/// Fault detection (on the record as logged and compensated) and, unless
+/// The residues and fault detection on every sample (as logged and
+/// compensated) and, unless
 /// `extras` has it, the Allan analysis of the record are made here.
 pub fn build_report(
     model: &CompensationModel,
@@ -95,7 +96,7 @@ pub fn build_report(
         .iter()
         .map(|c| compensated.gyro(*c).to_vec())
         .collect();
-    let fdi = fault_detection(&unit, &before, &after, None, DEFAULT_FALSE_ALARM);
+    let parity = parity_on_samples(&unit, &before, &after, None, DEFAULT_FALSE_ALARM);
     // Too short a record for an Allan curve has none worth drawing.
     let own_allan = match extras.allan {
         Some(_) => None,
@@ -107,7 +108,7 @@ pub fn build_report(
         links: extras.links.clone(),
         diagnosis: extras.diagnosis.clone(),
         noise_floor: extras.noise_floor.clone(),
-        fdi: extras.fdi.or(fdi.as_ref()),
+        parity: extras.parity.or(Some(&parity)),
         lead: extras.lead.clone(),
     };
     let base = baseline.as_ref().map(|b| evaluated(b.model, b.applied));

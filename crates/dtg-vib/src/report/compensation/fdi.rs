@@ -3,11 +3,39 @@
 //! stated false-alarm probability under white noise of a σ given or read
 //! from the record ([`crate::unit_sensor::fdi`]).
 
-use super::inputs::FdiShown;
+use super::inputs::{FdiShown, Parity, ResidueRms};
 use crate::report::common::fmt;
 use crate::unit_sensor::fdi::{self, SigmaSource};
+use crate::unit_sensor::residues_of;
 use nalgebra::DVector;
 use nav_sensors::unit::Unit;
+use plot::Table;
+
+/// The residues' rms and fault detection on gyro series of `unit` (per
+/// channel, deg/h, every sample) as logged (`before`) and compensated
+/// (`after`): see [`fault_detection`].
+pub fn parity_on_samples(
+    unit: &Unit,
+    before: &[Vec<f64>],
+    after: &[Vec<f64>],
+    sigma: Option<f64>,
+    p_fa: f64,
+) -> Parity {
+    let (pb, pa) = (residues_of(unit, before), residues_of(unit, after));
+    Parity {
+        residues: unit
+            .residue_names()
+            .iter()
+            .zip(pb.iter().zip(&pa))
+            .map(|(n, (b, a))| ResidueRms {
+                name: n.clone(),
+                before: stats::rms(b),
+                after: Some(stats::rms(a)),
+            })
+            .collect(),
+        fdi: fault_detection(unit, before, after, sigma, p_fa),
+    }
+}
 
 /// Fault detection on gyro series of `unit` (per channel, deg/h, every
 /// sample) as logged (`before`) and compensated (`after`), σ given or read
@@ -15,7 +43,7 @@ use nav_sensors::unit::Unit;
 /// per sample; `None` for three gyros, or when σ reads as 0 (a record
 /// without noise has no threshold: the page shows the residues without
 /// the test rather than no page).
-pub fn fault_detection(
+fn fault_detection(
     unit: &Unit,
     before: &[Vec<f64>],
     after: &[Vec<f64>],
@@ -50,6 +78,25 @@ fn parity_vectors(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
         }
     }
     out
+}
+
+/// The residues' rms on every sample as logged and compensated: the series
+/// fault detection tests.
+pub(super) fn table(p: &Parity) -> Table {
+    let mut t = Table::new([
+        "residue",
+        "rms as logged (deg/h)",
+        "rms compensated (deg/h)",
+    ])
+    .caption("Every sample from the model's first full window on: the record as logged, and as compensate writes it (the series fault detection tests).");
+    for r in &p.residues {
+        t = t.row([
+            r.name.clone(),
+            fmt(r.before),
+            r.after.map_or("—".into(), fmt),
+        ]);
+    }
+    t
 }
 
 /// The test as stated, then what it found on each series.

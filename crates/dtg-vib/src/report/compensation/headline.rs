@@ -65,7 +65,7 @@ fn done<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>, source: &str) -> String 
         ctx.samples,
         fmt(1.0 / ctx.dt),
     );
-    if let Some(f) = extras.fdi
+    if let Some(f) = extras.parity.and_then(|p| p.fdi.as_ref())
         && let Some((what, last)) = f.found.last()
     {
         text.push_str(&format!(

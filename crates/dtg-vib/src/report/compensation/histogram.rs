@@ -71,29 +71,25 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
             ),
             None => format!("Channel {ch}: σ {} deg/h", fmt(sd)),
         };
+        // The normal density of the residual's mean and a σ, in counts per bin.
+        let normal = |label: &str, sigma: f64, line: fn(String, Vec<f64>, Vec<f64>) -> Series| {
+            line(
+                label.to_string(),
+                x.clone(),
+                normal_counts(&x, n, w, mean, sigma),
+            )
+            .colour(colours::REFERENCE)
+        };
         let mut p = Panel::new(title, format!("residual {ch} (deg/h)"), "rows per bin")
             .series(Series::stems("residual", x.clone(), counts).colour(colours::AFTER));
-        if let Some(f) = floors {
-            let fsd = f[k];
-            if fsd > 0.0 {
-                p = p.series(
-                    Series::line(
-                        "noise floor (normal, σ of the floor)",
-                        x.clone(),
-                        normal_counts(&x, n, w, mean, fsd),
-                    )
-                    .colour(colours::REFERENCE),
-                );
-            }
+        if let Some(fsd) = floors.map(|f| f[k]).filter(|fsd| *fsd > 0.0) {
+            p = p.series(normal(
+                "noise floor (normal, σ of the floor)",
+                fsd,
+                Series::line,
+            ));
         }
-        p = p.series(
-            Series::dashed(
-                "normal, the residual's σ",
-                x.clone(),
-                normal_counts(&x, n, w, mean, sd),
-            )
-            .colour(colours::REFERENCE),
-        );
+        p = p.series(normal("normal, the residual's σ", sd, Series::dashed));
         fig = fig.panel(p);
     }
     (fig, "residual_histogram")

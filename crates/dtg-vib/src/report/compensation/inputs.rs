@@ -72,6 +72,16 @@ pub struct FdiShown {
     pub found: Vec<(String, FdiSummary)>,
 }
 
+/// The parity residues on every sample of the record as logged and as
+/// compensated (what `residues` writes), and fault detection on them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Parity {
+    /// Each residue's rms as logged and compensated (none for three gyros).
+    pub residues: Vec<ResidueRms>,
+    /// Fault detection (four gyros or more).
+    pub fdi: Option<FdiShown>,
+}
+
 /// What a page shows beyond the model and the record(s), when known
 /// (diagnosed channels of type `C`).
 pub struct ReportExtras<'a, C = Channel> {
@@ -87,8 +97,9 @@ pub struct ReportExtras<'a, C = Channel> {
     /// The record's noise floor, when known (a simulation's truth): the
     /// residual histogram is drawn against it.
     pub noise_floor: Option<NoiseFloor<'a>>,
-    /// Parity fault detection on the record as logged and compensated.
-    pub fdi: Option<&'a FdiShown>,
+    /// The parity residues on every sample as logged and compensated, with
+    /// fault detection.
+    pub parity: Option<&'a Parity>,
     /// Paragraphs the caller puts first (the demo's story).
     pub lead: Vec<String>,
 }
@@ -101,7 +112,7 @@ impl<C> Default for ReportExtras<'_, C> {
             links: Vec::new(),
             diagnosis: None,
             noise_floor: None,
-            fdi: None,
+            parity: None,
             lead: Vec::new(),
         }
     }

@@ -31,8 +31,10 @@ use std::fmt::Display;
 use std::path::Path;
 use sysid::{ChannelScores, Sensor};
 
-pub use fdi::fault_detection;
-pub use inputs::{DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, ReportExtras, ResidueRms};
+pub use fdi::parity_on_samples;
+pub use inputs::{
+    DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, Parity, ReportExtras, ResidueRms,
+};
 
 /// The numbers the page shows that a command prints too.
 #[derive(Debug, Clone, PartialEq)]

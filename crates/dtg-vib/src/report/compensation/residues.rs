@@ -273,7 +273,11 @@ pub(super) fn section<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>, drawn: &Dr
         )
         .text(SPECTRA_NOTE)
         .text(spectra_numbers(&p, ctx.window_s));
-    match extras.fdi {
+    let Some(parity) = extras.parity.filter(|p| !p.residues.is_empty()) else {
+        return sec;
+    };
+    let sec = sec.table(fdi::table(parity));
+    match &parity.fdi {
         Some(f) => fdi::paragraphs(f, ctx.unit)
             .into_iter()
             .fold(sec, |sec, text| sec.text(text)),
