@@ -2,13 +2,15 @@
 //! [`Unit`]. The keys here are a user contract: tests and scripts outside
 //! the project write such files, so a key is never renamed.
 
-use nalgebra::Vector3;
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::error::UnitError;
 use super::{
-    Accelerometer, Columns, Gyro, GyroModel, PERPENDICULAR_TOLERANCE, RateUnit, SpecificForceUnit,
-    Unit, Units,
+    Accelerometer, Columns, Gyro, GyroModel, NamedResidue, PERPENDICULAR_TOLERANCE,
+    RESIDUE_TOLERANCE, RateUnit, SpecificForceUnit, Unit, Units,
 };
 
 /// `[columns]`.
@@ -76,6 +78,15 @@ pub(crate) struct AccelFile {
     pub input: [f64; 3],
 }
 
+/// One `[[residue]]`: a named parity residue, its weight on each gyro's
+/// output by gyro name (a gyro not listed weighs zero).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ResidueFile {
+    pub name: String,
+    pub weights: BTreeMap<String, f64>,
+}
+
 /// The whole file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -89,6 +100,8 @@ pub(crate) struct UnitFile {
     pub gyro: Vec<GyroFile>,
     #[serde(default)]
     pub accel: Vec<AccelFile>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub residue: Vec<ResidueFile>,
 }
 
 impl UnitFile {
@@ -162,6 +175,13 @@ impl UnitFile {
                 input: axis(file, &format!("accel[{k}].input"), &a.name, a.input)?,
             });
         }
+        for (k, r) in self.residue.iter().enumerate() {
+            claim(
+                format!("residue[{k}].name"),
+                &r.name,
+                format!("residue[{k}]"),
+            )?;
+        }
         for (key, what, axes) in [
             (
                 "gyro",
@@ -185,6 +205,7 @@ impl UnitFile {
                 });
             }
         }
+        let residues = residues(file, &self.residue, &gyros)?;
         Ok(Unit::assemble(
             self.name,
             Columns {
@@ -198,9 +219,73 @@ impl UnitFile {
             },
             gyros,
             accels,
+            residues,
             file.to_string(),
         ))
     }
+}
+
+/// The `[[residue]]` tables checked against the gyros: every weight names
+/// a gyro and is finite, each residue cancels any rate (its weights lie in
+/// H's left null space to [`RESIDUE_TOLERANCE`]), and together they span
+/// the whole parity space (n − 3 dimensions), so no fault escapes them.
+fn residues(
+    file: &str,
+    tables: &[ResidueFile],
+    gyros: &[Gyro],
+) -> Result<Vec<NamedResidue>, UnitError> {
+    if tables.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut out = Vec::with_capacity(tables.len());
+    for (k, r) in tables.iter().enumerate() {
+        let mut weights = vec![0.0; gyros.len()];
+        for (gyro, &w) in &r.weights {
+            let key = format!("residue[{k}].weights.{gyro}");
+            let j = gyros.iter().position(|g| &g.name == gyro).ok_or_else(|| {
+                UnitError::ResidueGyro {
+                    file: file.to_string(),
+                    key: key.clone(),
+                    gyros: gyros.iter().map(|g| g.name.clone()).collect(),
+                }
+            })?;
+            if !w.is_finite() {
+                return Err(UnitError::ResidueWeight {
+                    file: file.to_string(),
+                    key,
+                    value: w,
+                });
+            }
+            weights[j] = w;
+        }
+        let scale: f64 = weights.iter().map(|w| w.abs()).sum();
+        let rate: Vector3<f64> = gyros.iter().zip(&weights).map(|(g, w)| g.input * *w).sum();
+        if scale == 0.0 || rate.amax() > RESIDUE_TOLERANCE * scale {
+            return Err(UnitError::ResidueSeesRate {
+                file: file.to_string(),
+                key: format!("residue[{k}]"),
+                name: r.name.clone(),
+                rate: [rate.x, rate.y, rate.z],
+                scale,
+            });
+        }
+        out.push(NamedResidue {
+            name: r.name.clone(),
+            weights,
+        });
+    }
+    let w = DMatrix::from_fn(out.len(), gyros.len(), |i, j| out[i].weights[j]);
+    let sv = w.singular_values();
+    let rank = sv.iter().filter(|s| **s > 1e-6 * sv.max()).count();
+    let needed = gyros.len().saturating_sub(3);
+    if rank != needed {
+        return Err(UnitError::ResiduesSpan {
+            file: file.to_string(),
+            rank,
+            needed,
+        });
+    }
+    Ok(out)
 }
 
 impl GyroFile {
@@ -299,6 +384,20 @@ impl From<&Unit> for UnitFile {
                 .map(|a| AccelFile {
                     name: a.name.clone(),
                     input: arr(&a.input),
+                })
+                .collect(),
+            residue: u
+                .named_residues()
+                .iter()
+                .map(|r| ResidueFile {
+                    name: r.name.clone(),
+                    weights: u
+                        .gyros()
+                        .iter()
+                        .zip(&r.weights)
+                        .filter(|(_, w)| **w != 0.0)
+                        .map(|(g, w)| (g.name.clone(), *w))
+                        .collect(),
                 })
                 .collect(),
         }
