@@ -7,7 +7,6 @@ use super::inputs::{FdiShown, Parity, ResidueRms};
 use crate::report::common::fmt;
 use crate::unit_sensor::fdi::{self, SigmaSource};
 use crate::unit_sensor::residues_of;
-use nalgebra::DVector;
 use nav_sensors::unit::Unit;
 use plot::Table;
 
@@ -68,13 +67,15 @@ fn fault_detection(
 
 /// V·m per sample of gyro series (per channel, equal lengths), per row of V.
 fn parity_vectors(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let v = unit.parity_matrix();
     let len = gyros.first().map_or(0, Vec::len);
-    let mut out = vec![Vec::with_capacity(len); v.nrows()];
+    let mut out = vec![Vec::with_capacity(len); unit.parity_matrix().nrows()];
+    let mut row = vec![0.0; gyros.len()];
     for i in 0..len {
-        let m = DVector::from_iterator(gyros.len(), gyros.iter().map(|g| g[i]));
-        for (o, p) in out.iter_mut().zip((v * m).iter()) {
-            o.push(*p);
+        for (r, g) in row.iter_mut().zip(gyros) {
+            *r = g[i];
+        }
+        for (o, p) in out.iter_mut().zip(unit.parity_vector(&row)) {
+            o.push(p);
         }
     }
     out
