@@ -162,7 +162,11 @@ pub(crate) fn parse_format(payload: &[u8]) -> Result<FormatDef, String> {
         .split(';')
         .filter(|f| !f.trim().is_empty())
         .map(|f| parse_field(f).map_err(|e| format!("{name}: field '{}': {e}", shorten(f))))
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<RawField>, _>>()?;
+    let mut seen = std::collections::HashSet::new();
+    if let Some(f) = fields.iter().find(|f| !seen.insert(f.name.as_str())) {
+        return Err(format!("{name}: field '{}' appears twice", f.name));
+    }
     Ok(FormatDef {
         name: name.to_string(),
         fields,

@@ -50,6 +50,23 @@ impl Joined {
             .find(|(n, _)| n == name)
             .map(|(_, v)| v.as_slice())
     }
+
+    /// The columns some of whose rows were interpolated, each with its
+    /// stream's report: a gyro among them has been resampled, and the
+    /// caller says so.
+    pub fn interpolated_columns(&self) -> Vec<(&str, &StreamReport)> {
+        let asked = |c: &String| self.columns.iter().any(|(n, _)| n == c);
+        self.streams
+            .iter()
+            .filter(|s| s.interpolated_rows > 0)
+            .flat_map(|s| {
+                s.columns
+                    .iter()
+                    .filter(|c| asked(c))
+                    .map(move |c| (c.as_str(), s))
+            })
+            .collect()
+    }
 }
 
 /// How one stream (a topic instance with its time source) met the rows.

@@ -78,6 +78,8 @@ fn the_base_rows_stay_and_a_slower_topic_is_interpolated_inside_its_span_and_not
     assert_eq!((other.exact_rows, other.interpolated_rows), (4, 13)); // 12, 32, 52, 112 ms on its samples
     assert_eq!((other.rows_outside, other.rows_in_gap), (3, 10));
     assert_eq!(j.rows_dropped, 13);
+    let resampled: Vec<&str> = j.interpolated_columns().iter().map(|(c, _)| *c).collect();
+    assert_eq!(resampled, ["a"]);
     assert_eq!(
         other.line(),
         "imu[1] (a): 9 samples, median step 10.000 ms; rows: 4 on its samples, 13 interpolated linearly, 3 outside its span and 10 in its gaps dropped"

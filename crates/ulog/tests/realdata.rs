@@ -103,6 +103,7 @@ fn same_samples(ulg: &str, csv_name: &str, table: UlogTable) {
         "{ulg}: {}",
         accel.line()
     );
+    assert!(joined.interpolated_columns().is_empty());
 }
 
 fn triad() -> UlogTable {
@@ -234,6 +235,10 @@ fn multi_instance_topics_are_listed_and_read_by_instance() {
         assert!(v.iter().all(|x| x.abs() < 0.05), "{name}: {v:?}");
     }
     assert_eq!(joined.streams.len(), 3);
+    // The two other IMUs sample at their own instants: their rows are
+    // interpolated onto instance 0's, and the join says so.
+    let resampled: Vec<&str> = joined.interpolated_columns().iter().map(|(c, _)| *c).collect();
+    assert_eq!(resampled, ["g1", "g2"]);
 }
 
 #[test]
