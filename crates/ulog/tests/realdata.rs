@@ -237,7 +237,11 @@ fn multi_instance_topics_are_listed_and_read_by_instance() {
     assert_eq!(joined.streams.len(), 3);
     // The two other IMUs sample at their own instants: their rows are
     // interpolated onto instance 0's, and the join says so.
-    let resampled: Vec<&str> = joined.interpolated_columns().iter().map(|(c, _)| *c).collect();
+    let resampled: Vec<&str> = joined
+        .interpolated_columns()
+        .iter()
+        .map(|(c, _)| *c)
+        .collect();
     assert_eq!(resampled, ["g1", "g2"]);
 }
 
