@@ -148,7 +148,7 @@ pub enum UlogError {
     },
     /// The join left fewer than two rows.
     #[error(
-        "{file}: {rows} row(s) of {base} have a value of every column ({reason}); the topics mapped do not overlap in time"
+        "{file}: {rows} row(s) of {base} have a value of every column, a record needs two: {reason}"
     )]
     NothingJoined {
         file: String,

@@ -367,7 +367,6 @@ fn align(
     if kept.len() < 2 {
         let reason = streams
             .iter()
-            .skip(1)
             .map(|s| s.report.line())
             .collect::<Vec<_>>()
             .join("; ");

@@ -171,10 +171,10 @@ fn refusals() {
         .join(&log, &["g", "a"], 3.0)
         .unwrap_err()
         .to_string();
-    assert!(
-        err.starts_with(
-            "t.ulg: 0 row(s) of imu[0] have a value of every column (imu[1] (a): 2 samples"
-        ),
-        "{err}"
+    assert_eq!(
+        err,
+        "t.ulg: 0 row(s) of imu[0] have a value of every column, a record needs two: \
+         imu[0] (g): 2 samples, median step 1.000 ms; rows: 2 on its samples; \
+         imu[1] (a): 2 samples, median step 1.000 ms; rows: 0 on its samples, 2 outside its span and 0 in its gaps dropped"
     );
 }
