@@ -369,45 +369,69 @@ impl UnitCalibration {
         Ok(record.with_gyro_series(gyro).with_accel_series(accel))
     }
 
-    /// The accelerometers compensated: the static inverse of the three
+    /// The accelerometers compensated, IMU by IMU (the accelerometers
+    /// naming no IMU are one group): the static inverse of a group's three
     /// jointly when they are the unit axes x, y, z (in any order), else
     /// their outputs unchanged.
     fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
-        let raw: Vec<Vec<f64>> = (0..unit.accels().len())
+        let mut out: Vec<Vec<f64>> = (0..unit.accels().len())
             .map(|k| record.accel_at(k).to_vec())
             .collect();
-        let axis_of: Vec<Option<Axis>> = unit
-            .accels()
-            .iter()
-            .map(|a| Axis::ALL.into_iter().find(|x| a.input == x.unit_vector()))
-            .collect();
-        let on_axes = axis_of.len() == 3 && Axis::ALL.iter().all(|x| axis_of.contains(&Some(*x)));
-        if !on_axes {
-            return raw;
+        let mut groups: Vec<&Option<String>> = Vec::new();
+        for a in unit.accels() {
+            if !groups.contains(&&a.imu) {
+                groups.push(&a.imu);
+            }
         }
-        let by_axis: [usize; 3] =
-            Axis::ALL.map(|x| axis_of.iter().position(|a| *a == Some(x)).expect("checked"));
+        for imu in groups {
+            let members: Vec<usize> = (0..unit.accels().len())
+                .filter(|&k| unit.accels()[k].imu == *imu)
+                .collect();
+            if let Some(by_axis) = triad(unit, &members) {
+                self.compensate_accel_triad(unit, by_axis, &mut out);
+            }
+        }
+        out
+    }
+
+    /// Replaces the outputs of the triad `by_axis` (accelerometer indices
+    /// on x, y, z) by their static inverse.
+    fn compensate_accel_triad(&self, unit: &Unit, by_axis: [usize; 3], out: &mut [Vec<f64>]) {
         let coefficients = by_axis.map(|k| {
             self.accels
                 .get(&unit.accels()[k].name)
                 .copied()
                 .unwrap_or_default()
         });
-        let mut out: Vec<Vec<f64>> = raw
-            .iter()
-            .map(|_| Vec::with_capacity(record.len()))
-            .collect();
-        // i indexes the three columns at once.
+        let n = out[by_axis[0]].len();
+        let mut compensated: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
+        // i indexes the triad's three columns at once.
         #[allow(clippy::needless_range_loop)]
-        for i in 0..record.len() {
-            let m = Vector3::from(by_axis.map(|k| raw[k][i]));
+        for i in 0..n {
+            let m = Vector3::from(by_axis.map(|k| out[k][i]));
             let a = compensate_triad(&coefficients, &m);
-            for (j, &k) in by_axis.iter().enumerate() {
-                out[k].push(a[j]);
+            for (c, v) in compensated.iter_mut().zip(a.iter()) {
+                c.push(*v);
             }
         }
-        out
+        for (k, c) in by_axis.into_iter().zip(compensated) {
+            out[k] = c;
+        }
     }
+}
+
+/// The accelerometers `members` (indices) on x, y, z, when they are
+/// exactly the three unit axes, one each.
+fn triad(unit: &Unit, members: &[usize]) -> Option<[usize; 3]> {
+    if members.len() != 3 {
+        return None;
+    }
+    let on = |k: usize, x: Axis| unit.accels()[k].input == x.unit_vector();
+    let by_axis = Axis::ALL.map(|x| members.iter().copied().find(|&k| on(k, x)));
+    let [Some(x), Some(y), Some(z)] = by_axis else {
+        return None;
+    };
+    Some([x, y, z])
 }
 
 /// The paper's calibration as the paper unit's: each channel's DTG table
