@@ -1,14 +1,36 @@
-//! Section "Residues (eq. 6)": the residue table on the validation rows,
-//! Fig. 7 (residues with and without compensation) and the residue spectra.
+//! Section "Parity residues": the unit's residues (the paper's eq. 6 for
+//! its unit, V·m otherwise) on the validation rows, Fig. 7 (residues with
+//! and without compensation), where their power is and their spectra, and
+//! fault detection on them; for a unit of three gyros, why there is none.
 
 use super::ctx::{Ctx, pick};
+use super::fdi;
+use super::inputs::{ReportExtras, ResidueRms};
 use crate::report::common::{Drawn, fmt};
 use crate::report::common::{colours, positive_freq};
-use nav_sensors::geometry::Residue;
 use plot::{Figure, Panel, Section, Series, Table};
 
-/// The section's figures, with their file stems.
+/// The section's heading, which the summary names.
+pub(super) const TITLE: &str = "Parity residues";
+
+/// `before / after` of a residue's rms.
+pub(super) fn reduction(s: &ResidueRms) -> f64 {
+    s.before / s.after.unwrap_or(f64::NAN)
+}
+
+/// Why a unit has no residue, in a sentence.
+pub(super) fn no_residue(ctx: &Ctx<'_>) -> String {
+    format!(
+        "The unit has {} gyros: nothing is redundant, so it has no parity residue and no fault detection; its channels are judged against the rate reference (Summary).",
+        ctx.unit.gyros().len()
+    )
+}
+
+/// The section's figures, with their file stems (none for three gyros).
 pub(super) fn figures(ctx: &Ctx<'_>) -> Vec<(Figure, &'static str)> {
+    if ctx.stats.is_empty() {
+        return Vec::new();
+    }
     vec![
         (fig7(ctx), "fig7_residues"),
         (spectra(ctx), "residue_spectra"),
@@ -18,7 +40,7 @@ pub(super) fn figures(ctx: &Ctx<'_>) -> Vec<(Figure, &'static str)> {
 /// Fig. 7: residues with and without compensation, the training rows shaded
 /// as in "Measured against predicted".
 fn fig7(ctx: &Ctx<'_>) -> Figure {
-    let res = &ctx.applied.residues;
+    let res = &ctx.residues;
     let train = super::fit::training_spans(ctx);
     let mut fig7 = Figure::new(if train.is_some() {
         "Fig. 7 — residues with and without compensation (shaded: training rows; the rest: validation)"
@@ -26,15 +48,15 @@ fn fig7(ctx: &Ctx<'_>) -> Figure {
         "Fig. 7 — residues with and without compensation (interleaved split: alternate rows train and validate)"
     })
     .share_x();
-    for r in Residue::ALL {
-        let k = r.index();
-        let p = Panel::new(r.name(), "time (s)", format!("{} (deg/h)", r.name()))
+    for (k, name) in res.names.iter().enumerate() {
+        let t = &ctx.rows_t;
+        let p = Panel::new(name.as_str(), "time (s)", format!("{name} (deg/h)"))
             .series(
-                Series::line("without compensation", res.t.clone(), res.before[k].clone())
+                Series::line("without compensation", t.clone(), res.before[k].clone())
                     .colour(colours::BEFORE),
             )
             .series(
-                Series::line("with compensation", res.t.clone(), res.after[k].clone())
+                Series::line("with compensation", t.clone(), res.after[k].clone())
                     .colour(colours::AFTER),
             );
         fig7 = fig7.panel(super::fit::shade_training(p, train.as_deref()));
@@ -51,15 +73,14 @@ fn segment(n: usize) -> usize {
 /// The validation rows' sample rate (alternate rows of an interleaved
 /// split are two samples apart).
 fn fs_val(ctx: &Ctx<'_>) -> f64 {
-    1.0 / ctx.record.dt() / crate::split::row_spacing(&ctx.applied.val) as f64
+    1.0 / ctx.dt / crate::split::row_spacing(ctx.val) as f64
 }
 
 /// Residue `k` before and after on the validation rows.
 fn before_after(ctx: &Ctx<'_>, k: usize) -> (Vec<f64>, Vec<f64>) {
-    let val = &ctx.applied.val;
     (
-        pick(&ctx.applied.residues.before[k], val),
-        pick(&ctx.applied.residues.after[k], val),
+        pick(&ctx.residues.before[k], ctx.val),
+        pick(&ctx.residues.after[k], ctx.val),
     )
 }
 
@@ -68,8 +89,8 @@ fn before_after(ctx: &Ctx<'_>, k: usize) -> (Vec<f64>, Vec<f64>) {
 fn spectra(ctx: &Ctx<'_>) -> Figure {
     let fs = fs_val(ctx);
     let mut spectra = Figure::new("Residue spectra on the validation rows (segment means removed)");
-    for r in Residue::ALL {
-        let (b, a) = before_after(ctx, r.index());
+    for (k, name) in ctx.residues.names.iter().enumerate() {
+        let (b, a) = before_after(ctx, k);
         let seg = segment(b.len());
         if b.len() >= seg {
             let sb = nav_sensors::vibration::welch(&b, fs, seg);
@@ -77,7 +98,7 @@ fn spectra(ctx: &Ctx<'_>) -> Figure {
             let (fb, db) = positive_freq(&sb.frequency_hz, &sb.density);
             let (fa, da) = positive_freq(&sa.frequency_hz, &sa.density);
             spectra = spectra.panel(
-                Panel::psd(r.name(), "PSD ((deg/h)²/Hz)")
+                Panel::psd(name.as_str(), "PSD ((deg/h)²/Hz)")
                     .series(Series::line("without compensation", fb, db).colour(colours::BEFORE))
                     .series(Series::line("with compensation", fa, da).colour(colours::AFTER)),
             );
@@ -90,7 +111,7 @@ fn spectra(ctx: &Ctx<'_>) -> Figure {
 /// mean squared (0 Hz, which the spectra leave out), then the Welch spectrum
 /// integrated below 0.2 Hz, over 0.2–2 Hz and above 2 Hz.
 pub(super) struct Powers {
-    pub(super) residue: Residue,
+    pub(super) residue: String,
     pub(super) mean2: [f64; 2],
     pub(super) bands: [[f64; 2]; 3],
 }
@@ -103,8 +124,8 @@ pub(super) const BANDS: [(f64, f64); 3] = [(0.0, 0.2), (0.2, 2.0), (2.0, f64::IN
 pub(super) fn powers(ctx: &Ctx<'_>) -> Vec<Powers> {
     let fs = fs_val(ctx);
     let mut out = Vec::new();
-    for r in Residue::ALL {
-        let (b, a) = before_after(ctx, r.index());
+    for (k, name) in ctx.residues.names.iter().enumerate() {
+        let (b, a) = before_after(ctx, k);
         let seg = segment(b.len());
         if b.len() < seg {
             continue;
@@ -122,7 +143,7 @@ pub(super) fn powers(ctx: &Ctx<'_>) -> Vec<Powers> {
                 .sum::<f64>()
         };
         out.push(Powers {
-            residue: r,
+            residue: name.clone(),
             mean2: [mean(&b).powi(2), mean(&a).powi(2)],
             bands: BANDS.map(|bd| [band(&sb, bd), band(&sa, bd)]),
         });
@@ -145,11 +166,7 @@ fn power_table(p: &[Powers]) -> Table {
     ])
     .caption("Where the mean square is, (deg/h)², validation rows: the mean, then the Welch spectrum integrated over three bands.");
     for p in p {
-        let mut row = vec![
-            p.residue.name().to_string(),
-            fmt(p.mean2[0]),
-            fmt(p.mean2[1]),
-        ];
+        let mut row = vec![p.residue.clone(), fmt(p.mean2[0]), fmt(p.mean2[1])];
         for [b, a] in p.bands {
             row.push(fmt(b));
             row.push(fmt(a));
@@ -172,7 +189,7 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
         if a > b {
             rises.push(format!(
                 "{} {} → {} ({:.1}×)",
-                p.residue.name(),
+                p.residue,
                 fmt(b),
                 fmt(a),
                 a / b
@@ -181,14 +198,7 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
     }
     let removed: Vec<String> = p
         .iter()
-        .map(|p| {
-            format!(
-                "{} {} → {}",
-                p.residue.name(),
-                fmt(low(p, 0)),
-                fmt(low(p, 1))
-            )
-        })
+        .map(|p| format!("{} {} → {}", p.residue, fmt(low(p, 0)), fmt(low(p, 1))))
         .collect();
     let high: Vec<String> = p
         .iter()
@@ -196,7 +206,7 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
         .map(|p| {
             format!(
                 "{} {} → {}",
-                p.residue.name(),
+                p.residue,
                 fmt(p.bands[2][0]),
                 fmt(p.bands[2][1])
             )
@@ -225,9 +235,11 @@ fn spectra_numbers(p: &[Powers], window_s: f64) -> String {
 }
 
 /// The section, once its figures are drawn.
-pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
+pub(super) fn section<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>, drawn: &Drawn) -> Section {
+    if ctx.stats.is_empty() {
+        return Section::new(TITLE).text(no_residue(ctx));
+    }
     let p = powers(ctx);
-    let window_s = ctx.model.preprocess().window.length() as f64 * ctx.record.dt();
     let mut residue_table = Table::new([
         "residue",
         "rms before (deg/h)",
@@ -237,13 +249,18 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
     .caption("Validation rows of the model's split.");
     for s in &ctx.stats {
         residue_table = residue_table.row([
-            s.residue.name().to_string(),
-            fmt(s.rms_before),
-            fmt(s.rms_after),
-            format!("{:.2}×", s.reduction),
+            s.name.clone(),
+            fmt(s.before),
+            fmt(s.after.unwrap_or(f64::NAN)),
+            format!("{:.2}×", reduction(s)),
         ]);
     }
-    Section::new("Residues (eq. 6)")
+    let sec = Section::new(TITLE)
+        .text(format!(
+            "The residues {} are fixed combinations of the {} gyros' outputs in which the rate cancels (the unit's parity residues), so they show each compensation's gain without a rate reference; here of the pre-processed outputs (calibrated, low-passed), before and after subtracting each channel's prediction.",
+            ctx.residues.names.join(", "),
+            ctx.unit.gyros().len()
+        ))
         .table(residue_table)
         .figure(
             drawn.get("fig7_residues"),
@@ -255,5 +272,15 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
             "Residue spectra before and after, validation rows.",
         )
         .text(SPECTRA_NOTE)
-        .text(spectra_numbers(&p, window_s))
+        .text(spectra_numbers(&p, ctx.window_s));
+    let Some(parity) = extras.parity.filter(|p| !p.residues.is_empty()) else {
+        return sec;
+    };
+    let sec = sec.table(fdi::table(parity));
+    match &parity.fdi {
+        Some(f) => fdi::paragraphs(f, ctx.unit)
+            .into_iter()
+            .fold(sec, |sec, text| sec.text(text)),
+        None => sec,
+    }
 }

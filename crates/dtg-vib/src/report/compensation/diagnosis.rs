@@ -4,28 +4,19 @@
 //! with their coefficients), every column explained, and a link to the
 //! diagnosis page for the figures and the findings in full.
 
-use crate::diagnose::{Band, ChannelDiagnosis, Diagnosis};
+use super::inputs::DiagnosisExtra;
+use crate::diagnose::Band;
 use crate::report::common::{fmt, short};
 use crate::report::diagnosis::channel::candidate_cells;
 use crate::report::diagnosis::overview::failing_cell;
-use crate::report::diagnosis::reading::candidate_columns;
+use crate::report::diagnosis::reading::{Wording, candidate_columns};
+use nav_sensors::geometry::Axis;
 use plot::{Section, Table};
-use std::path::PathBuf;
-
-/// A diagnosis to summarise on the report page.
-pub struct DiagnosisExtra<'a> {
-    /// The diagnosis.
-    pub diagnosis: &'a Diagnosis,
-    /// Of which model, in words ("this model", "the baseline model").
-    pub of: String,
-    /// The ERR a suggestion needs (`RankOptions::min_err`).
-    pub min_err: f64,
-    /// Its full page (`write_diagnosis_report`'s index.html).
-    pub page: PathBuf,
-}
+use std::fmt::Display;
+use sysid::diagnose::ChannelDiagnosis;
 
 /// The segment with the largest residual rms, against the channel's.
-fn worst_segment(c: &ChannelDiagnosis) -> String {
+fn worst_segment<C>(c: &ChannelDiagnosis<C, Axis>) -> String {
     c.segments
         .iter()
         .max_by(|a, b| a.residual_rms.total_cmp(&b.residual_rms))
@@ -41,7 +32,7 @@ fn worst_segment(c: &ChannelDiagnosis) -> String {
 }
 
 /// The band furthest above the white floor.
-pub(super) fn top_band(c: &ChannelDiagnosis) -> Option<&Band> {
+pub(super) fn top_band<C>(c: &ChannelDiagnosis<C, Axis>) -> Option<&Band> {
     c.bands
         .iter()
         .max_by(|a, b| a.ratio_to_floor.total_cmp(&b.ratio_to_floor))
@@ -53,7 +44,7 @@ pub(super) fn band_name(b: &Band) -> String {
 }
 
 /// The band furthest above the white floor, as the table cell reads.
-fn worst_band(c: &ChannelDiagnosis) -> String {
+fn worst_band<C>(c: &ChannelDiagnosis<C, Axis>) -> String {
     top_band(c).map_or("—".into(), |b| {
         format!(
             "{}: {:.1}× the white floor ({:.0}% of the power)",
@@ -65,7 +56,7 @@ fn worst_band(c: &ChannelDiagnosis) -> String {
 }
 
 /// The acceleration axis the residual's mean follows most.
-fn worst_regime(c: &ChannelDiagnosis) -> String {
+fn worst_regime<C>(c: &ChannelDiagnosis<C, Axis>) -> String {
     c.regimes
         .iter()
         .max_by(|a, b| a.mean_spread_sigma.total_cmp(&b.mean_spread_sigma))
@@ -75,7 +66,7 @@ fn worst_regime(c: &ChannelDiagnosis) -> String {
 }
 
 /// Section "Where it fails".
-fn where_it_fails(d: &DiagnosisExtra<'_>) -> Section {
+fn where_it_fails<C: Display>(d: &DiagnosisExtra<'_, C>) -> Section {
     let mut t = Table::new([
         "channel",
         "val rms (deg/h)",
@@ -90,7 +81,7 @@ fn where_it_fails(d: &DiagnosisExtra<'_>) -> Section {
     ));
     for c in &d.diagnosis.channels {
         t = t.row([
-            c.channel.name().to_string(),
+            c.channel.to_string(),
             fmt(c.rms),
             worst_segment(c),
             worst_band(c),
@@ -108,7 +99,7 @@ fn where_it_fails(d: &DiagnosisExtra<'_>) -> Section {
 }
 
 /// Section "Diagnosis".
-fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
+fn diagnosis<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &Wording) -> Section {
     let mut t = Table::new([
         "channel",
         "suggested",
@@ -132,7 +123,7 @@ fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
         };
         if shown.is_empty() {
             t = t.row([
-                c.channel.name().to_string(),
+                c.channel.to_string(),
                 "nothing".into(),
                 "—".into(),
                 "—".into(),
@@ -149,7 +140,7 @@ fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
                 c.suggested.join(", ")
             };
             t = t.row(
-                [c.channel.name().to_string(), suggested]
+                [c.channel.to_string(), suggested]
                     .into_iter()
                     .chain(candidate_cells(k)),
             );
@@ -169,12 +160,12 @@ fn diagnosis(d: &DiagnosisExtra<'_>) -> Section {
     }
     sec.text(format!(
         "Columns. suggested: the effects to add with --add-effect CHANNEL=ID (both thresholds passed), or nothing. top candidate: the suggestion, or the candidate that explains most when nothing passes. {}",
-        candidate_columns(d.min_err, &p),
+        candidate_columns(d.min_err, &p, wording),
     ))
     .link(d.page.clone(), "Every candidate, the findings and the tests' figures: the diagnosis page")
 }
 
 /// Both sections.
-pub(super) fn sections(d: &DiagnosisExtra<'_>) -> [Section; 2] {
-    [where_it_fails(d), diagnosis(d)]
+pub(super) fn sections<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &Wording) -> [Section; 2] {
+    [where_it_fails(d), diagnosis(d, wording)]
 }

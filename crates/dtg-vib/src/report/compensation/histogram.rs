@@ -4,20 +4,10 @@
 //! record's truth), and against the normal density of the residual's own
 //! mean and standard deviation.
 
-use super::ctx::{Ctx, pick};
+use super::ctx::{Ctx, mean_sd};
 use crate::report::common::colours;
 use crate::report::common::{Drawn, fmt};
-use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series, Table};
-
-/// What no model of the record can predict, per channel, when it is known.
-pub struct NoiseFloor<'a> {
-    /// Per channel (X, X1, Y, Y1, Z, Z1 order), the floor at every sample
-    /// of the record, deg/h (a simulation's `X_floor` … components).
-    pub per_sample: [&'a [f64]; 6],
-    /// Where it comes from, in words (shown on the page).
-    pub source: String,
-}
 
 /// Bin centres and counts of `v` in `bins` equal bins, with the bin width.
 fn histogram(v: &[f64], bins: usize) -> (Vec<f64>, Vec<f64>, f64) {
@@ -35,14 +25,6 @@ fn histogram(v: &[f64], bins: usize) -> (Vec<f64>, Vec<f64>, f64) {
     (centres, counts, w)
 }
 
-/// Mean and standard deviation (about the mean) of `v`.
-fn mean_sd(v: &[f64]) -> (f64, f64) {
-    let n = v.len().max(1) as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n).sqrt();
-    (mean, sd)
-}
-
 /// The expected count per bin of `n` normal values (mean, sd) in bins of width `w`.
 fn normal_counts(x: &[f64], n: f64, w: f64, mean: f64, sd: f64) -> Vec<f64> {
     x.iter()
@@ -53,58 +35,31 @@ fn normal_counts(x: &[f64], n: f64, w: f64, mean: f64, sd: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Each channel's validation residual after compensation.
-fn residual(ctx: &Ctx<'_>, ch: Channel) -> Vec<f64> {
-    let a = ctx.applied;
-    let y = pick(a.prepared.target(ch), &a.val);
-    let p = pick(&a.predicted[ch.index()], &a.val);
-    y.iter().zip(&p).map(|(y, p)| y - p).collect()
-}
-
-/// Each channel's noise floor as the model's target sees it: the per-sample
-/// floor through the model's pre-filter, standard deviation on the
-/// validation rows, deg/h. `None` when no floor is known (or it cannot be
-/// filtered like the targets).
-fn floor_sd(ctx: &Ctx<'_>) -> Option<[f64; 6]> {
-    let floor = ctx.noise_floor?;
-    let a = ctx.applied;
-    let first = a.prepared.first_sample();
-    let mut out = [0.0; 6];
-    for ch in Channel::ALL {
-        let series = floor.per_sample[ch.index()];
-        if series.len() != ctx.record.len() {
-            return None;
-        }
-        let filtered = a.prepared.filter_like_targets(series).ok()?;
-        let v: Vec<f64> = a.val.iter().map(|&r| filtered[first + r]).collect();
-        out[ch.index()] = mean_sd(&v).1;
-    }
-    Some(out)
-}
-
 /// Per channel, the validation residual's standard deviation and the noise
 /// floor's (deg/h), when a floor is known: the section's table, and the
 /// page's summary reads the same numbers.
-pub(super) fn residual_and_floor(ctx: &Ctx<'_>) -> Option<Vec<(Channel, f64, f64)>> {
-    let f = floor_sd(ctx)?;
+pub(super) fn residual_and_floor<'c>(ctx: &'c Ctx<'_>) -> Option<Vec<(&'c str, f64, f64)>> {
+    let (f, _) = ctx.floor.as_ref()?;
     Some(
-        Channel::ALL
-            .into_iter()
-            .map(|ch| (ch, mean_sd(&residual(ctx, ch)).1, f[ch.index()]))
+        ctx.channels
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (c.name.as_str(), mean_sd(&ctx.residual(k)).1, f[k]))
             .collect(),
     )
 }
 
 /// The figure, with its file stem.
 pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
-    let floors = floor_sd(ctx);
+    let floors = ctx.floor.as_ref().map(|(f, _)| f);
     let mut fig = Figure::new(if floors.is_some() {
         "Validation residual after compensation against the noise floor"
     } else {
         "Validation residual after compensation (no noise floor known)"
     });
-    for ch in Channel::ALL {
-        let r = residual(ctx, ch);
+    for (k, c) in ctx.channels.iter().enumerate() {
+        let ch = &c.name;
+        let r = ctx.residual(k);
         let (x, counts, w) = histogram(&r, 40);
         let n = r.len() as f64;
         let (mean, sd) = mean_sd(&r);
@@ -112,33 +67,29 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
             Some(f) => format!(
                 "Channel {ch}: σ {} deg/h, floor {} deg/h",
                 fmt(sd),
-                fmt(f[ch.index()])
+                fmt(f[k])
             ),
             None => format!("Channel {ch}: σ {} deg/h", fmt(sd)),
         };
+        // The normal density of the residual's mean and a σ, in counts per bin.
+        let normal = |label: &str, sigma: f64, line: fn(String, Vec<f64>, Vec<f64>) -> Series| {
+            line(
+                label.to_string(),
+                x.clone(),
+                normal_counts(&x, n, w, mean, sigma),
+            )
+            .colour(colours::REFERENCE)
+        };
         let mut p = Panel::new(title, format!("residual {ch} (deg/h)"), "rows per bin")
             .series(Series::stems("residual", x.clone(), counts).colour(colours::AFTER));
-        if let Some(f) = floors {
-            let fsd = f[ch.index()];
-            if fsd > 0.0 {
-                p = p.series(
-                    Series::line(
-                        "noise floor (normal, σ of the floor)",
-                        x.clone(),
-                        normal_counts(&x, n, w, mean, fsd),
-                    )
-                    .colour(colours::REFERENCE),
-                );
-            }
+        if let Some(fsd) = floors.map(|f| f[k]).filter(|fsd| *fsd > 0.0) {
+            p = p.series(normal(
+                "noise floor (normal, σ of the floor)",
+                fsd,
+                Series::line,
+            ));
         }
-        p = p.series(
-            Series::dashed(
-                "normal, the residual's σ",
-                x.clone(),
-                normal_counts(&x, n, w, mean, sd),
-            )
-            .colour(colours::REFERENCE),
-        );
+        p = p.series(normal("normal, the residual's σ", sd, Series::dashed));
         fig = fig.panel(p);
     }
     (fig, "residual_histogram")
@@ -147,8 +98,8 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
 /// The section, once its figure is drawn.
 pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
     let mut sec = Section::new("Residual distribution against the noise floor");
-    match (residual_and_floor(ctx), ctx.noise_floor) {
-        (Some(rows), Some(floor)) => {
+    match (residual_and_floor(ctx), &ctx.floor) {
+        (Some(rows), Some((_, source))) => {
             let mut t = Table::new([
                 "channel",
                 "residual σ (deg/h)",
@@ -157,17 +108,12 @@ pub(super) fn section(ctx: &Ctx<'_>, drawn: &Drawn) -> Section {
             ])
             .caption("Validation rows: the residual's standard deviation against the floor's.");
             for (ch, sd, fl) in rows {
-                t = t.row([
-                    ch.name().to_string(),
-                    fmt(sd),
-                    fmt(fl),
-                    format!("{:.2}×", sd / fl),
-                ]);
+                t = t.row([ch.to_string(), fmt(sd), fmt(fl), format!("{:.2}×", sd / fl)]);
             }
             sec = sec
                 .text(format!(
                     "The noise floor is what no model of this record can predict: {}. It is passed through the model's pre-filter (as the target was) and its standard deviation taken on the validation rows; the solid black curve is the normal density with that σ, centred on the residual's mean (the floor says nothing of the mean). A residual at the floor has a histogram on that curve and a ratio near 1; a wider histogram is error above the floor that this model does not predict: an effect it lacks (the diagnosis names those it can find among its candidates) or its own estimation error.",
-                    floor.source
+                    source
                 ))
                 .table(t);
         }

@@ -5,18 +5,24 @@
 //! 26 item 8: a final page whose residual stood ~3× the noise floor and
 //! whose bias instability rose on every channel said neither at the top).
 
-use super::ctx::{Ctx, ReportExtras};
-use super::diagnosis::{DiagnosisExtra, band_name, top_band};
+use super::ctx::Ctx;
+use super::diagnosis::{band_name, top_band};
+use super::inputs::{DiagnosisExtra, ReportExtras};
 use super::{histogram, residues};
 use crate::allan::{AllanAnalysis, SeriesAllan};
-use crate::report::common::fmt;
-use crate::report::common::short;
+use crate::report::common::{fmt, short};
 use nav_sensors::noise::{NoiseTerm, NoiseTerms};
+use std::fmt::Display;
 
-/// The summary's paragraphs: what was done, then "What is left: …" and
-/// "What got worse: …" when the page shows either.
-pub(super) fn paragraphs(ctx: &Ctx<'_>, extras: &ReportExtras<'_>, source: &str) -> Vec<String> {
-    let mut out = vec![done(ctx, source)];
+/// The summary's paragraphs: the caller's own first, what was done, then
+/// "What is left: …" and "What got worse: …" when the page shows either.
+pub(super) fn paragraphs<C: Display>(
+    ctx: &Ctx<'_>,
+    extras: &ReportExtras<'_, C>,
+    source: &str,
+) -> Vec<String> {
+    let mut out = extras.lead.clone();
+    out.push(done(ctx, extras, source));
     let left = left(ctx, extras);
     if !left.is_empty() {
         out.push(format!("What is left: {}", left.join(" ")));
@@ -28,17 +34,59 @@ pub(super) fn paragraphs(ctx: &Ctx<'_>, extras: &ReportExtras<'_>, source: &str)
     out
 }
 
-/// The record, the split and the residue rms reduction (section "Residues").
-fn done(ctx: &Ctx<'_>, source: &str) -> String {
+/// The unit, the record, the split, the residue rms reduction (section
+/// "Parity residues") and what fault detection found on the compensated
+/// record; for three gyros, why there is no residue.
+fn done<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>, source: &str) -> String {
+    let reduction = if ctx.stats.is_empty() {
+        residues::no_residue(ctx)
+    } else {
+        reduction(ctx)
+    };
+    let rows = if ctx.train.is_empty() {
+        format!(
+            "the model's split {} does not fit this record: its {} rows are all compared",
+            ctx.split,
+            ctx.val.len()
+        )
+    } else {
+        format!(
+            "split {} ({} training, {} validation rows)",
+            ctx.split,
+            ctx.train.len(),
+            ctx.val.len(),
+        )
+    };
+    let mut text = format!(
+        "Unit {} ({}). Record {} ({} samples at {} Hz); {rows}. {reduction}",
+        ctx.unit.name(),
+        ctx.unit.file(),
+        source,
+        ctx.samples,
+        fmt(1.0 / ctx.dt),
+    );
+    if let Some(f) = extras.parity.and_then(|p| p.fdi.as_ref())
+        && let Some((what, last)) = f.found.last()
+    {
+        text.push_str(&format!(
+            " Parity {}.",
+            crate::unit_sensor::fdi::line(what, last, &f.setting)
+        ));
+    }
+    text
+}
+
+/// How far the residue rms fell on the validation rows.
+fn reduction(ctx: &Ctx<'_>) -> String {
     let fell: Vec<f64> = ctx
         .stats
         .iter()
-        .map(|s| s.reduction)
+        .map(residues::reduction)
         .filter(|r| as_printed(*r, 2) > 1.0)
         .collect();
     let min_red = fell.iter().copied().fold(f64::INFINITY, f64::min);
     let max_red = fell.iter().copied().fold(0.0, f64::max);
-    let reduction = if fell.len() == ctx.stats.len() {
+    if fell.len() == ctx.stats.len() {
         format!("Residue rms fell {min_red:.2}× to {max_red:.2}× on the validation rows.")
     } else if fell.is_empty() {
         format!(
@@ -51,16 +99,7 @@ fn done(ctx: &Ctx<'_>, source: &str) -> String {
             fell.len(),
             ctx.stats.len()
         )
-    };
-    format!(
-        "Record {} ({} samples at {} Hz); split {} ({} training, {} validation rows). {reduction}",
-        source,
-        ctx.record.len(),
-        fmt(1.0 / ctx.record.dt()),
-        ctx.model.split(),
-        ctx.applied.train.len(),
-        ctx.applied.val.len(),
-    )
+    }
 }
 
 /// `lo–hi` of already-formatted numbers (one number when all are equal),
@@ -99,7 +138,7 @@ fn counted(
 
 /// What is left: the residual against the noise floor, the band most above
 /// the white floor, and whether the diagnosis names anything for it.
-fn left(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
+fn left<C: Display>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>) -> Vec<String> {
     let mut out = Vec::new();
     if let Some(rows) = histogram::residual_and_floor(ctx) {
         let ratios: Vec<(f64, String)> = rows
@@ -119,12 +158,12 @@ fn left(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
 }
 
 /// The band most above the white floor and what the diagnosis suggests.
-fn diagnosis_left(d: &DiagnosisExtra<'_>) -> Vec<String> {
+fn diagnosis_left<C: Display>(d: &DiagnosisExtra<'_, C>) -> Vec<String> {
     let chans = &d.diagnosis.channels;
     let mut out = Vec::new();
-    let bands: Vec<(&str, &crate::diagnose::Band)> = chans
+    let bands: Vec<(String, &crate::diagnose::Band)> = chans
         .iter()
-        .filter_map(|c| top_band(c).map(|b| (c.channel.name(), b)))
+        .filter_map(|c| top_band(c).map(|b| (c.channel.to_string(), b)))
         .collect();
     if let Some((_, first)) = bands.first() {
         let same = bands.iter().all(|(_, b)| band_name(b) == band_name(first));
@@ -197,7 +236,7 @@ fn diagnosis_left(d: &DiagnosisExtra<'_>) -> Vec<String> {
                 "; on {} {why}",
                 quiet
                     .iter()
-                    .map(|c| c.channel.name())
+                    .map(|c| c.channel.to_string())
                     .collect::<Vec<_>>()
                     .join(", ")
             )
@@ -213,45 +252,43 @@ fn diagnosis_left(d: &DiagnosisExtra<'_>) -> Vec<String> {
 
 /// What got worse: channels and residues against before and the baseline,
 /// the Allan terms, and the power compensation added at 0.2–2 Hz.
-fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
+fn worse<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>) -> Vec<String> {
     let mut out = Vec::new();
     // The Summary table: rms before (bias only) and after, and the
     // reduction as it prints it (a channel at "1.00×" did not get worse).
     let up: Vec<String> = ctx
-        .model
-        .channels()
+        .channels
         .iter()
-        .zip(&ctx.scores)
-        .map(|(c, s)| (c, s, s.val_rms_bias_only / s.val_rms))
-        .filter(|(_, _, r)| as_printed(*r, 2) < 1.0)
-        .map(|(c, s, r)| {
+        .map(|c| (c, c.scores.val_rms_bias_only / c.scores.val_rms))
+        .filter(|(_, r)| as_printed(*r, 2) < 1.0)
+        .map(|(c, r)| {
             format!(
                 "{} {} → {} deg/h ({r:.2}×)",
-                c.channel().name(),
-                fmt(s.val_rms_bias_only),
-                fmt(s.val_rms)
+                c.name,
+                fmt(c.scores.val_rms_bias_only),
+                fmt(c.scores.val_rms)
             )
         })
         .collect();
     out.extend(counted(
         "The validation rms after compensation is higher than before (a bias-only model)",
         &up,
-        (ctx.scores.len(), "channels"),
+        (ctx.channels.len(), "channels"),
         "Summary",
     ));
     // The residue table, its reduction as printed.
     let rose: Vec<String> = ctx
         .stats
         .iter()
-        .filter(|s| as_printed(s.reduction, 2) < 1.0)
-        .map(|s| {
+        .map(|s| (s, residues::reduction(s)))
+        .filter(|(_, r)| as_printed(*r, 2) < 1.0)
+        .map(|(s, r)| {
             format!(
-                "{} {} → {} deg/h ({:.2}×, {:.2}× worse)",
-                s.residue.name(),
-                fmt(s.rms_before),
-                fmt(s.rms_after),
-                s.reduction,
-                1.0 / s.reduction
+                "{} {} → {} deg/h ({r:.2}×, {:.2}× worse)",
+                s.name,
+                fmt(s.before),
+                fmt(s.after.unwrap_or(f64::NAN)),
+                1.0 / r
             )
         })
         .collect();
@@ -259,18 +296,17 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
         "Residue rms rose",
         &rose,
         (ctx.stats.len(), "residues"),
-        "Residues (eq. 6)",
+        residues::TITLE,
     ));
     // The "Before and after" table's change column.
-    if let Some((b, bs)) = ctx.baseline() {
+    if let Some(b) = &ctx.baseline {
         let up: Vec<String> = ctx
-            .scores
+            .channels
             .iter()
-            .zip(bs)
-            .zip(ctx.model.channels())
-            .map(|((new, old), c)| (c, 100.0 * (new.val_rms / old.val_rms - 1.0)))
+            .zip(&b.scores)
+            .map(|(new, old)| (new, 100.0 * (new.scores.val_rms / old.val_rms - 1.0)))
             .filter(|(_, change)| as_printed(*change, 1) > 0.0)
-            .map(|(c, change)| format!("{} {change:+.1}%", c.channel().name()))
+            .map(|(c, change)| format!("{} {change:+.1}%", c.name))
             .collect();
         if !up.is_empty() {
             out.push(format!(
@@ -299,12 +335,13 @@ fn worse(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Vec<String> {
     if !added.is_empty() {
         let (lo, hi) = residues::BANDS[1];
         out.push(format!(
-            "Compensation added power at {}–{} Hz to {} of {} residues ({}; Residues (eq. 6)).",
+            "Compensation added power at {}–{} Hz to {} of {} residues ({}; {}).",
             short(lo),
             short(hi),
             added.len(),
             powers.len(),
-            span(&added).replace('–', " to ")
+            span(&added).replace('–', " to "),
+            residues::TITLE
         ));
     }
     out

@@ -1,15 +1,16 @@
 //! Section "Summary": the table a test engineer reads first — each
 //! channel's validation rms before and after, its fit and effects — then
-//! the provenance and the other pages.
+//! the provenance, the other pages and what the colours mean.
 
 use super::channels::effect_cells;
-use super::ctx::{Ctx, ReportExtras};
+use super::ctx::Ctx;
+use super::inputs::ReportExtras;
 use crate::report::common::fmt;
 use plot::{Section, Table};
 
 /// The per-channel summary table: rms before (bias only) and after, on the
 /// validation rows.
-pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
+fn channel_table(ctx: &Ctx<'_>) -> Table {
     let mut t = Table::new([
         "channel",
         "rms before (deg/h)",
@@ -21,9 +22,10 @@ pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
     .caption(
         "Per channel, validation rows: rms before (a bias-only model) and after compensation; each fitted effect with its coefficient ± standard error, 95% interval and unit.",
     );
-    for (c, s) in ctx.model.channels().iter().zip(&ctx.scores) {
+    for c in &ctx.channels {
+        let s = &c.scores;
         t = t.row([
-            c.channel().name().to_string(),
+            c.name.clone(),
             fmt(s.val_rms_bias_only),
             fmt(s.val_rms),
             format!("{:.2}×", s.val_rms_bias_only / s.val_rms),
@@ -35,7 +37,7 @@ pub(super) fn channel_table(ctx: &Ctx<'_>) -> Table {
 }
 
 /// The section.
-pub(super) fn section(ctx: &Ctx<'_>, extras: &ReportExtras<'_>) -> Section {
+pub(super) fn section<C>(ctx: &Ctx<'_>, extras: &ReportExtras<'_, C>) -> Section {
     let mut sec = Section::new("Summary").table(channel_table(ctx));
     if let Some(p) = extras.provenance {
         sec = sec.table(p.table());

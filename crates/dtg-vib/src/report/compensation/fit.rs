@@ -4,7 +4,6 @@
 use super::ctx::Ctx;
 use crate::report::common::Drawn;
 use crate::report::common::colours;
-use nav_sensors::geometry::Channel;
 use plot::{Figure, Panel, Section, Series};
 
 /// Contiguous runs of `rows` as `(first time, last time)` spans.
@@ -31,7 +30,7 @@ fn spans(t: &[f64], rows: &[usize]) -> Vec<(f64, f64)> {
 /// split: it has as many runs as rows, and shading them would paint the
 /// whole axis, so the figures say it in their title instead.
 pub(super) fn training_spans(ctx: &Ctx<'_>) -> Option<Vec<(f64, f64)>> {
-    let train = spans(&ctx.applied.residues.t, &ctx.applied.train);
+    let train = spans(&ctx.rows_t, ctx.train);
     (train.len() <= 20).then_some(train)
 }
 
@@ -45,8 +44,7 @@ pub(super) fn shade_training(mut p: Panel, spans: Option<&[(f64, f64)]>) -> Pane
 
 /// The figure, with its file stem.
 pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
-    let a = ctx.applied;
-    let t = &a.residues.t;
+    let t = &ctx.rows_t;
     let train = training_spans(ctx);
     let shade = train.is_some();
     let mut fig = Figure::new(if shade {
@@ -55,15 +53,12 @@ pub(super) fn figure(ctx: &Ctx<'_>) -> (Figure, &'static str) {
         "Measured against predicted, all rows (interleaved split: alternate rows train and validate)"
     })
     .share_x();
-    for ch in Channel::ALL {
+    for c in &ctx.channels {
+        let ch = &c.name;
         let p = Panel::new(format!("Channel {ch}"), "time (s)", format!("{ch} (deg/h)"))
+            .series(Series::line("measured", t.clone(), c.target.to_vec()).colour(colours::BEFORE))
             .series(
-                Series::line("measured", t.clone(), a.prepared.target(ch).to_vec())
-                    .colour(colours::BEFORE),
-            )
-            .series(
-                Series::line("predicted", t.clone(), a.predicted[ch.index()].clone())
-                    .colour(colours::AFTER),
+                Series::line("predicted", t.clone(), c.predicted.to_vec()).colour(colours::AFTER),
             );
         fig = fig.panel(shade_training(p, train.as_deref()));
     }
