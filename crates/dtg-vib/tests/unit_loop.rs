@@ -234,6 +234,13 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
         }
     }
     blocks.reverse();
+    // The named residues (after the accelerometers) weigh the gyros by name.
+    let mut accels = accels.to_string();
+    for (o, n) in names.iter().zip(new) {
+        for sep in [" ", "\n"] {
+            accels = accels.replace(&format!("{sep}{o} = "), &format!("{sep}{n} = "));
+        }
+    }
     let renamed_text = format!(
         "{}[[gyro]]{}[[accel]]{accels}",
         head.replace("rate = \"deg/h\"", "rate = \"deg/s\"")
