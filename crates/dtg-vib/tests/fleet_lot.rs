@@ -41,6 +41,10 @@ fn a_lot_run_here_and_as_a_slurm_array_names_the_two_out_of_family_and_the_faile
         "{said}"
     );
     assert!(said.contains("SN0010 failed: "), "{said}");
+    assert!(
+        said.contains("a unit done now: ") && said.contains("on average over 23"),
+        "{said}"
+    );
 
     let s = summary(&out);
     let expected_out: Vec<String> = OUTLIERS

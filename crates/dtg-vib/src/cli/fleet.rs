@@ -253,6 +253,9 @@ fn run_all(manifest: &Path, out: &Path, jobs: Option<u64>, progress: Progress) -
             n => format!("{:.1} s a unit with {jobs} at a time", r.seconds / n as f64),
         }
     );
+    if let Some(line) = done_cost(&r.done) {
+        println!("{line}");
+    }
     for f in &r.failed {
         println!("{} failed: {}", f.id, f.reason);
     }
@@ -268,6 +271,29 @@ fn run_all(manifest: &Path, out: &Path, jobs: Option<u64>, progress: Progress) -
         );
     }
     Ok(())
+}
+
+/// What the units done now cost on average (the figure to plan a lot
+/// with: CPU time does not grow with the tasks run side by side as wall
+/// time does), and the largest peak memory.
+fn done_cost(done: &[TaskRecord]) -> Option<String> {
+    let cpu: Vec<f64> = done.iter().filter_map(|t| t.cost.cpu_seconds).collect();
+    let rss = done.iter().filter_map(|t| t.cost.max_rss_bytes).max();
+    if cpu.is_empty() {
+        return None;
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let wall: Vec<f64> = done.iter().map(|t| t.cost.seconds).collect();
+    Some(format!(
+        "a unit done now: {:.2} s CPU, {:.2} s wall on average over {}{}",
+        mean(&cpu),
+        mean(&wall),
+        cpu.len(),
+        rss.map_or(String::new(), |b| format!(
+            "; peak memory {:.0} MiB",
+            b as f64 / 1048576.0
+        ))
+    ))
 }
 
 /// The costliest done task of the lot, if any.

@@ -8,8 +8,9 @@
 //! yardstick, less the typical unit's measurement variance) combined with
 //! the unit's own standard error (its 95% interval's half-width / 1.96). A
 //! unit measured as well as the others gets the plain robust z; one
-//! measured worse gets a wider yardstick, as its value scatters more. The false-alarm rate of this rule on lots without an
-//! outlier is measured by `tests/fleet_false_alarm.rs` and stated in
+//! measured worse gets a wider yardstick, as its value scatters more.
+//! The false-alarm rate of this rule on lots without an outlier is
+//! measured by `tests/fleet_false_alarm.rs` and stated in
 //! docs/campaign.md.
 
 /// The robust z beyond which a unit is out of family.

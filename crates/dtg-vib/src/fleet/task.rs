@@ -279,9 +279,11 @@ fn page(m: &Manifest, entry: &Entry, stage: &Path, dir: &Path) -> Result<(), Dtg
         &model,
         &records,
         Page {
-            model_path: &dir.join(MODEL),
-            data: &data,
-            baseline: None,
+            files: entry
+                .calib
+                .iter()
+                .map(|(_, c)| ("calibration".to_string(), c.clone()))
+                .collect(),
             lead: vec![format!(
                 "Unit {} of the lot '{}': the final model of its explain loop on its records.",
                 entry.id, m.name
@@ -290,7 +292,7 @@ fn page(m: &Manifest, entry: &Entry, stage: &Path, dir: &Path) -> Result<(), Dtg
                 stage.join(DIAGNOSIS).join("index.html"),
                 "The diagnosis of this model (what is left)".to_string(),
             )],
-            also_into: None,
+            ..Page::new(&dir.join(MODEL), &data)
         },
         &stage.join(REPORT),
     )?;

@@ -123,7 +123,8 @@ pub struct Slurm {
 }
 
 impl Slurm {
-    /// Starts one in `dir`, or says why not (a notice) and gives `None`.
+    /// Starts one in `dir`, or, where slurm-wlm is not installed, says so
+    /// (a notice) and gives `None`.
     pub fn start(dir: &Path) -> Option<Self> {
         let script =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/slurm-single-node.sh");
@@ -136,6 +137,13 @@ impl Slurm {
             .arg(b.to_string())
             .output()
             .expect("bash runs");
+        // Exit 2: slurm-wlm is not installed, the one case skipped. Installed
+        // but not starting is a failure, so CI cannot pass without running it.
+        assert!(
+            o.status.success() || o.status.code() == Some(2),
+            "slurm-wlm is installed but the single-node Slurm did not start: {}",
+            text(&o)
+        );
         if !o.status.success() {
             eprintln!(
                 "notice: no single-node Slurm here, the Slurm run is skipped ({}): .ci/install-slurm.sh installs Debian's slurm-wlm",
