@@ -195,4 +195,28 @@ pub enum UnitError {
         /// n − 3.
         needed: usize,
     },
+    /// An empty `imu` name.
+    #[error("{file}: {key} is empty; name the IMU or leave the key out")]
+    EmptyImu {
+        /// The file.
+        file: String,
+        /// The key, e.g. `gyro[2].imu`.
+        key: String,
+    },
+    /// A gyro's IMU without accelerometers spanning three dimensions.
+    #[error(
+        "{file}: {key} = \"{imu}\": IMU {imu} has {count} accelerometer(s) whose input axes span {rank} dimension(s); a gyro's IMU needs accelerometers spanning all three (give them imu = \"{imu}\"), or leave the gyro's imu out"
+    )]
+    ImuAccelerometers {
+        /// The file.
+        file: String,
+        /// The gyro's key, e.g. `gyro[3].imu`.
+        key: String,
+        /// The IMU's name.
+        imu: String,
+        /// How many accelerometers the IMU has.
+        count: usize,
+        /// The dimension their input axes span.
+        rank: usize,
+    },
 }

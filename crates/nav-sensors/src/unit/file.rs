@@ -68,6 +68,8 @@ pub(crate) struct GyroFile {
     pub spin: Option<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu: Option<String>,
 }
 
 /// One `[[accel]]`.
@@ -76,6 +78,8 @@ pub(crate) struct GyroFile {
 pub(crate) struct AccelFile {
     pub name: String,
     pub input: [f64; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu: Option<String>,
 }
 
 /// One `[[residue]]`: a named parity residue, its weight on each gyro's
@@ -173,6 +177,7 @@ impl UnitFile {
             accels.push(Accelerometer {
                 name: a.name.clone(),
                 input: axis(file, &format!("accel[{k}].input"), &a.name, a.input)?,
+                imu: a.imu.clone(),
             });
         }
         for (k, r) in self.residue.iter().enumerate() {
@@ -205,6 +210,7 @@ impl UnitFile {
                 });
             }
         }
+        let imus = imus(file, &gyros, &accels)?;
         let residues = residues(file, &self.residue, &gyros)?;
         Ok(Unit::assemble(
             self.name,
@@ -220,9 +226,67 @@ impl UnitFile {
             gyros,
             accels,
             residues,
+            imus,
             file.to_string(),
         ))
     }
+}
+
+/// The `imu` keys checked: no empty name, and every IMU a gyro names has
+/// accelerometers whose input axes span 3-D (its specific force is what
+/// the gyro's model reads). Gives every IMU whose accelerometers span 3-D
+/// with their indices, in order of first appearance.
+fn imus(
+    file: &str,
+    gyros: &[Gyro],
+    accels: &[Accelerometer],
+) -> Result<Vec<(String, Vec<usize>)>, UnitError> {
+    let keys = gyros
+        .iter()
+        .enumerate()
+        .map(|(k, g)| (format!("gyro[{k}].imu"), &g.imu))
+        .chain(
+            accels
+                .iter()
+                .enumerate()
+                .map(|(k, a)| (format!("accel[{k}].imu"), &a.imu)),
+        );
+    for (key, imu) in keys {
+        if imu.as_ref().is_some_and(|n| n.trim().is_empty()) {
+            return Err(UnitError::EmptyImu {
+                file: file.to_string(),
+                key,
+            });
+        }
+    }
+    let members = |imu: &String| -> Vec<usize> {
+        (0..accels.len())
+            .filter(|&k| accels[k].imu.as_ref() == Some(imu))
+            .collect()
+    };
+    let span = |m: &[usize]| rank(&m.iter().map(|&k| accels[k].input).collect::<Vec<_>>());
+    for (k, g) in gyros.iter().enumerate() {
+        let Some(imu) = &g.imu else { continue };
+        let m = members(imu);
+        let rank = span(&m);
+        if rank < 3 {
+            return Err(UnitError::ImuAccelerometers {
+                file: file.to_string(),
+                key: format!("gyro[{k}].imu"),
+                imu: imu.clone(),
+                count: m.len(),
+                rank,
+            });
+        }
+    }
+    let mut spanning: Vec<(String, Vec<usize>)> = Vec::new();
+    for imu in accels.iter().filter_map(|a| a.imu.as_ref()) {
+        let m = members(imu);
+        if !spanning.iter().any(|(n, _)| n == imu) && span(&m) == 3 {
+            spanning.push((imu.clone(), m));
+        }
+    }
+    Ok(spanning)
 }
 
 /// The `[[residue]]` tables checked against the gyros: every weight names
@@ -341,6 +405,7 @@ impl GyroFile {
             name: g.name.clone(),
             input,
             model,
+            imu: g.imu.clone(),
         })
     }
 }
@@ -375,6 +440,7 @@ impl From<&Unit> for UnitFile {
                         input: arr(&g.input),
                         spin,
                         output,
+                        imu: g.imu.clone(),
                     }
                 })
                 .collect(),
@@ -384,6 +450,7 @@ impl From<&Unit> for UnitFile {
                 .map(|a| AccelFile {
                     name: a.name.clone(),
                     input: arr(&a.input),
+                    imu: a.imu.clone(),
                 })
                 .collect(),
             residue: u

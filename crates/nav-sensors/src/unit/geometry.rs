@@ -33,16 +33,72 @@ pub struct UnitGeometry {
     /// The residues' weights on the gyro outputs (rows in
     /// `residue_names` order): the named residues', else V.
     residue_weights: DMatrix<f64>,
-    /// `None` when the accelerometers are exactly the unit axes, one each:
-    /// then `axis_of[k]` says which unit axis accelerometer k reads.
-    accel_least_squares: Option<DMatrix<f64>>,
+    /// The unit's specific force from every accelerometer.
+    force: ForceSolver,
+    /// Each IMU's (by name) from its own accelerometers, for the IMUs
+    /// whose accelerometers span 3-D.
+    imu_force: Vec<(String, ForceSolver)>,
+}
+
+/// The specific force from some of the accelerometers (`indices`, unit
+/// order): their outputs themselves when they are exactly the unit axes,
+/// one each, else their least-squares combination.
+#[derive(Debug, Clone, PartialEq)]
+struct ForceSolver {
+    indices: Vec<usize>,
+    /// `None` on the unit axes: then `axis_of[j]` is the unit axis
+    /// `indices[j]` reads.
+    least_squares: Option<DMatrix<f64>>,
     axis_of: Vec<usize>,
+}
+
+impl ForceSolver {
+    /// The solver of accelerometers `indices` (their axes span 3-D).
+    fn new(accels: &[Accelerometer], indices: Vec<usize>) -> Self {
+        let axes: Vec<Vector3<f64>> = indices.iter().map(|&k| accels[k].input).collect();
+        let axis_of: Vec<usize> = axes
+            .iter()
+            .filter_map(|a| (0..3).find(|&j| *a == Vector3::ith(j, 1.0)))
+            .collect();
+        let on_axes = axes.len() == 3 && axis_of.len() == 3 && (0..3).all(|j| axis_of.contains(&j));
+        let least_squares =
+            (!on_axes).then(|| pseudo_inverse(&DMatrix::from_fn(axes.len(), 3, |i, j| axes[i][j])));
+        Self {
+            indices,
+            least_squares,
+            axis_of,
+        }
+    }
+
+    /// The specific force from a sample of every accelerometer.
+    fn solve(&self, a: &[f64]) -> Vector3<f64> {
+        match &self.least_squares {
+            None => {
+                let mut f = Vector3::zeros();
+                for (&k, &j) in self.indices.iter().zip(&self.axis_of) {
+                    f[j] = a[k];
+                }
+                f
+            }
+            Some(p) => {
+                let mine = DVector::from_iterator(p.ncols(), self.indices.iter().map(|&k| a[k]));
+                let f = p * mine;
+                Vector3::new(f[0], f[1], f[2])
+            }
+        }
+    }
 }
 
 impl UnitGeometry {
     /// Derives the geometry of validated sensors (input axes spanning 3-D;
-    /// named residues, if any, in H's left null space and spanning it).
-    pub(super) fn new(gyros: &[Gyro], accels: &[Accelerometer], named: &[NamedResidue]) -> Self {
+    /// named residues, if any, in H's left null space and spanning it;
+    /// `imus` the IMUs whose accelerometers span 3-D, with their indices).
+    pub(super) fn new(
+        gyros: &[Gyro],
+        accels: &[Accelerometer],
+        named: &[NamedResidue],
+        imus: Vec<(String, Vec<usize>)>,
+    ) -> Self {
         let n = gyros.len();
         let h = DMatrix::from_fn(n, 3, |i, j| gyros[i].input[j]);
         let parity = left_null_space(&h);
@@ -55,23 +111,18 @@ impl UnitGeometry {
                 DMatrix::from_fn(named.len(), n, |r, j| named[r].weights[j]),
             )
         };
-        let axes: Vec<Vector3<f64>> = accels.iter().map(|a| a.input).collect();
-        let axis_of: Vec<usize> = axes
-            .iter()
-            .filter_map(|a| (0..3).find(|&j| *a == Vector3::ith(j, 1.0)))
+        let imu_force = imus
+            .into_iter()
+            .map(|(name, indices)| (name, ForceSolver::new(accels, indices)))
             .collect();
-        let on_axes =
-            accels.len() == 3 && axis_of.len() == 3 && (0..3).all(|j| axis_of.contains(&j));
-        let accel_least_squares =
-            (!on_axes).then(|| pseudo_inverse(&DMatrix::from_fn(axes.len(), 3, |i, j| axes[i][j])));
         Self {
             least_squares: pseudo_inverse(&h),
             h,
             parity,
             residue_names,
             residue_weights,
-            accel_least_squares,
-            axis_of,
+            force: ForceSolver::new(accels, (0..accels.len()).collect()),
+            imu_force,
         }
     }
 
@@ -188,21 +239,29 @@ impl UnitGeometry {
     /// ```
     #[track_caller]
     pub fn specific_force(&self, a: &[f64]) -> Vector3<f64> {
-        match &self.accel_least_squares {
-            None => {
-                assert_eq!(a.len(), 3, "one output per accelerometer");
-                let mut f = Vector3::zeros();
-                for (k, &j) in self.axis_of.iter().enumerate() {
-                    f[j] = a[k];
-                }
-                f
-            }
-            Some(p) => {
-                assert_eq!(a.len(), p.ncols(), "one output per accelerometer");
-                let f = p * DVector::from_column_slice(a);
-                Vector3::new(f[0], f[1], f[2])
-            }
-        }
+        assert_eq!(
+            a.len(),
+            self.force.indices.len(),
+            "one output per accelerometer"
+        );
+        self.force.solve(a)
+    }
+
+    /// See [`super::Unit::imu_specific_force`].
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// assert!(u.geometry().imu_specific_force("imu1", &[0.0, 0.0, 1.0]).is_none());
+    /// ```
+    #[track_caller]
+    pub fn imu_specific_force(&self, imu: &str, a: &[f64]) -> Option<Vector3<f64>> {
+        assert_eq!(
+            a.len(),
+            self.force.indices.len(),
+            "one output per accelerometer"
+        );
+        let (_, solver) = self.imu_force.iter().find(|(n, _)| n == imu)?;
+        Some(solver.solve(a))
     }
 }
 

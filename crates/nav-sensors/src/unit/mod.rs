@@ -298,6 +298,9 @@ pub struct Gyro {
     pub input: Vector3<f64>,
     /// The error model (with a DTG's spin and output axes).
     pub model: GyroModel,
+    /// The IMU it belongs to (`imu = "NAME"`), when the unit groups its
+    /// sensors into IMUs.
+    pub imu: Option<String>,
 }
 
 impl Gyro {
@@ -333,6 +336,9 @@ pub struct Accelerometer {
     pub name: String,
     /// The input axis (unit vector, unit frame).
     pub input: Vector3<f64>,
+    /// The IMU it belongs to (`imu = "NAME"`), when the unit groups its
+    /// sensors into IMUs.
+    pub imu: Option<String>,
 }
 
 /// One `[[residue]]`: a parity residue the unit file names, with its
@@ -502,7 +508,9 @@ impl Unit {
         toml::to_string(&file::UnitFile::from(self)).expect("plain data serialises")
     }
 
-    /// Assembles a validated unit and derives its geometry.
+    /// Assembles a validated unit and derives its geometry (`imus`: the
+    /// IMUs whose accelerometers span 3-D, with their indices).
+    #[allow(clippy::too_many_arguments)]
     fn assemble(
         name: String,
         columns: Columns,
@@ -510,10 +518,11 @@ impl Unit {
         gyros: Vec<Gyro>,
         accels: Vec<Accelerometer>,
         residues: Vec<NamedResidue>,
+        imus: Vec<(String, Vec<usize>)>,
         file: String,
     ) -> Self {
         let paper_geometry = is_paper_geometry(&gyros);
-        let geometry = UnitGeometry::new(&gyros, &accels, &residues);
+        let geometry = UnitGeometry::new(&gyros, &accels, &residues, imus);
         Self {
             name,
             columns,
@@ -623,6 +632,46 @@ impl Unit {
     /// ```
     pub fn accel_names(&self) -> Vec<&str> {
         self.accels.iter().map(|a| a.name.as_str()).collect()
+    }
+
+    /// The IMUs the unit groups its sensors into (`imu` keys), in order of
+    /// first appearance (gyros, then accelerometers); empty when it groups
+    /// none.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// assert_eq!(u.imu_names(), ["imu1", "imu2", "imu3"]);
+    /// assert!(nav_sensors::unit::Unit::paper().imu_names().is_empty());
+    /// ```
+    pub fn imu_names(&self) -> Vec<&str> {
+        let mut names: Vec<&str> = Vec::new();
+        let all = self.gyros.iter().map(|g| &g.imu);
+        for imu in all.chain(self.accels.iter().map(|a| &a.imu)).flatten() {
+            if !names.contains(&imu.as_str()) {
+                names.push(imu);
+            }
+        }
+        names
+    }
+
+    /// The accelerometers gyro `k` reads by default: its IMU's (in unit
+    /// order), or every accelerometer when it names no IMU.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// assert_eq!(u.imu_accel_names(4), ["a2x", "a2y", "a2z"]); // g2y
+    /// assert_eq!(nav_sensors::unit::Unit::paper().imu_accel_names(0), ["ax", "ay", "az"]);
+    /// ```
+    #[track_caller]
+    pub fn imu_accel_names(&self, k: usize) -> Vec<&str> {
+        let imu = &self.gyros[k].imu;
+        self.accels
+            .iter()
+            .filter(|a| imu.is_none() || a.imu == *imu)
+            .map(|a| a.name.as_str())
+            .collect()
     }
 
     /// The position of a gyro channel by name.
@@ -784,6 +833,41 @@ impl Unit {
     #[track_caller]
     pub fn specific_force(&self, a: &[f64]) -> Vector3<f64> {
         self.geometry.specific_force(a)
+    }
+
+    /// One IMU's specific force in the unit frame, g, from one sample of
+    /// every accelerometer (unit order): that IMU's accelerometers alone,
+    /// as [`Unit::specific_force`] combines them. `None` for a name that is
+    /// no IMU's or an IMU whose accelerometers do not span 3-D.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// let a = [0.0, 0.0, 1.0, 0.0, 0.0, 1.2, 0.0, 0.0, 1.1];
+    /// assert_eq!(u.imu_specific_force("imu2", &a).unwrap().z, 1.2);
+    /// assert!((u.specific_force(&a).z - 1.1).abs() < 1e-12); // the unit's: the three triads' mean
+    /// assert!(u.imu_specific_force("imu4", &a).is_none());
+    /// ```
+    #[track_caller]
+    pub fn imu_specific_force(&self, imu: &str, a: &[f64]) -> Option<Vector3<f64>> {
+        self.geometry.imu_specific_force(imu, a)
+    }
+
+    /// The specific force gyro `k` senses, g: its IMU's
+    /// ([`Unit::imu_specific_force`]), or the unit's when it names no IMU.
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// assert_eq!(u.gyro_specific_force(0, &[0.1, 0.2, 1.0]), u.specific_force(&[0.1, 0.2, 1.0]));
+    /// ```
+    #[track_caller]
+    pub fn gyro_specific_force(&self, k: usize, a: &[f64]) -> Vector3<f64> {
+        match &self.gyros[k].imu {
+            Some(imu) => self
+                .imu_specific_force(imu, a)
+                .expect("a gyro's IMU spans 3-D (validated)"),
+            None => self.specific_force(a),
+        }
     }
 }
 
