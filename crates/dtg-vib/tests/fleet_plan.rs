@@ -75,7 +75,7 @@ fn the_kubernetes_plan_is_an_indexed_job_the_schema_takes_with_a_measured_tasks_
         format!("{}Mi", r.memory_mib)
     );
     assert_eq!(c["resources"]["requests"]["cpu"], r.cpus.to_string());
-    assert!(r.memory_mib >= 128 && r.memory_mib % 64 == 0);
+    assert!(r.memory_mib >= 128 && r.memory_mib.is_multiple_of(64));
     let rss_mib = task.cost.max_rss_bytes.unwrap() as f64 / 1048576.0;
     assert!(
         r.memory_mib as f64 >= 1.5 * rss_mib,
