@@ -14,7 +14,7 @@ mod fleet_common;
 
 use dtg_vib::fleet::layout::read_json;
 use dtg_vib::fleet::task::TaskRecord;
-use fleet_common::{Slurm, dtg, ids, lot, summary, text, verdicts};
+use fleet_common::{Slurm, dtg, ids, lot, plan, summary, text, verdicts};
 
 #[test]
 #[ignore = "the full acceptance lot: 24 units of 60 s, run here and as a Slurm array (minutes)"]
@@ -114,17 +114,7 @@ fn the_acceptance_lot_names_exactly_the_two_out_of_family_and_the_broken_one() {
         return;
     };
     let out2 = tmp.path().join("out-slurm");
-    let p = dtg(&[
-        "--quiet",
-        "fleet",
-        "plan",
-        "--manifest",
-        m,
-        "--out",
-        out2.to_str().unwrap(),
-        "--engine",
-        "slurm",
-    ]);
+    let p = plan(m, &out2, "slurm", &[]);
     assert!(p.status.success(), "{}", text(&p));
     println!("{}", String::from_utf8_lossy(&p.stdout));
     let start = std::time::Instant::now();

@@ -8,7 +8,7 @@
 
 mod fleet_common;
 
-use fleet_common::{Slurm, dtg, ids, lot, summary, text, verdicts};
+use fleet_common::{Slurm, dtg, ids, lot, plan, summary, text, verdicts};
 use std::path::Path;
 
 const OUTLIERS: [(usize, f64); 2] = [(4, 1.0), (15, 0.05)];
@@ -114,18 +114,7 @@ fn slurm_gives_the_same(tmp: &Path, manifest: &str, here: &serde_json::Value) {
         return;
     };
     let out = tmp.join("out-slurm");
-    let o = out.to_str().unwrap();
-    let p = dtg(&[
-        "--quiet",
-        "fleet",
-        "plan",
-        "--manifest",
-        manifest,
-        "--out",
-        o,
-        "--engine",
-        "slurm",
-    ]);
+    let p = plan(manifest, &out, "slurm", &[]);
     assert!(p.status.success(), "{}", text(&p));
     let script = out.join("plan/slurm-array.sh");
     let body = std::fs::read_to_string(&script).unwrap();

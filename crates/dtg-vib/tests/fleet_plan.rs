@@ -8,7 +8,7 @@ mod fleet_common;
 use dtg_vib::fleet::layout::read_json;
 use dtg_vib::fleet::plan::{Requests, yaml};
 use dtg_vib::fleet::task::TaskRecord;
-use fleet_common::{dtg, lot, text};
+use fleet_common::{dtg, lot, plan, text};
 use serde_json::{Value, json};
 
 fn job_schema() -> jsonschema::Validator {
@@ -31,21 +31,17 @@ fn the_kubernetes_plan_is_an_indexed_job_the_schema_takes_with_a_measured_tasks_
     let tmp = tempfile::tempdir().unwrap();
     let lot = lot(&tmp.path().join("lot"), 3, &[], &[], 20.0, "");
     let out = tmp.path().join("out");
-    let p = dtg(&[
-        "--quiet",
-        "fleet",
-        "plan",
-        "--manifest",
+    let p = plan(
         lot.manifest.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--engine",
+        &out,
         "kubernetes",
-        "--image",
-        "registry.example/dtg-vib:1",
-        "--claim",
-        "lot-2026-48",
-    ]);
+        &[
+            "--image",
+            "registry.example/dtg-vib:1",
+            "--claim",
+            "lot-2026-48",
+        ],
+    );
     assert!(p.status.success(), "{}", text(&p));
     let said = String::from_utf8_lossy(&p.stdout);
     assert!(said.contains("measured: SN0001"), "{said}");
@@ -118,17 +114,7 @@ fn the_slurm_plan_is_a_job_array_with_the_measured_requests() {
         o,
     ]);
     assert!(t.status.success(), "{}", text(&t));
-    let p = dtg(&[
-        "--quiet",
-        "fleet",
-        "plan",
-        "--manifest",
-        m,
-        "--out",
-        o,
-        "--engine",
-        "slurm",
-    ]);
+    let p = plan(m, &out, "slurm", &[]);
     assert!(p.status.success(), "{}", text(&p));
     // A done unit is measured: no task is run for the plan.
     assert!(!out.join("units/SN0001").exists());

@@ -76,6 +76,24 @@ pub fn lot_seeded(
     .expect("the lot simulates")
 }
 
+/// `dtg-vib --quiet fleet plan --manifest MANIFEST --out OUT --engine ENGINE EXTRA…`.
+pub fn plan(manifest: &str, out: &Path, engine: &str, extra: &[&str]) -> Output {
+    let o = out.to_str().unwrap();
+    let mut args = vec![
+        "--quiet",
+        "fleet",
+        "plan",
+        "--manifest",
+        manifest,
+        "--out",
+        o,
+        "--engine",
+        engine,
+    ];
+    args.extend_from_slice(extra);
+    dtg(&args)
+}
+
 /// `fleet summary --json` of `out`.
 pub fn summary(out: &Path) -> Value {
     let o = dtg(&["fleet", "summary", "--out", out.to_str().unwrap(), "--json"]);
