@@ -106,6 +106,9 @@ pub(crate) struct UnitFile {
     pub accel: Vec<AccelFile>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub residue: Vec<ResidueFile>,
+    /// `[ulog]`: where each column comes from in a PX4 ULog file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ulog: Option<ulog::UlogTable>,
 }
 
 impl UnitFile {
@@ -212,13 +215,17 @@ impl UnitFile {
         }
         let imus = imus(file, &gyros, &accels)?;
         let residues = residues(file, &self.residue, &gyros)?;
+        let columns = Columns {
+            time: self.columns.time,
+            time_scale,
+            temperature: self.columns.temperature,
+        };
+        if let Some(table) = &self.ulog {
+            super::ulog_table::validate(file, table, &columns, &gyros, &accels)?;
+        }
         Ok(Unit::assemble(
             self.name,
-            Columns {
-                time: self.columns.time,
-                time_scale,
-                temperature: self.columns.temperature,
-            },
+            columns,
             Units {
                 rate: self.units.rate,
                 specific_force: self.units.specific_force,
@@ -227,6 +234,7 @@ impl UnitFile {
             accels,
             residues,
             imus,
+            self.ulog,
             file.to_string(),
         ))
     }
@@ -467,6 +475,7 @@ impl From<&Unit> for UnitFile {
                         .collect(),
                 })
                 .collect(),
+            ulog: u.declared_ulog_table().cloned(),
         }
     }
 }

@@ -54,6 +54,7 @@ mod error;
 mod file;
 mod geometry;
 mod term;
+mod ulog_table;
 
 pub use error::UnitError;
 pub use geometry::UnitGeometry;
@@ -385,6 +386,8 @@ pub struct Unit {
     gyros: Vec<Gyro>,
     accels: Vec<Accelerometer>,
     residues: Vec<NamedResidue>,
+    /// The `[ulog]` table, when the file has one.
+    ulog: Option<ulog::UlogTable>,
     file: String,
     paper_geometry: bool,
     geometry: UnitGeometry,
@@ -399,6 +402,7 @@ impl PartialEq for Unit {
             && self.gyros == other.gyros
             && self.accels == other.accels
             && self.residues == other.residues
+            && self.ulog == other.ulog
     }
 }
 
@@ -519,6 +523,7 @@ impl Unit {
         accels: Vec<Accelerometer>,
         residues: Vec<NamedResidue>,
         imus: Vec<(String, Vec<usize>)>,
+        ulog: Option<ulog::UlogTable>,
         file: String,
     ) -> Self {
         let paper_geometry = is_paper_geometry(&gyros);
@@ -530,6 +535,7 @@ impl Unit {
             gyros,
             accels,
             residues,
+            ulog,
             file,
             paper_geometry,
             geometry,
@@ -614,6 +620,34 @@ impl Unit {
     /// ```
     pub fn named_residues(&self) -> &[NamedResidue] {
         &self.residues
+    }
+
+    /// The `[ulog]` table the unit file gives, if any.
+    ///
+    /// ```
+    /// assert!(nav_sensors::unit::Unit::builtin("triad").unwrap().declared_ulog_table().is_none());
+    /// ```
+    pub fn declared_ulog_table(&self) -> Option<&ulog::UlogTable> {
+        self.ulog.as_ref()
+    }
+
+    /// Where each column comes from in a PX4 ULog file: the unit file's
+    /// `[ulog]` table, or for a triad whose gyros and accelerometers lie
+    /// on +x, +y, +z (and no temperature column) PX4's `sensor_combined`;
+    /// `None` for any other unit without a table.
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// let t = Unit::builtin("triad").unwrap().ulog_table().unwrap();
+    /// assert_eq!(t.columns["gy"].field, "gyro_rad[1]");
+    /// assert_eq!(t.columns["az"].field, "accelerometer_m_s2[2]");
+    /// assert!(Unit::builtin("tetra").unwrap().ulog_table().is_none());
+    /// ```
+    pub fn ulog_table(&self) -> Option<ulog::UlogTable> {
+        match &self.ulog {
+            Some(t) => Some(t.clone()),
+            None => ulog_table::default_table(&self.columns, &self.gyros, &self.accels),
+        }
     }
 
     /// The gyro channels' names, in file order.

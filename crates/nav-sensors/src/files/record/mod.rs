@@ -12,6 +12,7 @@
 mod csv;
 mod error;
 mod time;
+mod ulog_log;
 mod unit_csv;
 
 pub use error::RecordError;
