@@ -108,3 +108,28 @@ fn a_g_log_declared_m_s2_warns_on_its_specific_force() {
     assert_eq!(*likely, SpecificForceUnit::G);
     assert!((magnitude_g * 9.80665 - 1.0).abs() < 0.05, "{magnitude_g}");
 }
+
+/// A paper-format calibration given with another unit is refused naming
+/// the format that unit takes.
+#[test]
+fn a_paper_format_calibration_with_another_unit_is_refused_naming_the_format() {
+    use nav_sensors::calibration::{UnitCalibration, UnitCalibrationError};
+    let paper = UnitCalibration::ideal(&Unit::paper());
+    assert_eq!(paper.check(&Unit::paper()), Ok(()));
+    let err = paper.check(&triad()).unwrap_err();
+    assert!(
+        matches!(err, UnitCalibrationError::PaperFormat { .. }),
+        "{err}"
+    );
+    assert!(
+        err.to_string().starts_with("the calibration is in the paper's format (DTG tables for gyros X, X1, Y, Y1, Z, Z1: the paper's unit, --unit paper), but units/triad.toml has gyros gx, gy, gz: give a unit calibration"),
+        "{err}"
+    );
+    // Another unit's calibration with a name the unit lacks stays `Unknown`.
+    let mut cal = UnitCalibration::ideal(&triad());
+    cal.gyros.insert("gq".into(), cal.gyros["gx"]);
+    assert!(matches!(
+        cal.check(&triad()),
+        Err(UnitCalibrationError::Unknown { .. })
+    ));
+}
