@@ -221,7 +221,15 @@ impl UnitFile {
             temperature: self.columns.temperature,
         };
         if let Some(table) = &self.ulog {
-            super::ulog_table::validate(file, table, &columns, &gyros, &accels)?;
+            let g: Vec<_> = gyros.iter().map(|g| (g.name.as_str(), g.input)).collect();
+            let a: Vec<_> = accels.iter().map(|a| (a.name.as_str(), a.input)).collect();
+            super::ulog_table::validate(
+                file,
+                table,
+                (&columns.time, columns.temperature.as_deref()),
+                &g,
+                &a,
+            )?;
         }
         Ok(Unit::assemble(
             self.name,

@@ -696,7 +696,19 @@ impl Unit {
     pub fn ulog_table(&self) -> Option<ulog::UlogTable> {
         match &self.ulog {
             Some(t) => Some(t.clone()),
-            None => ulog_table::default_table(&self.columns, &self.gyros, &self.accels),
+            None => {
+                let gyros: Vec<_> = self
+                    .gyros
+                    .iter()
+                    .map(|g| (g.name.as_str(), g.input))
+                    .collect();
+                let accels: Vec<_> = self
+                    .accels
+                    .iter()
+                    .map(|a| (a.name.as_str(), a.input))
+                    .collect();
+                ulog_table::default_table(self.columns.temperature.as_deref(), &gyros, &accels)
+            }
         }
     }
 

@@ -8,7 +8,9 @@ use nalgebra::Vector3;
 use ulog::UlogTable;
 
 use super::error::UnitError;
-use super::{Accelerometer, Columns, Gyro};
+
+/// A sensor as the table sees it: its column name and input axis.
+pub(crate) type Sensor<'a> = (&'a str, Vector3<f64>);
 
 /// Checks a `[ulog]` table against the unit's columns: every gyro,
 /// accelerometer and the temperature column mapped, no entry for the time
@@ -18,9 +20,9 @@ use super::{Accelerometer, Columns, Gyro};
 pub(crate) fn validate(
     file: &str,
     table: &UlogTable,
-    columns: &Columns,
-    gyros: &[Gyro],
-    accels: &[Accelerometer],
+    (time, temperature): (&str, Option<&str>),
+    gyros: &[Sensor],
+    accels: &[Sensor],
 ) -> Result<(), UnitError> {
     let bad = |key: String, problem: String| UnitError::UlogTable {
         file: file.to_string(),
@@ -28,13 +30,13 @@ pub(crate) fn validate(
         problem,
     };
     let mut needed: Vec<(String, &str)> = Vec::new();
-    for (k, g) in gyros.iter().enumerate() {
-        needed.push((format!("gyro[{k}].name"), &g.name));
+    for (k, (name, _)) in gyros.iter().enumerate() {
+        needed.push((format!("gyro[{k}].name"), name));
     }
-    for (k, a) in accels.iter().enumerate() {
-        needed.push((format!("accel[{k}].name"), &a.name));
+    for (k, (name, _)) in accels.iter().enumerate() {
+        needed.push((format!("accel[{k}].name"), name));
     }
-    if let Some(t) = &columns.temperature {
+    if let Some(t) = temperature {
         needed.push(("columns.temperature".into(), t));
     }
     for (key, name) in &needed {
@@ -47,9 +49,9 @@ pub(crate) fn validate(
             ));
         }
     }
-    if table.columns.contains_key(&columns.time) {
+    if table.columns.contains_key(time) {
         return Err(bad(
-            format!("ulog.columns.{}", columns.time),
+            format!("ulog.columns.{time}"),
             "the time column comes from the base stream's time stamps; remove the entry".into(),
         ));
     }
@@ -87,15 +89,15 @@ pub(crate) fn validate(
 /// k). `None` for any other unit, or one naming a temperature column
 /// (`sensor_combined` has none).
 pub(crate) fn default_table(
-    columns: &Columns,
-    gyros: &[Gyro],
-    accels: &[Accelerometer],
+    temperature: Option<&str>,
+    gyros: &[Sensor],
+    accels: &[Sensor],
 ) -> Option<UlogTable> {
-    if columns.temperature.is_some() {
+    if temperature.is_some() {
         return None;
     }
-    let gyros = on_axes(gyros.iter().map(|g| (g.name.as_str(), g.input)))?;
-    let accels = on_axes(accels.iter().map(|a| (a.name.as_str(), a.input)))?;
+    let gyros = on_axes(gyros.iter().copied())?;
+    let accels = on_axes(accels.iter().copied())?;
     Some(UlogTable::sensor_combined(gyros, accels))
 }
 
