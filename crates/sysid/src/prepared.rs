@@ -126,8 +126,8 @@ impl<S: Sensor> Prepared<S> {
     /// [`Prepared::calibrated`], which holds the records one after another
     /// with each later record's warm-up (the samples before its first full
     /// window) left out and its time restamped to continue the first
-    /// record's. The records must share their sample interval and their
-    /// extra columns. One record gives exactly [`Prepared::new`].
+    /// record's. The records must share their sample interval (median steps
+    /// within [`crate::INTERVAL_TOLERANCE`]) and their extra columns. One record gives exactly [`Prepared::new`].
     pub fn new_many(
         sensor: &S,
         records: &[(String, &Signals)],
@@ -146,12 +146,18 @@ impl<S: Sensor> Prepared<S> {
         };
         let names = extras(first_record);
         for (name, r) in rest {
-            let dt = (first_record.dt(), r.dt());
-            if (dt.0 - dt.1).abs() > 1e-9 * dt.0 {
+            let dt = (first_record.median_dt(), r.median_dt());
+            if (dt.0 - dt.1).abs() > crate::model::INTERVAL_TOLERANCE * dt.0 {
                 return Err(SysidError::RecordsDiffer {
                     first: first_name.clone(),
                     other: name.clone(),
-                    what: format!("sampling interval {} s against {} s", dt.0, dt.1),
+                    what: format!(
+                        "median sampling interval {} s against {} s, {:.2} % apart (at most {} % is one rate)",
+                        dt.0,
+                        dt.1,
+                        100.0 * (dt.1 / dt.0 - 1.0).abs(),
+                        100.0 * crate::model::INTERVAL_TOLERANCE
+                    ),
                 });
             }
             let other = extras(r);

@@ -86,6 +86,23 @@ impl Signals {
         (self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64
     }
 
+    /// The median sample interval, s: what records are compared by (a
+    /// dropped sample lengthens the mean, not the median).
+    pub fn median_dt(&self) -> f64 {
+        let mut steps: Vec<f64> = self.t.windows(2).map(|w| w[1] - w[0]).collect();
+        let mid = steps.len() / 2;
+        let (_, m, _) = steps.select_nth_unstable_by(mid, f64::total_cmp);
+        let m = *m;
+        if steps.len() % 2 == 1 {
+            return m;
+        }
+        let below = steps[..mid]
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        0.5 * (below + m)
+    }
+
     /// A column by name.
     pub fn column(&self, name: &str) -> Option<&[f64]> {
         self.columns

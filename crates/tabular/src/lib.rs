@@ -358,10 +358,19 @@ impl CellFault {
 /// A cell as a finite `f64` within [`MAX_MAGNITUDE`], or why not.
 fn parse_number(cell: &str) -> Result<f64, CellFault> {
     match cell.parse::<f64>() {
-        Ok(v) if v.is_finite() && v.abs() <= MAX_MAGNITUDE => Ok(v),
-        Ok(v) if v.is_finite() => Err(CellFault::TooLarge),
-        Ok(_) => Err(CellFault::NotFinite),
+        Ok(v) => value_fault(v).map_or(Ok(v), Err),
         Err(_) => Err(CellFault::NotANumber),
+    }
+}
+
+/// Why a number is not one the tables take (`None`: it is).
+fn value_fault(v: f64) -> Option<CellFault> {
+    if !v.is_finite() {
+        Some(CellFault::NotFinite)
+    } else if v.abs() > MAX_MAGNITUDE {
+        Some(CellFault::TooLarge)
+    } else {
+        None
     }
 }
 
@@ -504,6 +513,62 @@ impl NumericTable {
             },
         )?;
         Ok(t)
+    }
+
+    /// A table of columns already in numbers (a binary log's, say), so
+    /// that they meet every check a CSV's columns meet: names unique, one
+    /// length, and a value that is not finite or beyond [`MAX_MAGNITUDE`]
+    /// refused when its column is asked for. Data row `i` is line `i + 2`,
+    /// the line it has in the CSV [`write_csv`] would write of the table.
+    ///
+    /// ```
+    /// use tabular::NumericTable;
+    /// let t = NumericTable::from_columns("log.bin", vec!["t".into(), "y".into()],
+    ///     vec![vec![0.0, 0.1], vec![1.0, f64::NAN]]).unwrap();
+    /// assert_eq!(t.column("t").unwrap(), &[0.0, 0.1]);
+    /// assert_eq!(t.column("y").unwrap_err().to_string(), "log.bin:3:2: column 'y': 'NaN' is not finite");
+    /// let ragged = NumericTable::from_columns("log.bin", vec!["a".into(), "b".into()], vec![vec![0.0], vec![]]);
+    /// assert!(ragged.is_err());
+    /// ```
+    pub fn from_columns(
+        file: &str,
+        header: Vec<String>,
+        columns: Vec<Vec<f64>>,
+    ) -> Result<Self, TableError> {
+        assert_eq!(header.len(), columns.len(), "one name per column");
+        for (i, name) in header.iter().enumerate() {
+            if header[..i].contains(name) {
+                return Err(TableError::DuplicateColumn {
+                    file: file.to_string(),
+                    column: i + 1,
+                    name: name.clone(),
+                });
+            }
+        }
+        let n = columns.first().map_or(0, Vec::len);
+        if let Some((name, c)) = header.iter().zip(&columns).find(|(_, c)| c.len() != n) {
+            return Err(TableError::RaggedColumns {
+                path: file.to_string(),
+                name: name.clone(),
+                len: c.len(),
+                expected: n,
+            });
+        }
+        let faults = columns
+            .iter()
+            .map(|c| {
+                c.iter()
+                    .enumerate()
+                    .find_map(|(row, &v)| value_fault(v).map(|kind| (row, kind, v.to_string())))
+            })
+            .collect();
+        Ok(Self {
+            file: file.to_string(),
+            header,
+            columns,
+            faults,
+            lines: (0..n as u64).map(|i| i + 2).collect(),
+        })
     }
 
     /// The name the table was read from, as used in error messages.

@@ -31,7 +31,9 @@ pub struct Joined {
     pub start_us: u64,
     /// Each row's time, µs since boot.
     pub time_us: Vec<u64>,
-    /// Each row's time in s from the first row ((µs − start) × 1e-6).
+    /// Each row's time in s from the first row ((µs − start) / 10⁶, the
+    /// f64 nearest the exact decimal: what a CSV printing it to the µs
+    /// reads back, so a step exactly at a threshold is judged alike).
     pub t_s: Vec<f64>,
     /// The columns in the order asked, in the log's units (PX4: rad/s,
     /// m/s², °C), divided by their interval where the table names one.
@@ -391,7 +393,7 @@ fn align(
         start_us,
         t_s: time_us
             .iter()
-            .map(|&t| (t - start_us) as f64 * 1e-6)
+            .map(|&t| (t - start_us) as f64 / 1e6)
             .collect(),
         columns: columns.iter().map(|&c| (c.to_string(), take(c))).collect(),
         rows_dropped: rows.len() - kept.len(),

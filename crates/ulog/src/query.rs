@@ -46,9 +46,10 @@ pub struct Series {
 }
 
 impl Series {
-    /// Each sample's time in s since boot (µs × 1e-6).
+    /// Each sample's time in s since boot (µs / 10⁶, the f64 nearest the
+    /// exact decimal).
     pub fn t_s(&self) -> Vec<f64> {
-        self.time_us.iter().map(|&t| t as f64 * 1e-6).collect()
+        self.time_us.iter().map(|&t| t as f64 / 1e6).collect()
     }
 
     /// The values of a field, by name.

@@ -24,6 +24,18 @@ const MAX_UNKNOWN_PAYLOAD: usize = 10_000;
 const DATA_APPENDED: u8 = 1;
 
 impl Ulog {
+    /// Whether `head` (a file's first bytes, at least 7) starts as a ULog
+    /// file does: a caller that reads several formats tells a log by its
+    /// bytes, not its name.
+    ///
+    /// ```
+    /// assert!(ulog::Ulog::is_ulog(b"ULog\x01\x12\x35\x01"));
+    /// assert!(!ulog::Ulog::is_ulog(b"t,gx,gy,gz\n"));
+    /// ```
+    pub fn is_ulog(head: &[u8]) -> bool {
+        head.starts_with(&MAGIC)
+    }
+
     /// Reads a `.ulg` file.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, UlogError> {
         let file = path.as_ref().display().to_string();

@@ -116,6 +116,18 @@ pub enum UnitCalibrationError {
         /// The unit file.
         unit_file: String,
     },
+    /// A calibration in the paper's format (its gyros X … Z1) given with
+    /// another unit.
+    #[error(
+        "the calibration is in the paper's format (DTG tables for gyros X, X1, Y, Y1, Z, Z1: the paper's unit, --unit paper), but {unit_file} has gyros {}: give a unit calibration with a table per gyro of that unit, each saying its \"model\" (docs/formats.md, \"Unit calibration JSON\"; `dtg-vib calibrate --unit` writes one)",
+        unit_gyros.join(", ")
+    )]
+    PaperFormat {
+        /// The unit file.
+        unit_file: String,
+        /// The unit's gyros.
+        unit_gyros: Vec<String>,
+    },
     /// A gyro's table of the other model.
     #[error("gyro '{name}': the calibration has a \"{given}\" table, {unit_file} says \"{model}\"")]
     Model {
@@ -264,6 +276,12 @@ impl UnitCalibration {
     pub fn check(&self, unit: &Unit) -> Result<(), UnitCalibrationError> {
         for (name, c) in &self.gyros {
             let Some(k) = unit.gyro_index(name) else {
+                if self.is_papers() {
+                    return Err(UnitCalibrationError::PaperFormat {
+                        unit_file: unit.file().to_string(),
+                        unit_gyros: unit.gyro_names().iter().map(|n| n.to_string()).collect(),
+                    });
+                }
                 return Err(UnitCalibrationError::Unknown {
                     what: "gyro",
                     name: name.clone(),
@@ -292,6 +310,17 @@ impl UnitCalibration {
             });
         }
         Ok(())
+    }
+
+    /// Whether the gyros are the paper's six, each a DTG table: a
+    /// calibration of the paper's format (or of the paper's unit).
+    fn is_papers(&self) -> bool {
+        self.gyros.len() == Channel::ALL.len()
+            && Channel::ALL.iter().all(|c| {
+                self.gyros
+                    .get(c.name())
+                    .is_some_and(|g| matches!(g, GyroCoefficients::Dtg(_)))
+            })
     }
 
     /// Compensates a record of the unit, at its output rate: first the

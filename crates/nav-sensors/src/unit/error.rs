@@ -219,4 +219,14 @@ pub enum UnitError {
         /// The dimension their input axes span.
         rank: usize,
     },
+    /// A `[ulog]` table that does not fit the unit.
+    #[error("{file}: {key}: {problem}")]
+    UlogTable {
+        /// The file.
+        file: String,
+        /// The key, e.g. `ulog.columns` or `ulog.columns.gx.field`.
+        key: String,
+        /// What is wrong and what to do.
+        problem: String,
+    },
 }

@@ -106,6 +106,9 @@ pub(crate) struct UnitFile {
     pub accel: Vec<AccelFile>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub residue: Vec<ResidueFile>,
+    /// `[ulog]`: where each column comes from in a PX4 ULog file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ulog: Option<ulog::UlogTable>,
 }
 
 impl UnitFile {
@@ -212,13 +215,25 @@ impl UnitFile {
         }
         let imus = imus(file, &gyros, &accels)?;
         let residues = residues(file, &self.residue, &gyros)?;
+        let columns = Columns {
+            time: self.columns.time,
+            time_scale,
+            temperature: self.columns.temperature,
+        };
+        if let Some(table) = &self.ulog {
+            let g: Vec<_> = gyros.iter().map(|g| (g.name.as_str(), g.input)).collect();
+            let a: Vec<_> = accels.iter().map(|a| (a.name.as_str(), a.input)).collect();
+            super::ulog_table::validate(
+                file,
+                table,
+                (&columns.time, columns.temperature.as_deref()),
+                &g,
+                &a,
+            )?;
+        }
         Ok(Unit::assemble(
             self.name,
-            Columns {
-                time: self.columns.time,
-                time_scale,
-                temperature: self.columns.temperature,
-            },
+            columns,
             Units {
                 rate: self.units.rate,
                 specific_force: self.units.specific_force,
@@ -227,6 +242,7 @@ impl UnitFile {
             accels,
             residues,
             imus,
+            self.ulog,
             file.to_string(),
         ))
     }
@@ -467,6 +483,7 @@ impl From<&Unit> for UnitFile {
                         .collect(),
                 })
                 .collect(),
+            ulog: u.declared_ulog_table().cloned(),
         }
     }
 }

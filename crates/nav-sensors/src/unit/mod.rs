@@ -54,6 +54,7 @@ mod error;
 mod file;
 mod geometry;
 mod term;
+mod ulog_table;
 
 pub use error::UnitError;
 pub use geometry::UnitGeometry;
@@ -385,6 +386,8 @@ pub struct Unit {
     gyros: Vec<Gyro>,
     accels: Vec<Accelerometer>,
     residues: Vec<NamedResidue>,
+    /// The `[ulog]` table, when the file has one.
+    ulog: Option<ulog::UlogTable>,
     file: String,
     paper_geometry: bool,
     geometry: UnitGeometry,
@@ -399,6 +402,7 @@ impl PartialEq for Unit {
             && self.gyros == other.gyros
             && self.accels == other.accels
             && self.residues == other.residues
+            && self.ulog == other.ulog
     }
 }
 
@@ -462,6 +466,37 @@ impl Unit {
         Self::from_toml(text, &format!("units/{name}.toml"))
     }
 
+    /// The built-in units whose columns a record's header has (the time
+    /// column and every gyro and accelerometer), the most sensors first: a
+    /// record given without `--unit` whose header is not the paper's gets
+    /// the suggestion `--unit NAME` of the first.
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// assert_eq!(Unit::builtins_matching(&["t", "gx", "gy", "gz", "ax", "ay", "az", "temp"]), ["triad"]);
+    /// let dual = ["t", "gx", "gy", "gz", "gx2", "gy2", "gz2", "ax", "ay", "az"];
+    /// assert_eq!(Unit::builtins_matching(&dual), ["dual-triad", "triad"]);
+    /// assert!(Unit::builtins_matching(&["time", "a", "b"]).is_empty());
+    /// ```
+    pub fn builtins_matching(header: &[&str]) -> Vec<&'static str> {
+        let mut found: Vec<(usize, &'static str)> = Self::BUILTIN_NAMES
+            .into_iter()
+            .filter_map(|name| {
+                let unit = Self::builtin(name).ok()?;
+                let mut needed = unit.gyro_names();
+                needed.extend(unit.accel_names());
+                let sensors = needed.len();
+                needed.push(&unit.columns.time);
+                needed
+                    .iter()
+                    .all(|c| header.contains(c))
+                    .then_some((sensors, name))
+            })
+            .collect();
+        found.sort_by_key(|&(sensors, _)| std::cmp::Reverse(sensors));
+        found.into_iter().map(|(_, name)| name).collect()
+    }
+
     /// A built-in unit's file text (what `units/NAME.toml` holds).
     ///
     /// ```
@@ -519,6 +554,7 @@ impl Unit {
         accels: Vec<Accelerometer>,
         residues: Vec<NamedResidue>,
         imus: Vec<(String, Vec<usize>)>,
+        ulog: Option<ulog::UlogTable>,
         file: String,
     ) -> Self {
         let paper_geometry = is_paper_geometry(&gyros);
@@ -530,6 +566,7 @@ impl Unit {
             gyros,
             accels,
             residues,
+            ulog,
             file,
             paper_geometry,
             geometry,
@@ -614,6 +651,65 @@ impl Unit {
     /// ```
     pub fn named_residues(&self) -> &[NamedResidue] {
         &self.residues
+    }
+
+    /// The physical unit of a record column the unit reads as an extra
+    /// column (an effect's regressor): `°C` for the unit's temperature
+    /// column whatever it is called (`board_temp`, `T_imu`), and for the
+    /// paper format's `temp`; `None` for a column the unit says nothing of
+    /// (its effect is then "per unit of" the column).
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// let toml = Unit::builtin_toml("triad").unwrap().replace("time = \"t\"", "time = \"t\"\ntemperature = \"board_temp\"");
+    /// let unit = Unit::from_toml(&toml, "u.toml").unwrap();
+    /// assert_eq!(unit.column_unit("board_temp"), Some("°C"));
+    /// assert_eq!(Unit::paper().column_unit("temp"), Some("°C"));
+    /// assert_eq!(unit.column_unit("baro"), None);
+    /// ```
+    pub fn column_unit(&self, column: &str) -> Option<&'static str> {
+        let temperature = self.columns.temperature.as_deref();
+        (temperature == Some(column) || (temperature.is_none() && column == "temp")).then_some("°C")
+    }
+
+    /// The `[ulog]` table the unit file gives, if any.
+    ///
+    /// ```
+    /// assert!(nav_sensors::unit::Unit::builtin("triad").unwrap().declared_ulog_table().is_none());
+    /// ```
+    pub fn declared_ulog_table(&self) -> Option<&ulog::UlogTable> {
+        self.ulog.as_ref()
+    }
+
+    /// Where each column comes from in a PX4 ULog file: the unit file's
+    /// `[ulog]` table, or for a triad whose gyros and accelerometers lie
+    /// on +x, +y, +z (and no temperature column) PX4's `sensor_combined`;
+    /// `None` for any other unit without a table.
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// let t = Unit::builtin("triad").unwrap().ulog_table().unwrap();
+    /// assert_eq!(t.columns["gy"].field, "gyro_rad[1]");
+    /// assert_eq!(t.columns["az"].field, "accelerometer_m_s2[2]");
+    /// assert!(Unit::builtin("tetra").unwrap().ulog_table().is_none());
+    /// ```
+    pub fn ulog_table(&self) -> Option<ulog::UlogTable> {
+        match &self.ulog {
+            Some(t) => Some(t.clone()),
+            None => {
+                let gyros: Vec<_> = self
+                    .gyros
+                    .iter()
+                    .map(|g| (g.name.as_str(), g.input))
+                    .collect();
+                let accels: Vec<_> = self
+                    .accels
+                    .iter()
+                    .map(|a| (a.name.as_str(), a.input))
+                    .collect();
+                ulog_table::default_table(self.columns.temperature.as_deref(), &gyros, &accels)
+            }
+        }
     }
 
     /// The gyro channels' names, in file order.

@@ -150,4 +150,24 @@ pub enum RecordError {
         /// The record's gyro and accelerometer names.
         sensors: Vec<String>,
     },
+    /// A PX4 ULog file that could not be read (boxed: its errors are large).
+    #[error(transparent)]
+    Ulog(Box<ulog::UlogError>),
+    /// A PX4 ULog file read with a unit that says nothing of where its
+    /// columns are in a ULog (no `[ulog]` table, and not a triad on x, y, z).
+    #[error(
+        "{file}: a PX4 ULog file, but {unit_file} has no [ulog] table saying which topic and field fills each of its columns; add one (docs/formats.md, \"[ulog]\") or convert the log to CSV"
+    )]
+    NoUlogTable {
+        /// The log.
+        file: String,
+        /// The unit file.
+        unit_file: String,
+    },
+}
+
+impl From<ulog::UlogError> for RecordError {
+    fn from(e: ulog::UlogError) -> Self {
+        RecordError::Ulog(Box::new(e))
+    }
 }

@@ -10,10 +10,15 @@
 //! residues) is in [`crate::regressors`].
 
 mod csv;
+mod declared_units;
 mod error;
 mod time;
+mod ulog_log;
 mod unit_csv;
 
+pub use declared_units::{
+    DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, declared_unit_warnings,
+};
 pub use error::RecordError;
 pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
 pub use unit_csv::UnitRecords;

@@ -53,8 +53,17 @@ impl Record {
     /// let read = Record::read_with_unit(&path, &unit).unwrap();
     /// assert!((read.records[0].dt() - 0.001).abs() < 1e-15);
     /// ```
+    ///
+    /// A PX4 ULog file (told by its first bytes, whatever its name) is read
+    /// here too, through the unit's [`Unit::ulog_table`]: the same segments,
+    /// conversions and checks as the CSV pyulog would make of it
+    /// (`super::ulog_log`).
     pub fn read_with_unit(path: impl AsRef<Path>, unit: &Unit) -> Result<UnitRecords, RecordError> {
-        from_table(NumericTable::read(path)?, unit)
+        let path = path.as_ref();
+        if super::ulog_log::is_ulog(path) {
+            return super::ulog_log::read(path, unit);
+        }
+        from_table(NumericTable::read(path)?, unit, &Scales::of(unit))
     }
 
     /// Reads log text with a unit file; `name` labels errors.
@@ -71,7 +80,11 @@ impl Record {
         name: &str,
         unit: &Unit,
     ) -> Result<UnitRecords, RecordError> {
-        from_table(NumericTable::from_reader(reader, name)?, unit)
+        from_table(
+            NumericTable::from_reader(reader, name)?,
+            unit,
+            &Scales::of(unit),
+        )
     }
 
     /// Writes the record in a unit's column names and units (time divided
@@ -170,7 +183,32 @@ impl Record {
     }
 }
 
-fn from_table(mut table: NumericTable, unit: &Unit) -> Result<UnitRecords, RecordError> {
+/// The factors from a log's columns to a record's units: time to s, rates
+/// to deg/h, specific force to g.
+pub(super) struct Scales {
+    pub time: f64,
+    pub rate: f64,
+    pub force: f64,
+}
+
+impl Scales {
+    /// The unit file's: `time_scale` and `[units]`, for its CSV logs.
+    fn of(unit: &Unit) -> Self {
+        Self {
+            time: unit.columns().time_scale,
+            rate: unit.units().rate.to_deg_h(),
+            force: unit.units().specific_force.to_g(),
+        }
+    }
+}
+
+/// Checks a table of a unit's columns and makes its records: the one
+/// path of every log format (a CSV's table, or a ULog's, `super::ulog_log`).
+pub(super) fn from_table(
+    mut table: NumericTable,
+    unit: &Unit,
+    scales: &Scales,
+) -> Result<UnitRecords, RecordError> {
     let file = table.file().to_string();
     let c = unit.columns();
     let mut wanted: Vec<(String, &str)> = vec![("columns.time".into(), c.time.as_str())];
@@ -221,7 +259,7 @@ fn from_table(mut table: NumericTable, unit: &Unit) -> Result<UnitRecords, Recor
     let t: Vec<f64> = table
         .take_column(&c.time)?
         .iter()
-        .map(|v| v * c.time_scale)
+        .map(|v| v * scales.time)
         .collect();
     super::time::check_increasing(&t, &file, &|i| table.line_of_row(i), t_column)?;
     let mut take_scaled = |name: &str, k: f64| -> Result<(String, Vec<f64>), RecordError> {
@@ -235,17 +273,15 @@ fn from_table(mut table: NumericTable, unit: &Unit) -> Result<UnitRecords, Recor
             },
         ))
     };
-    let rate = unit.units().rate.to_deg_h();
     let gyros = unit
         .gyros()
         .iter()
-        .map(|g| take_scaled(&g.name, rate))
+        .map(|g| take_scaled(&g.name, scales.rate))
         .collect::<Result<Vec<_>, _>>()?;
-    let force = unit.units().specific_force.to_g();
     let accels = unit
         .accels()
         .iter()
-        .map(|a| take_scaled(&a.name, force))
+        .map(|a| take_scaled(&a.name, scales.force))
         .collect::<Result<Vec<_>, _>>()?;
     let extra = header
         .iter()
