@@ -9,9 +9,7 @@ use crate::allan::AllanAnalysis;
 use crate::error::DtgVibError;
 use crate::report::{FdiShown, Provenance, ResidueRms, UnitReport, build_unit_report};
 use crate::unit_sensor::fdi::{self, DEFAULT_FALSE_ALARM};
-use crate::unit_sensor::{
-    UnitApplied, UnitModel, gyros_before_after, residues_of, to_signals, unit_allan,
-};
+use crate::unit_sensor::{UnitApplied, UnitModel, gyros_before_after, residues_of, to_signals};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
@@ -109,7 +107,7 @@ pub fn write_page(
     let allan: Option<AllanAnalysis> = records
         .iter()
         .max_by_key(|(_, r)| r.len())
-        .and_then(|(_, r)| unit_allan(m.unit(), Some(m), r, 0.683).ok());
+        .and_then(|(_, r)| AllanAnalysis::new(m.unit(), Some(m), r, 0.683).ok());
     let mut files: Vec<(String, PathBuf)> = vec![("model".into(), page.model_path.to_path_buf())];
     files.extend(page.data.iter().map(|d| ("data".to_string(), d.clone())));
     if let Some((_, p)) = page.baseline {

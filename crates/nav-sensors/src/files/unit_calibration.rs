@@ -358,7 +358,7 @@ impl UnitCalibration {
     /// The accelerometers compensated: the static inverse of the three
     /// jointly when they are the unit axes x, y, z (in any order), else
     /// their outputs unchanged.
-    fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
+    pub fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
         let raw: Vec<Vec<f64>> = (0..unit.accels().len())
             .map(|k| record.accel_at(k).to_vec())
             .collect();
