@@ -32,7 +32,6 @@ pub mod fit;
 pub mod model;
 pub mod numfmt;
 pub mod onboard;
-pub mod pages;
 pub mod paper_unit;
 pub mod parity;
 pub mod pipeline;

@@ -17,12 +17,9 @@
 //! tri-axial test, or the z test for three gyros. Each case's record
 //! length and seed are those `tests/unit_loop.rs` accepts.
 
-use crate::allan::AllanAnalysis;
 use crate::error::DtgVibError;
-use crate::pages::{PageSpec, write_page};
-use crate::report::{Wording, write_diagnosis_report_of};
-use crate::unit_page::{Parity, parity};
-use crate::unit_sensor::fdi::DEFAULT_FALSE_ALARM;
+use crate::report::{DiagnosisExtra, NoiseFloor, Wording, write_diagnosis_report_of};
+use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{
     Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, from_paper,
     to_signals,
@@ -387,11 +384,13 @@ pub fn run(
     let data = [record.clone()];
     let source = format!("simulated (built-in {} scenario)", s.name);
     progress("writing the baseline report");
-    let spec = PageSpec {
+    let page = Page {
         lead: vec![BASELINE_LEAD.to_string()],
-        ..page_spec(&base.path, &data, source.clone())
+        source: Some(source.clone()),
+        ..Page::new(&base.path, &data)
     };
-    let baseline_report = write_page(&base.model, &records, spec, &out.join("baseline/report"))?;
+    let baseline_report =
+        write_page(&base.model, &records, page, &out.join("baseline/report"))?.index;
 
     progress("diagnosing the baseline");
     let diagnose = DiagnoseOptions::default();
@@ -425,12 +424,11 @@ pub fn run(
     let found = found(&fitted.model, &sim.hidden);
     let missed = missed(&sim.hidden, &found);
     let report_dir = final_dir.join("report");
-    let allan = AllanAnalysis::new(unit, Some(&fitted.model), &sim.record, 0.683)?;
     let noise_floor = noise_floor(&sim, &sensor);
-    let final_report = write_page(
+    let written = write_page(
         &fitted.model,
         &records,
-        PageSpec {
+        Page {
             files: vec![("calibration".into(), sim_dir.join("calibration.json"))],
             baseline: Some((&base.model, &base.path)),
             lead: lead(unit, &sim.hidden, &found, &missed),
@@ -439,28 +437,25 @@ pub fn run(
                 &report_dir,
             ),
             also_into: Some(out.to_path_buf()),
-            allan: Some(&allan),
-            diagnosis: Some((
-                &final_diagnosis,
-                REFIT.into(),
+            diagnosis: Some(DiagnosisExtra {
+                diagnosis: &final_diagnosis,
+                of: REFIT.into(),
                 min_err,
-                final_diagnosis_report.clone(),
-            )),
+                page: final_diagnosis_report.clone(),
+            }),
             noise_floor,
-            ..page_spec(
-                &fitted.path,
-                &data,
-                format!("{source}, refitted with the diagnosed effects"),
-            )
+            source: Some(format!("{source}, refitted with the diagnosed effects")),
+            ..Page::new(&fitted.path, &data)
         },
         &report_dir,
     )?;
+    let final_report = written.index;
     let channel_rms = channel_rms(&base.model, &fitted.model);
     Ok(Demo {
         record,
         baseline_residues: base.applied.validation_residues(),
         final_residues: fitted.applied.validation_residues(),
-        parity: parity(&fitted.model, &records, None, DEFAULT_FALSE_ALARM)?,
+        parity: written.parity,
         hidden: sim.hidden,
         diagnosis,
         rounds: if added.is_empty() { 1 } else { 2 },
@@ -504,14 +499,17 @@ fn missed(hidden: &[Hidden], found: &[Found]) -> Vec<Hidden> {
 }
 
 /// Each channel's per-sample noise floor, where the simulator gave them.
-fn noise_floor<'a>(sim: &'a Simulated, sensor: &UnitSensor) -> Option<(Vec<&'a [f64]>, String)> {
+fn noise_floor<'a>(sim: &'a Simulated, sensor: &UnitSensor) -> Option<NoiseFloor<'a>> {
     let c = sim.components.as_ref()?;
     let floors = sensor
         .channels()
         .iter()
         .map(|ch| c.get(&format!("{ch}_floor")))
         .collect::<Option<Vec<&[f64]>>>()?;
-    Some((floors, NOISE_FLOOR.to_string()))
+    Some(NoiseFloor {
+        per_sample: floors,
+        source: NOISE_FLOOR.to_string(),
+    })
 }
 
 /// Per channel: validation rms of the baseline and of the final model.
@@ -532,23 +530,6 @@ const BASELINE_LEAD: &str = "The baseline: bias and the network over the acceler
 
 /// Where the final page's noise floor comes from.
 const NOISE_FLOOR: &str = "the simulator's per-sample noise floor (the X_floor … Z1_floor series of simulation/components.csv; truth.json's noise_floor_deg_h is their rms at the output rate): sensor noise, the fixture's true rocking, and what no function of the 50-Hz accelerations can predict of the high-rate effects";
-
-/// A page of the demo's record: its model file, the record, its source.
-fn page_spec<'a>(model_path: &'a Path, data: &'a [PathBuf], source: String) -> PageSpec<'a> {
-    PageSpec {
-        model_path,
-        data,
-        source,
-        files: Vec::new(),
-        baseline: None,
-        lead: Vec::new(),
-        links: Vec::new(),
-        also_into: None,
-        allan: None,
-        diagnosis: None,
-        noise_floor: None,
-    }
-}
 
 /// The pages the final page links to.
 fn links(pages: [&Path; 3], report_dir: &Path) -> Vec<(PathBuf, String)> {

@@ -67,7 +67,7 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         Some(dir) => {
             progress.say("drawing figures");
             let data = [data.clone()];
-            Some(model_page(&m, &model, &read.records, &data, None, dir)?)
+            Some(model_page(&m, &model, &read.records, &data, None, dir)?.index)
         }
         None => None,
     };

@@ -5,9 +5,8 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::pages::{PageSpec, write_page};
-use dtg_vib::unit_page::{Parity, parity};
-use dtg_vib::unit_sensor::fdi::{self, DEFAULT_FALSE_ALARM};
+use dtg_vib::unit_page::{Page, Parity, Written, write_page};
+use dtg_vib::unit_sensor::fdi;
 use dtg_vib::unit_sensor::{Applied, UnitModel};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
@@ -80,8 +79,8 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
     progress.say("drawing figures");
     let files = [data.clone()];
     let baseline_page = base.as_ref().zip(baseline.as_deref());
-    let index = model_page(&m, &model, &read.records, &files, baseline_page, &out)?;
-    let parity = parity(&m, &read.records, None, DEFAULT_FALSE_ALARM)?;
+    let Written { index, parity, .. } =
+        model_page(&m, &model, &read.records, &files, baseline_page, &out)?;
     drop(progress);
     read.say_notes();
     if !m.unit().residue_names().is_empty() {
@@ -114,25 +113,12 @@ pub fn model_page(
     data: &[PathBuf],
     baseline: Option<(&UnitModel, &Path)>,
     dir: &Path,
-) -> Result<PathBuf> {
-    let spec = PageSpec {
-        model_path: model,
-        data,
-        source: data
-            .iter()
-            .map(|d| d.display().to_string())
-            .collect::<Vec<_>>()
-            .join(", "),
-        files: Vec::new(),
+) -> Result<Written> {
+    let page = Page {
         baseline,
-        lead: Vec::new(),
-        links: Vec::new(),
-        also_into: None,
-        allan: None,
-        diagnosis: None,
-        noise_floor: None,
+        ..Page::new(model, data)
     };
-    Ok(write_page(m, records, spec, dir)?)
+    Ok(write_page(m, records, page, dir)?)
 }
 
 /// Each channel's validation rms under the baseline and this model.
