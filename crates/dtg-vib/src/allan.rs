@@ -1,6 +1,8 @@
-//! Allan deviation of a record's gyro channels and parity residues, before
-//! and after a model's compensation, with the IEEE Std 952 noise terms read
-//! from each curve ([`nav_sensors::noise`] does the computing).
+//! Allan deviation of a unit's gyro channels and parity residues on one
+//! record (a log's segment between time gaps: an average never spans a
+//! gap), before and after a model's compensation, with the IEEE Std 952
+//! noise terms read from each curve ([`nav_sensors::noise`] does the
+//! computing).
 //!
 //! The series are the ones `compensate` works on, unfiltered: **before** is
 //! the calibrated output with the model's rate reference removed, **after**
@@ -8,20 +10,21 @@
 //! both from the first sample with a full window on, so both curves share
 //! their τ. (`compensate` keeps the rate reference in its output; a constant
 //! does not change an Allan deviation.) Without a model, before is the
-//! record as given, every sample.
+//! record as given, every sample. The residues are the unit's (the paper's
+//! K0 … K5, another unit's P0, …; none for three gyros) of the same series.
 
 use crate::error::DtgVibError;
-use crate::model::CompensationModel;
-use nav_sensors::geometry::{Channel, Residue, ideal_outputs, residues};
+use crate::unit_sensor::{Applied, UnitModel, residues_of};
 use nav_sensors::noise::{AllanCurve, NoiseTerm, NoiseTerms};
 use nav_sensors::record::Record;
+use nav_sensors::unit::Unit;
 use serde::Serialize;
 use serde_json::Value;
 
 /// One series' curves and terms, before and (with a model) after.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SeriesAllan {
-    /// `X` … `Z1` or `K0` … `K5` (a unit's gyro names, `P0`, …).
+    /// A gyro's name (`X` … `Z1`, `g1`, …) or a residue's (`K0` … `K5`, `P0`, …).
     pub name: String,
     /// Curve before compensation (deg/h against s).
     pub before: AllanCurve,
@@ -46,10 +49,10 @@ pub struct AllanAnalysis {
     pub confidence: f64,
     /// Whether a model compensated the record (then `after` is present).
     pub compensated: bool,
-    /// Gyro channels X, X1, Y, Y1, Z, Z1.
+    /// Gyro channels, in the unit's order.
     pub channels: Vec<SeriesAllan>,
-    /// Parity residues K0 … K5 (eq. 6) of the same series (a unit's P0, …;
-    /// none for a unit of three gyros).
+    /// Parity residues of the same series (the paper's K0 … K5 of eq. 6, a
+    /// unit's P0, …; none for a unit of three gyros).
     pub residues: Vec<SeriesAllan>,
     /// What the residues are, in the residue figure's title: "eq. 6" for
     /// the paper's K0 … K5, "V·m" for a unit's.
@@ -59,47 +62,6 @@ pub struct AllanAnalysis {
 /// A named series before and (with a model) after, deg/h, for
 /// [`AllanAnalysis::of_series`].
 pub type NamedSeries = (String, Vec<f64>, Option<Vec<f64>>);
-
-/// The six channel series before and (with a model) after, deg/h, and the
-/// first record sample they start at.
-type Series = ([Vec<f64>; 6], Option<[Vec<f64>; 6]>, usize);
-
-fn series(record: &Record, model: Option<&CompensationModel>) -> Result<Series, DtgVibError> {
-    let Some(model) = model else {
-        let before = Channel::ALL.map(|c| record.gyro(c).to_vec());
-        return Ok((before, None, 0));
-    };
-    let applied = crate::apply::Applied::unsplit(model, record)?;
-    let first = applied.prepared.first_sample();
-    let calibrated = applied.prepared.calibrated();
-    let reference = model
-        .preprocess()
-        .rate_reference
-        .rate_deg_h()
-        .map(|w| ideal_outputs(&w))
-        .unwrap_or([0.0; 6]);
-    let before: [Vec<f64>; 6] = std::array::from_fn(|k| {
-        calibrated.gyro(Channel::ALL[k])[first..]
-            .iter()
-            .map(|v| v - reference[k])
-            .collect()
-    });
-    let compensated = applied.compensated_record();
-    let after = Channel::ALL.map(|c| compensated.gyro(c).to_vec());
-    Ok((before, Some(after), first))
-}
-
-/// K0 … K5 of six channel series, per sample.
-fn residue_series(ch: &[Vec<f64>; 6]) -> [Vec<f64>; 6] {
-    let mut out: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(ch[0].len()));
-    let samples = (0..ch[0].len()).map(|i| std::array::from_fn(|c| ch[c][i]));
-    for m in samples {
-        for (o, v) in out.iter_mut().zip(residues(&m)) {
-            o.push(v);
-        }
-    }
-    out
-}
 
 fn analyse_one(
     name: String,
@@ -122,60 +84,70 @@ fn analyse_one(
 }
 
 impl AllanAnalysis {
-    /// Analyses `record`, compensated by `model` if given, with intervals at
+    /// Analyses one record of `unit` (a segment between time gaps),
+    /// compensated by `model` (of that unit) if given, with intervals at
     /// `confidence` (e.g. 0.683).
     ///
     /// ```
     /// use dtg_vib::allan::AllanAnalysis;
-    /// use nav_sensors::sim::{simulate, Scenario};
-    /// let sim = simulate(&Scenario { duration_s: 10.0, ..Scenario::default() }).unwrap();
-    /// let a = AllanAnalysis::new(&sim.record, None, 0.683).unwrap();
+    /// use nav_sensors::sim::{simulate_unit, Scenario};
+    /// let unit = nav_sensors::unit::Unit::paper();
+    /// let sim = simulate_unit(&unit, &Scenario { duration_s: 10.0, ..Scenario::default() }).unwrap();
+    /// let a = AllanAnalysis::new(&unit, None, &sim.record, 0.683).unwrap();
     /// assert_eq!(a.channels.len(), 6);
     /// assert_eq!(a.residues[0].name, "K0");
     /// // 500 samples: τ = 0.02 s to 0.64 s (m up to a tenth of the record).
     /// assert_eq!(a.channels[0].before.points.last().unwrap().tau_s, 0.64);
     /// ```
     pub fn new(
+        unit: &Unit,
+        model: Option<&UnitModel>,
         record: &Record,
-        model: Option<&CompensationModel>,
         confidence: f64,
     ) -> Result<Self, DtgVibError> {
-        let (before, after, first_sample) = series(record, model)?;
-        let tau0_s = record.dt();
-        let k_before = residue_series(&before);
-        let k_after = after.as_ref().map(residue_series);
-        let mut channels = Vec::with_capacity(6);
-        for c in Channel::ALL {
-            let k = c.index();
-            channels.push(analyse_one(
-                c.name().to_string(),
-                &before[k],
-                after.as_ref().map(|a| a[k].as_slice()),
-                tau0_s,
-                confidence,
-            )?);
-        }
-        let mut res = Vec::with_capacity(6);
-        for r in Residue::ALL {
-            let k = r.index();
-            res.push(analyse_one(
-                r.name().to_string(),
-                &k_before[k],
-                k_after.as_ref().map(|a| a[k].as_slice()),
-                tau0_s,
-                confidence,
-            )?);
-        }
-        Ok(Self {
-            tau0_s,
-            first_sample,
-            samples: before[0].len(),
-            confidence,
-            compensated: after.is_some(),
-            channels,
-            residues: res,
-            residue_source: "eq. 6",
-        })
+        let (before, after, first) = match model {
+            None => (
+                (0..unit.gyros().len())
+                    .map(|k| record.gyro_at(k).to_vec())
+                    .collect(),
+                None,
+                0,
+            ),
+            Some(m) => {
+                let applied = Applied::unsplit(m, &[(String::new(), record)])?;
+                let c = applied.compensated()?.remove(0);
+                let after: Vec<Vec<f64>> = (0..unit.gyros().len())
+                    .map(|k| c.gyro_at(k).to_vec())
+                    .collect();
+                let first = applied.prepared.first_sample();
+                (applied.calibrated_gyros(), Some(after), first)
+            }
+        };
+        let name = |k: usize| unit.gyro_names()[k].to_string();
+        let res_before = residues_of(unit, &before);
+        let res_after = after.as_ref().map(|a| residues_of(unit, a));
+        let channels: Vec<NamedSeries> = before
+            .into_iter()
+            .enumerate()
+            .map(|(k, b)| (name(k), b, after.as_ref().map(|a| a[k].clone())))
+            .collect();
+        let residues: Vec<NamedSeries> = res_before
+            .into_iter()
+            .enumerate()
+            .map(|(k, b)| {
+                let after = res_after.as_ref().map(|a| a[k].clone());
+                (unit.residue_names()[k].clone(), b, after)
+            })
+            .collect();
+        let mut a = Self::of_series(record.dt(), first, confidence, channels, residues)?;
+        // The paper's residues are eq. 6's combinations; any other unit's the
+        // rows of its parity matrix V.
+        a.residue_source = if unit.has_paper_geometry() {
+            "eq. 6"
+        } else {
+            "V·m"
+        };
+        Ok(a)
     }
 
     /// The analysis of any unit's series: `channels` and `residues`, each
@@ -379,16 +351,17 @@ pub fn term_text(t: &NoiseTerm) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nav_sensors::sim::{Scenario, simulate};
+    use nav_sensors::sim::{Scenario, simulate_unit};
 
     #[test]
     fn json_has_the_contract_keys_and_no_after_without_a_model() {
-        let sim = simulate(&Scenario {
+        let unit = Unit::paper();
+        let scenario = Scenario {
             duration_s: 4.0,
             ..Scenario::default()
-        })
-        .unwrap();
-        let j = AllanAnalysis::new(&sim.record, None, 0.683)
+        };
+        let sim = simulate_unit(&unit, &scenario).unwrap();
+        let j = AllanAnalysis::new(&unit, None, &sim.record, 0.683)
             .unwrap()
             .to_json();
         let ch = &j["channels"];

@@ -14,6 +14,7 @@
 //! worse).
 
 use nav_sensors::geometry::Axis;
+use nav_sensors::unit::Unit;
 use sysid::Signals;
 
 /// Share of the accelerometers' variance (all three axes, about their
@@ -33,9 +34,36 @@ pub const ONE_AXIS_SHARE: f64 = 0.8;
 /// Welch segment for the accelerometers' spectra, samples (5 s at 50 Hz).
 const SEGMENT: usize = 256;
 
+/// The specific force along the unit's x, y and z axes on `samples` of a
+/// record (the accelerometers themselves when they lie on the axes); empty
+/// where the record lacks one of the unit's accelerometers.
+fn axis_series(unit: &Unit, rec: &Signals, samples: &[usize]) -> [Vec<f64>; 3] {
+    let names = unit.accel_names();
+    let Some(cols) = names
+        .iter()
+        .map(|n| rec.column(n))
+        .collect::<Option<Vec<&[f64]>>>()
+    else {
+        return Default::default();
+    };
+    let mut out: [Vec<f64>; 3] = Default::default();
+    let mut row = vec![0.0; cols.len()];
+    for &s in samples.iter().filter(|&&s| s < rec.len()) {
+        for (r, c) in row.iter_mut().zip(&cols) {
+            *r = c[s];
+        }
+        let f = unit.specific_force(&row);
+        for (o, v) in out.iter_mut().zip(f.iter()) {
+            o.push(*v);
+        }
+    }
+    out
+}
+
 /// The share of the accelerometers' variance below a quarter of the sample
-/// rate, over `samples` of every record; `None` when no record is long
-/// enough for a spectrum or nothing varies.
+/// rate, over `samples` of every record (the specific force along the
+/// unit's axes); `None` when no record is long enough for a spectrum or
+/// nothing varies.
 ///
 /// ```
 /// use sysid::Signals;
@@ -47,21 +75,15 @@ const SEGMENT: usize = 256;
 /// let rec = |az: &Vec<f64>| Signals::new(t.clone(), vec![("ax".into(), zero.clone()), ("ay".into(), zero.clone()), ("az".into(), az.clone())]).unwrap();
 /// let all: Vec<usize> = (0..n).collect();
 /// let (a, b) = (rec(&slow), rec(&fast));
-/// assert!(dtg_vib::caveats::resolved_share(&[(&a, all.clone())]).unwrap() > 0.95);
-/// assert!(dtg_vib::caveats::resolved_share(&[(&b, all)]).unwrap() < 0.05);
+/// let triad = nav_sensors::unit::Unit::builtin("triad").unwrap();
+/// assert!(dtg_vib::caveats::resolved_share(&triad, &[(&a, all.clone())]).unwrap() > 0.95);
+/// assert!(dtg_vib::caveats::resolved_share(&triad, &[(&b, all)]).unwrap() < 0.05);
 /// ```
-pub fn resolved_share(records: &[(&Signals, Vec<usize>)]) -> Option<f64> {
+pub fn resolved_share(unit: &Unit, records: &[(&Signals, Vec<usize>)]) -> Option<f64> {
     let (mut inside, mut total) = (0.0, 0.0);
     for (rec, samples) in records {
         let fs = 1.0 / rec.dt();
-        for axis in Axis::ALL {
-            let Some(col) = rec.column(axis.column()) else {
-                continue;
-            };
-            let x: Vec<f64> = samples
-                .iter()
-                .filter_map(|&s| col.get(s).copied())
-                .collect();
+        for x in axis_series(unit, rec, samples) {
             if x.len() < SEGMENT {
                 continue;
             }
@@ -73,20 +95,13 @@ pub fn resolved_share(records: &[(&Signals, Vec<usize>)]) -> Option<f64> {
     (total > 0.0 && total.is_finite()).then(|| inside / total)
 }
 
-/// The axis along which a record vibrates alone (holding at least
-/// [`ONE_AXIS_SHARE`] of its accelerometers' variance about their means on
+/// The unit axis along which a record vibrates alone (holding at least
+/// [`ONE_AXIS_SHARE`] of the specific force's variance about its mean on
 /// `samples`), if one does.
-pub fn one_vibration_axis(rec: &Signals, samples: &[usize]) -> Option<Axis> {
-    let var: Vec<f64> = Axis::ALL
+pub fn one_vibration_axis(unit: &Unit, rec: &Signals, samples: &[usize]) -> Option<Axis> {
+    let var: Vec<f64> = axis_series(unit, rec, samples)
         .iter()
-        .map(|a| {
-            let col = rec.column(a.column()).unwrap_or(&[]);
-            let x: Vec<f64> = samples
-                .iter()
-                .filter_map(|&s| col.get(s).copied())
-                .collect();
-            stats::variance(&x)
-        })
+        .map(|x| stats::variance(x))
         .collect();
     let total: f64 = var.iter().sum();
     let (k, top) = var.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1))?;
@@ -95,10 +110,14 @@ pub fn one_vibration_axis(rec: &Signals, samples: &[usize]) -> Option<Axis> {
 
 /// The caveats of a suggested specific-force term (`quadratic`: a g² term)
 /// diagnosed on `records`.
-pub fn specific_force_caveats(records: &[(&Signals, Vec<usize>)], quadratic: bool) -> Vec<String> {
+pub fn specific_force_caveats(
+    unit: &Unit,
+    records: &[(&Signals, Vec<usize>)],
+    quadratic: bool,
+) -> Vec<String> {
     let mut out = Vec::new();
     if quadratic
-        && let Some(share) = resolved_share(records)
+        && let Some(share) = resolved_share(unit, records)
         && share < MIN_RESOLVED_SHARE
     {
         let fs = records.first().map_or(0.0, |(r, _)| 1.0 / r.dt());
@@ -112,14 +131,14 @@ pub fn specific_force_caveats(records: &[(&Signals, Vec<usize>)], quadratic: boo
     }
     let axes: Vec<Option<Axis>> = records
         .iter()
-        .map(|(r, s)| one_vibration_axis(r, s))
+        .map(|(r, s)| one_vibration_axis(unit, r, s))
         .collect();
     if let Some(Some(first)) = axes.first()
         && axes.iter().all(|a| *a == Some(*first))
     {
         out.push(format!(
             "it rests on records vibrated along {} only: a specific-force term fitted there need not hold for vibration along another axis or for gravity moving (a flight)",
-            first.column().trim_start_matches('a')
+            first.name()
         ));
     }
     out
@@ -158,11 +177,12 @@ mod tests {
         let z = |t: f64| 1.0 + fast(t);
         let rec = record(3000, [&zero, &zero, &z]);
         let all: Vec<usize> = (0..3000).collect();
-        let both = specific_force_caveats(&[(&rec, all.clone())], true);
+        let unit = Unit::paper();
+        let both = specific_force_caveats(&unit, &[(&rec, all.clone())], true);
         assert_eq!(both.len(), 2, "{both:?}");
         assert!(both[0].contains("sees a small part of the vibration"));
         assert!(both[1].contains("vibrated along z only"));
-        let linear = specific_force_caveats(&[(&rec, all)], false);
+        let linear = specific_force_caveats(&unit, &[(&rec, all)], false);
         assert_eq!(linear.len(), 1, "{linear:?}");
     }
 
@@ -172,6 +192,6 @@ mod tests {
         let (x, y, z) = (sine(2.0, 0.0), sine(3.0, 1.0), sine(5.0, 2.0));
         let rec = record(3000, [&x, &y, &z]);
         let all: Vec<usize> = (0..3000).collect();
-        assert!(specific_force_caveats(&[(&rec, all)], true).is_empty());
+        assert!(specific_force_caveats(&Unit::paper(), &[(&rec, all)], true).is_empty());
     }
 }

@@ -18,26 +18,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
 
-/// The DTG terms that can be effects: those a vibration test excites through
-/// specific force or rate. Scale factor and misalignment need a varying rate
-/// reference, temperature enters as `col:temp`, and 2N rectification needs
-/// angular vibration the 50-Hz record does not carry.
-pub const TERM_EFFECTS: [DtgTerm; 12] = {
-    let mut out = [DtgTerm::Bias; 12];
-    let mut i = 0;
-    while i < 9 {
-        out[i] = DtgTerm::SPECIFIC_FORCE[i];
-        i += 1;
-    }
-    while i < 12 {
-        out[i] = DtgTerm::ANISOINERTIA[i - 9];
-        i += 1;
-    }
-    out
-};
-
-/// Prefix of the ids of extra-column effects.
-pub const COLUMN_PREFIX: &str = "col:";
+pub use crate::unit_sensor::{COLUMN_PREFIX, TERM_EFFECTS};
 
 /// One physical effect, by stable id (`g_I`, `gg_IS`, `ai_OS`, `col:temp`, …).
 ///
@@ -406,11 +387,7 @@ impl<'a> EffectColumns<'a> {
     }
 }
 
-/// Anisoinertia (rate-product) effects are observable only when the angular
-/// rate varies by more than this (deg/s, standard deviation of any axis): in
-/// a stationary vibration test the rate is Earth rate plus gyro noise and
-/// drift, and a product of those would only fit the gyros' own errors.
-pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
+pub use crate::unit_sensor::ANISOINERTIA_MIN_RATE_DEG_S;
 
 /// How much the angular rate varies over the given samples of a record: the
 /// largest standard deviation of the least-squares rate's three axes, deg/s.
@@ -439,19 +416,7 @@ pub fn rate_variation_deg_s<'a>(
         .into_iter()
         .map(|i| least_squares_rate(&record.gyro_sample(i)) / 3600.0)
         .collect();
-    largest_axis_std(&rates)
-}
-
-/// The largest standard deviation (about the mean) of three-axis samples'
-/// axes; 0 for none.
-pub(crate) fn largest_axis_std(v: &[nalgebra::Vector3<f64>]) -> f64 {
-    let n = v.len().max(1) as f64;
-    (0..3)
-        .map(|k| {
-            let m = v.iter().map(|w| w[k]).sum::<f64>() / n;
-            (v.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
-        })
-        .fold(0.0, f64::max)
+    crate::unit_sensor::largest_axis_std(&rates)
 }
 
 /// For each channel j, the 3×6 least-squares operator of eq. 4 with row j

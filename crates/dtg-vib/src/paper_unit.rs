@@ -287,7 +287,11 @@ impl sysid::Sensor for PaperUnit {
     ) -> Vec<String> {
         match effect {
             Effect::Term(t) if DtgTerm::SPECIFIC_FORCE.contains(t) => {
-                crate::caveats::specific_force_caveats(records, t.is_quadratic())
+                crate::caveats::specific_force_caveats(
+                    &nav_sensors::unit::Unit::paper(),
+                    records,
+                    t.is_quadratic(),
+                )
             }
             _ => Vec::new(),
         }
@@ -303,12 +307,7 @@ impl sysid::Sensor for PaperUnit {
     }
 }
 
-/// Smallest spread an operating point's coordinate is divided by, g: a
-/// coordinate the training windows held constant (gravity along x in a
-/// Z-axis test) measures a change of 0.05 g (a 3° tilt of gravity) as one
-/// unit, not as infinitely many; an accelerometer bias that differs between
-/// two runs by a few mg is not a new operating point.
-pub const MIN_SCALE_G: f64 = 0.05;
+pub use crate::unit_sensor::MIN_SCALE_G;
 
 /// True for a rate-product (anisoinertia) effect.
 fn is_anisoinertia(e: &Effect) -> bool {

@@ -15,7 +15,7 @@ use crate::report::{
     parity_on_samples,
 };
 use crate::unit_sensor::fdi::DEFAULT_FALSE_ALARM;
-use crate::unit_sensor::{UnitModel, UnitSensor, gyros_before_after, to_signals, unit_allan};
+use crate::unit_sensor::{UnitModel, UnitSensor, gyros_before_after, to_signals};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
@@ -159,7 +159,7 @@ pub fn write_page(
     let allan: Option<AllanAnalysis> = records
         .iter()
         .max_by_key(|(_, r)| r.len())
-        .and_then(|(_, r)| unit_allan(m.unit(), Some(m), r, 0.683).ok());
+        .and_then(|(_, r)| AllanAnalysis::new(m.unit(), Some(m), r, 0.683).ok());
     let mut files: Vec<(String, PathBuf)> = vec![("model".into(), page.model_path.to_path_buf())];
     files.extend(page.data.iter().map(|d| ("data".to_string(), d.clone())));
     files.extend(page.files.iter().cloned());

@@ -658,6 +658,8 @@ fn coefficient_cells(model: &serde_json::Value) -> Vec<Option<String>> {
 fn fit_prints_each_coefficient_with_its_interval() {
     let (out, text) = fitted_model();
     let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with("unit: paper: "), "{}", lines[0]);
+    let lines = &lines[1..];
     assert_eq!(
         lines[0],
         "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
@@ -814,7 +816,10 @@ fn residues_columns_without_and_with_a_model() {
         header.starts_with("t,K0,K1,K2,K3,K4,K5,K0_pre,"),
         "{header}"
     );
-    assert!(header.ends_with(",K5_comp"), "{header}");
+    assert!(
+        header.ends_with(",K5_comp,K0_out,K1_out,K2_out,K3_out,K4_out,K5_out"),
+        "{header}"
+    );
     assert!(
         printed.contains("  change\n") && printed.contains("\n pooled "),
         "{printed}"
@@ -1399,7 +1404,7 @@ fn no_spinner_is_left_on_a_terminal() {
     let lines = screen_lines(&raw);
     assert!(!lines.iter().any(|l| has_spinner(l)), "{lines:#?}");
     assert!(
-        lines[0].starts_with("channel") || lines[0].starts_with("note:"),
+        lines[0].starts_with("unit: paper") || lines[0].starts_with("note:"),
         "{lines:#?}"
     );
 }
@@ -1437,7 +1442,7 @@ fn explain_shows_each_round_and_channel_on_a_terminal() {
     let steps: Vec<String> = lines.iter().filter_map(|l| step(l)).collect();
     assert_eq!(
         steps.first().map(String::as_str),
-        Some("round 1: fitting the six channels"),
+        Some("round 1: fitting the 6 channels"),
         "{lines:#?}"
     );
     for ch in ["X", "X1", "Y", "Y1", "Z", "Z1"] {
@@ -1459,13 +1464,19 @@ fn explain_shows_each_round_and_channel_on_a_terminal() {
         Some("round 1: diagnosing (the model's mirror, then every candidate effect)"),
         "{lines:#?}"
     );
-    // The steps come first, then the results as without a terminal.
-    let first_result = lines.iter().position(|l| l == "round 1:").expect("results");
+    // The steps come first, then the results (the unit, then each round)
+    // as without a terminal.
+    let first_result = lines
+        .iter()
+        .position(|l| l.starts_with("unit: paper"))
+        .expect("results");
     assert_eq!(first_result, steps.len(), "{lines:#?}");
+    assert_eq!(lines[first_result + 1], "round 1:", "{lines:#?}");
     // --quiet: the results alone.
     let quiet: Vec<&str> = args.iter().copied().chain(["--quiet"]).collect();
     let lines = screen_lines(&on_terminal(&quiet).expect("script ran once"));
-    assert_eq!(lines[0], "round 1:", "{lines:#?}");
+    assert!(lines[0].starts_with("unit: paper"), "{lines:#?}");
+    assert_eq!(lines[1], "round 1:", "{lines:#?}");
     assert!(!lines.iter().any(|l| step(l).is_some()), "{lines:#?}");
 }
 

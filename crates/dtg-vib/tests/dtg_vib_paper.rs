@@ -105,9 +105,22 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
     let other = simulate(&short(2)).unwrap().record;
     let applied = Applied::new(&model, &other).unwrap();
     let dir = std::env::temp_dir().join(format!("dtg-vib-report-other-{}", std::process::id()));
-    let summary =
-        dtg_vib::report::write_report(&model, &applied, &other, "other", None, &dir).unwrap();
-    for (c, shown) in model.channels().iter().zip(&summary.channels) {
+    // The one page of every unit, on the paper's model file read as the
+    // paper unit's model.
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("model.json");
+    model.save(&path).unwrap();
+    let unit_model = dtg_vib::unit_sensor::UnitModel::load(&path).unwrap();
+    let data = [dir.join("other.csv")];
+    let written = dtg_vib::unit_page::write_page(
+        &unit_model,
+        &[("other".to_string(), other.clone())],
+        dtg_vib::unit_page::Page::new(&path, &data),
+        &dir.join("report"),
+    )
+    .unwrap();
+    for (c, (name, shown)) in model.channels().iter().zip(&written.numbers.channels) {
+        assert_eq!(name, c.channel().name());
         let y = applied.prepared.target(c.channel());
         let p = &applied.predicted[c.channel().index()];
         let rms = |rows: &[usize]| {

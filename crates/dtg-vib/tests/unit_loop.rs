@@ -391,7 +391,7 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
     assert!(
         std::fs::read_to_string(dir.join("res.csv"))
             .unwrap()
-            .starts_with("t,P0,P0_comp\n")
+            .starts_with("t,P0,P0_pre,P0_comp,P0_out\n")
     );
     // What cannot run on a tetra's model, or does not fit it, is one line:
     // a zero-phase model is not exported (dtg_vib_onboard exports causal

@@ -4,16 +4,17 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::model::CompensationModel;
-use nav_sensors::record::Record;
+use dtg_vib::numfmt::short;
 use std::path::PathBuf;
 
+use super::records::{no_residue_note, open_model, read_records, unit_of};
 use super::report::guard_report;
 
 /// The flags of `allan`.
 #[derive(Args)]
 pub struct AllanArgs {
-    /// Test record (CSV).
+    /// Test record (CSV; of a log with time gaps, the longest segment
+    /// between them: an average never spans a gap).
     #[arg(long)]
     data: PathBuf,
     /// Model file from `fit`: adds the curves after its compensation.
@@ -30,7 +31,7 @@ pub struct AllanArgs {
     report: Option<PathBuf>,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
     /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// (it stores its unit).
     #[arg(long)]
     unit: Option<String>,
 }
@@ -45,46 +46,44 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         report,
         unit,
     } = a;
-    let unit_model = match &model {
-        Some(m) => super::unit::model_unit(m, unit.as_deref())?,
-        None => None,
-    };
-    let chosen = match &unit_model {
-        Some(m) => Some(m.unit().clone()),
-        None if model.is_none() => super::unit::chosen(unit.as_deref())?,
-        None => None,
+    let m = model
+        .as_deref()
+        .map(|p| open_model(p, unit.as_deref()))
+        .transpose()?;
+    let unit = match &m {
+        Some(m) => m.unit().clone(),
+        None => unit_of(unit.as_deref())?,
     };
     guard_report(
         report.as_deref(),
         &[("--data", Some(&data)), ("--model", model.as_deref())],
     )?;
-    if let Some(u) = chosen {
-        let run = super::unit::allan::AllanRun {
-            model: unit_model.as_ref(),
-            confidence,
-            json,
-            report: report.as_deref(),
-        };
-        return super::unit::allan::allan(&u, &data, run, progress);
-    }
-    let record = Record::read_csv(&data)?;
-    let m = model.as_ref().map(CompensationModel::load).transpose()?;
+    let min = m
+        .as_ref()
+        .map_or(2, |m| 2 * m.inner().preprocess().window.length());
+    let read = read_records(std::slice::from_ref(&data), &unit, min)?;
+    let (name, record) = read
+        .records
+        .iter()
+        .max_by_key(|(_, r)| r.len())
+        .expect("read_records gives at least one segment");
     progress.say("computing Allan deviations");
-    let a = dtg_vib::allan::AllanAnalysis::new(&record, m.as_ref(), confidence)?;
+    let a = dtg_vib::allan::AllanAnalysis::new(&unit, m.as_ref(), record, confidence)?;
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            Some(dtg_vib::report::write_allan_report(
-                &a,
-                &data.display().to_string(),
-                dir,
-            )?)
+            Some(dtg_vib::report::write_allan_report(&a, name, dir)?)
         }
         None => None,
     };
     progress.clear();
+    read.say_notes();
     if json {
-        println!("{}", serde_json::to_string(&a.to_json())?);
+        let mut v = a.to_json();
+        v["unit"] = serde_json::Value::String(unit.name().to_string());
+        v["segment"] = serde_json::Value::String(name.clone());
+        v["compensated"] = serde_json::Value::Bool(a.compensated);
+        println!("{v}");
         if let Some(p) = &page {
             eprintln!("report: {}", p.display());
         }
@@ -92,13 +91,16 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     }
     let tau = &a.channels[0].before.points;
     println!(
-        "Overlapping Allan deviation of {}: {} samples from sample {}{}, τ = {} to {} s; {:.1}% intervals",
-        data.display(),
+        "Overlapping Allan deviation of {name}{}: {} samples from sample {}{}, τ = {} to {} s; {:.1}% intervals",
+        match read.records.len() {
+            1 => "",
+            _ => " (the longest segment between time gaps)",
+        },
         a.samples,
         a.first_sample,
         first_sample_why(a.first_sample),
-        tau.first().map_or(0.0, |p| p.tau_s),
-        tau.last().map_or(0.0, |p| p.tau_s),
+        short(tau.first().map_or(0.0, |p| p.tau_s)),
+        short(tau.last().map_or(0.0, |p| p.tau_s)),
         100.0 * a.confidence
     );
     let text = dtg_vib::allan::term_text;
@@ -123,6 +125,9 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     }
     if unresolved {
         println!("{NOT_RESOLVED}");
+    }
+    if let Some(note) = no_residue_note(&unit) {
+        println!("{note}");
     }
     if let Some(p) = &page {
         println!("report: {}", p.display());

@@ -3,13 +3,13 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::apply::Applied;
-use dtg_vib::model::CompensationModel;
-use nav_sensors::record::Record;
+use dtg_vib::unit_sensor::Applied;
+use dtg_vib::unit_sensor::check::{DEFAULT_OUTSIDE_THRESHOLD, TransferCheck};
 use std::path::PathBuf;
 
 use super::parse::parse_share;
-use super::report::{guard_report, model_report};
+use super::records::{no_residue_note, open_model, records_of};
+use super::report::{guard_report, model_page};
 use super::residues::print_residues_on;
 use super::terms;
 
@@ -19,11 +19,12 @@ pub struct CheckArgs {
     /// Model file from `fit`.
     #[arg(long)]
     model: PathBuf,
-    /// A record the model was not fitted on (CSV).
+    /// A record the model was not fitted on (CSV; a log with time gaps is
+    /// read in segments, compared together).
     #[arg(long)]
     data: PathBuf,
     /// Warn when more than this share of the windows lies outside the training range.
-    #[arg(long = "outside-threshold", default_value_t = dtg_vib::check::DEFAULT_OUTSIDE_THRESHOLD, value_parser = parse_share, allow_hyphen_values = true)]
+    #[arg(long = "outside-threshold", default_value_t = DEFAULT_OUTSIDE_THRESHOLD, value_parser = parse_share, allow_hyphen_values = true)]
     outside_threshold: f64,
     /// Print one JSON object on stdout.
     #[arg(long)]
@@ -48,34 +49,42 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         report,
         unit,
     } = a;
-    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
+    let m = open_model(&model, unit.as_deref())?;
     guard_report(
         report.as_deref(),
         &[("--model", Some(&model)), ("--data", Some(&data))],
     )?;
-    if let Some(m) = unit_model {
-        let page = report.as_deref().map(|dir| (model.as_path(), dir));
-        return super::unit::apply::check(&m, &data, outside_threshold, json, page, progress);
-    }
-    let m = CompensationModel::load(&model)?;
-    let record = Record::read_csv(&data)?;
+    let read = records_of(&m, std::slice::from_ref(&data))?;
     progress.say("applying the model");
-    let (c, page) = match &report {
-        // The report needs the split rows too: apply once, with them.
+    let records = read.borrowed();
+    // The report needs the split rows too: apply once, with them.
+    let applied = match report {
+        Some(_) => Applied::new(&m, &records)?,
+        None => Applied::unsplit(&m, &records)?,
+    };
+    let c = dtg_vib::unit_sensor::check::check(&m, &applied, outside_threshold)?;
+    let page = match &report {
         Some(dir) => {
-            let applied = Applied::new(&m, &record)?;
-            let c = dtg_vib::check::check_applied(&m, &applied, outside_threshold)?;
             progress.say("drawing figures");
-            let summary = model_report((&m, &model), (&record, &data), &applied, None, dir)?;
-            (c, Some(summary.index))
+            let data = [data.clone()];
+            Some(model_page(&m, &model, &read.records, &data, None, dir)?.index)
         }
-        None => (dtg_vib::check::check(&m, &record, outside_threshold)?, None),
+        None => None,
     };
     progress.clear();
+    read.say_notes();
     if json {
-        println!("{}", serde_json::to_string(&c)?);
+        let mut v = serde_json::to_value(&c)?;
+        v["unit"] = serde_json::Value::String(m.unit().name().to_string());
+        println!("{v}");
+        if let Some(p) = &page {
+            eprintln!("report: {}", p.display());
+        }
     } else {
         print_check(&c);
+        if let Some(note) = no_residue_note(m.unit()) {
+            println!("{note}");
+        }
         if let Some(p) = page {
             println!("report: {}", p.display());
         }
@@ -89,7 +98,7 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
     Ok(())
 }
 
-fn print_check(c: &dtg_vib::check::TransferCheck) {
+fn print_check(c: &TransferCheck) {
     let cell = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
     // A model with a training range fades its network part outside it: the
     // figures of the model as fitted follow, for comparison.
@@ -115,7 +124,7 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
         };
         println!(
             "{:>7}  {:>10.4}  {:>9.4}  {:>10.4}  {:>12.4}  {:>6.1}  {:>7}  {:>7}{no_fade}",
-            ch.channel.name(),
+            ch.channel,
             ch.rms_before,
             ch.rms_after,
             ch.mean_after,
@@ -133,7 +142,7 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
         .channels
         .iter()
         .filter(|ch| ch.fit_percent < 0.0)
-        .map(|ch| ch.channel.name())
+        .map(|ch| ch.channel.as_str())
         .collect();
     if let Some(line) = terms::negative_fit(&worse) {
         println!("{line}");
@@ -157,14 +166,14 @@ fn print_check(c: &dtg_vib::check::TransferCheck) {
             100.0 * r
         );
     }
+    if c.residues.is_empty() {
+        return;
+    }
     print_residues_on(&c.residues, "every row");
     if let Some(r) = &c.residues_unfaded {
-        let pooled = |rms: fn(&dtg_vib::parity::ResidueStats) -> f64| {
-            (r.iter().map(|s| rms(s).powi(2)).sum::<f64>() / r.len().max(1) as f64).sqrt()
-        };
         println!(
             "no fade: pooled residue rms after {:.4} deg/h (the model as fitted, everywhere)",
-            pooled(|s| s.rms_after)
+            dtg_vib::unit_sensor::pooled(r, |s| s.rms_after)
         );
     }
 }

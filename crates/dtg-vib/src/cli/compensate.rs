@@ -1,12 +1,14 @@
-//! `dtg-vib compensate`: the record with a model's prediction removed.
+//! `dtg-vib compensate`: the record with a model's prediction removed,
+//! written in the unit's column names and units; a causal model runs
+//! sample by sample through the onboard evaluator.
 
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::apply::Applied;
-use dtg_vib::model::CompensationModel;
-use nav_sensors::record::Record;
+use dtg_vib::unit_sensor::{Applied, RateReference};
 use std::path::PathBuf;
+
+use super::records::{open_model, records_of};
 
 /// The flags of `compensate`.
 #[derive(Args)]
@@ -17,12 +19,13 @@ pub struct CompensateArgs {
     /// Test record (CSV).
     #[arg(long)]
     data: PathBuf,
-    /// Output CSV (same columns; rows from the first full window on).
+    /// Output CSV (the record's columns; each segment's rows from its first
+    /// full window on).
     #[arg(long)]
     out: PathBuf,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
-    /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// triad, tetra, dual-triad); not needed (a model stores its unit), and
+    /// refused when it is not the model's.
     #[arg(long)]
     unit: Option<String>,
 }
@@ -35,42 +38,46 @@ pub fn run(a: CompensateArgs, progress: Progress) -> Result<()> {
         out,
         unit,
     } = a;
-    if let Some(m) = super::unit::model_unit(&model, unit.as_deref())? {
-        outfile::guard_file(
-            "--out",
-            &out,
-            &[("--model", Some(&model)), ("--data", Some(&data))],
-        )?;
-        return super::unit::apply::compensate(&m, &data, &out, progress);
-    }
+    let m = open_model(&model, unit.as_deref())?;
     outfile::guard_file(
         "--out",
         &out,
         &[("--model", Some(&model)), ("--data", Some(&data))],
     )?;
-    let model = CompensationModel::load(&model)?;
-    let record = Record::read_csv(&data)?;
+    let read = records_of(&m, std::slice::from_ref(&data))?;
     progress.say("compensating");
-    let applied = Applied::unsplit(&model, &record)?;
-    progress.clear();
+    let applied = Applied::unsplit(&m, &read.borrowed())?;
+    let mut text: Vec<u8> = Vec::new();
+    let mut rows = 0;
+    for (k, ((name, _), r)) in read.records.iter().zip(applied.compensated()?).enumerate() {
+        rows += r.len();
+        let mut part = Vec::new();
+        r.write_with_unit(&mut part, name, m.unit())?;
+        // One header: later segments continue the first's columns.
+        let header_end = match k {
+            0 => 0,
+            _ => part.iter().position(|&b| b == b'\n').map_or(0, |i| i + 1),
+        };
+        text.extend_from_slice(&part[header_end..]);
+    }
+    outfile::write_bytes(&out, text).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
+    drop(progress);
+    read.say_notes();
     eprintln!(
         "{}",
-        rate_reference_note(&model.preprocess().rate_reference)
+        rate_reference_note(&m.inner().sensor().rate_reference)
     );
-    applied.compensated_record().write_csv(&out)?;
-    drop(progress);
     eprintln!(
-        "wrote {} ({} rows: the first {} samples have no full window)",
+        "wrote {} ({rows} rows in the unit's names and units, from {} segment(s): each segment's first {} samples have no full window)",
         out.display(),
-        record.len() - applied.prepared.first_sample(),
+        read.records.len(),
         applied.prepared.first_sample()
     );
     Ok(())
 }
 
 /// What `compensate` removes as the rate reference, and how to change it.
-fn rate_reference_note(r: &dtg_vib::pipeline::RateReference) -> String {
-    use dtg_vib::pipeline::RateReference;
+fn rate_reference_note(r: &RateReference) -> String {
     let what = match r {
         RateReference::None => "no rate reference (the model was fitted without one)".to_string(),
         RateReference::Earth { site } => format!(

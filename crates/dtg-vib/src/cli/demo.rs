@@ -1,10 +1,17 @@
-//! `dtg-vib demo`: the main job on a built-in default, end to end.
+//! `dtg-vib demo`: the main job on a built-in default, end to end, on any
+//! unit ([`dtg_vib::unit_demo`]), and what it prints: what was hidden, the
+//! baseline's residues, the diagnosis, what the refit found against the
+//! truth, each channel's rms before and after, the residues with fault
+//! detection, and where the pages are.
 
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
+use dtg_vib::unit_demo::{Demo, DemoOptions, found_text, hidden_text};
 use std::path::PathBuf;
 
+use super::records::unit_of;
+use super::report::print_parity;
 use super::residues::print_residues;
 
 /// The flags of `demo`.
@@ -14,40 +21,81 @@ pub struct DemoArgs {
     #[arg(long, default_value = "demo-out")]
     out: PathBuf,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
-    /// triad, tetra, dual-triad); default paper. On another unit the demo
-    /// hides effects that suit it (tetra: g2=g_y and g3=col:temp; triad:
-    /// gx=g_y in a test along z; dual-triad: gx2=g_x) and runs the loop.
+    /// triad, tetra, dual-triad); default paper. The demo hides effects
+    /// that suit it (paper: Y1's temperature sensitivity in the Z-axis
+    /// test; tetra: g2=g_y and g3=col:temp; triad: gx=g_y in a test along z;
+    /// dual-triad: gx2=g_x; any other unit: g_y on its first rate gyro or
+    /// g_S on its first DTG axis) and runs the loop.
     #[arg(long)]
     unit: Option<String>,
+    /// Windowed signals, comma-separated (the unit's accelerometers or
+    /// extra columns), or `auto` (chosen from the record, as `fit`);
+    /// default the unit's accelerometer along z (the paper's az).
+    #[arg(long = "window-signals", value_delimiter = ',')]
+    window_signals: Option<Vec<String>>,
 }
 
 /// Runs the demo into its directory and prints what it found.
 pub fn run(a: DemoArgs, progress: Progress) -> Result<()> {
-    let DemoArgs { out, unit } = a;
-    let chosen = super::unit::chosen(unit.as_deref())?;
-    outfile::guard_dir("--out", &out, &[], &[])?;
-    if let Some(u) = chosen {
-        return super::unit::demo::run(&u, &out, progress);
+    let DemoArgs {
+        out,
+        unit,
+        window_signals,
+    } = a;
+    let unit = unit_of(unit.as_deref())?;
+    if let Some(w) = &window_signals
+        && w.len() > 1
+        && w.iter().any(|s| s.trim() == "auto")
+    {
+        anyhow::bail!(
+            "--window-signals {}: auto chooses the signals itself; give auto alone or a list of signals",
+            w.join(",")
+        );
     }
-    let summary = dtg_vib::demo::run(&out, &|step| progress.say(step.to_string()))?;
+    outfile::guard_dir("--out", &out, &[], &[])?;
+    let options = DemoOptions { window_signals };
+    let d = dtg_vib::unit_demo::run(&unit, &options, &out, &|step| progress.say(step))?;
     drop(progress);
-    print_demo(&summary);
+    println!(
+        "The demo on the unit '{}' ({}), a simulated vibration test ({}):",
+        unit.name(),
+        unit.file(),
+        d.record.display()
+    );
+    println!(
+        "hidden from the calibration: {}",
+        hidden_text(&d.hidden).join(", ")
+    );
+    if !d.baseline_residues.is_empty() {
+        println!("The baseline (bias and the network, no effect):");
+        print_residues(&d.baseline_residues);
+    }
+    println!();
+    print_diagnosis(&d);
+    println!();
+    print_refit(&d);
+    if !d.final_residues.is_empty() {
+        print_residues(&d.final_residues);
+    }
+    let m = dtg_vib::unit_sensor::UnitModel::load(out.join("final").join("model.json"))?;
+    print_parity(&m, &d.parity);
+    println!();
+    println!("reports (start with {}):", d.index.display());
+    println!("  baseline:            {}", d.baseline_report.display());
+    println!("  diagnosis:           {}", d.diagnosis_report.display());
+    println!("  after the refit:     {}", d.final_report.display());
+    println!(
+        "  what is left:        {}",
+        d.final_diagnosis_report.display()
+    );
     Ok(())
 }
 
-fn print_demo(s: &dtg_vib::demo::DemoSummary) {
-    println!(
-        "The paper's procedure on the simulated Z-axis random vibration test ({}):",
-        s.record.display()
-    );
-    print_residues(&s.baseline_residues);
-    println!();
-    println!(
-        "Diagnosis (hidden in the simulation: {}):",
-        s.hidden.join(", ")
-    );
-    for c in &s.diagnosis.channels {
-        // Each suggestion with its coefficient and 95% interval.
+/// The baseline's diagnosis: each channel's rms and what it suggests, with
+/// its coefficient and 95% interval.
+fn print_diagnosis(d: &Demo) {
+    println!("Diagnosis of the baseline:");
+    for c in &d.diagnosis.channels {
         let suggested: Vec<String> = c
             .suggested
             .iter()
@@ -70,34 +118,40 @@ fn print_demo(s: &dtg_vib::demo::DemoSummary) {
             }
         );
     }
-    let added: Vec<String> = s
-        .suggested
-        .iter()
-        .map(|a| format!("{}={}", a.channel, a.effect))
-        .collect();
-    println!();
+}
+
+/// What the refit added and found against the truth, and each channel's
+/// validation rms before and after.
+fn print_refit(d: &Demo) {
+    let added: Vec<String> = d.added.iter().map(|(c, e)| format!("{c}={e}")).collect();
     println!(
-        "Refitted with {}:",
+        "Refitted with {} ({} fit(s){}):",
         if added.is_empty() {
             "nothing to add".into()
         } else {
             added.join(", ")
+        },
+        d.rounds,
+        if d.converged {
+            ", until nothing new was suggested"
+        } else {
+            "; the refit's diagnosis still suggests more: run dtg-vib explain on the record"
         }
     );
-    println!("channel  val rms before  val rms after  (deg/h)");
-    for (ch, b, a) in &s.channel_rms {
+    for f in &d.found {
+        println!("  {}", found_text(f));
+    }
+    for m in &d.missed {
         println!(
-            "{:>7}  {:>14.4}  {:>13.4}  {:+.1}%",
-            ch.name(),
-            b,
-            a,
-            100.0 * (a / b - 1.0)
+            "  missed: {}={} (hidden {} {})",
+            m.channel, m.effect, m.value, m.unit
         );
     }
-    print_residues(&s.final_residues);
-    println!();
-    println!("reports (start with {}):", s.index.display());
-    println!("  paper's procedure: {}", s.baseline_report.display());
-    println!("  diagnosis:         {}", s.diagnosis_report.display());
-    println!("  after the refit:   {}", s.final_report.display());
+    println!("channel  val rms before  val rms after  (deg/h)  change");
+    for (c, b, a) in &d.channel_rms {
+        println!(
+            "{c:>7}  {b:>14.4}  {a:>13.4}  {:>15}",
+            format!("{:+.1}%", 100.0 * (a / b - 1.0))
+        );
+    }
 }

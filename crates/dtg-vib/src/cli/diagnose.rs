@@ -3,14 +3,11 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::explain::diagnose_records;
-use dtg_vib::model::CompensationModel;
-use dtg_vib::report::write_diagnosis_report;
-use nav_sensors::record::Record;
+use dtg_vib::report::{Wording, write_diagnosis_report_of};
 use std::path::{Path, PathBuf};
 
 use super::findings::print_diagnosis;
-use super::fit_args::once_each;
+use super::records::{borrowed, check_observable, once_each, open_model, records_of, signals};
 use super::report::guard_report;
 use super::thresholds::Thresholds;
 
@@ -49,39 +46,34 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         thresholds,
         unit,
     } = a;
-    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
+    // A record given twice is refused before the model is read.
+    once_each(&data)?;
+    let m = open_model(&model, unit.as_deref())?;
     let inputs: Vec<(&str, Option<&Path>)> = std::iter::once(("--model", Some(model.as_path())))
         .chain(data.iter().map(|d| ("--data", Some(d.as_path()))))
         .collect();
     guard_report(report.as_deref(), &inputs)?;
-    if let Some(m) = unit_model {
-        return super::unit::apply::diagnose(
-            &m,
-            &data,
-            json,
-            &thresholds.options(),
-            report.as_deref(),
-            progress,
-        );
-    }
-    once_each(&data)?;
-    let m = CompensationModel::load(&model)?;
-    let records = data
-        .iter()
-        .map(|d| Ok((d.display().to_string(), Record::read_csv(d)?)))
-        .collect::<Result<Vec<(String, Record)>>>()?;
-    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
+    let read = records_of(&m, &data)?;
+    check_observable(m.inner().sensor(), &read.records)?;
+    let named = signals(&read.records)?;
     progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
     let options = thresholds.options();
-    let d = diagnose_records(&m, &named, &options)?;
+    let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), &options)?;
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            Some(write_diagnosis_report(&d, options.rank.min_err(), dir)?)
+            let wording = Wording::of_unit(m.unit());
+            Some(write_diagnosis_report_of(
+                &d,
+                options.rank.min_err(),
+                &wording,
+                dir,
+            )?)
         }
         None => None,
     };
     drop(progress);
+    read.say_notes();
     if json {
         // stdout holds the one JSON object; the page goes to stderr.
         println!("{}", serde_json::to_string(&d)?);

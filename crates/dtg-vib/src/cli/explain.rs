@@ -4,16 +4,16 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::explain::ExplainStage;
-use dtg_vib::report::write_diagnosis_report;
-use nav_sensors::calibration::Calibration;
-use nav_sensors::record::Record;
+use dtg_vib::report::{Wording, write_diagnosis_report_of};
+use dtg_vib::unit_sensor::UnitModel;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use sysid::explain::ExplainStage;
 
 use super::findings::print_rounds;
-use super::fit::{FitReport, print_fit, with_window_signals};
-use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records, window_signals};
+use super::fit::{FitReport, print_fit_channels};
+use super::fit_args::{FitArgs, FitRecipe, fit_inputs};
+use super::records::{borrowed, signals};
 use super::report::guard_report;
 use super::thresholds::Thresholds;
 
@@ -46,63 +46,49 @@ fn explain_takes(f: &FitArgs) -> Result<()> {
 /// Runs the loop, saves the final model and prints the rounds.
 pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     let f = &a.fit;
-    if let Some(unit) = super::unit::chosen(f.unit.as_deref())? {
-        explain_takes(f)?;
-        guard_report(a.report.as_deref(), &fit_inputs(f))?;
-        return super::unit::fit::explain(
-            f,
-            unit,
-            &a.thresholds.options(),
-            a.max_rounds as usize,
-            a.report.as_deref(),
-            progress,
-        );
-    }
     outfile::guard_file("--out", &f.out, &fit_inputs(f))?;
     guard_report(a.report.as_deref(), &fit_inputs(f))?;
     explain_takes(f)?;
-    let mut options = fit_options(f)?;
-    let records = read_records(f)?;
-    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
-    let calibration = f.calib.as_ref().map(Calibration::load).transpose()?;
-    let window = window_signals(f, &mut options.preprocess.window, || {
-        Ok(dtg_vib::fit::choose_window_signals(
-            &named,
-            calibration.as_ref(),
-        )?)
-    })?;
+    let recipe = FitRecipe::resolve(f)?;
+    let unit = &recipe.sensor.unit;
+    let named = signals(&recipe.read.records)?;
     let diagnose_options = a.thresholds.options();
     let start = std::time::Instant::now();
     let fitted = AtomicUsize::new(0);
-    let mut e = dtg_vib::explain::explain_records(
-        &named,
-        calibration.as_ref(),
-        &options,
+    let n = unit.gyros().len();
+    let e = sysid::explain::explain(
+        &recipe.sensor,
+        &borrowed(&named),
+        &recipe.options,
         &diagnose_options,
         a.max_rounds as usize,
-        &|stage| show_stage(&progress, &fitted, stage),
+        &|stage| show_stage(&progress, &fitted, n, stage),
     )?;
     let seconds = start.elapsed().as_secs_f64();
-    e.model = with_window_signals(e.model, window);
-    e.model.save(&f.out)?;
+    let model = UnitModel::of(recipe.with_window(e.model));
+    model.save(&f.out)?;
     let page = match &a.report {
         Some(dir) => {
             progress.say("drawing figures");
             let last = &e.rounds.last().expect("at least one round").diagnosis;
-            Some(write_diagnosis_report(
+            Some(write_diagnosis_report_of(
                 last,
                 diagnose_options.rank.min_err(),
+                &Wording::of_unit(unit),
                 dir,
             )?)
         }
         None => None,
     };
     progress.clear();
+    recipe.read.say_notes();
+    let m = model.inner();
     if f.json {
         let report = ExplainReport {
+            unit: unit.name(),
             rounds: &e.rounds,
             converged: e.converged,
-            final_fit: FitReport::new(&e.model, seconds),
+            final_fit: FitReport::of_model(m, seconds),
         };
         println!("{}", serde_json::to_string(&report)?);
         if let Some(p) = &page {
@@ -110,14 +96,10 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
         }
         return Ok(());
     }
+    println!("unit: {} ({})", unit.name(), unit.file());
     print_rounds(&e.rounds, e.converged, a.max_rounds);
-    print_fit(&e.model);
-    if let Some(w) = e
-        .model
-        .inner()
-        .choice()
-        .and_then(|c| c.window_signals.as_ref())
-    {
+    print_fit_channels(m.channels());
+    if let Some(w) = m.choice().and_then(|c| c.window_signals.as_ref()) {
         println!("{}", w.line());
     }
     println!("model: {} ({:.1} s)", f.out.display(), seconds);
@@ -129,23 +111,23 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
 
 /// A round's steps as lines that stay on the terminal (a round over several
 /// records takes tens of seconds), and the current one on the spinner;
-/// `fitted` counts the round's channels, which finish in any order.
-fn show_stage(progress: &Progress, fitted: &AtomicUsize, stage: ExplainStage) {
+/// `fitted` counts the round's channels (of `n`), which finish in any order.
+fn show_stage(progress: &Progress, fitted: &AtomicUsize, n: usize, stage: ExplainStage<String>) {
     match stage {
-        ExplainStage::Fitting(n) => {
+        ExplainStage::Fitting(r) => {
             fitted.store(0, Ordering::Relaxed);
-            progress.line(format!("round {n}: fitting the six channels"));
-            progress.say(format!("round {n}: fitting"));
+            progress.line(format!("round {r}: fitting the {n} channels"));
+            progress.say(format!("round {r}: fitting"));
         }
-        ExplainStage::ChannelFitted(n, ch) => {
+        ExplainStage::ChannelFitted(r, ch) => {
             let k = fitted.fetch_add(1, Ordering::Relaxed) + 1;
-            progress.line(format!("round {n}: {} fitted ({k} of 6)", ch.name()));
+            progress.line(format!("round {r}: {ch} fitted ({k} of {n})"));
         }
-        ExplainStage::Diagnosing(n) => {
+        ExplainStage::Diagnosing(r) => {
             progress.line(format!(
-                "round {n}: diagnosing (the model's mirror, then every candidate effect)"
+                "round {r}: diagnosing (the model's mirror, then every candidate effect)"
             ));
-            progress.say(format!("round {n}: diagnosing"));
+            progress.say(format!("round {r}: diagnosing"));
         }
     }
 }
@@ -154,7 +136,8 @@ fn show_stage(progress: &Progress, fitted: &AtomicUsize, stage: ExplainStage) {
 /// as `fit --json` writes it.
 #[derive(serde::Serialize)]
 struct ExplainReport<'a> {
-    rounds: &'a [dtg_vib::explain::Round],
+    unit: &'a str,
+    rounds: &'a [sysid::explain::Round<String, nav_sensors::geometry::Axis>],
     converged: bool,
     #[serde(rename = "final")]
     final_fit: FitReport,

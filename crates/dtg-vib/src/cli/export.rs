@@ -4,7 +4,10 @@
 use anyhow::Result;
 use clap::Args;
 use dtg_vib::model::CompensationModel;
+use dtg_vib::unit_sensor::UnitModel;
 use std::path::{Path, PathBuf};
+
+use super::records::open_model;
 
 /// The flags of `export`.
 #[derive(Args)]
@@ -23,8 +26,8 @@ pub struct ExportArgs {
     #[arg(long, default_value = "f64")]
     precision: String,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
-    /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// triad, tetra, dual-triad); not needed (a model stores its unit), and
+    /// refused when it is not the model's.
     #[arg(long)]
     unit: Option<String>,
 }
@@ -34,42 +37,50 @@ const EQUATIONS_FILE: &str = "equations.txt";
 
 /// Writes the C sources and tables, or the equations.
 pub fn run(a: ExportArgs) -> Result<()> {
-    if let Some(m) = super::unit::model_unit(&a.model, a.unit.as_deref())? {
-        return match a.lang.as_str() {
-            "text" => write_text(
-                &dtg_vib::export::unit_equations(&m),
-                &a.model,
-                a.out.as_deref(),
-            ),
-            "c" => {
-                let Some(out) = &a.out else {
-                    anyhow::bail!("--lang c writes files: give the directory with --out DIR");
-                };
-                let precision: dtg_vib::export::Precision = a.precision.parse()?;
-                let tables = dtg_vib::export::unit_tables(&m)?;
-                let c = dtg_vib::export::unit_c_sources(&tables, m.unit(), precision)?;
-                write_c(&c, &tables, &a.model, out)
-            }
-            other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
-        };
-    }
-    let model = CompensationModel::load(&a.model)?;
+    let m = open_model(&a.model, a.unit.as_deref())?;
+    // The paper's unit keeps its exporters (layout 2) until the one
+    // exporter writes every unit's model.
+    let paper = CompensationModel::of_unit(&m);
     match a.lang.as_str() {
-        "text" => text(&model, &a.model, a.out.as_deref()),
+        "text" => {
+            let equations = match &paper {
+                Some(p) => dtg_vib::export::equations(p),
+                None => dtg_vib::export::unit_equations(&m),
+            };
+            write_text(&equations, &a.model, a.out.as_deref())
+        }
         "c" => {
             let Some(out) = &a.out else {
                 anyhow::bail!("--lang c writes files: give the directory with --out DIR");
             };
-            c(&model, &a.model, out, &a.precision)
+            let precision: dtg_vib::export::Precision = a.precision.parse()?;
+            let (c, tables) = match &paper {
+                Some(p) => paper_c(p, precision)?,
+                None => unit_c(&m, precision)?,
+            };
+            write_c(&c, &tables, &a.model, out)
         }
         other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
     }
 }
 
-/// The equations on stdout, or into `out/equations.txt` (never over the
-/// model), saying where they went.
-fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Result<()> {
-    write_text(&dtg_vib::export::equations(model), model_path, out)
+/// The C sources and tables of a model of the paper's unit.
+fn paper_c(
+    model: &CompensationModel,
+    precision: dtg_vib::export::Precision,
+) -> Result<(dtg_vib::export::CSources, dtg_vib::export::Tables)> {
+    let c = dtg_vib::export::c_sources(model, precision)?;
+    Ok((c, dtg_vib::export::tables(model)?))
+}
+
+/// The C sources and tables of a unit's model.
+fn unit_c(
+    m: &UnitModel,
+    precision: dtg_vib::export::Precision,
+) -> Result<(dtg_vib::export::CSources, dtg_vib::export::Tables)> {
+    let tables = dtg_vib::export::unit_tables(m)?;
+    let c = dtg_vib::export::unit_c_sources(&tables, m.unit(), precision)?;
+    Ok((c, tables))
 }
 
 /// `equations` on stdout, or into `out/equations.txt`.
@@ -88,15 +99,6 @@ fn write_text(equations: &str, model_path: &Path, out: Option<&Path>) -> Result<
     let path = out.join(EQUATIONS_FILE);
     println!("wrote {}", path.display());
     Ok(())
-}
-
-/// The C99 sources and the onboard tables into `out`, with their size, state
-/// and cost per step.
-fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) -> Result<()> {
-    let precision: dtg_vib::export::Precision = precision.parse()?;
-    let c = dtg_vib::export::c_sources(model, precision)?;
-    let tables = dtg_vib::export::tables(model)?;
-    write_c(&c, &tables, model_path, out)
 }
 
 /// Writes C sources and tables into `out` and says what they hold.

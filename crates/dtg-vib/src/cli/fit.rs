@@ -1,100 +1,99 @@
-//! `dtg-vib fit`: the six channel models fitted on the records, saved, and
-//! their scores printed (or written as JSON; `explain` prints its final fit
-//! the same way).
+//! `dtg-vib fit`: every channel model of the unit fitted on the records,
+//! saved with the unit, and their scores printed (or written as JSON;
+//! `explain` prints its final fit the same way).
 
 use anyhow::Result;
 use cli_support::progress::Progress;
-use dtg_vib::fit::{FitStage, fit_records};
-use dtg_vib::model::CompensationModel;
-use nav_sensors::calibration::Calibration;
-use nav_sensors::record::Record;
+use dtg_vib::unit_sensor::{UnitModel, UnitSensor};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use sysid::Sensor;
 
-use super::fit_args::{FitArgs, fit_inputs, fit_options, read_records, window_signals};
-use dtg_vib::fit::choose_window_signals;
-
-/// The paper unit's model with the choice of its window's signals in its
-/// report, when the records chose them.
-pub fn with_window_signals(
-    model: CompensationModel,
-    window: Option<sysid::window_signals::WindowSignalsChoice>,
-) -> CompensationModel {
-    match window {
-        Some(w) => CompensationModel::of(model.inner().clone().with_window_signals(w)),
-        None => model,
-    }
-}
+use super::fit_args::{FitArgs, FitRecipe, fit_inputs};
 
 /// Fits, saves the model and prints its scores.
 pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
-    if let Some(unit) = super::unit::chosen(a.unit.as_deref())? {
-        return super::unit::fit::fit(&a, unit, progress);
-    }
     outfile::guard_file("--out", &a.out, &fit_inputs(&a))?;
-    let mut options = fit_options(&a)?;
-    let records = read_records(&a)?;
-    let calibration = a.calib.as_ref().map(Calibration::load).transpose()?;
-    let done = std::sync::atomic::AtomicUsize::new(0);
+    let recipe = FitRecipe::resolve(&a)?;
+    let FitRecipe {
+        sensor,
+        options,
+        read,
+        ..
+    } = &recipe;
+    let named = super::records::signals(&read.records)?;
+    let n = sensor.unit.gyros().len();
+    let done = AtomicUsize::new(0);
     let start = std::time::Instant::now();
-    let named: Vec<(String, &Record)> = records.iter().map(|(n, r)| (n.clone(), r)).collect();
-    let window = window_signals(&a, &mut options.preprocess.window, || {
-        Ok(choose_window_signals(&named, calibration.as_ref())?)
-    })?;
-    let (model, prepared) = fit_records(
-        &named,
-        calibration.as_ref(),
-        &options,
+    let (model, prepared) = sysid::fit_records(
+        sensor,
+        &super::records::borrowed(&named),
+        options,
         &|stage| match stage {
-            FitStage::Preparing => progress.say("preparing the record"),
-            FitStage::ChannelDone(ch) => {
-                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                progress.say(format!("fitted {n}/6 channels (last {ch})"));
+            sysid::FitStage::Preparing => progress.say("preparing the records"),
+            sysid::FitStage::ChannelDone(ch) => {
+                let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                progress.say(format!("fitted {k}/{n} channels (last {ch})"));
             }
         },
     )?;
-    let model = with_window_signals(model, window);
+    let mut model = recipe.with_window(model);
+    if read.records.len() > 1 {
+        model = model.with_records(read.records.iter().map(|(n, _)| n.clone()).collect());
+    }
+    // Each record's (or log segment's) validation rms; with --cv records,
+    // each validated by a model fitted on the others.
     let per_record = match a.cv.is_some() {
         true => {
             progress.say("leaving one record out");
-            Some(dtg_vib::fit::leave_one_record_out(&prepared, &options)?)
+            Some(sysid::fit::leave_one_record_out(&prepared, options)?)
         }
-        false if records.len() > 1 => Some(dtg_vib::fit::record_scores(&model, &prepared)?),
+        false if read.records.len() > 1 => Some(sysid::fit::record_scores(&model, &prepared)?),
         false => None,
     };
-    let fit_seconds = start.elapsed().as_secs_f64();
+    let seconds = start.elapsed().as_secs_f64();
+    let model = UnitModel::of(model);
     model.save(&a.out)?;
     progress.clear();
-    let n_train = model.channels()[0].scores().n_train;
-    let stride = dtg_vib::fit::selection_stride(n_train);
+    read.say_notes();
+    let m = model.inner();
+    stride_note(m);
+    if a.json {
+        let mut report = FitReport::of_model(m, seconds);
+        if let Some(per) = &per_record {
+            report.set_records(per, a.cv.clone());
+        }
+        println!("{}", serde_json::to_string(&report)?);
+        return Ok(());
+    }
+    println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
+    print_fit_channels(m.channels());
+    if let Some(c) = m.choice() {
+        print_choice(c);
+    }
+    if let Some(per) = &per_record {
+        print_record_scores(&sensor.channels(), per, a.cv.is_some());
+    }
+    println!("model: {} ({:.2} s)", a.out.display(), seconds);
+    Ok(())
+}
+
+/// On stderr, where cross-validation and centre selection ran on every
+/// k-th training window only.
+pub fn stride_note(m: &sysid::Model<UnitSensor>) {
+    let n_train = m.channels()[0].scores().n_train;
+    let stride = sysid::fit::selection_stride(n_train);
     if stride > 1 {
         eprintln!(
             "note: {n_train} training windows: cross-validation and centre selection used every {stride}th of them ({}); the weights were solved on all",
             n_train.div_ceil(stride)
         );
     }
-    if a.json {
-        let mut report = FitReport::new(&model, fit_seconds);
-        if let Some(per) = &per_record {
-            report.set_records(per, a.cv.clone());
-        }
-        println!("{}", serde_json::to_string(&report)?);
-    } else {
-        print_fit(&model);
-        if let Some(c) = model.inner().choice() {
-            print_choice(c);
-        }
-        if let Some(per) = &per_record {
-            let names = nav_sensors::geometry::Channel::ALL.map(|c| c.name().to_string());
-            print_record_scores(&names, per, a.cv.is_some());
-        }
-        println!("model: {} ({:.2} s)", a.out.display(), fit_seconds);
-    }
-    Ok(())
 }
 
 /// What the choice of input and smoother weighed: each candidate's mean
 /// validation rms and worst ADEV after/before, the chosen one marked, and
 /// what it cost and gained against the paper's model (raw, no smoother).
-pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
+pub fn print_choice(c: &sysid::fit::ChoiceReport) {
     if let Some(w) = &c.window_signals {
         println!("{}", w.line());
     }
@@ -178,11 +177,7 @@ pub fn print_choice(c: &dtg_vib::fit::ChoiceReport) {
 }
 
 /// Validation rms of each channel on each record.
-pub fn print_record_scores(
-    channels: &[String],
-    per: &[Vec<dtg_vib::fit::RecordScore>],
-    loro: bool,
-) {
+pub fn print_record_scores(channels: &[String], per: &[Vec<sysid::fit::RecordScore>], loro: bool) {
     println!(
         "validation rms per record, deg/h ({}):",
         if loro {
@@ -203,11 +198,6 @@ pub fn print_record_scores(
 /// Each channel's centres, scores and effect coefficients (the fit's
 /// estimates, from the training rows), each with its standard error and 95%
 /// interval.
-pub fn print_fit(model: &CompensationModel) {
-    print_fit_channels(model.channels());
-}
-
-/// [`print_fit`] of any sensor's channel models.
 pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
     channels: &[sysid::ChannelModel<C, E>],
 ) {
@@ -251,6 +241,8 @@ pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
 /// `fit --json`.
 #[derive(serde::Serialize)]
 pub struct FitReport {
+    /// The unit's name.
+    unit: String,
     channels: Vec<ChannelReport>,
     split: String,
     fit_seconds: f64,
@@ -264,7 +256,7 @@ pub struct FitReport {
     /// What `--input auto` / `--smoother auto` chose among, with every
     /// candidate's validation rms and worst Allan-deviation ratio.
     #[serde(skip_serializing_if = "Option::is_none")]
-    choice: Option<dtg_vib::fit::ChoiceReport>,
+    choice: Option<sysid::fit::ChoiceReport>,
 }
 
 /// One channel of [`FitReport`].
@@ -284,7 +276,7 @@ struct ChannelReport {
     effect_coefficients: std::collections::BTreeMap<String, CoefficientReport>,
     /// Validation rms per record, with several records.
     #[serde(skip_serializing_if = "Option::is_none")]
-    records: Option<Vec<dtg_vib::fit::RecordScore>>,
+    records: Option<Vec<sysid::fit::RecordScore>>,
 }
 
 /// One effect coefficient of [`ChannelReport`].
@@ -300,12 +292,15 @@ struct CoefficientReport {
 }
 
 impl FitReport {
-    pub fn new(model: &CompensationModel, fit_seconds: f64) -> Self {
+    /// The report of a unit's model, fitted in `fit_seconds`.
+    pub fn of_model(model: &sysid::Model<UnitSensor>, fit_seconds: f64) -> Self {
         let split = match model.validated_on() {
             Some(name) => format!("by record (validated on {name})"),
             None => model.split().to_string(),
         };
-        Self::of_channels(model.channels(), split, fit_seconds).with_choice(model.inner())
+        let mut r = Self::of_channels(model.channels(), split, fit_seconds).with_choice(model);
+        r.unit = model.sensor().unit.name().to_string();
+        r
     }
 
     /// The model's input, smoother and the fit's choice among candidates.
@@ -318,7 +313,7 @@ impl FitReport {
 
     /// Each channel's validation rms per record (`per`, in channel order),
     /// and `records` for `--cv records`.
-    pub fn set_records(&mut self, per: &[Vec<dtg_vib::fit::RecordScore>], cv: Option<String>) {
+    pub fn set_records(&mut self, per: &[Vec<sysid::fit::RecordScore>], cv: Option<String>) {
         for (c, r) in self.channels.iter_mut().zip(per) {
             c.records = Some(r.clone());
         }
@@ -326,7 +321,7 @@ impl FitReport {
     }
 
     /// The report of any sensor's channel models.
-    pub fn of_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
+    fn of_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
         channels: &[sysid::ChannelModel<C, E>],
         split: String,
         fit_seconds: f64,
@@ -369,6 +364,7 @@ impl FitReport {
             })
             .collect();
         Self {
+            unit: String::new(),
             channels,
             split,
             fit_seconds,

@@ -1,16 +1,21 @@
-//! The flags of a fit, shared by `fit` and `explain`, and what they become:
-//! the library's fit options, checked against each other and the records.
+//! The flags of a fit, shared by `fit` and `explain`, and what they become,
+//! resolved once: the unit's plug-in (its calibration and rate reference),
+//! the loop's options with each channel's effects, the records read with
+//! the unit, and the window's signals the records chose.
 
-use anyhow::Result;
+use anyhow::{Result, anyhow};
 use clap::Args;
-use dtg_vib::effects::{ChannelEffect, Effect};
-use dtg_vib::fit::{CentreMethod, FitOptions, FitSettings, ModelChoice};
-use dtg_vib::pipeline::{FilterSpec, Preprocess, RateReference};
 use dtg_vib::split::Holdout;
-use dtg_vib::window::WindowSpec;
+use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitEffectError, UnitSensor};
 use nav_sensors::record::Record;
 use nav_sensors::sim::Site;
+use nav_sensors::unit::Unit;
 use std::path::PathBuf;
+use sysid::fit::ModelChoice;
+use sysid::window_signals::WindowSignalsChoice;
+use sysid::{CentreMethod, FilterSpec, FitSettings, Sensor, WindowSpec};
+
+use super::records::{Read, check_observable, read_records, sensor, unit_of};
 
 use super::parse::{
     parse_count, parse_fraction, parse_hz, parse_latitude, parse_order, parse_rate, parse_ridge,
@@ -19,19 +24,22 @@ use super::parse::{
 /// The flags of a fit.
 #[derive(Args)]
 pub struct FitArgs {
-    /// Test record (CSV: t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra columns]); repeat
-    /// to fit several records together (one calibration; filters and windows
-    /// run per record).
+    /// Test record (CSV in the unit's columns; the paper's:
+    /// t,X,X1,Y,Y1,Z,Z1,ax,ay,az[,extra columns]); repeat to fit several
+    /// records together (one calibration; filters and windows run per
+    /// record, and per segment of a log with time gaps).
     #[arg(long, required = true)]
     pub data: Vec<PathBuf>,
-    /// Ground-calibration file (JSON); without it nothing is compensated.
+    /// Ground-calibration file (JSON, the unit's or the paper's format);
+    /// without it nothing is compensated.
     #[arg(long)]
     pub calib: Option<PathBuf>,
     /// The sensor unit: a unit file (FILE.toml, docs/formats.md) or a
     /// built-in name (paper, triad, tetra, dual-triad); default paper.
     #[arg(long)]
     pub unit: Option<String>,
-    /// Physical effects of every channel, comma-separated (g_I, gg_IS, ai_OS, col:NAME, ...).
+    /// Physical effects of every channel, comma-separated (DTG: g_I, gg_IS,
+    /// ai_OS, ...; rate gyro: g_x, gg_yz, ...; col:NAME).
     #[arg(long, value_delimiter = ',')]
     pub effects: Vec<String>,
     /// An effect for one channel, CHANNEL=ID (repeatable), e.g. Y1=gg_IS.
@@ -43,11 +51,11 @@ pub struct FitArgs {
     /// Window length, samples (the paper: 50).
     #[arg(long, default_value_t = 50, value_parser = parse_count, allow_hyphen_values = true)]
     pub window: usize,
-    /// Windowed signals, comma-separated (accelerometer axes or extra
-    /// columns), or `auto`: every accelerometer axis whose dynamic rms is at
-    /// least 0.2 × the strongest axis's in some training record that
-    /// vibrates (its strongest axis ≥ 0.05 g); a z-shaker record takes az,
-    /// the paper's window.
+    /// Windowed signals, comma-separated (the unit's accelerometers or
+    /// extra columns), or `auto`: every accelerometer whose dynamic rms is
+    /// at least 0.2 × the strongest one's in some training record that
+    /// vibrates (its strongest ≥ 0.05 g); a z-shaker record takes az, the
+    /// paper's window.
     #[arg(long = "window-signals", value_delimiter = ',', default_value = "auto")]
     pub window_signals: Vec<String>,
     /// What the networks read of the windows: `raw` (the window itself, the
@@ -139,28 +147,63 @@ pub struct FitArgs {
     pub json: bool,
 }
 
-/// The fit options the flags say.
-pub fn fit_options(a: &FitArgs) -> Result<FitOptions> {
-    let (effects, add, options) = fit_options_with(
-        a,
-        |list| Ok(Effect::parse_list(list)?),
-        |s| Ok(s.parse::<ChannelEffect>()?),
-    )?;
-    Ok(FitOptions {
-        effects,
-        add,
-        ..options
-    })
+/// A fit's flags resolved once: everything a fit of the unit is told.
+pub struct FitRecipe {
+    /// The unit's plug-in: its calibration and rate reference.
+    pub sensor: UnitSensor,
+    /// The loop's options: each channel's effects, pre-processing, split,
+    /// settings.
+    pub options: sysid::FitOptions<UnitEffect>,
+    /// The records (a log's segments between time gaps, each a record).
+    pub read: Read,
+    /// The window's signals the records chose (`--window-signals auto`).
+    pub window: Option<WindowSignalsChoice>,
 }
 
-/// The fit options the flags say, with the effects of `--effects` and
-/// `--add-effect` parsed by the given functions (those of the paper's unit,
-/// or of another unit) and returned beside options that hold none.
-pub fn fit_options_with<E, A>(
-    a: &FitArgs,
-    parse_effects: impl Fn(&str) -> Result<Vec<E>>,
-    parse_add: impl Fn(&str) -> Result<A>,
-) -> Result<(Vec<E>, Vec<A>, FitOptions)> {
+impl FitRecipe {
+    /// The flags resolved: the options checked against each other, the
+    /// records read with the unit and checked against the flags, the
+    /// window's signals chosen.
+    pub fn resolve(a: &FitArgs) -> Result<Self> {
+        let unit = unit_of(a.unit.as_deref())?;
+        let (mut options, reference) = options(a, &unit)?;
+        let sensor = sensor(unit, a.calib.as_deref(), reference)?;
+        let read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
+        for (_, r) in &read.records {
+            check_against_record(a, r)?;
+        }
+        check_observable(&sensor, &read.records)?;
+        let window = match window_auto(a)? {
+            true => {
+                let c = sensor.choose_window_signals(&read.borrowed())?;
+                let w = &mut options.recipe.preprocess.window;
+                *w = WindowSpec::new(c.taken.clone(), w.length())?;
+                Some(c)
+            }
+            false => None,
+        };
+        Ok(Self {
+            sensor,
+            options,
+            read,
+            window,
+        })
+    }
+
+    /// The loop's model with the choice of its window's signals in its
+    /// report, when the records chose them.
+    pub fn with_window(&self, model: sysid::Model<UnitSensor>) -> sysid::Model<UnitSensor> {
+        match &self.window {
+            Some(w) => model.with_window_signals(w.clone()),
+            None => model,
+        }
+    }
+}
+
+/// The loop's options and the rate reference the flags say for `unit`:
+/// `--effects` must suit every channel, `--add-effect CHANNEL=ID` its
+/// channel's model.
+fn options(a: &FitArgs, unit: &Unit) -> Result<(sysid::FitOptions<UnitEffect>, RateReference)> {
     let centres = a.centres.parse::<CentreMethod>()?;
     if centres == CentreMethod::Ols && a.max_centres > a.candidates {
         // OLS picks among the candidates; more centres than that used to
@@ -172,12 +215,114 @@ pub fn fit_options_with<E, A>(
             a.candidates
         );
     }
-    let effects = parse_effects(&a.effects.join(","))?;
-    let add = a
-        .add_effect
-        .iter()
-        .map(|s| parse_add(s))
-        .collect::<Result<Vec<_>>>()?;
+    let effects = effects(a, unit)?;
+    let (split, validate_on) = split(a)?;
+    if a.cv.is_some() && a.data.len() < 2 {
+        anyhow::bail!("--cv records: leaving one record out needs two or more --data records");
+    }
+    let filter = (!a.no_filter).then_some(FilterSpec {
+        order: a.filter_order,
+        cutoff_hz: a.cutoff,
+    });
+    let input_filter = a.input_cutoff.map(|c| FilterSpec {
+        order: a.filter_order,
+        cutoff_hz: c,
+    });
+    let rate_reference = match (a.earth_rate, &a.table_rate) {
+        (Some(lat), _) => RateReference::Earth {
+            site: Site {
+                latitude_deg: lat,
+                ..Site::default()
+            },
+        },
+        (None, Some(w)) => RateReference::Table { rate_deg_s: *w },
+        (None, None) => RateReference::None,
+    };
+    let preprocess = sysid::Preprocess {
+        filter,
+        input_filter,
+        // With auto, the unit's accelerometer along z until the records
+        // choose (FitRecipe::resolve).
+        window: WindowSpec::new(
+            match window_auto(a)? {
+                true => dtg_vib::unit_sensor::default_window_signals(unit),
+                false => a.window_signals.clone(),
+            },
+            a.window,
+        )?,
+        causal: a.causal,
+        input: match a.input.as_str() {
+            "auto" => Default::default(),
+            i => i.parse()?,
+        },
+        smoother: match a.smoother.as_str() {
+            "auto" => None,
+            s => parse_smoother(s)?,
+        },
+    };
+    let settings = FitSettings {
+        centres,
+        max_centres: a.max_centres,
+        candidates: a.candidates,
+        ridge: a.ridge,
+        seed: a.seed,
+        choice: model_choice(a)?,
+        shared_centres: a.shared_centres,
+        ..FitSettings::default()
+    };
+    let recipe = sysid::Recipe {
+        preprocess,
+        split,
+        effects,
+        settings,
+    };
+    let options = sysid::FitOptions {
+        recipe,
+        validate_on,
+    };
+    Ok((options, rate_reference))
+}
+
+/// Each channel's effects: `--effects` (for every channel, each checked
+/// against its model), then its `--add-effect CHANNEL=ID`s, each once.
+fn effects(a: &FitArgs, unit: &Unit) -> Result<Vec<Vec<UnitEffect>>> {
+    let common = UnitEffect::parse_list(&a.effects.join(","))?;
+    let plug = UnitSensor::new(unit.clone());
+    let mut per: Vec<Vec<UnitEffect>> = Vec::new();
+    for k in 0..unit.gyros().len() {
+        let mut e = Vec::new();
+        for x in &common {
+            e.push(
+                plug.parse_effect(k, &x.id())
+                    .map_err(|err| anyhow!("--effects {x}: {err}"))?,
+            );
+        }
+        per.push(e);
+    }
+    for s in &a.add_effect {
+        let (channel, id) = s
+            .split_once('=')
+            .map(|(c, e)| (c.trim(), e.trim()))
+            .ok_or_else(|| UnitEffectError::NotAPair { given: s.clone() })?;
+        let k = unit
+            .gyro_index(channel)
+            .ok_or_else(|| UnitEffectError::UnknownChannel {
+                given: s.clone(),
+                channel: channel.to_string(),
+                valid: unit.gyro_names().iter().map(|n| n.to_string()).collect(),
+            })?;
+        let e = plug
+            .parse_effect(k, id)
+            .map_err(|err| anyhow!("--add-effect {channel}={id}: {err}"))?;
+        if !per[k].contains(&e) {
+            per[k].push(e);
+        }
+    }
+    Ok(per)
+}
+
+/// The split and, with `--split by-record`, the record that validates.
+fn split(a: &FitArgs) -> Result<(Holdout, Option<String>)> {
     let by_record = a.split.trim() == "by-record";
     let split = match by_record {
         true => Holdout::Blocked {
@@ -205,66 +350,7 @@ pub fn fit_options_with<E, A>(
         }
         (false, None) => None,
     };
-    if a.cv.is_some() && a.data.len() < 2 {
-        anyhow::bail!("--cv records: leaving one record out needs two or more --data records");
-    }
-    let filter = (!a.no_filter).then_some(FilterSpec {
-        order: a.filter_order,
-        cutoff_hz: a.cutoff,
-    });
-    let input_filter = a.input_cutoff.map(|c| FilterSpec {
-        order: a.filter_order,
-        cutoff_hz: c,
-    });
-    let rate_reference = match (a.earth_rate, &a.table_rate) {
-        (Some(lat), _) => RateReference::Earth {
-            site: Site {
-                latitude_deg: lat,
-                ..Site::default()
-            },
-        },
-        (None, Some(w)) => RateReference::Table { rate_deg_s: *w },
-        (None, None) => RateReference::None,
-    };
-    let options = FitOptions {
-        preprocess: Preprocess {
-            filter,
-            input_filter,
-            // With auto, the paper's signal until the records choose (window_signals).
-            window: WindowSpec::new(
-                match window_auto(a)? {
-                    true => vec!["az".to_string()],
-                    false => a.window_signals.clone(),
-                },
-                a.window,
-            )?,
-            rate_reference,
-            causal: a.causal,
-            input: match a.input.as_str() {
-                "auto" => Default::default(),
-                i => i.parse()?,
-            },
-            smoother: match a.smoother.as_str() {
-                "auto" => None,
-                s => parse_smoother(s)?,
-            },
-        },
-        effects: Vec::new(),
-        add: Vec::new(),
-        split,
-        validate_on,
-        settings: FitSettings {
-            centres,
-            max_centres: a.max_centres,
-            candidates: a.candidates,
-            ridge: a.ridge,
-            seed: a.seed,
-            choice: model_choice(a)?,
-            shared_centres: a.shared_centres,
-            ..FitSettings::default()
-        },
-    };
-    Ok((effects, add, options))
+    Ok((split, validate_on))
 }
 
 /// True for `--window-signals auto` (the default); `auto` beside a signal
@@ -279,24 +365,6 @@ pub fn window_auto(a: &FitArgs) -> Result<bool> {
     }
     Ok(auto)
 }
-
-/// With `--window-signals auto`, the window's signals the records choose
-/// (`choose`, the sensor's [`sysid::window_signals::choose`]) put into
-/// `window`, and the choice to keep in the model's report; otherwise
-/// `window` as the flags said and nothing.
-pub fn window_signals(
-    a: &FitArgs,
-    window: &mut WindowSpec,
-    choose: impl FnOnce() -> Result<sysid::window_signals::WindowSignalsChoice>,
-) -> Result<Option<sysid::window_signals::WindowSignalsChoice>> {
-    if !window_auto(a)? {
-        return Ok(None);
-    }
-    let c = choose()?;
-    *window = WindowSpec::new(c.taken.clone(), window.length())?;
-    Ok(Some(c))
-}
-
 /// The candidates of `--input` and `--smoother`: what each names, or every
 /// one for `auto`; none to choose among when both name one.
 fn model_choice(a: &FitArgs) -> Result<Option<ModelChoice>> {
@@ -318,12 +386,12 @@ fn model_choice(a: &FitArgs) -> Result<Option<ModelChoice>> {
 }
 
 /// `--smoother`: `none` or a cut-off in Hz.
-fn parse_smoother(s: &str) -> Result<Option<dtg_vib::pipeline::Smoother>> {
+fn parse_smoother(s: &str) -> Result<Option<sysid::Smoother>> {
     if s.trim() == "none" {
         return Ok(None);
     }
     let cutoff_hz = parse_hz(s).map_err(|e| anyhow::anyhow!("--smoother {s}: {e} (or none)"))?;
-    Ok(Some(dtg_vib::pipeline::Smoother { cutoff_hz }))
+    Ok(Some(sysid::Smoother { cutoff_hz }))
 }
 
 /// The name of the --data record that `path` names (the same file), for
@@ -357,37 +425,8 @@ pub fn fit_inputs(a: &FitArgs) -> Vec<(&'static str, Option<&std::path::Path>)> 
         .collect()
 }
 
-/// Refuses a record given twice: fitted twice it would weigh double, and a
-/// split by record could not tell its two copies apart.
-pub fn once_each(data: &[PathBuf]) -> Result<()> {
-    let canonical = |p: &PathBuf| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone());
-    for (i, d) in data.iter().enumerate() {
-        if let Some(e) = data[..i].iter().find(|e| canonical(e) == canonical(d)) {
-            anyhow::bail!(
-                "--data {} is the same file as --data {}: give each record once",
-                d.display(),
-                e.display()
-            );
-        }
-    }
-    Ok(())
-}
-
-/// Reads every --data record, checking the rate-dependent flags against each.
-pub fn read_records(a: &FitArgs) -> Result<Vec<(String, Record)>> {
-    once_each(&a.data)?;
-    a.data
-        .iter()
-        .map(|d| {
-            let r = Record::read_csv(d)?;
-            check_against_record(a, &r)?;
-            Ok((d.display().to_string(), r))
-        })
-        .collect()
-}
-
 /// The flags that depend on the record's rate, said with the flag.
-pub fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
+fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
     for (flag, cutoff) in [
         ("--cutoff", (!a.no_filter).then_some(a.cutoff)),
         ("--input-cutoff", a.input_cutoff),

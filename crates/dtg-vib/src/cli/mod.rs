@@ -6,7 +6,8 @@
 //! | module | what |
 //! |---|---|
 //! | [`simulate`], [`fit`], [`compensate`], [`residues`], [`report`], [`check`], [`diagnose`], [`explain`], [`allan`], [`export`], [`demo`] | the subcommands |
-//! | [`fit_args`] | the flags of a fit (`fit`, `explain`) and the fit options they say |
+//! | [`fit_args`] | the flags of a fit (`fit`, `explain`), resolved once into what the fit is told |
+//! | [`records`] | the unit, a model file, the plug-in and logs read with the unit, as every command resolves them |
 //! | [`thresholds`] | when the diagnosis suggests an effect (`diagnose`, `explain`) |
 //! | [`parse`] | validators of numeric flags, each saying the valid range |
 //! | [`terms`] | what the words the tables print mean, in a line under them |
@@ -23,12 +24,12 @@ pub mod fit;
 pub mod fit_args;
 pub mod fleet;
 pub mod parse;
+pub mod records;
 pub mod report;
 pub mod residues;
 pub mod simulate;
 pub mod terms;
 pub mod thresholds;
-pub mod unit;
 
 use clap::{Parser, Subcommand};
 
@@ -51,14 +52,14 @@ pub struct Cli {
 pub enum Command {
     /// Simulate a sensor-unit vibration test (default: the paper's Z-axis random test).
     Simulate(simulate::SimulateArgs),
-    /// Fit the six channel models on a test record.
+    /// Fit every gyro channel's model on test records.
     // Negative numbers are values here: a southern latitude (--earth-rate -33.9),
     // a table turning backwards (--table-rate -1,0,0).
     #[command(allow_negative_numbers = true)]
     Fit(Box<fit_args::FitArgs>),
     /// Write the record compensated by a model.
     Compensate(compensate::CompensateArgs),
-    /// Write the parity residues K0..K5 (eq. 6), and with a model the compensated ones.
+    /// Write the parity residues (the paper's K0..K5 of eq. 6; P0.. of another unit), with a model the compensated ones, and test them for a fault.
     Residues(residues::ResiduesArgs),
     /// Write the figures and index.html of a model on a record.
     Report(report::ReportArgs),
@@ -74,9 +75,9 @@ pub enum Command {
     /// after on the windows inside and outside the training range. A window
     /// is outside when its nearest training point lies farther than 1.5
     /// reference distances, the distance within which 99% of the model's own
-    /// validation windows lie. The parity residues K0..K5 follow, before and
-    /// after about zero, how many times better or worse, and pooled: the rms
-    /// of the six together.
+    /// validation windows lie. The parity residues (K0..K5 for the paper's
+    /// unit) follow, before and after about zero, how many times better or
+    /// worse, and pooled: the rms of them all together.
     Check(check::CheckArgs),
     /// Find what a model is missing: compare, locate failures, rank candidate effects.
     Diagnose(diagnose::DiagnoseArgs),

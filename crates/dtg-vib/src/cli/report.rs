@@ -1,15 +1,17 @@
 //! `dtg-vib report`: the figures and index.html of a model on a record
-//! (also written by `check --report`).
+//! (also written by `check --report`), and what they show in numbers: the
+//! residues, each channel against a baseline, fault detection.
 
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::apply::Applied;
-use dtg_vib::model::CompensationModel;
-use dtg_vib::report::{Baseline, Provenance, ReportExtras, build_report};
+use dtg_vib::unit_page::{Page, Parity, Written, write_page};
+use dtg_vib::unit_sensor::fdi;
+use dtg_vib::unit_sensor::{Applied, UnitModel};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
+use super::records::{no_residue_note, open_model, records_of};
 use super::residues::print_residues;
 
 /// The flags of `report`.
@@ -21,15 +23,16 @@ pub struct ReportArgs {
     /// Test record (CSV).
     #[arg(long)]
     data: PathBuf,
-    /// An earlier model of the same record, to show each channel's error before and after.
+    /// An earlier model of the same record (and unit), to show each
+    /// channel's error before and after.
     #[arg(long)]
     baseline: Option<PathBuf>,
     /// Output directory.
     #[arg(long)]
     out: PathBuf,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
-    /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// triad, tetra, dual-triad); not needed (a model stores its unit), and
+    /// refused when it is not the model's.
     #[arg(long)]
     unit: Option<String>,
 }
@@ -43,7 +46,7 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
         out,
         unit,
     } = a;
-    let unit_model = super::unit::model_unit(&model, unit.as_deref())?;
+    let m = open_model(&model, unit.as_deref())?;
     outfile::guard_dir(
         "--out",
         &out,
@@ -54,35 +57,40 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
             ("--baseline", baseline.as_deref()),
         ],
     )?;
-    if let Some(m) = unit_model {
-        return super::unit::report::report(&m, &model, &data, baseline.as_deref(), &out, progress);
+    let base = baseline.as_deref().map(UnitModel::load).transpose()?;
+    if let (Some(b), Some(path)) = (&base, &baseline)
+        && b.unit() != m.unit()
+    {
+        anyhow::bail!(
+            "--baseline {}: fitted with the unit '{}', the model with '{}': a baseline must be a model of the same unit",
+            path.display(),
+            b.unit().name(),
+            m.unit().name()
+        );
     }
-    let m = CompensationModel::load(&model)?;
-    let record = Record::read_csv(&data)?;
+    let read = records_of(&m, std::slice::from_ref(&data))?;
     progress.say("applying the model");
-    let applied = Applied::new(&m, &record)?;
-    let base = match &baseline {
-        Some(b) => {
-            let bm = CompensationModel::load(b)?;
-            let ba = Applied::new(&bm, &record)?;
-            Some((bm, ba, b.as_path()))
-        }
+    let records = read.borrowed();
+    let applied = Applied::new(&m, &records)?;
+    let base_applied = match &base {
+        Some(b) => Some(Applied::new(b, &records)?),
         None => None,
     };
     progress.say("drawing figures");
-    let summary = model_report(
-        (&m, &model),
-        (&record, &data),
-        &applied,
-        base.as_ref().map(|(bm, ba, path)| (bm, ba, *path)),
-        &out,
-    )?;
+    let files = [data.clone()];
+    let baseline_page = base.as_ref().zip(baseline.as_deref());
+    let Written { index, parity, .. } =
+        model_page(&m, &model, &read.records, &files, baseline_page, &out)?;
     drop(progress);
-    print_residues(&summary.residues);
-    if let Some((_, ba, _)) = &base {
-        print_baseline_table(ba, &summary.channels);
+    read.say_notes();
+    if !m.unit().residue_names().is_empty() {
+        print_residues(&applied.validation_residues());
     }
-    println!("report: {}", summary.index.display());
+    if let Some(ba) = &base_applied {
+        print_baseline_table(&m, ba, &applied);
+    }
+    print_parity(&m, &parity);
+    println!("report: {}", index.display());
     Ok(())
 }
 
@@ -96,50 +104,60 @@ pub fn guard_report(report: Option<&Path>, inputs: &[(&str, Option<&Path>)]) -> 
     Ok(())
 }
 
-/// The report of a model on a record, with the files' provenance: `report`
+/// The page of a model on records with the files' provenance: `report`
 /// and `check --report`.
-pub fn model_report(
-    (m, model): (&CompensationModel, &PathBuf),
-    (record, data): (&Record, &PathBuf),
-    applied: &Applied,
-    baseline: Option<(&CompensationModel, &Applied, &std::path::Path)>,
-    dir: &std::path::Path,
-) -> Result<dtg_vib::report::ReportSummary> {
-    let mut files = vec![("model", model.clone()), ("data", data.clone())];
-    files.extend(baseline.map(|(_, _, b)| ("baseline model", b.to_path_buf())));
-    let provenance = Provenance::of_this_process(files);
-    let extras = ReportExtras {
-        provenance: Some(&provenance),
-        ..ReportExtras::default()
+pub fn model_page(
+    m: &UnitModel,
+    model: &Path,
+    records: &[(String, Record)],
+    data: &[PathBuf],
+    baseline: Option<(&UnitModel, &Path)>,
+    dir: &Path,
+) -> Result<Written> {
+    let page = Page {
+        baseline,
+        ..Page::new(model, data)
     };
-    let (summary, page) = build_report(
-        m,
-        applied,
-        record,
-        &data.display().to_string(),
-        baseline.map(|(model, applied, _)| Baseline {
-            label: "baseline",
-            model,
-            applied,
-        }),
-        &extras,
-        dir,
-    )?;
-    page.write(dir)?;
-    Ok(summary)
+    Ok(write_page(m, records, page, dir)?)
 }
 
 /// Each channel's validation rms under the baseline and this model.
-fn print_baseline_table(base: &Applied, this: &[dtg_vib::model::ChannelScores]) {
+fn print_baseline_table(m: &UnitModel, base: &Applied, this: &Applied) {
     println!("channel  val rms baseline  val rms this model  (deg/h)  change");
-    for (c, s) in nav_sensors::geometry::Channel::ALL.into_iter().zip(this) {
-        let b = base.scores(c).val_rms;
+    for (k, c) in m.unit().gyro_names().into_iter().enumerate() {
+        let (b, s) = (base.scores(k).val_rms, this.scores(k).val_rms);
         println!(
             "{:>7}  {:>16.4}  {:>18.4}  {:>15}",
-            c.name(),
+            c,
             b,
-            s.val_rms,
-            format!("{:+.1}%", 100.0 * (s.val_rms / b - 1.0))
+            s,
+            format!("{:+.1}%", 100.0 * (s / b - 1.0))
         );
+    }
+}
+
+/// The residues' rms before and after on every sample (as logged and as
+/// `compensate` writes them) and the fault-detection lines, or, for three
+/// gyros, that there is no residue.
+pub fn print_parity(m: &UnitModel, p: &Parity) {
+    if p.residues.is_empty() {
+        if let Some(note) = no_residue_note(m.unit()) {
+            println!("{note}");
+        }
+        return;
+    }
+    println!("residue  rms before  rms after  (deg/h, every sample)");
+    for r in &p.residues {
+        println!(
+            "{:>7}  {:>10.4}  {:>9.4}",
+            r.name,
+            r.before,
+            r.after.unwrap_or(f64::NAN)
+        );
+    }
+    if let Some(f) = &p.fdi {
+        for (what, s) in &f.found {
+            println!("{}", fdi::line(what, s, &f.setting));
+        }
     }
 }

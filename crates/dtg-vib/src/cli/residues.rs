@@ -1,13 +1,19 @@
-//! `dtg-vib residues`: the parity residues K0..K5 of a record (eq. 6), and
-//! with a model the compensated ones; the residue tables other commands print.
+//! `dtg-vib residues`: the unit's parity residues (the paper's K0..K5 of
+//! eq. 6, another unit's P0, … = V·m) of every sample, and with a model the
+//! pre-processed and compensated ones; fault detection (four gyros or more)
+//! and isolation (five or more) on them; the residue tables other commands
+//! print. A unit of three gyros has none, and says so.
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::apply::{Applied, write_residues};
-use dtg_vib::model::CompensationModel;
-use nav_sensors::record::Record;
+use dtg_vib::unit_sensor::fdi::{self, FdiSetting, FdiSummary};
+use dtg_vib::unit_sensor::{Applied, ResidueSeries, ResidueStats, UnitModel, pooled, residues_of};
+use nav_sensors::unit::Unit;
+use serde::Serialize;
 use std::path::PathBuf;
+
+use super::records::{Read, open_model, read_records, unit_of};
 
 /// The flags of `residues`.
 #[derive(Args)]
@@ -15,7 +21,8 @@ pub struct ResiduesArgs {
     /// Test record (CSV).
     #[arg(long)]
     data: PathBuf,
-    /// Model file: adds K*_pre (calibrated, filtered) and K*_comp (compensated) columns.
+    /// Model file: adds R_pre (calibrated, filtered), R_comp (R_pre less
+    /// the predicted errors) and R_out (what `compensate` writes) columns.
     #[arg(long)]
     model: Option<PathBuf>,
     /// Output CSV.
@@ -23,11 +30,11 @@ pub struct ResiduesArgs {
     out: PathBuf,
     /// The sensor unit: a unit file (FILE.toml) or a built-in name (paper,
     /// triad, tetra, dual-triad); default paper. Not needed with a model
-    /// fitted on another unit (the model stores it).
+    /// (it stores its unit).
     #[arg(long)]
     unit: Option<String>,
-    /// Print one JSON object on stdout (units other than the paper's):
-    /// the residues' rms and what fault detection found.
+    /// Print one JSON object on stdout: the residues' rms and what fault
+    /// detection found.
     #[arg(long)]
     json: bool,
     /// Fault detection (units of four gyros or more): the gyros' white
@@ -35,105 +42,256 @@ pub struct ResiduesArgs {
     #[arg(long = "fdi-sigma", value_parser = super::parse::parse_sigma)]
     fdi_sigma: Option<f64>,
     /// Fault detection: the false-alarm probability per sample.
-    #[arg(long = "fdi-false-alarm", default_value_t = dtg_vib::unit_sensor::fdi::DEFAULT_FALSE_ALARM, value_parser = super::parse::parse_alpha)]
+    #[arg(long = "fdi-false-alarm", default_value_t = fdi::DEFAULT_FALSE_ALARM, value_parser = super::parse::parse_alpha)]
     fdi_false_alarm: f64,
 }
 
-/// The flags only a unit other than the paper's takes, refused on the
-/// paper's path (whose output is a contract): which, and what to do.
-fn unit_only(a: &ResiduesArgs) -> Result<()> {
-    let given = [
-        ("--json", a.json),
-        ("--fdi-sigma", a.fdi_sigma.is_some()),
-        (
-            "--fdi-false-alarm",
-            a.fdi_false_alarm != dtg_vib::unit_sensor::fdi::DEFAULT_FALSE_ALARM,
-        ),
-    ];
-    if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
-        anyhow::bail!(
-            "{flag}: residues takes it on the unit path only (--unit tetra, dual-triad or a unit file, or a model of one), so that the paper's residues output stays as it was; for the paper's geometry give --unit a copy of units/paper.toml with temperature = \"temp\" under [columns]"
+/// One residue's rms in `residues --json`.
+#[derive(Serialize)]
+struct ResidueJson<'a> {
+    residue: &'a str,
+    rms_before_deg_h: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rms_after_deg_h: Option<f64>,
+}
+
+/// Fault detection in `residues --json`.
+#[derive(Serialize)]
+struct FdiJson<'a> {
+    #[serde(flatten)]
+    setting: &'a FdiSetting,
+    before: &'a FdiSummary,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    after: Option<&'a FdiSummary>,
+}
+
+/// The series `residues` writes and tests: per row its time, the gyros as
+/// logged and (with a model) compensated, and the residues of the
+/// pre-processed outputs before and after the prediction with the
+/// validation rows' table.
+struct Series {
+    t: Vec<f64>,
+    before: Vec<Vec<f64>>,
+    after: Option<Vec<Vec<f64>>>,
+    pre_comp: Option<ResidueSeries>,
+    validation: Option<Vec<ResidueStats>>,
+}
+
+/// Every segment's samples as logged (without a model), or from its first
+/// full window on with the model's compensation.
+fn series(unit: &Unit, model: Option<&UnitModel>, read: &Read) -> Result<Series> {
+    let n = unit.gyros().len();
+    let Some(m) = model else {
+        let mut t = Vec::new();
+        let mut before = vec![Vec::new(); n];
+        for (_, r) in &read.records {
+            t.extend_from_slice(r.t());
+            for (k, g) in before.iter_mut().enumerate() {
+                g.extend_from_slice(r.gyro_at(k));
+            }
+        }
+        return Ok(Series {
+            t,
+            before,
+            after: None,
+            pre_comp: None,
+            validation: None,
+        });
+    };
+    let applied = Applied::unsplit(m, &read.borrowed())?;
+    let first = applied.prepared.first_sample();
+    let mut before = vec![Vec::new(); n];
+    for (_, r) in &read.records {
+        for (k, g) in before.iter_mut().enumerate() {
+            g.extend_from_slice(&r.gyro_at(k)[first..]);
+        }
+    }
+    let mut after = vec![Vec::new(); n];
+    for c in applied.compensated()? {
+        for (k, g) in after.iter_mut().enumerate() {
+            g.extend_from_slice(c.gyro_at(k));
+        }
+    }
+    let residues = applied.residues();
+    // The validation rows of the model's split, if these records have them.
+    let validation = match m.inner().rows(&applied.prepared) {
+        Ok((_, val)) => Some(residues.stats(&val)),
+        Err(_) => None,
+    };
+    Ok(Series {
+        t: residues.t.clone(),
+        before,
+        after: Some(after),
+        pre_comp: Some(residues),
+        validation,
+    })
+}
+
+/// Writes the residues and prints their rms before and after and what
+/// fault detection found (or all of it as one JSON object).
+pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
+    let model = a
+        .model
+        .as_deref()
+        .map(|m| open_model(m, a.unit.as_deref()))
+        .transpose()?;
+    let unit = match &model {
+        Some(m) => m.unit().clone(),
+        None => unit_of(a.unit.as_deref())?,
+    };
+    outfile::guard_file(
+        "--out",
+        &a.out,
+        &[("--data", Some(&a.data)), ("--model", a.model.as_deref())],
+    )?;
+    refuse_without_residues(&unit)?;
+    let min = model
+        .as_ref()
+        .map_or(2, |m| 2 * m.inner().preprocess().window.length());
+    let read = read_records(std::slice::from_ref(&a.data), &unit, min)?;
+    progress.say("computing the parity residues");
+    let s = series(&unit, model.as_ref(), &read)?;
+    let pb = residues_of(&unit, &s.before);
+    let pa = s.after.as_ref().map(|a| residues_of(&unit, a));
+    // Set up before anything is written: a threshold that overflows is the
+    // flags' fault, said with them.
+    let (test, setting) = fdi::setting(&unit, a.fdi_sigma, a.fdi_false_alarm, &pb)
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "fault detection with --fdi-sigma {} and --fdi-false-alarm {:e}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
+                a.fdi_sigma
+                    .map_or("(read from the record)".to_string(), |v| format!("{v:e}")),
+                a.fdi_false_alarm
+            )
+        })?;
+    write_csv(&a.out, &unit, &s, &pb, pa.as_deref())?;
+    let found_before = fdi::run(&unit, &test, &s.before);
+    let found_after = s.after.as_ref().map(|g| fdi::run(&unit, &test, g));
+    drop(progress);
+    read.say_notes();
+    let rows: Vec<ResidueJson<'_>> = unit
+        .residue_names()
+        .iter()
+        .enumerate()
+        .map(|(k, n)| ResidueJson {
+            residue: n,
+            rms_before_deg_h: stats::rms(&pb[k]),
+            rms_after_deg_h: pa.as_ref().map(|p| stats::rms(&p[k])),
+        })
+        .collect();
+    if a.json {
+        let mut v = serde_json::json!({
+            "unit": unit.name(),
+            "samples": s.t.len(),
+            "residues": rows,
+            "fdi": FdiJson {
+                setting: &setting,
+                before: &found_before,
+                after: found_after.as_ref(),
+            },
+        });
+        if let Some(val) = &s.validation {
+            v["validation"] = serde_json::to_value(val)?;
+        }
+        println!("{v}");
+        eprintln!("wrote {}", a.out.display());
+        return Ok(());
+    }
+    if let Some(val) = &s.validation {
+        print_residues(val);
+    }
+    print_every_sample(&rows, &setting, &found_before, found_after.as_ref());
+    eprintln!("wrote {}", a.out.display());
+    Ok(())
+}
+
+/// A unit of three gyros has no residue: refused in one line saying what
+/// judges its channels instead.
+fn refuse_without_residues(unit: &Unit) -> Result<()> {
+    if unit.residue_names().is_empty() {
+        bail!(
+            "the unit '{}' ({}) has {} gyros: nothing is redundant, so it has no parity residue and no fault detection; judge its channels against a rate reference instead (dtg-vib fit --unit … --table-rate or --earth-rate, then dtg-vib check)",
+            unit.name(),
+            unit.file(),
+            unit.gyros().len()
         );
     }
     Ok(())
 }
 
-/// Writes the residues and, with a model, prints their rms before and after.
-pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
-    let fdi = super::unit::residues::FdiOptions {
-        sigma: a.fdi_sigma,
-        false_alarm: a.fdi_false_alarm,
-    };
-    let json = a.json;
-    let paper_only = unit_only(&a);
-    let ResiduesArgs {
-        data,
-        model,
-        out,
-        unit,
-        ..
-    } = a;
-    let unit_model = match &model {
-        Some(m) => super::unit::model_unit(m, unit.as_deref())?,
-        None => None,
-    };
-    let chosen = match &unit_model {
-        Some(m) => Some(m.unit().clone()),
-        None if model.is_none() => super::unit::chosen(unit.as_deref())?,
-        None => None,
-    };
-    if let Some(u) = chosen {
-        outfile::guard_file(
-            "--out",
-            &out,
-            &[("--data", Some(&data)), ("--model", model.as_deref())],
-        )?;
-        return super::unit::residues::residues(
-            &u,
-            unit_model.as_ref(),
-            &data,
-            &out,
-            fdi,
-            json,
-            progress,
-        );
+/// `t`, the residues as logged, and with a model `R_pre`, `R_comp` and
+/// `R_out` for each residue R.
+fn write_csv(
+    out: &std::path::Path,
+    unit: &Unit,
+    s: &Series,
+    pb: &[Vec<f64>],
+    pa: Option<&[Vec<f64>]>,
+) -> Result<()> {
+    let names = unit.residue_names();
+    let mut header: Vec<String> = vec!["t".into()];
+    header.extend(names.iter().cloned());
+    let mut columns: Vec<&[f64]> = vec![&s.t];
+    columns.extend(pb.iter().map(Vec::as_slice));
+    if let Some(r) = &s.pre_comp {
+        header.extend(names.iter().map(|n| format!("{n}_pre")));
+        columns.extend(r.before.iter().map(Vec::as_slice));
+        header.extend(names.iter().map(|n| format!("{n}_comp")));
+        columns.extend(r.after.iter().map(Vec::as_slice));
     }
-    paper_only?;
-    outfile::guard_file(
-        "--out",
-        &out,
-        &[("--data", Some(&data)), ("--model", model.as_deref())],
-    )?;
-    let record = Record::read_csv(&data)?;
-    let applied = match &model {
-        Some(m) => {
-            let m = CompensationModel::load(m)?;
-            let a = Applied::unsplit(&m, &record)?;
-            Some((m, a))
+    if let Some(pa) = pa {
+        header.extend(names.iter().map(|n| format!("{n}_out")));
+        columns.extend(pa.iter().map(Vec::as_slice));
+    }
+    let h: Vec<&str> = header.iter().map(String::as_str).collect();
+    Ok(tabular::write_csv(out, &h, &columns)?)
+}
+
+/// Each residue's rms over every sample, as logged and (with a model) as
+/// `compensate` writes the gyros, and the fault-detection lines.
+fn print_every_sample(
+    rows: &[ResidueJson<'_>],
+    setting: &FdiSetting,
+    before: &FdiSummary,
+    after: Option<&FdiSummary>,
+) {
+    let with_after = rows.iter().any(|r| r.rms_after_deg_h.is_some());
+    println!(
+        "residue  rms before  {}(deg/h, every sample)",
+        if with_after { "rms after  " } else { "" }
+    );
+    for r in rows {
+        match r.rms_after_deg_h {
+            Some(a) => println!("{:>7}  {:>10.4}  {a:>9.4}", r.residue, r.rms_before_deg_h),
+            None => println!("{:>7}  {:>10.4}", r.residue, r.rms_before_deg_h),
         }
-        None => None,
-    };
-    write_residues(&out, &record, applied.as_ref().map(|(_, a)| a))?;
-    drop(progress);
-    // The validation rows of the model's split, if this record has them.
-    if let Some((m, a)) = &applied
-        && let Ok((_, val)) = m.rows(&a.prepared)
-    {
-        print_residues(&a.residues.stats(&val));
     }
-    eprintln!("wrote {}", out.display());
-    Ok(())
+    println!(
+        "fault detection: ‖p‖ > {:.4} deg/h per sample, false-alarm probability {:.0e} under white noise of σ = {:.4} deg/h ({})",
+        setting.threshold_deg_h,
+        setting.false_alarm_probability,
+        setting.sigma_deg_h,
+        match setting.sigma_source {
+            fdi::SigmaSource::Given => "--fdi-sigma",
+            fdi::SigmaSource::Estimated => "read from the record; --fdi-sigma to state it",
+        }
+    );
+    println!("{}", fdi::line("as logged", before, setting));
+    if let Some(a) = after {
+        println!("{}", fdi::line("compensated", a, setting));
+    }
 }
 
 /// The residue table on the validation rows.
-pub fn print_residues(stats: &[dtg_vib::parity::ResidueStats]) {
+pub fn print_residues(stats: &[ResidueStats]) {
     print_residues_on(stats, "validation rows");
 }
 
 /// The residue table on the rows `rows` names: each residue's rms before and
-/// after and how many times better or worse, then the six pooled (the rms of
-/// all six residues together, the one figure a campaign compares models by).
-pub fn print_residues_on(stats: &[dtg_vib::parity::ResidueStats], rows: &str) {
+/// after and how many times better or worse, then all of them pooled (the
+/// rms of the residues together, the one figure a campaign compares models
+/// by).
+pub fn print_residues_on(stats: &[ResidueStats], rows: &str) {
     println!(
         "residue  rms before  rms after  {:<24}  change",
         format!("(deg/h, {rows})")
@@ -146,12 +304,13 @@ pub fn print_residues_on(stats: &[dtg_vib::parity::ResidueStats], rows: &str) {
         );
     };
     for s in stats {
-        row(s.residue.name(), s.rms_before, s.rms_after);
+        row(&s.residue, s.rms_before, s.rms_after);
     }
-    let pooled = |rms: fn(&dtg_vib::parity::ResidueStats) -> f64| {
-        (stats.iter().map(|s| rms(s).powi(2)).sum::<f64>() / stats.len().max(1) as f64).sqrt()
-    };
-    row("pooled", pooled(|s| s.rms_before), pooled(|s| s.rms_after));
+    row(
+        "pooled",
+        pooled(stats, |s| s.rms_before),
+        pooled(stats, |s| s.rms_after),
+    );
 }
 
 /// How many times smaller (better) or larger (worse) the rms is after: a

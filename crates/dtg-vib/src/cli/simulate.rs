@@ -47,7 +47,8 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         out,
         unit,
     } = a;
-    let unit = super::unit::chosen(unit.as_deref())?;
+    let unit = super::records::unit_of(unit.as_deref())?;
+    let unit = (!unit.is_paper_format()).then_some(unit);
     let scenario_path = scenario.clone();
     let mut s = match (scenario, builtin) {
         (Some(path), _) => Scenario::load(&path)?,

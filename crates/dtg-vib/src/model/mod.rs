@@ -7,7 +7,6 @@
 mod persist;
 
 pub use persist::FORMAT_VERSION;
-pub(crate) use persist::{check_header, write_json};
 pub use sysid::{CentreMethod, ChannelScores, FitSettings, INTERVAL_TOLERANCE, Recipe};
 
 use crate::effects::Effect;

@@ -12,11 +12,8 @@ use sysid::FitSettings;
 use sysid::fit::ChoiceReport;
 use sysid::operating::OperatingPoints;
 
-/// Version of the model file; bumped on any incompatible change.
-pub const FORMAT_VERSION: u32 = 1;
-
-/// A tag that tells a dtg-vib model from other JSON (an `rbf` model, a calibration).
-pub(crate) const KIND: &str = "dtg-vib compensation model";
+pub use crate::unit_sensor::FORMAT_VERSION;
+use crate::unit_sensor::{KIND, UnitModel, check_header, to_paper, write_json};
 
 #[derive(Serialize)]
 struct FileRef<'a> {
@@ -74,17 +71,55 @@ struct ModelOwned {
 }
 
 #[derive(Deserialize)]
-struct Header {
-    kind: Option<String>,
-    format_version: Option<u64>,
-}
-
-#[derive(Deserialize)]
 struct FileOwned {
     model: ModelOwned,
 }
 
+/// Whether a file's model names its unit.
+#[derive(Deserialize)]
+struct Probe {
+    model: ProbeModel,
+}
+
+#[derive(Deserialize)]
+struct ProbeModel {
+    unit: Option<serde_json::Value>,
+}
+
 impl CompensationModel {
+    /// The paper's model of a model of the paper's unit in the paper's
+    /// record format (`None` for any other unit): what the paper path's
+    /// callers (export, the onboard tables) read until they take the unit's
+    /// model.
+    pub fn of_unit(m: &UnitModel) -> Option<Self> {
+        if !m.unit().is_paper_format() {
+            return None;
+        }
+        let parts = m.inner().clone().into_parts();
+        let calibration = match &parts.sensor.calibration {
+            Some(c) => Some(to_paper(c)?),
+            None => None,
+        };
+        let channels = serde_json::from_value(serde_json::to_value(&parts.channels).ok()?).ok()?;
+        let inner = sysid::Model::from_parts(sysid::ModelParts {
+            sensor: PaperUnit {
+                calibration,
+                rate_reference: parts.sensor.rate_reference,
+            },
+            preprocess: parts.preprocess,
+            dt_s: parts.dt_s,
+            split: parts.split,
+            channels,
+            settings: parts.settings,
+            records: parts.records,
+            validated_on: parts.validated_on,
+            operating_points: parts.operating_points,
+            choice: parts.choice,
+        })
+        .ok()?;
+        Some(CompensationModel::of(inner))
+    }
+
     /// Writes the model as JSON.
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), DtgVibError> {
         let path = path.as_ref();
@@ -128,6 +163,16 @@ impl CompensationModel {
             reason,
         };
         check_header(text, path)?;
+        if serde_json::from_str::<Probe>(text).is_ok_and(|p| p.model.unit.is_some()) {
+            // A file written with its unit: the paper's unit's is this model.
+            let m = UnitModel::from_json(text, path)?;
+            return Self::of_unit(&m).ok_or_else(|| {
+                corrupt(format!(
+                    "a model of the unit '{}', not of the paper's unit in the paper's record format",
+                    m.unit().name()
+                ))
+            });
+        }
         let file: FileOwned = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
         let m = file.model;
         if m.channels.len() != 6
@@ -158,38 +203,4 @@ impl CompensationModel {
         .map_err(corrupt)?;
         Ok(CompensationModel::of(inner))
     }
-}
-
-/// Checks that `text` is a dtg-vib model file of the supported format
-/// version (the paper's, or another unit's: one header for both).
-pub(crate) fn check_header(text: &str, path: &Path) -> Result<(), DtgVibError> {
-    let corrupt = |reason: String| DtgVibError::ModelCorrupt {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let header: Header = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
-    if header.kind.as_deref() != Some(KIND) {
-        return Err(corrupt(format!("expected \"kind\": \"{KIND}\"")));
-    }
-    match header.format_version {
-        Some(v) if v == u64::from(FORMAT_VERSION) => Ok(()),
-        Some(found) => Err(DtgVibError::ModelVersion {
-            path: path.to_path_buf(),
-            found,
-            expected: FORMAT_VERSION,
-        }),
-        None => Err(corrupt("no format_version".into())),
-    }
-}
-
-/// Writes a model file's JSON (pretty) atomically.
-pub(crate) fn write_json(path: &Path, file: &impl Serialize) -> Result<(), DtgVibError> {
-    let text = serde_json::to_string_pretty(file).map_err(|e| DtgVibError::ModelCorrupt {
-        path: path.to_path_buf(),
-        reason: e.to_string(),
-    })?;
-    outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
-        path: path.to_path_buf(),
-        source,
-    })
 }

@@ -8,7 +8,6 @@ mod allan;
 mod common;
 mod compensation;
 mod diagnosis;
-mod paper_model;
 mod provenance;
 
 pub use allan::write_allan_report;
@@ -17,7 +16,6 @@ pub use compensation::{
     build_page, parity_on_samples,
 };
 pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
-pub use paper_model::{Baseline, ReportSummary, build_report, write_report};
 pub use provenance::Provenance;
 
 #[cfg(test)]

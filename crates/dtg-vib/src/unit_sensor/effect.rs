@@ -1,11 +1,11 @@
 //! The effects of any unit's channel, by id: a `dtg` channel's IEEE Std 813
-//! terms in its own (I, O, S) axes (the ids of [`crate::effects`]), a
+//! terms in its own (I, O, S) axes (`g_I`, `gg_IS`, `ai_OS`, …), a
 //! `rate` channel's IEEE Std 952 / 1431 g- and g²-sensitivities in the unit
 //! frame (`g_x` … `gg_yz`), and `col:NAME` for the record's extra columns.
 //! The ids of the two models are disjoint (upper-case axes for a DTG,
 //! lower-case for the unit frame), so an id alone says which term it is.
 
-use crate::effects::{COLUMN_PREFIX, TERM_EFFECTS};
+use nav_sensors::dtg::DtgTerm;
 use nav_sensors::rate::RateTerm;
 use nav_sensors::unit::{GyroModel, GyroTerm};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -30,6 +30,33 @@ pub enum UnitEffect {
     /// An extra numeric column of the record, taken as is.
     Column(String),
 }
+
+/// The DTG terms that can be effects: those a vibration test excites through
+/// specific force or rate. Scale factor and misalignment need a varying rate
+/// reference, temperature enters as `col:temp`, and 2N rectification needs
+/// angular vibration the 50-Hz record does not carry.
+pub const TERM_EFFECTS: [DtgTerm; 12] = {
+    let mut out = [DtgTerm::Bias; 12];
+    let mut i = 0;
+    while i < 9 {
+        out[i] = DtgTerm::SPECIFIC_FORCE[i];
+        i += 1;
+    }
+    while i < 12 {
+        out[i] = DtgTerm::ANISOINERTIA[i - 9];
+        i += 1;
+    }
+    out
+};
+
+/// Prefix of the ids of extra-column effects.
+pub const COLUMN_PREFIX: &str = "col:";
+
+/// Anisoinertia (rate-product) effects are observable only when the angular
+/// rate varies by more than this (deg/s, standard deviation of any axis): in
+/// a stationary vibration test the rate is Earth rate plus gyro noise and
+/// drift, and a product of those would only fit the gyros' own errors.
+pub const ANISOINERTIA_MIN_RATE_DEG_S: f64 = 0.1;
 
 /// The rate-gyro terms that can be effects: those a vibration test excites
 /// through specific force (the bias is every model's; scale factor needs a
@@ -64,7 +91,7 @@ pub enum UnitEffectError {
         valid: Vec<&'static str>,
     },
     /// A `CHANNEL=ID` whose channel the unit has not.
-    #[error("'{given}': the unit has no channel '{channel}' (its channels: {})", valid.join(", "))]
+    #[error("'{given}': unknown channel '{channel}' (the unit's channels: {})", valid.join(", "))]
     UnknownChannel {
         /// The argument.
         given: String,

@@ -13,16 +13,21 @@ pub enum UnitSensorError {
         /// The record's columns.
         columns: Vec<String>,
     },
-    /// Every segment of a log is shorter than a window.
+    /// Every segment of a log is shorter than two windows (`min_samples`):
+    /// one to fit or compensate, one more for the filter to settle.
     #[error(
-        "{file}: every one of its {segments} segment(s) between time gaps is shorter than {min_samples} samples (a window and the filter need that many): record longer stretches without gaps, or shorten --window"
+        "{file}: the longest of its {segments} segment(s) between time gaps has {longest} samples: {} windows, need at least 2 (a window of {} samples, and as many again for the filter): record longer stretches without gaps, or shorten --window",
+        longest / (min_samples / 2).max(1),
+        (min_samples / 2).max(1)
     )]
     TooShort {
         /// The log.
         file: String,
         /// Its segments.
         segments: usize,
-        /// The least kept.
+        /// Samples of its longest segment.
+        longest: usize,
+        /// The least kept: two windows.
         min_samples: usize,
     },
     /// The record moves and no rate reference is given: its targets would

@@ -11,34 +11,49 @@
 //! every other unit (and the paper's geometry under other names, units or
 //! column order).
 
-mod allan;
 mod applied;
+mod apply;
+mod calibration;
+pub mod check;
 mod effect;
 mod error;
 pub mod fdi;
 mod model;
 mod observable;
+mod parity;
+mod preprocess;
+mod range;
 mod separate;
 mod signals;
+mod window;
 
-pub use allan::unit_allan;
 pub use applied::{
     BeforeAfter, ChannelOnRecord, EffectRow, UnitApplied, compensated, gyros_before_after,
     residue_series, residues_of,
 };
-pub use effect::{RATE_EFFECTS, UnitEffect, UnitEffectError};
+pub use apply::Applied;
+pub(crate) use calibration::to_paper;
+pub use calibration::{calibration_from_json, from_paper, load_calibration};
+pub use effect::{
+    ANISOINERTIA_MIN_RATE_DEG_S, COLUMN_PREFIX, RATE_EFFECTS, TERM_EFFECTS, UnitEffect,
+    UnitEffectError,
+};
 pub use error::UnitSensorError;
-pub use model::UnitModel;
+pub use model::{FORMAT_VERSION, UnitModel};
+pub(crate) use model::{KIND, check_header, write_json};
+pub(crate) use observable::largest_axis_std;
 pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
+pub use parity::{ResidueSeries, ResidueStats, pooled};
+pub use preprocess::{Preprocess, RateReference};
 pub use separate::response;
 pub use signals::{UnitRecord, read_unit_records, to_record, to_signals};
+pub use window::default_window_signals;
 
-use crate::effects::ANISOINERTIA_MIN_RATE_DEG_S;
-use crate::pipeline::RateReference;
 use nalgebra::{DMatrix, Vector3};
 use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::dtg::{DtgTerm, within_interval_covariance};
 use nav_sensors::geometry::Axis;
+use nav_sensors::rate::RateTerm;
 use nav_sensors::unit::{GyroTerm, Sensed, Unit};
 use sysid::{Candidacy, OperatingStats, SensorError, Separation, Signals, Wording};
 
@@ -125,7 +140,7 @@ impl UnitSensor {
             .filter(|&&i| i < rows.len())
             .map(|&i| self.unit.least_squares_rate(&rows[i]) / 3600.0)
             .collect();
-        crate::effects::largest_axis_std(&rates)
+        largest_axis_std(&rates)
     }
 }
 
@@ -141,6 +156,13 @@ pub(crate) fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
     }
     svd.pseudo_inverse(1e-12).ok()
 }
+
+/// Smallest spread an operating point's coordinate is divided by, g: a
+/// coordinate the training windows held constant (gravity along x in a
+/// Z-axis test) measures a change of 0.05 g (a 3° tilt of gravity) as one
+/// unit, not as infinitely many; an accelerometer bias that differs between
+/// two runs by a few mg is not a new operating point.
+pub const MIN_SCALE_G: f64 = 0.05;
 
 /// A plug-in error as the loop's.
 fn boxed(e: impl Into<UnitSensorError>) -> SensorError {
@@ -165,8 +187,14 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn wording(&self) -> Wording {
-        // The words of any inertial unit: the paper's plug-in's.
-        sysid::Sensor::wording(&crate::paper_unit::PaperUnit::default())
+        Wording {
+            target_unit: "deg/h".into(),
+            operating_unit: "g".into(),
+            spread: "vibration".into(),
+            operating_noun: "low-passed specific force".into(),
+            regime_hint: "a g- or g²-sensitive term along it may be missing".into(),
+            slow_hint: "a temperature or a drift: add its column as col:NAME".into(),
+        }
     }
 
     fn calibrate(&self, raw: &Signals) -> Result<Signals, SensorError> {
@@ -177,7 +205,11 @@ impl sysid::Sensor for UnitSensor {
         let out = c
             .compensate(&self.unit, &record)
             .map_err(|e| boxed(UnitSensorError::Calibration(e.to_string())))?;
-        to_signals(&out).map_err(boxed)
+        let calibrated = to_signals(&out).map_err(boxed)?;
+        let names = self.unit.gyro_names().into_iter();
+        range::check_calibrated(&calibrated, names.chain(self.unit.accel_names()))
+            .map_err(|e| Box::new(e) as SensorError)?;
+        Ok(calibrated)
     }
 
     fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
@@ -203,7 +235,7 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn operating_scale(&self) -> f64 {
-        crate::paper_unit::MIN_SCALE_G
+        MIN_SCALE_G
     }
 
     fn extra_columns(&self, record: &Signals) -> Vec<String> {
@@ -337,7 +369,7 @@ impl sysid::Sensor for UnitSensor {
             })
             .collect();
         let extra = self.extra_columns(calibrated);
-        effects
+        let columns = effects
             .iter()
             .map(|e| match e {
                 UnitEffect::Term(t) => Ok(sensed.iter().map(|s| gyro.regressor(*t, s)).collect()),
@@ -352,7 +384,17 @@ impl sysid::Sensor for UnitSensor {
                         })
                     }),
             })
-            .collect()
+            .collect::<Result<Vec<Vec<f64>>, SensorError>>()?;
+        for (e, c) in effects.iter().zip(&columns) {
+            range::check_range(
+                || format!("channel {}'s effect {}", gyro.name, e.id()),
+                c,
+                calibrated.t(),
+                range::REGRESSOR_HINT,
+            )
+            .map_err(|e| Box::new(e) as SensorError)?;
+        }
+        Ok(columns)
     }
 
     fn separation(
@@ -363,6 +405,24 @@ impl sysid::Sensor for UnitSensor {
         operating: &OperatingStats,
     ) -> Separation<Axis> {
         separate::separation(&self.unit, channel, group, kappa, operating)
+    }
+
+    fn caveats(
+        &self,
+        records: &[(&Signals, Vec<usize>)],
+        _channel: usize,
+        effect: &UnitEffect,
+    ) -> Vec<String> {
+        let quadratic = match effect {
+            UnitEffect::Term(GyroTerm::Dtg(t)) if DtgTerm::SPECIFIC_FORCE.contains(t) => {
+                t.is_quadratic()
+            }
+            UnitEffect::Term(GyroTerm::Rate(t)) if RateTerm::SPECIFIC_FORCE.contains(t) => {
+                t.is_quadratic()
+            }
+            _ => return Vec::new(),
+        };
+        crate::caveats::specific_force_caveats(&self.unit, records, quadratic)
     }
 
     /// The unit's parity residues (eq. 6's for the paper's geometry, the

@@ -1,15 +1,16 @@
-//! The model file of a unit other than the paper's: the loop's model of a
-//! [`UnitSensor`], laid out as the paper's model file (same `kind` and
-//! `format_version`) with one key more, `unit`, holding the unit file's
-//! keys, so commands given `--model` need no `--unit`. A paper model file
-//! has no `unit` key and stays byte-identical.
+//! The model file: the loop's model of a [`UnitSensor`] as versioned JSON
+//! (`kind`, `format_version`, `model` with the pre-processing and its rate
+//! reference, the calibration, the channel models, …) with the unit inside
+//! (`model.unit`, the unit file's keys), so commands given `--model` need
+//! no `--unit`. A file of the paper's unit written before the unit was
+//! stored (no `unit` key, the paper's calibration format) reads as the
+//! paper unit's model; every file written now carries its unit.
 
-use super::{UnitEffect, UnitSensor};
+use super::calibration::from_paper;
+use super::{Preprocess, UnitEffect, UnitSensor};
 use crate::error::DtgVibError;
-use crate::model::{FORMAT_VERSION, check_header, write_json};
-use crate::pipeline::Preprocess;
 use crate::split::Holdout;
-use nav_sensors::calibration::UnitCalibration;
+use nav_sensors::calibration::{Calibration, UnitCalibration};
 use nav_sensors::unit::Unit;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -58,11 +59,21 @@ struct ModelRef<'a> {
     choice: Option<&'a sysid::fit::ChoiceReport>,
 }
 
+/// Version of the model file; bumped on any incompatible change.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// A tag that tells a dtg-vib model from other JSON (an `rbf` model, a calibration).
+pub(crate) const KIND: &str = "dtg-vib compensation model";
+
+/// The model as read from a file (what older files lack has a default):
+/// `C` is the calibration's format, the unit's, or the paper's in a file
+/// without a unit.
 #[derive(Deserialize)]
-struct ModelOwned {
-    unit: Unit,
+struct ModelOwned<C> {
+    #[serde(default)]
+    unit: Option<Unit>,
     preprocess: Preprocess,
-    calibration: Option<UnitCalibration>,
+    calibration: Option<C>,
     dt_s: f64,
     split: Holdout,
     channels: Vec<UnitChannelModel>,
@@ -79,8 +90,14 @@ struct ModelOwned {
 }
 
 #[derive(Deserialize)]
-struct FileOwned {
-    model: ModelOwned,
+struct FileOwned<C> {
+    model: ModelOwned<C>,
+}
+
+#[derive(Deserialize)]
+struct Header {
+    kind: Option<String>,
+    format_version: Option<u64>,
 }
 
 #[derive(Deserialize)]
@@ -106,9 +123,8 @@ impl UnitModel {
 
     /// What compensation subtracts from each calibrated output, deg/h, in
     /// the unit's channel order: the prediction with its network part faded
-    /// outside the training range and the effects unfiltered (θ·z), as
-    /// [`crate::model::CompensationModel::compensation`] for the paper's
-    /// unit; the onboard evaluator computes the same.
+    /// outside the training range and the effects unfiltered (θ·z); the
+    /// onboard evaluator computes the same.
     pub fn compensation(
         &self,
         prepared: &sysid::Prepared<UnitSensor>,
@@ -122,8 +138,9 @@ impl UnitModel {
             .collect())
     }
 
-    /// Whether the model file at `path` stores a unit (a model of a unit
-    /// other than the paper's); an unreadable file says so.
+    /// Whether the model file at `path` stores its unit (every file written
+    /// now does; a paper model file written before does not); an
+    /// unreadable file says so.
     pub fn has_unit(path: &Path) -> Result<bool, DtgVibError> {
         let text = read(path)?;
         let probe: Probe = serde_json::from_str(&text).map_err(|e| DtgVibError::ModelCorrupt {
@@ -141,7 +158,7 @@ impl UnitModel {
         write_json(
             path,
             &FileRef {
-                kind: "dtg-vib compensation model",
+                kind: KIND,
                 format_version: FORMAT_VERSION,
                 model: ModelRef {
                     unit: &s.unit,
@@ -160,23 +177,53 @@ impl UnitModel {
         )
     }
 
-    /// Reads a model written by [`UnitModel::save`].
+    /// Reads a model file: one written by [`UnitModel::save`], or a paper
+    /// model file written before the unit was stored (read as the paper
+    /// unit's, its calibration converted).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, DtgVibError> {
         let path = path.as_ref();
         let text = read(path)?;
+        Self::from_json(&text, path)
+    }
+
+    /// Parses model JSON; `path` names the source in errors.
+    pub fn from_json(text: &str, path: &Path) -> Result<Self, DtgVibError> {
         let corrupt = |reason: String| DtgVibError::ModelCorrupt {
             path: path.to_path_buf(),
             reason,
         };
-        check_header(&text, path)?;
+        check_header(text, path)?;
+        let probe: Probe = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
+        if !probe.model.is_some_and(|m| m.contains_key("unit")) {
+            let f: FileOwned<Calibration> =
+                serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
+            let calibration = f.model.calibration.as_ref().map(from_paper);
+            return Self::from_owned(f.model, Unit::paper(), calibration, path);
+        }
         // The unit's keys are checked as it is read, before its file is
         // known to it: its messages name this model file instead.
         let stored = format!("the unit stored in {}", path.display());
-        let f: FileOwned = serde_json::from_str(&text)
+        let f: FileOwned<UnitCalibration> = serde_json::from_str(text)
             .map_err(|e| corrupt(e.to_string().replace(STORED_UNIT, &stored)))?;
         let mut m = f.model;
-        m.unit = m.unit.with_file(stored);
-        let names = m.unit.gyro_names();
+        let unit = m.unit.take().expect("probed").with_file(stored);
+        let calibration = m.calibration.take();
+        Self::from_owned(m, unit, calibration, path)
+    }
+
+    /// The model of `unit` from what its file holds, checked: one channel
+    /// model per gyro of the unit, in order, and a calibration of the unit.
+    fn from_owned<C>(
+        m: ModelOwned<C>,
+        unit: Unit,
+        calibration: Option<UnitCalibration>,
+        path: &Path,
+    ) -> Result<Self, DtgVibError> {
+        let corrupt = |reason: String| DtgVibError::ModelCorrupt {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let names = unit.gyro_names();
         if m.channels.len() != names.len()
             || m.channels
                 .iter()
@@ -188,14 +235,14 @@ impl UnitModel {
                 names.join(", ")
             )));
         }
-        if let Some(c) = &m.calibration {
-            c.check(&m.unit)
+        if let Some(c) = &calibration {
+            c.check(&unit)
                 .map_err(|e| corrupt(format!("calibration: {e}")))?;
         }
         let inner = sysid::Model::from_parts(sysid::ModelParts {
             sensor: UnitSensor {
-                unit: m.unit,
-                calibration: m.calibration,
+                unit,
+                calibration,
                 rate_reference: m.preprocess.rate_reference,
             },
             preprocess: m.preprocess.sysid(),
@@ -219,6 +266,40 @@ const STORED_UNIT: &str = "<stored unit>";
 
 fn read(path: &Path) -> Result<String, DtgVibError> {
     std::fs::read_to_string(path).map_err(|source| DtgVibError::ModelIo {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Checks that `text` is a dtg-vib model file of the supported format
+/// version.
+pub(crate) fn check_header(text: &str, path: &Path) -> Result<(), DtgVibError> {
+    let corrupt = |reason: String| DtgVibError::ModelCorrupt {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let header: Header = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
+    if header.kind.as_deref() != Some(KIND) {
+        return Err(corrupt(format!("expected \"kind\": \"{KIND}\"")));
+    }
+    match header.format_version {
+        Some(v) if v == u64::from(FORMAT_VERSION) => Ok(()),
+        Some(found) => Err(DtgVibError::ModelVersion {
+            path: path.to_path_buf(),
+            found,
+            expected: FORMAT_VERSION,
+        }),
+        None => Err(corrupt("no format_version".into())),
+    }
+}
+
+/// Writes a model file's JSON (pretty) atomically.
+pub(crate) fn write_json(path: &Path, file: &impl Serialize) -> Result<(), DtgVibError> {
+    let text = serde_json::to_string_pretty(file).map_err(|e| DtgVibError::ModelCorrupt {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })?;
+    outfile::write_bytes(path, text).map_err(|source| DtgVibError::ModelIo {
         path: path.to_path_buf(),
         source,
     })

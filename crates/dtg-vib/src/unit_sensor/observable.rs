@@ -43,6 +43,18 @@ pub fn observability(sensor: &UnitSensor, record: &Record) -> Observability {
         .filter(|c| c.len() == per_s)
         .map(|c| c.iter().sum::<nalgebra::Vector3<f64>>() / c.len() as f64)
         .collect();
-    let rate_std_deg_s = crate::effects::largest_axis_std(&means);
+    let rate_std_deg_s = largest_axis_std(&means);
     Observability { rate_std_deg_s }
+}
+
+/// The largest standard deviation (about the mean) of three-axis samples'
+/// axes; 0 for none.
+pub(crate) fn largest_axis_std(v: &[nalgebra::Vector3<f64>]) -> f64 {
+    let n = v.len().max(1) as f64;
+    (0..3)
+        .map(|k| {
+            let m = v.iter().map(|w| w[k]).sum::<f64>() / n;
+            (v.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
+        })
+        .fold(0.0, f64::max)
 }

@@ -140,6 +140,7 @@ pub fn read_unit_records(
     let file = path.display().to_string();
     let n = read.records.len();
     let total = n;
+    let longest = read.records.iter().map(Record::len).max().unwrap_or(0);
     let segments: Vec<(String, Record)> = read
         .records
         .into_iter()
@@ -159,6 +160,7 @@ pub fn read_unit_records(
         return Err(UnitSensorError::TooShort {
             file,
             segments: n,
+            longest,
             min_samples,
         });
     }

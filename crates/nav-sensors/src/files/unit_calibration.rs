@@ -402,7 +402,7 @@ impl UnitCalibration {
     /// naming no IMU are one group): the static inverse of a group's three
     /// jointly when they are the unit axes x, y, z (in any order), else
     /// their outputs unchanged.
-    fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
+    pub fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
         let mut out: Vec<Vec<f64>> = (0..unit.accels().len())
             .map(|k| record.accel_at(k).to_vec())
             .collect();

@@ -1,75 +1,58 @@
-//! The commands on a unit other than the paper's (`--unit FILE|NAME`, or a
-//! model that stores its unit): the same loop through the unit's plug-in
-//! ([`dtg_vib::unit_sensor`]). Without `--unit`, or with the paper's unit,
-//! every command runs its paper path unchanged, so the paper's outputs and
-//! model files stay what they were.
-
-pub mod allan;
-pub mod apply;
-pub mod demo;
-pub mod fit;
-pub mod report;
-pub mod residues;
+//! What every command resolves the same way from its flags: the unit
+//! (`--unit FILE|NAME`, the paper's by default), a model file (which
+//! carries its unit), the unit's plug-in with its calibration and rate
+//! reference, and logs read with the unit in segments between time gaps.
 
 use anyhow::{Result, anyhow, bail};
-use dtg_vib::pipeline::RateReference;
 use dtg_vib::unit_sensor::{
-    MOVING_RATE_STD_DEG_S, UnitModel, UnitSensor, UnitSensorError, observability,
-    read_unit_records, to_signals,
+    MOVING_RATE_STD_DEG_S, RateReference, UnitModel, UnitSensor, UnitSensorError, load_calibration,
+    observability, read_unit_records, to_signals,
 };
-use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
 
-/// `--unit ARG` resolved: `None` without one or for the paper's unit in
-/// the paper's format (its own path), the unit otherwise.
-pub fn chosen(arg: Option<&str>) -> Result<Option<Unit>> {
-    let Some(arg) = arg else {
-        return Ok(None);
-    };
-    let unit = Unit::resolve(arg).map_err(|e| anyhow!("--unit {arg}: {e}"))?;
-    Ok((!unit.is_paper_format()).then_some(unit))
+/// `--unit ARG` resolved: the unit it names, or the paper's without one.
+pub fn unit_of(arg: Option<&str>) -> Result<Unit> {
+    match arg {
+        None => Ok(Unit::paper()),
+        Some(arg) => Unit::resolve(arg).map_err(|e| anyhow!("--unit {arg}: {e}")),
+    }
 }
 
-/// The model at `path` if it stores a unit (then `--unit`, if given, must
-/// be that unit); `None` for a paper model, which a non-paper `--unit`
-/// cannot go with.
-pub fn model_unit(path: &Path, arg: Option<&str>) -> Result<Option<UnitModel>> {
-    let given = chosen(arg)?;
-    let has = match UnitModel::has_unit(path) {
-        Ok(has) => has,
-        // The paper path says what is wrong with the file, as it always did.
-        Err(_) if given.is_none() => return Ok(None),
-        Err(e) => return Err(e.into()),
-    };
-    if has {
-        let m = UnitModel::load(path)?;
-        if let Some(arg) = arg {
-            let u = Unit::resolve(arg).map_err(|e| anyhow!("--unit {arg}: {e}"))?;
-            if &u != m.unit() {
-                bail!(
-                    "--unit {arg}: {} was fitted with the unit '{}', which it stores: drop --unit (a model carries its unit)",
-                    path.display(),
-                    m.unit().name()
-                );
-            }
+/// The model at `path` (any model file: one that stores its unit, or a
+/// paper model file written before, read as the paper unit's); `--unit`,
+/// if given, must be the unit it stores.
+pub fn open_model(path: &Path, arg: Option<&str>) -> Result<UnitModel> {
+    let m = UnitModel::load(path)?;
+    if let Some(arg) = arg {
+        let u = unit_of(Some(arg))?;
+        if &u != m.unit() {
+            bail!(
+                "--unit {arg}: {} was fitted with the unit '{}', which it stores: drop --unit (a model carries its unit)",
+                path.display(),
+                m.unit().name()
+            );
         }
-        return Ok(Some(m));
     }
-    if let (Some(arg), Some(_)) = (arg, given) {
-        bail!(
-            "--unit {arg}: {} is a model of the paper's unit (it stores no unit): fit a model on this unit's records with dtg-vib fit --unit {arg}",
-            path.display()
-        );
-    }
-    Ok(None)
+    Ok(m)
 }
 
-/// Refuses each path given twice (a record fitted twice weighs double).
+/// Refuses a record given twice: fitted twice it would weigh double, and a
+/// split by record could not tell its two copies apart.
 pub fn once_each(data: &[PathBuf]) -> Result<()> {
-    super::fit_args::once_each(data)
+    let canonical = |p: &PathBuf| std::fs::canonicalize(p).unwrap_or_else(|_| p.clone());
+    for (i, d) in data.iter().enumerate() {
+        if let Some(e) = data[..i].iter().find(|e| canonical(e) == canonical(d)) {
+            bail!(
+                "--data {} is the same file as --data {}: give each record once",
+                d.display(),
+                e.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Logs read with a unit: their segments and what the time columns
@@ -89,6 +72,11 @@ impl Read {
             eprintln!("{n}");
         }
     }
+
+    /// The records as the library borrows them.
+    pub fn borrowed(&self) -> Vec<(String, &Record)> {
+        self.records.iter().map(|(n, r)| (n.clone(), r)).collect()
+    }
 }
 
 /// Reads every log with the unit: its segments between time gaps (each a
@@ -105,6 +93,12 @@ pub fn read_records(data: &[PathBuf], unit: &Unit, min_samples: usize) -> Result
     Ok(Read { records, notes })
 }
 
+/// The records of a model's unit, segments at least two windows long.
+pub fn records_of(m: &UnitModel, data: &[PathBuf]) -> Result<Read> {
+    let window = m.inner().preprocess().window.length();
+    read_records(data, m.unit(), 2 * window)
+}
+
 /// Named records as the loop's named signals.
 pub fn signals(records: &[(String, Record)]) -> Result<Vec<(String, Signals)>> {
     records
@@ -113,15 +107,18 @@ pub fn signals(records: &[(String, Record)]) -> Result<Vec<(String, Signals)>> {
         .collect()
 }
 
-pub use dtg_vib::paper_unit::borrowed;
+/// Named signals as the loop borrows them.
+pub fn borrowed(named: &[(String, Signals)]) -> Vec<(String, &Signals)> {
+    named.iter().map(|(n, s)| (n.clone(), s)).collect()
+}
 
-/// The unit's plug-in with its calibration file (checked against it) and
-/// rate reference.
+/// The unit's plug-in with its calibration file (either format, checked
+/// against the unit) and rate reference.
 pub fn sensor(unit: Unit, calib: Option<&Path>, reference: RateReference) -> Result<UnitSensor> {
     reference.check()?;
     let calibration = match calib {
         Some(p) => {
-            let c = UnitCalibration::load(p)?;
+            let c = load_calibration(p)?;
             c.check(&unit)
                 .map_err(|e| anyhow!("--calib {}: {e}", p.display()))?;
             Some(c)

@@ -1,0 +1,80 @@
+//! The window's signals chosen from the training records (`fit
+//! --window-signals auto`): the unit's accelerometers whose vibration is
+//! significant in some record ([`sysid::window_signals`]), each calibrated.
+
+use super::range::check_calibrated;
+use super::{MIN_SCALE_G, UnitSensor};
+use crate::error::DtgVibError;
+use nav_sensors::record::Record;
+use nav_sensors::unit::Unit;
+use sysid::Signals;
+use sysid::window_signals::{WindowSignalsChoice, choose_among};
+
+impl UnitSensor {
+    /// The window's signals the named records choose, each record's
+    /// accelerometers calibrated alone: the gyros' calibration, which they
+    /// do not read, would cost two passes over every row (about 3 s on a
+    /// 1M-row record).
+    ///
+    /// ```
+    /// use nav_sensors::sim::{simulate_unit, Scenario};
+    /// let unit = nav_sensors::unit::Unit::paper();
+    /// let z = simulate_unit(&unit, &Scenario::paper_z_random())?;
+    /// let mut s = dtg_vib::unit_sensor::UnitSensor::new(unit);
+    /// s.calibration = Some(z.calibration.clone());
+    /// let c = s.choose_window_signals(&[("z".into(), &z.record)])?;
+    /// assert_eq!(c.taken, ["az"]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn choose_window_signals(
+        &self,
+        records: &[(String, &Record)],
+    ) -> Result<WindowSignalsChoice, DtgVibError> {
+        let names: Vec<String> = self
+            .unit
+            .accel_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect();
+        let accels = records
+            .iter()
+            .map(|(n, r)| {
+                let accel: Vec<Vec<f64>> = match &self.calibration {
+                    Some(c) => c.compensate_accels(&self.unit, r),
+                    None => (0..names.len()).map(|k| r.accel_at(k).to_vec()).collect(),
+                };
+                let s = Signals::new(r.t().to_vec(), names.iter().cloned().zip(accel).collect())
+                    .map_err(sysid::SysidError::from)?;
+                if self.calibration.is_some() {
+                    check_calibrated(&s, names.iter().map(String::as_str)).map_err(|e| {
+                        sysid::SysidError::Sensor(Box::new(e)).in_record(n, records.len())
+                    })?;
+                }
+                Ok((n.clone(), s))
+            })
+            .collect::<Result<Vec<(String, Signals)>, DtgVibError>>()?;
+        let borrowed: Vec<(String, &Signals)> =
+            accels.iter().map(|(n, s)| (n.clone(), s)).collect();
+        Ok(choose_among(&names, &borrowed, MIN_SCALE_G, "g")?)
+    }
+}
+
+/// The window's signals of a unit when neither told nor chosen: its
+/// accelerometer along its z axis (the axis the built-in tests vibrate
+/// along; the paper's window, az), or every accelerometer when none lies
+/// along z.
+///
+/// ```
+/// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+/// assert_eq!(dtg_vib::unit_sensor::default_window_signals(&u), ["az"]);
+/// ```
+pub fn default_window_signals(unit: &Unit) -> Vec<String> {
+    let along_z = unit
+        .accels()
+        .iter()
+        .find(|a| a.input == nalgebra::Vector3::z());
+    match along_z {
+        Some(a) => vec![a.name.clone()],
+        None => unit.accel_names().iter().map(|n| n.to_string()).collect(),
+    }
+}
