@@ -32,44 +32,26 @@ pub struct ExportArgs {
 /// The file `--lang text --out DIR` writes into DIR.
 const EQUATIONS_FILE: &str = "equations.txt";
 
-/// Writes the C sources and tables, or the equations.
+/// Writes the C sources and tables, or the equations, of a model of any
+/// unit (a paper model file is the paper unit's model).
 pub fn run(a: ExportArgs) -> Result<()> {
-    if let Some(m) = super::unit::model_unit(&a.model, a.unit.as_deref())? {
-        return match a.lang.as_str() {
-            "text" => write_text(
-                &dtg_vib::export::unit_equations(&m),
-                &a.model,
-                a.out.as_deref(),
-            ),
-            "c" => {
-                let Some(out) = &a.out else {
-                    anyhow::bail!("--lang c writes files: give the directory with --out DIR");
-                };
-                let precision: dtg_vib::export::Precision = a.precision.parse()?;
-                let tables = dtg_vib::export::unit_tables(&m)?;
-                let c = dtg_vib::export::unit_c_sources(&tables, m.unit(), precision)?;
-                write_c(&c, &tables, &a.model, out)
-            }
-            other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
-        };
-    }
-    let model = CompensationModel::load(&a.model)?;
+    let m = match super::unit::model_unit(&a.model, a.unit.as_deref())? {
+        Some(m) => m,
+        None => dtg_vib::export::unit_model_of(&CompensationModel::load(&a.model)?)?,
+    };
     match a.lang.as_str() {
-        "text" => text(&model, &a.model, a.out.as_deref()),
+        "text" => write_text(&dtg_vib::export::equations(&m), &a.model, a.out.as_deref()),
         "c" => {
             let Some(out) = &a.out else {
                 anyhow::bail!("--lang c writes files: give the directory with --out DIR");
             };
-            c(&model, &a.model, out, &a.precision)
+            let precision: dtg_vib::export::Precision = a.precision.parse()?;
+            let tables = dtg_vib::export::tables(&m)?;
+            let c = dtg_vib::export::c_sources(&m, precision)?;
+            write_c(&c, &tables, &a.model, out)
         }
         other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
     }
-}
-
-/// The equations on stdout, or into `out/equations.txt` (never over the
-/// model), saying where they went.
-fn text(model: &CompensationModel, model_path: &Path, out: Option<&Path>) -> Result<()> {
-    write_text(&dtg_vib::export::equations(model), model_path, out)
 }
 
 /// `equations` on stdout, or into `out/equations.txt`.
@@ -90,15 +72,6 @@ fn write_text(equations: &str, model_path: &Path, out: Option<&Path>) -> Result<
     Ok(())
 }
 
-/// The C99 sources and the onboard tables into `out`, with their size, state
-/// and cost per step.
-fn c(model: &CompensationModel, model_path: &Path, out: &Path, precision: &str) -> Result<()> {
-    let precision: dtg_vib::export::Precision = precision.parse()?;
-    let c = dtg_vib::export::c_sources(model, precision)?;
-    let tables = dtg_vib::export::tables(model)?;
-    write_c(&c, &tables, model_path, out)
-}
-
 /// Writes C sources and tables into `out` and says what they hold.
 fn write_c(
     c: &dtg_vib::export::CSources,
@@ -117,11 +90,12 @@ fn write_c(
     )?;
     let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
     println!(
-        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
+        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops and {} exponentials per step; extra columns: {})",
         out.display(),
         m.size_bytes(),
         m.state_len(),
         m.flops_per_step(),
+        m.exps_per_step(),
         if tables.extra.is_empty() {
             "none".to_string()
         } else {

@@ -1,0 +1,73 @@
+//! One onboard step timed, or counted: the `dtg-onboard` evaluator of the
+//! checkout this is built against (scripts/onboard-pairs.sh builds it once
+//! against the baseline's crate and once against the current one) over the
+//! tables `model.dtgo` given, on the same seeded inputs as `harness.c`.
+//!
+//!     harness TABLES [STEPS]
+//!
+//! Without STEPS: the median ns per step of 1001 batches of 100 steps (a
+//! batch short against the scheduler's time slice). With STEPS: that many
+//! steps and nothing printed but a checksum (for `valgrind --tool=callgrind`).
+
+use dtg_onboard::{Evaluator, Model};
+use std::hint::black_box;
+use std::time::Instant;
+
+const PER: usize = 100;
+const BATCHES: usize = 1001;
+
+/// The C harness's inputs: an LCG from seed 7, per sample each gyro in
+/// −15 … 15 deg/h, each accelerometer in −0.3 … 0.3 g (+1 g on every third).
+fn inputs(nc: usize, na: usize) -> Vec<(Vec<f64>, Vec<f64>)> {
+    let mut seed: u64 = 7;
+    let mut next = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+        (seed >> 11) as f64 / 9007199254740992.0
+    };
+    (0..PER)
+        .map(|_| {
+            let g = (0..nc).map(|_| 30.0 * next() - 15.0).collect();
+            let a = (0..na)
+                .map(|k| f64::from(u8::from(k % 3 == 2)) + 0.6 * next() - 0.3)
+                .collect();
+            (g, a)
+        })
+        .collect()
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let bytes = std::fs::read(&args[1]).expect("the tables");
+    let m = Model::parse(&bytes).expect("tables this evaluator reads");
+    let data = inputs(m.n_channels(), m.n_accels());
+    let extra = vec![0.0; m.n_extra()];
+    let mut state = vec![0.0; m.state_len()];
+    let mut ev = Evaluator::new(m, &mut state).expect("state");
+    let mut sink = 0.0;
+    for (g, a) in &data {
+        if let Some(o) = ev.step(g, a, &extra).expect("a step") {
+            sink += o.rate_deg_h[0];
+        }
+    }
+    if let Some(steps) = args.get(2) {
+        let steps: usize = steps.parse().expect("STEPS");
+        for i in 0..steps {
+            let (g, a) = &data[i % PER];
+            if let Some(o) = ev.step(g, a, &extra).expect("a step") {
+                sink += o.rate_deg_h[0];
+            }
+        }
+        println!("{sink}");
+        return;
+    }
+    let mut times = Vec::with_capacity(BATCHES);
+    for _ in 0..BATCHES {
+        let t0 = Instant::now();
+        for (g, a) in &data {
+            black_box(ev.step(black_box(g), black_box(a), &extra).expect("a step"));
+        }
+        times.push(t0.elapsed().as_nanos() as f64 / PER as f64);
+    }
+    times.sort_by(f64::total_cmp);
+    println!("{:.1} {sink}", times[BATCHES / 2]);
+}
