@@ -38,17 +38,18 @@ pub(super) fn kernels(precision: Precision) -> String {
     .replace("{LANE_SUMS}", LANE_SUMS_C)
 }
 
-/// `fastexp::exp_neg11` (0 below −708).
+/// `fastexp::exp_neg11` on −708 … 0.
 const EXP_NEG11_C: &str = r#"#include <stdint.h>
 #include <string.h>
-/* e^x for x <= 0: fastexp::exp_neg11 of the Rust evaluator, constant for
- * constant (x = n ln 2 + r; a degree-11 polynomial in r by Estrin's scheme;
- * 2^n from the bits; 0 below -708), so that both give the same bits. */
+/* e^x for -708 <= x <= 0: fastexp::exp_neg11 of the Rust evaluator,
+ * constant for constant (x = n ln 2 + r; a degree-11 polynomial in r by
+ * Estrin's scheme; 2^n from the bits), so that both give the same bits.
+ * Below -708 its value is not used (the caller takes 0): a loop over it
+ * without a branch or clamp is one the compiler vectorises. */
 static double exp_neg11(double x) {
     const double LOG2E = 0x1.71547652b82fep+0, LN2_HI = 0x1.62e42feep-1;
     const double LN2_LO = 0x1.a39ef35793c76p-33, SHIFT = 0x1.8p+52;
-    const double xc = x < -708.0 ? -708.0 : x;
-    double t = xc * LOG2E + SHIFT, n = t - SHIFT, r = (xc - n * LN2_HI) - n * LN2_LO;
+    double t = x * LOG2E + SHIFT, n = t - SHIFT, r = (x - n * LN2_HI) - n * LN2_LO;
     double r2 = r * r, r4 = r2 * r2, q0, q1, q2, p, scale;
     uint64_t bits;
     q0 = (1.0 + 1.0 * r) + (0x1.0000000000011p-1 + 0x1.555555555555ap-3 * r) * r2;
@@ -58,7 +59,7 @@ static double exp_neg11(double x) {
     memcpy(&bits, &t, sizeof bits);
     bits = (bits - UINT64_C(0x4338000000000000) + 1023) << 52;
     memcpy(&scale, &bits, sizeof scale);
-    return x < -708.0 ? 0.0 : p * scale;
+    return p * scale;
 }
 #define EXP_NEG(x) exp_neg11(x)
 "#;
@@ -76,13 +77,14 @@ static void lane_sum(dtg_real *acc) {
 
 "#;
 
-/// A block's exponentials and each sharing channel's weighted terms.
+/// A block's exponentials and each sharing channel's weighted terms (0
+/// below −708: the exponential's argument is not clamped, its value there
+/// is not used).
 const EXPS_AND_WEIGHTS_C: &str = r#"            for (i = 0; i < DTG_LANES; i++) phi[i] = EXP_NEG(arg[i]);
-            for (j = c; j < N; j++) {
-                const dtg_real *wt;
-                if (CENTRE_SET[j] != c) continue;
-                wt = WEIGHT_LANES + WEIGHT_AT[j] + (long)DTG_LANES * b;
-                for (i = 0; i < DTG_LANES; i++) acc[j][i] += phi[i] * wt[i];
+            for (mb = 0; mb < SET_N_MEMBERS[c]; mb++) {
+                const int j = SET_MEMBERS[SET_MEMBERS_AT[c] + mb];
+                const dtg_real *wt = WEIGHT_LANES + WEIGHT_AT[j] + (long)DTG_LANES * b;
+                for (i = 0; i < DTG_LANES; i++) acc[j][i] += (arg[i] < R(-708) ? R(0) : phi[i]) * wt[i];
             }
 "#;
 
@@ -103,7 +105,7 @@ const STATISTICS_C: &str = r#"/* Adds each channel's kernel terms to ys[c] and n
  * exponentials, the weighted terms into one partial sum per lane. */
 static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
     dtg_real acc[N][DTG_LANES];
-    int c, j, b, i, d;
+    int c, b, i, d, mb;
     for (c = 0; c < N; c++)
         for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
     for (c = 0; c < N; c++) {
@@ -158,7 +160,7 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
 static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
     dtg_real acc[N][DTG_LANES];
     const int l = DTG_WINDOW_LEN;
-    int c, j, b, i, t;
+    int c, b, i, t, mb;
     for (c = 0; c < N; c++)
         for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
     for (c = 0; c < N; c++) {

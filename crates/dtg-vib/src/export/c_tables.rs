@@ -54,6 +54,9 @@ fn effects(m: &Model) -> Effects {
 /// lanes; for the raw window the leaders' centres.
 struct Kernels {
     set: Vec<usize>,
+    members_at: Vec<usize>,
+    n_members: Vec<usize>,
+    members: Vec<usize>,
     n_centres: Vec<usize>,
     n_input: Vec<usize>,
     input_at: Vec<usize>,
@@ -70,6 +73,9 @@ fn kernels(m: &Model) -> Kernels {
     let stats = m.input_kind() == input::STATISTICS;
     let mut k = Kernels {
         set: vec![],
+        members_at: vec![],
+        n_members: vec![],
+        members: vec![],
         n_centres: vec![],
         n_input: vec![],
         input_at: vec![],
@@ -84,6 +90,12 @@ fn kernels(m: &Model) -> Kernels {
     for c in 0..m.n_channels() {
         let leader = m.centre_set(c);
         k.set.push(leader);
+        k.members_at.push(k.members.len());
+        let members: Vec<usize> = (c..m.n_channels())
+            .filter(|&j| m.centre_set(j) == c)
+            .collect();
+        k.n_members.push(members.len());
+        k.members.extend(members);
         k.n_centres.push(m.n_centres(c));
         k.input_at.push(k.inputs.len());
         for s in (0..m.n_signals()).filter(|s| m.signal_mask(c) & (1 << s) != 0) {
@@ -248,6 +260,10 @@ fn kernel_arrays(k: &Kernels, stats: bool) -> String {
     );
     s += &ints("N_CENTRES", &k.n_centres);
     s += &ints("CENTRE_SET", &k.set);
+    s += "/* Per set (a leader's) the channels that share it. */\n";
+    s += &ints("SET_N_MEMBERS", &k.n_members);
+    s += &ints("SET_MEMBERS_AT", &k.members_at);
+    s += &ints("SET_MEMBERS", &k.members);
     s += &ints("SET_N_INPUT", &k.n_input);
     s += &ints("SET_INPUT_AT", &k.input_at);
     s += &ints("SET_INPUT", &k.inputs);
