@@ -20,8 +20,9 @@
 //! same batches); beside each, the flops and exponentials per step.
 //! Against 5b6a72d, same run: scripts/onboard-pairs.sh.
 //!
-//! `ONBOARD_TABLES_DIR=dir` also writes each model's tables (`NAME.dtgo`)
-//! and the same model in the layout 5b6a72d wrote (`NAME.then.dtgo`) and
+//! `ONBOARD_TABLES_DIR=dir` also writes each model's tables (`NAME.dtgo`),
+//! its flops and exponentials per step (`NAME.cost`), the same model in the
+//! layout 5b6a72d wrote (`NAME.then.dtgo`, where that layout holds it) and
 //! the exported C (`NAME-c/`) there; with `ONBOARD_TABLES_ONLY=1` nothing
 //! is measured.
 //!
@@ -86,6 +87,10 @@ fn write_tables(spec: &Spec, dir: &Path) -> Result<(), String> {
     let now = model::tables(spec, VERSION);
     let err = |e: std::io::Error| e.to_string();
     std::fs::write(dir.join(format!("{}.dtgo", spec.name)), &now).map_err(err)?;
+    // The step's cost beside it, for the pairs script's physical floor.
+    let m = Model::parse(&now).map_err(|e| e.to_string())?;
+    let cost = format!("{} {}\n", m.flops_per_step(), m.exps_per_step());
+    std::fs::write(dir.join(format!("{}.cost", spec.name)), cost).map_err(err)?;
     // The model with one list of signals has a layout of then too.
     if spec.masks.iter().all(|&m| m == spec.masks[0]) {
         let t = model::tables(spec, then);
