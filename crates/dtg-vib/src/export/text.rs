@@ -207,17 +207,10 @@ fn calibration_text(w: &mut String, model: &UnitModel) {
 
 /// One accelerometer's calibration, with units.
 fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficients) {
+    let [k0, k1, k2, k3, d_o, d_p, kip, kio] = crate::onboard::accel_floats(c);
     let _ = writeln!(
         w,
-        "  {name}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
-        c.bias_ug,
-        c.scale_factor_ppm,
-        c.k2_ug_per_g2,
-        c.k3_ug_per_g3,
-        c.misalignment_o_urad,
-        c.misalignment_p_urad,
-        c.kip_ug_per_g2,
-        c.kio_ug_per_g2
+        "  {name}: K0 = {k0} µg, K1 = {k1} ppm, K2 = {k2} µg/g², K3 = {k3} µg/g³, δo = {d_o} µrad, δp = {d_p} µrad, Kip = {kip} µg/g², Kio = {kio} µg/g²"
     );
 }
 

@@ -13,4 +13,5 @@ mod tables;
 pub use compensation_model::unit_model_of;
 pub use error::ExportError;
 pub use step::{Stepped, step_record, step_tables};
+pub(crate) use tables::accel_floats;
 pub use tables::{Tables, extra_columns, tables};

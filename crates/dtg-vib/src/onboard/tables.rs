@@ -253,8 +253,9 @@ fn geometry_and_calibration(model: &UnitModel, triad: Option<[usize; 3]>) -> Vec
     f
 }
 
-/// An accelerometer's calibration in the layout's order.
-fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
+/// An accelerometer's calibration in the layout's order (K0, K1, K2, K3,
+/// δo, δp, Kip, Kio; the text export names them in it too).
+pub(crate) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
     [
         c.bias_ug,
         c.scale_factor_ppm,
