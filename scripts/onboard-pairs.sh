@@ -50,8 +50,9 @@ CC=${CC:-cc}; CFLAGS="-O2 -std=c99"
 SHA=$(git -C "$ROOT" rev-parse --short "$REV^{commit}")
 BASE="$ROOT/target/bench-pairs/baseline-$SHA"
 [ -d "$BASE/src" ] || git -C "$ROOT" worktree add --detach "$BASE/src" "$SHA" >/dev/null
-mkdir -p "$BASE/src/crates/dtg-onboard/examples"
-cp "$HERE/harness.rs" "$BASE/src/crates/dtg-onboard/examples/onboard_harness.rs"
+mkdir -p "$BASE/src/crates/dtg-onboard/examples/onboard_harness"
+cp "$HERE/harness.rs" "$BASE/src/crates/dtg-onboard/examples/onboard_harness/main.rs"
+cp "$HERE/inputs.rs" "$BASE/src/crates/dtg-onboard/examples/onboard_harness/"
 cp "$HERE/baseline_c.rs" "$BASE/src/crates/dtg-vib/examples/onboard_baseline_c.rs"
 (cd "$BASE/src" && cargo build --release --target-dir "$BASE/target" \
     -p dtg-onboard --example onboard_harness >&2 \

@@ -5,35 +5,21 @@
 //!
 //!     harness TABLES [STEPS]
 //!
+//! (inputs.rs beside it: the baseline's copy is examples/onboard_harness/.)
+//!
 //! Without STEPS: the median ns per step of 1001 batches of 100 steps (a
 //! batch short against the scheduler's time slice). With STEPS: that many
 //! steps and nothing printed but a checksum (for `valgrind --tool=callgrind`).
 
+#[path = "inputs.rs"]
+mod inputs;
+
 use dtg_onboard::{Evaluator, Model};
+use inputs::{PER, inputs};
 use std::hint::black_box;
 use std::time::Instant;
 
-const PER: usize = 100;
 const BATCHES: usize = 1001;
-
-/// The C harness's inputs: an LCG from seed 7, per sample each gyro in
-/// −15 … 15 deg/h, each accelerometer in −0.3 … 0.3 g (+1 g on every third).
-fn inputs(nc: usize, na: usize) -> Vec<(Vec<f64>, Vec<f64>)> {
-    let mut seed: u64 = 7;
-    let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-        (seed >> 11) as f64 / 9007199254740992.0
-    };
-    (0..PER)
-        .map(|_| {
-            let g = (0..nc).map(|_| 30.0 * next() - 15.0).collect();
-            let a = (0..na)
-                .map(|k| f64::from(u8::from(k % 3 == 2)) + 0.6 * next() - 0.3)
-                .collect();
-            (g, a)
-        })
-        .collect()
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

@@ -30,12 +30,15 @@
 //! cargo bench -p dtg-vib --bench onboard_step
 //! ```
 
+#[path = "../../../scripts/onboard-pairs/inputs.rs"]
+mod inputs;
 #[path = "onboard_step/model.rs"]
 mod model;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dtg_onboard::{Evaluator, LAYOUT_2, LAYOUT_3, Model, VERSION};
 use dtg_vib::export::{Precision, Tables, c_sources_from_tables};
+use inputs::inputs;
 use model::Spec;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -55,26 +58,6 @@ fn specs() -> Vec<Spec> {
         model::three_imus("rust_step_nine_gyros_k100_stats_own_imu", true),
         model::three_imus("rust_step_nine_gyros_k100_stats_first_imu", false),
     ]
-}
-
-/// Seeded inputs of `n_g` gyros and `n_a` accelerometers: the C harness's
-/// (an LCG from seed 7: gyros in −15 … 15 deg/h, accelerometers in
-/// −0.3 … 0.3 g, +1 g on every third).
-fn inputs(n_g: usize, n_a: usize) -> Vec<(Vec<f64>, Vec<f64>)> {
-    let mut seed: u64 = 7;
-    let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-        (seed >> 11) as f64 / 9007199254740992.0
-    };
-    (0..100)
-        .map(|_| {
-            let g = (0..n_g).map(|_| 30.0 * next() - 15.0).collect();
-            let a = (0..n_a)
-                .map(|k| f64::from(u8::from(k % 3 == 2)) + 0.6 * next() - 0.3)
-                .collect();
-            (g, a)
-        })
-        .collect()
 }
 
 /// Writes `spec`'s tables now and then, and its C, into `dir`.
