@@ -6,7 +6,8 @@
 #   peers/scripts/run.sh large   # fit time and peak memory against N, M = 5000 candidates
 #   peers/scripts/run.sh allan   # `dtg-vib allan` against allantools.oadev on the demo's record
 #
-# Environment: PYTHON (a Python with peers/scripts/requirements.txt; default python3),
+# Environment: PYTHON (a Python with peers/scripts/requirements.txt; default: a virtual
+# environment with those pins, made once in target/peer-venv and remade when they change),
 # REPS (repetitions per side, default 5), OUT (work directory, default /tmp/rbf-peer),
 # THREADS (the thread counts our side runs with, default "<cores> 1"), PY_THREADS
 # (the OpenBLAS and OpenMP thread counts the Python side runs with, default THREADS:
@@ -25,7 +26,20 @@ set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
-PY=${PYTHON:-python3}
+pins=$here/requirements.txt
+if [[ -n ${PYTHON:-} ]]; then
+    PY=$PYTHON
+else
+    venv=$root/target/peer-venv
+    if ! cmp -s "$pins" "$venv/requirements.txt" 2>/dev/null; then
+        echo "run.sh: making $venv from $pins" >&2
+        rm -rf "$venv"
+        python3 -m venv "$venv"
+        "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$pins"
+        cp "$pins" "$venv/requirements.txt"
+    fi
+    PY=$venv/bin/python
+fi
 REPS=${REPS:-5}
 OUT=${OUT:-/tmp/rbf-peer}
 NCPU=$(getconf _NPROCESSORS_ONLN) # not nproc: it follows OMP_NUM_THREADS
@@ -45,6 +59,7 @@ machine() {
     echo "machine: $NCPU cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)," \
         "$(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo); $(date -u '+%Y-%m-%d %H:%M UTC');" \
         "rbf $(git -C "$root" rev-parse --short HEAD); load $(cut -d' ' -f1-3 /proc/loadavg);" \
+        "Python $("$PY" -c 'import sys, numpy, scipy; print(sys.version.split()[0], "numpy", numpy.__version__, "scipy", scipy.__version__)');" \
         "our threads: $THREADS; Python threads: $PY_THREADS"
 }
 
@@ -107,7 +122,7 @@ peer() {
         for pt in $PY_THREADS; do
             OPENBLAS_NUM_THREADS=$pt OMP_NUM_THREADS=$pt "$PY" "$here/peer.py" run --data "$data" \
                 --beta "$beta" --k 100 --smoothing 1e-8 --threads "$pt" \
-                --methods "${METHODS:-cgs,ols,kmeans,rbfi}" >>"$OUT/python.jsonl"
+                --methods "${METHODS:-cgs,cgs_cdist,ols,kmeans,rbfi}" >>"$OUT/python.jsonl"
         done
     done
     for t in $THREADS; do
