@@ -61,7 +61,7 @@ impl Applied {
         // A model the onboard layout cannot carry (another kernel, input
         // scaling: only from the library) is still compensated, as a batch.
         let stepped = if model.preprocess().causal {
-            match crate::onboard::step_record(model, record) {
+            match crate::onboard::step_record(&crate::onboard::unit_model_of(model)?, record) {
                 Ok(s) => Some(s),
                 Err(DtgVibError::Export(crate::onboard::ExportError::Unsupported { .. })) => None,
                 Err(e) => return Err(e),
@@ -83,7 +83,10 @@ impl Applied {
             })
         };
         let (predicted, compensation, onboard) = match stepped {
-            Some(s) => (shift(&s.error_deg_h, -1.0), s.error_deg_h.clone(), Some(s)),
+            Some(s) => {
+                let errors = six(&s.error_deg_h);
+                (shift(&errors, -1.0), errors, Some(s))
+            }
             // Outside the training range the network part fades
             // (sysid::operating::fade), as the onboard evaluator fades it.
             None => {
@@ -144,9 +147,8 @@ impl Applied {
         let rec = self.prepared.calibrated();
         let sliced = rec.slice(first..rec.len());
         if let Some(s) = &self.onboard {
-            return sliced
-                .with_gyro(s.rate_deg_h.clone())
-                .with_accel(s.accel_g.clone());
+            let accel: [Vec<f64>; 3] = std::array::from_fn(|k| s.accel_g[k].clone());
+            return sliced.with_gyro(six(&s.rate_deg_h)).with_accel(accel);
         }
         let gyro: [Vec<f64>; 6] = std::array::from_fn(|k| {
             sliced
@@ -218,4 +220,9 @@ pub fn write_residues(
 fn write(path: &std::path::Path, header: &[String], cols: &[&[f64]]) -> Result<(), DtgVibError> {
     let names: Vec<&str> = header.iter().map(String::as_str).collect();
     Ok(tabular::write_csv(path, &names, cols)?)
+}
+
+/// The paper unit's six channels of a unit's per-channel series.
+fn six(v: &[Vec<f64>]) -> [Vec<f64>; 6] {
+    std::array::from_fn(|k| v[k].clone())
 }

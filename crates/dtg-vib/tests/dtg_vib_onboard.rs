@@ -7,6 +7,7 @@
 //! exported C, compiled with the system compiler, runs it from a CSV.
 
 use dtg_vib::model::CompensationModel;
+use dtg_vib::unit_sensor::UnitModel;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
@@ -15,6 +16,12 @@ use std::sync::OnceLock;
 
 /// deg/h: the bound on every channel and sample.
 const EQUAL_DEG_H: f64 = 1e-9;
+
+/// A paper model as the paper unit's model, which the exporter and the
+/// evaluator read.
+fn unit_of(model: &CompensationModel) -> UnitModel {
+    dtg_vib::onboard::unit_model_of(model).unwrap()
+}
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
@@ -153,7 +160,7 @@ fn step_against_batch_on(model_path: &Path, rec: &Record) -> f64 {
     let rec = rec.clone();
     let prepared = model.prepare(&rec).unwrap();
     let batch = model.compensation(&prepared).unwrap();
-    let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&unit_of(&model), &rec).unwrap();
     assert_eq!(stepped.first_sample, prepared.first_sample());
     let first = prepared.first_sample();
     let mut worst = 0.0f64;
@@ -200,7 +207,7 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
             w[3000 - first]
         );
         assert_eq!(*w.last().unwrap(), 1.0, "inside again after it");
-        let t = dtg_vib::export::tables(&model).unwrap();
+        let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
         assert!(dtg_onboard::Model::parse(&t.bytes).unwrap().fades());
         let worst = step_against_batch_on(m, &rec);
         eprintln!(
@@ -215,7 +222,7 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
 fn the_rich_model_uses_effects_extra_columns_and_two_signals() {
     // Guards the test above: the model must exercise what it claims.
     let model = CompensationModel::load(rich()).unwrap();
-    let t = dtg_vib::export::tables(&model).unwrap();
+    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
     assert_eq!(t.extra, ["temp"]);
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert_eq!(m.n_effects(Channel::Y1.index()), 2);
@@ -229,10 +236,10 @@ fn the_rich_model_uses_effects_extra_columns_and_two_signals() {
 fn the_statistics_model_reads_nine_inputs() {
     // Guards the tests above: the statistics input is what they step.
     let model = CompensationModel::load(statistics()).unwrap();
-    let t = dtg_vib::export::tables(&model).unwrap();
+    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert_eq!(m.input_kind(), dtg_onboard::input::STATISTICS);
-    assert_eq!(m.input_dim(), 9);
+    assert_eq!(m.input_dim(0), 9);
     assert_eq!(m.n_smoother_sections(), 1);
 }
 
@@ -279,7 +286,7 @@ fn a_zero_phase_model_is_not_exported() {
         .arg("--out")
         .arg(&out));
     let model = CompensationModel::load(&out).unwrap();
-    let err = dtg_vib::export::tables(&model).unwrap_err();
+    let err = dtg_vib::export::tables(&unit_of(&model)).unwrap_err();
     assert!(err.to_string().contains("--causal"), "{err}");
     let res = bin()
         .args(["export", "--lang", "c", "--model"])
@@ -323,11 +330,7 @@ fn c_against_compensate_scaled(
     data: &Path,
     scale: &dyn Fn(&str) -> f64,
 ) -> Option<f64> {
-    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-    if Command::new(&cc).arg("--version").output().is_err() {
-        eprintln!("NOTICE: no C compiler ('{cc}'): the C equality test is skipped");
-        return None;
-    }
+    let cc = c_compiler()?;
     let name = model.file_stem().unwrap().to_str().unwrap();
     let data_name = data.file_stem().unwrap().to_str().unwrap();
     let out = dir().join(format!("c-{name}-{precision}-{data_name}"));
@@ -337,31 +340,12 @@ fn c_against_compensate_scaled(
         .arg(model)
         .arg("--out")
         .arg(&out));
-    let exe = out.join("dtg");
-    let status = Command::new(&cc)
-        .current_dir(&out)
-        .args([
-            "-O2",
-            "-std=c99",
-            "-Wall",
-            "-Wextra",
-            "-pedantic",
-            "-Werror",
-            "dtg_model.c",
-            "main.c",
-            "-lm",
-            "-o",
-        ])
-        .arg(&exe)
-        .status()
-        .unwrap();
-    assert!(status.success(), "the exported C does not compile");
-    let input = std::fs::File::open(data).unwrap();
-    let c = Command::new(&exe)
-        .stdin(Stdio::from(input))
-        .output()
-        .unwrap();
-    assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
+    let c = compile_and_run(
+        &cc,
+        &out,
+        &["-Wall", "-Wextra", "-pedantic", "-Werror"],
+        data,
+    );
     let desk = dir().join(format!("compensated-{name}-{data_name}.csv"));
     ok(bin()
         .args(["compensate", "--model"])
@@ -370,18 +354,64 @@ fn c_against_compensate_scaled(
         .arg(data)
         .arg("--out")
         .arg(&desk));
-    let (hc, rc) = read_csv(&String::from_utf8(c.stdout).unwrap());
-    let (hd, rd) = read_csv(&std::fs::read_to_string(&desk).unwrap());
-    assert_eq!(hc, hd);
-    assert_eq!(rc.len(), rd.len());
-    let scales: Vec<f64> = hc.iter().map(|h| scale(h)).collect();
+    let d = read_csv(&std::fs::read_to_string(&desk).unwrap());
+    Some(largest_difference(&read_csv(&c), &d, scale))
+}
+
+/// The C compiler (`$CC`, else `cc`), or `None` with a notice where there
+/// is none.
+fn c_compiler() -> Option<String> {
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    if Command::new(&cc).arg("--version").output().is_err() {
+        eprintln!("NOTICE: no C compiler ('{cc}'): the C equality test is skipped");
+        return None;
+    }
+    Some(cc)
+}
+
+/// The C in `dir` compiled with `cc -O2 -std=c99 FLAGS dtg_model.c main.c
+/// -lm` and run on the record at `data`: its standard output.
+fn compile_and_run(cc: &str, dir: &Path, flags: &[&str], data: &Path) -> String {
+    let exe = dir.join("dtg");
+    let status = Command::new(cc)
+        .current_dir(dir)
+        .args(["-O2", "-std=c99"])
+        .args(flags)
+        .args(["dtg_model.c", "main.c", "-lm", "-o"])
+        .arg(&exe)
+        .status()
+        .unwrap();
+    assert!(
+        status.success(),
+        "the C in {} does not compile",
+        dir.display()
+    );
+    let input = std::fs::File::open(data).unwrap();
+    let c = Command::new(&exe)
+        .stdin(Stdio::from(input))
+        .output()
+        .unwrap();
+    assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
+    String::from_utf8(c.stdout).unwrap()
+}
+
+/// The largest |a − b| of two CSVs with the same header and rows, each
+/// difference times `scale(column)`.
+fn largest_difference(
+    (ha, ra): &(Vec<String>, Vec<Vec<f64>>),
+    (hb, rb): &(Vec<String>, Vec<Vec<f64>>),
+    scale: &dyn Fn(&str) -> f64,
+) -> f64 {
+    assert_eq!(ha, hb);
+    assert_eq!(ra.len(), rb.len());
+    let scales: Vec<f64> = ha.iter().map(|h| scale(h)).collect();
     let mut worst = 0.0f64;
-    for (a, b) in rc.iter().zip(&rd) {
+    for (a, b) in ra.iter().zip(rb) {
         for ((x, y), k) in a.iter().zip(b).zip(&scales) {
             worst = worst.max((x - y).abs() * k);
         }
     }
-    Some(worst)
+    worst
 }
 
 #[test]
@@ -511,7 +541,7 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
     let model = fit(&rec, None, &options, &|_| {}).unwrap();
     let prepared = model.prepare(&rec).unwrap();
     let batch = model.compensation(&prepared).unwrap();
-    let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&unit_of(&model), &rec).unwrap();
     let mut worst = 0.0f64;
     for (k, b) in batch.iter().enumerate() {
         for (s, b) in stepped.error_deg_h[k].iter().zip(b) {
@@ -692,6 +722,37 @@ fn dtg_unit() -> &'static Path {
     })
 }
 
+/// The nine-gyro unit (three IMUs of rate gyros, one accelerometer triad:
+/// tests/fixtures/onboard/nine-gyros.toml) on the statistics input with
+/// the prediction smoother and a g effect.
+fn nine_gyros() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        unit_fit(
+            "nine-gyros.json",
+            nine_gyros_file(),
+            "z-axis",
+            &[
+                "--add-effect",
+                "gx2=g_y",
+                "--window-signals",
+                "ax,ay,az",
+                "--input",
+                "statistics",
+                "--smoother",
+                "0.2",
+            ],
+        )
+    })
+}
+
+fn nine_gyros_file() -> &'static str {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/onboard/nine-gyros.toml"
+    )
+}
+
 /// A unit's record with its specific force along x shifted by 2 g (in the
 /// log's units) from sample 2000 to 3500: outside the training range.
 fn unit_outside(model: &Path, data: &Path) -> PathBuf {
@@ -739,7 +800,7 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
         if let Some(w) = sysid::operating::fade::weights(m.inner(), &prepared).unwrap() {
             lowest = w.weight.iter().fold(lowest, |a, &b| a.min(b));
         }
-        let stepped = dtg_vib::onboard::step_unit_record(&m, rec).unwrap();
+        let stepped = dtg_vib::onboard::step_record(&m, rec).unwrap();
         let first = prepared.first_sample();
         assert_eq!(stepped.first_sample, first);
         for (k, name) in m.unit().gyro_names().iter().enumerate() {
@@ -760,8 +821,9 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
     (worst, lowest)
 }
 
-fn unit_models() -> [(&'static Path, PathBuf); 4] {
+fn unit_models() -> [(&'static Path, PathBuf); 5] {
     [
+        (nine_gyros(), unit_sim(nine_gyros_file(), "z-axis")),
         (tetra(), unit_sim("tetra", "triaxial_hidden")),
         (triad(), unit_sim("triad", "z-axis")),
         (dual_triad(), unit_sim("dual-triad", "triaxial_hidden")),
@@ -793,19 +855,16 @@ fn the_no_std_evaluator_equals_the_batch_on_every_unit() {
 #[test]
 fn the_unit_models_exercise_what_they_claim() {
     // Guards the tests above and below.
-    use dtg_onboard::{Model, UNIT_VERSION, gyro, input};
+    use dtg_onboard::{Model, VERSION, gyro, input};
     use dtg_vib::unit_sensor::UnitModel;
     let parsed = |p: &Path| {
         let m = UnitModel::load(p).unwrap();
-        let t = dtg_vib::export::unit_tables(&m).unwrap();
+        let t = dtg_vib::export::tables(&m).unwrap();
         (m, t)
     };
     let (m, t) = parsed(tetra());
     let o = Model::parse(&t.bytes).unwrap();
-    assert_eq!(
-        (o.version(), o.n_channels(), o.n_accels()),
-        (UNIT_VERSION, 4, 3)
-    );
+    assert_eq!((o.version(), o.n_channels(), o.n_accels()), (VERSION, 4, 3));
     assert_eq!(t.extra, ["temp"]);
     assert!(m.inner().sensor().calibration.is_some() && o.fades());
     assert_eq!((o.n_effects(0), o.n_effects(1), o.n_effects(2)), (1, 1, 1));
@@ -824,7 +883,12 @@ fn the_unit_models_exercise_what_they_claim() {
         nav_sensors::unit::GyroModel::Dtg { .. }
     ));
     assert_eq!(o.n_effects(3), 2);
-    let _ = gyro::DTG;
+    let (m, t) = parsed(nine_gyros());
+    let o = Model::parse(&t.bytes).unwrap();
+    assert_eq!((o.n_channels(), o.n_accels()), (9, 3));
+    assert!((0..9).all(|c| o.gyro_model(c) == gyro::RATE));
+    assert!(m.inner().sensor().calibration.is_some() && o.fades());
+    assert_eq!((o.input_kind(), o.n_effects(3)), (input::STATISTICS, 1));
 }
 
 #[test]
@@ -914,14 +978,15 @@ fn shared() -> &'static Path {
 #[test]
 fn channels_sharing_a_centre_set_step_and_export_as_the_batch() {
     let model = CompensationModel::load(shared()).unwrap();
-    let t = dtg_vib::export::tables(&model).unwrap();
+    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert!((0..6).all(|c| m.centre_set(c) == 0), "one set");
-    let own = dtg_vib::export::tables(&CompensationModel::load(statistics()).unwrap()).unwrap();
+    let own =
+        dtg_vib::export::tables(&unit_of(&CompensationModel::load(statistics()).unwrap())).unwrap();
     let own = dtg_onboard::Model::parse(&own.bytes).unwrap();
     assert!((0..6).all(|c| own.centre_set(c) == c), "six sets");
     assert!(m.flops_per_step() < own.flops_per_step());
-    let c = dtg_vib::export::c_sources(&model, dtg_vib::export::Precision::F64).unwrap();
+    let c = dtg_vib::export::c_sources(&unit_of(&model), dtg_vib::export::Precision::F64).unwrap();
     assert!(c.source.contains("CENTRE_SET[c] != c"), "the shared C");
     for (what, rec) in [
         ("", record()),
@@ -937,5 +1002,102 @@ fn channels_sharing_a_centre_set_step_and_export_as_the_batch() {
         };
         eprintln!("shared: largest |C − compensate| = {worst:e} deg/h");
         assert!(worst <= EQUAL_DEG_H, "shared C: {worst:e} deg/h");
+    }
+}
+
+// Files written before the one layout (main 5b6a72d, tests/fixtures/legacy:
+// the paper's tables of layout 2, a tetra's of layout 3, the C exported
+// then, the causal models they came from): the tables and the C run as
+// they did, and the models exported now give the numbers `compensate` gave
+// then (the fixtures' compensated-causal.csv, deg/h and g).
+
+/// A file of the fixtures written before.
+fn legacy(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/legacy")
+        .join(path)
+}
+
+/// The fixtures' compensated log of the causal model of `dir` (paper, tetra).
+fn compensated_then(dir: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    read_csv(&std::fs::read_to_string(legacy(dir).join("compensated-causal.csv")).unwrap())
+}
+
+#[test]
+fn tables_written_before_load_and_run_as_they_did() {
+    use dtg_onboard::{LAYOUT_2, LAYOUT_3, Model};
+    for (dir, version) in [("paper", LAYOUT_2), ("tetra", LAYOUT_3)] {
+        let bytes = std::fs::read(legacy(dir).join("onboard/model.dtgo")).unwrap();
+        let m = Model::parse(&bytes).unwrap();
+        assert_eq!((m.version(), m.n_extra()), (version, 0), "{dir}");
+        let data = legacy(dir).join("record.csv");
+        let rec = if dir == "paper" {
+            Record::read_csv(&data).unwrap()
+        } else {
+            let unit =
+                nav_sensors::unit::Unit::resolve(legacy("tetra/unit.toml").to_str().unwrap())
+                    .unwrap();
+            Record::read_with_unit(&data, &unit)
+                .unwrap()
+                .records
+                .remove(0)
+        };
+        let t = dtg_vib::onboard::Tables {
+            bytes: bytes.clone(),
+            extra: vec![],
+        };
+        let s = dtg_vib::onboard::step_tables(&t, &rec).unwrap();
+        // The compensated log: time, the gyros' rates, the accelerations.
+        let (_, then) = compensated_then(dir);
+        let (n_g, n_a) = (m.n_channels(), m.n_accels());
+        assert_eq!(s.rate_deg_h[0].len(), then.len(), "{dir}");
+        let mut worst = 0.0f64;
+        for (i, row) in then.iter().enumerate() {
+            for k in 0..n_g {
+                worst = worst.max((s.rate_deg_h[k][i] - row[1 + k]).abs());
+            }
+            for k in 0..n_a {
+                worst = worst.max((s.accel_g[k][i] - row[1 + n_g + k]).abs());
+            }
+        }
+        eprintln!("{dir} tables of layout {version}: largest |now − then| = {worst:e}");
+        assert!(worst <= EQUAL_DEG_H, "{dir}: {worst:e}");
+    }
+}
+
+#[test]
+fn c_exported_before_compiles_and_runs_as_it_did() {
+    let Some(cc) = c_compiler() else { return };
+    for dir in ["paper", "tetra"] {
+        let out = self::dir().join(format!("c-then-{dir}"));
+        std::fs::create_dir_all(&out).unwrap();
+        for f in ["dtg_model.h", "dtg_model.c", "main.c"] {
+            std::fs::copy(legacy(dir).join("onboard").join(f), out.join(f)).unwrap();
+        }
+        let c = compile_and_run(&cc, &out, &[], &legacy(dir).join("record.csv"));
+        let worst = largest_difference(&read_csv(&c), &compensated_then(dir), &|_| 1.0);
+        eprintln!("{dir}: the C of then, largest |C − compensate then| = {worst:e}");
+        assert!(worst <= EQUAL_DEG_H, "{dir}: {worst:e}");
+    }
+}
+
+#[test]
+fn models_written_before_export_to_c_that_gives_their_numbers() {
+    let Some(cc) = c_compiler() else { return };
+    for (dir, model) in [("paper", "causal-gg_IS.json"), ("tetra", "causal.json")] {
+        let out = self::dir().join(format!("c-now-{dir}"));
+        ok(bin()
+            .args(["export", "--lang", "c", "--model"])
+            .arg(legacy(dir).join(model))
+            .arg("--out")
+            .arg(&out));
+        let bytes = std::fs::read(out.join("model.dtgo")).unwrap();
+        let m = dtg_onboard::Model::parse(&bytes).unwrap();
+        assert_eq!(m.version(), dtg_onboard::VERSION, "{dir}: the one layout");
+        let flags = ["-Wall", "-Wextra", "-pedantic", "-Werror"];
+        let c = compile_and_run(&cc, &out, &flags, &legacy(dir).join("record.csv"));
+        let worst = largest_difference(&read_csv(&c), &compensated_then(dir), &|_| 1.0);
+        eprintln!("{dir}: exported now, largest |C − compensate then| = {worst:e}");
+        assert!(worst <= EQUAL_DEG_H, "{dir}: {worst:e}");
     }
 }

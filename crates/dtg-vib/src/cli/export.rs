@@ -3,8 +3,6 @@
 
 use anyhow::Result;
 use clap::Args;
-use dtg_vib::model::CompensationModel;
-use dtg_vib::unit_sensor::UnitModel;
 use std::path::{Path, PathBuf};
 
 use super::records::open_model;
@@ -35,52 +33,23 @@ pub struct ExportArgs {
 /// The file `--lang text --out DIR` writes into DIR.
 const EQUATIONS_FILE: &str = "equations.txt";
 
-/// Writes the C sources and tables, or the equations.
+/// Writes the C sources and tables, or the equations, of a model of any
+/// unit (a paper model file is the paper unit's model).
 pub fn run(a: ExportArgs) -> Result<()> {
     let m = open_model(&a.model, a.unit.as_deref())?;
-    // The paper's unit keeps its exporters (layout 2) until the one
-    // exporter writes every unit's model.
-    let paper = CompensationModel::of_unit(&m);
     match a.lang.as_str() {
-        "text" => {
-            let equations = match &paper {
-                Some(p) => dtg_vib::export::equations(p),
-                None => dtg_vib::export::unit_equations(&m),
-            };
-            write_text(&equations, &a.model, a.out.as_deref())
-        }
+        "text" => write_text(&dtg_vib::export::equations(&m), &a.model, a.out.as_deref()),
         "c" => {
             let Some(out) = &a.out else {
                 anyhow::bail!("--lang c writes files: give the directory with --out DIR");
             };
             let precision: dtg_vib::export::Precision = a.precision.parse()?;
-            let (c, tables) = match &paper {
-                Some(p) => paper_c(p, precision)?,
-                None => unit_c(&m, precision)?,
-            };
+            let tables = dtg_vib::export::tables(&m)?;
+            let c = dtg_vib::export::c_sources(&m, precision)?;
             write_c(&c, &tables, &a.model, out)
         }
         other => anyhow::bail!("--lang {other}: use c (C99 sources) or text (equations)"),
     }
-}
-
-/// The C sources and tables of a model of the paper's unit.
-fn paper_c(
-    model: &CompensationModel,
-    precision: dtg_vib::export::Precision,
-) -> Result<(dtg_vib::export::CSources, dtg_vib::export::Tables)> {
-    let c = dtg_vib::export::c_sources(model, precision)?;
-    Ok((c, dtg_vib::export::tables(model)?))
-}
-
-/// The C sources and tables of a unit's model.
-fn unit_c(
-    m: &UnitModel,
-    precision: dtg_vib::export::Precision,
-) -> Result<(dtg_vib::export::CSources, dtg_vib::export::Tables)> {
-    let tables = dtg_vib::export::unit_tables(m)?;
-    let c = dtg_vib::export::unit_c_sources(&tables, m.unit(), precision)?;
-    Ok((c, tables))
 }
 
 /// `equations` on stdout, or into `out/equations.txt`.
@@ -119,11 +88,12 @@ fn write_c(
     )?;
     let m = dtg_onboard::Model::parse(&tables.bytes).map_err(|e| anyhow::anyhow!("{e}"))?;
     println!(
-        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops per step; extra columns: {})",
+        "wrote {}: dtg_model.h, dtg_model.c, main.c (cc -O2 -std=c99 *.c -lm), model.dtgo ({} bytes of tables, {} f64 of state, {} flops and {} exponentials per step; extra columns: {})",
         out.display(),
         m.size_bytes(),
         m.state_len(),
         m.flops_per_step(),
+        m.exps_per_step(),
         if tables.extra.is_empty() {
             "none".to_string()
         } else {

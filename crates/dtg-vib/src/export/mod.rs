@@ -1,21 +1,17 @@
-//! A causal model made portable: its onboard tables written out
-//! ([`crate::onboard`] lays them out), the C99 sources, and the model as
-//! reviewable equations; for the paper's unit and for any unit.
+//! A causal model made portable, for any unit, the paper's included: its
+//! onboard tables written out ([`crate::onboard`] lays them out), the C99
+//! sources, and the model as reviewable equations.
 
 mod c;
-mod c_lanes;
-mod c_process;
-mod c_shared;
-mod c_unit;
-mod layout;
+mod c_kernels;
+mod c_main;
+mod c_step;
+mod c_tables;
+mod precision;
 mod text;
-mod text_unit;
 
-pub use c::{CSources, Precision, c_sources, c_sources_from_tables};
-pub use c_unit::unit_c_sources;
+pub use c::{CSources, c_sources, c_sources_from_tables};
+pub use precision::Precision;
 pub use text::equations;
-pub use text_unit::unit_equations;
 
-pub use crate::onboard::{
-    ExportError, Tables, extra_columns, tables, unit_extra_columns, unit_tables,
-};
+pub use crate::onboard::{ExportError, Tables, extra_columns, tables, unit_model_of};

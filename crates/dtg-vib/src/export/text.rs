@@ -1,33 +1,40 @@
-//! A model as equations with units, for review (`dtg-vib export --lang text`).
+//! A model of any unit, the paper's included, as equations with units,
+//! for review (`dtg-vib export --lang text`).
 
-use crate::model::CompensationModel;
+use crate::unit_sensor::UnitModel;
+use nav_sensors::calibration::GyroCoefficients;
 use nav_sensors::dtg::DtgTerm;
-use nav_sensors::geometry::{Axis, Channel};
+use nav_sensors::rate::RateTerm;
 use std::fmt::Write;
 use sysid::operating::OperatingPoints;
 
-/// The model written out: pre-processing, calibration, filter coefficients,
-/// and per channel the effect terms with their coefficients and the RBF sum
-/// with its centres, width and weights. Works on zero-phase and causal models.
-pub fn equations(model: &CompensationModel) -> String {
+/// The model written out: the unit, pre-processing, calibration, filter
+/// coefficients, and per channel the effect terms with their coefficients
+/// and the RBF sum with its centres, width and weights. Works on
+/// zero-phase and causal models.
+pub fn equations(model: &UnitModel) -> String {
+    let m = model.inner();
     equations_with(
-        "# dtg-vib compensation model",
-        model.dt_s(),
-        model.inner().preprocess(),
+        &format!(
+            "# dtg-vib compensation model of the unit '{}'",
+            model.unit().name()
+        ),
+        m.dt_s(),
+        m.preprocess(),
         &|w| calibration_text(w, model),
         &|w| {
-            for c in model.channels() {
+            for c in m.channels() {
                 channel_text(w, c);
             }
         },
-        model.operating_points(),
+        m.operating_points(),
     )
 }
 
 /// The equations of any model: its title line, output period and
 /// pre-processing, what `calibration` and `channels` write, and the
 /// training range of `points`.
-pub(super) fn equations_with(
+fn equations_with(
     title: &str,
     dt_s: f64,
     pre: &sysid::Preprocess,
@@ -95,7 +102,7 @@ pub(super) fn equations_with(
 
 /// The training range and the fade of the network part beyond it
 /// (sysid::operating::fade); nothing for a model without one.
-pub(super) fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
+fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
     let Some(r) = points.and_then(|o| o.range.as_ref()) else {
         return;
     };
@@ -126,73 +133,89 @@ pub(super) fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
     );
 }
 
-/// The ground calibration, as the inverse models the preparation applies.
-fn calibration_text(w: &mut String, model: &CompensationModel) {
-    let causal = model.preprocess().causal;
+/// The unit's columns, units and gyros, and its ground calibration as the
+/// inverse models the preparation applies.
+fn calibration_text(w: &mut String, model: &UnitModel) {
+    let unit = model.unit();
+    let _ = writeln!(
+        w,
+        "\n## Unit\nlog columns: time {} (s × {}); gyros {} ({}, times {} to deg/h); accelerometers {} ({}, times {} to g)",
+        unit.columns().time,
+        unit.columns().time_scale,
+        unit.gyro_names().join(", "),
+        unit.units().rate,
+        unit.units().rate.to_deg_h(),
+        unit.accel_names().join(", "),
+        unit.units().specific_force,
+        unit.units().specific_force.to_g(),
+    );
+    for g in unit.gyros() {
+        let axes = match g.dtg_axes() {
+            Some(a) => format!(
+                "dtg, I = {:?}, O = {:?}, S = {:?}",
+                a.input.as_slice(),
+                a.output.as_slice(),
+                a.spin.as_slice()
+            ),
+            None => format!("rate, input axis {:?}", g.input.as_slice()),
+        };
+        let _ = writeln!(w, "  {}: {axes}", g.name);
+    }
     let _ = writeln!(w, "\n## Ground calibration");
-    match model.calibration() {
-        None => {
-            let _ = writeln!(w, "none: the raw outputs are used as they are");
+    let Some(cal) = model.inner().sensor().calibration.as_ref() else {
+        let _ = writeln!(w, "none: the raw outputs are used as they are");
+        return;
+    };
+    let _ = writeln!(
+        w,
+        "accelerometers, when they are the unit's x, y, z axes (else as given): static inverse of output/g = (1 + K1·1e-6)(K0 + a_i + K2·a_i² + K3·a_i³ + δo·a_p − δp·a_o + Kip·a_i·a_p + Kio·a_i·a_o), each coefficient ·1e-6; the specific force is their least-squares resolution in the unit frame"
+    );
+    for (name, c) in &cal.accels {
+        accel_text(w, name, c);
+    }
+    let _ = writeln!(
+        w,
+        "gyros (a rate gyro: (output − Σ coefficient·term at zero rate)/(1 + scale factor·1e-6); a DTG: inverse of output = ω_I + Σ coefficient·term, Newton on the scale-factor nonlinearity, the rate from the least-squares rate of all gyros, two passes; g² terms with the {} within-interval covariance):",
+        if model.inner().preprocess().causal {
+            "previous interval's"
+        } else {
+            "centred"
         }
-        Some(cal) => {
-            let _ = writeln!(
-                w,
-                "accelerometers (static inverse of output/g = (1 + K1·1e-6)(K0 + a_i + K2·a_i² + K3·a_i³ + δo·a_p − δp·a_o + Kip·a_i·a_p + Kio·a_i·a_o), each coefficient ·1e-6):"
-            );
-            for a in Axis::ALL {
-                accel_text(w, a.column(), &cal.accel(a));
-            }
-            let _ = writeln!(
-                w,
-                "gyros (inverse of output = ω_I + Σ coefficient·term, Newton on the scale-factor nonlinearity; g² terms with the {} within-interval covariance):",
-                if causal {
-                    "previous interval's"
-                } else {
-                    "centred"
-                }
-            );
-            for ch in Channel::ALL {
-                let g = cal.gyro(ch);
-                let terms: Vec<String> = DtgTerm::ALL
-                    .iter()
-                    .zip(g.to_array())
-                    .filter(|(_, v)| *v != 0.0)
-                    .map(|(t, v)| format!("{} = {v} {}", t.id(), t.unit()))
-                    .collect();
-                let _ = writeln!(
-                    w,
-                    "  {ch}: {}; nonlinearity = {} ppm/(deg/s)",
-                    terms.join(", "),
-                    g.scale_factor_nonlinearity_ppm_per_deg_s
-                );
-            }
-        }
+    );
+    for (name, c) in &cal.gyros {
+        let terms: Vec<String> = match c {
+            GyroCoefficients::Rate(r) => RateTerm::ALL
+                .iter()
+                .zip(r.to_array())
+                .filter(|(_, v)| *v != 0.0)
+                .map(|(t, v)| format!("{} = {v} {}", t.id(), t.unit()))
+                .collect(),
+            GyroCoefficients::Dtg(d) => DtgTerm::ALL
+                .iter()
+                .zip(d.to_array())
+                .filter(|(_, v)| *v != 0.0)
+                .map(|(t, v)| format!("{} = {v} {}", t.id(), t.unit()))
+                .chain(std::iter::once(format!(
+                    "nonlinearity = {} ppm/(deg/s)",
+                    d.scale_factor_nonlinearity_ppm_per_deg_s
+                )))
+                .collect(),
+        };
+        let _ = writeln!(w, "  {name} ({}): {}", c.model(), terms.join(", "));
     }
 }
 
 /// One accelerometer's calibration, with units.
-pub(super) fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficients) {
+fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficients) {
+    let [k0, k1, k2, k3, d_o, d_p, kip, kio] = crate::onboard::accel_floats(c);
     let _ = writeln!(
         w,
-        "  {name}: K0 = {} µg, K1 = {} ppm, K2 = {} µg/g², K3 = {} µg/g³, δo = {} µrad, δp = {} µrad, Kip = {} µg/g², Kio = {} µg/g²",
-        c.bias_ug,
-        c.scale_factor_ppm,
-        c.k2_ug_per_g2,
-        c.k3_ug_per_g3,
-        c.misalignment_o_urad,
-        c.misalignment_p_urad,
-        c.kip_ug_per_g2,
-        c.kio_ug_per_g2
+        "  {name}: K0 = {k0} µg, K1 = {k1} ppm, K2 = {k2} µg/g², K3 = {k3} µg/g³, δo = {d_o} µrad, δp = {d_p} µrad, Kip = {kip} µg/g², Kio = {kio} µg/g²"
     );
 }
 
 /// One low-pass as its sections' difference equations.
-pub(super) fn filter_text(
-    w: &mut String,
-    f: &Option<crate::pipeline::FilterSpec>,
-    causal: bool,
-    dt_s: f64,
-) {
+fn filter_text(w: &mut String, f: &Option<crate::pipeline::FilterSpec>, causal: bool, dt_s: f64) {
     match f {
         None => {
             let _ = writeln!(w, "none");
@@ -228,7 +251,7 @@ pub(super) fn filter_text(
 
 /// One channel's equation: its effects with their coefficients and the
 /// RBF sum with every centre, width and weight.
-pub(super) fn channel_text<C: std::fmt::Display + Clone, E: sysid::Effect>(
+fn channel_text<C: std::fmt::Display + Clone, E: sysid::Effect>(
     w: &mut String,
     c: &sysid::ChannelModel<C, E>,
 ) {

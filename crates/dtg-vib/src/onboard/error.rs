@@ -19,12 +19,13 @@ pub enum ExportError {
         /// What is supported instead.
         supported: &'static str,
     },
-    /// More channels or accelerometers than the onboard layout holds.
+    /// More channels, accelerometers or window signals than the onboard
+    /// layout holds.
     #[error(
-        "the unit has {found} {what}; the onboard evaluator and the exported C hold at most {max} (dtg_onboard::MAX_CHANNELS, MAX_ACCELS): compensate this unit with dtg-vib compensate --model"
+        "the model has {found} {what}; the onboard evaluator and the exported C hold at most {max} (dtg_onboard::MAX_CHANNELS, MAX_ACCELS, MAX_SIGNALS): compensate it with dtg-vib compensate --model"
     )]
     TooMany {
-        /// "gyros" or "accelerometers".
+        /// "gyros", "accelerometers" or "window signals".
         what: &'static str,
         /// How many the unit has.
         found: usize,

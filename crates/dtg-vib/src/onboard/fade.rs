@@ -4,22 +4,26 @@
 //! (`dtg_onboard::fade_floats` numbers after the channels).
 
 use super::error::ExportError;
-use crate::model::CompensationModel;
-use nav_sensors::geometry::{Axis, Channel};
+use crate::unit_sensor::UnitModel;
 use sysid::operating::OperatingPoints;
 
 /// The fade block of a model with a training range (`None` without one:
-/// the tables then do not fade, as the model does not).
-pub(super) fn fade_block(model: &CompensationModel) -> Result<Option<Vec<f64>>, ExportError> {
-    let axes: Vec<String> = Axis::ALL.iter().map(|a| a.column().to_string()).collect();
+/// the tables then do not fade, as the model does not): its range over the
+/// unit's accelerometers' windows.
+pub(super) fn fade_block(model: &UnitModel) -> Result<Option<Vec<f64>>, ExportError> {
+    let m = model.inner();
+    let unit = model.unit();
     fade_block_of(
-        model.operating_points(),
-        model.preprocess().window.length(),
-        model.dt_s(),
-        (&axes, Channel::ALL.len()),
+        m.operating_points(),
+        m.preprocess().window.length(),
+        m.dt_s(),
         (
-            Channel::X.to_string(),
-            "a training range over ax, ay, az windows of the model's length",
+            &sysid::Sensor::operating_signals(m.sensor()),
+            unit.gyros().len(),
+        ),
+        (
+            unit.gyros()[0].name.clone(),
+            "a training range over the unit's accelerometers' windows of the model's length",
         ),
     )
 }
@@ -29,7 +33,7 @@ pub(super) fn fade_block(model: &CompensationModel) -> Result<Option<Vec<f64>>, 
 /// channels, `window`-sample windows and output period `dt_s`; a range
 /// the layout cannot carry is refused naming `channel` and what is
 /// `supported`.
-pub(super) fn fade_block_of(
+fn fade_block_of(
     points: Option<&OperatingPoints>,
     window: usize,
     dt_s: f64,

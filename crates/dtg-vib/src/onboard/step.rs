@@ -4,31 +4,15 @@
 
 use super::error::ExportError;
 use super::tables::{Tables, tables};
-use super::unit_tables::unit_tables;
 use crate::error::DtgVibError;
-use crate::model::CompensationModel;
 use crate::unit_sensor::UnitModel;
 use nav_sensors::record::Record;
 
-/// A record run through the onboard evaluator, from the first sample with a
-/// full window on.
+/// A record run through the onboard evaluator, from the first sample with
+/// a full window on: per channel (the unit's gyros) and per accelerometer,
+/// in the unit's order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stepped {
-    /// Record sample of the first output.
-    pub first_sample: usize,
-    /// Compensated rates per channel, deg/h.
-    pub rate_deg_h: [Vec<f64>; 6],
-    /// Predicted errors per channel, deg/h.
-    pub error_deg_h: [Vec<f64>; 6],
-    /// Calibrated accelerations per axis, g.
-    pub accel_g: [Vec<f64>; 3],
-}
-
-/// A record of any unit run through the onboard evaluator, from the first
-/// sample with a full window on: per channel (the unit's gyros) and per
-/// accelerometer, in the unit's order.
-#[derive(Debug, Clone, PartialEq)]
-pub struct UnitStepped {
     /// Record sample of the first output.
     pub first_sample: usize,
     /// Compensated rates per channel, deg/h.
@@ -39,47 +23,27 @@ pub struct UnitStepped {
     pub accel_g: Vec<Vec<f64>>,
 }
 
-/// Runs a causal model over a record sample by sample with the `dtg-onboard`
-/// evaluator, as a flight computer would.
-pub fn step_record(model: &CompensationModel, record: &Record) -> Result<Stepped, DtgVibError> {
-    let t = tables(model)?;
-    let extra = extra_series(&t, record)?;
-    let s = run(&t, record, &extra)?;
-    let mut rates = s.rate_deg_h.into_iter();
-    let mut errors = s.error_deg_h.into_iter();
-    let mut accels = s.accel_g.into_iter();
-    Ok(Stepped {
-        first_sample: s.first_sample,
-        rate_deg_h: std::array::from_fn(|_| rates.next().unwrap_or_default()),
-        error_deg_h: std::array::from_fn(|_| errors.next().unwrap_or_default()),
-        accel_g: std::array::from_fn(|_| accels.next().unwrap_or_default()),
-    })
+/// Runs a causal model over one segment of a log read with its unit (deg/h
+/// and g) sample by sample with the `dtg-onboard` evaluator, as a flight
+/// computer would.
+pub fn step_record(model: &UnitModel, record: &Record) -> Result<Stepped, DtgVibError> {
+    step_tables(&tables(model)?, record)
 }
 
-/// [`step_record`] for a causal model of any unit, on one segment of a
-/// log read with its unit (deg/h and g).
-pub fn step_unit_record(model: &UnitModel, record: &Record) -> Result<UnitStepped, DtgVibError> {
-    let t = unit_tables(model)?;
-    let extra = extra_series(&t, record)?;
-    run(&t, record, &extra)
-}
-
-/// The tables' extra columns of a record, in the tables' order.
-fn extra_series<'r>(t: &Tables, record: &'r Record) -> Result<Vec<&'r [f64]>, DtgVibError> {
-    t.extra
+/// [`step_record`] of onboard tables of any layout the evaluator reads (a
+/// model's, or a file written before), their extra columns named.
+pub fn step_tables(t: &Tables, record: &Record) -> Result<Stepped, DtgVibError> {
+    let extra: Vec<&[f64]> = t
+        .extra
         .iter()
         .map(|n| crate::pipeline::signal(record, n))
-        .collect()
-}
-
-/// The record through the evaluator of tables `t`.
-fn run(t: &Tables, record: &Record, extra_cols: &[&[f64]]) -> Result<UnitStepped, DtgVibError> {
+        .collect::<Result<_, _>>()?;
     let tables_error = |e: dtg_onboard::Error| ExportError::Tables(e.to_string());
     let m = dtg_onboard::Model::parse(&t.bytes).map_err(tables_error)?;
     let (n_g, n_a) = (m.n_channels(), m.n_accels());
     let mut state = vec![0.0; m.state_len()];
     let mut ev = dtg_onboard::Evaluator::new(m, &mut state).map_err(tables_error)?;
-    let mut out = UnitStepped {
+    let mut out = Stepped {
         first_sample: m.window_len() - 1,
         rate_deg_h: vec![Vec::new(); n_g],
         error_deg_h: vec![Vec::new(); n_g],
@@ -94,10 +58,9 @@ fn run(t: &Tables, record: &Record, extra_cols: &[&[f64]]) -> Result<UnitStepped
             out.accel_g[k].push(o.accel_g[k]);
         }
     };
-    let (mut extra, mut gyro, mut accel) =
-        (vec![0.0; t.extra.len()], vec![0.0; n_g], vec![0.0; n_a]);
+    let (mut x, mut gyro, mut accel) = (vec![0.0; extra.len()], vec![0.0; n_g], vec![0.0; n_a]);
     for i in 0..record.len() {
-        for (e, c) in extra.iter_mut().zip(extra_cols) {
+        for (e, c) in x.iter_mut().zip(&extra) {
             *e = c[i];
         }
         for (k, g) in gyro.iter_mut().enumerate() {
@@ -106,7 +69,7 @@ fn run(t: &Tables, record: &Record, extra_cols: &[&[f64]]) -> Result<UnitStepped
         for (k, a) in accel.iter_mut().enumerate() {
             *a = record.accel_at(k)[i];
         }
-        if let Some(o) = ev.step(&gyro, &accel, &extra).map_err(tables_error)? {
+        if let Some(o) = ev.step(&gyro, &accel, &x).map_err(tables_error)? {
             push(o);
         }
     }

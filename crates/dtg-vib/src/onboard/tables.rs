@@ -1,13 +1,22 @@
-//! A causal model as the flat tables the `dtg-onboard` evaluator and the
-//! exported C read (layout in docs/formats.md, "Onboard tables").
+//! A causal model of any unit, the paper's included, as the onboard tables
+//! of layout [`dtg_onboard::VERSION`] the `dtg-onboard` evaluator and the
+//! exported C read: n channels, each a DTG or a rate gyro with its own
+//! calibration table and its network on its own window signals, the
+//! unit's least-squares rate and specific-force operators and the log's
+//! units (docs/formats.md, "Onboard tables").
 
+use super::effects::effect_entry;
 use super::error::ExportError;
-use crate::effects::{Effect, rate_without_each_channel};
-use crate::model::CompensationModel;
 use crate::signal::LowPass;
-use dtg_onboard::{FIXED_HEADER_WORDS, FLAG_CALIBRATION, FLAG_FADE, MAGIC, VERSION, kind};
-use nav_sensors::dtg::DtgTerm;
-use nav_sensors::geometry::{Axis, Channel, ChannelFrame, least_squares_operator};
+use crate::unit_sensor::{UnitEffect, UnitModel};
+use dtg_onboard::{
+    FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, MAGIC, MAX_ACCELS,
+    MAX_CHANNELS, MAX_SIGNALS, VERSION, gyro,
+};
+use nalgebra::Vector3;
+use nav_sensors::calibration::GyroCoefficients;
+use nav_sensors::geometry::Axis;
+use nav_sensors::unit::{GyroModel, Unit};
 
 /// A model as onboard tables, with the names of the extra columns each step
 /// takes (in order).
@@ -19,75 +28,24 @@ pub struct Tables {
     pub extra: Vec<String>,
 }
 
-/// One effect in the tables: kind, index, parameters.
-fn effect_entry(
-    channel: Channel,
-    effect: &Effect,
-    extra: &[String],
-) -> Result<(u32, u32, Vec<f64>), ExportError> {
-    let frame = ChannelFrame::of(channel);
-    let ax = |c: char| match c {
-        'I' => frame.input,
-        'O' => frame.other,
-        _ => frame.spin,
-    };
-    let v3 = |v: nalgebra::Vector3<f64>| vec![v.x, v.y, v.z];
-    match effect {
-        Effect::Column(name) => {
-            let idx = extra
-                .iter()
-                .position(|e| e == name)
-                .expect("extra columns are collected from the effects");
-            Ok((kind::COLUMN, idx as u32, vec![]))
-        }
-        Effect::Term(t) => {
-            let id = t.id();
-            let axes: Vec<char> = id.rsplit('_').next().unwrap_or("").chars().collect();
-            if DtgTerm::SPECIFIC_FORCE[..3].contains(t) {
-                Ok((kind::LINEAR_G, 0, v3(ax(axes[0]))))
-            } else if DtgTerm::SPECIFIC_FORCE.contains(t) {
-                let mut p = v3(ax(axes[0]));
-                p.extend(v3(ax(axes[1])));
-                Ok((kind::QUADRATIC_G, 0, p))
-            } else if DtgTerm::ANISOINERTIA.contains(t) {
-                // (a·op·m/3600)(b·op·m/3600): the channel's rate without its
-                // own output, resolved, in deg/s.
-                let op = rate_without_each_channel()[channel.index()];
-                let row = |c: char| {
-                    let r = ax(c).transpose() * op / 3600.0;
-                    r.iter().copied().collect::<Vec<f64>>()
-                };
-                let mut p = row(axes[0]);
-                p.extend(row(axes[1]));
-                Ok((kind::RATE_PRODUCT, 0, p))
-            } else {
-                Err(ExportError::Unsupported {
-                    channel: channel.to_string(),
-                    what: format!("effect {id}"),
-                    supported: "g_*, gg_*, ai_* and col:NAME effects",
-                })
-            }
-        }
-    }
-}
-
 /// The extra record columns a model reads: windowed extra signals first,
 /// then effect columns, each once, in order of first use.
-pub fn extra_columns(model: &CompensationModel) -> Vec<String> {
+pub fn extra_columns(model: &UnitModel) -> Vec<String> {
+    let unit = model.unit();
     let mut out: Vec<String> = Vec::new();
     let mut add = |n: &str| {
         if !out.iter().any(|e| e == n) {
             out.push(n.to_string());
         }
     };
-    for s in model.preprocess().window.signals() {
-        if !Axis::ALL.iter().any(|a| a.column() == s) {
+    for s in model.inner().preprocess().window.signals() {
+        if !unit.accel_names().contains(&s.as_str()) {
             add(s);
         }
     }
-    for c in model.channels() {
+    for c in model.inner().channels() {
         for e in c.effects() {
-            if let Effect::Column(n) = e {
+            if let UnitEffect::Column(n) = e {
                 add(n);
             }
         }
@@ -95,52 +53,209 @@ pub fn extra_columns(model: &CompensationModel) -> Vec<String> {
     out
 }
 
-/// A low-pass's sections as the layout's numbers (b0 b1 b2 a1 a2 and the
-/// steady state of a unit input, each).
-pub(super) fn sections(lp: &Option<LowPass>) -> Vec<f64> {
-    let Some(lp) = lp else { return vec![] };
-    let zi = lp.steady_state();
-    lp.sections()
+/// Each accelerometer's axis when the three are the unit's x, y, z (in any
+/// order): then their triad calibration applies (as
+/// `UnitCalibration::compensate` applies it).
+fn accel_axes(unit: &Unit) -> Option<[usize; 3]> {
+    let axis_of: Vec<Option<usize>> = unit
+        .accels()
         .iter()
-        .zip(zi)
-        .flat_map(|(s, z)| [s.b[0], s.b[1], s.b[2], s.a[0], s.a[1], z[0], z[1]])
-        .collect()
+        .map(|a| Axis::ALL.iter().position(|x| a.input == x.unit_vector()))
+        .collect();
+    if axis_of.len() != 3 {
+        return None;
+    }
+    let by_axis: Vec<usize> = (0..3)
+        .map(|x| axis_of.iter().position(|a| *a == Some(x)))
+        .collect::<Option<_>>()?;
+    Some([by_axis[0], by_axis[1], by_axis[2]])
 }
 
-/// The model as onboard tables. Refuses a zero-phase model and what the
-/// evaluator does not compute (a kernel other than the Gaussian, input
-/// scaling, a polynomial tail).
-pub fn tables(model: &CompensationModel) -> Result<Tables, ExportError> {
-    let pre = model.preprocess();
+/// A unit's causal model as onboard tables of layout
+/// [`dtg_onboard::VERSION`]. Refuses a zero-phase model, a unit of more
+/// than [`dtg_onboard::MAX_CHANNELS`] gyros or [`dtg_onboard::MAX_ACCELS`]
+/// accelerometers, more than [`dtg_onboard::MAX_SIGNALS`] window signals, a
+/// window over a gyro, and what the evaluator does not compute (a kernel
+/// other than the Gaussian, input scaling, a polynomial tail).
+pub fn tables(model: &UnitModel) -> Result<Tables, ExportError> {
+    let m = model.inner();
+    let pre = m.preprocess();
     if !pre.causal {
         return Err(ExportError::NotCausal);
     }
+    let unit = model.unit();
+    let (n_g, n_a) = (unit.gyros().len(), unit.accels().len());
+    let n_s = pre.window.signals().len();
+    for (what, found, max) in [
+        ("gyros", n_g, MAX_CHANNELS),
+        ("accelerometers", n_a, MAX_ACCELS),
+        ("window signals", n_s, MAX_SIGNALS),
+    ] {
+        if found > max {
+            return Err(ExportError::TooMany { what, found, max });
+        }
+    }
     let extra = extra_columns(model);
-    // The effects are subtracted unfiltered (θ·z, as the batch
-    // compensation does): their coefficients were estimated on the filtered
-    // output and regressors alike, and the filtered regressor would leave
-    // the effect's part above the cut-off in the output. The targets'
-    // filter is then nothing the evaluator runs.
-    let out_filter: Option<LowPass> = None;
-    let in_filter = input_filter(&pre.input_filter, model.dt_s())?;
-    let n_sections = out_filter.as_ref().map_or(0, |f| f.sections().len());
-    let n_in_sections = in_filter.as_ref().map_or(0, |f| f.sections().len());
-    let (words, params) = header_words(model, &extra, [n_sections, n_in_sections])?;
-    let mut f = geometry_and_calibration(model);
-    f.extend(sections(&out_filter));
+    let dt = m.dt_s();
+    let in_filter = input_filter(&pre.input_filter, dt)?;
+    let calibration = m.sensor().calibration.as_ref();
+    let triad = calibration.and(accel_axes(unit));
+    let fade = super::fade::fade_block(model)?;
+    let flags = calibration.map_or(0, |_| FLAG_CALIBRATION)
+        | fade.as_ref().map_or(0, |_| FLAG_FADE)
+        | triad.map_or(0, |_| FLAG_ACCEL_TRIAD);
+    let (words, params) = header_words(model, &extra, flags, &in_filter)?;
+    let mut f = geometry_and_calibration(model, triad);
     f.extend(sections(&in_filter));
-    f.extend(sections(&smoother_filter(pre.smoother, model.dt_s())));
-    for (c, p) in model.channels().iter().zip(&params) {
+    f.extend(sections(&smoother_filter(pre.smoother, dt)));
+    for (c, p) in m.channels().iter().zip(&params) {
         network_floats(c, p, &mut f)?;
     }
-    if let Some(block) = super::fade::fade_block(model)? {
+    if let Some(block) = fade {
         f.extend(block);
     }
     assemble(&words, &f, extra)
 }
 
-/// An accelerometer's calibration in the layout's order.
-pub(super) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
+/// The header words (sizes, per-channel lists, signal codes, each
+/// effect's kind and index, input and smoother words) and each channel's
+/// effect parameters, in the layout's order.
+fn header_words(
+    model: &UnitModel,
+    extra: &[String],
+    flags: u32,
+    in_filter: &Option<LowPass>,
+) -> Result<(Vec<u32>, Vec<Vec<f64>>), ExportError> {
+    let (m, unit) = (model.inner(), model.unit());
+    let pre = m.preprocess();
+    let signals = pre.window.signals();
+    let n_a = unit.accels().len();
+    let mut words: Vec<u32> = vec![
+        u32::from_le_bytes(MAGIC),
+        VERSION,
+        0, // header words, below
+        flags,
+        extra.len() as u32,
+        0, // the effects are subtracted unfiltered (θ·z), as the batch does
+        in_filter.as_ref().map_or(0, |f| f.sections().len()) as u32,
+        pre.window.length() as u32,
+        signals.len() as u32,
+        unit.gyros().len() as u32,
+        n_a as u32,
+    ];
+    debug_assert_eq!(words.len(), FIXED_HEADER_WORDS);
+    words.extend(m.channels().iter().map(|c| c.effects().len() as u32));
+    words.extend(m.channels().iter().map(|c| c.n_centres() as u32));
+    words.extend(unit.gyros().iter().map(|g| match g.model {
+        GyroModel::Dtg { .. } => gyro::DTG,
+        GyroModel::Rate => gyro::RATE,
+    }));
+    // Every channel's network reads the model's one list of signals.
+    let all = u32::MAX >> (32 - signals.len().max(1));
+    words.extend(std::iter::repeat_n(all, unit.gyros().len()));
+    for s in signals {
+        let code = match unit.accel_names().iter().position(|a| a == s) {
+            Some(i) => i,
+            None if unit.gyro_names().contains(&s.as_str()) => {
+                return Err(ExportError::Unsupported {
+                    channel: unit.gyros()[0].name.clone(),
+                    what: format!("a window over the gyro {s}"),
+                    supported: "windows over accelerometers and extra columns",
+                });
+            }
+            None => n_a + extra.iter().position(|e| e == s).expect("collected above"),
+        };
+        words.push(code as u32);
+    }
+    let mut params: Vec<Vec<f64>> = Vec::new();
+    for (k, c) in m.channels().iter().enumerate() {
+        let mut p = Vec::new();
+        for e in c.effects() {
+            let (kd, i, v) = effect_entry(unit, k, e, extra)?;
+            words.extend([kd, i]);
+            p.extend(v);
+        }
+        params.push(p);
+    }
+    words.extend(input_and_smoother_words(pre.input, pre.smoother, m.dt_s()));
+    if !words.len().is_multiple_of(2) {
+        words.push(0);
+    }
+    words[2] = words.len() as u32;
+    Ok((words, params))
+}
+
+/// The sample interval, the log's units, each gyro's (I, O, S) axes (a
+/// rate gyro's I and two zero rows), the least-squares rate operator
+/// (3 × n), the specific-force operator (3 × n_a), and the ground
+/// calibration: each gyro's table, then the triad's (x, y, z order) when
+/// the accelerometers are the unit's axes (`triad`: each axis's
+/// accelerometer).
+fn geometry_and_calibration(model: &UnitModel, triad: Option<[usize; 3]>) -> Vec<f64> {
+    let unit = model.unit();
+    let units = unit.units();
+    let mut f: Vec<f64> = vec![
+        model.inner().dt_s(),
+        units.rate.to_deg_h(),
+        units.specific_force.to_g(),
+    ];
+    for g in unit.gyros() {
+        let (o, s) = match g.dtg_axes() {
+            Some(a) => (a.output, a.spin),
+            None => (Vector3::zeros(), Vector3::zeros()),
+        };
+        for v in [g.input, o, s] {
+            f.extend([v.x, v.y, v.z]);
+        }
+    }
+    let ls = unit.geometry().least_squares_operator();
+    for i in 0..3 {
+        f.extend((0..unit.gyros().len()).map(|j| ls[(i, j)]));
+    }
+    let n_a = unit.accels().len();
+    let columns: Vec<Vector3<f64>> = (0..n_a)
+        .map(|k| {
+            let mut e = vec![0.0; n_a];
+            e[k] = 1.0;
+            unit.specific_force(&e)
+        })
+        .collect();
+    for i in 0..3 {
+        f.extend(columns.iter().map(|c| c[i]));
+    }
+    let Some(cal) = model.inner().sensor().calibration.as_ref() else {
+        return f;
+    };
+    for g in unit.gyros() {
+        match cal
+            .gyros
+            .get(&g.name)
+            .copied()
+            .unwrap_or(GyroCoefficients::zero(&g.model))
+        {
+            GyroCoefficients::Dtg(c) => {
+                f.extend(c.to_array());
+                f.push(c.scale_factor_nonlinearity_ppm_per_deg_s);
+            }
+            GyroCoefficients::Rate(c) => f.extend(c.to_array()),
+        }
+    }
+    if let Some(by_axis) = triad {
+        for k in by_axis {
+            let c = cal
+                .accels
+                .get(&unit.accels()[k].name)
+                .copied()
+                .unwrap_or_default();
+            f.extend(accel_floats(&c));
+        }
+    }
+    f
+}
+
+/// An accelerometer's calibration in the layout's order (K0, K1, K2, K3,
+/// δo, δp, Kip, Kio; the text export names them in it too).
+pub(crate) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8] {
     [
         c.bias_ug,
         c.scale_factor_ppm,
@@ -153,13 +268,21 @@ pub(super) fn accel_floats(c: &nav_sensors::accel::AccelCoefficients) -> [f64; 8
     ]
 }
 
+/// A low-pass's sections as the layout's numbers (b0 b1 b2 a1 a2 and the
+/// steady state of a unit input, each).
+fn sections(lp: &Option<LowPass>) -> Vec<f64> {
+    let Some(lp) = lp else { return vec![] };
+    let zi = lp.steady_state();
+    lp.sections()
+        .iter()
+        .zip(zi)
+        .flat_map(|(s, z)| [s.b[0], s.b[1], s.b[2], s.a[0], s.a[1], z[0], z[1]])
+        .collect()
+}
+
 /// The tables' bytes: the header `words`, then the numbers `f`, checked by
 /// the evaluator (a refusal is an exporter bug).
-pub(super) fn assemble(
-    words: &[u32],
-    f: &[f64],
-    extra: Vec<String>,
-) -> Result<Tables, ExportError> {
+fn assemble(words: &[u32], f: &[f64], extra: Vec<String>) -> Result<Tables, ExportError> {
     let mut bytes = Vec::with_capacity(4 * words.len() + 8 * f.len());
     for w in words {
         bytes.extend(w.to_le_bytes());
@@ -171,69 +294,9 @@ pub(super) fn assemble(
     Ok(Tables { bytes, extra })
 }
 
-/// The header words (sizes, signal codes, each effect's kind and index)
-/// and each channel's effect parameters, in the layout's order.
-fn header_words(
-    model: &CompensationModel,
-    extra: &[String],
-    [n_sections, n_in_sections]: [usize; 2],
-) -> Result<(Vec<u32>, Vec<Vec<f64>>), ExportError> {
-    let pre = model.preprocess();
-    let signals = pre.window.signals();
-    let mut words: Vec<u32> = vec![
-        u32::from_le_bytes(MAGIC),
-        VERSION,
-        0, // header words, below
-        if model.calibration().is_some() {
-            FLAG_CALIBRATION
-        } else {
-            0
-        } | if super::fade::fade_block(model)?.is_some() {
-            FLAG_FADE
-        } else {
-            0
-        },
-        extra.len() as u32,
-        n_sections as u32,
-        n_in_sections as u32,
-        pre.window.length() as u32,
-        signals.len() as u32,
-    ];
-    words.extend(model.channels().iter().map(|c| c.effects().len() as u32));
-    words.extend(model.channels().iter().map(|c| c.n_centres() as u32));
-    debug_assert_eq!(words.len(), FIXED_HEADER_WORDS);
-    for s in signals {
-        let code = match Axis::ALL.iter().position(|a| a.column() == s) {
-            Some(i) => i,
-            None => 3 + extra.iter().position(|e| e == s).expect("collected above"),
-        };
-        words.push(code as u32);
-    }
-    let mut params: Vec<Vec<f64>> = Vec::new();
-    for c in model.channels() {
-        let mut p = Vec::new();
-        for e in c.effects() {
-            let (k, i, v) = effect_entry(c.channel(), e, extra)?;
-            words.extend([k, i]);
-            p.extend(v);
-        }
-        params.push(p);
-    }
-    words.extend(input_and_smoother_words(
-        pre.input,
-        pre.smoother,
-        model.dt_s(),
-    ));
-    if !words.len().is_multiple_of(2) {
-        words.push(0);
-    }
-    words[2] = words.len() as u32;
-    Ok((words, params))
-}
-
 /// The words after the effect pairs: the network's input kind and the
 /// prediction smoother's sections.
-pub(super) fn input_and_smoother_words(
+fn input_and_smoother_words(
     input: sysid::ModelInput,
     smoother: Option<sysid::Smoother>,
     dt_s: f64,
@@ -249,12 +312,12 @@ pub(super) fn input_and_smoother_words(
 }
 
 /// The prediction smoother's filter, as the loop designs it.
-pub(super) fn smoother_filter(smoother: Option<sysid::Smoother>, dt_s: f64) -> Option<LowPass> {
+fn smoother_filter(smoother: Option<sysid::Smoother>, dt_s: f64) -> Option<LowPass> {
     smoother?.design(dt_s).ok()
 }
 
 /// The causal low-pass of the windowed signals, as the loop designs it.
-pub(super) fn input_filter(
+fn input_filter(
     spec: &Option<sysid::FilterSpec>,
     dt_s: f64,
 ) -> Result<Option<LowPass>, ExportError> {
@@ -263,44 +326,17 @@ pub(super) fn input_filter(
         .map_err(|e| ExportError::Tables(e.to_string()))
 }
 
-/// The sample interval, the channel frames, the least-squares rate
-/// operator and the ground calibration, as the layout's first floats.
-fn geometry_and_calibration(model: &CompensationModel) -> Vec<f64> {
-    let mut f: Vec<f64> = vec![model.dt_s()];
-    for fr in ChannelFrame::all() {
-        for v in [fr.input, fr.other, fr.spin] {
-            f.extend([v.x, v.y, v.z]);
-        }
-    }
-    let ls = least_squares_operator();
-    for i in 0..3 {
-        f.extend((0..6).map(|j| ls[(i, j)]));
-    }
-    if let Some(cal) = model.calibration() {
-        for ch in Channel::ALL {
-            let g = cal.gyro(ch);
-            f.extend(g.to_array());
-            f.push(g.scale_factor_nonlinearity_ppm_per_deg_s);
-        }
-        for a in Axis::ALL {
-            f.extend(accel_floats(&cal.accel(a)));
-        }
-    }
-    f
-}
-
 /// One channel's bias, effect coefficients and parameters `p`, widths,
 /// weights and centres; refuses what the evaluator does not compute (a
 /// kernel other than the Gaussian, input scaling, a polynomial tail).
-pub(super) fn network_floats<C: std::fmt::Display + Clone, E>(
-    c: &sysid::ChannelModel<C, E>,
+fn network_floats(
+    c: &sysid::ChannelModel<String, UnitEffect>,
     p: &[f64],
     f: &mut Vec<f64>,
 ) -> Result<(), ExportError> {
-    let ch = c.channel().to_string();
     let rbf = c.rbf();
     let unsupported = |what: String, supported| ExportError::Unsupported {
-        channel: ch.clone(),
+        channel: c.channel(),
         what,
         supported,
     };

@@ -11,7 +11,7 @@ use super::parity::{ResidueSeries, ResidueStats};
 use super::signals::{to_record, to_signals};
 use super::{UnitSensor, UnitSensorError};
 use crate::error::DtgVibError;
-use crate::onboard::{ExportError, UnitStepped, step_unit_record};
+use crate::onboard::{ExportError, Stepped, step_record};
 use nav_sensors::record::Record;
 use sysid::{ChannelScores, Prepared, Signals};
 
@@ -34,7 +34,7 @@ pub struct Applied {
     /// Validation rows; empty as `train`.
     pub val: Vec<usize>,
     /// A causal model's run through the onboard evaluator, per record.
-    onboard: Option<Vec<UnitStepped>>,
+    onboard: Option<Vec<Stepped>>,
 }
 
 impl Applied {
@@ -228,10 +228,10 @@ impl Applied {
 fn stepped(
     model: &UnitModel,
     records: &[(String, &Record)],
-) -> Result<Option<Vec<UnitStepped>>, DtgVibError> {
+) -> Result<Option<Vec<Stepped>>, DtgVibError> {
     let mut runs = Vec::with_capacity(records.len());
     for (_, r) in records {
-        match step_unit_record(model, r) {
+        match step_record(model, r) {
             Ok(s) => runs.push(s),
             Err(DtgVibError::Export(ExportError::Unsupported { .. })) => return Ok(None),
             Err(e) => return Err(e),

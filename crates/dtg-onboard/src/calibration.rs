@@ -1,0 +1,234 @@
+//! The ground calibration of one sample, as `UnitCalibration::compensate`
+//! applies it: the specific force from the accelerometers (the triad's
+//! static inverse when the tables hold it), the within-interval covariance
+//! of the pending sample, and each gyro's inverse model with the gyros side
+//! by side in lanes ([`crate::lanes`]).
+//!
+//! A gyro's drift splits into what the rate does not move (the bias and
+//! the g and g² terms, summed once per sample) and a DTG's few rate terms
+//! (the O- and S-rate terms and anisoinertia, in each of the two passes
+//! at the least-squares rate), so a sample takes the g² regressors once
+//! rather than twice per gyro.
+
+use crate::lanes::row;
+use crate::layout::{ACCEL_CAL, MAX_CHANNELS, gyro};
+use crate::maths::{abs, dot, rd};
+use crate::model::Model;
+
+/// Newton's iterations (the calibration's inverses) stop once the next
+/// step would be within this many ulps of the estimate (its residual is
+/// checked before the division), or after four as in the batch: later
+/// steps would move only the last bits, so the two agree to a few ulps, and
+/// an inverse takes one division where the batch takes four.
+pub(crate) const NEWTON_SETTLED: f64 = 4.0 * f64::EPSILON;
+
+/// √(1/12) and √(1/180): the within-interval covariance
+/// c₁c₁ᵀ/12 + c₂c₂ᵀ/180 as e₁e₁ᵀ + e₂e₂ᵀ.
+const ROOT_TWELFTH: f64 = 0.288_675_134_594_812_87;
+const ROOT_180TH: f64 = 0.074_535_599_249_992_99;
+
+/// The within-interval covariance of the middle of three consecutive means
+/// (nav_sensors::dtg::within_interval_covariance), as its two factors
+/// e₁, e₂ (C = e₁e₁ᵀ + e₂e₂ᵀ, g²): pᵀCq is then (p·e₁)(q·e₁) + (p·e₂)(q·e₂).
+pub(crate) fn covariance(m0: &[f64; 3], m1: &[f64; 3], m2: &[f64; 3]) -> [[f64; 3]; 2] {
+    let mut e = [[0.0; 3]; 2];
+    for k in 0..3 {
+        e[0][k] = ((m2[k] - m0[k]) / 2.0) * ROOT_TWELFTH;
+        e[1][k] = ((m2[k] + m0[k] - 2.0 * m1[k]) / 2.0) * ROOT_180TH;
+    }
+    e
+}
+
+/// `pᵀCq` of the covariance's factors `e`.
+#[inline(always)]
+pub(crate) fn quad(p: &[f64; 3], e: &[[f64; 3]; 2], q: &[f64; 3]) -> f64 {
+    dot(p, &e[0]) * dot(q, &e[0]) + dot(p, &e[1]) * dot(q, &e[1])
+}
+
+/// The calibrated specific force (unit frame, g) of one sample's raw
+/// accelerations, and its calibrated accelerometers in `cal`: the triad's
+/// static inverse when the tables calibrate it (on x, y, z ordered through
+/// the specific-force operator, a permutation then), else the accelerations
+/// as given through the operator (layout 2: ax, ay, az are x, y, z).
+pub(crate) fn calibrated_force(m: &Model, raw: &[f64], cal: &mut [f64]) -> [f64; 3] {
+    let na = m.n_accels;
+    let mut f = match m.force_op {
+        None => [raw[0], raw[1], raw[2]],
+        Some(op) => core::array::from_fn(|i| {
+            let mut s = 0.0;
+            for (k, x) in raw.iter().enumerate() {
+                s += m.f(op + 8 * (na * i + k)) * x;
+            }
+            s
+        }),
+    };
+    if m.accel_triad {
+        f = compensate_triad(m, &f);
+    }
+    match (m.force_op, m.accel_triad) {
+        (Some(op), true) => {
+            // The operator is a permutation: each accelerometer is one axis.
+            for (k, c) in cal.iter_mut().enumerate() {
+                *c = (0..3)
+                    .map(|i| m.f(op + 8 * (na * i + k)) * f[i])
+                    .fold(0.0, |s, v| s + v);
+            }
+        }
+        (Some(_), false) => cal.copy_from_slice(raw),
+        (None, _) => cal.copy_from_slice(&f),
+    }
+    f
+}
+
+/// The accelerometer triad's static inverse (nav_sensors::accel::compensate_triad:
+/// three Gauss–Seidel sweeps, Newton on each axis). A sweep after the first
+/// starts each axis's Newton at the last sweep's root, which the µg-sized
+/// coupling moves only slightly.
+fn compensate_triad(m: &Model, measured: &[f64; 3]) -> [f64; 3] {
+    let mut a = *measured;
+    let cal = |k: usize, i: usize| rd(m.bytes, m.accel_cal + 8 * (ACCEL_CAL * k + i));
+    let target: [f64; 3] = core::array::from_fn(|k| measured[k] / (1.0 + 1e-6 * cal(k, 1)));
+    for sweep in 0..3 {
+        for k in 0..3 {
+            let c = |i: usize| cal(k, i);
+            let (bias, k2, k3, mo, mp, kip, kio) = (c(0), c(2), c(3), c(4), c(5), c(6), c(7));
+            let (ap, ao) = (a[(k + 1) % 3], a[(k + 2) % 3]);
+            let mut x = if sweep == 0 { target[k] } else { a[k] };
+            for _ in 0..4 {
+                let core = 1e-6
+                    * (bias + x * x * (k2 + k3 * x) + mo * ap - mp * ao
+                        + x * (kip * ap + kio * ao));
+                let g = x + core - target[k];
+                let dg = 1.0 + 1e-6 * (2.0 * k2 * x + 3.0 * k3 * x * x + kip * ap + kio * ao);
+                if abs(g) <= NEWTON_SETTLED * abs(dg * x) {
+                    break;
+                }
+                x -= g / dg;
+            }
+            a[k] = x;
+        }
+    }
+    a
+}
+
+/// The g² terms' axis pairs, in the calibration lanes' order.
+const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+
+/// Each gyro's drift at zero rate less its DTG rate terms (the bias, the g
+/// and the g² terms, with the covariance's factors `e`), term by term with
+/// the gyros side by side (`lanes`: the calibration lanes).
+fn drift_at_rest(lanes: &[f64], n: usize, f: &[f64; 3], e: &[[f64; 3]; 2]) -> [f64; MAX_CHANNELS] {
+    let r = |row: usize| &lanes[row * n..(row + 1) * n];
+    // The specific force and the covariance's factors along each gyro's
+    // three regressor axes.
+    let mut p = [[[0.0; MAX_CHANNELS]; 3]; 3];
+    for (v, pv) in [f, &e[0], &e[1]].into_iter().zip(p.iter_mut()) {
+        for (a, pa) in pv.iter_mut().enumerate() {
+            let (x, y, z) = (r(3 * a), r(3 * a + 1), r(3 * a + 2));
+            for k in 0..n {
+                pa[k] = x[k] * v[0] + y[k] * v[1] + z[k] * v[2];
+            }
+        }
+    }
+    let mut g = [0.0; MAX_CHANNELS];
+    g[..n].copy_from_slice(r(row::BIAS));
+    for (a, pa) in p[0].iter().enumerate() {
+        let c = r(row::FORCE + a);
+        for k in 0..n {
+            g[k] += pa[k] * c[k];
+        }
+    }
+    for (t, &(a, b)) in PAIRS.iter().enumerate() {
+        let c = r(row::GG + t);
+        for k in 0..n {
+            let z = p[0][a][k] * p[0][b][k] + p[1][a][k] * p[1][b][k] + p[2][a][k] * p[2][b][k];
+            g[k] += z * c[k];
+        }
+    }
+    g
+}
+
+/// Each gyro's inverse model, two passes (UnitCalibration::compensate): the
+/// least-squares rate from the raw outputs, then from the first pass's.
+/// `gyro` holds the raw outputs and is left holding the calibrated ones; a
+/// rate gyro's inverse, (output − drift)/(1 + 10⁻⁶·scale factor), does not
+/// depend on the rate, a DTG's starts from the same division and takes
+/// Newton's steps on its scale-factor nonlinearity.
+pub(crate) fn compensate_gyros(
+    m: &Model,
+    lanes: &[f64],
+    gyro: &mut [f64],
+    f: &[f64; 3],
+    e: &[[f64; 3]; 2],
+) {
+    let n = gyro.len();
+    let r = |row: usize| &lanes[row * n..(row + 1) * n];
+    let at_rest = drift_at_rest(lanes, n, f, e);
+    let mut raw = [0.0; MAX_CHANNELS];
+    raw[..n].copy_from_slice(gyro);
+    let (scale, nl) = (r(row::SCALE), r(row::NONLINEARITY));
+    for _ in 0..2 {
+        let rate: [f64; 3] = core::array::from_fn(|i| {
+            let op = r(row::RATE_OPERATOR + i);
+            let mut s = 0.0;
+            for k in 0..n {
+                s += op[k] * gyro[k];
+            }
+            s
+        });
+        let (mut a0, mut b, mut next) = (
+            [0.0; MAX_CHANNELS],
+            [0.0; MAX_CHANNELS],
+            [0.0; MAX_CHANNELS],
+        );
+        for k in 0..n {
+            let w1 = r(3)[k] * rate[0] + r(4)[k] * rate[1] + r(5)[k] * rate[2];
+            let w2 = r(6)[k] * rate[0] + r(7)[k] * rate[1] + r(8)[k] * rate[2];
+            a0[k] = at_rest[k]
+                + (w1 * r(row::RATE_O)[k] + w2 * r(row::RATE_S)[k])
+                + (w1 * w2) * r(row::AI_OS)[k];
+            b[k] = scale[k] + (w1 * r(row::AI_IO)[k] + w2 * r(row::AI_IS)[k]);
+            next[k] = (raw[k] - a0[k]) / b[k];
+        }
+        for k in 0..n {
+            if m.channels[k].model == gyro::DTG {
+                next[k] = newton(next[k], (a0[k], b[k], nl[k]), raw[k]);
+            }
+        }
+        gyro.copy_from_slice(&next[..n]);
+    }
+}
+
+/// A DTG's rate about its input axis from `measured = a0 + b·ω + 10⁻⁶·nl·|ω|ω/3600`,
+/// Newton's steps from `wi` (nav_sensors DtgCoefficients::compensate_deg_h).
+#[inline(always)]
+fn newton(mut wi: f64, (a0, b, nl): (f64, f64, f64), measured: f64) -> f64 {
+    for _ in 0..4 {
+        let per_s = abs(wi) * (1.0 / 3600.0);
+        let fx = a0 + b * wi + 1e-6 * nl * per_s * wi - measured;
+        let df = b + 2e-6 * nl * per_s;
+        if abs(fx) <= NEWTON_SETTLED * abs(df * wi) {
+            break;
+        }
+        wi -= fx / df;
+    }
+    wi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_covariance_factors_give_the_covariance() {
+        assert!((ROOT_TWELFTH - (1.0f64 / 12.0).sqrt()).abs() <= f64::EPSILON * ROOT_TWELFTH);
+        assert!((ROOT_180TH - (1.0f64 / 180.0).sqrt()).abs() <= f64::EPSILON * ROOT_180TH);
+        let (m0, m1, m2) = ([0.1, -0.3, 1.0], [0.2, 0.1, 0.9], [-0.4, 0.5, 1.3]);
+        let e = covariance(&m0, &m1, &m2);
+        let (p, q) = ([0.6, 0.0, 0.8], [0.0, 1.0, 0.0]);
+        let c1: [f64; 3] = core::array::from_fn(|k| (m2[k] - m0[k]) / 2.0);
+        let c2: [f64; 3] = core::array::from_fn(|k| (m2[k] + m0[k] - 2.0 * m1[k]) / 2.0);
+        let want = dot(&p, &c1) * dot(&q, &c1) / 12.0 + dot(&p, &c2) * dot(&q, &c2) / 180.0;
+        assert!((quad(&p, &e, &q) - want).abs() <= 4.0 * f64::EPSILON * want.abs());
+    }
+}

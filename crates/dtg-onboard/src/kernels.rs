@@ -1,0 +1,181 @@
+//! The networks' kernel sums of one step, in vector lanes: per centre set,
+//! blocks of [`LANES`] centres whose arguments −‖x − cᵢ‖²/βᵢ² are summed
+//! side by side (for the statistics input by the expansion about the set's
+//! mean, [`crate::lanes`]; for the raw window as each window's distance to
+//! the tables' centres), whose exponentials are taken in one branch-free
+//! loop over a chunk of blocks, and whose terms each sharing channel
+//! weights into one partial sum per lane; the lanes are added pairwise at
+//! the end. The exported C takes the same blocks in the same order.
+
+use crate::lanes::lane_blocks;
+use crate::layout::{LANES, MAX_CHANNELS, MAX_SIGNALS, input};
+use crate::maths::{lane_sum, sq_dist};
+use crate::model::Model;
+use fastexp::exp_neg11;
+
+/// Blocks whose exponentials are taken in one loop: a loop of a run-time
+/// length up to this many lanes, which the compiler vectorises.
+const CHUNK: usize = 4;
+
+/// Every channel's kernel terms added to its `ys` and `nets` (the input:
+/// the statistics in `st`, or the windows of the rings whose oldest sample
+/// is at `ring_pos`). Channels that share a centre set take each kernel
+/// value computed once, times their own weight.
+#[inline(always)]
+pub(crate) fn network_terms(
+    m: &Model,
+    st: &[f64],
+    ring_pos: usize,
+    ys: &mut [f64; MAX_CHANNELS],
+    nets: &mut [f64; MAX_CHANNELS],
+) {
+    // One partial sum per lane and channel (each channel is in one set).
+    let mut acc = [[0.0; LANES]; MAX_CHANNELS];
+    let stats = m.input == input::STATISTICS;
+    for c in 0..m.n_channels {
+        if m.leader[c] != c {
+            continue;
+        }
+        let members = &m.members[c][..m.n_members[c]];
+        let ch = &m.channels[c];
+        let lanes = &st[ch.lanes..ch.lanes + m.kernel_lanes_len(c)];
+        let mut xm = [0.0; 3 * MAX_SIGNALS];
+        let q = if stats {
+            centred_statistics(m, c, st, lanes, &mut xm)
+        } else {
+            0.0
+        };
+        let blocks = lane_blocks(ch.n_centres);
+        let mut b0 = 0;
+        while b0 < blocks {
+            let nb = CHUNK.min(blocks - b0);
+            let mut arg = [0.0; CHUNK * LANES];
+            for (b, a) in arg.as_chunks_mut::<LANES>().0[..nb].iter_mut().enumerate() {
+                if stats {
+                    statistics_args(lanes, ch.dim, b0 + b, (&xm[..ch.dim], q), a);
+                } else {
+                    window_args(m, c, st, ring_pos, (lanes, b0 + b), a);
+                }
+            }
+            let mut phi = [0.0; CHUNK * LANES];
+            for (p, a) in phi[..nb * LANES].iter_mut().zip(&arg) {
+                *p = exp_neg11(*a);
+            }
+            for &j in members {
+                let j = j as usize;
+                let w = &st[m.channels[j].weight_lanes + b0 * LANES..][..nb * LANES];
+                for (p, w) in phi.chunks_exact(LANES).zip(w.chunks_exact(LANES)) {
+                    for ((a, p), w) in acc[j].iter_mut().zip(p).zip(w) {
+                        *a += p * w;
+                    }
+                }
+            }
+            b0 += nb;
+        }
+        for &j in members {
+            let sum = lane_sum(&acc[j as usize]);
+            ys[j as usize] += sum;
+            nets[j as usize] += sum;
+        }
+    }
+}
+
+/// Set `c`'s statistics input centred on the set's mean into `xm`
+/// (x′ = x − m; x: the statistics of the set's signals, in order); returns
+/// ‖x′‖².
+#[inline(always)]
+fn centred_statistics(m: &Model, c: usize, st: &[f64], lanes: &[f64], xm: &mut [f64]) -> f64 {
+    let ch = &m.channels[c];
+    let mut j = 0;
+    for s in 0..m.n_signals {
+        if ch.mask & (1 << s) != 0 {
+            for t in 0..3 {
+                xm[j] = st[m.st.features + 3 * s + t] - lanes[j];
+                j += 1;
+            }
+        }
+    }
+    let mut q = 0.0;
+    for x in &xm[..ch.dim] {
+        q += x * x;
+    }
+    q
+}
+
+/// The arguments of block `b` of a statistics set (`lanes`: the set's
+/// mean, then its blocks), V + W·q + Σⱼ x′ⱼUⱼ summed in input order
+/// (`xq`: x′ and ‖x′‖²). The dimensions of one, two and three signals
+/// are laid out at compile time, so that the sum over the inputs is
+/// unrolled with the block's lanes in registers.
+#[inline(always)]
+fn statistics_args(lanes: &[f64], dim: usize, b: usize, xq: (&[f64], f64), arg: &mut [f64; LANES]) {
+    match dim {
+        3 => statistics_args_of::<3>(lanes, b, xq, arg),
+        6 => statistics_args_of::<6>(lanes, b, xq, arg),
+        9 => statistics_args_of::<9>(lanes, b, xq, arg),
+        _ => {
+            let stride = (dim + 2) * LANES;
+            let (rows, _) = lanes[dim + b * stride..][..stride].as_chunks::<LANES>();
+            block_args(rows, xq, arg);
+        }
+    }
+}
+
+/// [`statistics_args`] of dimension `D`.
+#[inline(always)]
+fn statistics_args_of<const D: usize>(
+    lanes: &[f64],
+    b: usize,
+    (xm, q): (&[f64], f64),
+    arg: &mut [f64; LANES],
+) {
+    let stride = (D + 2) * LANES;
+    let (rows, _) = lanes[D + b * stride..][..stride].as_chunks::<LANES>();
+    let x: &[f64; D] = xm[..D].try_into().unwrap_or(&[0.0; D]);
+    block_args(rows, (x, q), arg);
+}
+
+/// V + W·q + Σⱼ xⱼUⱼ of one block's `rows` (U's, then V, then W).
+#[inline(always)]
+fn block_args(rows: &[[f64; LANES]], (x, q): (&[f64], f64), arg: &mut [f64; LANES]) {
+    let (u, vw) = rows.split_at(x.len());
+    let (v, w) = (&vw[0], &vw[1]);
+    for i in 0..LANES {
+        arg[i] = v[i] + w[i] * q;
+    }
+    for (x, uj) in x.iter().zip(u) {
+        for i in 0..LANES {
+            arg[i] += x * uj[i];
+        }
+    }
+}
+
+/// The arguments of block `b` of set `c` on the raw window (`lanes`: the
+/// set's −1/β²): each centre's squared distance to the windows of its
+/// signals (oldest sample at `ring_pos`), times −1/β²; 0 past the last
+/// centre.
+#[inline(always)]
+fn window_args(
+    m: &Model,
+    c: usize,
+    st: &[f64],
+    ring_pos: usize,
+    (w, b): (&[f64], usize),
+    arg: &mut [f64; LANES],
+) {
+    let ch = &m.channels[c];
+    let (l, dim, n) = (m.window_len, ch.dim, ch.n_centres);
+    for (i, a) in arg.iter_mut().enumerate().take(n - b * LANES) {
+        let k = b * LANES + i;
+        let mut at = ch.centres + 8 * dim * k;
+        let mut r2 = 0.0;
+        for s in 0..m.n_signals {
+            if ch.mask & (1 << s) != 0 {
+                let win = &st[m.st.rings + 2 * l * s + ring_pos..][..l];
+                r2 += sq_dist(&m.bytes[at..at + 8 * l], win);
+                at += 8 * l;
+            }
+        }
+        *a = r2 * w[k];
+    }
+}
