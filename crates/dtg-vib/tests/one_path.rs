@@ -378,7 +378,7 @@ fn causal_compensation_runs_through_the_onboard_evaluator() {
     let record = &read.records[0];
     let applied = Applied::unsplit(&m, &[("r".into(), record)]).unwrap();
     let compensated = applied.compensated().unwrap().remove(0);
-    let stepped = dtg_vib::onboard::step_unit_record(&m, record).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&m, record).unwrap();
     for k in 0..4 {
         assert_eq!(
             compensated.gyro_at(k),
