@@ -182,7 +182,11 @@ impl Default for Preprocess {
     /// The loop's default (low-pass of the outputs, unfiltered 50-sample
     /// windows of `az`, the paper's input), no rate reference.
     fn default() -> Self {
-        Self::of(&sysid::Preprocess::default(), RateReference::None)
+        // The paper's window: az alone.
+        let mut pre = sysid::Preprocess::default();
+        pre.window = WindowSpec::new(vec!["az".into()], pre.window.length())
+            .expect("one signal, a window of samples");
+        Self::of(&pre, RateReference::None)
     }
 }
 

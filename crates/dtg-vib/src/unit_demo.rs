@@ -227,7 +227,10 @@ pub fn run(
     let name = record.display().to_string();
     let named = [(name.clone(), &signals)];
     let records = [(name, sim.record.clone())];
-    let options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
+    let mut options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
+    // The demo's window, az alone, until `demo` takes --window-signals.
+    options.recipe.preprocess.window =
+        sysid::WindowSpec::new(vec!["az".into()], 50).map_err(sysid::SysidError::from)?;
 
     progress("fitting the baseline model");
     let (base, _) = sysid::fit_records(&sensor, &named, &options, &|_| {})?;

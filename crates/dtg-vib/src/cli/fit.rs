@@ -16,7 +16,7 @@ use dtg_vib::fit::choose_window_signals;
 /// report, when the records chose them.
 pub fn with_window_signals(
     model: CompensationModel,
-    window: Option<sysid::window_signals::WindowSignalsChoice>,
+    window: Option<sysid::window::signal_choice::WindowSignalsChoice>,
 ) -> CompensationModel {
     match window {
         Some(w) => CompensationModel::of(model.inner().clone().with_window_signals(w)),

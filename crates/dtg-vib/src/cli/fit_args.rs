@@ -281,14 +281,14 @@ pub fn window_auto(a: &FitArgs) -> Result<bool> {
 }
 
 /// With `--window-signals auto`, the window's signals the records choose
-/// (`choose`, the sensor's [`sysid::window_signals::choose`]) put into
+/// (`choose`, the sensor's [`sysid::choose_window_signals`]) put into
 /// `window`, and the choice to keep in the model's report; otherwise
 /// `window` as the flags said and nothing.
 pub fn window_signals(
     a: &FitArgs,
     window: &mut WindowSpec,
-    choose: impl FnOnce() -> Result<sysid::window_signals::WindowSignalsChoice>,
-) -> Result<Option<sysid::window_signals::WindowSignalsChoice>> {
+    choose: impl FnOnce() -> Result<sysid::window::signal_choice::WindowSignalsChoice>,
+) -> Result<Option<sysid::window::signal_choice::WindowSignalsChoice>> {
     if !window_auto(a)? {
         return Ok(None);
     }

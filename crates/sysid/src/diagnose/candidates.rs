@@ -4,9 +4,10 @@
 //! that told a suggestion apart from its look-alikes.
 
 use super::context::Context;
-use super::crossfit::CrossFit;
 use super::estimate::{Estimator, restate};
-use super::{Ranking, Unexcited, rank, record_separations};
+use super::model_and_mirror::CrossFit;
+use super::rank::{Ranking, Unexcited, rank};
+use super::records::record_separations;
 use crate::error::SysidError;
 use crate::model::ChannelModelOf;
 use crate::prepared::Prepared;
@@ -178,7 +179,7 @@ fn add_caveats<S: Sensor>(
         return;
     }
     let rows = cross.rows();
-    let records: Vec<(&crate::Signals, Vec<usize>)> = prepared
+    let records: Vec<(&crate::signals::Signals, Vec<usize>)> = prepared
         .record_rows()
         .into_iter()
         .filter_map(|(_, range)| {

@@ -14,7 +14,7 @@
 //! outputs check it): unlike [`super::shared`], nothing is chosen jointly.
 
 use super::channel::{ChannelFit, check_effects, fit_channel, gather, name};
-use super::memo::{self, Records};
+use super::memo::channel_fits::{self as memo, Records};
 use super::network::{Chosen, best_of, fit_chosen, params, size_ladder};
 use super::partial::{Rows, Theta, adjusted, theta_of};
 use crate::error::SysidError;
@@ -44,7 +44,7 @@ struct Pending<S: Sensor> {
     theta: Option<Theta>,
 }
 
-/// Every channel of `recipe` fitted as [`memo::fit_channel_remembered`]
+/// Every channel of `recipe` fitted as [`memo::recall`]
 /// fits it, on the windows `x_train` (rows `train` of `x`), effects'
 /// coefficients on `theta_rows` of `x_theta` (or `known(k)`), in the
 /// sensor's channel order.

@@ -89,7 +89,7 @@ struct Inputs {
     records: Vec<(String, Record)>,
     notes: super::Read,
     /// The window's signals the records chose (`--window-signals auto`).
-    window: Option<sysid::window_signals::WindowSignalsChoice>,
+    window: Option<sysid::window::signal_choice::WindowSignalsChoice>,
 }
 
 fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
@@ -104,7 +104,7 @@ fn inputs(a: &FitArgs, unit: Unit) -> Result<Inputs> {
     let records = std::mem::take(&mut read.records);
     let window = window_signals(a, &mut options.recipe.preprocess.window, || {
         let named = signals(&records)?;
-        Ok(sysid::window_signals::choose(&sensor, &borrowed(&named))?)
+        Ok(sysid::choose_window_signals(&sensor, &borrowed(&named))?)
     })?;
     Ok(Inputs {
         sensor,

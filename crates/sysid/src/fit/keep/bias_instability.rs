@@ -25,9 +25,9 @@
 //! instability on the record (IEEE Std 952's flat region lies beyond it);
 //! the choice's ADEV bound covers that τ.
 
-use super::choice::MIN_ADEV_ROWS;
-use super::judged::{combine, judged_series};
+use super::series::{combine, judged_series};
 use crate::error::SysidError;
+use crate::fit::input_choice::MIN_ADEV_ROWS;
 use crate::model::Model;
 use crate::prepared::Prepared;
 use crate::sensor::Sensor;
