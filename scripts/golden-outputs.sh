@@ -36,6 +36,24 @@ run diag-xyz d diagnose --model xyz.json --data sim-x-axis/record.csv --data sim
 run fit-causal d fit --causal --data $TH/record.csv --calib $TH/calibration.json --out causal.json --quiet
 run export-c d export --model causal.json --lang c --out exp-c --quiet
 run export-text d export --model causal.json --lang text --quiet
+# the same loop on units other than the paper's (and the paper by name)
+for u in tetra triad dual-triad; do run demo-$u d demo --unit $u --out demo-$u --quiet; done
+run sim-tetra d simulate --unit tetra --builtin triaxial_hidden --duration 60 --out sim-tetra --quiet
+T=sim-tetra
+run fit-tetra d fit --data $T/record.csv --calib $T/calibration.json --unit tetra --out tetra.json --json --quiet
+run fit-tetra-text d fit --data $T/record.csv --calib $T/calibration.json --unit tetra --out tetra2.json --quiet
+run diag-tetra d diagnose --model tetra.json --data $T/record.csv --json --quiet
+run explain-tetra d explain --data $T/record.csv --calib $T/calibration.json --unit tetra --out tetra-final.json --json --quiet
+run check-tetra d check --model tetra-final.json --data $T/record.csv --json --quiet
+run check-tetra-text d check --model tetra-final.json --data $T/record.csv --quiet
+run comp-tetra d compensate --model tetra.json --data $T/record.csv --out comp-tetra.csv --quiet
+run res-tetra d residues --model tetra.json --data $T/record.csv --out res-tetra.csv --json --quiet
+run allan-tetra d allan --data $T/record.csv --model tetra-final.json --json --quiet
+run report-tetra d report --model tetra-final.json --baseline tetra.json --data $T/record.csv --out report-tetra --quiet
+run fit-tetra-causal d fit --causal --data $T/record.csv --calib $T/calibration.json --unit tetra --out tetra-causal.json --quiet
+run export-tetra-c d export --model tetra-causal.json --lang c --out exp-tetra-c --quiet
+run export-tetra-text d export --model tetra-causal.json --lang text --quiet
+run fit-th-paper d fit --data $TH/record.csv --calib $TH/calibration.json --unit paper --out th-paper.json --json --quiet
 run rbf-fit r fit --data $ROOT/peers/data/sunspots/sunspots_lags9.csv --target y --max-centers 20 --out rbf.json --json
 run rbf-cv r cv --data $ROOT/peers/data/sunspots/sunspots_lags9.csv --target y --split blocked --folds 4 --sizes 5,10,20
 run rbf-predict r predict --model rbf.json --data $ROOT/peers/data/sunspots/sunspots_lags9.csv --out pred.csv --json
