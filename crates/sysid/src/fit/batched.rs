@@ -129,14 +129,25 @@ pub(super) fn fit_channels<'a, S: Sensor>(
             y.as_mut().col_mut(c).copy_from(p.y.col(0));
         }
     }
-    let mut networks = fit_networks(
+    let networks = fit_networks(
         settings,
         x_train.as_ref(),
         y.as_ref(),
         leakage_gap(prepared),
-    )
-    .into_iter();
-    let mut out = Vec::with_capacity(n_channels);
+    );
+    finish(prepared, before, networks)
+}
+
+/// Each channel's fit: the one remembered or fitted alone, or its pending
+/// effects with the network fitted for it (`networks`, one per pending
+/// channel in order), each remembered.
+fn finish<S: Sensor>(
+    prepared: &Prepared<S>,
+    before: Vec<Before<S>>,
+    networks: Vec<Result<rbf::RbfModel, rbf::RbfError>>,
+) -> Result<Vec<ChannelFit<S>>, SysidError> {
+    let mut networks = networks.into_iter();
+    let mut out = Vec::with_capacity(before.len());
     for (k, b) in before.into_iter().enumerate() {
         out.push(match b {
             Before::Done(f) => *f,
