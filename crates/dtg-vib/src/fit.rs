@@ -185,7 +185,7 @@ pub fn fit_records(
 
 /// The window's signals chosen from the training records, each calibrated
 /// (`fit --window-signals auto`): the accelerometer axes whose vibration is
-/// significant in some record ([`sysid::window_signals`]).
+/// significant in some record ([`sysid::window::signal_choice`]).
 ///
 /// ```
 /// let z = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario::paper_z_random())?;
