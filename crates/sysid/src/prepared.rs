@@ -196,22 +196,7 @@ impl<S: Sensor> Prepared<S> {
                 });
             }
         }
-        let in_record = |name: &String| {
-            let record = name.clone();
-            move |e| SysidError::InRecord {
-                record,
-                source: Box::new(e),
-            }
-        };
-        let calibrated = records
-            .iter()
-            .map(|(name, r)| {
-                sensor
-                    .calibrate(r)
-                    .map_err(sensor_error)
-                    .map_err(in_record(name))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let calibrated = calibrate_each(sensor, records)?;
         let named: Vec<(String, &Signals)> = records
             .iter()
             .zip(&calibrated)
@@ -221,7 +206,9 @@ impl<S: Sensor> Prepared<S> {
         let prepared = records
             .iter()
             .zip(calibrated)
-            .map(|((name, _), c)| Self::from_calibrated(sensor, c, &pre).map_err(in_record(name)))
+            .map(|((name, _), c)| {
+                Self::from_calibrated(sensor, c, &pre).map_err(|e| e.in_record(name, records.len()))
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let names = records.iter().map(|(name, _)| name.clone()).collect();
         let mut prepared = Self::concat(prepared, names);
@@ -560,20 +547,29 @@ pub fn choose_window_signals<S: Sensor>(
     if records.is_empty() {
         return Err(SysidError::NoRecords);
     }
-    let calibrated = records
-        .iter()
-        .map(|(n, r)| {
-            sensor
-                .calibrate(r)
-                .map_err(|e| sensor_error(e).in_record(n, records.len()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let calibrated = calibrate_each(sensor, records)?;
     let named: Vec<(String, &Signals)> = records
         .iter()
         .zip(&calibrated)
         .map(|((n, _), c)| (n.clone(), c))
         .collect();
     choose_on_calibrated(sensor, &named)
+}
+
+/// Each of `records` calibrated by `sensor`, an error named by its record
+/// when there are several.
+fn calibrate_each<S: Sensor>(
+    sensor: &S,
+    records: &[(String, &Signals)],
+) -> Result<Vec<Signals>, SysidError> {
+    records
+        .iter()
+        .map(|(n, r)| {
+            sensor
+                .calibrate(r)
+                .map_err(|e| sensor_error(e).in_record(n, records.len()))
+        })
+        .collect()
 }
 
 /// [`choose_window_signals`] on records `sensor` calibrated.
