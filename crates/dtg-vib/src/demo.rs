@@ -287,9 +287,10 @@ fn final_extras<'a>(
             page: links.final_diagnosis.clone(),
         }),
         noise_floor: floor_series(components).map(|per_sample| NoiseFloor {
-            per_sample,
+            per_sample: per_sample.to_vec(),
             source: "the simulator's per-sample noise floor (the X_floor … Z1_floor series of simulation/components.csv; truth.json's noise_floor_deg_h is their rms at the output rate): sensor noise, the fixture's true rocking, and what no function of the 50-Hz accelerations can predict of the high-rate effects".into(),
         }),
+        ..ReportExtras::default()
     }
 }
 

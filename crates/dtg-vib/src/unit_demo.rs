@@ -15,7 +15,7 @@
 
 use crate::error::DtgVibError;
 use crate::pipeline::RateReference;
-use crate::report::{Wording, write_diagnosis_report_of};
+use crate::report::{DiagnosisExtra, Wording, write_diagnosis_report_of};
 use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{UnitEffect, UnitModel, UnitSensor, to_signals};
 use nav_sensors::geometry::Axis;
@@ -240,22 +240,19 @@ pub fn run(
     base.save(&base_path)?;
     let data = [record.clone()];
     progress("writing the baseline report");
-    let (baseline_report, _) = write_page(
+    let baseline_report = write_page(
         &base,
         &records,
         Page {
-            model_path: &base_path,
-            data: &data,
-            baseline: None,
             lead: vec![
                 "The baseline: bias and the network over the accelerometers' windows, no physical effect (the demo's first fit)."
                     .into(),
             ],
-            links: Vec::new(),
-            also_into: None,
+            ..Page::new(&base_path, &data)
         },
         &out.join("baseline").join("report"),
-    )?;
+    )?
+    .index;
 
     progress("running the loop: diagnose, add what it names, refit");
     let diagnose = sysid::diagnose::DiagnoseOptions::default();
@@ -319,12 +316,10 @@ pub fn run(
     progress("writing the final report");
     let final_dir = out.join("final").join("report");
     let lead = lead(unit, &hidden, &found, &missed);
-    let (final_report, parity) = write_page(
+    let written = write_page(
         &model,
         &records,
         Page {
-            model_path: &model_path,
-            data: &data,
             baseline: Some((&base, &base_path)),
             lead,
             links: vec![
@@ -346,9 +341,17 @@ pub fn run(
                 ),
             ],
             also_into: Some(out.to_path_buf()),
+            diagnosis: Some(DiagnosisExtra {
+                diagnosis: last,
+                of: "this model (after the loop)".into(),
+                min_err,
+                page: final_diagnosis_report.clone(),
+            }),
+            ..Page::new(&model_path, &data)
         },
         &final_dir,
     )?;
+    let (final_report, parity) = (written.index, written.parity);
     Ok(UnitDemo {
         record,
         hidden,

@@ -1,34 +1,29 @@
 //! The page of a unit's model on records of its unit, computed and
-//! written: the model applied ([`crate::unit_sensor::UnitApplied`]), the
-//! parity residues before and after with fault detection, the Allan
-//! analysis of the longest segment, and the page
-//! ([`crate::report::write_unit_report`]). `report`, `check --report` and
-//! `demo --unit` write it.
+//! written: the model applied to the records (prepared as its training
+//! data were, the prediction with its network part faded outside the
+//! training range, the model's split), a baseline likewise, the parity
+//! residues on every sample with fault detection, the Allan analysis of
+//! the longest record, the provenance, and the page
+//! ([`crate::report::build_page`]). `demo`, `report` and `check --report`
+//! write it, for any unit.
 
 use crate::allan::AllanAnalysis;
 use crate::error::DtgVibError;
-use crate::report::{FdiShown, Provenance, ResidueRms, UnitReport, build_unit_report};
-use crate::unit_sensor::fdi::{self, DEFAULT_FALSE_ALARM};
-use crate::unit_sensor::{
-    UnitApplied, UnitModel, gyros_before_after, residues_of, to_signals, unit_allan,
+pub use crate::report::Parity;
+use crate::report::{
+    DiagnosisExtra, Evaluated, NoiseFloor, PageNumbers, Provenance, ReportExtras, build_page,
+    parity_on_samples,
 };
+use crate::unit_sensor::fdi::DEFAULT_FALSE_ALARM;
+use crate::unit_sensor::{UnitModel, UnitSensor, gyros_before_after, to_signals, unit_allan};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
 
-/// The parity residues' rms before and after, and fault detection on the
-/// record as logged and compensated.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Parity {
-    /// Each residue's rms (none for three gyros).
-    pub residues: Vec<ResidueRms>,
-    /// Fault detection (four gyros or more).
-    pub fdi: Option<FdiShown>,
-}
-
 /// The residues and fault detection of `m` on `records` (segments of its
-/// unit's logs); σ given or read from the record, false-alarm probability
-/// `p_fa` per sample.
+/// unit's logs), every sample from the model's first full window on; σ
+/// given or read from the record, false-alarm probability `p_fa` per
+/// sample.
 pub fn parity(
     m: &UnitModel,
     records: &[(String, Record)],
@@ -43,29 +38,7 @@ pub fn parity(
         });
     }
     let g = gyros_before_after(m, records)?;
-    let (pb, pa) = (residues_of(unit, &g.before), residues_of(unit, &g.after));
-    let residues = unit
-        .residue_names()
-        .iter()
-        .enumerate()
-        .map(|(k, n)| ResidueRms {
-            name: n.clone(),
-            before: stats::rms(&pb[k]),
-            after: Some(stats::rms(&pa[k])),
-        })
-        .collect();
-    // A record without noise (σ read as 0) has no threshold: the page
-    // shows the residues without the test rather than no page.
-    let fdi = fdi::setting(unit, sigma, p_fa, &pb)
-        .ok()
-        .map(|(test, setting)| FdiShown {
-            setting,
-            found: vec![
-                ("as logged".to_string(), fdi::run(unit, &test, &g.before)),
-                ("compensated".to_string(), fdi::run(unit, &test, &g.after)),
-            ],
-        });
-    Ok(Parity { residues, fdi })
+    Ok(parity_on_samples(unit, &g.before, &g.after, sigma, p_fa))
 }
 
 /// What a unit's page is made of besides the model and its records.
@@ -83,24 +56,101 @@ pub struct Page<'a> {
     /// Another directory to write the page into too (its figures linked
     /// from the page's own directory): the demo's `out/index.html`.
     pub also_into: Option<PathBuf>,
+    /// How the page names the records (default: their files).
+    pub source: Option<String>,
+    /// Other files read, for the provenance (a calibration): `(role, path)`.
+    pub files: Vec<(String, PathBuf)>,
+    /// A diagnosis of the model, shown in short ("Where it fails",
+    /// "Diagnosis") and linked.
+    pub diagnosis: Option<DiagnosisExtra<'a, String>>,
+    /// The records' noise floor per channel, when known (a simulation's).
+    pub noise_floor: Option<NoiseFloor<'a>>,
+}
+
+impl<'a> Page<'a> {
+    /// A page of the model at `model_path` on the records `data`, with
+    /// nothing else.
+    pub fn new(model_path: &'a Path, data: &'a [PathBuf]) -> Self {
+        Self {
+            model_path,
+            data,
+            baseline: None,
+            lead: Vec::new(),
+            links: Vec::new(),
+            also_into: None,
+            source: None,
+            files: Vec::new(),
+            diagnosis: None,
+            noise_floor: None,
+        }
+    }
+}
+
+/// What [`write_page`] wrote and the numbers it shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// The page (`dir/index.html`).
+    pub index: PathBuf,
+    /// The residues on every sample and fault detection.
+    pub parity: Parity,
+    /// The residues on the validation rows and each channel's scores.
+    pub numbers: PageNumbers,
+}
+
+/// A model on the signals of its records: prepared, predicted, split.
+struct Applied {
+    prepared: sysid::Prepared<UnitSensor>,
+    predicted: Vec<Vec<f64>>,
+    train: Vec<usize>,
+    val: Vec<usize>,
+}
+
+impl Applied {
+    /// `m` on `named` (all together), its prediction faded outside the
+    /// training range as compensation fades it; every row a validation
+    /// row when the model's split does not fit the records.
+    fn new(m: &UnitModel, named: &[(String, &Signals)]) -> Result<Self, DtgVibError> {
+        let prepared = m.inner().prepare_many(named)?;
+        let predicted = sysid::operating::fade::predict_faded(m.inner(), &prepared)?.predicted;
+        let (train, val) = match m.inner().rows(&prepared) {
+            Ok((train, val)) if !val.is_empty() => (train, val),
+            _ => (Vec::new(), (0..prepared.rows()).collect()),
+        };
+        Ok(Self {
+            prepared,
+            predicted,
+            train,
+            val,
+        })
+    }
+
+    fn evaluated<'a>(&'a self, m: &'a UnitModel) -> Evaluated<'a, UnitSensor> {
+        Evaluated {
+            model: m.inner(),
+            prepared: &self.prepared,
+            predicted: &self.predicted,
+            train: &self.train,
+            val: &self.val,
+        }
+    }
 }
 
 /// Writes the page of `m` on `records` (segments of its unit's logs) into
-/// `dir`; returns the page and the parity figures it shows.
+/// `dir`: the one page of every unit, the paper's included.
 pub fn write_page(
     m: &UnitModel,
     records: &[(String, Record)],
     page: Page<'_>,
     dir: &Path,
-) -> Result<(PathBuf, Parity), DtgVibError> {
+) -> Result<Written, DtgVibError> {
     let signals = records
         .iter()
         .map(|(n, r)| Ok((n.clone(), to_signals(r)?)))
         .collect::<Result<Vec<(String, Signals)>, DtgVibError>>()?;
     let named: Vec<(String, &Signals)> = signals.iter().map(|(n, s)| (n.clone(), s)).collect();
-    let applied = UnitApplied::new(m, &named)?;
+    let applied = Applied::new(m, &named)?;
     let base = match page.baseline {
-        Some((b, _)) => Some(UnitApplied::new(b, &named)?),
+        Some((b, _)) => Some(Applied::new(b, &named)?),
         None => None,
     };
     let parity = parity(m, records, None, DEFAULT_FALSE_ALARM)?;
@@ -112,32 +162,48 @@ pub fn write_page(
         .and_then(|(_, r)| unit_allan(m.unit(), Some(m), r, 0.683).ok());
     let mut files: Vec<(String, PathBuf)> = vec![("model".into(), page.model_path.to_path_buf())];
     files.extend(page.data.iter().map(|d| ("data".to_string(), d.clone())));
+    files.extend(page.files.iter().cloned());
     if let Some((_, p)) = page.baseline {
         files.push(("baseline model".into(), p.to_path_buf()));
     }
     let provenance = Provenance::of_this_process(files);
-    let source = page
-        .data
-        .iter()
-        .map(|d| d.display().to_string())
-        .collect::<Vec<_>>()
-        .join(", ");
-    let r = UnitReport {
-        unit: m.unit(),
-        source: &source,
-        applied: &applied,
-        baseline: base.as_ref().map(|b| ("baseline", b)),
-        residues: parity.residues.clone(),
-        fdi: parity.fdi.clone(),
-        allan: allan.as_ref(),
+    let source = page.source.clone().unwrap_or_else(|| {
+        page.data
+            .iter()
+            .map(|d| d.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    });
+    let extras = ReportExtras {
         provenance: Some(&provenance),
+        allan: allan.as_ref(),
+        links: page.links,
+        diagnosis: page.diagnosis,
+        noise_floor: page.noise_floor,
+        parity: Some(&parity),
         lead: page.lead,
-        links: page.links.clone(),
     };
-    let html = build_unit_report(&r, dir)?;
+    let base_on = base
+        .as_ref()
+        .zip(page.baseline)
+        .map(|(a, (b, _))| a.evaluated(b));
+    let raw: Vec<&Record> = records.iter().map(|(_, r)| r).collect();
+    let (html, numbers) = build_page(
+        m.unit(),
+        &applied.evaluated(m),
+        base_on.as_ref().map(|e| ("baseline", e)),
+        &raw,
+        &source,
+        &extras,
+        dir,
+    )?;
     let index = html.write(dir)?;
     if let Some(other) = &page.also_into {
         html.write(other)?;
     }
-    Ok((index, parity))
+    Ok(Written {
+        index,
+        parity,
+        numbers,
+    })
 }

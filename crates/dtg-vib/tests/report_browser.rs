@@ -61,7 +61,7 @@ fn demo_index_is_the_final_report_and_renders_at_phone_and_desktop_width() {
         "Where it fails",
         "Diagnosis",
         "Allan deviation before and after",
-        "Residues (eq. 6)",
+        "Parity residues",
         "Residual distribution against the noise floor",
     ];
     for w in order.windows(2) {

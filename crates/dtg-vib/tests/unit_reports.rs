@@ -2,10 +2,12 @@
 //! parity fault detection and isolation by `residues` (a step on one gyro
 //! of the dual triad is isolated to it; four gyros detect but cannot
 //! isolate; three have no test), its `--json` keys, and the refusals of
-//! the flags only the unit path takes and of a baseline of another unit.
-//! (The unit's pages and their links: `report_links`.)
+//! the flags only the unit path takes and of a baseline of another unit;
+//! and that a unit's final page has every section and figure the paper's
+//! has. (The unit's pages and their links: `report_links`.)
 
 use cli_support::testing::{Binary, s, scratch_dir};
+use std::collections::BTreeSet;
 use std::path::Path;
 
 const DTG_VIB: Binary = Binary::new(env!("CARGO_BIN_EXE_dtg-vib")).appending(&["--quiet"]);
@@ -239,5 +241,92 @@ fn a_baseline_of_another_unit_is_refused() {
     assert!(
         e.contains("a baseline must be a model of the same unit"),
         "{e}"
+    );
+}
+
+/// The `<h2>` headings (but the table of contents) and the figure stems
+/// (`src` of each PNG, without folder and extension) of a page.
+fn kinds(page: &Path) -> (BTreeSet<String>, BTreeSet<String>) {
+    let html = std::fs::read_to_string(page).unwrap();
+    let between = |open: &str, close: char| -> Vec<String> {
+        html.split(open)
+            .skip(1)
+            .map(|s| s[..s.find(close).unwrap()].to_string())
+            .collect()
+    };
+    let sections = between("<h2>", '<')
+        .into_iter()
+        .filter(|h| h != "Contents")
+        .map(|h| h.replace("&#39;", "'"))
+        .collect();
+    let figures = between(" src=\"", '"')
+        .into_iter()
+        .filter(|s| s.ends_with(".png"))
+        .map(|s| {
+            let file = s.rsplit('/').next().unwrap();
+            file.trim_end_matches(".png").to_string()
+        })
+        .collect();
+    (sections, figures)
+}
+
+/// One page for every unit (issue 33 §2): the final page of `demo --unit
+/// tetra` has every section and every figure of the paper's demo's final
+/// page, the paper's own figures (Figs. 3, 5, 6, 7) included, since tetra
+/// has a parity residue.
+#[test]
+fn tetras_final_page_has_every_section_and_figure_of_the_papers() {
+    let dir = scratch_dir("dtg-vib-unit-reports");
+    let (paper, tetra) = (dir.join("demo-paper"), dir.join("demo-tetra"));
+    for (out, unit) in [(&paper, None), (&tetra, Some("tetra"))] {
+        let mut args = vec!["demo", "--out", s(out)];
+        args.extend(unit.iter().flat_map(|u| ["--unit", *u]));
+        let r = DTG_VIB.check(&args);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+    }
+    let (p_sections, p_figures) = kinds(&paper.join("index.html"));
+    let (t_sections, t_figures) = kinds(&tetra.join("index.html"));
+    eprintln!(
+        "paper: {} sections, {} figures; tetra: {} sections, {} figures",
+        p_sections.len(),
+        p_figures.len(),
+        t_sections.len(),
+        t_figures.len()
+    );
+    let missing: Vec<&String> = p_sections.difference(&t_sections).collect();
+    assert!(
+        missing.is_empty(),
+        "sections missing for tetra: {missing:?}"
+    );
+    let missing: Vec<&String> = p_figures.difference(&t_figures).collect();
+    assert!(missing.is_empty(), "figures missing for tetra: {missing:?}");
+    // The union of the two pages before issue 33: the paper's twelve
+    // sections and eleven figures, and the unit page's effects found and
+    // fault detection.
+    for heading in [
+        "Summary",
+        "Measured against predicted",
+        "Where it fails",
+        "Diagnosis",
+        "Allan deviation: parity residues",
+        "Parity residues",
+        "Residual distribution against the noise floor",
+        "Channel models",
+        "Effects found",
+        "Before and after",
+        "The paper's figures",
+    ] {
+        assert!(t_sections.contains(heading), "{heading}: {t_sections:?}");
+    }
+    assert!(t_figures.len() >= 11, "{t_figures:?}");
+    let page = std::fs::read_to_string(tetra.join("index.html")).unwrap();
+    assert!(
+        page.contains("fault detection, compensated: "),
+        "fault detection"
+    );
+    let page = std::fs::read_to_string(paper.join("index.html")).unwrap();
+    assert!(
+        page.contains("fault detection, compensated: "),
+        "the paper's too"
     );
 }

@@ -653,4 +653,64 @@ mod tests {
         assert!(ParityFdi::for_false_alarm(&tetra, 1.0, 1.5).is_err());
         assert!(ParityFdi::for_false_alarm(&tetra, 0.0, 1e-3).is_err());
     }
+
+    /// The paper's unit takes the one parity basis of every unit (QR), not
+    /// eq. 6's Gram–Schmidt rows; what fault detection and isolation
+    /// report does not depend on the basis, so both give the same
+    /// statistics, estimates, decisions and sensitivities to rounding, on
+    /// healthy and faulty samples alike.
+    #[test]
+    fn the_paper_fdi_is_the_same_in_either_parity_basis() {
+        let threshold = 2.0;
+        let gram_schmidt = Fdi::new(threshold);
+        let qr = ParityFdi::new(&Unit::paper(), threshold).unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0);
+        for c in Channel::ALL {
+            let j = c.index();
+            assert!(close(gram_schmidt.sensitivity(c), qr.sensitivity(j)), "{c}");
+            assert!(close(
+                gram_schmidt.minimum_detectable(c),
+                qr.minimum_detectable(j)
+            ));
+        }
+        let mut worst: f64 = 0.0;
+        let (mut healthy, mut failed) = (0, 0);
+        for (k, c) in Channel::ALL.into_iter().enumerate() {
+            for m in run(
+                c,
+                |i| {
+                    if i % 3 == 0 {
+                        0.0
+                    } else {
+                        0.5 * i as f64 / N as f64 * 8.0
+                    }
+                },
+                900 + k as u64,
+            ) {
+                match (gram_schmidt.check(&m), qr.check(&m)) {
+                    (FdiDecision::Healthy, FdiOutcome::Healthy) => healthy += 1,
+                    (
+                        FdiDecision::Failed {
+                            channel,
+                            statistic,
+                            estimate,
+                        },
+                        FdiOutcome::Isolated {
+                            channel: j,
+                            statistic: s,
+                            estimate: e,
+                        },
+                    ) => {
+                        assert_eq!(channel.index(), j);
+                        assert!(close(statistic, s) && close(estimate, e));
+                        worst = worst.max((statistic - s).abs() / s);
+                        failed += 1;
+                    }
+                    (a, b) => panic!("{c}: {a:?} against {b:?}"),
+                }
+            }
+        }
+        assert!(healthy > 1000 && failed > 1000, "{healthy} {failed}");
+        println!("largest relative difference of ‖p‖ between the bases: {worst:e}");
+    }
 }

@@ -12,6 +12,7 @@
 //! | [`report`] | the `--json` objects of `fit`, `cv` and `predict` (typed, serialised by serde), and the human summaries |
 //! | [`progress`] | the indicatif bar fed by the library's progress callback, and stage timings |
 //! | [`hint`] | how to fix a failed fit, as a flag to change |
+//! | [`train`] | the fit as `rbf fit` runs it (the `--width auto` search, the remedy on failure), for the binary and the Python binding |
 //!
 //! ```
 //! use rbf_cli::{data, settings::{Centres, FitSettings, WidthArg}};
@@ -45,3 +46,4 @@ pub mod progress;
 pub mod report;
 pub mod saved;
 pub mod settings;
+pub mod train;

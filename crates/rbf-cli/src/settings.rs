@@ -37,6 +37,54 @@ pub const AUTO_SELECTION_ROWS: usize = 20_000;
 /// ```
 pub const AUTO_CANDIDATES: usize = 2000;
 
+/// The largest ridge the flags take. Beyond it the penalty swamps the
+/// unpenalised bias column and the least-squares solve reports it rank
+/// deficient (measured: 1e18 still fits, 1e30 does not); at 1e12 the kernel
+/// weights are already zero for any data whose rows number below a million.
+pub const MAX_RIDGE: f64 = 1e12;
+
+/// A count of centres or candidates (`--max-centres`, `--candidates`, …): a whole
+/// number ≥ 1 (0 would leave nothing to fit; hints built from it proposed
+/// "--max-centers ≤ 0"). The parsers here are clap's value parsers of the flags and
+/// the checks of the Python binding's parameters alike.
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::parse_count("7"), Ok(7));
+/// assert_eq!(rbf_cli::settings::parse_count("0").unwrap_err(), "must be a whole number ≥ 1");
+/// ```
+pub fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("must be a whole number ≥ 1".to_string()),
+    }
+}
+
+/// An OLS tolerance ρ (`--tol`): 1 − ΣERR < ρ stops selection, so ρ lies in [0, 1).
+///
+/// ```
+/// assert!(rbf_cli::settings::parse_tol("1").is_err() && rbf_cli::settings::parse_tol("0").is_ok());
+/// ```
+pub fn parse_tol(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..1.0).contains(&v) => Ok(v),
+        _ => Err("must be a number from 0 up to (not including) 1".to_string()),
+    }
+}
+
+/// A ridge λ (`--ridge`): finite, from 0 to [`MAX_RIDGE`].
+///
+/// ```
+/// assert_eq!(rbf_cli::settings::parse_ridge("-0"), Ok(0.0));
+/// assert_eq!(rbf_cli::settings::parse_ridge("1e13").unwrap_err(), "must be a number from 0 to 1e12");
+/// ```
+pub fn parse_ridge(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        // −0 is 0: no ridge.
+        Ok(v) if (0.0..=MAX_RIDGE).contains(&v) => Ok(v.abs()),
+        _ => Err(format!("must be a number from 0 to {MAX_RIDGE:e}")),
+    }
+}
+
 /// `--centres`: how the centres are chosen.
 ///
 /// ```

@@ -40,6 +40,11 @@ pub(crate) fn positive_freq(f: &[f64], d: &[f64]) -> (Vec<f64>, Vec<f64>) {
 pub(crate) struct Drawn(Vec<(&'static str, FigureFiles)>);
 
 impl Drawn {
+    /// The files of the figure saved as `stem`, if it was drawn.
+    pub(crate) fn find(&self, stem: &str) -> Option<&FigureFiles> {
+        self.0.iter().find(|(s, _)| *s == stem).map(|(_, f)| f)
+    }
+
     /// The files of the figure saved as `stem`.
     #[track_caller]
     pub(crate) fn get(&self, stem: &str) -> &FigureFiles {

@@ -1,22 +1,24 @@
-//! What writes the application's reports: the figures and pages of a fitted
-//! model (the paper's figures), of a diagnosis and of an Allan analysis,
-//! drawn with the [`plot`] crate. Each page is assembled from one writer per
+//! What writes the application's reports: the page of a model of any unit
+//! on its records ([`compensation`]: the paper's figures among its
+//! sections), the page of a diagnosis and that of an Allan analysis, drawn
+//! with the [`plot`] crate. Each page is assembled from one writer per
 //! section, in a file of its own.
 
 mod allan;
 mod common;
+mod compensation;
 mod diagnosis;
-mod paper;
+mod paper_model;
 mod provenance;
-mod unit;
 
 pub use allan::write_allan_report;
-pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
-pub use paper::{
-    Baseline, DiagnosisExtra, NoiseFloor, ReportExtras, ReportSummary, build_report, write_report,
+pub use compensation::{
+    DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, PageNumbers, Parity, ReportExtras, ResidueRms,
+    build_page, parity_on_samples,
 };
+pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
+pub use paper_model::{Baseline, ReportSummary, build_report, write_report};
 pub use provenance::Provenance;
-pub use unit::{FdiShown, ResidueRms, UnitReport, build_unit_report, write_unit_report};
 
 #[cfg(test)]
 mod tests {

@@ -1,7 +1,9 @@
 //! The ground calibration of any unit (JSON), and compensation of a record
-//! of that unit with it. The paper's unit keeps its own file
-//! ([`crate::calibration::Calibration`]); this one is keyed by the unit's
-//! channel and accelerometer names and says each gyro's model.
+//! of that unit with it. Keyed by the unit's channel and accelerometer
+//! names, each gyro table saying its model. The paper's calibration format
+//! ([`crate::calibration::Calibration`]: DTG tables without `model`,
+//! accelerometers by axis `x`, `y`, `z`), as a file or embedded in a paper
+//! model file written before, reads as the paper unit's calibration.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -9,11 +11,12 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+use super::calibration::Calibration;
 use super::error::CalibrationFileError;
 use super::record::Record;
 use crate::accel::{AccelCoefficients, compensate_triad};
 use crate::dtg::{DtgCoefficients, within_interval_covariance};
-use crate::geometry::Axis;
+use crate::geometry::{Axis, Channel};
 use crate::rate::RateCoefficients;
 use crate::unit::{GyroModel, Sensed, Unit};
 
@@ -149,8 +152,19 @@ pub enum UnitCalibrationError {
 /// let back = UnitCalibration::from_json(&cal.to_json(), "mem").unwrap();
 /// assert_eq!(back, cal);
 /// ```
+///
+/// The paper's calibration format reads as the paper unit's calibration
+/// (the same as [`UnitCalibration::from`] a [`Calibration`]):
+///
+/// ```
+/// use nav_sensors::calibration::{Calibration, UnitCalibration};
+/// let paper = r#"{"format_version": 1, "gyros": {"Z": {"bias_deg_h": 2.0}}, "accels": {"z": {"bias_ug": 50.0}}}"#;
+/// let cal = UnitCalibration::from_json(paper, "c.json").unwrap();
+/// assert_eq!(cal, UnitCalibration::from(Calibration::from_json(paper, "c.json").unwrap()));
+/// assert_eq!(cal.accels["az"].bias_ug, 50.0);
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, try_from = "CalibrationFile")]
 pub struct UnitCalibration {
     /// File format version ([`UnitCalibration::FORMAT_VERSION`]).
     pub format_version: u32,
@@ -355,43 +369,180 @@ impl UnitCalibration {
         Ok(record.with_gyro_series(gyro).with_accel_series(accel))
     }
 
-    /// The accelerometers compensated: the static inverse of the three
+    /// The accelerometers compensated, IMU by IMU (the accelerometers
+    /// naming no IMU are one group): the static inverse of a group's three
     /// jointly when they are the unit axes x, y, z (in any order), else
     /// their outputs unchanged.
     fn compensate_accels(&self, unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
-        let raw: Vec<Vec<f64>> = (0..unit.accels().len())
+        let mut out: Vec<Vec<f64>> = (0..unit.accels().len())
             .map(|k| record.accel_at(k).to_vec())
             .collect();
-        let axis_of: Vec<Option<Axis>> = unit
-            .accels()
-            .iter()
-            .map(|a| Axis::ALL.into_iter().find(|x| a.input == x.unit_vector()))
-            .collect();
-        let on_axes = axis_of.len() == 3 && Axis::ALL.iter().all(|x| axis_of.contains(&Some(*x)));
-        if !on_axes {
-            return raw;
+        let mut groups: Vec<&Option<String>> = Vec::new();
+        for a in unit.accels() {
+            if !groups.contains(&&a.imu) {
+                groups.push(&a.imu);
+            }
         }
-        let by_axis: [usize; 3] =
-            Axis::ALL.map(|x| axis_of.iter().position(|a| *a == Some(x)).expect("checked"));
+        for imu in groups {
+            let members: Vec<usize> = (0..unit.accels().len())
+                .filter(|&k| unit.accels()[k].imu == *imu)
+                .collect();
+            if let Some(by_axis) = triad(unit, &members) {
+                self.compensate_accel_triad(unit, by_axis, &mut out);
+            }
+        }
+        out
+    }
+
+    /// Replaces the outputs of the triad `by_axis` (accelerometer indices
+    /// on x, y, z) by their static inverse.
+    fn compensate_accel_triad(&self, unit: &Unit, by_axis: [usize; 3], out: &mut [Vec<f64>]) {
         let coefficients = by_axis.map(|k| {
             self.accels
                 .get(&unit.accels()[k].name)
                 .copied()
                 .unwrap_or_default()
         });
-        let mut out: Vec<Vec<f64>> = raw
-            .iter()
-            .map(|_| Vec::with_capacity(record.len()))
-            .collect();
-        // i indexes the three columns at once.
+        let n = out[by_axis[0]].len();
+        let mut compensated: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
+        // i indexes the triad's three columns at once.
         #[allow(clippy::needless_range_loop)]
-        for i in 0..record.len() {
-            let m = Vector3::from(by_axis.map(|k| raw[k][i]));
+        for i in 0..n {
+            let m = Vector3::from(by_axis.map(|k| out[k][i]));
             let a = compensate_triad(&coefficients, &m);
-            for (j, &k) in by_axis.iter().enumerate() {
-                out[k].push(a[j]);
+            for (c, v) in compensated.iter_mut().zip(a.iter()) {
+                c.push(*v);
             }
         }
-        out
+        for (k, c) in by_axis.into_iter().zip(compensated) {
+            out[k] = c;
+        }
+    }
+}
+
+/// The accelerometers `members` (indices) on x, y, z, when they are
+/// exactly the three unit axes, one each.
+fn triad(unit: &Unit, members: &[usize]) -> Option<[usize; 3]> {
+    if members.len() != 3 {
+        return None;
+    }
+    let on = |k: usize, x: Axis| unit.accels()[k].input == x.unit_vector();
+    let by_axis = Axis::ALL.map(|x| members.iter().copied().find(|&k| on(k, x)));
+    let [Some(x), Some(y), Some(z)] = by_axis else {
+        return None;
+    };
+    Some([x, y, z])
+}
+
+/// The paper's calibration as the paper unit's: each channel's DTG table
+/// under its name (X … Z1), each axis's accelerometer table under its
+/// column (`ax`, `ay`, `az`), every value as it is.
+impl From<Calibration> for UnitCalibration {
+    fn from(c: Calibration) -> Self {
+        Self {
+            format_version: Self::FORMAT_VERSION,
+            gyros: c
+                .gyros
+                .into_iter()
+                .map(|(ch, t)| (ch.name().to_string(), GyroCoefficients::Dtg(t)))
+                .collect(),
+            accels: c
+                .accels
+                .into_iter()
+                .map(|(a, t)| (a.column().to_string(), t))
+                .collect(),
+        }
+    }
+}
+
+/// A calibration file as read: the unit format, or the paper's (gyro
+/// tables without `model`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CalibrationFile {
+    format_version: u32,
+    gyros: BTreeMap<String, GyroTable>,
+    accels: BTreeMap<String, AccelCoefficients>,
+}
+
+/// One gyro table as read: tagged with its model, or the paper's DTG table
+/// (no `model` key).
+enum GyroTable {
+    Tagged(GyroCoefficients),
+    Paper(DtgCoefficients),
+}
+
+impl<'de> Deserialize<'de> for GyroTable {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = serde_json::Value::deserialize(d)?;
+        if v.get("model").is_some() {
+            return GyroCoefficients::deserialize(v)
+                .map(GyroTable::Tagged)
+                .map_err(D::Error::custom);
+        }
+        DtgCoefficients::deserialize(v)
+            .map(GyroTable::Paper)
+            .map_err(|e| {
+                D::Error::custom(format!(
+                    "{e} (a gyro table without \"model\" is read as the paper's DTG table; a unit's table says \"model\": \"rate\" or \"dtg\")"
+                ))
+            })
+    }
+}
+
+impl TryFrom<CalibrationFile> for UnitCalibration {
+    type Error = String;
+
+    fn try_from(f: CalibrationFile) -> Result<Self, String> {
+        let paper = f
+            .gyros
+            .values()
+            .filter(|t| matches!(t, GyroTable::Paper(_)))
+            .count();
+        if paper == 0 {
+            let gyros = f
+                .gyros
+                .into_iter()
+                .map(|(name, t)| match t {
+                    GyroTable::Tagged(c) => (name, c),
+                    GyroTable::Paper(_) => unreachable!("counted"),
+                })
+                .collect();
+            return Ok(Self {
+                format_version: f.format_version,
+                gyros,
+                accels: f.accels,
+            });
+        }
+        if paper != f.gyros.len() {
+            return Err("some gyro tables say their \"model\" and some do not: a unit calibration's tables all do, the paper's format's none".into());
+        }
+        let mut gyros = BTreeMap::new();
+        for (name, t) in f.gyros {
+            let GyroTable::Paper(t) = t else {
+                unreachable!("all counted")
+            };
+            if !Channel::ALL.iter().any(|c| c.name() == name) {
+                return Err(format!(
+                    "gyro '{name}' has no \"model\": a table without one is the paper's calibration format, whose gyros are X, X1, Y, Y1, Z, Z1; give each table of a unit's calibration \"model\": \"rate\" or \"dtg\""
+                ));
+            }
+            gyros.insert(name, GyroCoefficients::Dtg(t));
+        }
+        let mut accels = BTreeMap::new();
+        for (axis, t) in f.accels {
+            let Some(a) = Axis::ALL.into_iter().find(|a| a.name() == axis) else {
+                return Err(format!(
+                    "accelerometer '{axis}' in the paper's calibration format, whose accelerometers are its axes x, y, z"
+                ));
+            };
+            accels.insert(a.column().to_string(), t);
+        }
+        Ok(Self {
+            format_version: f.format_version,
+            gyros,
+            accels,
+        })
     }
 }

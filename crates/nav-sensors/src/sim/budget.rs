@@ -79,16 +79,7 @@ pub(crate) fn budget(
         let c = truth.to_array();
         let cal = calibration.gyro(channel).to_array();
         let hidden_here = s.hidden_terms(channel);
-        let ChannelBudget {
-            d,
-            pred: pred_all,
-            unmodelled,
-            motion,
-            predicted,
-            floor,
-            after,
-            noise: noise_ch,
-        } = channel_budget(
+        let b = channel_budget(
             hr,
             ch,
             &c,
@@ -105,41 +96,47 @@ pub(crate) fn budget(
                 )
             },
         );
-        let cal_err = calibration_error(&pred_all, &c, &cal, &hidden_here);
-        let (expected, at_full) = level_only_expectation(&d, g2, n_out);
-        let level_only_floor: Vec<f64> = (0..n_out)
-            .map(|n| noise_ch[n] + motion[n] + unmodelled[n] - expected[n])
+        let counted: Vec<bool> = DtgTerm::ALL
+            .iter()
+            .map(|t| t.is_calibrated() && !hidden_here.contains(t))
             .collect();
-        let noise_floor = std_dev(&floor);
+        let extras = b.extras(g2, &c, &cal, &counted, &CANDIDATES.map(DtgTerm::index));
+        let noise_floor = std_dev(&b.floor);
         for &term in &hidden_here {
-            let (truth, visible) = hidden_truth(channel, term, &c, &pred_all, noise_floor);
+            let (truth, visible) = hidden_truth(channel, term, &c, &b.pred, noise_floor);
             hidden.push(truth);
             components.push(&format!("hidden_{channel}_{term}"), visible);
         }
-        let collinear = collinear(&pred_all);
         channels.insert(
             channel,
             ChannelTruth {
                 coefficients: truth,
                 noise_floor_deg_h: noise_floor,
-                level_only_noise_floor_deg_h: std_dev(&level_only_floor),
-                noise_rms_deg_h: std_dev(&noise_ch),
-                motion_rms_deg_h: rms(&motion),
-                unmodelled_rms_deg_h: rms(&unmodelled),
-                rectification_expected_rms_deg_h: rms(&expected),
-                predictable_rms_deg_h: rms(&predicted),
-                rectification_at_full_level_deg_h: at_full,
-                calibration_error_rms_deg_h: std_dev(&cal_err),
-                after_true_compensation_rms_deg_h: rms(&after),
-                collinear,
+                level_only_noise_floor_deg_h: extras.level_only_floor_deg_h,
+                noise_rms_deg_h: std_dev(&b.noise),
+                motion_rms_deg_h: rms(&b.motion),
+                unmodelled_rms_deg_h: rms(&b.unmodelled),
+                rectification_expected_rms_deg_h: rms(&extras.expected),
+                predictable_rms_deg_h: rms(&b.predicted),
+                rectification_at_full_level_deg_h: extras
+                    .at_full
+                    .iter()
+                    .map(|&(k, v)| (DtgTerm::ALL[k], v))
+                    .collect(),
+                calibration_error_rms_deg_h: extras.calibration_error_deg_h,
+                after_true_compensation_rms_deg_h: rms(&b.after),
+                collinear: extras
+                    .collinear
+                    .iter()
+                    .map(|&(a, b, correlation)| Collinear {
+                        a: DtgTerm::ALL[a],
+                        b: DtgTerm::ALL[b],
+                        correlation,
+                    })
+                    .collect(),
             },
         );
-        components.push(&format!("{channel}_noise"), noise_ch);
-        components.push(&format!("{channel}_motion"), motion);
-        components.push(&format!("{channel}_unmodelled"), unmodelled);
-        components.push(&format!("{channel}_expected"), expected);
-        components.push(&format!("{channel}_predictable"), predicted);
-        components.push(&format!("{channel}_floor"), floor.clone());
+        let (floor, after) = b.push_components(&mut components, channel.name(), extras.expected);
         floor_series[ch] = floor;
         after_true[ch] = after;
     }
@@ -224,15 +221,15 @@ fn residue_series(series: &[Vec<f64>; 6], r: Residue, n_out: usize) -> Vec<f64> 
         .collect()
 }
 
-/// What the ground calibration's errors leave on a channel: the calibrated
-/// terms, hidden ones excepted, at the regressors the record shows.
-fn calibration_error(pred: &[Vec<f64>], c: &[f64], cal: &[f64], hidden: &[DtgTerm]) -> Vec<f64> {
+/// What the ground calibration's errors leave on a channel: the terms
+/// `counted` (calibrated, not hidden), at the regressors the record shows.
+/// Any model: `c`, `cal` and `counted` in its term order.
+fn calibration_error(pred: &[Vec<f64>], c: &[f64], cal: &[f64], counted: &[bool]) -> Vec<f64> {
     pred.iter()
         .map(|pred| {
             let mut v = 0.0;
-            for k in 0..18 {
-                let term = DtgTerm::ALL[k];
-                if term.is_calibrated() && !hidden.contains(&term) {
+            for k in 0..c.len() {
+                if counted[k] {
                     v += (c[k] - cal[k]) * pred[k];
                 }
             }
@@ -243,15 +240,16 @@ fn calibration_error(pred: &[Vec<f64>], c: &[f64], cal: &[f64], hidden: &[DtgTer
 
 /// The level-only expectation of format version 1: each term's `d_k`
 /// fitted through the origin on g² (`k_k`), their sum over the record and
-/// the `k_k` worth writing (|k_k| ≥ 1e-4 deg/h at full level).
+/// the `k_k` worth writing (|k_k| ≥ 1e-4 deg/h at full level) as (term
+/// index, k_k). Any model.
 fn level_only_expectation(
     d: &[Vec<f64>],
     g2: &[f64],
     n_out: usize,
-) -> (Vec<f64>, BTreeMap<DtgTerm, f64>) {
+) -> (Vec<f64>, Vec<(usize, f64)>) {
     let g2_energy: f64 = g2.iter().map(|v| v * v).sum();
     let mut expected = vec![0.0; n_out];
-    let mut at_full = BTreeMap::new();
+    let mut at_full = Vec::new();
     for (k, dk) in d.iter().enumerate() {
         let kk = if g2_energy > 0.0 {
             dk.iter().zip(g2).map(|(a, b)| a * b).sum::<f64>() / g2_energy
@@ -259,7 +257,7 @@ fn level_only_expectation(
             0.0
         };
         if kk.abs() >= 1e-4 {
-            at_full.insert(DtgTerm::ALL[k], kk);
+            at_full.push((k, kk));
         }
         for (e, g) in expected.iter_mut().zip(g2) {
             *e += kk * g;
@@ -268,23 +266,21 @@ fn level_only_expectation(
     (expected, at_full)
 }
 
-/// Candidates that move together on this record (gravity-only constants
-/// excluded: a constant regressor has no correlation).
-fn collinear(pred: &[Vec<f64>]) -> Vec<Collinear> {
-    let series: Vec<Vec<f64>> = CANDIDATES
+/// Candidates (term indices, in the order given) whose regressors move
+/// together on this record, as (i, j, correlation) with i before j
+/// (gravity-only constants excluded: a constant regressor has no
+/// correlation). Any model.
+fn collinear_pairs(pred: &[Vec<f64>], candidates: &[usize]) -> Vec<(usize, usize, f64)> {
+    let series: Vec<Vec<f64>> = candidates
         .iter()
-        .map(|t| pred.iter().map(|p| p[t.index()]).collect())
+        .map(|&k| pred.iter().map(|p| p[k]).collect())
         .collect();
     let mut collinear = Vec::new();
-    for i in 0..CANDIDATES.len() {
-        for j in i + 1..CANDIDATES.len() {
+    for i in 0..candidates.len() {
+        for j in i + 1..candidates.len() {
             let r = correlation(&series[i], &series[j]);
             if r.abs() > 0.95 {
-                collinear.push(Collinear {
-                    a: CANDIDATES[i],
-                    b: CANDIDATES[j],
-                    correlation: r,
-                });
+                collinear.push((candidates[i], candidates[j], r));
             }
         }
     }
@@ -305,6 +301,64 @@ pub(crate) struct ChannelBudget {
     pub floor: Vec<f64>,
     pub after: Vec<f64>,
     pub noise: Vec<f64>,
+}
+
+/// What a channel's truth adds to its budget (any model): the level-only
+/// expectation (series, the floor without it, `k_k` at full level as
+/// (term index, value)), what the calibration errors leave, and the
+/// candidate pairs nearly collinear on the record.
+pub(crate) struct Extras {
+    pub expected: Vec<f64>,
+    pub level_only_floor_deg_h: f64,
+    pub at_full: Vec<(usize, f64)>,
+    pub calibration_error_deg_h: f64,
+    pub collinear: Vec<(usize, usize, f64)>,
+}
+
+impl ChannelBudget {
+    /// The [`Extras`] of this budget: `g2` the level, `c` and `cal` the
+    /// true and calibrated coefficients, `counted` the terms the
+    /// calibration error counts (calibrated, not hidden), `candidates` the
+    /// terms checked for collinearity, in order.
+    pub(crate) fn extras(
+        &self,
+        g2: &[f64],
+        c: &[f64],
+        cal: &[f64],
+        counted: &[bool],
+        candidates: &[usize],
+    ) -> Extras {
+        let n_out = self.noise.len();
+        let (expected, at_full) = level_only_expectation(&self.d, g2, n_out);
+        let level_only_floor: Vec<f64> = (0..n_out)
+            .map(|n| self.noise[n] + self.motion[n] + self.unmodelled[n] - expected[n])
+            .collect();
+        Extras {
+            level_only_floor_deg_h: std_dev(&level_only_floor),
+            expected,
+            at_full,
+            calibration_error_deg_h: std_dev(&calibration_error(&self.pred, c, cal, counted)),
+            collinear: collinear_pairs(&self.pred, candidates),
+        }
+    }
+
+    /// Pushes the channel's components `{name}_noise`, `_motion`,
+    /// `_unmodelled`, `_expected`, `_predictable`, `_floor` (in that
+    /// order) and gives back the floor and after-compensation series.
+    pub(crate) fn push_components(
+        self,
+        components: &mut Components,
+        name: &str,
+        expected: Vec<f64>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        components.push(&format!("{name}_noise"), self.noise);
+        components.push(&format!("{name}_motion"), self.motion);
+        components.push(&format!("{name}_unmodelled"), self.unmodelled);
+        components.push(&format!("{name}_expected"), expected);
+        components.push(&format!("{name}_predictable"), self.predicted);
+        components.push(&format!("{name}_floor"), self.floor.clone());
+        (self.floor, self.after)
+    }
 }
 
 /// The budget of channel `ch` with true coefficients `c` (term order),

@@ -32,4 +32,4 @@ pub use scenario::{
 pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
 pub use thermal::Thermal;
 pub use unit::{UnitSimulation, simulate_unit};
-pub use unit_truth::{UnitChannelTruth, UnitHiddenTruth, UnitTruth};
+pub use unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};

@@ -14,13 +14,14 @@ use std::path::Path;
 
 use nalgebra::Vector3;
 
-use super::budget::{ChannelBudget, Reference, channel_budget};
+use super::budget::{Reference, channel_budget};
 use super::calibrate::unit_ground_calibration;
 use super::engine::{AccelPhysics, GyroPhysics, Run, Stream, run, stream};
 use super::error::SimError;
+use super::output::Components;
 use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
-use super::unit_truth::{UnitChannelTruth, UnitHiddenTruth, UnitTruth};
+use super::unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
 use crate::accel::AccelCoefficients;
 use crate::dtg::{DtgInput, DtgTerm};
 use crate::files::calibration::{GyroCoefficients, UnitCalibration};
@@ -52,6 +53,9 @@ pub struct UnitSimulation {
     pub calibration: UnitCalibration,
     /// Everything used, and the noise floors.
     pub truth: UnitTruth,
+    /// Per-sample component series (as [`super::Simulation`]'s, named by
+    /// the unit's channels).
+    pub components: Components,
 }
 
 impl UnitSimulation {
@@ -302,12 +306,22 @@ pub fn simulate_unit(unit: &Unit, s: &Scenario) -> Result<UnitSimulation, SimErr
         &accel_truth,
         &mut stream(s.seed, Stream::Calibration),
     );
-    let truth = unit_budget(unit, s, &resolved, &hr, &noise, &temp_meas);
+    let (truth, components) = unit_budget(
+        unit,
+        s,
+        &resolved,
+        &calibration,
+        &hr,
+        &noise,
+        &temp_meas,
+        record.t(),
+    );
     Ok(UnitSimulation {
         unit: unit.clone(),
         record,
         calibration,
         truth,
+        components,
     })
 }
 
@@ -351,85 +365,66 @@ fn gyro_at_record(
     }
 }
 
-/// The noise floor through each of the unit's parity residues, deg/h.
-fn residue_noise_floors(unit: &Unit, floors: &[Vec<f64>], n_out: usize) -> BTreeMap<String, f64> {
+/// Each of the unit's residues of per-channel series (unit order): with
+/// `std_dev` the noise floor through it, with `rms` what true-coefficient
+/// compensation leaves of it, deg/h.
+fn per_residue(
+    unit: &Unit,
+    series: &[Vec<f64>],
+    n_out: usize,
+    statistic: fn(&[f64]) -> f64,
+) -> BTreeMap<String, f64> {
     let coefficients = unit.geometry().residue_coefficients();
     unit.residue_names()
         .iter()
         .enumerate()
         .map(|(r, name)| {
-            let series: Vec<f64> = (0..n_out)
+            let combined: Vec<f64> = (0..n_out)
                 .map(|n| {
-                    (0..floors.len())
-                        .map(|k| coefficients[(r, k)] * floors[k][n])
+                    (0..series.len())
+                        .map(|k| coefficients[(r, k)] * series[k][n])
                         .sum()
                 })
                 .collect();
-            (name.clone(), std_dev(&series))
+            (name.clone(), statistic(&combined))
         })
         .collect()
 }
 
-fn unit_budget(
-    unit: &Unit,
-    s: &Scenario,
-    resolved: &Resolved,
-    hr: &super::engine::HighRate,
-    noise: &[Vec<f64>],
-    temp_meas: &[f64],
-) -> UnitTruth {
-    let n_out = temp_meas.len();
-    let Reference {
-        earth,
-        gravity,
-        static_rate,
-        elementary,
-    } = Reference::of(s, hr);
-    let mut channels = Vec::new();
-    let mut hidden = Vec::new();
-    let mut floors = Vec::new();
-    for (ch, (g, truth)) in unit.gyros().iter().zip(&resolved.gyros).enumerate() {
-        let c = truth.to_vec();
-        let at_record = |n: usize| {
-            let a = hr.accel_ideal_g[n];
-            let f = Vector3::new(a[0], a[1], a[2]);
-            gyro_at_record(
-                g,
-                truth,
-                &static_rate[n],
-                &f,
-                temp_meas[n] - s.thermal.reference_c,
-            )
-        };
-        let weights = match g.dtg_axes() {
-            Some(axes) => predictable::weights(
-                &axes.input,
-                &axes.output,
-                &axes.spin,
-                &c.clone().try_into().expect("18 DTG terms"),
-            ),
-            None => rate_weights(&c),
-        };
-        let ChannelBudget {
-            pred,
-            unmodelled,
-            motion,
-            predicted,
-            floor,
-            after,
-            noise: noise_ch,
-            ..
-        } = channel_budget(hr, ch, &c, &noise[ch], &elementary, &weights, at_record);
-        let noise_floor = std_dev(&floor);
-        let terms = g.terms();
-        for (_, term) in resolved.hidden.iter().filter(|(k, _)| *k == ch) {
+/// The specific-force terms of a gyro's model (term indices, in the
+/// order of [`DtgTerm::SPECIFIC_FORCE`] / [`RateTerm::SPECIFIC_FORCE`]):
+/// the candidates checked for collinearity.
+fn specific_force_terms(g: &Gyro) -> [usize; 9] {
+    match g.model {
+        GyroModel::Dtg { .. } => DtgTerm::SPECIFIC_FORCE.map(DtgTerm::index),
+        GyroModel::Rate => RateTerm::SPECIFIC_FORCE.map(RateTerm::index),
+    }
+}
+
+/// The truth of a channel's hidden effects: what each adds to the record
+/// as a model of the record sees it (`c_k · r_k(x̄)`, pushed as the
+/// component `hidden_{channel}_{term}`), its rms and its ratio to the
+/// channel's noise floor.
+fn hidden_truth(
+    g: &Gyro,
+    hidden: &[GyroTerm],
+    c: &[f64],
+    pred: &[Vec<f64>],
+    noise_floor: f64,
+    components: &mut Components,
+) -> Vec<UnitHiddenTruth> {
+    let terms = g.terms();
+    hidden
+        .iter()
+        .map(|term| {
             let k = terms
                 .iter()
                 .position(|t| t == term)
                 .expect("a term of the model");
             let visible: Vec<f64> = pred.iter().map(|p| c[k] * p[k]).collect();
             let rms_deg_h = std_dev(&visible);
-            hidden.push(UnitHiddenTruth {
+            components.push(&format!("hidden_{}_{}", g.name, term.id()), visible);
+            UnitHiddenTruth {
                 channel: g.name.clone(),
                 term: term.id().to_string(),
                 coefficient: c[k],
@@ -437,22 +432,169 @@ fn unit_budget(
                 description: term.ieee_name().to_string(),
                 rms_deg_h,
                 ratio_to_noise_floor: rms_deg_h / noise_floor,
-            });
-        }
-        channels.push(UnitChannelTruth {
-            channel: g.name.clone(),
-            coefficients: *truth,
-            noise_floor_deg_h: noise_floor,
-            noise_rms_deg_h: std_dev(&noise_ch),
-            motion_rms_deg_h: rms(&motion),
-            unmodelled_rms_deg_h: rms(&unmodelled),
-            predictable_rms_deg_h: rms(&predicted),
-            after_true_compensation_rms_deg_h: rms(&after),
-        });
-        floors.push(floor);
+            }
+        })
+        .collect()
+}
+
+/// What one channel's budget gives: its truth, its hidden effects' truth,
+/// and the series the residues and the components are built from.
+struct ChannelOutcome {
+    truth: UnitChannelTruth,
+    hidden: Vec<UnitHiddenTruth>,
+    floor: Vec<f64>,
+    after: Vec<f64>,
+}
+
+/// Channel `ch`'s truth and budget (see [`super::budget`]), its
+/// components pushed in the paper's order: its hidden effects', then
+/// noise, motion, unmodelled, expected, predictable, floor.
+#[allow(clippy::too_many_arguments)]
+fn channel_outcome(
+    unit: &Unit,
+    ch: usize,
+    s: &Scenario,
+    resolved: &Resolved,
+    calibration: &UnitCalibration,
+    hr: &super::engine::HighRate,
+    noise: &[f64],
+    temp_meas: &[f64],
+    reference: &Reference,
+    components: &mut Components,
+) -> ChannelOutcome {
+    let g = &unit.gyros()[ch];
+    let truth = &resolved.gyros[ch];
+    let c = truth.to_vec();
+    let at_record = |n: usize| {
+        let a = hr.accel_ideal_g[n];
+        let f = Vector3::new(a[0], a[1], a[2]);
+        gyro_at_record(
+            g,
+            truth,
+            &reference.static_rate[n],
+            &f,
+            temp_meas[n] - s.thermal.reference_c,
+        )
+    };
+    let weights = match g.dtg_axes() {
+        Some(axes) => predictable::weights(
+            &axes.input,
+            &axes.output,
+            &axes.spin,
+            &c.clone().try_into().expect("18 DTG terms"),
+        ),
+        None => rate_weights(&c),
+    };
+    let b = channel_budget(
+        hr,
+        ch,
+        &c,
+        noise,
+        &reference.elementary,
+        &weights,
+        at_record,
+    );
+    let noise_floor = std_dev(&b.floor);
+    let terms = g.terms();
+    let hidden_here: Vec<GyroTerm> = resolved
+        .hidden
+        .iter()
+        .filter(|(k, _)| *k == ch)
+        .map(|(_, t)| *t)
+        .collect();
+    let hidden = hidden_truth(g, &hidden_here, &c, &b.pred, noise_floor, components);
+    let cal = calibration
+        .gyros
+        .get(&g.name)
+        .map_or_else(|| vec![0.0; c.len()], GyroCoefficients::to_vec);
+    let counted: Vec<bool> = terms
+        .iter()
+        .map(|t| t.is_calibrated() && !hidden_here.contains(t))
+        .collect();
+    let extras = b.extras(
+        &hr.level_squared,
+        &c,
+        &cal,
+        &counted,
+        &specific_force_terms(g),
+    );
+    let id = |k: usize| terms[k].id().to_string();
+    let truth = UnitChannelTruth {
+        channel: g.name.clone(),
+        coefficients: *truth,
+        noise_floor_deg_h: noise_floor,
+        noise_rms_deg_h: std_dev(&b.noise),
+        motion_rms_deg_h: rms(&b.motion),
+        unmodelled_rms_deg_h: rms(&b.unmodelled),
+        predictable_rms_deg_h: rms(&b.predicted),
+        after_true_compensation_rms_deg_h: rms(&b.after),
+        level_only_noise_floor_deg_h: extras.level_only_floor_deg_h,
+        rectification_expected_rms_deg_h: rms(&extras.expected),
+        rectification_at_full_level_deg_h: extras
+            .at_full
+            .iter()
+            .map(|&(k, v)| (id(k), v))
+            .collect(),
+        calibration_error_rms_deg_h: extras.calibration_error_deg_h,
+        collinear: extras
+            .collinear
+            .iter()
+            .map(|&(a, b, correlation)| UnitCollinear {
+                a: id(a),
+                b: id(b),
+                correlation,
+            })
+            .collect(),
+    };
+    let (floor, after) = b.push_components(components, &g.name, extras.expected);
+    ChannelOutcome {
+        truth,
+        hidden,
+        floor,
+        after,
     }
-    let residue_noise_floor_deg_h = residue_noise_floors(unit, &floors, n_out);
-    UnitTruth {
+}
+
+/// The truth of a unit's simulation and its component series.
+#[allow(clippy::too_many_arguments)]
+fn unit_budget(
+    unit: &Unit,
+    s: &Scenario,
+    resolved: &Resolved,
+    calibration: &UnitCalibration,
+    hr: &super::engine::HighRate,
+    noise: &[Vec<f64>],
+    temp_meas: &[f64],
+    t: &[f64],
+) -> (UnitTruth, Components) {
+    let n_out = temp_meas.len();
+    let reference = Reference::of(s, hr);
+    let mut components = Components::new(t.to_vec());
+    components.push("level_squared", hr.level_squared.clone());
+    let mut channels = Vec::new();
+    let mut hidden = Vec::new();
+    let mut floors = Vec::new();
+    let mut after = Vec::new();
+    for (ch, noise_ch) in noise.iter().enumerate() {
+        let o = channel_outcome(
+            unit,
+            ch,
+            s,
+            resolved,
+            calibration,
+            hr,
+            noise_ch,
+            temp_meas,
+            &reference,
+            &mut components,
+        );
+        channels.push(o.truth);
+        hidden.extend(o.hidden);
+        floors.push(o.floor);
+        after.push(o.after);
+    }
+    let (earth, gravity) = (reference.earth, reference.gravity);
+    let truth = UnitTruth {
         format_version: UnitTruth::FORMAT_VERSION,
         unit: unit.clone(),
         scenario: s.clone(),
@@ -461,6 +603,8 @@ fn unit_budget(
         hidden,
         not_applied: resolved.not_applied.clone(),
         channels,
-        residue_noise_floor_deg_h,
-    }
+        residue_noise_floor_deg_h: per_residue(unit, &floors, n_out, std_dev),
+        residue_after_true_compensation_rms_deg_h: per_residue(unit, &after, n_out, rms),
+    };
+    (truth, components)
 }

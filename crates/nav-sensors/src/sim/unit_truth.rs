@@ -1,7 +1,7 @@
 //! The truth of a simulation of any unit (JSON): the unit, the scenario,
 //! every channel's true coefficients and error budget, the hidden effects
-//! and the residue noise floors. The paper's unit keeps its richer file
-//! ([`super::truth::Truth`]).
+//! and the residue noise floors. The paper's truth file
+//! ([`super::truth::Truth`], no `unit` key) reads as the paper unit's truth.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -9,8 +9,9 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::scenario::Scenario;
-use super::truth::TruthFileError;
+use super::truth::{Truth, TruthFileError};
 use crate::files::calibration::GyroCoefficients;
+use crate::geometry::{Channel, Residue};
 use crate::unit::Unit;
 
 /// A hidden effect of a unit's channel with what it contributes.
@@ -48,8 +49,29 @@ pub struct UnitHiddenTruth {
     pub ratio_to_noise_floor: f64,
 }
 
+/// Two candidate terms of a channel whose regressors are nearly collinear
+/// on the record (|correlation| > 0.95 at the output rate): a diagnosis
+/// cannot tell them apart.
+///
+/// ```
+/// let unit = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+/// let sim = nav_sensors::sim::simulate_unit(&unit, &nav_sensors::sim::Scenario { duration_s: 4.0, ..Default::default() }).unwrap();
+/// assert!(sim.truth.channels[0].collinear.iter().all(|p| p.correlation.abs() > 0.95 && p.a != p.b));
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UnitCollinear {
+    /// First term's id.
+    pub a: String,
+    /// Second term's id.
+    pub b: String,
+    /// Correlation of their regressors at the output rate.
+    pub correlation: f64,
+}
+
 /// One channel's truth and error budget at the output rate (definitions
-/// as in [`super::truth::ChannelTruth`]).
+/// as in [`super::truth::ChannelTruth`]). The fields after
+/// `after_true_compensation_rms_deg_h` read as zero or empty from a file
+/// written before they were (unit truth files of 5b6a72d).
 ///
 /// ```
 /// let unit = nav_sensors::unit::Unit::builtin("triad").unwrap();
@@ -82,6 +104,26 @@ pub struct UnitChannelTruth {
     pub predictable_rms_deg_h: f64,
     /// Noise, motion and unmodelled together, rms about zero, deg/h.
     pub after_true_compensation_rms_deg_h: f64,
+    /// The floor given the vibration level only (`Σ k_term·g²` subtracted),
+    /// deg/h.
+    #[serde(default)]
+    pub level_only_noise_floor_deg_h: f64,
+    /// The unmodelled part's expectation given the level, `Σ k_term·g(t)²`,
+    /// rms about zero, deg/h.
+    #[serde(default)]
+    pub rectification_expected_rms_deg_h: f64,
+    /// Per term id, the expected unmodelled drift at full level (0 dB)
+    /// `k_term`, deg/h (terms with |k| < 1e-4 deg/h omitted).
+    #[serde(default)]
+    pub rectification_at_full_level_deg_h: BTreeMap<String, f64>,
+    /// Standard deviation of what the calibration errors leave, as seen
+    /// through the regressors at the output rate, deg/h (hidden effects
+    /// excluded).
+    #[serde(default)]
+    pub calibration_error_rms_deg_h: f64,
+    /// Candidate pairs of specific-force terms nearly collinear on this record.
+    #[serde(default)]
+    pub collinear: Vec<UnitCollinear>,
 }
 
 /// The truth file of a simulation of any unit.
@@ -114,9 +156,16 @@ pub struct UnitTruth {
     pub not_applied: Vec<String>,
     /// Per channel, in the unit's order.
     pub channels: Vec<UnitChannelTruth>,
-    /// Per residue (`K0`–`K5` for the paper's geometry, `P0`… otherwise;
-    /// none for three gyros), the noise floor through the residue, deg/h.
+    /// Per residue (the unit file's named residues, such as the paper's
+    /// K0–K5, else `P0`…; none for three gyros), the noise floor through
+    /// the residue, deg/h.
     pub residue_noise_floor_deg_h: BTreeMap<String, f64>,
+    /// Per residue, what compensation with the true coefficients at the
+    /// output rate leaves (noise and unmodelled vibration effects; true
+    /// motion cancels), rms about zero, deg/h (empty from a file written
+    /// before it was).
+    #[serde(default)]
+    pub residue_after_true_compensation_rms_deg_h: BTreeMap<String, f64>,
 }
 
 impl UnitTruth {
@@ -138,13 +187,29 @@ impl UnitTruth {
         crate::files::io::pretty(self)
     }
 
-    /// Parses truth JSON; `path` labels errors.
+    /// Parses truth JSON, of a unit or the paper's format (no `unit` key:
+    /// read as the paper unit's truth, [`UnitTruth::from`] a [`Truth`]);
+    /// `path` labels errors.
     ///
     /// ```
-    /// assert!(nav_sensors::sim::UnitTruth::from_json("{}", "t.json").is_err());
+    /// use nav_sensors::sim::{simulate, Scenario, UnitTruth};
+    /// assert!(UnitTruth::from_json("{}", "t.json").is_err());
+    /// let json = simulate(&Scenario { duration_s: 1.0, ..Default::default() }).unwrap().truth.to_json();
+    /// let read = UnitTruth::from_json(&json, "truth.json").unwrap();
+    /// assert_eq!(read.unit, nav_sensors::unit::Unit::paper());
+    /// let paper = nav_sensors::truth::Truth::from_json(&json, "truth.json").unwrap();
+    /// assert_eq!(read, UnitTruth::from(paper));
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
-        TruthFileError::parse(text, path)
+        /// Only whether the file names its unit.
+        #[derive(Deserialize)]
+        struct Probe {
+            unit: Option<serde::de::IgnoredAny>,
+        }
+        match serde_json::from_str::<Probe>(text) {
+            Ok(Probe { unit: None }) => TruthFileError::parse::<Truth>(text, path).map(Self::from),
+            _ => TruthFileError::parse(text, path),
+        }
     }
 
     /// Reads a truth JSON file.
@@ -157,6 +222,80 @@ impl UnitTruth {
     /// assert_eq!(nav_sensors::sim::UnitTruth::load(dir.join("truth.json")).unwrap().unit, unit);
     /// ```
     pub fn load(path: impl AsRef<Path>) -> Result<Self, TruthFileError> {
-        TruthFileError::load(path.as_ref())
+        crate::files::io::load_with(
+            path.as_ref(),
+            |path, source| TruthFileError::Io { path, source },
+            Self::from_json,
+        )
+    }
+}
+
+/// The paper's truth as the paper unit's: channels in the unit's order
+/// (X … Z1) under their names, DTG coefficients tagged `dtg`, term and
+/// residue names as strings, every number as it is.
+impl From<Truth> for UnitTruth {
+    fn from(t: Truth) -> Self {
+        let named = |m: BTreeMap<Residue, f64>| -> BTreeMap<String, f64> {
+            m.into_iter()
+                .map(|(r, v)| (r.name().to_string(), v))
+                .collect()
+        };
+        let channels = Channel::ALL
+            .iter()
+            .filter_map(|c| t.channels.get(c).map(|ct| (c, ct)))
+            .map(|(c, ct)| UnitChannelTruth {
+                channel: c.name().to_string(),
+                coefficients: GyroCoefficients::Dtg(ct.coefficients),
+                noise_floor_deg_h: ct.noise_floor_deg_h,
+                noise_rms_deg_h: ct.noise_rms_deg_h,
+                motion_rms_deg_h: ct.motion_rms_deg_h,
+                unmodelled_rms_deg_h: ct.unmodelled_rms_deg_h,
+                predictable_rms_deg_h: ct.predictable_rms_deg_h,
+                after_true_compensation_rms_deg_h: ct.after_true_compensation_rms_deg_h,
+                level_only_noise_floor_deg_h: ct.level_only_noise_floor_deg_h,
+                rectification_expected_rms_deg_h: ct.rectification_expected_rms_deg_h,
+                rectification_at_full_level_deg_h: ct
+                    .rectification_at_full_level_deg_h
+                    .iter()
+                    .map(|(term, v)| (term.id().to_string(), *v))
+                    .collect(),
+                calibration_error_rms_deg_h: ct.calibration_error_rms_deg_h,
+                collinear: ct
+                    .collinear
+                    .iter()
+                    .map(|p| UnitCollinear {
+                        a: p.a.id().to_string(),
+                        b: p.b.id().to_string(),
+                        correlation: p.correlation,
+                    })
+                    .collect(),
+            })
+            .collect();
+        UnitTruth {
+            format_version: Self::FORMAT_VERSION,
+            unit: Unit::paper(),
+            scenario: t.scenario,
+            earth_rate_cluster_deg_h: t.earth_rate_cluster_deg_h,
+            gravity_cluster_g: t.gravity_cluster_g,
+            hidden: t
+                .hidden
+                .into_iter()
+                .map(|h| UnitHiddenTruth {
+                    channel: h.channel.name().to_string(),
+                    term: h.term.id().to_string(),
+                    coefficient: h.coefficient,
+                    unit: h.unit,
+                    description: h.description,
+                    rms_deg_h: h.rms_deg_h,
+                    ratio_to_noise_floor: h.ratio_to_noise_floor,
+                })
+                .collect(),
+            not_applied: Vec::new(),
+            channels,
+            residue_noise_floor_deg_h: named(t.residue_noise_floor_deg_h),
+            residue_after_true_compensation_rms_deg_h: named(
+                t.residue_after_true_compensation_rms_deg_h,
+            ),
+        }
     }
 }

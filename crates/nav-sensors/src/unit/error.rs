@@ -145,4 +145,78 @@ pub enum UnitError {
         /// The value given.
         value: f64,
     },
+    /// A `[[residue]]` weight keyed by a name that is no gyro's.
+    #[error("{file}: {key}: no such gyro (the unit's gyros: {})", gyros.join(", "))]
+    ResidueGyro {
+        /// The file.
+        file: String,
+        /// The key, e.g. `residue[0].weights.X2`.
+        key: String,
+        /// The unit's gyro names.
+        gyros: Vec<String>,
+    },
+    /// A `[[residue]]` weight that is not finite.
+    #[error("{file}: {key} = {value}: a weight must be finite")]
+    ResidueWeight {
+        /// The file.
+        file: String,
+        /// The key, e.g. `residue[0].weights.X`.
+        key: String,
+        /// The value given.
+        value: f64,
+    },
+    /// A `[[residue]]` whose weights do not cancel the rate (not a parity
+    /// residue: it would carry the unit's motion), or are all zero.
+    #[error(
+        "{file}: {key} ({name}): its weights do not cancel the rate (Σ weight·input axis = [{:e}, {:e}, {:e}] against Σ|weight| = {scale}; tolerance 1e-6 of it): a parity residue is a combination of the gyros that no rate enters",
+        rate[0], rate[1], rate[2]
+    )]
+    ResidueSeesRate {
+        /// The file.
+        file: String,
+        /// The residue's key, e.g. `residue[2]`.
+        key: String,
+        /// The residue's name.
+        name: String,
+        /// Σ weight·input axis.
+        rate: [f64; 3],
+        /// Σ |weight|.
+        scale: f64,
+    },
+    /// Named residues that do not span the parity space.
+    #[error(
+        "{file}: [[residue]]: the named residues span {rank} of the unit's {needed} parity dimension(s); name residues spanning all of them, or none (then they are P0, P1, …)"
+    )]
+    ResiduesSpan {
+        /// The file.
+        file: String,
+        /// The dimension the named residues span.
+        rank: usize,
+        /// n − 3.
+        needed: usize,
+    },
+    /// An empty `imu` name.
+    #[error("{file}: {key} is empty; name the IMU or leave the key out")]
+    EmptyImu {
+        /// The file.
+        file: String,
+        /// The key, e.g. `gyro[2].imu`.
+        key: String,
+    },
+    /// A gyro's IMU without accelerometers spanning three dimensions.
+    #[error(
+        "{file}: {key} = \"{imu}\": IMU {imu} has {count} accelerometer(s) whose input axes span {rank} dimension(s); a gyro's IMU needs accelerometers spanning all three (give them imu = \"{imu}\"), or leave the gyro's imu out"
+    )]
+    ImuAccelerometers {
+        /// The file.
+        file: String,
+        /// The gyro's key, e.g. `gyro[3].imu`.
+        key: String,
+        /// The IMU's name.
+        imu: String,
+        /// How many accelerometers the IMU has.
+        count: usize,
+        /// The dimension their input axes span.
+        rank: usize,
+    },
 }

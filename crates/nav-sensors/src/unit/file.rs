@@ -2,13 +2,15 @@
 //! [`Unit`]. The keys here are a user contract: tests and scripts outside
 //! the project write such files, so a key is never renamed.
 
-use nalgebra::Vector3;
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::error::UnitError;
 use super::{
-    Accelerometer, Columns, Gyro, GyroModel, PERPENDICULAR_TOLERANCE, RateUnit, SpecificForceUnit,
-    Unit, Units,
+    Accelerometer, Columns, Gyro, GyroModel, NamedResidue, PERPENDICULAR_TOLERANCE,
+    RESIDUE_TOLERANCE, RateUnit, SpecificForceUnit, Unit, Units,
 };
 
 /// `[columns]`.
@@ -66,6 +68,8 @@ pub(crate) struct GyroFile {
     pub spin: Option<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu: Option<String>,
 }
 
 /// One `[[accel]]`.
@@ -74,6 +78,17 @@ pub(crate) struct GyroFile {
 pub(crate) struct AccelFile {
     pub name: String,
     pub input: [f64; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imu: Option<String>,
+}
+
+/// One `[[residue]]`: a named parity residue, its weight on each gyro's
+/// output by gyro name (a gyro not listed weighs zero).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ResidueFile {
+    pub name: String,
+    pub weights: BTreeMap<String, f64>,
 }
 
 /// The whole file.
@@ -89,6 +104,8 @@ pub(crate) struct UnitFile {
     pub gyro: Vec<GyroFile>,
     #[serde(default)]
     pub accel: Vec<AccelFile>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub residue: Vec<ResidueFile>,
 }
 
 impl UnitFile {
@@ -160,7 +177,15 @@ impl UnitFile {
             accels.push(Accelerometer {
                 name: a.name.clone(),
                 input: axis(file, &format!("accel[{k}].input"), &a.name, a.input)?,
+                imu: a.imu.clone(),
             });
+        }
+        for (k, r) in self.residue.iter().enumerate() {
+            claim(
+                format!("residue[{k}].name"),
+                &r.name,
+                format!("residue[{k}]"),
+            )?;
         }
         for (key, what, axes) in [
             (
@@ -185,6 +210,8 @@ impl UnitFile {
                 });
             }
         }
+        let imus = imus(file, &gyros, &accels)?;
+        let residues = residues(file, &self.residue, &gyros)?;
         Ok(Unit::assemble(
             self.name,
             Columns {
@@ -198,9 +225,131 @@ impl UnitFile {
             },
             gyros,
             accels,
+            residues,
+            imus,
             file.to_string(),
         ))
     }
+}
+
+/// The `imu` keys checked: no empty name, and every IMU a gyro names has
+/// accelerometers whose input axes span 3-D (its specific force is what
+/// the gyro's model reads). Gives every IMU whose accelerometers span 3-D
+/// with their indices, in order of first appearance.
+fn imus(
+    file: &str,
+    gyros: &[Gyro],
+    accels: &[Accelerometer],
+) -> Result<Vec<(String, Vec<usize>)>, UnitError> {
+    let keys = gyros
+        .iter()
+        .enumerate()
+        .map(|(k, g)| (format!("gyro[{k}].imu"), &g.imu))
+        .chain(
+            accels
+                .iter()
+                .enumerate()
+                .map(|(k, a)| (format!("accel[{k}].imu"), &a.imu)),
+        );
+    for (key, imu) in keys {
+        if imu.as_ref().is_some_and(|n| n.trim().is_empty()) {
+            return Err(UnitError::EmptyImu {
+                file: file.to_string(),
+                key,
+            });
+        }
+    }
+    let members = |imu: &String| -> Vec<usize> {
+        (0..accels.len())
+            .filter(|&k| accels[k].imu.as_ref() == Some(imu))
+            .collect()
+    };
+    let span = |m: &[usize]| rank(&m.iter().map(|&k| accels[k].input).collect::<Vec<_>>());
+    for (k, g) in gyros.iter().enumerate() {
+        let Some(imu) = &g.imu else { continue };
+        let m = members(imu);
+        let rank = span(&m);
+        if rank < 3 {
+            return Err(UnitError::ImuAccelerometers {
+                file: file.to_string(),
+                key: format!("gyro[{k}].imu"),
+                imu: imu.clone(),
+                count: m.len(),
+                rank,
+            });
+        }
+    }
+    let mut spanning: Vec<(String, Vec<usize>)> = Vec::new();
+    for imu in accels.iter().filter_map(|a| a.imu.as_ref()) {
+        let m = members(imu);
+        if !spanning.iter().any(|(n, _)| n == imu) && span(&m) == 3 {
+            spanning.push((imu.clone(), m));
+        }
+    }
+    Ok(spanning)
+}
+
+/// The `[[residue]]` tables checked against the gyros: every weight names
+/// a gyro and is finite, each residue cancels any rate (its weights lie in
+/// H's left null space to [`RESIDUE_TOLERANCE`]), and together they span
+/// the whole parity space (n − 3 dimensions), so no fault escapes them.
+fn residues(
+    file: &str,
+    tables: &[ResidueFile],
+    gyros: &[Gyro],
+) -> Result<Vec<NamedResidue>, UnitError> {
+    if tables.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut out = Vec::with_capacity(tables.len());
+    for (k, r) in tables.iter().enumerate() {
+        let mut weights = vec![0.0; gyros.len()];
+        for (gyro, &w) in &r.weights {
+            let key = format!("residue[{k}].weights.{gyro}");
+            let j = gyros.iter().position(|g| &g.name == gyro).ok_or_else(|| {
+                UnitError::ResidueGyro {
+                    file: file.to_string(),
+                    key: key.clone(),
+                    gyros: gyros.iter().map(|g| g.name.clone()).collect(),
+                }
+            })?;
+            if !w.is_finite() {
+                return Err(UnitError::ResidueWeight {
+                    file: file.to_string(),
+                    key,
+                    value: w,
+                });
+            }
+            weights[j] = w;
+        }
+        let scale: f64 = weights.iter().map(|w| w.abs()).sum();
+        let rate: Vector3<f64> = gyros.iter().zip(&weights).map(|(g, w)| g.input * *w).sum();
+        if scale == 0.0 || rate.amax() > RESIDUE_TOLERANCE * scale {
+            return Err(UnitError::ResidueSeesRate {
+                file: file.to_string(),
+                key: format!("residue[{k}]"),
+                name: r.name.clone(),
+                rate: [rate.x, rate.y, rate.z],
+                scale,
+            });
+        }
+        out.push(NamedResidue {
+            name: r.name.clone(),
+            weights,
+        });
+    }
+    let w = DMatrix::from_fn(out.len(), gyros.len(), |i, j| out[i].weights[j]);
+    let sv = w.singular_values();
+    let rank = sv.iter().filter(|s| **s > 1e-6 * sv.max()).count();
+    let needed = gyros.len().saturating_sub(3);
+    if rank != needed {
+        return Err(UnitError::ResiduesSpan {
+            file: file.to_string(),
+            rank,
+            needed,
+        });
+    }
+    Ok(out)
 }
 
 impl GyroFile {
@@ -256,6 +405,7 @@ impl GyroFile {
             name: g.name.clone(),
             input,
             model,
+            imu: g.imu.clone(),
         })
     }
 }
@@ -290,6 +440,7 @@ impl From<&Unit> for UnitFile {
                         input: arr(&g.input),
                         spin,
                         output,
+                        imu: g.imu.clone(),
                     }
                 })
                 .collect(),
@@ -299,6 +450,21 @@ impl From<&Unit> for UnitFile {
                 .map(|a| AccelFile {
                     name: a.name.clone(),
                     input: arr(&a.input),
+                    imu: a.imu.clone(),
+                })
+                .collect(),
+            residue: u
+                .named_residues()
+                .iter()
+                .map(|r| ResidueFile {
+                    name: r.name.clone(),
+                    weights: u
+                        .gyros()
+                        .iter()
+                        .zip(&r.weights)
+                        .filter(|(_, w)| **w != 0.0)
+                        .map(|(g, w)| (g.name.clone(), *w))
+                        .collect(),
                 })
                 .collect(),
         }

@@ -5,15 +5,14 @@
 //! Orthogonal methods throughout (never the normal equations): the
 //! least-squares operator is H's pseudo-inverse by SVD, and V is the last
 //! n − 3 columns of the orthogonal factor of the Householder QR of
-//! `[H | I]`, which span H's left null space. The paper's geometry keeps
-//! today's constants (eq. 4's operator, eq. 6's residues, the Gram–Schmidt
-//! parity matrix of [`crate::geometry::parity_matrix`]) so its figures and
-//! model files do not move by a bit.
+//! `[H | I]`, which span H's left null space. Every unit, the paper's
+//! included, takes both the same way; what differs is data: the residues a
+//! unit file names (`[[residue]]`, the paper's K0–K5 of eq. 6) are reported
+//! with their own weights, and a unit naming none reports the rows of V.
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::{Accelerometer, Gyro};
-use crate::geometry::{Residue, least_squares_operator, parity_matrix, residues};
+use super::{Accelerometer, Gyro, NamedResidue};
 
 /// The derived geometry of a unit (see the module documentation).
 ///
@@ -31,48 +30,99 @@ pub struct UnitGeometry {
     least_squares: DMatrix<f64>,
     parity: DMatrix<f64>,
     residue_names: Vec<String>,
-    paper: bool,
-    /// `None` when the accelerometers are exactly the unit axes, one each:
-    /// then `axis_of[k]` says which unit axis accelerometer k reads.
-    accel_least_squares: Option<DMatrix<f64>>,
+    /// The residues' weights on the gyro outputs (rows in
+    /// `residue_names` order): the named residues', else V.
+    residue_weights: DMatrix<f64>,
+    /// The unit's specific force from every accelerometer.
+    force: ForceSolver,
+    /// Each IMU's (by name) from its own accelerometers, for the IMUs
+    /// whose accelerometers span 3-D.
+    imu_force: Vec<(String, ForceSolver)>,
+}
+
+/// The specific force from some of the accelerometers (`indices`, unit
+/// order): their outputs themselves when they are exactly the unit axes,
+/// one each, else their least-squares combination.
+#[derive(Debug, Clone, PartialEq)]
+struct ForceSolver {
+    indices: Vec<usize>,
+    /// `None` on the unit axes: then `axis_of[j]` is the unit axis
+    /// `indices[j]` reads.
+    least_squares: Option<DMatrix<f64>>,
     axis_of: Vec<usize>,
 }
 
-impl UnitGeometry {
-    /// Derives the geometry of validated sensors (input axes spanning 3-D).
-    pub(super) fn new(gyros: &[Gyro], accels: &[Accelerometer], paper: bool) -> Self {
-        let n = gyros.len();
-        let h = DMatrix::from_fn(n, 3, |i, j| gyros[i].input[j]);
-        let (least_squares, parity, residue_names) = if paper {
-            let p = least_squares_operator();
-            let v = parity_matrix();
-            (
-                DMatrix::from_fn(3, 6, |i, j| p[(i, j)]),
-                DMatrix::from_fn(3, 6, |i, j| v[(i, j)]),
-                Residue::ALL.iter().map(|r| r.name().to_string()).collect(),
-            )
-        } else {
-            let v = left_null_space(&h);
-            let names = (0..v.nrows()).map(|k| format!("P{k}")).collect();
-            (pseudo_inverse(&h), v, names)
-        };
-        let axes: Vec<Vector3<f64>> = accels.iter().map(|a| a.input).collect();
+impl ForceSolver {
+    /// The solver of accelerometers `indices` (their axes span 3-D).
+    fn new(accels: &[Accelerometer], indices: Vec<usize>) -> Self {
+        let axes: Vec<Vector3<f64>> = indices.iter().map(|&k| accels[k].input).collect();
         let axis_of: Vec<usize> = axes
             .iter()
             .filter_map(|a| (0..3).find(|&j| *a == Vector3::ith(j, 1.0)))
             .collect();
-        let on_axes =
-            accels.len() == 3 && axis_of.len() == 3 && (0..3).all(|j| axis_of.contains(&j));
-        let accel_least_squares =
+        let on_axes = axes.len() == 3 && axis_of.len() == 3 && (0..3).all(|j| axis_of.contains(&j));
+        let least_squares =
             (!on_axes).then(|| pseudo_inverse(&DMatrix::from_fn(axes.len(), 3, |i, j| axes[i][j])));
         Self {
-            h,
+            indices,
             least_squares,
+            axis_of,
+        }
+    }
+
+    /// The specific force from a sample of every accelerometer.
+    fn solve(&self, a: &[f64]) -> Vector3<f64> {
+        match &self.least_squares {
+            None => {
+                let mut f = Vector3::zeros();
+                for (&k, &j) in self.indices.iter().zip(&self.axis_of) {
+                    f[j] = a[k];
+                }
+                f
+            }
+            Some(p) => {
+                let mine = DVector::from_iterator(p.ncols(), self.indices.iter().map(|&k| a[k]));
+                let f = p * mine;
+                Vector3::new(f[0], f[1], f[2])
+            }
+        }
+    }
+}
+
+impl UnitGeometry {
+    /// Derives the geometry of validated sensors (input axes spanning 3-D;
+    /// named residues, if any, in H's left null space and spanning it;
+    /// `imus` the IMUs whose accelerometers span 3-D, with their indices).
+    pub(super) fn new(
+        gyros: &[Gyro],
+        accels: &[Accelerometer],
+        named: &[NamedResidue],
+        imus: Vec<(String, Vec<usize>)>,
+    ) -> Self {
+        let n = gyros.len();
+        let h = DMatrix::from_fn(n, 3, |i, j| gyros[i].input[j]);
+        let parity = left_null_space(&h);
+        let (residue_names, residue_weights) = if named.is_empty() {
+            let names = (0..parity.nrows()).map(|k| format!("P{k}")).collect();
+            (names, parity.clone())
+        } else {
+            (
+                named.iter().map(|r| r.name.clone()).collect(),
+                DMatrix::from_fn(named.len(), n, |r, j| named[r].weights[j]),
+            )
+        };
+        let imu_force = imus
+            .into_iter()
+            .map(|(name, indices)| (name, ForceSolver::new(accels, indices)))
+            .collect();
+        Self {
+            least_squares: pseudo_inverse(&h),
+            h,
             parity,
             residue_names,
-            paper,
-            accel_least_squares,
-            axis_of,
+            residue_weights,
+            force: ForceSolver::new(accels, (0..accels.len()).collect()),
+            imu_force,
         }
     }
 
@@ -89,7 +139,8 @@ impl UnitGeometry {
     }
 
     /// The 3×n least-squares operator `(HᵀH)⁻¹Hᵀ`, computed as H's
-    /// pseudo-inverse by SVD (the paper's geometry: today's constant).
+    /// pseudo-inverse by SVD (for the paper's unit, eq. 4's operator to
+    /// rounding).
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
@@ -112,7 +163,7 @@ impl UnitGeometry {
         &self.parity
     }
 
-    /// The residues' names (`K0`–`K5` for the paper's geometry, else `P0`…).
+    /// The residues' names (the unit file's `[[residue]]` names, else `P0`…).
     ///
     /// ```
     /// assert!(nav_sensors::unit::Unit::builtin("triad").unwrap().geometry().residue_names().is_empty());
@@ -131,10 +182,21 @@ impl UnitGeometry {
     #[track_caller]
     pub fn residues(&self, m: &[f64]) -> Vec<f64> {
         assert_eq!(m.len(), self.h.nrows(), "one output per gyro");
-        if self.paper {
-            let m: [f64; 6] = std::array::from_fn(|k| m[k]);
-            return residues(&m).to_vec();
-        }
+        (&self.residue_weights * DVector::from_column_slice(m))
+            .iter()
+            .copied()
+            .collect()
+    }
+
+    /// See [`super::Unit::parity_vector`].
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// assert_eq!(u.geometry().parity_vector(&[1.0; 4]), u.residues(&[1.0; 4]));
+    /// ```
+    #[track_caller]
+    pub fn parity_vector(&self, m: &[f64]) -> Vec<f64> {
+        assert_eq!(m.len(), self.h.nrows(), "one output per gyro");
         (&self.parity * DVector::from_column_slice(m))
             .iter()
             .copied()
@@ -142,8 +204,8 @@ impl UnitGeometry {
     }
 
     /// The coefficients of each residue on the gyro outputs (rows in
-    /// [`UnitGeometry::residue_names`] order, columns in gyro order): eq. 6's
-    /// for the paper's geometry, V otherwise.
+    /// [`UnitGeometry::residue_names`] order, columns in gyro order): the
+    /// named residues' weights (for the paper, eq. 6's), V otherwise.
     ///
     /// ```
     /// use nav_sensors::geometry::{Channel, Residue};
@@ -151,10 +213,7 @@ impl UnitGeometry {
     /// assert_eq!(c[(Residue::K0.index(), Channel::X.index())], 1.0);
     /// ```
     pub fn residue_coefficients(&self) -> DMatrix<f64> {
-        if self.paper {
-            return DMatrix::from_fn(6, 6, |r, j| Residue::ALL[r].coefficients()[j]);
-        }
-        self.parity.clone()
+        self.residue_weights.clone()
     }
 
     /// See [`super::Unit::least_squares_rate`].
@@ -163,15 +222,11 @@ impl UnitGeometry {
     /// use nav_sensors::geometry::{ideal_outputs, least_squares_rate};
     /// let m = ideal_outputs(&nalgebra::Vector3::new(1.0, 2.0, 3.0));
     /// let u = nav_sensors::unit::Unit::paper();
-    /// assert_eq!(u.geometry().least_squares_rate(&m), least_squares_rate(&m));
+    /// assert!((u.geometry().least_squares_rate(&m) - least_squares_rate(&m)).norm() < 1e-14);
     /// ```
     #[track_caller]
     pub fn least_squares_rate(&self, m: &[f64]) -> Vector3<f64> {
         assert_eq!(m.len(), self.h.nrows(), "one output per gyro");
-        if self.paper {
-            let m: [f64; 6] = std::array::from_fn(|k| m[k]);
-            return crate::geometry::least_squares_rate(&m);
-        }
         let w = &self.least_squares * DVector::from_column_slice(m);
         Vector3::new(w[0], w[1], w[2])
     }
@@ -184,21 +239,29 @@ impl UnitGeometry {
     /// ```
     #[track_caller]
     pub fn specific_force(&self, a: &[f64]) -> Vector3<f64> {
-        match &self.accel_least_squares {
-            None => {
-                assert_eq!(a.len(), 3, "one output per accelerometer");
-                let mut f = Vector3::zeros();
-                for (k, &j) in self.axis_of.iter().enumerate() {
-                    f[j] = a[k];
-                }
-                f
-            }
-            Some(p) => {
-                assert_eq!(a.len(), p.ncols(), "one output per accelerometer");
-                let f = p * DVector::from_column_slice(a);
-                Vector3::new(f[0], f[1], f[2])
-            }
-        }
+        assert_eq!(
+            a.len(),
+            self.force.indices.len(),
+            "one output per accelerometer"
+        );
+        self.force.solve(a)
+    }
+
+    /// See [`super::Unit::imu_specific_force`].
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+    /// assert!(u.geometry().imu_specific_force("imu1", &[0.0, 0.0, 1.0]).is_none());
+    /// ```
+    #[track_caller]
+    pub fn imu_specific_force(&self, imu: &str, a: &[f64]) -> Option<Vector3<f64>> {
+        assert_eq!(
+            a.len(),
+            self.force.indices.len(),
+            "one output per accelerometer"
+        );
+        let (_, solver) = self.imu_force.iter().find(|(n, _)| n == imu)?;
+        Some(solver.solve(a))
     }
 }
 

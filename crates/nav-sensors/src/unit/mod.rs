@@ -77,6 +77,17 @@ use crate::geometry::{Channel, DtgAxes, dtg_frame, input_axis};
 /// ```
 pub const PERPENDICULAR_TOLERANCE: f64 = 1e-6;
 
+/// How far a named residue may be from cancelling the rate: each component
+/// of Σ weight·input axis within 1e-6 of Σ |weight| (the tolerance of
+/// [`PERPENDICULAR_TOLERANCE`], for weights and axes written to 7
+/// significant digits; eq. 6's weights written to the last bit cancel to
+/// 1e-16).
+///
+/// ```
+/// assert_eq!(nav_sensors::unit::RESIDUE_TOLERANCE, 1e-6);
+/// ```
+pub const RESIDUE_TOLERANCE: f64 = 1e-6;
+
 /// One g in m/s² (the standard acceleration of gravity, used to convert
 /// `m/s^2` columns to g).
 ///
@@ -287,6 +298,9 @@ pub struct Gyro {
     pub input: Vector3<f64>,
     /// The error model (with a DTG's spin and output axes).
     pub model: GyroModel,
+    /// The IMU it belongs to (`imu = "NAME"`), when the unit groups its
+    /// sensors into IMUs.
+    pub imu: Option<String>,
 }
 
 impl Gyro {
@@ -322,6 +336,29 @@ pub struct Accelerometer {
     pub name: String,
     /// The input axis (unit vector, unit frame).
     pub input: Vector3<f64>,
+    /// The IMU it belongs to (`imu = "NAME"`), when the unit groups its
+    /// sensors into IMUs.
+    pub imu: Option<String>,
+}
+
+/// One `[[residue]]`: a parity residue the unit file names, with its
+/// weight on each gyro's output (gyro order). A unit that names residues
+/// reports them (the paper's K0–K5 of eq. 6); one that names none reports
+/// the rows of its orthonormal parity matrix as P0, P1, ….
+///
+/// ```
+/// let u = nav_sensors::unit::Unit::paper();
+/// let k0 = &u.named_residues()[0];
+/// assert_eq!(k0.name, "K0");
+/// // K0 = X + Z + √2·Y1 (eq. 6)
+/// assert_eq!(k0.weights, [1.0, 0.0, 0.0, std::f64::consts::SQRT_2, 1.0, 0.0]);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedResidue {
+    /// The name (a column of residue files, a key of JSON outputs).
+    pub name: String,
+    /// The weight on each gyro's output, in the unit's gyro order.
+    pub weights: Vec<f64>,
 }
 
 /// A validated sensor unit (see the module documentation). Built only by
@@ -347,6 +384,7 @@ pub struct Unit {
     units: Units,
     gyros: Vec<Gyro>,
     accels: Vec<Accelerometer>,
+    residues: Vec<NamedResidue>,
     file: String,
     paper_geometry: bool,
     geometry: UnitGeometry,
@@ -360,6 +398,7 @@ impl PartialEq for Unit {
             && self.units == other.units
             && self.gyros == other.gyros
             && self.accels == other.accels
+            && self.residues == other.residues
     }
 }
 
@@ -469,23 +508,28 @@ impl Unit {
         toml::to_string(&file::UnitFile::from(self)).expect("plain data serialises")
     }
 
-    /// Assembles a validated unit and derives its geometry.
+    /// Assembles a validated unit and derives its geometry (`imus`: the
+    /// IMUs whose accelerometers span 3-D, with their indices).
+    #[allow(clippy::too_many_arguments)]
     fn assemble(
         name: String,
         columns: Columns,
         units: Units,
         gyros: Vec<Gyro>,
         accels: Vec<Accelerometer>,
+        residues: Vec<NamedResidue>,
+        imus: Vec<(String, Vec<usize>)>,
         file: String,
     ) -> Self {
         let paper_geometry = is_paper_geometry(&gyros);
-        let geometry = UnitGeometry::new(&gyros, &accels, paper_geometry);
+        let geometry = UnitGeometry::new(&gyros, &accels, &residues, imus);
         Self {
             name,
             columns,
             units,
             gyros,
             accels,
+            residues,
             file,
             paper_geometry,
             geometry,
@@ -560,6 +604,18 @@ impl Unit {
         &self.accels
     }
 
+    /// The residues the unit file names (`[[residue]]`), in file order;
+    /// empty when it names none.
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// assert_eq!(Unit::paper().named_residues().len(), 6);
+    /// assert!(Unit::builtin("tetra").unwrap().named_residues().is_empty());
+    /// ```
+    pub fn named_residues(&self) -> &[NamedResidue] {
+        &self.residues
+    }
+
     /// The gyro channels' names, in file order.
     ///
     /// ```
@@ -578,6 +634,46 @@ impl Unit {
         self.accels.iter().map(|a| a.name.as_str()).collect()
     }
 
+    /// The IMUs the unit groups its sensors into (`imu` keys), in order of
+    /// first appearance (gyros, then accelerometers); empty when it groups
+    /// none.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// assert_eq!(u.imu_names(), ["imu1", "imu2", "imu3"]);
+    /// assert!(nav_sensors::unit::Unit::paper().imu_names().is_empty());
+    /// ```
+    pub fn imu_names(&self) -> Vec<&str> {
+        let mut names: Vec<&str> = Vec::new();
+        let all = self.gyros.iter().map(|g| &g.imu);
+        for imu in all.chain(self.accels.iter().map(|a| &a.imu)).flatten() {
+            if !names.contains(&imu.as_str()) {
+                names.push(imu);
+            }
+        }
+        names
+    }
+
+    /// The accelerometers gyro `k` reads by default: its IMU's (in unit
+    /// order), or every accelerometer when it names no IMU.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// assert_eq!(u.imu_accel_names(4), ["a2x", "a2y", "a2z"]); // g2y
+    /// assert_eq!(nav_sensors::unit::Unit::paper().imu_accel_names(0), ["ax", "ay", "az"]);
+    /// ```
+    #[track_caller]
+    pub fn imu_accel_names(&self, k: usize) -> Vec<&str> {
+        let imu = &self.gyros[k].imu;
+        self.accels
+            .iter()
+            .filter(|a| imu.is_none() || a.imu == *imu)
+            .map(|a| a.name.as_str())
+            .collect()
+    }
+
     /// The position of a gyro channel by name.
     ///
     /// ```
@@ -591,8 +687,8 @@ impl Unit {
 
     /// Whether the gyros are the paper's six channels (names X, X1, Y, Y1,
     /// Z, Z1 in that order, `dtg`, with eq. 4's input axes and the paper's
-    /// spin and output axes to the last bit): then the residues are eq. 6's
-    /// K0–K5 and the least-squares operator is today's constant.
+    /// spin and output axes to the last bit). Nothing in the geometry
+    /// depends on it (the residues K0–K5 are `units/paper.toml`'s data).
     ///
     /// ```
     /// use nav_sensors::unit::Unit;
@@ -660,8 +756,8 @@ impl Unit {
         self.geometry.parity_matrix()
     }
 
-    /// The residues' names: eq. 6's `K0`–`K5` for the paper's geometry,
-    /// `P0`, `P1`, … (one per row of V) for any other unit, none for a
+    /// The residues' names: those the unit file names (`[[residue]]`: the
+    /// paper's K0–K5), else `P0`, `P1`, … (one per row of V), none for a
     /// unit of three gyros.
     ///
     /// ```
@@ -674,10 +770,9 @@ impl Unit {
     }
 
     /// The residues of one sample of gyro outputs (file order, any rate
-    /// unit): eq. 6 for the paper's geometry (the very function
-    /// [`crate::geometry::residues`]), `V·m` otherwise, and an empty vector
-    /// for three gyros (nothing is redundant; judge them against a rate
-    /// reference instead).
+    /// unit): the named residues' weights times `m` (for the paper, eq. 6),
+    /// `V·m` when the unit names none, and an empty vector for three gyros
+    /// (nothing is redundant; judge them against a rate reference instead).
     ///
     /// ```
     /// use nav_sensors::unit::Unit;
@@ -691,8 +786,28 @@ impl Unit {
         self.geometry.residues(m)
     }
 
-    /// The least-squares rate `(HᵀH)⁻¹Hᵀm` of one sample (by SVD; the
-    /// paper's geometry keeps today's constant operator), same unit as `m`.
+    /// The parity vector `V·m` of one sample (gyro order, any rate unit):
+    /// orthonormal components whatever residues the unit names, so that
+    /// independent channel noise σ gives components of σ each (what fault
+    /// detection and a noise estimate need; the named residues, such as
+    /// eq. 6's, are neither orthogonal nor of unit norm).
+    ///
+    /// ```
+    /// use nav_sensors::unit::Unit;
+    /// let u = Unit::paper();
+    /// let p = u.parity_vector(&[1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    /// assert_eq!(p.len(), 3);
+    /// // A fault on X reaches the parity space with ‖v_X‖² = 1 − h_Xᵀ(HᵀH)⁻¹h_X.
+    /// let leverage = u.geometry().least_squares_operator().column(0).dot(&u.measurement_matrix().row(0).transpose());
+    /// assert!((p.iter().map(|v| v * v).sum::<f64>() - (1.0 - leverage)).abs() < 1e-12);
+    /// ```
+    #[track_caller]
+    pub fn parity_vector(&self, m: &[f64]) -> Vec<f64> {
+        self.geometry.parity_vector(m)
+    }
+
+    /// The least-squares rate `(HᵀH)⁻¹Hᵀm` of one sample (H's
+    /// pseudo-inverse by SVD), same unit as `m`.
     ///
     /// ```
     /// use nav_sensors::unit::Unit;
@@ -718,6 +833,41 @@ impl Unit {
     #[track_caller]
     pub fn specific_force(&self, a: &[f64]) -> Vector3<f64> {
         self.geometry.specific_force(a)
+    }
+
+    /// One IMU's specific force in the unit frame, g, from one sample of
+    /// every accelerometer (unit order): that IMU's accelerometers alone,
+    /// as [`Unit::specific_force`] combines them. `None` for a name that is
+    /// no IMU's or an IMU whose accelerometers do not span 3-D.
+    ///
+    /// ```
+    /// let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../units/multi-imu.toml")).unwrap();
+    /// let u = nav_sensors::unit::Unit::from_toml(&text, "units/multi-imu.toml").unwrap();
+    /// let a = [0.0, 0.0, 1.0, 0.0, 0.0, 1.2, 0.0, 0.0, 1.1];
+    /// assert_eq!(u.imu_specific_force("imu2", &a).unwrap().z, 1.2);
+    /// assert!((u.specific_force(&a).z - 1.1).abs() < 1e-12); // the unit's: the three triads' mean
+    /// assert!(u.imu_specific_force("imu4", &a).is_none());
+    /// ```
+    #[track_caller]
+    pub fn imu_specific_force(&self, imu: &str, a: &[f64]) -> Option<Vector3<f64>> {
+        self.geometry.imu_specific_force(imu, a)
+    }
+
+    /// The specific force gyro `k` senses, g: its IMU's
+    /// ([`Unit::imu_specific_force`]), or the unit's when it names no IMU.
+    ///
+    /// ```
+    /// let u = nav_sensors::unit::Unit::builtin("triad").unwrap();
+    /// assert_eq!(u.gyro_specific_force(0, &[0.1, 0.2, 1.0]), u.specific_force(&[0.1, 0.2, 1.0]));
+    /// ```
+    #[track_caller]
+    pub fn gyro_specific_force(&self, k: usize, a: &[f64]) -> Vector3<f64> {
+        match &self.gyros[k].imu {
+            Some(imu) => self
+                .imu_specific_force(imu, a)
+                .expect("a gyro's IMU spans 3-D (validated)"),
+            None => self.specific_force(a),
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! built-in units against today's constants.
 
 use super::*;
-use crate::geometry::{ChannelFrame, measurement_matrix, parity_matrix};
+use crate::geometry::{ChannelFrame, Residue, measurement_matrix, parity_matrix};
 
 /// A valid three-gyro, three-accelerometer file with `gyros` replacing the
 /// gyro tables.
@@ -60,13 +60,68 @@ fn paper_unit_is_todays_geometry_bit_for_bit() {
             .zip(h.iter())
             .all(|(a, b)| a.to_bits() == b.to_bits())
     );
-    let v = parity_matrix();
-    assert!(
-        u.parity_matrix()
-            .iter()
-            .zip(v.iter())
-            .all(|(a, b)| a.to_bits() == b.to_bits())
-    );
+}
+
+/// units/paper.toml names eq. 6's residues with `Residue::coefficients`'
+/// weights to the last bit (a weight the file leaves out is zero, which
+/// eq. 6 gives as ±0).
+#[test]
+fn the_paper_files_residues_are_eq_6_bit_for_bit() {
+    let u = Unit::paper();
+    assert_eq!(u.residue_names(), ["K0", "K1", "K2", "K3", "K4", "K5"]);
+    for (named, r) in u.named_residues().iter().zip(Residue::ALL) {
+        assert_eq!(named.name, r.name());
+        for (w, c) in named.weights.iter().zip(r.coefficients()) {
+            assert!(
+                w.to_bits() == c.to_bits() || (*w == 0.0 && c == 0.0),
+                "{r}: {w} against {c}"
+            );
+        }
+    }
+    let c = u.geometry().residue_coefficients();
+    assert_eq!(c.shape(), (6, 6));
+    // The residues of a sample are eq. 6's to rounding (the sums run in
+    // another order than eq. 5's differences).
+    let mut rng = <rand_xoshiro::Xoshiro256PlusPlus as rand::SeedableRng>::seed_from_u64(33);
+    for _ in 0..1000 {
+        let m: [f64; 6] = std::array::from_fn(|_| rand::Rng::gen_range(&mut rng, -500.0..500.0));
+        for (a, b) in u.residues(&m).iter().zip(crate::geometry::residues(&m)) {
+            assert!((a - b).abs() <= 1e-15 * 500.0 * 4.0, "{a} against {b}");
+        }
+    }
+}
+
+/// The least-squares operator is H's pseudo-inverse for every unit: for
+/// the paper's, eq. 4's constant `(HᵀH)⁻¹Hᵀ` to rounding. The largest
+/// relative difference (entry by entry against the largest entry) is
+/// printed for the record; it is a few ε.
+#[test]
+fn the_paper_least_squares_operator_is_eq_4s_to_rounding() {
+    let u = Unit::paper();
+    let p = u.geometry().least_squares_operator();
+    let today = crate::geometry::least_squares_operator();
+    let scale = today.amax();
+    let worst = (0..3)
+        .flat_map(|i| (0..6).map(move |j| (i, j)))
+        .map(|(i, j)| (p[(i, j)] - today[(i, j)]).abs() / scale)
+        .fold(0.0, f64::max);
+    println!("largest relative difference of the SVD operator from eq. 4's: {worst:e}");
+    assert!(worst <= 8.0 * f64::EPSILON, "{worst:e}");
+}
+
+/// One parity basis for every unit: the paper's V is the QR basis, not the
+/// Gram–Schmidt rows of `geometry::parity_matrix`, and the two span the
+/// same space (equal projectors VᵀV to rounding), so every statistic that
+/// does not depend on the basis is unchanged (FDI: `fdi` tests).
+#[test]
+fn the_paper_parity_basis_spans_eq_6s_space() {
+    let u = Unit::paper();
+    let v = u.parity_matrix();
+    let gs = parity_matrix();
+    let gs = nalgebra::DMatrix::from_fn(3, 6, |i, j| gs[(i, j)]);
+    let projector = v.transpose() * v;
+    let today = gs.transpose() * &gs;
+    assert!((projector - today).amax() < 1e-15);
 }
 
 #[test]
@@ -325,5 +380,72 @@ fn a_stored_unit_is_validated_when_read_back() {
     assert!(
         err.contains("<stored unit>: gyro[0].input (gx): the axis is zero"),
         "{err}"
+    );
+}
+
+/// A tetra with its one residue named, as `units/tetra.toml` could.
+fn tetra_with(residues: &str) -> String {
+    format!("{}\n{residues}", Unit::builtin_toml("tetra").unwrap())
+}
+
+#[test]
+fn a_unit_may_name_its_residues() {
+    let text = tetra_with(
+        "[[residue]]\nname = \"sum\"\nweights = { g1 = 1.0, g2 = -1.0, g3 = 1.0, g4 = -1.0 }\n",
+    );
+    let u = Unit::from_toml(&text, "u.toml").unwrap();
+    assert_eq!(u.residue_names(), ["sum"]);
+    assert_eq!(u.residues(&[1.0, 2.0, 4.0, 8.0]), [1.0 - 2.0 + 4.0 - 8.0]);
+    // The parity vector stays the orthonormal one.
+    let plain = Unit::builtin("tetra").unwrap();
+    assert_eq!(
+        u.parity_vector(&[1.0, 2.0, 4.0, 8.0]),
+        plain.residues(&[1.0, 2.0, 4.0, 8.0])
+    );
+    // Written back, read back.
+    assert!(u.to_toml().contains("[[residue]]"));
+    assert_eq!(Unit::from_toml(&u.to_toml(), "copy").unwrap(), u);
+    let json = serde_json::to_string(&u).unwrap();
+    assert_eq!(serde_json::from_str::<Unit>(&json).unwrap(), u);
+    // A unit without residues writes no residue key (files written before
+    // read the same).
+    assert!(!plain.to_toml().contains("residue"));
+}
+
+#[test]
+fn named_residues_are_checked() {
+    let one = |w: &str| tetra_with(&format!("[[residue]]\nname = \"r\"\nweights = {{ {w} }}\n"));
+    assert_eq!(
+        refuse(&one("g1 = 1.0, g5 = 1.0")),
+        "u.toml: residue[0].weights.g5: no such gyro (the unit's gyros: g1, g2, g3, g4)"
+    );
+    assert_eq!(
+        refuse(&one("g1 = nan")),
+        "u.toml: residue[0].weights.g1 = NaN: a weight must be finite"
+    );
+    assert_eq!(
+        refuse(&one("g1 = 1.0, g2 = 1.0")),
+        "u.toml: residue[0] (r): its weights do not cancel the rate (Σ weight·input axis = [8.16496580927726e-1, 8.16496580927726e-1, 1.1547005383792517e0] against Σ|weight| = 2; tolerance 1e-6 of it): a parity residue is a combination of the gyros that no rate enters"
+    );
+    assert!(refuse(&one("")).contains("its weights do not cancel the rate"));
+    // Weights to 7 digits cancel within the tolerance.
+    let paper = Unit::builtin_toml("paper")
+        .unwrap()
+        .replace("1.4142135623730951", "1.414214");
+    assert!(Unit::from_toml(&paper, "p.toml").is_ok());
+    // Named residues must span the parity space.
+    let dual = Unit::builtin_toml("dual-triad").unwrap().to_string()
+        + "[[residue]]\nname = \"z\"\nweights = { gz = 1.0, gz2 = -1.0 }\n";
+    assert_eq!(
+        refuse(&dual),
+        "u.toml: [[residue]]: the named residues span 1 of the unit's 3 parity dimension(s); name residues spanning all of them, or none (then they are P0, P1, …)"
+    );
+    // A residue's name is a column of residue files: unique among them all.
+    let dup = tetra_with(
+        "[[residue]]\nname = \"g2\"\nweights = { g1 = 1.0, g2 = -1.0, g3 = 1.0, g4 = -1.0 }\n",
+    );
+    assert_eq!(
+        refuse(&dup),
+        "u.toml: residue[0].name = \"g2\" is already gyro[1]'s name; every column has one role"
     );
 }

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rbf::{KMeansAlgorithm, KMeansInit, Kernel, PolyTail};
-use rbf_cli::settings::{Centres, CvScheme, FitSettings, StopArg, WidthArg};
+use rbf_cli::settings::{
+    Centres, CvScheme, FitSettings, StopArg, WidthArg, parse_count, parse_ridge, parse_tol,
+};
 
 /// Radial-basis-function networks on CSV data: fit, predict, cross-validate.
 #[derive(Debug, Parser)]
@@ -33,38 +35,6 @@ fn parse_threads(s: &str) -> Result<usize, String> {
                 "must be a whole number from 1 to {MAX_THREADS} (this machine has {cores} cores)"
             ))
         }
-    }
-}
-
-/// The largest ridge the flags take. Beyond it the penalty swamps the
-/// unpenalised bias column and the least-squares solve reports it rank
-/// deficient (measured: 1e18 still fits, 1e30 does not); at 1e12 the kernel
-/// weights are already zero for any data whose rows number below a million.
-pub const MAX_RIDGE: f64 = 1e12;
-
-/// A count of centres or candidates: a whole number ≥ 1 (0 would leave
-/// nothing to fit; hints built from it proposed "--max-centers ≤ 0").
-fn parse_count(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err("must be a whole number ≥ 1".to_string()),
-    }
-}
-
-/// An OLS tolerance ρ: 1 − ΣERR < ρ stops selection, so ρ lies in [0, 1).
-fn parse_tol(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if (0.0..1.0).contains(&v) => Ok(v),
-        _ => Err("must be a number from 0 up to (not including) 1".to_string()),
-    }
-}
-
-/// A ridge λ: finite, from 0 to [`MAX_RIDGE`].
-fn parse_ridge(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        // −0 is 0: no ridge.
-        Ok(v) if (0.0..=MAX_RIDGE).contains(&v) => Ok(v.abs()),
-        _ => Err(format!("must be a number from 0 to {MAX_RIDGE:e}")),
     }
 }
 

@@ -8,10 +8,10 @@ use rbf_cli::data;
 use rbf_cli::progress;
 use rbf_cli::report::{CvContext, CvOut};
 use rbf_cli::settings::{Centres, CvScheme, SettingsError, check_centres};
+use rbf_cli::train;
 use tabular::Table;
 
 use super::args::CvArgs;
-use super::fit::fit_failed;
 
 pub fn run(a: CvArgs) -> Result<()> {
     let mut settings = a.model.settings();
@@ -77,7 +77,7 @@ pub fn run(a: CvArgs) -> Result<()> {
     let result = grid_search(&params, x.as_ref(), y.as_ref(), &split, &grid);
     let seconds = start.elapsed().as_secs_f64();
     spinner.finish_and_clear();
-    let report = result.map_err(|e| fit_failed(e, &settings))?;
+    let report = result.map_err(|e| train::failed(e, &settings))?;
 
     let ctx = CvContext {
         data: table.file().to_string(),
@@ -101,7 +101,7 @@ pub fn run(a: CvArgs) -> Result<()> {
         if let Some(Err(e)) = report.points.first().map(|p| &p.result) {
             let msg = e.to_string();
             let e = rbf::RbfError::FoldFailed { reason: msg };
-            return Err(fit_failed(e, &settings).context("no grid point could be fitted"));
+            return Err(train::failed(e, &settings).context("no grid point could be fitted"));
         }
         bail!("no grid point could be fitted");
     }

@@ -78,15 +78,8 @@ pub fn check(
         Some((model, dir)) => {
             progress.say("drawing figures");
             let data = [data.to_path_buf()];
-            let page = dtg_vib::unit_page::Page {
-                model_path: model,
-                data: &data,
-                baseline: None,
-                lead: Vec::new(),
-                links: Vec::new(),
-                also_into: None,
-            };
-            Some(dtg_vib::unit_page::write_page(m, &read.records, page, dir)?.0)
+            let page = dtg_vib::unit_page::Page::new(model, &data);
+            Some(dtg_vib::unit_page::write_page(m, &read.records, page, dir)?.index)
         }
         None => None,
     };

@@ -58,19 +58,16 @@ pub fn report(
     let read = super::apply::records_of(m, &[data.to_path_buf()])?;
     progress.say("applying the model and drawing figures");
     let data = [data.to_path_buf()];
-    let (index, parity) = write_page(
+    let written = write_page(
         m,
         &read.records,
         Page {
-            model_path: model,
-            data: &data,
             baseline: base.as_ref().zip(baseline),
-            lead: Vec::new(),
-            links: Vec::new(),
-            also_into: None,
+            ..Page::new(model, &data)
         },
         out,
     )?;
+    let (index, parity) = (written.index, written.parity);
     drop(progress);
     read.say_notes();
     print_parity(m, &parity);

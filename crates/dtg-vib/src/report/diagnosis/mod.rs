@@ -25,7 +25,12 @@ pub fn write_diagnosis_report(
     min_err: f64,
     dir: &Path,
 ) -> Result<PathBuf, DtgVibError> {
-    write_diagnosis_report_of(diag, min_err, &Wording::paper(), dir)
+    write_diagnosis_report_of(
+        diag,
+        min_err,
+        &Wording::of_unit(&nav_sensors::unit::Unit::paper()),
+        dir,
+    )
 }
 
 /// [`write_diagnosis_report`] for the diagnosis of any unit's channels,

@@ -22,30 +22,30 @@ pub struct Wording {
 }
 
 impl Wording {
-    /// The paper's unit.
-    pub fn paper() -> Self {
-        Self {
-            channels: "X, X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3".into(),
-            n_channels: 6,
-            ids: "IEEE Std 813 names for DTG terms, col:NAME for an extra column of the record"
-                .into(),
-        }
-    }
-
-    /// Any unit: its gyros by name and model.
+    /// Any unit: its gyros by name and model, a DTG's two axes together
+    /// (they share a spin axis), and the candidate ids its models take.
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
     /// let w = dtg_vib::report::Wording::of_unit(&u);
     /// assert_eq!(w.n_channels, 4);
     /// assert!(w.channels.starts_with("g1, g2, g3, g4: rate gyros of"), "{}", w.channels);
+    /// let p = dtg_vib::report::Wording::of_unit(&nav_sensors::unit::Unit::paper());
+    /// assert_eq!(p.channels, "X, X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3");
     /// ```
     pub fn of_unit(unit: &nav_sensors::unit::Unit) -> Self {
-        let (mut rate, mut dtg) = (Vec::new(), Vec::new());
+        let mut rate = Vec::new();
+        // DTG axes by rotor: those whose spin axes agree.
+        let mut rotors: Vec<(nalgebra::Vector3<f64>, Vec<&str>)> = Vec::new();
         for g in unit.gyros() {
-            match g.model {
+            match &g.model {
                 nav_sensors::unit::GyroModel::Rate => rate.push(g.name.as_str()),
-                nav_sensors::unit::GyroModel::Dtg { .. } => dtg.push(g.name.as_str()),
+                nav_sensors::unit::GyroModel::Dtg { spin, .. } => {
+                    match rotors.iter_mut().find(|(s, _)| (s - spin).norm() < 1e-9) {
+                        Some((_, axes)) => axes.push(g.name.as_str()),
+                        None => rotors.push((*spin, vec![g.name.as_str()])),
+                    }
+                }
             }
         }
         let mut parts = Vec::new();
@@ -56,13 +56,21 @@ impl Wording {
                 unit.name()
             ));
         }
-        if !dtg.is_empty() {
-            parts.push(format!("{}: DTG axes of {}", dtg.join(", "), unit.name()));
+        for (k, (_, axes)) in rotors.iter().enumerate() {
+            parts.push(format!("{}: gyro {}", axes.join(", "), k + 1));
         }
+        let mut ids = Vec::new();
+        if !rate.is_empty() {
+            ids.push("g_x … gg_yz in the unit frame for rate gyros");
+        }
+        if !rotors.is_empty() {
+            ids.push("IEEE Std 813 names for DTG terms");
+        }
+        ids.push("col:NAME for an extra column of the record");
         Self {
             channels: parts.join("; "),
             n_channels: unit.gyros().len(),
-            ids: "g_x … gg_yz in the unit frame for rate gyros, IEEE Std 813 names for DTG terms, col:NAME for an extra column of the record".into(),
+            ids: ids.join(", "),
         }
     }
 }
@@ -98,14 +106,14 @@ fn overview_columns(wording: &Wording) -> String {
     )
 }
 
-/// The candidate tables' columns and thresholds, one sentence each, in
-/// three paragraphs: the columns, the thresholds, a rejected candidate.
-pub(in crate::report) fn candidate_columns(min_err: f64, p_threshold: &str) -> String {
-    candidate_columns_of(min_err, p_threshold, &Wording::paper())
-}
-
-/// [`candidate_columns`] in `wording`.
-fn candidate_columns_of(min_err: f64, p_threshold: &str, wording: &Wording) -> String {
+/// The candidate tables' columns and thresholds in `wording`, one sentence
+/// each, in three paragraphs: the columns, the thresholds, a rejected
+/// candidate.
+pub(in crate::report) fn candidate_columns(
+    min_err: f64,
+    p_threshold: &str,
+    wording: &Wording,
+) -> String {
     let columns = format!(
         "Candidate columns. effect: the candidate's id ({}); ✓ marks a suggestion. \
          ERR (error-reduction ratio): the share of the channel's residual mean square that the candidate explains on its own, on the cross-fitted residual of the whole record \
@@ -137,7 +145,7 @@ pub(super) fn section<C, A>(diag: &Diagnosis<C, A>, min_err: f64, wording: &Word
         .map_or("—".to_string(), |c| fmt(c.p_threshold));
     Section::new("How to read the tables")
         .text(overview_columns(wording))
-        .text(candidate_columns_of(min_err, &p, wording))
+        .text(candidate_columns(min_err, &p, wording))
         .text(crate::report::common::colours::LEGEND)
 }
 

@@ -147,19 +147,6 @@ impl TimeReport {
     pub fn largest_gap_s(&self) -> Option<f64> {
         self.gaps.iter().map(|g| g.step_s).reduce(f64::max)
     }
-
-    /// The report of a record read by the paper's strict reader: one
-    /// segment, no gap, every step the median.
-    pub(crate) fn uniform(dt: f64) -> Self {
-        TimeReport {
-            median_step_s: dt,
-            gaps: Vec::new(),
-            min_step_ratio: 1.0,
-            max_step_ratio: 1.0,
-            dropped_samples: 0,
-            segments: 1,
-        }
-    }
 }
 
 impl fmt::Display for TimeReport {

@@ -1,9 +1,10 @@
 //! Reading a log of any unit: the unit file's column names, its units
 //! (gyros to deg/h, specific force to g with 9.80665 m/s² = 1 g, time by
 //! `time_scale` to s), jitter accepted and gaps split into segments
-//! ([`super::time`]). A log of the paper's format is read by the paper's
-//! strict reader ([`Record::read_csv`]) unchanged. Writing a record in a
-//! unit's names and units is the inverse.
+//! ([`super::time`]). Every unit's log, the paper's CSV included, is read
+//! here: a record of the paper's format gives the values of the paper's
+//! strict reader ([`Record::read_csv`]). Writing a record in a unit's names
+//! and units is the inverse.
 
 use std::io::Read;
 use std::path::Path;
@@ -53,9 +54,6 @@ impl Record {
     /// assert!((read.records[0].dt() - 0.001).abs() < 1e-15);
     /// ```
     pub fn read_with_unit(path: impl AsRef<Path>, unit: &Unit) -> Result<UnitRecords, RecordError> {
-        if unit.is_paper_format() {
-            return Ok(whole(Record::read_csv(path)?));
-        }
         from_table(NumericTable::read(path)?, unit)
     }
 
@@ -73,9 +71,6 @@ impl Record {
         name: &str,
         unit: &Unit,
     ) -> Result<UnitRecords, RecordError> {
-        if unit.is_paper_format() {
-            return Ok(whole(Record::from_reader(reader, name)?));
-        }
         from_table(NumericTable::from_reader(reader, name)?, unit)
     }
 
@@ -172,15 +167,6 @@ impl Record {
             cols.push(v.clone());
         }
         Ok((names, cols))
-    }
-}
-
-/// A record read by the paper's strict reader: one segment.
-fn whole(record: Record) -> UnitRecords {
-    let time = TimeReport::uniform(record.dt());
-    UnitRecords {
-        records: vec![record],
-        time,
     }
 }
 
@@ -465,7 +451,7 @@ mod tests {
     }
 
     #[test]
-    fn the_paper_unit_reads_with_the_strict_reader() {
+    fn the_paper_unit_reads_through_the_unit_reader_with_the_strict_readers_values() {
         let csv =
             "t,X,X1,Y,Y1,Z,Z1,ax,ay,az,temp\n0,1,2,3,4,5,6,0,0,1,25\n0.02,1,2,3,4,5,6,0,0,1,25\n";
         let r = read(csv, &Unit::paper()).unwrap();
@@ -473,12 +459,33 @@ mod tests {
             r.records,
             vec![Record::from_reader(csv.as_bytes(), "log.csv").unwrap()]
         );
-        // Jitter the strict reader refuses stays refused for the paper's unit.
+        assert!(r.records[0].is_paper_layout());
+        // The paper's CSV takes the rule of every unit: jitter is accepted
+        // (the strict reader refuses it), a gap splits.
         let jitter = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0.02,1,2,3,4,5,6,0,0,1\n0.041,1,2,3,4,5,6,0,0,1\n";
         assert!(matches!(
-            read(jitter, &Unit::paper()),
+            Record::from_reader(jitter.as_bytes(), "log.csv"),
             Err(RecordError::IrregularInterval { .. })
         ));
+        assert_eq!(read(jitter, &Unit::paper()).unwrap().records[0].len(), 3);
+        // Errors keep file, line and column.
+        let text = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0.02,1,2,3,4,5,6,0,zero,1\n";
+        assert_eq!(
+            read(text, &Unit::paper()).unwrap_err().to_string(),
+            "log.csv:3:9: column 'ay': 'zero' is not a number"
+        );
+        let text = "t,X,X1,Y,Y1,Z,Z1,ax,az\n0,1,2,3,4,5,6,0,1\n0.02,1,2,3,4,5,6,0,1\n";
+        assert_eq!(
+            read(text, &Unit::paper()).unwrap_err().to_string(),
+            "log.csv:1: no column 'ay' (accel[1].name in units/paper.toml); the header has: t, X, X1, Y, Y1, Z, Z1, ax, az"
+        );
+        let text = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0,1,2,3,4,5,6,0,0,1\n";
+        assert!(
+            read(text, &Unit::paper())
+                .unwrap_err()
+                .to_string()
+                .starts_with("log.csv:3:1: time 0 s does not increase")
+        );
     }
 
     #[test]
