@@ -194,6 +194,12 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
 /// Hidden g_x, g_y, g_z and one gg_xy on tetra's rate gyro g2, each below
 /// what the network left in its residual before the screen (g_x at 0.15
 /// deg/h/g went unnamed in 3 of 3 seeds with the window reading ax, ay, az).
+/// Measured (seeds 1–20): g_x 20/20 exact, 20/20 covered; g_y 20, 19;
+/// g_z 20, 20; clean twins 0/20; gg_xy at 0.05 deg/h/g² 17/20 exact and
+/// 13/20 covered (its intervals sit above the truth: the screen removes a
+/// quadratic in the window rms, so a g² term is named by the model's ranking
+/// alone, with the g² regressor's inflated vibration part) — this test
+/// fails on gg_xy until that is fixed.
 #[test]
 #[ignore = "statistical: 100 loops, minutes"]
 fn rate_gyro_g_terms_named_over_seeds() {
@@ -208,7 +214,8 @@ fn rate_gyro_g_terms_named_over_seeds() {
     );
 }
 
-/// Hidden g_S on X and g_O on Y1 of the paper's DTG unit.
+/// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
+/// 1–20): g_S 20/20 exact, 18/20 covered; g_O 20, 19; clean twins 0/20.
 #[test]
 #[ignore = "statistical: 60 loops, minutes"]
 fn dtg_g_terms_named_over_seeds() {
