@@ -90,7 +90,7 @@ impl Applied {
             // Outside the training range the network part fades
             // (sysid::operating::fade), as the onboard evaluator fades it.
             None => {
-                let f = sysid::operating::fade::predict_faded(model.inner(), prepared.inner())?;
+                let f = model.inner().predict_faded(prepared.inner())?;
                 let mut it = f.predicted.into_iter();
                 let p: [Vec<f64>; 6] = std::array::from_fn(|_| it.next().unwrap_or_default());
                 let c = shift(&p, 1.0);

@@ -185,7 +185,7 @@ pub fn fit_records(
 
 /// The window's signals chosen from the training records, each calibrated
 /// (`fit --window-signals auto`): the accelerometer axes whose vibration is
-/// significant in some record ([`sysid::window_signals`]).
+/// significant in some record ([`sysid::window::signal_choice`]).
 ///
 /// ```
 /// let z = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario::paper_z_random())?;
@@ -196,7 +196,7 @@ pub fn fit_records(
 pub fn choose_window_signals(
     records: &[(String, &Record)],
     calibration: Option<&Calibration>,
-) -> Result<sysid::window_signals::WindowSignalsChoice, DtgVibError> {
+) -> Result<sysid::window::signal_choice::WindowSignalsChoice, DtgVibError> {
     use sysid::Sensor;
     let unit = crate::paper_unit::PaperUnit {
         calibration: None,
@@ -228,12 +228,13 @@ pub fn choose_window_signals(
         })
         .collect::<Result<Vec<(String, Signals)>, sysid::SysidError>>()?;
     let borrowed: Vec<(String, &Signals)> = accels.iter().map(|(n, s)| (n.clone(), s)).collect();
-    Ok(sysid::window_signals::choose_among(
+    Ok(sysid::window::signal_choice::choose_among(
         &names,
         &borrowed,
         unit.operating_scale(),
         &unit.wording().operating_unit,
-    )?)
+    )
+    .map_err(sysid::SysidError::from)?)
 }
 
 /// Each channel's validation rms on each record of `prepared`, for the

@@ -277,7 +277,7 @@ fn fit_options(
     options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
     let taken = match signals.as_deref() {
         Some([auto]) if auto == "auto" => {
-            sysid::window_signals::choose(sensor, named)?.taken.clone()
+            sysid::choose_window_signals(sensor, named)?.taken.clone()
         }
         Some(s) => s.to_vec(),
         None => default_window_signals(&sensor.unit),

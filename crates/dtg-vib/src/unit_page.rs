@@ -111,7 +111,7 @@ impl Applied {
     /// row when the model's split does not fit the records.
     fn new(m: &UnitModel, named: &[(String, &Signals)]) -> Result<Self, DtgVibError> {
         let prepared = m.inner().prepare_many(named)?;
-        let predicted = sysid::operating::fade::predict_faded(m.inner(), &prepared)?.predicted;
+        let predicted = m.inner().predict_faded(&prepared)?.predicted;
         let (train, val) = match m.inner().rows(&prepared) {
             Ok((train, val)) if !val.is_empty() => (train, val),
             _ => (Vec::new(), (0..prepared.rows()).collect()),

@@ -195,7 +195,9 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
         // Guards the comparison: the network must fade out and come back.
         let model = CompensationModel::load(m).unwrap();
         let prepared = model.prepare(&rec).unwrap();
-        let w = sysid::operating::fade::weights(model.inner(), prepared.inner())
+        let w = model
+            .inner()
+            .fade_weights(prepared.inner())
             .unwrap()
             .expect("a new model has a training range")
             .weight;
@@ -797,7 +799,7 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
         let signals = to_signals(rec).unwrap();
         let prepared = m.inner().prepare(&signals).unwrap();
         let batch = m.compensation(&prepared).unwrap();
-        if let Some(w) = sysid::operating::fade::weights(m.inner(), &prepared).unwrap() {
+        if let Some(w) = m.inner().fade_weights(&prepared).unwrap() {
             lowest = w.weight.iter().fold(lowest, |a, &b| a.min(b));
         }
         let stepped = dtg_vib::onboard::step_record(&m, rec).unwrap();

@@ -77,7 +77,10 @@ fn run(unit: &Unit, s: &Scenario) -> Found {
         rate_reference: RateReference::None,
     };
     let sig = to_signals(&sim.record).unwrap();
-    let options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
+    let mut options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
+    // The window these tests were written for: az alone (the library's
+    // default chooses among the unit's accelerometers).
+    options.recipe.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
     let e = sysid::explain::explain(
         &sensor,
         &[("r".into(), &sig)],
@@ -286,6 +289,8 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
     // and prediction smoother (issue 23).
     let mut options = sysid::FitOptions::<UnitEffect>::new(6);
     options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
+    // The paper path's window: az alone.
+    options.recipe.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
     let e = sysid::explain::explain(
         &sensor,
         &[("r".into(), &sig)],

@@ -78,7 +78,7 @@ pub struct Transfer<C> {
 
 /// Measures how well `model` holds on a record it was not fitted on,
 /// `prepared` by [`Model::prepare`] and `predicted` what compensation
-/// subtracts ([`crate::operating::fade::predict_faded`], or an on-line run
+/// subtracts ([`crate::Model::predict_faded`], or an on-line run
 /// of the model), warning when more than `threshold` of the windows lie
 /// outside the training range or a channel keeps an offset the model cannot
 /// know. The figures without the fade come from [`Model::predict`].
@@ -90,7 +90,7 @@ pub struct Transfer<C> {
 /// options.recipe.settings.max_centres = 5;
 /// let model = sysid::fit(&Line, &line_record(3000, 2.0, 1), &options, &|_| {})?;
 /// let other = model.prepare(&line_record(2000, 2.0, 2))?;
-/// let faded = sysid::operating::fade::predict_faded(&model, &other)?;
+/// let faded = model.predict_faded(&other)?;
 /// let c = sysid::check::transfer(&model, &other, &faded.predicted, 0.05)?;
 /// assert!(c.channels[0].rms_after < c.channels[0].rms_before);
 /// assert!(c.channels[0].spread_after <= c.channels[0].rms_after);
@@ -188,7 +188,7 @@ impl RangeView {
         let Some(range) = model.operating_points().and_then(|o| o.range.as_ref()) else {
             return Ok(None);
         };
-        let Some(w) = crate::operating::fade::weights(model, prepared)? else {
+        let Some(w) = model.fade_weights(prepared)? else {
             return Ok(None);
         };
         let rows: Vec<usize> = (0..prepared.rows()).collect();

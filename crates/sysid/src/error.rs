@@ -131,7 +131,7 @@ pub enum SysidError {
     },
     /// The window's signals could not be chosen from the records.
     #[error(transparent)]
-    WindowSignals(#[from] crate::window_signals::WindowSignalsError),
+    WindowSignals(#[from] crate::window::signal_choice::WindowSignalsError),
     /// Too few windows to train and validate.
     #[error("{what}: {have} windows, need at least {need} ({hint})")]
     TooFewSamples {

@@ -6,9 +6,10 @@
 //! of round k is a fit with the options of round k − 1 plus the additions,
 //! and its diagnosis is [`diagnose_records`] of that model.
 //!
-//! This is the loop layer: it fits what the diagnosis asks for (the model's
-//! mirror, a longer window) and hands the diagnosis the predictions, so the
-//! diagnosis only reads.
+//! This is the loop layer: it fits the models the diagnosis reads (the
+//! model's mirror, a longer window) and hands the diagnosis their
+//! predictions; the diagnosis fits no model itself (it states a
+//! suggestion's coefficient with the fit's estimator, [`crate::diagnose`]).
 
 use crate::diagnose::{DiagnoseOptions, Diagnosis, RecordSeparation, diagnose_prepared};
 use crate::error::SysidError;

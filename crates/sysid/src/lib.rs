@@ -20,11 +20,20 @@
 //! Data flow one way:
 //!
 //! ```text
-//! Signals (t + named columns) ─ Sensor::calibrate, ::targets ─▶ Prepared (filters, windows, regressors)
+//! Signals (t + named columns) ─ Sensor::calibrate, ::targets ─▶ Prepared (the window's signals,
+//!     chosen from the records unless the recipe names them; filters, windows, regressors)
 //!   ─▶ split ─▶ fit (recipe: effects + settings) ─▶ Model (stores its recipe)
-//!   ─▶ predictions ─▶ diagnose (reads the model's and its mirror's predictions)
-//!   ─▶ explain (adds the suggestions, fits again: the only layer that fits for the diagnosis)
+//!   ─▶ predictions ─▶ diagnose (reads the model's and its mirror's predictions; states a
+//!       suggestion's coefficient with fit's cross-fitted estimator, as the refit will store it)
+//!   ─▶ explain (fits the models the diagnosis reads: the mirror, a longer window; adds the
+//!       suggestions, fits again)
 //! ```
+//!
+//! The diagnosis fits no model: what it reads is fitted by the loop layer
+//! ([`explain`]). It calls the fit layer for one estimate only, a
+//! suggestion's coefficient by the fit's own cross-fitted partialling
+//! (`fit::cross_fitted_theta`, whose nuisance networks it fits), so that
+//! the diagnosis and the refit state the same number and interval.
 //!
 //! ```
 //! use sysid::example::{Line, line_record};
@@ -39,7 +48,6 @@
 //! ```
 
 pub mod check;
-mod choice_report;
 pub mod diagnose;
 mod error;
 pub mod example;
@@ -58,15 +66,15 @@ mod signals;
 pub mod smoother;
 pub mod split;
 pub mod window;
-pub mod window_signals;
 
 pub use error::SysidError;
 pub use fit::{FitStage, RecordScore, fit, fit_prepared, fit_records};
 pub use input::ModelInput;
 pub use model::{
-    ChannelModel, ChannelModelOf, ChannelScores, INTERVAL_TOLERANCE, Model, ModelParts, score,
+    ChannelModel, ChannelModelOf, ChannelScores, Faded, INTERVAL_TOLERANCE, Model, ModelParts,
+    score,
 };
-pub use prepared::{Prepared, signal};
+pub use prepared::{Prepared, choose_window_signals, signal};
 pub use preprocess::{FilterSpec, Preprocess};
 pub use recipe::{CentreMethod, FitOptions, FitSettings, Recipe};
 pub use sensor::{
@@ -74,4 +82,4 @@ pub use sensor::{
 };
 pub use signals::{Signals, SignalsError};
 pub use smoother::Smoother;
-pub use window::{WindowError, WindowSpec, Windows};
+pub use window::{WindowError, WindowSignals, WindowSpec, Windows};

@@ -1,13 +1,16 @@
 //! From raw records to model inputs: the plug-in's calibration and targets,
-//! the low-pass (zero-phase, or causal in [`Preprocess::causal`] mode), the
-//! windows and the effects' regressors, each record on its own and laid end
-//! to end.
+//! the window's signals chosen from the calibrated records when the
+//! pre-processing leaves them to the records
+//! ([`crate::window::WindowSignals::Auto`]), the low-pass (zero-phase, or
+//! causal in [`Preprocess::causal`] mode), the windows and the effects'
+//! regressors, each record on its own and laid end to end.
 
 use crate::error::SysidError;
 use crate::preprocess::Preprocess;
 use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::window::Windows;
+use crate::window::signal_choice::{WindowSignalsChoice, choose_among};
 use faer::{Mat, MatRef};
 use iir::LowPass;
 
@@ -43,6 +46,9 @@ pub struct Prepared<S: Sensor> {
     /// Filtered targets per channel, full length.
     targets: Vec<Vec<f64>>,
     windows: Windows,
+    /// The window's signals as the records chose them, when the
+    /// pre-processing asked them to ([`crate::window::WindowSignals::Auto`]).
+    window_choice: Option<WindowSignalsChoice>,
 }
 
 /// One record of a multi-record preparation.
@@ -59,11 +65,25 @@ pub(crate) fn sensor_error(e: crate::sensor::SensorError) -> SysidError {
 }
 
 impl<S: Sensor> Prepared<S> {
-    /// Calibrates `raw` (the sensor's), takes the targets, filters and forms
-    /// windows.
+    /// Calibrates `raw` (the sensor's), chooses the window's signals if the
+    /// pre-processing leaves them to the record, takes the targets, filters
+    /// and forms windows.
     pub fn new(sensor: &S, raw: &Signals, pre: &Preprocess) -> Result<Self, SysidError> {
+        Self::one(sensor, (String::new(), raw), pre)
+    }
+
+    /// [`Prepared::new`] of a record named `name` (for the window choice's
+    /// report).
+    fn one(
+        sensor: &S,
+        (name, raw): (String, &Signals),
+        pre: &Preprocess,
+    ) -> Result<Self, SysidError> {
         let calibrated = sensor.calibrate(raw).map_err(sensor_error)?;
-        Self::from_calibrated(sensor, calibrated, pre)
+        let (pre, window_choice) = chosen_window(sensor, pre, &[(name, &calibrated)])?;
+        let mut prepared = Self::from_calibrated(sensor, calibrated, &pre)?;
+        prepared.window_choice = window_choice;
+        Ok(prepared)
     }
 
     /// [`Prepared::new`] on a record already calibrated by `sensor`.
@@ -93,7 +113,16 @@ impl<S: Sensor> Prepared<S> {
             filter,
             targets,
             windows,
+            window_choice: None,
         })
+    }
+
+    /// The window's signals as the records chose them (each signal's
+    /// dynamic rms, what was taken and why), when the pre-processing asked
+    /// them to ([`crate::window::WindowSignals::Auto`]); `None` when it
+    /// named them.
+    pub fn window_choice(&self) -> Option<&WindowSignalsChoice> {
+        self.window_choice.as_ref()
     }
 
     /// The same records with the network's input `input` (a fit's choice
@@ -137,7 +166,7 @@ impl<S: Sensor> Prepared<S> {
             return Err(SysidError::NoRecords);
         };
         if rest.is_empty() {
-            return Self::new(sensor, first_record, pre);
+            return Self::one(sensor, (first_name.clone(), first_record), pre);
         }
         let extras = |r: &Signals| {
             let mut names = sensor.extra_columns(r);
@@ -173,17 +202,24 @@ impl<S: Sensor> Prepared<S> {
                 });
             }
         }
+        let calibrated = calibrate_each(sensor, records)?;
+        let named: Vec<(String, &Signals)> = records
+            .iter()
+            .zip(&calibrated)
+            .map(|((name, _), c)| (name.clone(), c))
+            .collect();
+        let (pre, window_choice) = chosen_window(sensor, pre, &named)?;
         let prepared = records
             .iter()
-            .map(|(name, r)| {
-                Self::new(sensor, r, pre).map_err(|e| SysidError::InRecord {
-                    record: name.clone(),
-                    source: Box::new(e),
-                })
+            .zip(calibrated)
+            .map(|((name, _), c)| {
+                Self::from_calibrated(sensor, c, &pre).map_err(|e| e.in_record(name, records.len()))
             })
             .collect::<Result<Vec<_>, _>>()?;
         let names = records.iter().map(|(name, _)| name.clone()).collect();
-        Ok(Self::concat(prepared, names))
+        let mut prepared = Self::concat(prepared, names);
+        prepared.window_choice = window_choice;
+        Ok(prepared)
     }
 
     /// `chunks` spans of `rows_each` rows (fewer where a record ends first)
@@ -267,6 +303,7 @@ impl<S: Sensor> Prepared<S> {
             filter: head.filter,
             targets,
             windows,
+            window_choice: head.window_choice,
         }
     }
 
@@ -497,6 +534,77 @@ impl<S: Sensor> Prepared<S> {
             .find(|&k| h[half + k].abs() > 1e-3 * peak)
             .unwrap_or(0)
     }
+}
+
+/// The window's signals for `sensor` chosen from its raw `records` (each
+/// calibrated first) by [`crate::window::signal_choice`]'s rule: what
+/// [`Prepared`] does for a window of [`crate::window::WindowSignals::Auto`].
+///
+/// ```
+/// # use sysid::example::{Line, line_record};
+/// let c = sysid::choose_window_signals(&Line, &[("r".into(), &line_record(500, 1.0, 1))])?;
+/// assert_eq!(c.taken, ["u"]);
+/// # Ok::<(), sysid::SysidError>(())
+/// ```
+pub fn choose_window_signals<S: Sensor>(
+    sensor: &S,
+    records: &[(String, &Signals)],
+) -> Result<WindowSignalsChoice, SysidError> {
+    if records.is_empty() {
+        return Err(SysidError::NoRecords);
+    }
+    let calibrated = calibrate_each(sensor, records)?;
+    let named: Vec<(String, &Signals)> = records
+        .iter()
+        .zip(&calibrated)
+        .map(|((n, _), c)| (n.clone(), c))
+        .collect();
+    choose_on_calibrated(sensor, &named)
+}
+
+/// Each of `records` calibrated by `sensor`, an error named by its record
+/// when there are several.
+fn calibrate_each<S: Sensor>(
+    sensor: &S,
+    records: &[(String, &Signals)],
+) -> Result<Vec<Signals>, SysidError> {
+    records
+        .iter()
+        .map(|(n, r)| {
+            sensor
+                .calibrate(r)
+                .map_err(|e| sensor_error(e).in_record(n, records.len()))
+        })
+        .collect()
+}
+
+/// [`choose_window_signals`] on records `sensor` calibrated.
+fn choose_on_calibrated<S: Sensor>(
+    sensor: &S,
+    calibrated: &[(String, &Signals)],
+) -> Result<WindowSignalsChoice, SysidError> {
+    Ok(choose_among(
+        &sensor.operating_signals(),
+        calibrated,
+        sensor.operating_scale(),
+        &sensor.wording().operating_unit,
+    )?)
+}
+
+/// `pre` with its window's signals named: as it is when it names them, else
+/// chosen from the calibrated records (with the choice).
+fn chosen_window<S: Sensor>(
+    sensor: &S,
+    pre: &Preprocess,
+    calibrated: &[(String, &Signals)],
+) -> Result<(Preprocess, Option<WindowSignalsChoice>), SysidError> {
+    if !pre.window.is_auto() {
+        return Ok((pre.clone(), None));
+    }
+    let choice = choose_on_calibrated(sensor, calibrated)?;
+    let mut named = pre.clone();
+    named.window = crate::window::WindowSpec::new(choice.taken.clone(), pre.window.length())?;
+    Ok((named, Some(choice)))
 }
 
 /// The network's inputs of one calibrated record: its windowed signals

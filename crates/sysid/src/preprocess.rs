@@ -37,12 +37,15 @@ impl Default for FilterSpec {
     }
 }
 
+/// Samples in a window by default: the DTG paper's 50 (1 s at 50 Hz).
+const DEFAULT_WINDOW: usize = 50;
+
 /// How a record is prepared for the models.
 ///
 /// ```
 /// let p = sysid::Preprocess::default();
 /// assert_eq!(p.window.length(), 50);
-/// assert_eq!(p.window.signals(), ["az"]);
+/// assert!(p.window.is_auto()); // the records choose among the sensor's operating signals
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Preprocess {
@@ -54,7 +57,8 @@ pub struct Preprocess {
     /// throws most of it away (measured on the DTG paper's test: residue
     /// reduction 3.7× with a 5-Hz input filter against 4.2× without).
     pub input_filter: Option<FilterSpec>,
-    /// Input windows of the RBF.
+    /// Input windows of the RBF: their length and signals, named or chosen
+    /// from the records ([`crate::window::WindowSignals::Auto`]).
     pub window: WindowSpec,
     /// Causal mode: the model runs on-line. The low-passes are one forward
     /// pass started in the steady state of the first sample instead of
@@ -73,13 +77,14 @@ pub struct Preprocess {
 }
 
 impl Default for Preprocess {
-    /// Low-pass of the targets, unfiltered 50-sample windows of `az` (the
-    /// DTG paper's input).
+    /// Low-pass of the targets, unfiltered 50-sample windows (the DTG
+    /// paper's length) of the operating signals that vibrate in the
+    /// training records ([`crate::window::signal_choice`]).
     fn default() -> Self {
         Self {
             filter: Some(FilterSpec::default()),
             input_filter: None,
-            window: WindowSpec::paper(),
+            window: WindowSpec::auto(DEFAULT_WINDOW).expect("a window of 50 samples"),
             causal: false,
             input: ModelInput::Raw,
             smoother: None,

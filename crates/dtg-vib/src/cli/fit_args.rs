@@ -12,7 +12,7 @@ use nav_sensors::sim::Site;
 use nav_sensors::unit::Unit;
 use std::path::PathBuf;
 use sysid::fit::ModelChoice;
-use sysid::window_signals::WindowSignalsChoice;
+use sysid::window::signal_choice::WindowSignalsChoice;
 use sysid::{CentreMethod, FilterSpec, FitSettings, Sensor, WindowSpec};
 
 use super::records::{Read, check_observable, read_records, sensor, unit_of};

@@ -123,8 +123,7 @@ impl CompensationModel {
     pub fn compensation(&self, prepared: &Prepared) -> Result<[Vec<f64>; 6], DtgVibError> {
         let above = self.inner.effects_above_band(prepared.inner())?;
         // The network part faded outside the training range, as compensate fades it.
-        let predicted =
-            sysid::operating::fade::predict_faded(&self.inner, prepared.inner())?.predicted;
+        let predicted = self.inner.predict_faded(prepared.inner())?.predicted;
         Ok(std::array::from_fn(|k| {
             predicted[k]
                 .iter()

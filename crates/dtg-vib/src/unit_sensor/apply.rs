@@ -89,9 +89,9 @@ impl Applied {
                 (shift(&error, -1.0), error)
             }
             // Outside the training range the network part fades
-            // (sysid::operating::fade), as the onboard evaluator fades it.
+            // (sysid::model::fade), as the onboard evaluator fades it.
             None => {
-                let p = sysid::operating::fade::predict_faded(inner, &prepared)?.predicted;
+                let p = inner.predict_faded(&prepared)?.predicted;
                 let c = shift(&p, 1.0);
                 (p, c)
             }

@@ -130,7 +130,7 @@ impl UnitModel {
         prepared: &sysid::Prepared<UnitSensor>,
     ) -> Result<Vec<Vec<f64>>, DtgVibError> {
         let above = self.inner.effects_above_band(prepared)?;
-        let predicted = sysid::operating::fade::predict_faded(&self.inner, prepared)?.predicted;
+        let predicted = self.inner.predict_faded(prepared)?.predicted;
         Ok(predicted
             .iter()
             .zip(&above)

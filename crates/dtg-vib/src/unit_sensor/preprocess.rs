@@ -168,7 +168,8 @@ impl Preprocess {
 
 impl Default for Preprocess {
     /// The loop's default (low-pass of the outputs, unfiltered 50-sample
-    /// windows of `az`, the paper's input), no rate reference.
+    /// windows of the signals the records choose, as the CLI's
+    /// `--window-signals auto`), no rate reference.
     fn default() -> Self {
         Self::of(&sysid::Preprocess::default(), RateReference::None)
     }

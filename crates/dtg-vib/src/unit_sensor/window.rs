@@ -1,6 +1,6 @@
 //! The window's signals chosen from the training records (`fit
 //! --window-signals auto`): the unit's accelerometers whose vibration is
-//! significant in some record ([`sysid::window_signals`]), each calibrated.
+//! significant in some record ([`sysid::window::signal_choice`]), each calibrated.
 
 use super::range::check_calibrated;
 use super::{MIN_SCALE_G, UnitSensor};
@@ -8,7 +8,7 @@ use crate::error::DtgVibError;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
 use sysid::Signals;
-use sysid::window_signals::{WindowSignalsChoice, choose_among};
+use sysid::window::signal_choice::{WindowSignalsChoice, choose_among};
 
 impl UnitSensor {
     /// The window's signals the named records choose, each record's
@@ -55,7 +55,7 @@ impl UnitSensor {
             .collect::<Result<Vec<(String, Signals)>, DtgVibError>>()?;
         let borrowed: Vec<(String, &Signals)> =
             accels.iter().map(|(n, s)| (n.clone(), s)).collect();
-        Ok(choose_among(&names, &borrowed, MIN_SCALE_G, "g")?)
+        Ok(choose_among(&names, &borrowed, MIN_SCALE_G, "g").map_err(sysid::SysidError::from)?)
     }
 }
 

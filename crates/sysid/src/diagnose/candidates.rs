@@ -4,9 +4,10 @@
 //! that told a suggestion apart from its look-alikes.
 
 use super::context::Context;
-use super::crossfit::CrossFit;
 use super::estimate::{Estimator, restate};
-use super::{Ranking, Unexcited, rank, record_separations};
+use super::model_and_mirror::CrossFit;
+use super::rank::{Ranking, Unexcited, rank};
+use super::records::record_separations;
 use crate::error::SysidError;
 use crate::model::ChannelModelOf;
 use crate::prepared::Prepared;
@@ -62,6 +63,8 @@ pub(super) fn rank_candidates<S: Sensor>(
         })
         .collect();
     let mut ranking = rank(&cross.residual(y), &ranked, opts.rank);
+    let screened = screen(prepared, model, cross, y, &all)?;
+    add_screened(&mut ranking, &wanted, &screened, opts);
     separate_groups(prepared.sensor(), ch, &mut ranking, &ranked, ctx);
     separate_by_record(prepared, cross, &mut ranking, &ranked, opts);
     add_caveats(prepared, ch, &mut ranking, &ranked, cross);
@@ -178,7 +181,7 @@ fn add_caveats<S: Sensor>(
         return;
     }
     let rows = cross.rows();
-    let records: Vec<(&crate::Signals, Vec<usize>)> = prepared
+    let records: Vec<(&crate::signals::Signals, Vec<usize>)> = prepared
         .record_rows()
         .into_iter()
         .filter_map(|(_, range)| {
@@ -199,4 +202,101 @@ fn add_caveats<S: Sensor>(
             c.caveats = prepared.sensor().caveats(&records, channel, e);
         }
     }
+}
+
+/// Adds the screen's suggestions to the model's: a term the network could
+/// absorb (a linear g-sensitivity along an axis the window reads) is named
+/// all the same, its coefficient and interval then stated by the estimator
+/// like any other suggestion's.
+fn add_screened<E: Effect, A>(
+    ranking: &mut Ranking<A>,
+    wanted: &[E],
+    (target, columns): &(Vec<f64>, Mat<f64>),
+    opts: &super::DiagnoseOptions,
+) {
+    let candidates: Vec<(E, Vec<f64>)> = wanted
+        .iter()
+        .enumerate()
+        .map(|(j, e)| {
+            (
+                e.clone(),
+                (0..columns.nrows()).map(|i| columns[(i, j)]).collect(),
+            )
+        })
+        .collect();
+    let screened: Ranking<A> = rank(target, &candidates, opts.rank);
+    for id in screened.suggested {
+        if !ranking.suggested.contains(&id) {
+            if let Some(c) = ranking.candidates.iter_mut().find(|c| c.effect == id) {
+                c.significant = true;
+            }
+            ranking.suggested.push(id);
+        }
+    }
+}
+
+/// The screen: what the network absorbed put back into the cross-fitted
+/// residual (each half's network part on its test rows), and the candidate
+/// columns; both with the physics the model states and the network's
+/// level-only reach projected out over the analysed rows — a constant per
+/// half, the model's effects, and a quadratic in the window rms of the
+/// operating signals (vibration level changes a DTG's drift without any
+/// instantaneous g-term). What remains correlating with a candidate is a
+/// term the network read through the window's axes instead of naming.
+fn screen<S: Sensor>(
+    prepared: &Prepared<S>,
+    model: &ChannelModelOf<S>,
+    cross: &CrossFit<'_, S>,
+    y: &[f64],
+    all: &Mat<f64>,
+) -> Result<(Vec<f64>, Mat<f64>), SysidError> {
+    let rows = cross.rows();
+    let e = cross.residual(y);
+    let net = cross.network_part(prepared)?;
+    let t: Vec<f64> = e.iter().zip(&net).map(|(a, b)| a + b).collect();
+    let length = prepared.preprocess().window.length();
+    let stats = crate::operating::range::statistics(prepared, length, &rows)?;
+    let k = prepared.sensor().operating_signals().len();
+    let z = prepared.effect_matrix(cross.channel, model.effects())?;
+    let p = z.ncols();
+    let mut cols: Vec<Vec<f64>> = cross
+        .halves
+        .iter()
+        .map(|h| {
+            let mut on = vec![false; prepared.rows()];
+            h.test_rows.iter().for_each(|&r| on[r] = true);
+            rows.iter().map(|&r| f64::from(u8::from(on[r]))).collect()
+        })
+        .collect();
+    for j in 0..p {
+        cols.push(rows.iter().map(|&r| z[(r, j)]).collect());
+    }
+    for a in 0..k {
+        cols.push(stats.iter().map(|s| s[k + a]).collect());
+    }
+    for a in 0..k {
+        for b in a..k {
+            cols.push(stats.iter().map(|s| s[k + a] * s[k + b]).collect());
+        }
+    }
+    let basis = Mat::from_fn(rows.len(), cols.len(), |i, j| cols[j][i]);
+    let m = all.ncols();
+    let targets = Mat::from_fn(rows.len(), m + 1, |i, j| match j {
+        0 => t[i],
+        j => all[(rows[i], j - 1)],
+    });
+    let r = crate::inference::residualise(
+        basis.as_ref(),
+        targets.as_ref(),
+        basis.as_ref(),
+        targets.as_ref(),
+        cols.len(),
+        0.0,
+    )
+    .map_err(|e| SysidError::Fit {
+        channel: model.channel().to_string(),
+        source: e.into(),
+    })?;
+    let t = (0..rows.len()).map(|i| r[(i, 0)]).collect();
+    Ok((t, Mat::from_fn(rows.len(), m, |i, j| r[(i, j + 1)])))
 }

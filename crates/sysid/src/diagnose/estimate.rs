@@ -12,7 +12,7 @@
 //! effects and every suggestion of the channel in the order the refit adds
 //! them: the diagnosis and the refit's model then say the same.
 
-use super::Ranking;
+use super::rank::Ranking;
 use crate::error::SysidError;
 use crate::model::ChannelModelOf;
 use crate::prepared::Prepared;

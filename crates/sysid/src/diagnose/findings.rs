@@ -1,6 +1,7 @@
 //! What a channel's diagnosis says in words, most actionable first.
 
-use super::{Band, Ranking, Regime, Segment};
+use super::locate::{Band, Regime, Segment};
+use super::rank::Ranking;
 use crate::sensor::Wording;
 
 /// A p-value as text: below double precision's resolution of 1 − cdf it

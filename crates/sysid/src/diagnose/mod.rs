@@ -4,20 +4,24 @@
 //! Everything is computed on the validation rows of the model's own split,
 //! because a residual on training rows has already been fitted away.
 //!
-//! The diagnosis only reads predictions: the model's, and its mirror's (the
-//! same recipe trained on the other rows), which the loop layer fits and
-//! hands in ([`crate::fit::mirror`], [`crate::explain::diagnose_records`]);
-//! so does a trial with a longer window ([`Diagnosis::note_window_trial`]).
+//! The diagnosis fits no model: it reads predictions, the model's and its
+//! mirror's (the same recipe trained on the other rows), which the loop
+//! layer fits and hands in ([`crate::fit::mirror`],
+//! [`crate::explain::diagnose_records`]); so does a trial with a longer
+//! window ([`Diagnosis::note_window_trial`]). The one estimate it makes
+//! with the fit layer is a suggestion's coefficient, stated by the fit's
+//! own cross-fitted estimator so that it is what the refit stores
+//! (`estimate`).
 //! What is physical in it (the candidate effects, what separates two of
 //! them, the words of a finding) is the sensor's.
 
 mod candidates;
 mod checks;
 mod context;
-mod crossfit;
 mod estimate;
 mod findings;
 mod locate;
+mod model_and_mirror;
 mod rank;
 mod records;
 
@@ -33,7 +37,7 @@ use crate::prepared::Prepared;
 use crate::residuals::CorrelationCheck;
 use crate::sensor::{Effect, Sensor};
 use context::Context;
-use crossfit::{CrossFit, Half};
+use model_and_mirror::{CrossFit, Half};
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -58,12 +58,12 @@ pub struct Candidate<A = String> {
     pub alternatives: Vec<String>,
     /// For a suggestion with alternatives: the combination this record
     /// identifies and the run that would split the group.
-    pub separation: Option<super::Separation<A>>,
+    pub separation: Option<crate::sensor::Separation<A>>,
     /// For a suggestion diagnosed on several records: the candidates it is
     /// collinear with on some record alone, and the records that told them
     /// apart (absent for one record).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub record_separations: Vec<super::RecordSeparation>,
+    pub record_separations: Vec<super::records::RecordSeparation>,
     /// For a suggestion: what it rests on that its p-value does not say
     /// (the sensor's words, e.g. a regressor that sees a small part of the
     /// vibration, or records of one vibration axis only); absent when none.

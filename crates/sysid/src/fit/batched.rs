@@ -14,7 +14,7 @@
 //! outputs check it): unlike [`super::shared`], nothing is chosen jointly.
 
 use super::channel::{ChannelFit, check_effects, fit_channel, gather, name};
-use super::memo::{self, Records};
+use super::memo::channel_fits::{self as memo, Records};
 use super::network::{Chosen, best_of, fit_chosen, params, size_ladder};
 use super::partial::{Rows, Theta, adjusted, theta_of};
 use crate::error::SysidError;
@@ -44,7 +44,7 @@ struct Pending<S: Sensor> {
     theta: Option<Theta>,
 }
 
-/// Every channel of `recipe` fitted as [`memo::fit_channel_remembered`]
+/// Every channel of `recipe` fitted as [`memo::recall`]
 /// fits it, on the windows `x_train` (rows `train` of `x`), effects'
 /// coefficients on `theta_rows` of `x_theta` (or `known(k)`), in the
 /// sensor's channel order.
@@ -129,14 +129,25 @@ pub(super) fn fit_channels<'a, S: Sensor>(
             y.as_mut().col_mut(c).copy_from(p.y.col(0));
         }
     }
-    let mut networks = fit_networks(
+    let networks = fit_networks(
         settings,
         x_train.as_ref(),
         y.as_ref(),
         leakage_gap(prepared),
-    )
-    .into_iter();
-    let mut out = Vec::with_capacity(n_channels);
+    );
+    finish(prepared, before, networks)
+}
+
+/// Each channel's fit: the one remembered or fitted alone, or its pending
+/// effects with the network fitted for it (`networks`, one per pending
+/// channel in order), each remembered.
+fn finish<S: Sensor>(
+    prepared: &Prepared<S>,
+    before: Vec<Before<S>>,
+    networks: Vec<Result<rbf::RbfModel, rbf::RbfError>>,
+) -> Result<Vec<ChannelFit<S>>, SysidError> {
+    let mut networks = networks.into_iter();
+    let mut out = Vec::with_capacity(before.len());
     for (k, b) in before.into_iter().enumerate() {
         out.push(match b {
             Before::Done(f) => *f,

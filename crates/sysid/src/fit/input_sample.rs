@@ -16,9 +16,10 @@
 //! fitted so (one selection instead of one per channel halves the fit's
 //! time, and the onboard step computes the kernels once).
 
-use super::choice::{PARALLEL_INPUTS_MAX_ROWS, fit_choosing};
-use crate::choice_report::{InputSample, SharedCentresTrial};
+use super::fixed::Coef;
+use super::input_choice::{PARALLEL_INPUTS_MAX_ROWS, fit_choosing};
 use crate::error::SysidError;
+use crate::model::choice_report::{InputSample, SharedCentresTrial};
 use crate::prepared::Prepared;
 use crate::recipe::{ModelChoice, Recipe};
 use crate::sensor::Sensor;
@@ -61,7 +62,7 @@ pub(super) fn choose_input<S: Sensor>(
         recipe,
         choice,
         (&train, &val),
-        super::Coef::AllRows,
+        Coef::AllRows,
         &|_| {},
     )?;
     let Some(report) = model.choice() else {
@@ -82,7 +83,7 @@ pub(super) fn choose_input<S: Sensor>(
                 &shared,
                 &narrowed,
                 (&train, &val),
-                super::Coef::AllRows,
+                Coef::AllRows,
                 &|_| {},
             )?;
             one.choice().map(|r| {

@@ -15,53 +15,36 @@
 
 mod batched;
 mod channel;
-mod choice;
-mod digest;
+mod fixed;
+mod input_choice;
 mod input_sample;
-mod judged;
 mod keep;
-mod keep_bi;
 mod memo;
 mod network;
 mod partial;
+mod progress;
 mod shared;
-mod theta_memo;
 
 use crate::error::SysidError;
-use crate::model::{ChannelModelOf, Model, ModelParts};
-use crate::operating::OperatingPoints;
-use crate::operating::range::TrainingRange;
+use crate::model::Model;
 use crate::prepared::Prepared;
 use crate::recipe::{FitOptions, Recipe};
 use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::split::{by_record_rows, split_rows};
-use channel::{
-    ChannelFit, gather, inner_folds_fit, predictions, refit_weights, scored, windows_vary,
-};
-use rayon::prelude::*;
+use fixed::{Coef, fit_rows_fixed};
 use serde::Serialize;
+use std::borrow::Cow;
 
-pub use choice::{
+pub use input_choice::{
     ADEV_CONFIDENCE, Candidate, ChoiceReport, InputSample, MIN_ADEV_ROWS, ModelChoice,
     SMALLER_INPUT_TOLERANCE, SharedCentresTrial,
 };
 pub use input_sample::SHARED_CENTRES_TOLERANCE;
-pub(crate) use keep::fixed_report;
+pub use network::{MAX_SELECTION_ROWS, selection_stride};
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
-
-/// Which stage of a fit is running, for progress display.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FitStage<C> {
-    /// Reading and pre-processing the records.
-    Preparing,
-    /// One channel's cross-validation and fit finished.
-    ChannelDone(C),
-}
-
-/// A fit's progress callback.
-pub type Progress<'a, C> = &'a (dyn Fn(FitStage<C>) + Sync);
+pub use progress::{FitStage, Progress};
 
 /// Fits every channel of `sensor` on one raw record.
 ///
@@ -89,7 +72,9 @@ pub fn fit<S: Sensor>(
 }
 
 /// [`fit`] on records already prepared (with `options.recipe.preprocess`;
-/// the sensor, with its calibration, comes from `prepared`).
+/// the sensor, with its calibration, comes from `prepared`, and so do the
+/// window's signals when the recipe left them to the records: the model
+/// then reports their choice).
 pub fn fit_prepared<S: Sensor>(
     prepared: &Prepared<S>,
     options: &FitOptions<S::Effect>,
@@ -102,13 +87,30 @@ pub fn fit_prepared<S: Sensor>(
     };
     let mut model = fit_rows(
         prepared,
-        &options.recipe,
+        &as_prepared(&options.recipe, prepared),
         (&train, &val),
         Coef::AllRows,
         progress,
     )?;
     model.set_validated_on(options.validate_on.clone());
+    if let Some(choice) = prepared.window_choice() {
+        model = model.with_window_signals(choice.clone());
+    }
     Ok(model)
+}
+
+/// `recipe` with the window's signals `prepared` chose, where it left them
+/// to the records ([`crate::window::WindowSignals::Auto`]).
+fn as_prepared<'r, E: Clone>(
+    recipe: &'r Recipe<E>,
+    prepared_with: &Prepared<impl Sensor>,
+) -> Cow<'r, Recipe<E>> {
+    if !recipe.preprocess.window.is_auto() {
+        return Cow::Borrowed(recipe);
+    }
+    let mut named = recipe.clone();
+    named.preprocess.window = prepared_with.preprocess().window.clone();
+    Cow::Owned(named)
 }
 
 /// [`fit`] on several records, each prepared on its own (filters and
@@ -197,7 +199,7 @@ pub fn refit_with_window<S: Sensor>(
 ) -> Result<Model<S>, SysidError> {
     let mut recipe = model.recipe();
     let signals = recipe.preprocess.window.signals().to_vec();
-    recipe.preprocess.window = crate::WindowSpec::new(signals, length)?;
+    recipe.preprocess.window = crate::window::WindowSpec::new(signals, length)?;
     let prepared = Prepared::new_many(model.sensor(), records, &recipe.preprocess)?;
     let (train, val) = split_rows(&prepared, recipe.split)?;
     let mut trial = fit_rows(&prepared, &recipe, (&train, &val), Coef::AllRows, &|_| {})?;
@@ -265,7 +267,7 @@ pub fn leave_one_record_out<S: Sensor>(
         // not even the effects' coefficients.
         let m = fit_rows(
             prepared,
-            &options.recipe,
+            &as_prepared(&options.recipe, prepared),
             (&train, &val),
             Coef::TrainingRows,
             &|_| {},
@@ -284,39 +286,6 @@ pub fn leave_one_record_out<S: Sensor>(
     Ok(out)
 }
 
-/// Which rows estimate the effects' coefficients.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Coef<'a> {
-    /// Training and validation rows of every record given: the estimate
-    /// the diagnosis makes (cross-fitted partialling over the whole
-    /// record), so the model stores one estimate of each coefficient, not a
-    /// noisier one from half the rows. A few coefficients estimated on the
-    /// validation rows barely flatter the validation rms; the network, which
-    /// could, still sees only the training rows.
-    AllRows,
-    /// Training rows only: where the validation rows judge a transfer
-    /// (leaving a record out).
-    TrainingRows,
-    /// Each channel's coefficients already estimated on every row (a
-    /// model's, for its mirror), in the channel order; a channel without
-    /// them (no effects, or none estimated) is estimated as with `AllRows`.
-    Stored(&'a [Vec<crate::inference::Coefficient>]),
-}
-
-impl Coef<'_> {
-    /// Channel `channel`'s stored coefficients, when there is one for each
-    /// of its `n_effects` effects.
-    fn stored(&self, channel: usize, n_effects: usize) -> Option<&[crate::inference::Coefficient]> {
-        match self {
-            Coef::Stored(all) => all
-                .get(channel)
-                .filter(|c| c.len() == n_effects && n_effects > 0)
-                .map(Vec::as_slice),
-            _ => None,
-        }
-    }
-}
-
 /// A recipe fitted on explicit training and validation rows of data
 /// prepared with its pre-processing (the mirror trains on a model's
 /// validation rows; leaving a record out trains on the others): with its
@@ -329,11 +298,11 @@ fn fit_rows<S: Sensor>(
     progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
     let model = match &recipe.settings.choice {
-        Some(c) => choice::fit_choosing(prepared, recipe, c, (train, val), coef, progress)?,
+        Some(c) => input_choice::fit_choosing(prepared, recipe, c, (train, val), coef, progress)?,
         None => {
             let mut model = fit_rows_fixed(prepared, recipe, (train, val), coef, progress)?;
             if recipe.preprocess.smoother.is_some() {
-                choice::rescore(&mut model, prepared, train, val)?;
+                input_choice::rescore(&mut model, prepared, train, val)?;
             }
             model
         }
@@ -341,146 +310,41 @@ fn fit_rows<S: Sensor>(
     keep::apply(model, prepared, train, val)
 }
 
-/// [`fit_rows`] with the recipe's input and without rescoring for a smoother.
-fn fit_rows_fixed<S: Sensor>(
-    prepared: &Prepared<S>,
-    recipe: &Recipe<S::Effect>,
-    rows: (&[usize], &[usize]),
-    coef: Coef<'_>,
-    progress: Progress<'_, S::Channel>,
-) -> Result<Model<S>, SysidError> {
-    fit_rows_predicting(prepared, recipe, rows, coef, progress).map(|(model, _)| model)
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::example::{Line, line_record};
 
-/// [`fit_rows_fixed`], with the model's unsmoothed predictions on every row
-/// of `prepared` (per channel), which scored it.
-fn fit_rows_predicting<S: Sensor>(
-    prepared: &Prepared<S>,
-    recipe: &Recipe<S::Effect>,
-    (train, val): (&[usize], &[usize]),
-    coef: Coef<'_>,
-    progress: Progress<'_, S::Channel>,
-) -> Result<(Model<S>, Vec<Vec<f64>>), SysidError> {
-    debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
-    let settings = &recipe.settings;
-    let channels = prepared.sensor().channels();
-    let (train, val) = (train.to_vec(), val.to_vec());
-    // A view of the prepared windows, not a copy: only the rows a fit works
-    // on are gathered (all training rows, or the selection subsample).
-    let x = prepared.window_view();
-    windows_vary(x, &train, recipe.preprocess.window.signals())?;
-    let stride = selection_stride(train.len());
-    let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
-    inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
-    let fit_on = if stride > 1 { &sel } else { &train };
-    let theta_rows: Vec<usize> = match coef {
-        Coef::AllRows | Coef::Stored(_) => partial::theta_rows(&train, &val),
-        Coef::TrainingRows => fit_on.clone(),
-    };
-    // The effects are partialled out with the raw windows whatever the
-    // input (one estimate of each coefficient, whichever input the choice
-    // takes); they are prepared only when some channel cross-fits.
-    let cross_fits = (0..channels.len()).any(|k| {
-        let n = recipe.effects_of(k).len();
-        n > 0 && coef.stored(k, n).is_none()
-    });
-    let raw = match cross_fits {
-        true => partial::raw_windows(prepared)?,
-        false => None,
-    };
-    let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
-    let x_fit = gather(x, fit_on);
-    let remembered = (!settings.shared_centres)
-        .then(|| memo::Records::of(prepared, (x, x_theta)))
-        .flatten();
-    let known = |k: usize| coef.stored(k, recipe.effects_of(k).len());
-    let rows = (fit_on.as_slice(), theta_rows.as_slice());
-    let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
-        true => shared::fit_channels_shared(prepared, (x, x_theta), &x_fit, rows, recipe, &known)?,
-        // Each channel's own network, their candidate columns computed once.
-        false => batched::fit_channels(
-            remembered,
-            prepared,
-            (x, x_theta),
-            &x_fit,
-            rows,
-            recipe,
-            &known,
-        )?,
-    };
-    channels
-        .iter()
-        .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
-    drop(x_fit);
-    // On a subsample, the weights are solved again on every training row,
-    // over row blocks (memory independent of the number of rows), before
-    // the channel is scored: for channels that share centres, in one solve.
-    let fits = match (stride, settings.shared_centres) {
-        (1, _) => fits,
-        (_, true) => shared::refit_weights_shared(prepared, x, &train, fits, settings)?,
-        (_, false) => fits
-            .into_par_iter()
-            .map(|f| refit_weights(prepared, x, &train, f, settings))
-            .collect::<Result<_, _>>()?,
-    };
-    let yhat = predictions(&fits, x);
-    let fitted: Vec<ChannelModelOf<S>> = fits
-        .into_iter()
-        .zip(&yhat)
-        .map(|(f, y)| scored(prepared, &train, &val, f, y))
-        .collect::<Result<_, _>>()?;
-    let length = recipe.preprocess.window.length();
-    let mut operating_points = OperatingPoints::from_training(prepared, length, &train, &val)?;
-    // The range's tolerance is measured on every row that did not train
-    // (validation and the gaps): the records fitted on stay inside, to the bit.
-    let mut trained = vec![false; prepared.rows()];
-    train.iter().for_each(|&r| trained[r] = true);
-    let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
-    // The network at rest: where a record that starts outside holds it.
-    let rest = crate::operating::fade::rest_rows(prepared, length, &train)?;
-    let means = crate::operating::fade::network_means::<S>(&fitted, x, &rest);
-    operating_points.range = Some(TrainingRange::from_training(
-        prepared, length, &train, &others, means,
-    )?);
-    let operating_points = Some(operating_points);
-    let model = Model::from_parts(ModelParts {
-        sensor: prepared.sensor().clone(),
-        preprocess: recipe.preprocess.clone(),
-        dt_s: prepared.calibrated().dt(),
-        split: recipe.split,
-        channels: fitted,
-        settings: settings.clone(),
-        records: Vec::new(),
-        validated_on: None,
-        operating_points,
-        choice: None,
-    })
-    .map_err(|reason| SysidError::InvalidOption {
-        name: "fitted model",
-        value: reason,
-        reason: "a fit gave an inconsistent model (a bug: please report it)",
-    })?;
-    Ok((model, yhat))
-}
+    /// The default recipe names no signal: the records choose among the
+    /// sensor's operating signals when they are prepared, the model's
+    /// window names what they chose, and its report says why; a window
+    /// named by the recipe is taken as it is, with nothing to report.
+    #[test]
+    fn the_default_window_is_chosen_from_the_records() {
+        let rec = line_record(2000, 1.0, 3);
+        let mut options = FitOptions::<crate::example::Slope>::new(1);
+        assert!(options.recipe.preprocess.window.is_auto());
+        options.recipe.preprocess.filter = None;
+        options.recipe.settings.max_centres = 5;
+        let (model, prepared) =
+            fit_records(&Line, &[("r".into(), &rec)], &options, &|_| {}).unwrap();
+        assert_eq!(model.preprocess().window.signals(), ["u"]);
+        assert_eq!(model.preprocess().window.length(), 50);
+        assert_eq!(prepared.preprocess().window, model.preprocess().window);
+        let chosen = model.choice().and_then(|c| c.window_signals.as_ref());
+        assert_eq!(chosen.map(|c| c.taken.clone()), Some(vec!["u".to_string()]));
+        // The model's recipe names the signals: a refit chooses nothing again.
+        assert!(!model.recipe().preprocess.window.is_auto());
 
-/// Training windows above which cross-validation and centre selection run on
-/// every `selection_stride`-th of them; the weights are still solved on all.
-/// Their cost is rows × candidates per fold and channel: 1.6 GB a channel at
-/// 500,000 rows, where a 1M-row record needed 6 GB and over 5 minutes. On
-/// the 1M-sample record of docs/performance.md, 25,000 selection rows
-/// instead of 50,000 took the fit from 52 s to 33 s with every channel's
-/// validation rms within 1% (0.6% lower to 0.1% higher); 10,000 took 22 s
-/// but raised Z1's by 1.5%.
-pub const MAX_SELECTION_ROWS: usize = 25_000;
-
-/// The stride of the training windows that choose centres and width: 1 up to
-/// [`MAX_SELECTION_ROWS`]. A stride keeps time order, so the blocked folds'
-/// leakage gap of g rows spans g·stride samples, never fewer than needed.
-///
-/// ```
-/// assert_eq!(sysid::fit::selection_stride(25_000), 1);
-/// assert_eq!(sysid::fit::selection_stride(500_000), 20);
-/// ```
-pub fn selection_stride(n_train: usize) -> usize {
-    n_train.div_ceil(MAX_SELECTION_ROWS).max(1)
+        options.recipe.preprocess.window =
+            crate::window::WindowSpec::new(vec!["u".into()], 50).unwrap();
+        let (named, _) = fit_records(&Line, &[("r".into(), &rec)], &options, &|_| {}).unwrap();
+        assert!(
+            named
+                .choice()
+                .and_then(|c| c.window_signals.as_ref())
+                .is_none()
+        );
+        assert_eq!(named.channel(0).scores(), model.channel(0).scores());
+    }
 }

@@ -62,9 +62,9 @@ fn combine_splits(fits: &[HacFit]) -> Option<HacFit> {
 /// The rows the effects' coefficients are estimated on when every row
 /// counts (the fit's default, and the diagnosis's statement of a
 /// suggestion): the training and validation rows in time order, at the
-/// stride the network's selection uses ([`super::selection_stride`]).
+/// stride the network's selection uses ([`super::network::selection_stride`]).
 pub(crate) fn theta_rows(train: &[usize], val: &[usize]) -> Vec<usize> {
-    let stride = super::selection_stride(train.len());
+    let stride = super::network::selection_stride(train.len());
     let mut all: Vec<usize> = train.iter().chain(val).copied().collect();
     all.sort_unstable();
     all.dedup();
@@ -238,7 +238,7 @@ pub(crate) fn cross_fitted_theta(
 ) -> Result<Option<HacFit>, rbf::RbfError> {
     // Asked again with the same rows (the refit of a suggestion the
     // diagnosis stated, once per input tried): the estimate made before.
-    super::theta_memo::remembered((x_theta, z, y), theta_rows, settings, gap, || {
+    super::memo::estimates::remembered((x_theta, z, y), theta_rows, settings, gap, || {
         estimate_theta(x_theta, z, y, theta_rows, settings, gap)
     })
 }

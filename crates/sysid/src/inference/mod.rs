@@ -14,10 +14,10 @@
 //! the network can predict of Z from the window is removed from both sides,
 //! and what it merely memorised on its own block is not.
 
-mod crossfit;
+mod blocks;
 mod hac;
 
-pub use crossfit::{Blocks, residualise};
+pub use blocks::{Blocks, residualise};
 pub use hac::{HacFit, andrews_bandwidth, hac_regression};
 
 use serde::{Deserialize, Serialize};

@@ -1,4 +1,6 @@
-//! The causal fade of the network part outside the training range.
+//! The causal fade of the network part outside the training range: its
+//! weights and hold, sample by sample. A model's prediction faded is
+//! [`crate::Model::predict_faded`].
 //!
 //! A network knows only the conditions it was trained on; beyond them its
 //! output is extrapolation, while the physical effects (bias and named
@@ -45,12 +47,10 @@
 //! onboard evaluator and the exported C compute the same, in the same order.
 
 pub use super::fade_settings::{FADE_WIDTH, FadeSettings};
-use super::range::statistics;
+use super::range::{TrainingRange, statistics};
 use crate::error::SysidError;
-use crate::model::Model;
 use crate::prepared::Prepared;
 use crate::sensor::Sensor;
-use faer::Mat;
 
 /// The weight of a window at distance `d` outside a range of tolerance
 /// `tolerance`, before smoothing: 1 inside, a smoothstep down to 0 at
@@ -115,20 +115,17 @@ pub struct Weights {
     pub weight: Vec<f64>,
 }
 
-/// The fade weights of a model on prepared data (each record of several
-/// restarts the smoother); `None` for a model without a training range
-/// (fitted by an older version: it never fades).
+/// The fade weights of `range` (a model's, fitted at `dt_s`) on prepared
+/// data: each record of several restarts the smoother. The range must fit
+/// the sensor ([`TrainingRange::check`]).
 pub fn weights<S: Sensor>(
-    model: &Model<S>,
+    range: &TrainingRange,
     prepared: &Prepared<S>,
-) -> Result<Option<Weights>, SysidError> {
-    let Some(range) = model.operating_points().and_then(|o| o.range.as_ref()) else {
-        return Ok(None);
-    };
-    range.check(&model.sensor().operating_signals(), model.channels().len())?;
+    dt_s: f64,
+) -> Result<Weights, SysidError> {
     let rows: Vec<usize> = (0..prepared.rows()).collect();
     let distance = range.distances(&statistics(prepared, range.window, &rows)?);
-    let alpha = range.fade.alpha(model.dt_s());
+    let alpha = range.fade.alpha(dt_s);
     let mut weight = Vec::with_capacity(distance.len());
     for (_, part) in prepared.record_rows() {
         let mut s = Smoother::new(alpha);
@@ -138,114 +135,7 @@ pub fn weights<S: Sensor>(
                 .map(|&d| s.step(raw_weight(d, range.tolerance, range.fade.width))),
         );
     }
-    Ok(Some(Weights { distance, weight }))
-}
-
-/// Each channel's network part on every row: the RBF sum without bias and
-/// effects, in the target's unit.
-pub fn network_parts<S: Sensor>(model: &Model<S>, windows: &Mat<f64>) -> Vec<Vec<f64>> {
-    model
-        .channels()
-        .iter()
-        .map(|c| {
-            let z = Mat::<f64>::zeros(windows.nrows(), c.rbf().n_linear());
-            let b = c.bias();
-            c.predict_with(windows, &z)
-                .into_iter()
-                .map(|v| v - b)
-                .collect()
-        })
-        .collect()
-}
-
-/// A model's prediction with its network part faded, and without.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Faded {
-    /// What compensation subtracts: the network part faded outside the range.
-    pub predicted: Vec<Vec<f64>>,
-    /// The model as fitted, not faded ([`Model::predict`]).
-    pub unfaded: Vec<Vec<f64>>,
-    /// The weights (`None` for a model without a training range; then
-    /// `predicted` is `unfaded`).
-    pub weights: Option<Weights>,
-}
-
-/// Predicts every channel on every row, with the network part faded outside
-/// the training range: what `compensate` and `check` subtract.
-///
-/// ```
-/// # use sysid::example::{Line, line_record};
-/// let mut options = sysid::FitOptions::new(1);
-/// options.recipe.preprocess = Line::preprocess();
-/// options.recipe.settings.max_centres = 5;
-/// let model = sysid::fit(&Line, &line_record(3000, 2.0, 1), &options, &|_| {})?;
-/// let own = model.prepare(&line_record(3000, 2.0, 1))?;
-/// let f = sysid::operating::fade::predict_faded(&model, &own)?;
-/// assert_eq!(f.predicted, f.unfaded); // its own record: inside, to the bit
-/// # Ok::<(), sysid::SysidError>(())
-/// ```
-pub fn predict_faded<S: Sensor>(
-    model: &Model<S>,
-    prepared: &Prepared<S>,
-) -> Result<Faded, SysidError> {
-    let unfaded = model.predict(prepared)?;
-    let weights = weights(model, prepared)?;
-    let predicted = match (
-        &weights,
-        model.operating_points().and_then(|o| o.range.as_ref()),
-    ) {
-        (Some(w), Some(range)) if w.weight.iter().any(|&v| v < 1.0) => {
-            let parts: Vec<std::ops::Range<usize>> =
-                prepared.record_rows().into_iter().map(|(_, r)| r).collect();
-            let net = network_parts(model, &prepared.window_matrix());
-            let alpha = range.fade.alpha(model.dt_s());
-            let held: Vec<Vec<f64>> = net
-                .iter()
-                .zip(&range.network_mean)
-                .map(|(r, &c)| {
-                    parts
-                        .iter()
-                        .flat_map(|rows| {
-                            held_series(&r[rows.clone()], c, &w.weight[rows.clone()], alpha)
-                        })
-                        .collect()
-                })
-                .collect();
-            // The fade holds the network's own output, before the prediction
-            // smoother: a zero-phase smoother run over the unfaded network
-            // would carry what it extrapolates outside the range into the
-            // held value (onboard and the C export fade first too).
-            let smooth = |v: &[f64]| -> Result<Vec<f64>, SysidError> {
-                match &model.preprocess().smoother {
-                    Some(s) => crate::smoother::smooth_by_record(
-                        s,
-                        v,
-                        &parts,
-                        model.dt_s(),
-                        model.preprocess().causal,
-                    ),
-                    None => Ok(v.to_vec()),
-                }
-            };
-            unfaded
-                .iter()
-                .zip(net.iter().zip(&held))
-                .map(|(p, (r, h))| {
-                    let (r, h) = (smooth(r)?, smooth(h)?);
-                    Ok(p.iter()
-                        .zip(r.iter().zip(&h))
-                        .map(|(p, (r, h))| p - (r - h))
-                        .collect())
-                })
-                .collect::<Result<Vec<Vec<f64>>, SysidError>>()?
-        }
-        _ => unfaded.clone(),
-    };
-    Ok(Faded {
-        predicted,
-        unfaded,
-        weights,
-    })
+    Ok(Weights { distance, weight })
 }
 
 /// One record's prediction `p` with its network part `r` faded by the
@@ -329,27 +219,6 @@ pub fn rest_rows<S: Sensor>(
     let mut rest: Vec<usize> = order.into_iter().take(n).map(|i| rows[i]).collect();
     rest.sort_unstable();
     Ok(rest)
-}
-
-/// The network means over rows `rows` of every channel, for
-/// [`TrainingRange::network_mean`](super::range::TrainingRange::network_mean) (at most 20,000 rows, evenly strided).
-pub fn network_means<S: Sensor>(
-    model_channels: &[crate::model::ChannelModelOf<S>],
-    windows: faer::MatRef<'_, f64>,
-    rows: &[usize],
-) -> Vec<f64> {
-    let step = rows.len().div_ceil(20_000).max(1);
-    let rows: Vec<usize> = rows.iter().step_by(step).copied().collect();
-    let x = Mat::from_fn(rows.len(), windows.ncols(), |i, j| windows[(rows[i], j)]);
-    model_channels
-        .iter()
-        .map(|c| {
-            let z = Mat::<f64>::zeros(x.nrows(), c.rbf().n_linear());
-            let b = c.bias();
-            let v = c.predict_with(&x, &z);
-            v.iter().map(|v| v - b).sum::<f64>() / v.len().max(1) as f64
-        })
-        .collect()
 }
 
 #[cfg(test)]

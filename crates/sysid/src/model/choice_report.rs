@@ -1,9 +1,11 @@
-//! What a fit chose among its candidate inputs and smoothers, and why: the
-//! report a model stores ([`crate::fit`] makes it, the model keeps it).
+//! What a fit chose, and why: the window's signals, the network input and
+//! prediction smoother among their candidates, one centre selection or
+//! several, and how far each network was kept. The report a model stores
+//! ([`crate::fit`] makes it, the model keeps it).
 
 use crate::input::ModelInput;
 use crate::smoother::Smoother;
-use crate::window_signals::WindowSignalsChoice;
+use crate::window::signal_choice::WindowSignalsChoice;
 use serde::{Deserialize, Serialize};
 
 /// One candidate of a choice, as judged on the validation rows.
@@ -89,7 +91,7 @@ pub struct ChoiceReport {
     pub bias_instability_raised: Vec<String>,
     /// The window's signals chosen from the training records, with each
     /// signal's dynamic rms there (`--window-signals auto`,
-    /// [`crate::window_signals`]); absent when the recipe named them.
+    /// [`crate::window::signal_choice`]); absent when the recipe named them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub window_signals: Option<WindowSignalsChoice>,
 }

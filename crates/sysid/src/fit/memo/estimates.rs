@@ -36,7 +36,7 @@ static ESTIMATES: Mutex<VecDeque<(Digest, Option<HacFit>)>> = Mutex::new(VecDequ
 /// Two threads asking for the same estimate at once may both compute it (a
 /// wait there could deadlock a rayon worker that holds the first
 /// computation's work); both get the same numbers.
-pub(super) fn remembered<E>(
+pub(in crate::fit) fn remembered<E>(
     (x_theta, z, y): (MatRef<'_, f64>, &Mat<f64>, &[f64]),
     theta_rows: &[usize],
     settings: &FitSettings,
@@ -66,7 +66,7 @@ fn lock() -> std::sync::MutexGuard<'static, VecDeque<(Digest, Option<HacFit>)>> 
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-/// Everything [`super::cross_fitted_theta`] reads: the rows `theta_rows` of
+/// Everything [`crate::fit::partial::cross_fitted_theta`] reads: the rows `theta_rows` of
 /// the windows, effect columns and target (the cuts' blocks are among
 /// them), the rows' indices (the cuts and the gap read them), the settings
 /// and the gap.

@@ -1,5 +1,5 @@
 //! 128-bit digests of the arrays a fit is a function of, for the fits
-//! remembered within a process ([`super::memo`], [`super::theta_memo`]):
+//! remembered within a process ([`super::channel_fits`], [`super::estimates`]):
 //! a key holds digests, not the arrays.
 
 use faer::MatRef;

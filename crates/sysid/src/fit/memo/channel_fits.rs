@@ -12,9 +12,9 @@
 //! more than [`MAX_ROWS`] rows are not remembered: hashing their windows
 //! would cost time and nothing there is refitted.
 
-use super::channel::ChannelFit;
 use super::digest::{Digest, Digester};
 use crate::error::SysidError;
+use crate::fit::channel::ChannelFit;
 use crate::inference::Coefficient;
 use crate::prepared::Prepared;
 use crate::recipe::FitSettings;
@@ -43,7 +43,7 @@ const CAPACITY: usize = 96;
 /// without effects, keyed with them, were fitted again (2.5 s of 22 s of
 /// network fits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Records {
+pub(in crate::fit) struct Records {
     windows: Digest,
     with_theta: Digest,
 }
@@ -52,7 +52,7 @@ impl Records {
     /// `None` above [`MAX_ROWS`] rows.
     /// `x_theta` is what the effects are partialled out with (the raw
     /// windows, or `x` itself when no channel cross-fits).
-    pub(super) fn of<S: Sensor>(
+    pub(in crate::fit) fn of<S: Sensor>(
         prepared: &Prepared<S>,
         (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     ) -> Option<Self> {
@@ -89,7 +89,7 @@ impl Records {
 
 /// One channel fit's key: [`Records`] and everything of the channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Key(Digest, Digest);
+pub(in crate::fit) struct Key(Digest, Digest);
 
 struct Entry {
     key: Key,
@@ -102,9 +102,9 @@ struct Entry {
 static FITS: Mutex<VecDeque<Entry>> = Mutex::new(VecDeque::new());
 
 /// A channel fit's key (none when `records` is none) and the fit
-/// remembered under it, if any: a fit asked again ([`super::batched`]) is
+/// remembered under it, if any: a fit asked again ([`crate::fit::batched`]) is
 /// taken from here instead of computed.
-pub(super) fn recall<S: Sensor>(
+pub(in crate::fit) fn recall<S: Sensor>(
     records: Option<Records>,
     prepared: &Prepared<S>,
     rows: (&[usize], &[usize], Option<&[Coefficient]>),
@@ -131,7 +131,7 @@ pub(super) fn recall<S: Sensor>(
 }
 
 /// Remembers a channel fit under `key` (none: not remembered).
-pub(super) fn remember<S: Sensor>(key: Option<Key>, f: &ChannelFit<S>) {
+pub(in crate::fit) fn remember<S: Sensor>(key: Option<Key>, f: &ChannelFit<S>) {
     let Some(key) = key else {
         return;
     };

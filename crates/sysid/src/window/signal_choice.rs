@@ -1,19 +1,21 @@
 //! Which of a sensor's vibration-input signals the windows read, chosen
-//! from the training records (`--window-signals auto`).
+//! from the training records ([`super::WindowSignals::Auto`], the default;
+//! `--window-signals auto`). [`crate::Prepared`] makes the choice on the
+//! calibrated records it prepares ([`crate::choose_window_signals`]).
 //!
 //! A network can only follow what its window sees. The paper windowed the
 //! thrust axis alone, which is right for a z shaker but blind on an x or y
 //! run: a model fitted on the three runs of a campaign with `az` alone
 //! partials its effects out against a window that does not see the x and y
 //! vibration, and spreads Y1 by 3% on the x run (docs/campaign.md §6). So
-//! every operating signal ([`Sensor::operating_signals`]: an inertial
+//! every operating signal ([`crate::Sensor::operating_signals`]: an inertial
 //! unit's accelerometer axes) that vibrates significantly in some training
 //! record is windowed, in the sensor's order.
 //!
 //! The rule ([`SIGNIFICANT_SHARE`]): on each calibrated record, each
 //! signal's dynamic rms (about the record's mean, whole record); a record
 //! *vibrates* when its strongest signal's dynamic rms reaches the sensor's
-//! [`Sensor::operating_scale`] (the spread it counts as one unit of
+//! [`crate::Sensor::operating_scale`] (the spread it counts as one unit of
 //! operating range: 0.05 g for an inertial unit), and a signal is taken when,
 //! in some record that vibrates, its dynamic rms is at least
 //! [`SIGNIFICANT_SHARE`] of that record's strongest. A rest record (noise
@@ -38,9 +40,6 @@
 //! windowed (the report says so); when no signal varies at all, or the
 //! sensor names none, the choice is refused ([`WindowSignalsError`]).
 
-use crate::error::SysidError;
-use crate::model::Model;
-use crate::sensor::Sensor;
 use crate::signals::Signals;
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +64,14 @@ pub enum WindowSignalsError {
         /// The sensor's operating signals.
         signals: Vec<String>,
     },
+    /// A record lacks one of the signals to choose among.
+    #[error("window signal '{name}' is not a column of record '{record}'")]
+    NotAColumn {
+        /// The signal.
+        name: String,
+        /// The record.
+        record: String,
+    },
 }
 
 /// One operating signal as the choice measured it.
@@ -87,7 +94,7 @@ pub struct SignalVibration {
 /// measured: the `window_signals` part of a fit's choice report.
 ///
 /// ```
-/// use sysid::window_signals::choose_among;
+/// use sysid::window::signal_choice::choose_among;
 /// let t: Vec<f64> = (0..400).map(|i| i as f64 * 0.02).collect();
 /// let shake: Vec<f64> = t.iter().map(|t| 1.0 + 0.3 * (40.0 * t).sin()).collect();
 /// let leak: Vec<f64> = t.iter().map(|t| 0.015 * (40.0 * t).sin()).collect();
@@ -102,7 +109,7 @@ pub struct WindowSignalsChoice {
     /// Unit of the rms figures (the sensor's operating unit, `g`).
     pub unit: String,
     /// The dynamic rms a record's strongest signal reaches when the record
-    /// vibrates ([`Sensor::operating_scale`]), in [`WindowSignalsChoice::unit`].
+    /// vibrates ([`crate::Sensor::operating_scale`]), in [`WindowSignalsChoice::unit`].
     pub vibrates_at: f64,
     /// The records measured, in order.
     pub records: Vec<String>,
@@ -145,63 +152,19 @@ impl WindowSignalsChoice {
     }
 }
 
-impl<S: Sensor> Model<S> {
-    /// The model with the choice of its window's signals in its choice
-    /// report (a report of its one candidate when it chose nothing else),
-    /// so that the model file and `fit --json` say what was measured.
-    pub fn with_window_signals(mut self, choice: WindowSignalsChoice) -> Self {
-        let mut report = self
-            .choice()
-            .cloned()
-            .unwrap_or_else(|| crate::fit::fixed_report(&self));
-        report.window_signals = Some(choice);
-        self.set_choice(report);
-        self
-    }
-}
-
-/// The window's signals for `sensor` chosen from its raw training
-/// `records` (each calibrated first), by the module's rule.
-pub fn choose<S: Sensor>(
-    sensor: &S,
-    records: &[(String, &Signals)],
-) -> Result<WindowSignalsChoice, SysidError> {
-    if records.is_empty() {
-        return Err(SysidError::NoRecords);
-    }
-    let names = sensor.operating_signals();
-    let calibrated = records
-        .iter()
-        .map(|(n, r)| {
-            sensor
-                .calibrate(r)
-                .map_err(|e| SysidError::Sensor(e).in_record(n, records.len()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let named: Vec<(String, &Signals)> = records
-        .iter()
-        .zip(&calibrated)
-        .map(|((n, _), c)| (n.clone(), c))
-        .collect();
-    choose_among(
-        &names,
-        &named,
-        sensor.operating_scale(),
-        &sensor.wording().operating_unit,
-    )
-}
-
-/// [`choose`] on records already calibrated: `names` are the candidate
-/// signals, `scale` the dynamic rms a record's strongest signal must reach
-/// for the record to vibrate, `unit` theirs.
+/// The window's signals chosen by the module's rule from calibrated
+/// `records`: `names` are the candidate signals (a sensor's
+/// [`crate::Sensor::operating_signals`]), `scale` the dynamic rms a
+/// record's strongest signal must reach for the record to vibrate
+/// ([`crate::Sensor::operating_scale`]), `unit` theirs.
 pub fn choose_among(
     names: &[String],
     records: &[(String, &Signals)],
     scale: f64,
     unit: &str,
-) -> Result<WindowSignalsChoice, SysidError> {
+) -> Result<WindowSignalsChoice, WindowSignalsError> {
     if names.is_empty() {
-        return Err(WindowSignalsError::NoSignals.into());
+        return Err(WindowSignalsError::NoSignals);
     }
     // rms[k][r]: signal k on record r.
     let mut rms = vec![Vec::with_capacity(records.len()); names.len()];
@@ -210,17 +173,15 @@ pub fn choose_among(
         let here = names
             .iter()
             .map(|name| {
-                let column = s.column(name).ok_or_else(|| {
-                    SysidError::WindowSignal {
+                let column = s
+                    .column(name)
+                    .ok_or_else(|| WindowSignalsError::NotAColumn {
                         name: name.clone(),
-                        operating: names.to_vec(),
-                        available: Vec::new(),
-                    }
-                    .in_record(record, records.len())
-                })?;
+                        record: record.clone(),
+                    })?;
                 Ok(dynamic_rms(column))
             })
-            .collect::<Result<Vec<f64>, SysidError>>()?;
+            .collect::<Result<Vec<f64>, WindowSignalsError>>()?;
         let strongest = here.iter().copied().fold(0.0, f64::max);
         for (k, r) in here.into_iter().enumerate() {
             rms[k].push(r);
@@ -244,8 +205,7 @@ pub fn choose_among(
         if peak(best) <= 0.0 {
             return Err(WindowSignalsError::Constant {
                 signals: names.to_vec(),
-            }
-            .into());
+            });
         }
         taken[best] = true;
         fallback = Some(format!(
@@ -369,13 +329,7 @@ mod tests {
         )
         .unwrap();
         let err = choose_among(&names(), &[("flat".into(), &flat)], 0.05, "g").unwrap_err();
-        assert!(
-            matches!(
-                err,
-                SysidError::WindowSignals(WindowSignalsError::Constant { .. })
-            ),
-            "{err}"
-        );
+        assert!(matches!(err, WindowSignalsError::Constant { .. }), "{err}");
         assert!(
             err.to_string().contains("none of ax, ay, az varies"),
             "{err}"

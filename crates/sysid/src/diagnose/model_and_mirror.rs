@@ -52,6 +52,22 @@ impl<S: Sensor> CrossFit<'_, S> {
         self.rows().iter().map(|&r| out[r]).collect()
     }
 
+    /// Each half's network part on its test rows (its prediction less its
+    /// bias and effects), on [`CrossFit::rows`].
+    pub(super) fn network_part(&self, prepared: &Prepared<S>) -> Result<Vec<f64>, SysidError> {
+        let mut out = vec![0.0; prepared.rows()];
+        for h in &self.halves {
+            let z = prepared.effect_matrix(self.channel, h.model.effects())?;
+            let theta = h.model.effect_coefficients();
+            let b = h.model.bias();
+            for &r in h.test_rows {
+                let zt: f64 = theta.iter().enumerate().map(|(j, t)| z[(r, j)] * t).sum();
+                out[r] = h.predicted[r] - b - zt;
+            }
+        }
+        Ok(self.rows().iter().map(|&r| out[r]).collect())
+    }
+
     /// `columns` (rows × m, all prepared rows) with each half's function space
     /// (bias, the model's effects, its network basis) fitted on its fitting
     /// rows and projected out of its test rows; on [`CrossFit::rows`].

@@ -22,13 +22,15 @@
 //!   varies least there, cov(before, network)/var(network) (the spread is a
 //!   convex quadratic in t, so records that gained keep gaining);
 //! - lowered further where a channel's or a residue's bias instability
-//!   would rise on a record ([`super::keep_bi`]).
+//!   would rise on a record ([`bias_instability`]).
 //!
 //! The spread ratio's interval is the one the ADEV bound of the choice uses
 //! ([`ADEV_CONFIDENCE`]).
 
-use super::choice::{ADEV_CONFIDENCE, MIN_ADEV_ROWS};
-use crate::choice_report::{Candidate, ChoiceReport};
+mod bias_instability;
+mod series;
+
+use super::input_choice::{ADEV_CONFIDENCE, MIN_ADEV_ROWS};
 use crate::error::SysidError;
 use crate::model::{ChannelModel, Model};
 use crate::prepared::Prepared;
@@ -58,15 +60,12 @@ pub(super) fn apply<S: Sensor>(
         return Ok(model);
     }
     if !shrunk.is_empty() {
-        super::choice::rescore(&mut model, p, train, val)?;
+        super::input_choice::rescore(&mut model, p, train, val)?;
     }
     // A fit with a fixed input and smoother has no choice to report; what
     // the keep step did is still the model's to say, so it gets a report
     // of that one candidate (judged by rms only).
-    let mut report = model
-        .choice()
-        .cloned()
-        .unwrap_or_else(|| fixed_report(&model));
+    let mut report = model.choice_or_fixed();
     report.bias_instability_raised = raised;
     report.networks_shrunk = shrunk
         .iter()
@@ -80,29 +79,6 @@ pub(super) fn apply<S: Sensor>(
         .collect();
     model.set_choice(report);
     Ok(model)
-}
-
-/// The report of a fit that chose nothing: its one candidate, the model's
-/// input and smoother with its validation rms, no run judged by ADEV.
-pub(crate) fn fixed_report<S: Sensor>(model: &Model<S>) -> ChoiceReport {
-    let val_rms: Vec<f64> = model
-        .channels()
-        .iter()
-        .map(|c| c.scores().val_rms)
-        .collect();
-    ChoiceReport {
-        candidates: vec![Candidate::unjudged(
-            model.preprocess().input,
-            model.preprocess().smoother,
-            val_rms,
-        )],
-        chosen: 0,
-        adev_runs: 0,
-        networks_shrunk: Vec::new(),
-        input_sample: None,
-        bias_instability_raised: Vec::new(),
-        window_signals: None,
-    }
 }
 
 /// A channel whose network keeps less than all of its output, and why.
@@ -124,7 +100,7 @@ type Kept<S> = (Model<S>, Vec<Shrunk>, Vec<String>);
 
 /// The model with each channel's network scaled to the share it keeps
 /// (see the module), the channels scaled, and the bias instabilities left
-/// raised ([`super::keep_bi::Held::raised`]).
+/// raised ([`bias_instability::Held::raised`]).
 pub(super) fn keep_networks<S: Sensor>(
     model: Model<S>,
     prepared: &Prepared<S>,
@@ -180,7 +156,7 @@ pub(super) fn keep_networks<S: Sensor>(
             }
         }
     }
-    let held = super::keep_bi::hold(&model, prepared, &predicted, (train, val), &mut shares)?;
+    let held = bias_instability::hold(&model, prepared, &predicted, (train, val), &mut shares)?;
     for (k, reason) in held.lowered {
         if !why[k].contains(&reason) {
             why[k].push(reason);
@@ -216,7 +192,7 @@ pub(super) fn keep_networks<S: Sensor>(
         // The network at rest, where a record that starts outside holds it.
         let at_rest = match d.share {
             0.0 => 0.0,
-            _ => crate::operating::fade::network_means::<S>(
+            _ => crate::model::network_means::<S>(
                 std::slice::from_ref(&parts.channels[k]),
                 prepared.window_view(),
                 &rest,

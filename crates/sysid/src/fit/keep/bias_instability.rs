@@ -25,9 +25,9 @@
 //! instability on the record (IEEE Std 952's flat region lies beyond it);
 //! the choice's ADEV bound covers that τ.
 
-use super::choice::MIN_ADEV_ROWS;
-use super::judged::{combine, judged_series};
+use super::series::{Series, combine, judged_series};
 use crate::error::SysidError;
+use crate::fit::input_choice::MIN_ADEV_ROWS;
 use crate::model::Model;
 use crate::prepared::Prepared;
 use crate::sensor::Sensor;
@@ -70,90 +70,17 @@ pub(super) fn hold<S: Sensor>(
     shares: &mut [f64],
 ) -> Result<Held, SysidError> {
     let dt = prepared.calibrated().dt();
-    let first = prepared.first_sample();
-    let n = prepared.rows();
     let targets = prepared
         .sensor()
         .targets(prepared.calibrated())
         .map_err(SysidError::Sensor)?;
-    let above = model.effects_above_band(prepared)?;
-    // u: the output less the effects, unfiltered (what compensation leaves
-    // without a network); v: the network part of the prediction (with the
-    // bias, which no Allan deviation sees).
-    let mut u = Vec::with_capacity(shares.len());
-    let mut v = Vec::with_capacity(shares.len());
-    for (k, c) in model.channels().iter().enumerate() {
-        let z = prepared.effect_matrix(k, c.effects())?;
-        let theta = c.effect_coefficients();
-        let zt = |r: usize| (0..theta.len()).map(|j| z[(r, j)] * theta[j]).sum::<f64>();
-        u.push(
-            (0..n)
-                .map(|r| targets[k][first + r] - zt(r) - above[k][r])
-                .collect::<Vec<f64>>(),
-        );
-        v.push(
-            (0..n)
-                .map(|r| predicted[k][r] - zt(r))
-                .collect::<Vec<f64>>(),
-        );
-    }
-    // On the validation rows, per channel: the filtered target less the
-    // effects and the bias-only level, and the network part about that
-    // level (a share t leaves r − t·q).
-    let mut r_val = Vec::with_capacity(shares.len());
-    let mut q_val = Vec::with_capacity(shares.len());
-    for (k, c) in model.channels().iter().enumerate() {
-        let y = prepared.target(k);
-        let z = prepared.effect_matrix(k, c.effects())?;
-        let theta = c.effect_coefficients();
-        let zt = |r: usize| (0..theta.len()).map(|j| z[(r, j)] * theta[j]).sum::<f64>();
-        let level = train.iter().map(|&r| y[r] - zt(r)).sum::<f64>() / train.len().max(1) as f64;
-        r_val.push(
-            val.iter()
-                .map(|&r| y[r] - zt(r) - level)
-                .collect::<Vec<f64>>(),
-        );
-        q_val.push(
-            val.iter()
-                .map(|&r| predicted[k][r] - zt(r) - level)
-                .collect::<Vec<f64>>(),
-        );
-    }
+    let (u, v) = compensated_parts(model, prepared, predicted, &targets)?;
+    let (r_val, q_val) = validation_parts(model, prepared, predicted, (train, val))?;
     let start: Vec<f64> = shares.to_vec();
     let cost = |k: usize, share: f64| rms_rise(&r_val[k], &q_val[k], start[k], share);
     let series = judged_series(prepared.sensor());
-    let before_of: Vec<&[f64]> = targets.iter().map(|t| &t[first..first + n]).collect();
-    let mut checks = Vec::new();
-    for (name, rows) in prepared.record_rows() {
-        if rows.len() < MIN_ADEV_ROWS {
-            continue;
-        }
-        let factors = allan::octave_factors(rows.len());
-        for (s, ser) in series.iter().enumerate() {
-            let before = combine(&ser.weights, &before_of, rows.clone());
-            let adev =
-                allan::overlapping_adev(&before, dt, &factors).map_err(|e| adev_error(&e))?;
-            let Some(i) = (0..adev.len()).min_by(|&a, &b| adev[a].total_cmp(&adev[b])) else {
-                continue;
-            };
-            if i + 1 < adev.len() && adev[i] > 0.0 {
-                checks.push(Check {
-                    record: if name.is_empty() {
-                        "the record".into()
-                    } else {
-                        name.to_string()
-                    },
-                    rows: rows.clone(),
-                    series: s,
-                    m: factors[i],
-                    before: adev[i].powi(2),
-                });
-            }
-        }
-    }
-    let avar = |x: &[f64], m: usize| -> Result<f64, SysidError> {
-        Ok(allan::overlapping_adev(x, dt, &[m]).map_err(|e| adev_error(&e))?[0].powi(2))
-    };
+    let checks = checks_of(prepared, &series, &targets)?;
+    let avar = |x: &[f64], m: usize| allan_variance(x, dt, m);
     // What compensation leaves of a series with the shares as they are.
     let after = |w: &[f64], shares: &[f64], rows: Range<usize>| -> Vec<f64> {
         rows.map(|r| {
@@ -185,28 +112,18 @@ pub(super) fn hold<S: Sensor>(
         let w = &series[c.series].weights;
         let left = after(w, shares, c.rows.clone());
         let left_avar = avar(&left, c.m)?;
-        // The networks whose larger share would raise it: a negative Allan
-        // inner product with what is left.
         let part = |k: usize, share: f64| -> Vec<f64> {
             c.rows.clone().map(|r| w[k] * share * v[k][r]).collect()
         };
-        let mut raising = Vec::new();
-        for k in (0..shares.len()).filter(|&k| w[k] != 0.0 && shares[k] > 0.0 && !kept[k]) {
-            let b = part(k, 1.0);
-            let sum: Vec<f64> = left.iter().zip(&b).map(|(a, b)| a + b).collect();
-            if avar(&sum, c.m)? - left_avar - avar(&b, c.m)? < 0.0 {
-                raising.push(k);
-            }
-        }
-        let rise = |c: &Check| {
-            format!(
-                "{}'s bias instability on {} (ADEV at τ = {} s {:.4}× before)",
-                series[c.series].name,
-                c.record,
-                c.m as f64 * dt,
-                ratio.sqrt()
-            )
-        };
+        let open = |k: usize| w[k] != 0.0 && shares[k] > 0.0 && !kept[k];
+        let raising = raising_networks((&left, left_avar), c.m, open, &part, shares.len(), dt)?;
+        let rise = format!(
+            "{}'s bias instability on {} (ADEV at τ = {} s {:.4}× before)",
+            series[c.series].name,
+            c.record,
+            c.m as f64 * dt,
+            ratio.sqrt()
+        );
         if raising.is_empty() {
             settled[i] = true;
             let gains: Vec<String> = (0..shares.len())
@@ -215,8 +132,7 @@ pub(super) fn hold<S: Sensor>(
                 .collect();
             if !gains.is_empty() {
                 held.raised.push(format!(
-                    "{}: kept, as lowering it would raise the validation rms of {} by more",
-                    rise(c),
+                    "{rise}: kept, as lowering it would raise the validation rms of {} by more",
                     gains.join(", ")
                 ));
             }
@@ -258,10 +174,147 @@ pub(super) fn hold<S: Sensor>(
         }
         for &k in &raising {
             shares[k] *= t;
-            held.lowered.push((k, rise(c)));
+            held.lowered.push((k, rise.clone()));
         }
     }
     Ok(held)
+}
+
+/// The networks (of `channels`, those `open`) whose larger share would
+/// raise a series: a negative Allan inner product at averaging factor `m`
+/// between their part (`part(k, 1)`) and what is left of the series
+/// (`left`, of Allan variance `left_avar`).
+fn raising_networks(
+    (left, left_avar): (&[f64], f64),
+    m: usize,
+    open: impl Fn(usize) -> bool,
+    part: &dyn Fn(usize, f64) -> Vec<f64>,
+    channels: usize,
+    dt: f64,
+) -> Result<Vec<usize>, SysidError> {
+    let mut raising = Vec::new();
+    for k in (0..channels).filter(|&k| open(k)) {
+        let b = part(k, 1.0);
+        let sum: Vec<f64> = left.iter().zip(&b).map(|(a, b)| a + b).collect();
+        if allan_variance(&sum, dt, m)? - left_avar - allan_variance(&b, dt, m)? < 0.0 {
+            raising.push(k);
+        }
+    }
+    Ok(raising)
+}
+
+/// The overlapping Allan variance of `x` (sampled every `dt` s) at
+/// averaging factor `m`.
+fn allan_variance(x: &[f64], dt: f64, m: usize) -> Result<f64, SysidError> {
+    Ok(allan::overlapping_adev(x, dt, &[m]).map_err(|e| adev_error(&e))?[0].powi(2))
+}
+
+/// Per channel on every row: u, the output less the effects, unfiltered
+/// (what compensation leaves without a network), and v, the network part
+/// of the prediction `predicted` (with the bias, which no Allan deviation
+/// sees).
+#[allow(clippy::type_complexity)]
+fn compensated_parts<S: Sensor>(
+    model: &Model<S>,
+    prepared: &Prepared<S>,
+    predicted: &[Vec<f64>],
+    targets: &[Vec<f64>],
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), SysidError> {
+    let first = prepared.first_sample();
+    let n = prepared.rows();
+    let above = model.effects_above_band(prepared)?;
+    let mut u = Vec::with_capacity(model.channels().len());
+    let mut v = Vec::with_capacity(model.channels().len());
+    for (k, c) in model.channels().iter().enumerate() {
+        let z = prepared.effect_matrix(k, c.effects())?;
+        let theta = c.effect_coefficients();
+        let zt = |r: usize| (0..theta.len()).map(|j| z[(r, j)] * theta[j]).sum::<f64>();
+        u.push(
+            (0..n)
+                .map(|r| targets[k][first + r] - zt(r) - above[k][r])
+                .collect::<Vec<f64>>(),
+        );
+        v.push(
+            (0..n)
+                .map(|r| predicted[k][r] - zt(r))
+                .collect::<Vec<f64>>(),
+        );
+    }
+    Ok((u, v))
+}
+
+/// On the validation rows, per channel: r, the filtered target less the
+/// effects and the bias-only level, and q, the network part about that
+/// level (a share t leaves r − t·q).
+#[allow(clippy::type_complexity)]
+fn validation_parts<S: Sensor>(
+    model: &Model<S>,
+    prepared: &Prepared<S>,
+    predicted: &[Vec<f64>],
+    (train, val): (&[usize], &[usize]),
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>), SysidError> {
+    let mut r_val = Vec::with_capacity(model.channels().len());
+    let mut q_val = Vec::with_capacity(model.channels().len());
+    for (k, c) in model.channels().iter().enumerate() {
+        let y = prepared.target(k);
+        let z = prepared.effect_matrix(k, c.effects())?;
+        let theta = c.effect_coefficients();
+        let zt = |r: usize| (0..theta.len()).map(|j| z[(r, j)] * theta[j]).sum::<f64>();
+        let level = train.iter().map(|&r| y[r] - zt(r)).sum::<f64>() / train.len().max(1) as f64;
+        r_val.push(
+            val.iter()
+                .map(|&r| y[r] - zt(r) - level)
+                .collect::<Vec<f64>>(),
+        );
+        q_val.push(
+            val.iter()
+                .map(|&r| predicted[k][r] - zt(r) - level)
+                .collect::<Vec<f64>>(),
+        );
+    }
+    Ok((r_val, q_val))
+}
+
+/// Every series on every record long enough whose Allan deviation before
+/// compensation has a minimum (a bias instability) short of its longest τ:
+/// the checks [`hold`] holds.
+fn checks_of<S: Sensor>(
+    prepared: &Prepared<S>,
+    series: &[Series],
+    targets: &[Vec<f64>],
+) -> Result<Vec<Check>, SysidError> {
+    let dt = prepared.calibrated().dt();
+    let (first, n) = (prepared.first_sample(), prepared.rows());
+    let before_of: Vec<&[f64]> = targets.iter().map(|t| &t[first..first + n]).collect();
+    let mut checks = Vec::new();
+    for (name, rows) in prepared.record_rows() {
+        if rows.len() < MIN_ADEV_ROWS {
+            continue;
+        }
+        let factors = allan::octave_factors(rows.len());
+        for (s, ser) in series.iter().enumerate() {
+            let before = combine(&ser.weights, &before_of, rows.clone());
+            let adev =
+                allan::overlapping_adev(&before, dt, &factors).map_err(|e| adev_error(&e))?;
+            let Some(i) = (0..adev.len()).min_by(|&a, &b| adev[a].total_cmp(&adev[b])) else {
+                continue;
+            };
+            if i + 1 < adev.len() && adev[i] > 0.0 {
+                checks.push(Check {
+                    record: if name.is_empty() {
+                        "the record".into()
+                    } else {
+                        name.to_string()
+                    },
+                    rows: rows.clone(),
+                    series: s,
+                    m: factors[i],
+                    before: adev[i].powi(2),
+                });
+            }
+        }
+    }
+    Ok(checks)
 }
 
 /// The largest t ∈ [0, 1] with AVAR(a − t·b) = `aa` − 2t·`ab` + t²·`bb` at

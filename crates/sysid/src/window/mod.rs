@@ -4,6 +4,12 @@
 //!
 //! Windows end at the sample they belong to (causal), so a fitted model can
 //! run on-line: the compensation of sample t uses accelerations up to t only.
+//!
+//! Which signals a window reads is named, or chosen from the training
+//! records among the sensor's operating signals ([`WindowSignals::Auto`],
+//! the default: [`signal_choice`]). A model's window always names them.
+
+pub mod signal_choice;
 
 use faer::MatRef;
 use serde::{Deserialize, Serialize};
@@ -17,11 +23,73 @@ pub enum WindowError {
     /// No signal to window.
     #[error("a window needs at least one input signal")]
     NoSignals,
+    /// The window's signals are still to be chosen from the records
+    /// ([`WindowSignals::Auto`]): only prepared records choose them.
+    #[error(
+        "the window's signals are still to be chosen (auto): prepare the records with the sensor (sysid::Prepared), which chooses them"
+    )]
+    Unchosen,
     /// The record is shorter than one window.
     #[error(
         "the record has {samples} samples, fewer than one window of {length}: use a shorter window (--window) or a longer record"
     )]
     TooShort { samples: usize, length: usize },
+}
+
+/// The signals a window reads: named, or chosen from the training records
+/// ([`signal_choice`]) when the records are prepared.
+///
+/// In a file, a list of names or the word `auto`.
+///
+/// ```
+/// use sysid::window::WindowSignals;
+/// let auto: WindowSignals = serde_json::from_str(r#""auto""#).unwrap();
+/// assert_eq!(auto, WindowSignals::Auto);
+/// let named: WindowSignals = serde_json::from_str(r#"["ax", "az"]"#).unwrap();
+/// assert_eq!(serde_json::to_string(&named).unwrap(), r#"["ax","az"]"#);
+/// assert_eq!(serde_json::to_string(&auto).unwrap(), r#""auto""#);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(from = "SignalsInFile", into = "SignalsInFile")]
+pub enum WindowSignals {
+    /// Every operating signal that vibrates in some training record
+    /// ([`signal_choice::choose_among`]).
+    Auto,
+    /// These signals, in this order.
+    Named(Vec<String>),
+}
+
+/// [`WindowSignals`] as a file holds it.
+#[derive(Clone, Serialize, Deserialize)]
+#[serde(untagged)]
+enum SignalsInFile {
+    Auto(AutoWord),
+    Named(Vec<String>),
+}
+
+/// The word `auto`.
+#[derive(Clone, Serialize, Deserialize)]
+enum AutoWord {
+    #[serde(rename = "auto")]
+    Auto,
+}
+
+impl From<SignalsInFile> for WindowSignals {
+    fn from(f: SignalsInFile) -> Self {
+        match f {
+            SignalsInFile::Auto(_) => WindowSignals::Auto,
+            SignalsInFile::Named(n) => WindowSignals::Named(n),
+        }
+    }
+}
+
+impl From<WindowSignals> for SignalsInFile {
+    fn from(w: WindowSignals) -> Self {
+        match w {
+            WindowSignals::Auto => SignalsInFile::Auto(AutoWord::Auto),
+            WindowSignals::Named(n) => SignalsInFile::Named(n),
+        }
+    }
 }
 
 /// How input windows are formed: `length` consecutive samples of each named
@@ -39,7 +107,7 @@ pub enum WindowError {
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct WindowSpec {
-    signals: Vec<String>,
+    signals: WindowSignals,
     length: usize,
 }
 
@@ -53,20 +121,41 @@ impl WindowSpec {
         if signals.is_empty() {
             return Err(WindowError::NoSignals);
         }
-        Ok(Self { signals, length })
+        Ok(Self {
+            signals: WindowSignals::Named(signals),
+            length,
+        })
     }
 
-    /// The paper's choice: 50 samples of the thrust-axis accelerometer `az`.
-    pub fn paper() -> Self {
-        Self {
-            signals: vec!["az".to_string()],
-            length: 50,
+    /// A window of `length` samples over the signals the training records
+    /// choose ([`WindowSignals::Auto`]).
+    ///
+    /// ```
+    /// let w = sysid::WindowSpec::auto(50).unwrap();
+    /// assert!(w.is_auto() && w.signals().is_empty());
+    /// ```
+    pub fn auto(length: usize) -> Result<Self, WindowError> {
+        if length == 0 {
+            return Err(WindowError::ZeroLength);
         }
+        Ok(Self {
+            signals: WindowSignals::Auto,
+            length,
+        })
     }
 
-    /// The signal names, in the order their samples appear in a window.
+    /// True until the records choose the signals ([`WindowSignals::Auto`]).
+    pub fn is_auto(&self) -> bool {
+        self.signals == WindowSignals::Auto
+    }
+
+    /// The signal names, in the order their samples appear in a window
+    /// (none while [`WindowSpec::is_auto`]).
     pub fn signals(&self) -> &[String] {
-        &self.signals
+        match &self.signals {
+            WindowSignals::Auto => &[],
+            WindowSignals::Named(n) => n,
+        }
     }
 
     /// Samples per signal in one window.
@@ -76,16 +165,19 @@ impl WindowSpec {
 
     /// Input dimension: `length × number of signals`.
     pub fn dim(&self) -> usize {
-        self.length * self.signals.len()
+        self.length * self.signals().len()
     }
 
     /// Forms every full window of the given signals (one slice per name in
     /// [`WindowSpec::signals`], all of the record's length).
     #[track_caller]
     pub fn build(&self, signals: &[&[f64]]) -> Result<Windows, WindowError> {
+        if self.is_auto() {
+            return Err(WindowError::Unchosen);
+        }
         assert_eq!(
             signals.len(),
-            self.signals.len(),
+            self.signals().len(),
             "one slice per windowed signal"
         );
         let n = signals[0].len();
@@ -288,7 +380,7 @@ mod tests {
 
     #[test]
     fn too_short_record_is_an_error() {
-        let spec = WindowSpec::paper();
+        let spec = WindowSpec::new(vec!["az".into()], 50).unwrap();
         let az = vec![0.0; 49];
         assert_eq!(
             spec.build(&[&az]),

@@ -15,7 +15,8 @@
 //! The network is fitted once per input; the smoothers only post-process
 //! its predictions, so the ladder costs no fit.
 
-use super::fit_rows_predicting;
+use super::fixed::{Coef, fit_rows_predicting};
+use super::progress::Progress;
 use crate::error::SysidError;
 use crate::input::ModelInput;
 use crate::model::{Model, score};
@@ -35,7 +36,7 @@ pub const ADEV_CONFIDENCE: f64 = 0.683;
 /// checked (shorter runs, as an interleaved split's, say nothing at τ).
 pub const MIN_ADEV_ROWS: usize = 200;
 
-pub use crate::choice_report::{Candidate, ChoiceReport, InputSample, SharedCentresTrial};
+pub use crate::model::choice_report::{Candidate, ChoiceReport, InputSample, SharedCentresTrial};
 
 /// The recipe fitted once per candidate input, every smoother judged, the
 /// winner returned with its smoother set, scored with it, and the report.
@@ -44,8 +45,8 @@ pub(super) fn fit_choosing<S: Sensor>(
     recipe: &Recipe<S::Effect>,
     choice: &ModelChoice,
     (train, val): (&[usize], &[usize]),
-    coef: super::Coef<'_>,
-    progress: super::Progress<'_, S::Channel>,
+    coef: Coef<'_>,
+    progress: Progress<'_, S::Channel>,
 ) -> Result<Model<S>, SysidError> {
     // A large record's input is chosen on a sample of it, then fitted alone.
     let sampled = super::input_sample::choose_input(prepared, recipe, choice)?;
@@ -72,7 +73,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         r.preprocess.input = input;
         r.preprocess.smoother = None;
         // Each channel is reported done once: by the first input's fit.
-        let quiet: super::Progress<'_, S::Channel> = &|_| {};
+        let quiet: Progress<'_, S::Channel> = &|_| {};
         let (model, unsmoothed) = fit_rows_predicting(
             &p,
             &r,

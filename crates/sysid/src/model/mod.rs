@@ -3,7 +3,12 @@
 //! windows; with the sensor and recipe it was fitted with, so new records
 //! are prepared exactly as the training records were.
 
-use crate::choice_report::ChoiceReport;
+pub(crate) mod choice_report;
+mod fade;
+
+pub use fade::Faded;
+pub(crate) use fade::network_means;
+
 use crate::error::SysidError;
 use crate::inference::Coefficient;
 use crate::operating::OperatingPoints;
@@ -13,6 +18,8 @@ use crate::recipe::{FitSettings, Recipe};
 use crate::sensor::Sensor;
 use crate::signals::Signals;
 use crate::split::{Holdout, by_record_rows, split_rows};
+use crate::window::signal_choice::WindowSignalsChoice;
+use choice_report::{Candidate, ChoiceReport};
 use faer::{Mat, MatRef};
 use rayon::prelude::*;
 use rbf::RbfModel;
@@ -408,6 +415,35 @@ impl<S: Sensor> Model<S> {
 
     pub(crate) fn set_choice(&mut self, report: ChoiceReport) {
         self.choice = Some(report);
+    }
+
+    /// The fit's choice report, or for a fit that chose nothing the report
+    /// of its one candidate: the model's input and smoother with its
+    /// validation rms, no run judged by ADEV.
+    pub(crate) fn choice_or_fixed(&self) -> ChoiceReport {
+        self.choice.clone().unwrap_or_else(|| ChoiceReport {
+            candidates: vec![Candidate::unjudged(
+                self.preprocess.input,
+                self.preprocess.smoother,
+                self.channels.iter().map(|c| c.scores.val_rms).collect(),
+            )],
+            chosen: 0,
+            adev_runs: 0,
+            networks_shrunk: Vec::new(),
+            input_sample: None,
+            bias_instability_raised: Vec::new(),
+            window_signals: None,
+        })
+    }
+
+    /// The model with the choice of its window's signals in its choice
+    /// report (a report of its one candidate when it chose nothing else),
+    /// so that the model file and `fit --json` say what was measured.
+    pub fn with_window_signals(mut self, choice: WindowSignalsChoice) -> Self {
+        let mut report = self.choice_or_fixed();
+        report.window_signals = Some(choice);
+        self.set_choice(report);
+        self
     }
 
     pub(crate) fn set_smoother(&mut self, smoother: Option<crate::smoother::Smoother>) {

@@ -1,0 +1,234 @@
+//! Issue 35 §1: with the default flags (the window's axes chosen from the
+//! records), a g-sensitive term the library can state is named, not left
+//! inside the network, on records vibrated on three axes.
+
+use dtg_vib::pipeline::RateReference;
+use dtg_vib::unit_sensor::{UnitEffect, UnitSensor, to_signals};
+use nav_sensors::dtg::DtgTerm;
+use nav_sensors::geometry::Channel;
+use nav_sensors::sim::{HiddenEffect, Scenario, UnitHiddenEffect, simulate_unit};
+use nav_sensors::unit::Unit;
+use std::collections::BTreeMap;
+
+/// A hidden term: channel, term id, coefficient.
+type Hidden = (&'static str, &'static str, f64);
+
+/// The tri-axial low-frequency vibration test of `seconds` (3–20 Hz on x,
+/// y and z), its own hidden terms cleared, with `hidden` set on the unit's
+/// gyros: rate-gyro terms in `unit.rate`, DTG terms of the paper's channels
+/// in `gyros.channels`.
+fn triaxial(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
+    let mut s = Scenario::triaxial_hidden();
+    s.name = "physics_first".into();
+    for h in std::mem::take(&mut s.hidden) {
+        s.gyros
+            .channels
+            .entry(h.channel)
+            .or_default()
+            .set(h.term, 0.0);
+    }
+    s.duration_s = seconds;
+    s.seed = seed;
+    for (channel, term, value) in hidden {
+        match channel.parse::<Channel>() {
+            Ok(c) => {
+                let t: DtgTerm = term.parse().unwrap();
+                s.gyros.channels.entry(c).or_default().set(t, *value);
+                s.hidden.push(HiddenEffect {
+                    channel: c,
+                    term: t,
+                });
+            }
+            Err(_) => {
+                let c = s.unit.rate.entry(channel.to_string()).or_default();
+                let t: nav_sensors::rate::RateTerm = term.parse().unwrap();
+                c.set(t, *value);
+                s.unit.hidden.push(UnitHiddenEffect {
+                    channel: channel.to_string(),
+                    term: term.to_string(),
+                });
+            }
+        }
+    }
+    s
+}
+
+/// What one loop found.
+#[derive(Debug)]
+struct Found {
+    added: Vec<(String, String)>,
+    intervals: BTreeMap<(String, String), [f64; 2]>,
+    val_rms: Vec<f64>,
+}
+
+/// Simulates `s` on `unit` and runs the loop with the library's defaults.
+fn run(unit: &Unit, s: &Scenario) -> Found {
+    let sim = simulate_unit(unit, s).unwrap();
+    let sensor = UnitSensor {
+        unit: unit.clone(),
+        calibration: Some(sim.calibration.clone()),
+        rate_reference: RateReference::None,
+    };
+    let sig = to_signals(&sim.record).unwrap();
+    let options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
+    let e = sysid::explain::explain(
+        &sensor,
+        &[("r".into(), &sig)],
+        &options,
+        &Default::default(),
+        5,
+        &|_| {},
+    )
+    .unwrap();
+    let added = e
+        .rounds
+        .iter()
+        .flat_map(|r| {
+            r.added
+                .iter()
+                .map(|a| (a.channel.clone(), a.effect.clone()))
+        })
+        .collect();
+    let mut intervals = BTreeMap::new();
+    for c in e.model.channels() {
+        for (k, eff) in c.effects().iter().enumerate() {
+            if let Some(co) = c.coefficients() {
+                intervals.insert((c.channel(), eff.id()), co[k].ci95);
+            }
+        }
+    }
+    let val_rms = e
+        .model
+        .channels()
+        .iter()
+        .map(|c| c.scores().val_rms)
+        .collect();
+    Found {
+        added,
+        intervals,
+        val_rms,
+    }
+}
+
+/// Rates of one hidden term over `seeds` on `unit`, against the clean twins.
+#[derive(Debug, Default)]
+struct Rates {
+    exact: usize,
+    covered: usize,
+    refit_within: usize,
+    seeds: usize,
+}
+
+/// The clean twins of `seeds` on `unit`: each one's validation rms, and how
+/// many had a suggestion.
+fn twins(unit: &Unit, seeds: std::ops::Range<u64>) -> (Vec<Vec<f64>>, usize) {
+    let mut rms = Vec::new();
+    let mut suggesting = 0;
+    for seed in seeds {
+        let f = run(unit, &triaxial(SECONDS, seed, &[]));
+        if !f.added.is_empty() {
+            eprintln!("clean twin seed {seed}: added {:?}", f.added);
+            suggesting += 1;
+        }
+        rms.push(f.val_rms);
+    }
+    (rms, suggesting)
+}
+
+/// Exactly `h` named on exactly its channel, its interval covering the
+/// truth, the refit within 1.1× its clean twin's validation rms, per seed.
+fn rates(unit: &Unit, h: Hidden, seeds: std::ops::Range<u64>, twin_rms: &[Vec<f64>]) -> Rates {
+    let mut r = Rates::default();
+    for (k, seed) in seeds.enumerate() {
+        let f = run(unit, &triaxial(SECONDS, seed, &[h]));
+        let id = (h.0.to_string(), h.1.to_string());
+        let exact = f.added == [id.clone()];
+        let covered = f
+            .intervals
+            .get(&id)
+            .is_some_and(|[lo, hi]| *lo <= h.2 && h.2 <= *hi);
+        let worst = f
+            .val_rms
+            .iter()
+            .zip(&twin_rms[k])
+            .map(|(a, b)| a / b)
+            .fold(0.0, f64::max);
+        if !exact || !covered || worst > 1.1 {
+            eprintln!(
+                "{h:?} seed {seed}: added {:?} ci {:?} refit/twin {worst:.3}",
+                f.added, f.intervals
+            );
+        }
+        r.exact += usize::from(exact);
+        r.covered += usize::from(covered);
+        r.refit_within += usize::from(worst <= 1.1);
+        r.seeds += 1;
+    }
+    r
+}
+
+/// Record length of every case (s).
+const SECONDS: f64 = 60.0;
+
+/// The issue's acceptance on `unit` over seeds 1..=20: 0 of 20 clean twins
+/// with a suggestion; per hidden term, exactly it in ≥ 19 of 20 seeds, its
+/// 95 % interval covering the truth in ≥ 18 of 20 (a binomial(20, 0.95)
+/// falls below 18 with probability 7.5 %), and the refit within 1.1× the
+/// clean twin in ≥ 19 of 20.
+fn acceptance(unit: &str, cases: &[Hidden]) {
+    let unit = Unit::builtin(unit).unwrap();
+    let (twin_rms, suggesting) = twins(&unit, 1..21);
+    let mut failed = Vec::new();
+    for &h in cases {
+        let r = rates(&unit, h, 1..21, &twin_rms);
+        eprintln!("{h:?}: {r:?}");
+        if r.exact < 19 || r.covered < 18 || r.refit_within < 19 {
+            failed.push((h, r));
+        }
+    }
+    eprintln!("clean twins with a suggestion: {suggesting}/20");
+    assert_eq!(suggesting, 0, "clean twins with a suggestion");
+    assert!(failed.is_empty(), "below the bounds: {failed:?}");
+}
+
+/// Hidden g_x, g_y, g_z and one gg_xy on tetra's rate gyro g2, each below
+/// what the network left in its residual before the screen (g_x at 0.15
+/// deg/h/g went unnamed in 3 of 3 seeds with the window reading ax, ay, az).
+/// Measured (seeds 1–20): g_x 20/20 exact, 20/20 covered; g_y 20, 19;
+/// g_z 20, 20; clean twins 0/20; gg_xy at 0.05 deg/h/g² 17/20 exact and
+/// 13/20 covered (its intervals sit above the truth: the screen removes a
+/// quadratic in the window rms, so a g² term is named by the model's ranking
+/// alone, with the g² regressor's inflated vibration part) — this test
+/// fails on gg_xy until that is fixed.
+#[test]
+#[ignore = "statistical: 100 loops, minutes"]
+fn rate_gyro_g_terms_named_over_seeds() {
+    acceptance(
+        "tetra",
+        &[
+            ("g2", "g_x", 0.25),
+            ("g2", "g_y", 0.25),
+            ("g2", "g_z", 0.25),
+            ("g2", "gg_xy", 0.05),
+        ],
+    );
+}
+
+/// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
+/// 1–20): g_S 20/20 exact, 18/20 covered; g_O 20, 19; clean twins 0/20.
+#[test]
+#[ignore = "statistical: 60 loops, minutes"]
+fn dtg_g_terms_named_over_seeds() {
+    acceptance("paper", &[("X", "g_S", 0.3), ("Y1", "g_O", 0.3)]);
+}
+
+/// CI's short version: one seed of a hidden g_x on g2 at 0.25 deg/h/g,
+/// named alone with an interval covering it, and its clean twin silent.
+#[test]
+fn hidden_g_x_named_with_the_default_window() {
+    let unit = Unit::builtin("tetra").unwrap();
+    let (twin_rms, suggesting) = twins(&unit, 3..4);
+    assert_eq!(suggesting, 0);
+    let r = rates(&unit, ("g2", "g_x", 0.25), 3..4, &twin_rms);
+    assert_eq!((r.exact, r.covered, r.refit_within), (1, 1, 1), "{r:?}");
+}

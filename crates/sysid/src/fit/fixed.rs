@@ -1,0 +1,179 @@
+//! One fit of a recipe as it is: its input and smoother, on given training
+//! and validation rows, every channel's effects and network, scored, with
+//! the operating points and training range the model keeps. The choice of
+//! input and smoother ([`super::input_choice`]) runs it once per input.
+
+use super::batched;
+use super::channel::{
+    ChannelFit, gather, inner_folds_fit, predictions, refit_weights, scored, windows_vary,
+};
+use super::memo::channel_fits::Records;
+use super::network::selection_stride;
+use super::partial;
+use super::progress::{FitStage, Progress};
+use super::shared;
+use crate::error::SysidError;
+use crate::inference::Coefficient;
+use crate::model::{ChannelModelOf, Model, ModelParts, network_means};
+use crate::operating::OperatingPoints;
+use crate::operating::fade::rest_rows;
+use crate::operating::range::TrainingRange;
+use crate::prepared::Prepared;
+use crate::recipe::Recipe;
+use crate::sensor::Sensor;
+use rayon::prelude::*;
+
+/// Which rows estimate the effects' coefficients.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Coef<'a> {
+    /// Training and validation rows of every record given: the estimate
+    /// the diagnosis makes (cross-fitted partialling over the whole
+    /// record), so the model stores one estimate of each coefficient, not a
+    /// noisier one from half the rows. A few coefficients estimated on the
+    /// validation rows barely flatter the validation rms; the network, which
+    /// could, still sees only the training rows.
+    AllRows,
+    /// Training rows only: where the validation rows judge a transfer
+    /// (leaving a record out).
+    TrainingRows,
+    /// Each channel's coefficients already estimated on every row (a
+    /// model's, for its mirror), in the channel order; a channel without
+    /// them (no effects, or none estimated) is estimated as with `AllRows`.
+    Stored(&'a [Vec<Coefficient>]),
+}
+
+impl Coef<'_> {
+    /// Channel `channel`'s stored coefficients, when there is one for each
+    /// of its `n_effects` effects.
+    pub(super) fn stored(&self, channel: usize, n_effects: usize) -> Option<&[Coefficient]> {
+        match self {
+            Coef::Stored(all) => all
+                .get(channel)
+                .filter(|c| c.len() == n_effects && n_effects > 0)
+                .map(Vec::as_slice),
+            _ => None,
+        }
+    }
+}
+
+/// The recipe fitted with its input, without rescoring for a smoother.
+pub(super) fn fit_rows_fixed<S: Sensor>(
+    prepared: &Prepared<S>,
+    recipe: &Recipe<S::Effect>,
+    rows: (&[usize], &[usize]),
+    coef: Coef<'_>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<Model<S>, SysidError> {
+    fit_rows_predicting(prepared, recipe, rows, coef, progress).map(|(model, _)| model)
+}
+
+/// [`fit_rows_fixed`], with the model's unsmoothed predictions on every row
+/// of `prepared` (per channel), which scored it.
+pub(super) fn fit_rows_predicting<S: Sensor>(
+    prepared: &Prepared<S>,
+    recipe: &Recipe<S::Effect>,
+    (train, val): (&[usize], &[usize]),
+    coef: Coef<'_>,
+    progress: Progress<'_, S::Channel>,
+) -> Result<(Model<S>, Vec<Vec<f64>>), SysidError> {
+    debug_assert_eq!(prepared.preprocess(), &recipe.preprocess);
+    let settings = &recipe.settings;
+    let channels = prepared.sensor().channels();
+    let (train, val) = (train.to_vec(), val.to_vec());
+    // A view of the prepared windows, not a copy: only the rows a fit works
+    // on are gathered (all training rows, or the selection subsample).
+    let x = prepared.window_view();
+    windows_vary(x, &train, recipe.preprocess.window.signals())?;
+    let stride = selection_stride(train.len());
+    let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
+    inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
+    let fit_on = if stride > 1 { &sel } else { &train };
+    let theta_rows: Vec<usize> = match coef {
+        Coef::AllRows | Coef::Stored(_) => partial::theta_rows(&train, &val),
+        Coef::TrainingRows => fit_on.clone(),
+    };
+    // The effects are partialled out with the raw windows whatever the
+    // input (one estimate of each coefficient, whichever input the choice
+    // takes); they are prepared only when some channel cross-fits.
+    let cross_fits = (0..channels.len()).any(|k| {
+        let n = recipe.effects_of(k).len();
+        n > 0 && coef.stored(k, n).is_none()
+    });
+    let raw = match cross_fits {
+        true => partial::raw_windows(prepared)?,
+        false => None,
+    };
+    let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
+    let x_fit = gather(x, fit_on);
+    let remembered = (!settings.shared_centres)
+        .then(|| Records::of(prepared, (x, x_theta)))
+        .flatten();
+    let known = |k: usize| coef.stored(k, recipe.effects_of(k).len());
+    let rows = (fit_on.as_slice(), theta_rows.as_slice());
+    let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
+        true => shared::fit_channels_shared(prepared, (x, x_theta), &x_fit, rows, recipe, &known)?,
+        // Each channel's own network, their candidate columns computed once.
+        false => batched::fit_channels(
+            remembered,
+            prepared,
+            (x, x_theta),
+            &x_fit,
+            rows,
+            recipe,
+            &known,
+        )?,
+    };
+    channels
+        .iter()
+        .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
+    drop(x_fit);
+    // On a subsample, the weights are solved again on every training row,
+    // over row blocks (memory independent of the number of rows), before
+    // the channel is scored: for channels that share centres, in one solve.
+    let fits = match (stride, settings.shared_centres) {
+        (1, _) => fits,
+        (_, true) => shared::refit_weights_shared(prepared, x, &train, fits, settings)?,
+        (_, false) => fits
+            .into_par_iter()
+            .map(|f| refit_weights(prepared, x, &train, f, settings))
+            .collect::<Result<_, _>>()?,
+    };
+    let yhat = predictions(&fits, x);
+    let fitted: Vec<ChannelModelOf<S>> = fits
+        .into_iter()
+        .zip(&yhat)
+        .map(|(f, y)| scored(prepared, &train, &val, f, y))
+        .collect::<Result<_, _>>()?;
+    let length = recipe.preprocess.window.length();
+    let mut operating_points = OperatingPoints::from_training(prepared, length, &train, &val)?;
+    // The range's tolerance is measured on every row that did not train
+    // (validation and the gaps): the records fitted on stay inside, to the bit.
+    let mut trained = vec![false; prepared.rows()];
+    train.iter().for_each(|&r| trained[r] = true);
+    let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
+    // The network at rest: where a record that starts outside holds it.
+    let rest = rest_rows(prepared, length, &train)?;
+    let means = network_means::<S>(&fitted, x, &rest);
+    operating_points.range = Some(TrainingRange::from_training(
+        prepared, length, &train, &others, means,
+    )?);
+    let operating_points = Some(operating_points);
+    let model = Model::from_parts(ModelParts {
+        sensor: prepared.sensor().clone(),
+        preprocess: recipe.preprocess.clone(),
+        dt_s: prepared.calibrated().dt(),
+        split: recipe.split,
+        channels: fitted,
+        settings: settings.clone(),
+        records: Vec::new(),
+        validated_on: None,
+        operating_points,
+        choice: None,
+    })
+    .map_err(|reason| SysidError::InvalidOption {
+        name: "fitted model",
+        value: reason,
+        reason: "a fit gave an inconsistent model (a bug: please report it)",
+    })?;
+    Ok((model, yhat))
+}
