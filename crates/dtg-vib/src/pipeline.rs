@@ -274,7 +274,11 @@ mod tests {
             "window": {"signals": ["az"], "length": 50}, "rate_reference": {"kind": "none"}}"#;
         let p: Preprocess = serde_json::from_str(old).unwrap();
         assert!(!p.causal);
-        assert_eq!(p, Preprocess::default());
+        let az = Preprocess {
+            window: WindowSpec::new(vec!["az".into()], 50).unwrap(),
+            ..Preprocess::default()
+        };
+        assert_eq!(p, az);
     }
 
     #[test]

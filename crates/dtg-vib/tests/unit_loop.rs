@@ -215,10 +215,14 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
     let sim = simulate_unit(&paper, &s).unwrap();
     // The paper path: today's plug-in.
     let paper_sim = nav_sensors::sim::simulate(&s).unwrap();
+    // The window both sides read: az alone (the library's default chooses
+    // among the accelerometers, in the unit's order of signals).
+    let mut paper_options = dtg_vib::fit::FitOptions::default();
+    paper_options.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
     let today = dtg_vib::explain::explain(
         &paper_sim.record,
         Some(&paper_sim.calibration),
-        &Default::default(),
+        &paper_options,
         &Default::default(),
         5,
         &|_| {},

@@ -44,7 +44,7 @@ pub struct Family {
 /// ```
 /// use dtg_vib::fleet::family::family;
 /// let mut v: Vec<f64> = (0..20).map(|i| 0.5 + 0.01 * (i as f64 - 9.5)).collect();
-/// v[3] = 0.9; // far out, measured well
+/// v[3] = 1.0; // far out, measured well
 /// v[7] = 0.8; // far out, measured badly
 /// let ci: Vec<[f64; 2]> = v.iter().enumerate()
 ///     .map(|(i, x)| if i == 7 { [x - 0.5, x + 0.5] } else { [x - 0.02, x + 0.02] })

@@ -225,14 +225,31 @@ fn add_screened<E: Effect, A>(
         })
         .collect();
     let screened: Ranking<A> = rank(target, &candidates, opts.rank);
-    for id in screened.suggested {
-        if !ranking.suggested.contains(&id) {
+    for id in screened.suggested.clone() {
+        if !ranking.suggested.contains(&id) && !collinear_with_suggested(ranking, &screened, &id) {
             if let Some(c) = ranking.candidates.iter_mut().find(|c| c.effect == id) {
                 c.significant = true;
             }
             ranking.suggested.push(id);
         }
     }
+}
+
+/// Whether `id` is nearly collinear, on this record, with a suggestion
+/// `ranking` already makes: it is then that suggestion's alternative, not a
+/// second effect (the pair would be fitted as two coefficients the record
+/// cannot separate).
+fn collinear_with_suggested<A>(ranking: &Ranking<A>, screened: &Ranking<A>, id: &str) -> bool {
+    ranking
+        .candidates
+        .iter()
+        .chain(&screened.candidates)
+        .filter(|c| c.effect == id)
+        .any(|c| {
+            c.collinear_with
+                .iter()
+                .any(|o| ranking.suggested.contains(o))
+        })
 }
 
 /// The screen: what the network absorbed put back into the cross-fitted
