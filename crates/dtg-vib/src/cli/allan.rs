@@ -7,8 +7,9 @@ use cli_support::progress::Progress;
 use dtg_vib::numfmt::short;
 use std::path::PathBuf;
 
-use super::records::{no_residue_note, open_model, read_records, unit_of};
+use super::records::{no_residue_note, open_model, read_records, turning, unit_of};
 use super::report::guard_report;
+use dtg_vib::unit_sensor::MOVING_RATE_STD_DEG_S;
 
 /// The flags of `allan`.
 #[derive(Args)]
@@ -67,6 +68,11 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         .iter()
         .max_by_key(|(_, r)| r.len())
         .expect("read_records gives at least one segment");
+    if let Some(std) = turning(&unit, record) {
+        eprintln!(
+            "warning: {name}: the unit turns (its rate varies by {std:.2} deg/s over 1-s averages, above {MOVING_RATE_STD_DEG_S} deg/s): the deviations hold the motion as well as the sensors' noise"
+        );
+    }
     progress.say("computing Allan deviations");
     let a = dtg_vib::allan::AllanAnalysis::new(&unit, m.as_ref(), record, confidence)?;
     let page = match &report {

@@ -8,7 +8,7 @@ use dtg_vib::unit_sensor::{
     MOVING_RATE_STD_DEG_S, RateReference, UnitModel, UnitSensor, UnitSensorError, load_calibration,
     observability, read_unit_records, to_signals,
 };
-use nav_sensors::record::Record;
+use nav_sensors::record::{Record, declared_unit_warnings, is_ulog};
 use nav_sensors::unit::Unit;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
@@ -86,11 +86,62 @@ pub fn read_records(data: &[PathBuf], unit: &Unit, min_samples: usize) -> Result
     let mut records = Vec::new();
     let mut notes = Vec::new();
     for d in data {
-        let read = read_unit_records(d, unit, min_samples)?;
+        let read = read_unit_records(d, unit, min_samples).map_err(|e| {
+            let suggestion = builtin_suggestion(d, unit).unwrap_or_default();
+            anyhow!("{e}{suggestion}")
+        })?;
         notes.extend(read.gaps_notice(&d.display().to_string()));
+        notes.extend(declared_unit_notes(d, unit, &read.segments));
         records.extend(read.segments);
     }
     Ok(Read { records, notes })
+}
+
+/// Whether the unit turns during the record (its least-squares rate's
+/// 1-s averages vary by more than [`MOVING_RATE_STD_DEG_S`]), with how much.
+pub fn turning(unit: &Unit, record: &Record) -> Option<f64> {
+    let sensor = UnitSensor {
+        unit: unit.clone(),
+        calibration: None,
+        rate_reference: RateReference::None,
+    };
+    let std = observability(&sensor, record).rate_std_deg_s;
+    (std > MOVING_RATE_STD_DEG_S).then_some(std)
+}
+
+/// The warnings of the unit file's declared units that the log's longest
+/// segment contradicts (nav_sensors::record::declared_unit_warnings), one
+/// line each, naming the log.
+fn declared_unit_notes(path: &Path, unit: &Unit, segments: &[(String, Record)]) -> Vec<String> {
+    let Some((_, longest)) = segments.iter().max_by_key(|(_, r)| r.len()) else {
+        return Vec::new();
+    };
+    let still = turning(unit, longest).is_none();
+    declared_unit_warnings(unit, longest, still)
+        .into_iter()
+        .map(|w| format!("warning: {}: {w}", path.display()))
+        .collect()
+}
+
+/// The flag to add when `unit` could not read a log of a built-in unit: a
+/// CSV whose header holds a built-in unit's columns, or a ULog file (its
+/// `sensor_combined` topic is a triad's).
+fn builtin_suggestion(path: &Path, unit: &Unit) -> Option<String> {
+    if is_ulog(path) {
+        return (unit.name() != "triad")
+            .then(|| "; its sensor_combined topic is a triad's: add --unit triad".to_string());
+    }
+    let file = std::fs::File::open(path).ok()?;
+    let first = std::io::BufRead::lines(std::io::BufReader::new(file))
+        .next()?
+        .ok()?;
+    let header: Vec<&str> = first.split(',').map(str::trim).collect();
+    let name = Unit::builtins_matching(&header)
+        .into_iter()
+        .find(|n| *n != unit.name())?;
+    Some(format!(
+        "; the log has the columns of built-in unit {name}: add --unit {name}"
+    ))
 }
 
 /// The records of a model's unit, segments at least two windows long.

@@ -21,6 +21,7 @@ pub use declared_units::{
 };
 pub use error::RecordError;
 pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
+pub use ulog_log::is_ulog;
 pub use unit_csv::UnitRecords;
 
 use std::ops::Range;

@@ -20,7 +20,7 @@ use crate::unit::{RateUnit, SpecificForceUnit, Unit};
 
 /// Whether the file at `path` starts as a ULog file does (a file that
 /// cannot be opened is not: the CSV reader then says why).
-pub(super) fn is_ulog(path: &Path) -> bool {
+pub fn is_ulog(path: &Path) -> bool {
     let mut head = [0u8; 7];
     std::fs::File::open(path)
         .and_then(|mut f| f.read_exact(&mut head))

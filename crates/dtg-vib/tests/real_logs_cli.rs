@@ -1,0 +1,139 @@
+//! Real logs as they come, through the command line (issue 34 §4): the
+//! built-in unit suggested for a log the default unit cannot read, the
+//! warnings of a turning record and of declared units the data contradict,
+//! and a PX4 ULog read as its CSV.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn dtg_vib(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
+        .arg("--quiet")
+        .args(args)
+        .current_dir(root())
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_log_of_a_built_in_unit_read_without_unit_gets_the_flag_to_add() {
+    let o = dtg_vib(&[
+        "allan",
+        "--data",
+        "data/realdata/px4_cubeorange_vtol_ground.csv",
+    ]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("add --unit triad"), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+}
+
+#[test]
+fn allan_warns_on_a_turning_record_and_not_on_a_still_one() {
+    let turning = dtg_vib(&[
+        "allan",
+        "--unit",
+        "triad",
+        "--data",
+        "data/realdata/px4_auav_x21_handheld.csv",
+    ]);
+    assert!(turning.status.success(), "{}", stderr(&turning));
+    assert!(
+        stderr(&turning).contains("the unit turns"),
+        "{}",
+        stderr(&turning)
+    );
+    let still = dtg_vib(&[
+        "allan",
+        "--unit",
+        "triad",
+        "--data",
+        "data/realdata/px4_cubeorange_vtol_ground.csv",
+    ]);
+    assert!(still.status.success(), "{}", stderr(&still));
+    assert!(
+        !stderr(&still).contains("the unit turns"),
+        "{}",
+        stderr(&still)
+    );
+    assert!(!stderr(&still).contains("warning"), "{}", stderr(&still));
+}
+
+/// A deg/s log declared as deg/h: the still record's gyro noise is 3600×
+/// away from every gyro grade, and the warning names the columns.
+#[test]
+fn a_deg_s_log_declared_as_deg_h_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let triad = std::fs::read_to_string(root().join("units/triad.toml")).unwrap();
+    let wrong = triad.replace("rate = \"deg/s\"", "rate = \"deg/h\"");
+    assert_ne!(wrong, triad);
+    let unit = dir.path().join("triad-deg-h.toml");
+    std::fs::write(&unit, wrong).unwrap();
+    let o = dtg_vib(&[
+        "allan",
+        "--unit",
+        unit.to_str().unwrap(),
+        "--data",
+        "data/realdata/px4_cubeorange_vtol_ground.csv",
+    ]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("warning") && e.contains("gx") && e.contains("deg/s"),
+        "{e}"
+    );
+}
+
+/// `allan --data X.ulg` gives the deviations of its CSV (the CSV pyulog
+/// wrote, six significant digits). The ULog file is in ../shared (not in
+/// the tree): skipped with a notice where it is absent.
+#[test]
+fn allan_of_a_ulog_equals_allan_of_its_csv() {
+    let ulg = root().join("../shared/realdata/ulog/sample_log_small.ulg");
+    if !ulg.exists() {
+        eprintln!("skipped: {} is absent", ulg.display());
+        return;
+    }
+    let json = |data: &str| -> serde_json::Value {
+        let o = dtg_vib(&["allan", "--unit", "triad", "--json", "--data", data]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let a = json(ulg.to_str().unwrap());
+    let b = json("data/realdata/px4_cubeorange_vtol_ground.csv");
+    let curves = |v: &serde_json::Value| -> Vec<f64> {
+        let mut out = Vec::new();
+        collect(v, &mut out);
+        out
+    };
+    let (x, y) = (curves(&a["channels"]), curves(&b["channels"]));
+    assert!(
+        x.len() > 10 && x.len() == y.len(),
+        "{} vs {}",
+        x.len(),
+        y.len()
+    );
+    for (p, q) in x.iter().zip(&y) {
+        assert!(
+            (p - q).abs() <= 1e-4 * p.abs().max(q.abs()) + 1e-12,
+            "{p} vs {q}"
+        );
+    }
+}
+
+fn collect(v: &serde_json::Value, out: &mut Vec<f64>) {
+    match v {
+        serde_json::Value::Number(n) => out.extend(n.as_f64()),
+        serde_json::Value::Array(a) => a.iter().for_each(|x| collect(x, out)),
+        serde_json::Value::Object(o) => o.values().for_each(|x| collect(x, out)),
+        _ => {}
+    }
+}
