@@ -4,8 +4,8 @@
 
 mod paper_fit;
 
-use dtg_vib::unit_sensor::UnitSensor;
 use dtg_vib::unit_sensor::check::DEFAULT_OUTSIDE_THRESHOLD;
+use dtg_vib::unit_sensor::{UnitModel, UnitSensor};
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{Scenario, UnitSimulation};
@@ -104,6 +104,14 @@ fn one_record_through_fit_records_is_fit() {
     let one = fit(&sim.record, Some(&sim.calibration), &options());
     let named = [("a".to_string(), &sim.record)];
     let (many, _) = fit_records(&named, Some(&sim.calibration), &options());
+    // The window's signals chosen from the records name them in the
+    // choice report: "a" here, nameless in a fit of one record. Everything
+    // else is the same model.
+    let choice = many.inner().choice().and_then(|c| c.window_signals.clone());
+    let mut choice = choice.expect("the window's signals chosen from the record");
+    assert_eq!(choice.records, ["a"]);
+    choice.records = vec![String::new()];
+    let many = UnitModel::of(many.inner().clone().with_window_signals(choice));
     assert_eq!(one, many);
 }
 
