@@ -14,19 +14,28 @@
 //! cargo run --release -p dtg-vib --example paper_procedure
 //! ```
 
-use dtg_vib::apply::Applied;
-use dtg_vib::fit::{FitOptions, fit};
 use dtg_vib::split::Holdout;
-use nav_sensors::sim::{Scenario, simulate};
+use dtg_vib::unit_sensor::{Applied, RateReference, UnitEffect, UnitModel, UnitSensor, to_signals};
+use nav_sensors::sim::{Scenario, simulate_unit};
+use nav_sensors::unit::Unit;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The paper trained on 2500 vectors. With 50-sample windows and alternate
     // vectors that takes 5000 windows, 5049 samples: 100.98 s at 50 Hz (the
     // schedule's last level, −3 dB, holds for the extra 0.98 s).
     let mut scenario = Scenario::paper_z_random();
-    let window = FitOptions::default().preprocess.window.length();
+    let window = sysid::Preprocess::default().window.length();
     scenario.duration_s = (2 * 2500 + window - 1) as f64 / scenario.output_rate_hz;
-    let sim = simulate(&scenario)?;
+    let sim = simulate_unit(&Unit::paper(), &scenario)?;
+    // The paper's unit after its ground calibration, through the plug-in
+    // of every unit.
+    let sensor = UnitSensor {
+        unit: sim.unit.clone(),
+        calibration: Some(sim.calibration.clone()),
+        rate_reference: RateReference::None,
+    };
+    let signals = to_signals(&sim.record)?;
+    let records = [("record".to_string(), &sim.record)];
     println!(
         "Simulated the paper's test: {} samples at {} Hz (Z-axis NAVMAT random vibration, levels off / -6 / 0 / -3 dB).",
         sim.record.len(),
@@ -36,24 +45,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("interleaved (the paper's)", Holdout::Interleaved),
         ("blocked (first half trains)", Holdout::default()),
     ] {
-        let options = FitOptions {
-            split,
-            ..FitOptions::default()
-        };
-        let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {})?;
-        let applied = Applied::new(&model, &sim.record)?;
+        // The command line's defaults: the network input and prediction
+        // smoother chosen (`fit --input auto --smoother auto`).
+        let mut options = sysid::FitOptions::<UnitEffect>::new(6);
+        options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
+        options.recipe.split = split;
+        let model = UnitModel::of(sysid::fit::fit(&sensor, &signals, &options, &|_| {})?);
+        let applied = Applied::new(&model, &records)?;
         println!();
         println!(
             "Split {name}: {} training vectors of dimension {}, {} validation vectors.",
             applied.train.len(),
-            model.preprocess().window.dim(),
+            model.inner().preprocess().window.dim(),
             applied.val.len()
         );
         println!("channel  centres  validation rms (deg/h)  bias-only rms");
-        for c in model.channels() {
+        for c in model.inner().channels() {
             println!(
                 "{:>7}  {:>7}  {:>22.4}  {:>13.4}",
-                c.channel().name(),
+                c.channel(),
                 c.n_centres(),
                 c.scores().val_rms,
                 c.scores().val_rms_bias_only
@@ -63,10 +73,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for s in applied.validation_residues() {
             println!(
                 "{:>7}  {:>10.4}  {:>9.4}  {:>38.2}x",
-                s.residue.name(),
-                s.rms_before,
-                s.rms_after,
-                s.reduction
+                s.residue, s.rms_before, s.rms_after, s.reduction
             );
         }
     }

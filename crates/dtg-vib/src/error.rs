@@ -31,9 +31,6 @@ pub enum DtgVibError {
     /// A model cannot be exported or run on-line.
     #[error("export: {0}")]
     Export(#[from] crate::onboard::error::ExportError),
-    /// An effect id, `CHANNEL=ID` pair or effect column is wrong.
-    #[error(transparent)]
-    Effect(#[from] crate::effects::EffectError),
     /// An anisoinertia effect on a record whose angular rate does not vary.
     #[error(
         "channel {channel}: effect {effect} (anisoinertia) needs a varying angular rate, but the rate varies by only {rate_std_deg_s:.3} deg/s (< {min_deg_s} deg/s) over the training rows: its rate products would fit the gyros' own noise and drift; drop it or fit on a rate-table record"

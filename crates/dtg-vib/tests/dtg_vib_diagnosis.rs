@@ -4,35 +4,48 @@
 //! adding what it suggests the validation rms comes within 20% of the
 //! simulated noise floor.
 
-use dtg_vib::diagnose::{DiagnoseOptions, Diagnosis};
-use dtg_vib::effects::ChannelEffect;
-use dtg_vib::explain::diagnose;
-use dtg_vib::fit::{FitOptions, FitSettings, fit};
-use dtg_vib::model::CompensationModel;
-use nav_sensors::geometry::Channel;
-use nav_sensors::sim::{Scenario, Simulation, simulate};
+mod paper_fit;
+
+use dtg_vib::diagnose::DiagnoseOptions;
+use dtg_vib::unit_sensor::{UnitEffect, UnitSensor, to_signals};
+use nav_sensors::sim::{Scenario, UnitSimulation};
+use paper_fit::{Diagnosis, options, simulate};
 use std::collections::BTreeMap;
+use sysid::Model;
 
 /// Suggested effect ids per channel (channels with none left out).
-type Suggestions = BTreeMap<Channel, Vec<String>>;
+type Suggestions = BTreeMap<String, Vec<String>>;
 
 fn suggestions(d: &Diagnosis) -> Suggestions {
     d.channels
         .iter()
         .filter(|c| !c.suggested.is_empty())
-        .map(|c| (c.channel, c.suggested.clone()))
+        .map(|c| (c.channel.clone(), c.suggested.clone()))
         .collect()
 }
 
-/// The simulated floor of each channel as the model sees it: the per-sample
+/// The paper unit's model of the simulated record after its calibration.
+fn fit(sim: &UnitSimulation, options: &sysid::FitOptions<UnitEffect>) -> Model<UnitSensor> {
+    let model = paper_fit::fit(&sim.record, Some(&sim.calibration), options);
+    model.inner().clone()
+}
+
+/// The diagnosis of `model` on the simulated record (as `diagnose`).
+fn diagnose(model: &Model<UnitSensor>, sim: &UnitSimulation) -> Diagnosis {
+    let records = [(String::new(), &sim.record)];
+    paper_fit::diagnose_records(model, &records, &DiagnoseOptions::default())
+}
+
+/// The simulated floor of channel `k` as the model sees it: the per-sample
 /// floor series through the model's pre-processing filter, rms about its mean
 /// over the validation rows, deg/h.
-fn filtered_floor(sim: &Simulation, model: &CompensationModel, channel: Channel) -> f64 {
+fn filtered_floor(sim: &UnitSimulation, model: &Model<UnitSensor>, k: usize) -> f64 {
+    let name = &sim.unit.gyro_names()[k];
     let series = sim
         .components
-        .get(&format!("{}_floor", channel.name()))
+        .get(&format!("{name}_floor"))
         .expect("floor series");
-    let prepared = model.prepare(&sim.record).unwrap();
+    let prepared = model.prepare(&to_signals(&sim.record).unwrap()).unwrap();
     let filtered = match prepared.filter() {
         Some(f) => f.filtfilt(series).unwrap(),
         None => series.to_vec(),
@@ -48,41 +61,36 @@ fn filtered_floor(sim: &Simulation, model: &CompensationModel, channel: Channel)
 
 /// Fits, diagnoses, refits with the suggestions; returns the suggestions and,
 /// per channel, the refitted validation rms over the filtered floor.
-fn loop_once(scenario: Scenario) -> (Suggestions, Vec<(Channel, f64)>) {
-    let sim = simulate(&scenario).unwrap();
-    let options = FitOptions::default();
-    let baseline = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-    let d = diagnose(&baseline, &sim.record, &DiagnoseOptions::default()).unwrap();
+fn loop_once(scenario: Scenario) -> (Suggestions, Vec<(String, f64)>) {
+    let sim = simulate(&scenario);
+    let options = options();
+    let baseline = fit(&sim, &options);
+    let d = diagnose(&baseline, &sim);
     let found = suggestions(&d);
-    let add: Vec<ChannelEffect> = found
+    let mut refit_options = options.clone();
+    let add: Vec<String> = found
         .iter()
-        .flat_map(|(ch, ids)| {
-            ids.iter().map(move |id| ChannelEffect {
-                channel: *ch,
-                effect: id.parse().unwrap(),
-            })
-        })
+        .flat_map(|(ch, ids)| ids.iter().map(move |id| format!("{ch}={id}")))
         .collect();
-    let refit = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &FitOptions { add, ..options },
-        &|_| {},
-    )
-    .unwrap();
-    let ratios: Vec<(Channel, f64)> = refit
+    paper_fit::add(
+        &mut refit_options,
+        &add.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
+    let refit = fit(&sim, &refit_options);
+    let ratios: Vec<(String, f64)> = refit
         .channels()
         .iter()
-        .map(|c| {
+        .enumerate()
+        .map(|(k, c)| {
             (
                 c.channel(),
-                c.scores().val_rms / filtered_floor(&sim, &refit, c.channel()),
+                c.scores().val_rms / filtered_floor(&sim, &refit, k),
             )
         })
         .collect();
     eprintln!("{}: suggested {found:?}", scenario.name);
-    for (c, b) in baseline.channels().iter().zip(refit.channels()) {
-        let floor = filtered_floor(&sim, &refit, c.channel());
+    for (k, (c, b)) in baseline.channels().iter().zip(refit.channels()).enumerate() {
+        let floor = filtered_floor(&sim, &refit, k);
         eprintln!(
             "  {}: val rms {:.4} -> {:.4} deg/h, floor {floor:.4}, ratio {:.3}",
             c.channel(),
@@ -103,7 +111,7 @@ fn hidden(scenario: &Scenario) -> Suggestions {
         } else {
             h.term.id().to_string()
         };
-        m.entry(h.channel).or_default().push(id);
+        m.entry(h.channel.name().to_string()).or_default().push(id);
     }
     m
 }
@@ -149,18 +157,12 @@ fn an_interleaved_split_is_analysed_at_the_rate_of_its_validation_rows() {
     let sim = simulate(&Scenario {
         duration_s: 40.0,
         ..Scenario::default()
-    })
-    .unwrap();
-    let options = FitOptions {
-        split: dtg_vib::split::Holdout::Interleaved,
-        settings: FitSettings {
-            max_centres: 10,
-            ..FitSettings::default()
-        },
-        ..FitOptions::default()
-    };
-    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-    let d = diagnose(&model, &sim.record, &DiagnoseOptions::default()).unwrap();
+    });
+    let mut options = options();
+    options.recipe.split = dtg_vib::split::Holdout::Interleaved;
+    options.recipe.settings.max_centres = 10;
+    let model = fit(&sim, &options);
+    let d = diagnose(&model, &sim);
     let quarter_rate = 0.25 / sim.record.dt();
     for c in &d.channels {
         let sp = c.series.spectrum.as_ref().expect("long enough");

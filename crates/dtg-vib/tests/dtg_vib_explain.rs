@@ -7,15 +7,18 @@
 //! 100 seeds) are the `#[ignore]`d tests at the end:
 //! `cargo test --release -p dtg-vib --test dtg_vib_explain -- --ignored --nocapture`
 //! prints what docs/dtg-vib.md quotes.
+//!
+//! The paper's unit runs the one plug-in ([`paper_fit`]).
+
+mod paper_fit;
 
 use dtg_vib::diagnose::DiagnoseOptions;
-use dtg_vib::effects::ChannelEffect;
-use dtg_vib::explain::explain;
-use dtg_vib::fit::{FitOptions, fit};
+use dtg_vib::unit_sensor::{UnitModel, UnitSensor, to_signals};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::Channel;
-use nav_sensors::sim::{HiddenEffect, Scenario, simulate};
+use nav_sensors::sim::{HiddenEffect, Scenario};
 use nav_sensors::vibration::{Drive, PsdTable};
+use paper_fit::{diagnose_records, fit, options, simulate};
 
 /// The tri-axial record with two effects hidden on Y1: an anisoelastic term
 /// (gg_IS, 0.4 deg/h/g²) and a drift temperature sensitivity of
@@ -79,15 +82,9 @@ fn resolved_vibration(mut s: Scenario) -> Scenario {
 
 /// The default fit of `s`'s clean twin (the same record without its
 /// hidden terms): what a refit with the hidden effects should come near.
-fn clean_twin_fit(s: &Scenario) -> dtg_vib::model::CompensationModel {
-    let clean = simulate(&without_hidden(s)).unwrap();
-    fit(
-        &clean.record,
-        Some(&clean.calibration),
-        &FitOptions::default(),
-        &|_| {},
-    )
-    .unwrap()
+fn clean_twin_fit(s: &Scenario) -> UnitModel {
+    let clean = simulate(&without_hidden(s));
+    fit(&clean.record, Some(&clean.calibration), &options())
 }
 
 fn id_of(term: DtgTerm) -> String {
@@ -100,12 +97,16 @@ fn id_of(term: DtgTerm) -> String {
 
 /// Simulates `scenario` and runs the loop with default settings; returns
 /// the loop and the `CHANNEL=ID` it added, sorted.
-fn explain_with_defaults(scenario: &Scenario) -> (dtg_vib::explain::Explanation, Vec<String>) {
-    let sim = simulate(scenario).unwrap();
-    let e = explain(
-        &sim.record,
-        Some(&sim.calibration),
-        &FitOptions::default(),
+fn explain_with_defaults(
+    scenario: &Scenario,
+) -> (sysid::explain::Explanation<UnitSensor>, Vec<String>) {
+    let sim = simulate(scenario);
+    let sensor = paper_fit::sensor(Some(&sim.calibration));
+    let signals = to_signals(&sim.record).unwrap();
+    let e = sysid::explain::explain(
+        &sensor,
+        &[("r".to_string(), &signals)],
+        &options(),
         &DiagnoseOptions::default(),
         5,
         &|_| {},
@@ -137,8 +138,8 @@ fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error
 
     // The final model's Y1 against a fit of the same record without the hidden terms.
     let reference = clean_twin_fit(&scenario);
-    for c in e.model.channels() {
-        let r = c.scores().val_rms / reference.channel(c.channel()).scores().val_rms;
+    for (k, c) in e.model.channels().iter().enumerate() {
+        let r = c.scores().val_rms / reference.inner().channel(k).scores().val_rms;
         eprintln!(
             "{}: val rms {:.4} deg/h, {r:.3}× the clean record's",
             c.channel(),
@@ -147,7 +148,7 @@ fn explain_finds_both_effects_on_one_channel_and_reaches_the_clean_records_error
         assert!(r <= 1.10, "{}: {r:.3}× the clean record's rms", c.channel());
     }
     // The coefficients stored in the final model, with their intervals, against the truth.
-    let y1 = e.model.channel(Channel::Y1);
+    let y1 = e.model.channel(Channel::Y1.index());
     let k = y1.coefficients().expect("intervals");
     for (effect, coef) in y1.effects().iter().zip(k) {
         eprintln!(
@@ -173,13 +174,10 @@ struct Coverage {
 /// on every row, issue 23 §3) against the truth.
 fn coverage(seeds: std::ops::Range<u64>) -> Coverage {
     let base = resolved_vibration(Scenario::triaxial_hidden());
-    let add: Vec<ChannelEffect> = base
+    let add: Vec<String> = base
         .hidden
         .iter()
-        .map(|h| ChannelEffect {
-            channel: h.channel,
-            effect: id_of(h.term).parse().unwrap(),
-        })
+        .map(|h| format!("{}={}", h.channel, id_of(h.term)))
         .collect();
     let mut tally: Vec<(String, usize, usize)> = base
         .hidden
@@ -190,15 +188,16 @@ fn coverage(seeds: std::ops::Range<u64>) -> Coverage {
     for seed in seeds {
         let mut s = base.clone();
         s.seed = 1_000_003 * (seed + 1);
-        let sim = simulate(&s).unwrap();
-        let options = FitOptions {
-            add: add.clone(),
-            ..FitOptions::default()
-        };
-        let m = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+        let sim = simulate(&s);
+        let mut options = options();
+        paper_fit::add(
+            &mut options,
+            &add.iter().map(String::as_str).collect::<Vec<_>>(),
+        );
+        let m = fit(&sim.record, Some(&sim.calibration), &options);
         let twin = clean_twin_fit(&s);
         for (h, t) in base.hidden.iter().zip(&mut tally) {
-            let c = m.channel(h.channel);
+            let c = m.inner().channel(h.channel.index());
             let j = c
                 .effects()
                 .iter()
@@ -208,7 +207,8 @@ fn coverage(seeds: std::ops::Range<u64>) -> Coverage {
             let truth = s.gyro(h.channel).get(h.term);
             t.1 += usize::from(k.covers(truth));
             t.2 += 1;
-            let ratio = c.scores().val_rms / twin.channel(h.channel).scores().val_rms;
+            let twin_rms = twin.inner().channel(h.channel.index()).scores().val_rms;
+            let ratio = c.scores().val_rms / twin_rms;
             worst_twin_ratio = worst_twin_ratio.max(ratio);
             eprintln!(
                 "seed {seed} {}: {:.4} ± {:.4} (truth {truth}){}; val rms {ratio:.3}× the clean twin's",
@@ -282,15 +282,9 @@ fn false_alarm_rate_per_record_over_50_clean_records() {
     for seed in 0..50u64 {
         let mut s = Scenario::triaxial_clean();
         s.seed = 2_000_003 * (seed + 1);
-        let sim = simulate(&s).unwrap();
-        let m = fit(
-            &sim.record,
-            Some(&sim.calibration),
-            &FitOptions::default(),
-            &|_| {},
-        )
-        .unwrap();
-        let d = dtg_vib::explain::diagnose(&m, &sim.record, &options).unwrap();
+        let sim = simulate(&s);
+        let m = fit(&sim.record, Some(&sim.calibration), &paper_fit::options());
+        let d = diagnose_records(m.inner(), &[(String::new(), &sim.record)], &options);
         let found: Vec<String> = d
             .channels
             .iter()
@@ -543,15 +537,10 @@ fn a_collinear_pair_is_reported_with_the_run_that_splits_it() {
         channel: Channel::X,
         term: DtgTerm::GO,
     }];
-    let sim = simulate(&s).unwrap();
-    let m = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &FitOptions::default(),
-        &|_| {},
-    )
-    .unwrap();
-    let d = dtg_vib::explain::diagnose(&m, &sim.record, &DiagnoseOptions::default()).unwrap();
+    let sim = simulate(&s);
+    let m = fit(&sim.record, Some(&sim.calibration), &options());
+    let records = [(String::new(), &sim.record)];
+    let d = diagnose_records(m.inner(), &records, &DiagnoseOptions::default());
     let x = &d.channels[Channel::X.index()];
     assert_eq!(x.suggested.len(), 1, "{:?}", x.findings);
     let k = x

@@ -2,12 +2,11 @@
 //! the `no_std` evaluator, gives the desktop tool's numbers.
 //!
 //! The reference is the batch pipeline (calibration, filters, effect columns
-//! and the RBF over whole-record arrays, `CompensationModel::compensation`); the
+//! and the RBF over whole-record arrays, `UnitModel::compensation`); the
 //! `dtg-onboard` evaluator runs the same model one sample at a time, and the
 //! exported C, compiled with the system compiler, runs it from a CSV.
 
-use dtg_vib::model::CompensationModel;
-use dtg_vib::unit_sensor::UnitModel;
+use dtg_vib::unit_sensor::{UnitModel, to_signals};
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
@@ -17,10 +16,9 @@ use std::sync::OnceLock;
 /// deg/h: the bound on every channel and sample.
 const EQUAL_DEG_H: f64 = 1e-9;
 
-/// A paper model as the paper unit's model, which the exporter and the
-/// evaluator read.
-fn unit_of(model: &CompensationModel) -> UnitModel {
-    dtg_vib::onboard::unit_model_of(model).unwrap()
+/// The model file at `path`, through the one reader.
+fn load(path: &Path) -> UnitModel {
+    UnitModel::load(path).unwrap()
 }
 
 fn bin() -> Command {
@@ -156,25 +154,38 @@ fn step_against_batch(model_path: &Path) -> f64 {
 /// Largest |step − batch| on `rec`, the batch's network part faded outside
 /// the training range as compensation fades it.
 fn step_against_batch_on(model_path: &Path, rec: &Record) -> f64 {
-    let model = CompensationModel::load(model_path).unwrap();
-    let rec = rec.clone();
-    let prepared = model.prepare(&rec).unwrap();
-    let batch = model.compensation(&prepared).unwrap();
-    let stepped = dtg_vib::onboard::step_record(&unit_of(&model), &rec).unwrap();
-    assert_eq!(stepped.first_sample, prepared.first_sample());
+    step_against_batch_of(&load(model_path), rec).0
+}
+
+/// Largest |step − batch| of `m`'s predicted errors, compensated rates and
+/// calibrated specific force on `rec`, and the smallest fade weight the
+/// batch saw.
+fn step_against_batch_of(m: &UnitModel, rec: &Record) -> (f64, f64) {
+    let (mut worst, mut lowest) = (0.0f64, 1.0f64);
+    let signals = to_signals(rec).unwrap();
+    let prepared = m.inner().prepare(&signals).unwrap();
+    let batch = m.compensation(&prepared).unwrap();
+    if let Some(w) = m.inner().fade_weights(&prepared).unwrap() {
+        lowest = w.weight.iter().fold(lowest, |a, &b| a.min(b));
+    }
+    let stepped = dtg_vib::onboard::step_record(m, rec).unwrap();
     let first = prepared.first_sample();
-    let mut worst = 0.0f64;
-    for ch in Channel::ALL {
-        let k = ch.index();
+    assert_eq!(stepped.first_sample, first);
+    for (k, name) in m.unit().gyro_names().iter().enumerate() {
         assert_eq!(stepped.error_deg_h[k].len(), batch[k].len());
-        let calibrated = &prepared.calibrated().gyro(ch)[first..];
+        let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
         for (i, (s, b)) in stepped.error_deg_h[k].iter().zip(&batch[k]).enumerate() {
             worst = worst.max((s - b).abs());
-            let rate = calibrated[i] - b;
-            worst = worst.max((stepped.rate_deg_h[k][i] - rate).abs());
+            worst = worst.max((stepped.rate_deg_h[k][i] - (calibrated[i] - b)).abs());
         }
     }
-    worst
+    for (k, name) in m.unit().accel_names().iter().enumerate() {
+        let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
+        for (s, b) in stepped.accel_g[k].iter().zip(calibrated) {
+            worst = worst.max((s - b).abs());
+        }
+    }
+    (worst, lowest)
 }
 
 #[test]
@@ -193,11 +204,11 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
     // network part before it, in batch, onboard and C alike.
     for m in [plain(), rich(), statistics()] {
         // Guards the comparison: the network must fade out and come back.
-        let model = CompensationModel::load(m).unwrap();
-        let prepared = model.prepare(&rec).unwrap();
+        let model = load(m);
+        let prepared = model.inner().prepare(&to_signals(&rec).unwrap()).unwrap();
         let w = model
             .inner()
-            .fade_weights(prepared.inner())
+            .fade_weights(&prepared)
             .unwrap()
             .expect("a new model has a training range")
             .weight;
@@ -209,7 +220,7 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
             w[3000 - first]
         );
         assert_eq!(*w.last().unwrap(), 1.0, "inside again after it");
-        let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
+        let t = dtg_vib::export::tables(&model).unwrap();
         assert!(dtg_onboard::Model::parse(&t.bytes).unwrap().fades());
         let worst = step_against_batch_on(m, &rec);
         eprintln!(
@@ -223,22 +234,22 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
 #[test]
 fn the_rich_model_uses_effects_extra_columns_and_two_signals() {
     // Guards the test above: the model must exercise what it claims.
-    let model = CompensationModel::load(rich()).unwrap();
-    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
+    let model = load(rich());
+    let t = dtg_vib::export::tables(&model).unwrap();
     assert_eq!(t.extra, ["temp"]);
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert_eq!(m.n_effects(Channel::Y1.index()), 2);
     assert_eq!(m.n_effects(Channel::Z.index()), 2);
     assert_eq!(m.window_len(), 20);
-    assert!(model.preprocess().input_filter.is_some());
-    assert!(model.calibration().is_some());
+    assert!(model.inner().preprocess().input_filter.is_some());
+    assert!(model.inner().sensor().calibration.is_some());
 }
 
 #[test]
 fn the_statistics_model_reads_nine_inputs() {
     // Guards the tests above: the statistics input is what they step.
-    let model = CompensationModel::load(statistics()).unwrap();
-    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
+    let model = load(statistics());
+    let t = dtg_vib::export::tables(&model).unwrap();
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert_eq!(m.input_kind(), dtg_onboard::input::STATISTICS);
     assert_eq!(m.input_dim(0), 9);
@@ -250,7 +261,7 @@ fn a_causal_model_never_looks_ahead() {
     // Change the record from sample n on: the batch pipeline's predictions
     // before n − 1 must not move (they would under the zero-phase filter);
     // n − 1 may, through the centred covariance: the one sample of latency.
-    let model = CompensationModel::load(rich()).unwrap();
+    let model = load(rich());
     let rec = record();
     let n = 3000;
     let mut acc: [Vec<f64>; 3] =
@@ -264,9 +275,12 @@ fn a_causal_model_never_looks_ahead() {
         g
     });
     let changed = rec.with_accel(acc).with_gyro(gyro);
-    let p0 = model.prepare(&rec).unwrap();
-    let p1 = model.prepare(&changed).unwrap();
-    let (a, b) = (model.predict(&p0).unwrap(), model.predict(&p1).unwrap());
+    let prepare = |r: &Record| model.inner().prepare(&to_signals(r).unwrap()).unwrap();
+    let (p0, p1) = (prepare(&rec), prepare(&changed));
+    let (a, b) = (
+        model.inner().predict(&p0).unwrap(),
+        model.inner().predict(&p1).unwrap(),
+    );
     let first = p0.first_sample();
     for k in 0..6 {
         assert_eq!(a[k][..n - 1 - first], b[k][..n - 1 - first], "channel {k}");
@@ -287,8 +301,8 @@ fn a_zero_phase_model_is_not_exported() {
         .arg(s.join("record.csv"))
         .arg("--out")
         .arg(&out));
-    let model = CompensationModel::load(&out).unwrap();
-    let err = dtg_vib::export::tables(&unit_of(&model)).unwrap_err();
+    let model = load(&out);
+    let err = dtg_vib::export::tables(&model).unwrap_err();
     assert!(err.to_string().contains("--causal"), "{err}");
     let res = bin()
         .args(["export", "--lang", "c", "--model"])
@@ -491,10 +505,8 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
     // observable) with a vibrating specific force, uncalibrated: every term
     // kind of the tables (linear, quadratic with covariance, rate product)
     // against the batch effect columns.
-    use dtg_vib::effects::Effect;
-    use dtg_vib::fit::{FitOptions, FitSettings, fit};
-    use dtg_vib::pipeline::Preprocess;
-    use dtg_vib::window::WindowSpec;
+    use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitSensor};
+    use sysid::Sensor;
     let n = 1200;
     let t: Vec<f64> = (1..=n).map(|i| i as f64 * 0.02).collect();
     let wave = |i: usize, f: f64, p: f64| (f * i as f64 * 0.02 + p).sin();
@@ -527,30 +539,38 @@ fn every_effect_kind_steps_as_the_batch_computes_it() {
         std::array::from_fn(|k| m.iter().map(|r| r[k]).collect())
     };
     let rec = Record::new(t, gyro, accel, vec![]).unwrap();
-    let options = FitOptions {
-        preprocess: Preprocess {
-            window: WindowSpec::new(vec!["ax".into(), "az".into()], 8).unwrap(),
-            causal: true,
-            ..Preprocess::default()
-        },
-        effects: Effect::parse_list("g_O,gg_IS,gg_OO,ai_IO,ai_OS").unwrap(),
-        settings: FitSettings {
-            max_centres: 5,
-            ..FitSettings::default()
-        },
-        ..FitOptions::default()
+    // The paper's unit, uncalibrated, with the paper's fit defaults (input
+    // and smoother chosen) on a causal window of ax and az.
+    let sensor = UnitSensor {
+        unit: nav_sensors::unit::Unit::paper(),
+        calibration: None,
+        rate_reference: RateReference::None,
     };
-    let model = fit(&rec, None, &options, &|_| {}).unwrap();
-    let prepared = model.prepare(&rec).unwrap();
+    let mut options = sysid::FitOptions::<UnitEffect>::new(6);
+    let pre = &mut options.recipe.preprocess;
+    pre.window = sysid::WindowSpec::new(vec!["ax".into(), "az".into()], 8).unwrap();
+    pre.causal = true;
+    options.recipe.effects = (0..6)
+        .map(|k| {
+            let ids = "g_O,gg_IS,gg_OO,ai_IO,ai_OS".split(',');
+            ids.map(|id| sensor.parse_effect(k, id).unwrap()).collect()
+        })
+        .collect();
+    options.recipe.settings.max_centres = 5;
+    options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
+    let signals = to_signals(&rec).unwrap();
+    let fitted = sysid::fit::fit(&sensor, &signals, &options, &|_| {}).unwrap();
+    let model = UnitModel::of(fitted);
+    let prepared = model.inner().prepare(&signals).unwrap();
     let batch = model.compensation(&prepared).unwrap();
-    let stepped = dtg_vib::onboard::step_record(&unit_of(&model), &rec).unwrap();
+    let stepped = dtg_vib::onboard::step_record(&model, &rec).unwrap();
     let mut worst = 0.0f64;
     for (k, b) in batch.iter().enumerate() {
         for (s, b) in stepped.error_deg_h[k].iter().zip(b) {
             worst = worst.max((s - b).abs());
         }
         // The effects carry weight, so a wrong regressor would show.
-        let th = model.channels()[k].effect_coefficients();
+        let th = model.inner().channels()[k].effect_coefficients();
         assert!(th.iter().all(|v| v.abs() > 0.0), "{th:?}");
     }
     eprintln!("all effect kinds: largest |step − batch| = {worst:e} deg/h");
@@ -791,34 +811,12 @@ fn unit_outside(model: &Path, data: &Path) -> PathBuf {
 /// compensated rates on the log at `data` (every segment), and the smallest
 /// fade weight the batch saw.
 fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
-    use dtg_vib::unit_sensor::{UnitModel, to_signals};
-    let m = UnitModel::load(model_path).unwrap();
+    let m = load(model_path);
     let read = Record::read_with_unit(data, m.unit()).unwrap();
     let (mut worst, mut lowest) = (0.0f64, 1.0f64);
     for rec in &read.records {
-        let signals = to_signals(rec).unwrap();
-        let prepared = m.inner().prepare(&signals).unwrap();
-        let batch = m.compensation(&prepared).unwrap();
-        if let Some(w) = m.inner().fade_weights(&prepared).unwrap() {
-            lowest = w.weight.iter().fold(lowest, |a, &b| a.min(b));
-        }
-        let stepped = dtg_vib::onboard::step_record(&m, rec).unwrap();
-        let first = prepared.first_sample();
-        assert_eq!(stepped.first_sample, first);
-        for (k, name) in m.unit().gyro_names().iter().enumerate() {
-            assert_eq!(stepped.error_deg_h[k].len(), batch[k].len());
-            let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
-            for (i, (s, b)) in stepped.error_deg_h[k].iter().zip(&batch[k]).enumerate() {
-                worst = worst.max((s - b).abs());
-                worst = worst.max((stepped.rate_deg_h[k][i] - (calibrated[i] - b)).abs());
-            }
-        }
-        for (k, name) in m.unit().accel_names().iter().enumerate() {
-            let calibrated = &prepared.calibrated().column(name).unwrap()[first..];
-            for (s, b) in stepped.accel_g[k].iter().zip(calibrated) {
-                worst = worst.max((s - b).abs());
-            }
-        }
+        let (w, l) = step_against_batch_of(&m, rec);
+        (worst, lowest) = (worst.max(w), lowest.min(l));
     }
     (worst, lowest)
 }
@@ -979,16 +977,15 @@ fn shared() -> &'static Path {
 
 #[test]
 fn channels_sharing_a_centre_set_step_and_export_as_the_batch() {
-    let model = CompensationModel::load(shared()).unwrap();
-    let t = dtg_vib::export::tables(&unit_of(&model)).unwrap();
+    let model = load(shared());
+    let t = dtg_vib::export::tables(&model).unwrap();
     let m = dtg_onboard::Model::parse(&t.bytes).unwrap();
     assert!((0..6).all(|c| m.centre_set(c) == 0), "one set");
-    let own =
-        dtg_vib::export::tables(&unit_of(&CompensationModel::load(statistics()).unwrap())).unwrap();
+    let own = dtg_vib::export::tables(&load(statistics())).unwrap();
     let own = dtg_onboard::Model::parse(&own.bytes).unwrap();
     assert!((0..6).all(|c| own.centre_set(c) == c), "six sets");
     assert!(m.flops_per_step() < own.flops_per_step());
-    let c = dtg_vib::export::c_sources(&unit_of(&model), dtg_vib::export::Precision::F64).unwrap();
+    let c = dtg_vib::export::c_sources(&model, dtg_vib::export::Precision::F64).unwrap();
     assert!(c.source.contains("CENTRE_SET[c] != c"), "the shared C");
     for (what, rec) in [
         ("", record()),

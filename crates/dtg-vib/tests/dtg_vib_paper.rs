@@ -1,23 +1,31 @@
 //! Issue 4's acceptance: on the default simulated test, the paper's procedure
 //! lowers every parity residue's rms at least threefold on the validation
-//! part of a blocked split.
+//! part of a blocked split. The paper's unit runs the one plug-in
+//! ([`UnitSensor`] of the built-in `paper` unit) with the options the
+//! paper's fit defaults to (input and smoother chosen).
 
-use dtg_vib::apply::Applied;
-use dtg_vib::fit::{FitOptions, FitSettings, fit};
-use nav_sensors::geometry::Channel;
-use nav_sensors::sim::{Scenario, simulate};
+mod paper_fit;
+
+use dtg_vib::unit_sensor::{Applied, UnitEffect, UnitModel, UnitSensor};
+use nav_sensors::record::Record;
+use nav_sensors::sim::{Scenario, UnitSimulation};
+use paper_fit::{options, simulate};
+
+/// The paper unit's model of `sim`'s record after its ground calibration.
+fn fit(sim: &UnitSimulation, options: &sysid::FitOptions<UnitEffect>) -> UnitModel {
+    paper_fit::fit(&sim.record, Some(&sim.calibration), options)
+}
+
+/// The model applied to one record, split as at fit time.
+fn applied(model: &UnitModel, record: &Record) -> Applied {
+    Applied::new(model, &[("r".to_string(), record)]).unwrap()
+}
 
 #[test]
 fn residues_fall_at_least_threefold_on_blocked_validation() {
-    let sim = simulate(&Scenario::default()).unwrap();
-    let model = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &FitOptions::default(),
-        &|_| {},
-    )
-    .unwrap();
-    let applied = Applied::new(&model, &sim.record).unwrap();
+    let sim = simulate(&Scenario::default());
+    let model = fit(&sim, &options());
+    let applied = applied(&model, &sim.record);
     let stats = applied.validation_residues();
     // Measured (seed 20051021): 4.2 to 4.3 on every residue.
     for s in &stats {
@@ -31,7 +39,7 @@ fn residues_fall_at_least_threefold_on_blocked_validation() {
         );
     }
     // And every channel's validation residual is below what a bias-only model leaves.
-    for c in model.channels() {
+    for c in model.inner().channels() {
         assert!(
             c.scores().val_rms < 0.8 * c.scores().val_rms_bias_only,
             "{:?}",
@@ -41,34 +49,20 @@ fn residues_fall_at_least_threefold_on_blocked_validation() {
 }
 
 /// A 30-s default test fitted with at most 10 centres.
-fn short_fit() -> (
-    nav_sensors::sim::Simulation,
-    dtg_vib::model::CompensationModel,
-) {
+fn short_fit() -> (UnitSimulation, UnitModel) {
     let sim = simulate(&Scenario {
         duration_s: 30.0,
         ..Scenario::default()
-    })
-    .unwrap();
-    let model = fit(
-        &sim.record,
-        Some(&sim.calibration),
-        &short_options(),
-        &|_| {},
-    )
-    .unwrap();
+    });
+    let model = fit(&sim, &short_options());
     (sim, model)
 }
 
 /// At most 10 centres.
-fn short_options() -> FitOptions {
-    FitOptions {
-        settings: FitSettings {
-            max_centres: 10,
-            ..FitSettings::default()
-        },
-        ..FitOptions::default()
-    }
+fn short_options() -> sysid::FitOptions<UnitEffect> {
+    let mut o = options();
+    o.recipe.settings.max_centres = 10;
+    o
 }
 
 #[test]
@@ -76,12 +70,9 @@ fn a_saved_model_compensates_identically_after_loading() {
     let (sim, model) = short_fit();
     let path = std::env::temp_dir().join(format!("dtg-vib-model-{}.json", std::process::id()));
     model.save(&path).unwrap();
-    let back = dtg_vib::model::CompensationModel::load(&path).unwrap();
+    let back = UnitModel::load(&path).unwrap();
     assert_eq!(back, model);
-    let (a, b) = (
-        Applied::new(&model, &sim.record).unwrap(),
-        Applied::new(&back, &sim.record).unwrap(),
-    );
+    let (a, b) = (applied(&model, &sim.record), applied(&back, &sim.record));
     assert_eq!(a.predicted, b.predicted);
     std::fs::remove_file(path).ok();
 }
@@ -93,24 +84,16 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
         seed,
         ..Scenario::default()
     };
-    let sim = simulate(&short(1)).unwrap();
-    let options = FitOptions {
-        settings: FitSettings {
-            max_centres: 10,
-            ..FitSettings::default()
-        },
-        ..FitOptions::default()
-    };
-    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-    let other = simulate(&short(2)).unwrap().record;
-    let applied = Applied::new(&model, &other).unwrap();
+    let sim = simulate(&short(1));
+    let model = fit(&sim, &short_options());
+    let other = simulate(&short(2)).record;
+    let on_other = applied(&model, &other);
     let dir = std::env::temp_dir().join(format!("dtg-vib-report-other-{}", std::process::id()));
-    // The one page of every unit, on the paper's model file read as the
-    // paper unit's model.
+    // The one page of every unit, on the paper unit's model file.
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("model.json");
     model.save(&path).unwrap();
-    let unit_model = dtg_vib::unit_sensor::UnitModel::load(&path).unwrap();
+    let unit_model = UnitModel::load(&path).unwrap();
     let data = [dir.join("other.csv")];
     let written = dtg_vib::unit_page::write_page(
         &unit_model,
@@ -119,22 +102,28 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
         &dir.join("report"),
     )
     .unwrap();
-    for (c, (name, shown)) in model.channels().iter().zip(&written.numbers.channels) {
-        assert_eq!(name, c.channel().name());
-        let y = applied.prepared.target(c.channel());
-        let p = &applied.predicted[c.channel().index()];
+    for (k, (c, (name, shown))) in model
+        .inner()
+        .channels()
+        .iter()
+        .zip(&written.numbers.channels)
+        .enumerate()
+    {
+        assert_eq!(*name, c.channel());
+        let y = on_other.prepared.target(k);
+        let p = &on_other.predicted[k];
         let rms = |rows: &[usize]| {
             (rows.iter().map(|&r| (y[r] - p[r]).powi(2)).sum::<f64>() / rows.len() as f64).sqrt()
         };
-        assert!((shown.val_rms - rms(&applied.val)).abs() < 1e-12);
-        assert!((shown.train_rms - rms(&applied.train)).abs() < 1e-12);
+        assert!((shown.val_rms - rms(&on_other.val)).abs() < 1e-12);
+        assert!((shown.train_rms - rms(&on_other.train)).abs() < 1e-12);
         // Not the numbers of the record the model was fitted on.
         assert_ne!(shown.val_rms, c.scores().val_rms);
     }
     // On the fitting record, the same numbers as at fit time.
-    let own = Applied::new(&model, &sim.record).unwrap();
-    for c in model.channels() {
-        assert_eq!(own.scores(c.channel()), *c.scores());
+    let own = applied(&model, &sim.record);
+    for (k, c) in model.inner().channels().iter().enumerate() {
+        assert_eq!(own.scores(k), *c.scores());
     }
     std::fs::remove_dir_all(dir).ok();
 }
@@ -148,19 +137,20 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
     // The demo's record: its vibration levels change, so the networks have
     // something to predict and the keep step leaves them (on a record of
     // one level a network adds nothing to the bias and is shrunk to zero).
-    let sim = simulate(&Scenario::builtin("demo").unwrap()).unwrap();
+    let sim = simulate(&Scenario::builtin("demo").unwrap());
     let mut options = short_options();
-    options.settings.shared_centres = true;
-    let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
-    assert!(model.fit_settings().shared_centres);
-    let first = &model.channels()[0];
-    let applied = Applied::new(&model, &sim.record).unwrap();
+    options.recipe.settings.shared_centres = true;
+    let model = fit(&sim, &options);
+    assert!(model.inner().settings().shared_centres);
+    let first = &model.inner().channels()[0];
+    let applied = applied(&model, &sim.record);
     let windows = applied.prepared.window_matrix();
     let rows = &applied.train;
     let x = faer::Mat::from_fn(rows.len(), windows.ncols(), |i, j| windows[(rows[i], j)]);
     let basis = first.rbf().features(x.as_ref());
     let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-    let own_residual_gradient = |weights_of: &dtg_vib::model::ChannelModel, y_of: Channel| {
+    type ChannelModel = sysid::ChannelModelOf<UnitSensor>;
+    let own_residual_gradient = |weights_of: &ChannelModel, y_of: usize| {
         let rbf = weights_of.rbf();
         let y: Vec<f64> = rows
             .iter()
@@ -194,7 +184,7 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
         .choice()
         .map(|c| c.networks_shrunk.clone())
         .unwrap_or_default();
-    let shrunk = |c: &dtg_vib::model::ChannelModel| {
+    let shrunk = |c: &ChannelModel| {
         let scale = 1.0 + c.rbf().bias().unwrap()[0].abs();
         let zero = c
             .rbf()
@@ -207,15 +197,15 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
             .any(|s| s.starts_with(&format!("{} ×", c.channel())))
     };
     let mut kept = Vec::new();
-    for c in model.channels() {
+    for (k, c) in model.inner().channels().iter().enumerate() {
         assert_eq!(c.rbf().centres(), first.rbf().centres(), "{}", c.channel());
         assert_eq!(c.width(), first.width(), "{}", c.channel());
         if shrunk(c) {
             continue;
         }
-        let own = own_residual_gradient(c, c.channel());
+        let own = own_residual_gradient(c, k);
         assert!(own < 1e-7, "{}: {own:e} ({scaled:?})", c.channel());
-        kept.push(c);
+        kept.push((k, c));
     }
     // Two are enough to tell one channel's weights from another's.
     assert!(
@@ -225,6 +215,6 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
     );
     // One channel's weights are not a least-squares fit of another: each
     // channel has its own.
-    let (a, b) = (kept[0], kept[1].channel());
+    let (a, b) = (kept[0].1, kept[1].0);
     assert!(own_residual_gradient(a, b) > 1e-4);
 }

@@ -1,59 +1,75 @@
 //! Several records in one fit, and a model checked on a record it was not
-//! fitted on (data simulated here from fixed seeds).
+//! fitted on (data simulated here from fixed seeds), on the paper's unit
+//! through the one plug-in ([`UnitSensor`]).
 
-use dtg_vib::check::{DEFAULT_OUTSIDE_THRESHOLD, check};
-use dtg_vib::fit::{FitOptions, fit, fit_records, record_scores};
-use dtg_vib::pipeline::{Prepared, Preprocess};
+mod paper_fit;
+
+use dtg_vib::unit_sensor::check::DEFAULT_OUTSIDE_THRESHOLD;
+use dtg_vib::unit_sensor::{UnitModel, UnitSensor};
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::sim::{Scenario, UnitSimulation};
+use paper_fit::{checked, fit, fit_records, named, options, signals, simulate};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
+use sysid::fit::record_scores;
+use sysid::{Prepared, Preprocess, Sensor};
 
 /// The paper's Z-axis random test (100 s) from `seed`.
-fn z_test(seed: u64) -> nav_sensors::sim::Simulation {
-    simulate(&Scenario {
+fn z_test(seed: u64) -> UnitSimulation {
+    let s = Scenario {
         seed,
         ..Scenario::paper_z_random()
-    })
-    .unwrap()
+    };
+    simulate(&s)
 }
 
 /// A test whose vibration runs along all three axes.
-fn triaxial(seed: u64) -> nav_sensors::sim::Simulation {
-    simulate(&Scenario {
+fn triaxial(seed: u64) -> UnitSimulation {
+    let s = Scenario {
         duration_s: 60.0,
         seed,
         ..Scenario::triaxial_clean()
-    })
-    .unwrap()
+    };
+    simulate(&s)
+}
+
+/// The records prepared together (or one alone) with the loop's defaults.
+fn prepare(records: &[(String, &Record)]) -> Result<Prepared<UnitSensor>, sysid::SysidError> {
+    let owned = signals(records);
+    Prepared::new_many(
+        &paper_fit::sensor(None),
+        &named(&owned),
+        &Preprocess::default(),
+    )
 }
 
 #[test]
 fn records_are_prepared_alone_and_laid_end_to_end() {
     let (a, b) = (z_test(11).record, z_test(12).record);
-    let pre = Preprocess::default();
-    let pa = Prepared::new(&a, None, &pre).unwrap();
-    let pb = Prepared::new(&b, None, &pre).unwrap();
+    let pa = prepare(&[("a".to_string(), &a)]).unwrap();
+    let pb = prepare(&[("b".to_string(), &b)]).unwrap();
     let named = [("a".to_string(), &a), ("b".to_string(), &b)];
-    let ab = Prepared::new_many(&named, None, &pre).unwrap();
+    let ab = prepare(&named).unwrap();
     assert_eq!(ab.rows(), pa.rows() + pb.rows());
     let rows = ab.record_rows();
     assert_eq!(rows[1], ("b", pa.rows()..pa.rows() + pb.rows()));
     // B's rows are B prepared alone: its filter never saw A's samples.
     let n = pa.rows();
     for ch in Channel::ALL {
-        assert_eq!(&ab.target(ch)[n..], pb.target(ch), "{ch}");
-        assert_eq!(&ab.target(ch)[..n], pa.target(ch), "{ch}");
+        let k = ch.index();
+        assert_eq!(&ab.target(k)[n..], pb.target(k), "{ch}");
+        assert_eq!(&ab.target(k)[..n], pa.target(k), "{ch}");
     }
     assert_eq!(ab.windows().row(n), pb.windows().row(0));
     let az = ab.signal_full("az").unwrap();
     let first = ab.first_sample();
     assert_eq!(&az[first + n..], &pb.signal_full("az").unwrap()[first..]);
-    let effects = [dtg_vib::effects::Effect::parse_list("gg_IS").unwrap()[0].clone()];
-    let col = ab.effect_columns_full(Channel::Y1, &effects).unwrap();
-    let alone = pb.effect_columns_full(Channel::Y1, &effects).unwrap();
+    let y1 = Channel::Y1.index();
+    let effects = [paper_fit::sensor(None).parse_effect(y1, "gg_IS").unwrap()];
+    let col = ab.effect_columns_full(y1, &effects).unwrap();
+    let alone = pb.effect_columns_full(y1, &effects).unwrap();
     assert_eq!(&col[0][first + n..], &alone[0][first..]);
 }
 
@@ -72,7 +88,7 @@ fn records_that_differ_are_refused_with_both_names() {
     )
     .unwrap();
     let named = [("a.csv".to_string(), &a), ("b.csv".to_string(), &b)];
-    let Err(err) = Prepared::new_many(&named, None, &Preprocess::default()) else {
+    let Err(err) = prepare(&named) else {
         panic!("records with other extra columns were prepared together");
     };
     let msg = err.to_string();
@@ -85,21 +101,28 @@ fn records_that_differ_are_refused_with_both_names() {
 #[test]
 fn one_record_through_fit_records_is_fit() {
     let sim = z_test(11);
-    let options = FitOptions::default();
-    let one = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    let one = fit(&sim.record, Some(&sim.calibration), &options());
     let named = [("a".to_string(), &sim.record)];
-    let (many, _) = fit_records(&named, Some(&sim.calibration), &options, &|_| {}).unwrap();
+    let (many, _) = fit_records(&named, Some(&sim.calibration), &options());
+    // The window's signals chosen from the records name them in the
+    // choice report: "a" here, nameless in a fit of one record. Everything
+    // else is the same model.
+    let choice = many.inner().choice().and_then(|c| c.window_signals.clone());
+    let mut choice = choice.expect("the window's signals chosen from the record");
+    assert_eq!(choice.records, ["a"]);
+    choice.records = vec![String::new()];
+    let many = UnitModel::of(many.inner().clone().with_window_signals(choice));
     assert_eq!(one, many);
 }
 
 #[test]
 fn each_record_validates_and_a_model_warns_outside_its_training_range() {
     let (a, b) = (z_test(21), z_test(22));
-    let options = FitOptions::default();
     let named = [("a".to_string(), &a.record), ("b".to_string(), &b.record)];
-    let (model, prepared) = fit_records(&named, Some(&a.calibration), &options, &|_| {}).unwrap();
+    let (model, prepared) = fit_records(&named, Some(&a.calibration), &options());
+    let model = model.inner();
     assert_eq!(model.records(), ["a", "b"]);
-    let per = record_scores(&model, &prepared).unwrap();
+    let per = record_scores(model, &prepared).unwrap();
     for (k, scores) in per.iter().enumerate() {
         let files: Vec<&str> = scores.iter().map(|s| s.file.as_str()).collect();
         assert_eq!(files, ["a", "b"]);
@@ -111,8 +134,8 @@ fn each_record_validates_and_a_model_warns_outside_its_training_range() {
     }
     // Another run of the same test lies inside the training range of a
     // model of one run …
-    let model = fit(&a.record, Some(&a.calibration), &options, &|_| {}).unwrap();
-    let same = check(&model, &z_test(23).record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
+    let model = fit(&a.record, Some(&a.calibration), &options());
+    let same = checked(&model, &z_test(23).record);
     let inside = same.outside_fraction.unwrap();
     assert!(inside < DEFAULT_OUTSIDE_THRESHOLD, "{inside}");
     assert!(same.warning.is_none(), "{:?}", same.warning);
@@ -123,7 +146,7 @@ fn each_record_validates_and_a_model_warns_outside_its_training_range() {
         assert!(varying < 0.8 * c.rms_before, "{c:?}");
     }
     // … a test that shakes along every axis does not, and is said to.
-    let other = check(&model, &triaxial(24).record, DEFAULT_OUTSIDE_THRESHOLD).unwrap();
+    let other = checked(&model, &triaxial(24).record);
     let outside = other.outside_fraction.unwrap();
     assert!(outside > 0.5, "{outside}");
     assert!(other.warning.as_deref().unwrap().contains("outside"));

@@ -16,18 +16,22 @@
 
 use std::sync::OnceLock;
 
-use dtg_vib::apply::Applied;
-use dtg_vib::fit::{FitOptions, FitSettings, fit};
-use dtg_vib::model::CompensationModel;
-use dtg_vib::pipeline::{Prepared, Preprocess};
-use nav_sensors::calibration::Calibration;
+mod paper_fit;
+
+use dtg_vib::unit_sensor::{
+    Applied, UnitModel, UnitSensor, calibration_from_json, to_record, to_signals,
+};
+use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::sim::{Scenario, simulate_unit};
+use nav_sensors::unit::Unit;
+use paper_fit::sensor;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 use rbf::RbfModel;
 use rbf::faer::Mat;
+use sysid::{Prepared, Preprocess};
 
 /// `PROPTEST_CASES` if set, else `default`.
 fn config(default: u32) -> Config {
@@ -96,10 +100,14 @@ fn scenario() -> Scenario {
 struct Base {
     record: Record,
     record_csv: String,
-    calibration: Calibration,
-    calibration_json: String,
-    model: CompensationModel,
-    model_json: String,
+    calibration: UnitCalibration,
+    /// The calibration in the unit format, and the paper's (the fixture
+    /// 5b6a72d wrote): both read through the one reader.
+    calibration_json: [String; 2],
+    model: UnitModel,
+    /// The model file written now, and the paper's without a unit key (the
+    /// fixture 5b6a72d wrote): both read through the one reader.
+    model_json: [String; 2],
     rbf_csv: String,
     rbf_model: RbfModel,
     rbf_json: String,
@@ -108,22 +116,20 @@ struct Base {
 fn base() -> &'static Base {
     static BASE: OnceLock<Base> = OnceLock::new();
     BASE.get_or_init(|| {
-        let sim = simulate(&scenario()).unwrap();
+        let sim = paper_fit::simulate(&scenario());
         let mut buf = Vec::new();
         sim.record.write_to(&mut buf, "record.csv").unwrap();
         let record_csv = String::from_utf8(buf).unwrap();
-        let options = FitOptions {
-            settings: FitSettings {
-                max_centres: 4,
-                candidates: 40,
-                ..FitSettings::default()
-            },
-            ..FitOptions::default()
-        };
-        let model = fit(&sim.record, Some(&sim.calibration), &options, &|_| {}).unwrap();
+        let mut options = paper_fit::options();
+        options.recipe.settings.max_centres = 4;
+        options.recipe.settings.candidates = 40;
+        let model = paper_fit::fit(&sim.record, Some(&sim.calibration), &options);
         let path = std::env::temp_dir().join(format!("fuzz-readers-{}.json", std::process::id()));
         model.save(&path).unwrap();
-        let model_json = std::fs::read_to_string(&path).unwrap();
+        let model_json = [
+            std::fs::read_to_string(&path).unwrap(),
+            legacy("paper/model.json"),
+        ];
         std::fs::remove_file(&path).unwrap();
         // The rbf CSV: a smooth surface of two inputs, seeded by construction.
         let mut rbf_csv = String::from("a,b,y\n");
@@ -151,7 +157,7 @@ fn base() -> &'static Base {
         Base {
             record: sim.record.clone(),
             record_csv,
-            calibration_json: sim.calibration.to_json(),
+            calibration_json: [sim.calibration.to_json(), legacy("paper/calibration.json")],
             calibration: sim.calibration,
             model,
             model_json,
@@ -160,6 +166,19 @@ fn base() -> &'static Base {
             rbf_json: String::from_utf8(buf).unwrap(),
         }
     })
+}
+
+/// A fixture file of 5b6a72d's (tests/fixtures/legacy).
+fn legacy(path: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/legacy");
+    std::fs::read_to_string(dir.join(path)).unwrap()
+}
+
+/// The paper unit's record prepared as a fit would (the window's signals
+/// chosen from the record), or the refusal.
+fn prepared(r: &Record, c: Option<&UnitCalibration>) -> Option<Prepared<UnitSensor>> {
+    let signals = to_signals(r).ok()?;
+    Prepared::new(&sensor(c), &signals, &Preprocess::default()).ok()
 }
 
 /// Replaces the cell at (`line`, `col`) (both taken modulo the shape; line 0
@@ -249,11 +268,11 @@ fn writes_readably(r: &Record) -> Result<(), TestCaseError> {
 
 /// Accepted records stay finite through pre-processing (with the ground
 /// calibration) or are refused there with a message.
-fn preprocess_finite(r: &Record, c: Option<&Calibration>) -> Result<(), TestCaseError> {
-    if let Ok(p) = Prepared::new(r, c, &Preprocess::default()) {
+fn preprocess_finite(r: &Record, c: Option<&UnitCalibration>) -> Result<(), TestCaseError> {
+    if let Some(p) = prepared(r, c) {
         for ch in Channel::ALL {
             prop_assert!(
-                p.target_full(ch).iter().all(|v| v.is_finite()),
+                p.target_full(ch.index()).iter().all(|v| v.is_finite()),
                 "{ch}: NaN target"
             );
         }
@@ -335,14 +354,17 @@ proptest! {
     /// Calibration JSON: a hostile coefficient is refused naming the file,
     /// or pre-processing stays finite (or refuses with the record time).
     #[test]
-    fn calibration_json(k in any::<usize>(), value in hostile()) {
+    fn calibration_json(format in 0usize..2, k in any::<usize>(), value in hostile()) {
         let b = base();
-        let text = replace_number(&b.calibration_json, k, &value);
-        match Calibration::from_json(&text, "cal.json") {
+        let text = replace_number(&b.calibration_json[format], k, &value);
+        match calibration_from_json(&text, "cal.json") {
             Ok(c) => {
                 preprocess_finite(&b.record, Some(&c))?;
-                if let Ok(p) = Prepared::new(&b.record, Some(&c), &Preprocess::default()) {
-                    writes_readably(p.calibrated())?;
+                if let Some(p) = prepared(&b.record, Some(&c)) {
+                    match to_record(&Unit::paper(), p.calibrated()) {
+                        Ok(r) => writes_readably(&r)?,
+                        Err(e) => prop_assert!(false, "calibrated record: {e}"),
+                    }
                 }
             }
             Err(e) => prop_assert!(e.to_string().contains("cal.json"), "{e}"),
@@ -353,21 +375,25 @@ proptest! {
     /// the model compensates the record to finite values (or refuses), and
     /// what compensate would write reads back.
     #[test]
-    fn dtg_vib_model_json(k in any::<usize>(), value in hostile()) {
+    fn dtg_vib_model_json(format in 0usize..2, k in any::<usize>(), value in hostile()) {
         let b = base();
-        let text = replace_number(&b.model_json, k, &value);
-        match CompensationModel::from_json(&text, std::path::Path::new("m.json")) {
+        let text = replace_number(&b.model_json[format], k, &value);
+        let records = [("r".to_string(), &b.record)];
+        match UnitModel::from_json(&text, std::path::Path::new("m.json")) {
             Ok(m) => {
-                if let Ok(a) = Applied::unsplit(&m, &b.record) {
-                    let comp = a.compensated_record();
-                    prop_assert!(Channel::ALL.iter().all(|&c| comp.gyro(c).iter().all(|v| !v.is_nan())));
-                    writes_readably(&comp)?;
+                if let Some(comp) = Applied::unsplit(&m, &records).ok().and_then(|a| a.compensated().ok()) {
+                    for comp in &comp {
+                        prop_assert!((0..comp.gyro_names().len()).all(|k| comp.gyro_at(k).iter().all(|v| !v.is_nan())));
+                        writes_readably(comp)?;
+                    }
                 }
             }
             Err(e) => prop_assert!(e.to_string().starts_with("m.json"), "{e}"),
         }
-        // The unmutated model is the control: it must load and apply.
-        prop_assert!(Applied::unsplit(&b.model, &b.record).is_ok());
+        // The unmutated models are the control: they must load and apply.
+        prop_assert!(Applied::unsplit(&b.model, &records).is_ok());
+        let unmutated = UnitModel::from_json(&b.model_json[format], std::path::Path::new("m.json"));
+        prop_assert!(Applied::unsplit(&unmutated.unwrap(), &records).is_ok());
     }
 
     /// rbf model JSON: a hostile number is refused, or the model loads with
@@ -423,7 +449,7 @@ proptest! {
         if s.validate().is_err() || s.output_samples() * s.oversampling() > 200_000 {
             return Ok(());
         }
-        if let Ok(sim) = simulate(&s) {
+        if let Ok(sim) = simulate_unit(&Unit::paper(), &s) {
             writes_readably(&sim.record)?;
         }
     }

@@ -2,8 +2,7 @@
 //! records), a g-sensitive term the library can state is named, not left
 //! inside the network, on records vibrated on three axes.
 
-use dtg_vib::pipeline::RateReference;
-use dtg_vib::unit_sensor::{UnitEffect, UnitSensor, to_signals};
+use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitSensor, to_signals};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::Channel;
 use nav_sensors::sim::{HiddenEffect, Scenario, UnitHiddenEffect, simulate_unit};

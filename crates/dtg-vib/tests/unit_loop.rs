@@ -14,8 +14,7 @@
 //! `cargo test --release -p dtg-vib --test unit_loop -- --ignored --nocapture`.
 
 use cli_support::testing::{Binary, s, scratch_dir};
-use dtg_vib::pipeline::RateReference;
-use dtg_vib::unit_sensor::{UnitEffect, UnitSensor, to_signals};
+use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitSensor, to_signals};
 use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{Scenario, UnitHiddenEffect, simulate_unit};
@@ -213,21 +212,32 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
     };
     let paper = Unit::paper();
     let sim = simulate_unit(&paper, &s).unwrap();
-    // The paper path: today's plug-in.
-    let paper_sim = nav_sensors::sim::simulate(&s).unwrap();
-    // The window both sides read: az alone (the library's default chooses
-    // among the accelerometers, in the unit's order of signals).
-    let mut paper_options = dtg_vib::fit::FitOptions::default();
-    paper_options.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
-    let today = dtg_vib::explain::explain(
-        &paper_sim.record,
-        Some(&paper_sim.calibration),
-        &paper_options,
-        &Default::default(),
-        5,
-        &|_| {},
-    )
-    .unwrap();
+    // The paper's unit through the one plug-in, with the options the
+    // paper's fit defaults to: the fit chooses its input and prediction
+    // smoother (issue 23), the window is az alone.
+    let explain_on = |sensor: &UnitSensor, record: &Record| {
+        let sig = to_signals(record).unwrap();
+        let mut options = sysid::FitOptions::<UnitEffect>::new(6);
+        options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
+        options.recipe.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
+        sysid::explain::explain(
+            sensor,
+            &[("r".into(), &sig)],
+            &options,
+            &Default::default(),
+            5,
+            &|_| {},
+        )
+        .unwrap()
+    };
+    let today = explain_on(
+        &UnitSensor {
+            unit: paper.clone(),
+            calibration: Some(sim.calibration.clone()),
+            rate_reference: RateReference::None,
+        },
+        &sim.record,
+    );
     // The renamed unit: reversed [[gyro]] blocks, names A..F, deg/s and m/s².
     let names = ["X", "X1", "Y", "Y1", "Z", "Z1"];
     let new = ["A", "B", "C", "D", "E", "F"];
@@ -288,22 +298,7 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
         calibration: Some(cal),
         rate_reference: RateReference::None,
     };
-    let sig = to_signals(&read.records[0]).unwrap();
-    // The options the paper's path defaults to: the fit chooses its input
-    // and prediction smoother (issue 23).
-    let mut options = sysid::FitOptions::<UnitEffect>::new(6);
-    options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
-    // The paper path's window: az alone.
-    options.recipe.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
-    let e = sysid::explain::explain(
-        &sensor,
-        &[("r".into(), &sig)],
-        &options,
-        &Default::default(),
-        5,
-        &|_| {},
-    )
-    .unwrap();
+    let e = explain_on(&sensor, &read.records[0]);
     for (k, name) in names.iter().enumerate() {
         let p = &today.model.channels()[k];
         let u = &e.model.channels()[5 - k];

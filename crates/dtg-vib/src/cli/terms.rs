@@ -3,7 +3,7 @@
 //! and could read only with the docs (issue 26 item 5). A term is explained
 //! only where it was printed, so a clean result stays short.
 
-use dtg_vib::effects::{ANISOINERTIA_MIN_RATE_DEG_S, Effect};
+use dtg_vib::unit_sensor::ANISOINERTIA_MIN_RATE_DEG_S;
 use nav_sensors::dtg::DtgTerm;
 
 /// Under `check`'s channel table: which columns are about the mean, so
@@ -50,7 +50,7 @@ pub fn diagnosis_terms<C: std::fmt::Display>(
             }
         }
     }
-    let is_ai = |id: &str| matches!(id.parse::<Effect>(), Ok(Effect::Term(t)) if DtgTerm::ANISOINERTIA.contains(&t));
+    let is_ai = |id: &str| DtgTerm::ANISOINERTIA.iter().any(|t| t.id() == id);
     let ai: Vec<&str> = unexcited
         .iter()
         .map(|(id, _)| *id)

@@ -8,59 +8,16 @@
 //! collinear there whatever the data; on another axis their responses may
 //! differ, and a run along that axis separates them.
 
-use crate::effects::Effect;
-use nalgebra::Vector3;
-use nav_sensors::dtg::{DtgInput, DtgTerm};
-use nav_sensors::geometry::{Axis, Channel, ChannelFrame};
+use nav_sensors::geometry::Axis;
 use sysid::Response;
 
 /// What separates a group of candidates, along a vibration axis.
 pub type Separation = sysid::Separation<Axis>;
 
-/// The response of `term` on `channel` to vibration along `axis` about the
-/// mean specific force `gravity_g` (cluster frame, g): the regressor's
-/// change per g (linear) and per g² (rectifying) of vibration; `None` for
-/// terms that do not depend on specific force.
-///
-/// ```
-/// use dtg_vib::diagnose::response;
-/// use nav_sensors::{dtg::DtgTerm, geometry::{Axis, Channel}};
-/// let g = nalgebra::Vector3::new(0.0, 0.0, 1.0);
-/// // Channel Z's input axis is cluster z: gg_II = f_I² responds 2·g₀·a + a².
-/// let r = response(Channel::Z, DtgTerm::GgII, &g, Axis::Z).unwrap();
-/// assert!((r.linear - 2.0).abs() < 1e-12 && (r.quadratic - 1.0).abs() < 1e-12);
-/// assert!(response(Channel::Z, DtgTerm::AiIO, &g, Axis::Z).is_none());
-/// ```
-pub fn response(
-    channel: Channel,
-    term: DtgTerm,
-    gravity_g: &Vector3<f64>,
-    axis: Axis,
-) -> Option<Response> {
-    if !DtgTerm::SPECIFIC_FORCE.contains(&term) {
-        return None;
-    }
-    let frame = ChannelFrame::of(channel);
-    let mut u = Vector3::zeros();
-    u[axis.index()] = 1.0;
-    let at = |a: f64| {
-        term.regressor(&DtgInput::resolved(
-            &frame,
-            &Vector3::zeros(),
-            &(gravity_g + u * a),
-        ))
-    };
-    let (m, z, p) = (at(-1.0), at(0.0), at(1.0));
-    Some(Response {
-        linear: (p - m) / 2.0,
-        quadratic: (p + m) / 2.0 - z,
-    })
-}
-
 /// How unlike two members' responses are, each stacked over several axes as
 /// (ℓ·a, q·a²) at vibration amplitude `a_g` (g rms): 1 − |cos|, 0 for
 /// proportional responses (a record with those axes cannot split them).
-fn unlikeness(x: &[Response], y: &[Response], a_g: f64) -> f64 {
+pub(crate) fn unlikeness(x: &[Response], y: &[Response], a_g: f64) -> f64 {
     let v: Vec<f64> = x
         .iter()
         .flat_map(|r| [r.linear * a_g, r.quadratic * a_g * a_g])
@@ -76,44 +33,6 @@ fn unlikeness(x: &[Response], y: &[Response], a_g: f64) -> f64 {
         return if v == w { 0.0 } else { 1.0 };
     }
     1.0 - (dot(&v, &w) / n).abs()
-}
-
-/// The separation advice for `group` (representative first) on `channel`,
-/// with `kappa[i]` the identified combination's weight of member i + 1,
-/// the record's mean specific force, its vibration amplitude (g rms) and the
-/// axis it vibrates along: which other axis, run as well, splits the group.
-pub fn separation(
-    channel: Channel,
-    group: &[Effect],
-    kappa: &[f64],
-    gravity_g: &Vector3<f64>,
-    vibration_g: f64,
-    current: Axis,
-) -> Separation {
-    let terms: Vec<Option<DtgTerm>> = group
-        .iter()
-        .map(|e| match e {
-            Effect::Term(t) if DtgTerm::SPECIFIC_FORCE.contains(t) => Some(*t),
-            _ => None,
-        })
-        .collect();
-    advise(
-        Group {
-            ids: group.iter().map(Effect::id).collect(),
-            kappa,
-            responsive: terms.iter().all(Option::is_some),
-            has_column: group.iter().any(|e| matches!(e, Effect::Column(_))),
-        },
-        vibration_g,
-        current,
-        |axis| {
-            terms
-                .iter()
-                .flatten()
-                .map(|t| response(channel, *t, gravity_g, axis).expect("specific force"))
-                .collect()
-        },
-    )
 }
 
 /// A group of candidates one record cannot tell apart, as the advice needs
@@ -215,51 +134,5 @@ pub(crate) fn advise(
             current.name()
         ),
         responses: there.into_iter().map(Some).collect(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Channel X under Z vibration with gravity along z: g_O and g_S are both
-    /// ∝ a_z (the issue's example of a pair one record cannot split); a run
-    /// along Y separates them (O = (y − z)/√2, S = −(y + z)/√2).
-    #[test]
-    fn z_vibration_pair_is_separated_by_another_axis() {
-        let g = Vector3::new(0.0, 0.0, 1.0);
-        let go = response(Channel::X, DtgTerm::GO, &g, Axis::Z).unwrap();
-        let gs = response(Channel::X, DtgTerm::GS, &g, Axis::Z).unwrap();
-        assert!(unlikeness(&[go], &[gs], 1.0) < 1e-12, "alike on Z");
-        let s = separation(
-            Channel::X,
-            &["g_O".parse().unwrap(), "g_S".parse().unwrap()],
-            &[1.0],
-            &g,
-            1.0,
-            Axis::Z,
-        );
-        assert_eq!(s.axis, Some(Axis::Y), "{}", s.advice);
-        let r = |i: usize| s.responses[i].unwrap().linear;
-        assert!((r(0) - r(1)).abs() > 1.0, "{}", s.advice);
-        assert!(
-            s.advice.contains(&format!("along {}", Axis::Y.name())),
-            "{}",
-            s.advice
-        );
-    }
-
-    #[test]
-    fn a_column_is_separated_by_varying_it() {
-        let s = separation(
-            Channel::Y1,
-            &["gg_IS".parse().unwrap(), "col:temp".parse().unwrap()],
-            &[0.5],
-            &Vector3::new(0.0, 0.0, 1.0),
-            1.0,
-            Axis::Z,
-        );
-        assert_eq!(s.axis, None);
-        assert!(s.advice.contains("thermal"), "{}", s.advice);
     }
 }

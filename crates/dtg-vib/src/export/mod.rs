@@ -14,4 +14,4 @@ pub use c::{CSources, c_sources, c_sources_from_tables};
 pub use precision::Precision;
 pub use text::equations;
 
-pub use crate::onboard::{ExportError, Tables, extra_columns, tables, unit_model_of};
+pub use crate::onboard::{ExportError, Tables, extra_columns, tables};

@@ -89,7 +89,7 @@ fn equations_with(
             w,
             "\n## Prediction smoother (the network part Σ wₖ·exp(…) only)"
         );
-        let spec = crate::pipeline::FilterSpec {
+        let spec = sysid::FilterSpec {
             order: sysid::smoother::SMOOTHER_ORDER,
             cutoff_hz: sm.cutoff_hz,
         };
@@ -215,7 +215,7 @@ fn accel_text(w: &mut String, name: &str, c: &nav_sensors::accel::AccelCoefficie
 }
 
 /// One low-pass as its sections' difference equations.
-fn filter_text(w: &mut String, f: &Option<crate::pipeline::FilterSpec>, causal: bool, dt_s: f64) {
+fn filter_text(w: &mut String, f: &Option<sysid::FilterSpec>, causal: bool, dt_s: f64) {
     match f {
         None => {
             let _ = writeln!(w, "none");

@@ -3,14 +3,12 @@
 //! paper's included) and its step-by-step run over a record. The exporter
 //! writes the tables out; compensation runs them.
 
-mod compensation_model;
 mod effects;
 pub mod error;
 mod fade;
 mod step;
 mod tables;
 
-pub use compensation_model::unit_model_of;
 pub use error::ExportError;
 pub use step::{Stepped, step_record, step_tables};
 pub(crate) use tables::accel_floats;

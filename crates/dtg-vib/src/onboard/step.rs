@@ -36,7 +36,7 @@ pub fn step_tables(t: &Tables, record: &Record) -> Result<Stepped, DtgVibError> 
     let extra: Vec<&[f64]> = t
         .extra
         .iter()
-        .map(|n| crate::pipeline::signal(record, n))
+        .map(|n| extra_column(record, n))
         .collect::<Result<_, _>>()?;
     let tables_error = |e: dtg_onboard::Error| ExportError::Tables(e.to_string());
     let m = dtg_onboard::Model::parse(&t.bytes).map_err(tables_error)?;
@@ -77,4 +77,15 @@ pub fn step_tables(t: &Tables, record: &Record) -> Result<Stepped, DtgVibError> 
         push(o);
     }
     Ok(out)
+}
+
+/// The record's extra column `name`, or the error naming what it has.
+fn extra_column<'r>(record: &'r Record, name: &str) -> Result<&'r [f64], DtgVibError> {
+    record.extra(name).ok_or_else(|| {
+        DtgVibError::Sysid(sysid::SysidError::WindowSignal {
+            name: name.to_string(),
+            operating: record.accel_names().to_vec(),
+            available: record.extra_names().iter().map(|s| s.to_string()).collect(),
+        })
+    })
 }

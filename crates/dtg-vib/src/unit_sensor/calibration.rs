@@ -7,8 +7,6 @@ use crate::error::DtgVibError;
 use nav_sensors::calibration::{
     Calibration, CalibrationFileError, GyroCoefficients, UnitCalibration,
 };
-use nav_sensors::dtg::DtgTerm;
-use nav_sensors::geometry::Channel;
 use std::path::Path;
 
 /// Reads a calibration file of either format.
@@ -67,26 +65,4 @@ pub fn from_paper(c: &Calibration) -> UnitCalibration {
             .map(|(a, k)| (a.column().to_string(), *k))
             .collect(),
     }
-}
-
-/// The paper's calibration of a unit calibration of the paper's channels
-/// and accelerometers (`None` for any other): what the paper's writers of
-/// reports and C read until they take the unit's.
-pub(crate) fn to_paper(c: &UnitCalibration) -> Option<Calibration> {
-    let mut out = Calibration::ideal();
-    for (name, g) in &c.gyros {
-        let ch = Channel::ALL.into_iter().find(|ch| ch.name() == name)?;
-        let GyroCoefficients::Dtg(d) = g else {
-            return None;
-        };
-        out.gyros
-            .insert(ch, d.without(&[DtgTerm::Temp, DtgTerm::Rect2N]));
-    }
-    for (name, k) in &c.accels {
-        let axis = nav_sensors::geometry::Axis::ALL
-            .into_iter()
-            .find(|a| a.column() == name)?;
-        out.accels.insert(axis, *k);
-    }
-    Some(out)
 }

@@ -6,10 +6,9 @@
 //! reference rate is removed through the unit's H, and the separation
 //! advice works along the unit's x, y, z axes.
 //!
-//! The paper's unit keeps its own plug-in ([`crate::paper_unit`]), whose
-//! outputs and model files are a contract to the bit; this one serves
-//! every other unit (and the paper's geometry under other names, units or
-//! column order).
+//! It serves every unit, the paper's included (the built-in `paper`
+//! unit); a paper model file written before the unit was stored reads as
+//! the paper unit's model.
 
 mod applied;
 mod apply;
@@ -32,7 +31,6 @@ pub use applied::{
     residue_series, residues_of,
 };
 pub use apply::Applied;
-pub(crate) use calibration::to_paper;
 pub use calibration::{calibration_from_json, from_paper, load_calibration};
 pub use effect::{
     ANISOINERTIA_MIN_RATE_DEG_S, COLUMN_PREFIX, RATE_EFFECTS, TERM_EFFECTS, UnitEffect,
@@ -40,7 +38,6 @@ pub use effect::{
 };
 pub use error::UnitSensorError;
 pub use model::{FORMAT_VERSION, UnitModel};
-pub(crate) use model::{KIND, check_header, write_json};
 pub(crate) use observable::largest_axis_std;
 pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
 pub use parity::{ResidueSeries, ResidueStats, pooled};

@@ -81,7 +81,7 @@ fn unit_frame(unit: &Unit, operating: &OperatingStats) -> (Vector3<f64>, [f64; 3
 }
 
 /// The separation advice for `group` (representative first) on gyro
-/// `channel` (see [`crate::diagnose::separate::separation`]).
+/// `channel`: which other axis, run as well, splits the group.
 pub fn separation(
     unit: &Unit,
     channel: usize,
@@ -142,5 +142,54 @@ mod tests {
         let s = separation(&triad, 2, &group, &[1.0], &ops);
         assert_eq!(s.axis, Some(Axis::X), "{}", s.advice);
         assert!(s.advice.contains("along x as well"), "{}", s.advice);
+    }
+
+    /// Vibration along z of 1 g rms with gravity along z.
+    fn z_vibration() -> OperatingStats {
+        OperatingStats {
+            names: vec!["ax".into(), "ay".into(), "az".into()],
+            means: vec![0.0, 0.0, 1.0],
+            variances: vec![0.0, 0.0, 1.0],
+        }
+    }
+
+    /// The paper's channel X under Z vibration with gravity along z: g_O
+    /// and g_S are both ∝ a_z (the example of a pair one record
+    /// cannot split); a run along Y separates them (O = (y − z)/√2,
+    /// S = −(y + z)/√2).
+    #[test]
+    fn z_vibration_pair_is_separated_by_another_axis() {
+        let paper = Unit::paper();
+        let g = Vector3::new(0.0, 0.0, 1.0);
+        let on_z = |id| {
+            let t = paper.parse_term(0, id).unwrap();
+            response(&paper, 0, t, &g, Axis::Z).unwrap()
+        };
+        let (go, gs) = (on_z("g_O"), on_z("g_S"));
+        let alike = crate::diagnose::separate::unlikeness(&[go], &[gs], 1.0);
+        assert!(alike < 1e-12, "alike on Z");
+        let group: Vec<UnitEffect> = ["g_O", "g_S"].iter().map(|s| s.parse().unwrap()).collect();
+        let s = separation(&paper, 0, &group, &[1.0], &z_vibration());
+        assert_eq!(s.axis, Some(Axis::Y), "{}", s.advice);
+        let r = |i: usize| s.responses[i].unwrap().linear;
+        assert!((r(0) - r(1)).abs() > 1.0, "{}", s.advice);
+        assert!(
+            s.advice.contains(&format!("along {}", Axis::Y.name())),
+            "{}",
+            s.advice
+        );
+    }
+
+    /// A group with an extra column is split by varying the column.
+    #[test]
+    fn a_column_is_separated_by_varying_it() {
+        let paper = Unit::paper();
+        let group: Vec<UnitEffect> = ["gg_IS", "col:temp"]
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let s = separation(&paper, 3, &group, &[0.5], &z_vibration());
+        assert_eq!(s.axis, None);
+        assert!(s.advice.contains("thermal"), "{}", s.advice);
     }
 }
