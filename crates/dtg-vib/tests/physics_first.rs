@@ -2,12 +2,12 @@
 //! records), a g-sensitive term the library can state is named, not left
 //! inside the network, on records vibrated on three axes.
 
-use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitSensor, to_signals};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::geometry::Channel;
-use nav_sensors::sim::{HiddenEffect, Scenario, UnitHiddenEffect, simulate_unit};
+use nav_sensors::sim::{HiddenEffect, Scenario, UnitHiddenEffect};
 use nav_sensors::unit::Unit;
-use std::collections::BTreeMap;
+mod loop_run;
+use loop_run::Found;
 
 /// A hidden term: channel, term id, coefficient.
 type Hidden = (&'static str, &'static str, f64);
@@ -52,61 +52,9 @@ fn triaxial(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
     s
 }
 
-/// What one loop found.
-#[derive(Debug)]
-struct Found {
-    added: Vec<(String, String)>,
-    intervals: BTreeMap<(String, String), [f64; 2]>,
-    val_rms: Vec<f64>,
-}
-
 /// Simulates `s` on `unit` and runs the loop with the library's defaults.
 fn run(unit: &Unit, s: &Scenario) -> Found {
-    let sim = simulate_unit(unit, s).unwrap();
-    let sensor = UnitSensor {
-        unit: unit.clone(),
-        calibration: Some(sim.calibration.clone()),
-        rate_reference: RateReference::None,
-    };
-    let sig = to_signals(&sim.record).unwrap();
-    let options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
-    let e = sysid::explain::explain(
-        &sensor,
-        &[("r".into(), &sig)],
-        &options,
-        &Default::default(),
-        5,
-        &|_| {},
-    )
-    .unwrap();
-    let added = e
-        .rounds
-        .iter()
-        .flat_map(|r| {
-            r.added
-                .iter()
-                .map(|a| (a.channel.clone(), a.effect.clone()))
-        })
-        .collect();
-    let mut intervals = BTreeMap::new();
-    for c in e.model.channels() {
-        for (k, eff) in c.effects().iter().enumerate() {
-            if let Some(co) = c.coefficients() {
-                intervals.insert((c.channel(), eff.id()), co[k].ci95);
-            }
-        }
-    }
-    let val_rms = e
-        .model
-        .channels()
-        .iter()
-        .map(|c| c.scores().val_rms)
-        .collect();
-    Found {
-        added,
-        intervals,
-        val_rms,
-    }
+    loop_run::run(unit, s, None)
 }
 
 /// Rates of one hidden term over `seeds` on `unit`, against the clean twins.

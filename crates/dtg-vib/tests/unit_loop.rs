@@ -21,6 +21,9 @@ use nav_sensors::sim::{Scenario, UnitHiddenEffect, simulate_unit};
 use nav_sensors::unit::Unit;
 use std::collections::BTreeMap;
 
+mod loop_run;
+use loop_run::Found;
+
 const DTG_VIB: Binary = Binary::new(env!("CARGO_BIN_EXE_dtg-vib")).appending(&["--quiet"]);
 
 /// A hidden rate-gyro term: channel, term id, coefficient.
@@ -58,65 +61,10 @@ fn along_z(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
     s
 }
 
-/// What one loop found: every (channel, effect) added, the final model's
-/// intervals by (channel, effect), and each channel's final validation rms.
-struct Found {
-    added: Vec<(String, String)>,
-    intervals: BTreeMap<(String, String), [f64; 2]>,
-    val_rms: Vec<f64>,
-}
-
-/// Simulates `s` on `unit` and runs the loop (the defaults of `explain`)
-/// after the simulated ground calibration.
+/// The loop on a simulated unit with the window these tests were written
+/// for: az alone (the library's default chooses among the accelerometers).
 fn run(unit: &Unit, s: &Scenario) -> Found {
-    let sim = simulate_unit(unit, s).unwrap();
-    let sensor = UnitSensor {
-        unit: unit.clone(),
-        calibration: Some(sim.calibration.clone()),
-        rate_reference: RateReference::None,
-    };
-    let sig = to_signals(&sim.record).unwrap();
-    let mut options = sysid::FitOptions::<UnitEffect>::new(unit.gyros().len());
-    // The window these tests were written for: az alone (the library's
-    // default chooses among the unit's accelerometers).
-    options.recipe.preprocess.window = sysid::WindowSpec::new(vec!["az".into()], 50).unwrap();
-    let e = sysid::explain::explain(
-        &sensor,
-        &[("r".into(), &sig)],
-        &options,
-        &Default::default(),
-        5,
-        &|_| {},
-    )
-    .unwrap();
-    let added = e
-        .rounds
-        .iter()
-        .flat_map(|r| {
-            r.added
-                .iter()
-                .map(|a| (a.channel.clone(), a.effect.clone()))
-        })
-        .collect();
-    let mut intervals = BTreeMap::new();
-    for c in e.model.channels() {
-        for (k, eff) in c.effects().iter().enumerate() {
-            if let Some(co) = c.coefficients() {
-                intervals.insert((c.channel(), eff.id()), co[k].ci95);
-            }
-        }
-    }
-    let val_rms = e
-        .model
-        .channels()
-        .iter()
-        .map(|c| c.scores().val_rms)
-        .collect();
-    Found {
-        added,
-        intervals,
-        val_rms,
-    }
+    loop_run::run(unit, s, Some(&["az"]))
 }
 
 /// The id the loop names a hidden term by (`temp` is the record's column).
