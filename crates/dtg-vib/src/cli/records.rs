@@ -190,8 +190,7 @@ pub fn check_observable(sensor: &UnitSensor, records: &[(String, Record)]) -> Re
         return Ok(());
     }
     for (name, r) in records {
-        let o = observability(sensor, r);
-        if o.rate_std_deg_s > MOVING_RATE_STD_DEG_S {
+        if let Some(rate_std_deg_s) = turning(&sensor.unit, r) {
             let redundant = if sensor.unit.gyros().len() > 3 {
                 "; or judge this redundant unit by its parity residues (dtg-vib residues), which the motion does not enter".to_string()
             } else {
@@ -199,7 +198,7 @@ pub fn check_observable(sensor: &UnitSensor, records: &[(String, Record)]) -> Re
             };
             return Err(UnitSensorError::Moving {
                 record: name.clone(),
-                rate_std_deg_s: o.rate_std_deg_s,
+                rate_std_deg_s,
                 max_deg_s: MOVING_RATE_STD_DEG_S,
                 redundant,
             }
