@@ -130,7 +130,9 @@ fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
         let _ = writeln!(
             w,
             "toward a lower w₀ the one-pole's time constant is {} s (0: at once)",
-            r.fade.fall_time_constant_s.unwrap_or(r.fade.time_constant_s)
+            r.fade
+                .fall_time_constant_s
+                .unwrap_or(r.fade.time_constant_s)
         );
     }
     let _ = writeln!(

@@ -391,6 +391,42 @@ mod tests {
         assert!((d2 - (0.6f64.powi(2) + 0.8f64.powi(2)).sqrt()).abs() < 1e-12);
     }
 
+    /// A range as files written before the shape hold it: no shape, no
+    /// fall time constant. It loads, judges mean and level alone and its
+    /// weight falls by the same one-pole as it rises (today's fade).
+    #[test]
+    fn a_range_written_before_the_shape_fades_as_it_did() {
+        let mut json = serde_json::to_value(z_run()).unwrap();
+        json["fade"]
+            .as_object_mut()
+            .unwrap()
+            .remove("fall_time_constant_s");
+        assert!(json.get("shape").is_none());
+        let r: TrainingRange = serde_json::from_value(json).unwrap();
+        assert_eq!(
+            (r.shape.as_ref(), r.fade.fall_time_constant_s),
+            (None, None)
+        );
+        assert_eq!(r.fade.fall_alpha(0.02), r.fade.alpha(0.02));
+        // A window of another shape at the z run's level: inside without the
+        // shape, outside with it.
+        let p = [0.0, 0.0, 1.0, 0.01, 0.01, 0.3, 1.0, 1.0, 0.4];
+        assert_eq!(r.distance(&p), 0.0);
+        let with = TrainingRange {
+            shape: Some(ShapeRange {
+                min: vec![0.0, 0.0, 1.05],
+                max: vec![2.0, 2.0, 1.35],
+                scale: super::super::shape::SHAPE_SCALE,
+            }),
+            ..r
+        };
+        assert!(
+            (with.distance(&p) - 6.5).abs() < 1e-9,
+            "{}",
+            with.distance(&p)
+        );
+    }
+
     #[test]
     fn the_hint_names_the_axis_and_level_the_model_did_not_see() {
         let r = z_run();
