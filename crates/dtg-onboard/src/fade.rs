@@ -104,13 +104,7 @@ fn shape_term(
         sqrt(dd / (2.0 * (l - 1) as f64) / var)
     };
     let g = (level - scale) / scale;
-    let g = if g < 0.0 {
-        0.0
-    } else if g > 1.0 {
-        1.0
-    } else {
-        g
-    };
+    let g = g.clamp(0.0, 1.0);
     let b = sb + 8 * 2 * k;
     g * excess(rho, m.f(b), m.f(b + 8)) / m.f(sb + 8 * 2 * m.n_accels)
 }

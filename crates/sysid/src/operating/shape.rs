@@ -173,12 +173,11 @@ mod tests {
     fn quiet_windows_do_not_set_the_interval_and_an_unseen_signal_takes_every_shape() {
         // Two signals: the first vibrates at shapes 1.1 and 1.3, once quiet
         // at 0.2; the second never vibrates.
-        let stats = vec![
-            vec![0.0, 0.0, 0.3, 0.01, 1.1, 0.5],
-            vec![0.0, 0.0, 0.2, 0.01, 1.3, 0.4],
-            vec![0.0, 0.0, 0.02, 0.01, 0.2, 0.6],
+        let stats: [&[f64]; 3] = [
+            &[0.0, 0.0, 0.3, 0.01, 1.1, 0.5],
+            &[0.0, 0.0, 0.2, 0.01, 1.3, 0.4],
+            &[0.0, 0.0, 0.02, 0.01, 0.2, 0.6],
         ];
-        let stats: Vec<&[f64]> = stats.iter().map(Vec::as_slice).collect();
         let r = ShapeRange::from_training(&stats, 2, 0.05);
         assert_eq!((r.min, r.max), (vec![1.1, 0.0], vec![1.3, SHAPE_MAX]));
     }
