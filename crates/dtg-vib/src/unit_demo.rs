@@ -28,7 +28,7 @@ use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::geometry::Axis;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{Components, Scenario, UnitHiddenEffect, simulate, simulate_unit};
-use nav_sensors::unit::{GyroModel, Unit};
+use nav_sensors::unit::{FileFormat, GyroModel, Unit};
 use nav_sensors::vibration::Drive;
 use std::path::{Path, PathBuf};
 use sysid::diagnose::{DiagnoseOptions, Diagnosis};
@@ -154,40 +154,44 @@ struct Simulated {
     components: Option<Components>,
 }
 
-/// Simulates `s` on `unit` and writes its files into `dir`. The paper's
-/// unit runs the paper's simulator, which also gives the noise floors the
-/// final page compares the residual with, until the unit's gives them too.
+/// Simulates `s` on `unit` and writes its files into `dir`, in the unit's
+/// file formats ([`FileFormat`]); the paper's formats keep the per-sample
+/// noise floors the final page compares the residual with.
 fn simulate_into(unit: &Unit, s: &Scenario, dir: &Path) -> Result<Simulated, DtgVibError> {
-    if unit.is_paper_format() {
-        let sim = simulate(s)?;
-        sim.write_dir(dir)?;
-        let hidden = sim
-            .truth
-            .hidden
-            .iter()
-            .map(|h| Hidden::new(h.channel.name(), h.term.id(), h.coefficient, &h.unit))
-            .collect();
-        return Ok(Simulated {
-            calibration: from_paper(&sim.calibration),
-            record: sim.record,
-            hidden,
-            components: Some(sim.components),
-        });
+    match unit.file_format() {
+        FileFormat::Paper => {
+            let sim = simulate(s)?;
+            sim.write_dir(dir)?;
+            let hidden = sim
+                .truth
+                .hidden
+                .iter()
+                .map(|h| Hidden::new(h.channel.name(), h.term.id(), h.coefficient, &h.unit))
+                .collect();
+            Ok(Simulated {
+                calibration: from_paper(&sim.calibration),
+                record: sim.record,
+                hidden,
+                components: Some(sim.components),
+            })
+        }
+        FileFormat::Unit => {
+            let sim = simulate_unit(unit, s)?;
+            sim.write_dir(dir)?;
+            let hidden = sim
+                .truth
+                .hidden
+                .iter()
+                .map(|h| Hidden::new(&h.channel, &h.term, h.coefficient, &h.unit))
+                .collect();
+            Ok(Simulated {
+                record: sim.record,
+                calibration: sim.calibration,
+                hidden,
+                components: None,
+            })
+        }
     }
-    let sim = simulate_unit(unit, s)?;
-    sim.write_dir(dir)?;
-    let hidden = sim
-        .truth
-        .hidden
-        .iter()
-        .map(|h| Hidden::new(&h.channel, &h.term, h.coefficient, &h.unit))
-        .collect();
-    Ok(Simulated {
-        record: sim.record,
-        calibration: sim.calibration,
-        hidden,
-        components: None,
-    })
 }
 
 /// An effect of the final model, against the truth if it was hidden.

@@ -5,6 +5,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use cli_support::progress::Progress;
 use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::unit::FileFormat;
 use std::path::PathBuf;
 
 /// The flags of `simulate`.
@@ -48,7 +49,6 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         unit,
     } = a;
     let unit = super::records::unit_of(unit.as_deref())?;
-    let unit = (!unit.is_paper_format()).then_some(unit);
     let scenario_path = scenario.clone();
     let mut s = match (scenario, builtin) {
         (Some(path), _) => Scenario::load(&path)?,
@@ -71,18 +71,29 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         s.validate()
             .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
     }
-    if let Some(unit) = unit {
-        return simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress);
+    match unit.file_format() {
+        FileFormat::Unit => simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress),
+        FileFormat::Paper => simulate_paper(&s, &out, scenario_path.as_deref(), progress),
     }
+}
+
+/// The built-in paper unit's files, in the formats releases before units
+/// wrote ([`FileFormat::Paper`]).
+fn simulate_paper(
+    s: &Scenario,
+    out: &std::path::Path,
+    scenario_path: Option<&std::path::Path>,
+    progress: Progress,
+) -> Result<()> {
     outfile::guard_dir(
         "--out",
-        &out,
+        out,
         &nav_sensors::sim::Simulation::FILES,
-        &[("--scenario", scenario_path.as_deref())],
+        &[("--scenario", scenario_path)],
     )?;
     progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
-    let sim = simulate(&s)?;
-    sim.write_dir(&out).with_context(|| {
+    let sim = simulate(s)?;
+    sim.write_dir(out).with_context(|| {
         format!(
             "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
             s.name

@@ -495,7 +495,7 @@ mod tests {
             r.records,
             vec![Record::from_reader(csv.as_bytes(), "log.csv").unwrap()]
         );
-        assert!(r.records[0].is_paper_layout());
+        assert_eq!(r.records[0].gyro(crate::geometry::Channel::Y1)[0], 4.0);
         // The paper's CSV takes the rule of every unit: jitter is accepted
         // (the strict reader refuses it), a gap splits.
         let jitter = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0.02,1,2,3,4,5,6,0,0,1\n0.041,1,2,3,4,5,6,0,0,1\n";
