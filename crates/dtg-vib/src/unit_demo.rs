@@ -21,14 +21,13 @@ use crate::error::DtgVibError;
 use crate::report::{DiagnosisExtra, NoiseFloor, Wording, write_diagnosis_report_of};
 use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{
-    Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, from_paper,
-    to_signals,
+    Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, to_signals,
 };
 use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::geometry::Axis;
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Components, Scenario, UnitHiddenEffect, simulate, simulate_unit};
-use nav_sensors::unit::{FileFormat, GyroModel, Unit};
+use nav_sensors::sim::{Components, Scenario, UnitHiddenEffect, simulate_unit};
+use nav_sensors::unit::{GyroModel, Unit};
 use nav_sensors::vibration::Drive;
 use std::path::{Path, PathBuf};
 use sysid::diagnose::{DiagnoseOptions, Diagnosis};
@@ -155,43 +154,24 @@ struct Simulated {
 }
 
 /// Simulates `s` on `unit` and writes its files into `dir`, in the unit's
-/// file formats ([`FileFormat`]); the paper's formats keep the per-sample
-/// noise floors the final page compares the residual with.
+/// file formats; the noise floors the final page compares the residual
+/// with are the components those files hold (the paper's formats write
+/// them).
 fn simulate_into(unit: &Unit, s: &Scenario, dir: &Path) -> Result<Simulated, DtgVibError> {
-    match unit.file_format() {
-        FileFormat::Paper => {
-            let sim = simulate(s)?;
-            sim.write_dir(dir)?;
-            let hidden = sim
-                .truth
-                .hidden
-                .iter()
-                .map(|h| Hidden::new(h.channel.name(), h.term.id(), h.coefficient, &h.unit))
-                .collect();
-            Ok(Simulated {
-                calibration: from_paper(&sim.calibration),
-                record: sim.record,
-                hidden,
-                components: Some(sim.components),
-            })
-        }
-        FileFormat::Unit => {
-            let sim = simulate_unit(unit, s)?;
-            sim.write_dir(dir)?;
-            let hidden = sim
-                .truth
-                .hidden
-                .iter()
-                .map(|h| Hidden::new(&h.channel, &h.term, h.coefficient, &h.unit))
-                .collect();
-            Ok(Simulated {
-                record: sim.record,
-                calibration: sim.calibration,
-                hidden,
-                components: None,
-            })
-        }
-    }
+    let sim = simulate_unit(unit, s)?;
+    sim.write_dir(dir)?;
+    let hidden = sim
+        .truth
+        .hidden
+        .iter()
+        .map(|h| Hidden::new(&h.channel, &h.term, h.coefficient, &h.unit))
+        .collect();
+    Ok(Simulated {
+        components: sim.written_components().cloned(),
+        record: sim.record,
+        calibration: sim.calibration,
+        hidden,
+    })
 }
 
 /// An effect of the final model, against the truth if it was hidden.

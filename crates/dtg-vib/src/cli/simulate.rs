@@ -4,8 +4,7 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use cli_support::progress::Progress;
-use nav_sensors::sim::{Scenario, simulate};
-use nav_sensors::unit::FileFormat;
+use nav_sensors::sim::Scenario;
 use std::path::PathBuf;
 
 /// The flags of `simulate`.
@@ -71,43 +70,11 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         s.validate()
             .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
     }
-    match unit.file_format() {
-        FileFormat::Unit => simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress),
-        FileFormat::Paper => simulate_paper(&s, &out, scenario_path.as_deref(), progress),
-    }
+    simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress)
 }
 
-/// The built-in paper unit's files, in the formats releases before units
-/// wrote ([`FileFormat::Paper`]).
-fn simulate_paper(
-    s: &Scenario,
-    out: &std::path::Path,
-    scenario_path: Option<&std::path::Path>,
-    progress: Progress,
-) -> Result<()> {
-    outfile::guard_dir(
-        "--out",
-        out,
-        &nav_sensors::sim::Simulation::FILES,
-        &[("--scenario", scenario_path)],
-    )?;
-    progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
-    let sim = simulate(s)?;
-    sim.write_dir(out).with_context(|| {
-        format!(
-            "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
-            s.name
-        )
-    })?;
-    drop(progress);
-    for name in nav_sensors::sim::Simulation::FILES {
-        println!("wrote {}", out.join(name).display());
-    }
-    Ok(())
-}
-
-/// `simulate --unit`: the same physics on the unit's gyros and
-/// accelerometers, written in its column names and units.
+/// The scenario's physics on the unit's gyros and accelerometers, written
+/// in the unit's file formats ([`nav_sensors::unit::FileFormat`]).
 fn simulate_unit(
     unit: &nav_sensors::unit::Unit,
     s: &Scenario,
@@ -119,7 +86,7 @@ fn simulate_unit(
     outfile::guard_dir(
         "--out",
         out,
-        &UnitSimulation::FILES,
+        &UnitSimulation::files(unit),
         &[("--scenario", scenario_path)],
     )?;
     progress.say(format!(
@@ -136,7 +103,7 @@ fn simulate_unit(
         )
     })?;
     drop(progress);
-    for name in UnitSimulation::FILES {
+    for name in UnitSimulation::files(unit) {
         println!("wrote {}", out.join(name).display());
     }
     for n in &sim.truth.not_applied {

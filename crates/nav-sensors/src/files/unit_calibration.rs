@@ -496,6 +496,37 @@ impl From<Calibration> for UnitCalibration {
     }
 }
 
+impl UnitCalibration {
+    /// The paper unit's calibration in the paper's format (the file the
+    /// built-in `paper` writes, [`crate::unit::FileFormat::Paper`]): the
+    /// inverse of [`UnitCalibration::from`] a [`Calibration`]. `None` when a
+    /// table is not a DTG channel of the paper's or an accelerometer `ax`,
+    /// `ay`, `az`.
+    pub(crate) fn to_paper(&self) -> Option<Calibration> {
+        let gyros = self
+            .gyros
+            .iter()
+            .map(|(name, c)| match c {
+                GyroCoefficients::Dtg(t) => Some((name.parse::<Channel>().ok()?, *t)),
+                GyroCoefficients::Rate(_) => None,
+            })
+            .collect::<Option<_>>()?;
+        let accels = self
+            .accels
+            .iter()
+            .map(|(name, t)| {
+                let axis = Axis::ALL.into_iter().find(|a| a.column() == name)?;
+                Some((axis, *t))
+            })
+            .collect::<Option<_>>()?;
+        Some(Calibration {
+            format_version: Calibration::FORMAT_VERSION,
+            gyros,
+            accels,
+        })
+    }
+}
+
 /// A calibration file as read: the unit format, or the paper's (gyro
 /// tables without `model`).
 #[derive(Deserialize)]
