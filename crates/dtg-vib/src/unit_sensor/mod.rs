@@ -15,7 +15,7 @@ mod apply;
 mod calibration;
 pub mod check;
 mod effect;
-mod error;
+pub(crate) mod error;
 pub mod fdi;
 mod model;
 mod observable;
