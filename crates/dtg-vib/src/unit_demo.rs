@@ -18,7 +18,7 @@
 //! length and seed are those `tests/unit_loop.rs` accepts.
 
 use crate::error::DtgVibError;
-use crate::report::{DiagnosisExtra, NoiseFloor, Wording, write_diagnosis_report_of};
+use crate::report::{ChannelWording, DiagnosisExtra, NoiseFloor, write_diagnosis_report_of};
 use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{
     Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, to_signals,
@@ -378,7 +378,7 @@ pub fn run(
 
     progress("diagnosing the baseline");
     let diagnose = DiagnoseOptions::default();
-    let wording = Wording::of_unit(unit);
+    let wording = ChannelWording::of_unit(unit);
     let min_err = diagnose.rank.min_err();
     let diagnosis = sysid::explain::diagnose_records(base.model.inner(), &named, &diagnose)?;
     let diagnosis_report =
