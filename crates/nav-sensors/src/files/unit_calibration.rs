@@ -372,9 +372,12 @@ impl UnitCalibration {
         }
         let n = record.len();
         let accel = self.compensate_accels(unit, record);
+        // One sample's outputs in a buffer reused from sample to sample (an
+        // allocation a sample showed in the demo's profile).
+        let mut row = vec![0.0; accel.len()];
         let force: Vec<Vector3<f64>> = (0..n)
             .map(|i| {
-                let row: Vec<f64> = accel.iter().map(|a| a[i]).collect();
+                row.iter_mut().zip(&accel).for_each(|(r, a)| *r = a[i]);
                 unit.specific_force(&row)
             })
             .collect();
@@ -391,10 +394,11 @@ impl UnitCalibration {
             .collect();
         let channels = unit.gyros().len();
         let mut gyro: Vec<Vec<f64>> = (0..channels).map(|k| record.gyro_at(k).to_vec()).collect();
+        let mut current = vec![0.0; channels];
         for _pass in 0..2 {
             let mut next: Vec<Vec<f64>> = (0..channels).map(|_| Vec::with_capacity(n)).collect();
             for i in 0..n {
-                let current: Vec<f64> = gyro.iter().map(|g| g[i]).collect();
+                current.iter_mut().zip(&gyro).for_each(|(c, g)| *c = g[i]);
                 let sensed = Sensed {
                     rate_deg_h: unit.least_squares_rate(&current),
                     specific_force_g: force[i],
