@@ -46,13 +46,23 @@ pub const FLAG_FADE: u32 = 2;
 /// calibration.
 pub const FLAG_ACCEL_TRIAD: u32 = 4;
 
+/// Flag bit (with [`FLAG_FADE`]): the fade block ends with the vibration
+/// shape's range (sysid::operating::shape) and the weight's fall gain: a
+/// window's distance counts its shape's excess too; without it the fade
+/// judges mean and level alone and its weight falls as it rises (tables
+/// written before).
+pub const FLAG_FADE_SHAPE: u32 = 8;
+
 /// `f64` numbers of the fade block of `n_accels` operating signals and
 /// `n_channels` channels: per accelerometer the window mean's smallest and
 /// largest and the window level's smallest and largest (g); the scale (g),
 /// the tolerance and the width (in scales), the smoother's gain α; each
-/// channel's network at rest, where a record's hold starts (deg/h).
-pub const fn fade_floats(n_accels: usize, n_channels: usize) -> usize {
-    4 * n_accels + 4 + n_channels
+/// channel's network at rest, where a record's hold starts (deg/h); with
+/// `shape` ([`FLAG_FADE_SHAPE`]), per accelerometer the smallest and
+/// largest vibration shape, then the shape's scale and the smoother's gain
+/// toward a lower weight (without, the weight falls by α as it rises).
+pub const fn fade_floats(n_accels: usize, n_channels: usize, shape: bool) -> usize {
+    4 * n_accels + 4 + n_channels + if shape { 2 * n_accels + 2 } else { 0 }
 }
 
 /// Network input kinds of the tables (the word after the effect pairs).

@@ -77,9 +77,9 @@ pub use evaluator::{Evaluator, Output};
 pub use model::{Floats, Model, Part};
 
 pub use layout::{
-    FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, LANES, LAYOUT_2,
-    LAYOUT_2_HEADER_WORDS, LAYOUT_3, MAGIC, MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS, VERSION,
-    fade_floats, gyro, gyro_cal_len, input, kind, kind_params_of,
+    FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, FLAG_FADE_SHAPE, LANES,
+    LAYOUT_2, LAYOUT_2_HEADER_WORDS, LAYOUT_3, MAGIC, MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS,
+    VERSION, fade_floats, gyro, gyro_cal_len, input, kind, kind_params_of,
 };
 
 /// Header words of [`doc_tables`].

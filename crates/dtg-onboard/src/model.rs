@@ -9,9 +9,9 @@
 use crate::error::Error;
 use crate::lanes::{CAL_ROWS, lane_blocks};
 use crate::layout::{
-    ACCEL_CAL, FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, LANES, LAYOUT_2,
-    LAYOUT_2_HEADER_WORDS, LAYOUT_3, MAGIC, MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS, VERSION,
-    fade_floats, gyro, gyro_cal_len, input, kind, kind_params_of,
+    ACCEL_CAL, FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, FLAG_FADE_SHAPE,
+    LANES, LAYOUT_2, LAYOUT_2_HEADER_WORDS, LAYOUT_3, MAGIC, MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS,
+    VERSION, fade_floats, gyro, gyro_cal_len, input, kind, kind_params_of,
 };
 use crate::maths::{SECTION, rd, word};
 
@@ -108,6 +108,8 @@ pub struct Model<'a> {
     pub(crate) n_smooth_sections: usize,
     /// Byte offset of the fade block, if the tables have one.
     pub(crate) fade: Option<usize>,
+    /// Whether the fade block ends with the vibration shape's range.
+    pub(crate) fade_shape: bool,
     pub(crate) st: StateAt,
 }
 
@@ -410,7 +412,8 @@ impl<'a> Model<'a> {
             ch.weights = take(ch.n_centres);
             ch.centres = take(ch.n_centres * ch.dim);
         }
-        let fade = (h.flags & FLAG_FADE != 0).then(|| take(fade_floats(na, nc)));
+        let fade_shape = h.flags & FLAG_FADE != 0 && h.flags & FLAG_FADE_SHAPE != 0;
+        let fade = (h.flags & FLAG_FADE != 0).then(|| take(fade_floats(na, nc, fade_shape)));
         if bytes.len() < at {
             return Err(Error::Truncated {
                 need: at,
@@ -448,6 +451,7 @@ impl<'a> Model<'a> {
             input: h.input,
             n_smooth_sections: h.n_smooth_sections,
             fade,
+            fade_shape,
             st: StateAt::default(),
         };
         m.lay_out_state();
@@ -588,6 +592,12 @@ impl<'a> Model<'a> {
         self.fade.is_some()
     }
 
+    /// Whether the fade also judges each window's vibration shape (the
+    /// tables' fade block ends with its range).
+    pub fn fades_by_shape(&self) -> bool {
+        self.fade_shape
+    }
+
     /// Whether the tables hold a ground calibration, and whether it
     /// calibrates the accelerometers as the x, y, z triad.
     pub fn calibration(&self) -> (bool, bool) {
@@ -674,7 +684,8 @@ impl<'a> Model<'a> {
             }
             Part::Fade => (
                 self.fade.unwrap_or(0),
-                self.fade.map_or(0, |_| fade_floats(na, nc)),
+                self.fade
+                    .map_or(0, |_| fade_floats(na, nc, self.fade_shape)),
             ),
         };
         Floats(&self.bytes[at..at + 8 * n])

@@ -145,6 +145,40 @@ fn outside_record() -> &'static Path {
     })
 }
 
+/// The simulated record with its vibration on every axis smoothed from
+/// sample 3000 to 4500 (a 9-sample moving average of each axis's deviation
+/// from its mean over the stretch, scaled back to its rms): the same mean
+/// and level, another spectrum (its power moved low), outside by the
+/// vibration shape alone (sysid::operating::shape).
+fn other_shape_record() -> &'static Path {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        let rec = record();
+        let mut acc: [Vec<f64>; 3] =
+            std::array::from_fn(|k| rec.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec());
+        for a in acc.iter_mut() {
+            let part = &mut a[3000..4500];
+            let n = part.len() as f64;
+            let mean = part.iter().sum::<f64>() / n;
+            let d: Vec<f64> = part.iter().map(|v| v - mean).collect();
+            let smooth: Vec<f64> = (0..d.len())
+                .map(|i| {
+                    let w = &d[i.saturating_sub(4)..(i + 5).min(d.len())];
+                    w.iter().sum::<f64>() / w.len() as f64
+                })
+                .collect();
+            let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / n).sqrt();
+            let k = rms(&d) / rms(&smooth);
+            for (v, s) in part.iter_mut().zip(&smooth) {
+                *v = mean + k * s;
+            }
+        }
+        let p = dir().join("other-shape.csv");
+        rec.with_accel(acc).write_csv(&p).unwrap();
+        p
+    })
+}
+
 /// Largest |step − batch| of the predicted errors and compensated rates on
 /// the simulated record.
 fn step_against_batch(model_path: &Path) -> f64 {
@@ -228,6 +262,51 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
             m.display()
         );
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+    }
+}
+
+/// The fade's vibration shape is one definition in batch, onboard and C:
+/// on a stretch of the same mean and level and another spectrum the weight
+/// falls (the shape alone sees it) and the three agree.
+#[test]
+fn the_fade_on_another_spectrum_is_the_same_in_batch_onboard_and_c() {
+    let rec = Record::read_csv(other_shape_record()).unwrap();
+    for m in [plain(), rich(), statistics()] {
+        let model = load(m);
+        let prepared = model.inner().prepare(&to_signals(&rec).unwrap()).unwrap();
+        let w = model
+            .inner()
+            .fade_weights(&prepared)
+            .unwrap()
+            .unwrap()
+            .weight;
+        let first = prepared.first_sample();
+        let lowest = w[3200 - first..4400 - first]
+            .iter()
+            .copied()
+            .fold(1.0, f64::min);
+        assert!(
+            lowest < 1e-3,
+            "{}: the shape must fade: {lowest}",
+            m.display()
+        );
+        let t = dtg_vib::export::tables(&model).unwrap();
+        assert!(
+            dtg_onboard::Model::parse(&t.bytes)
+                .unwrap()
+                .fades_by_shape()
+        );
+        let worst = step_against_batch_on(m, &rec);
+        assert!(
+            worst <= EQUAL_DEG_H,
+            "{}: step {worst:e} deg/h",
+            m.display()
+        );
+        if m != statistics() {
+            if let Some(worst) = c_against_compensate_on(m, "f64", other_shape_record()) {
+                assert!(worst <= EQUAL_DEG_H, "{}: C {worst:e} deg/h", m.display());
+            }
+        }
     }
 }
 

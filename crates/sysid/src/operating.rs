@@ -29,6 +29,7 @@
 pub mod fade;
 pub mod fade_settings;
 pub mod range;
+pub mod shape;
 
 use crate::error::SysidError;
 use crate::prepared::Prepared;

@@ -14,6 +14,16 @@ use crate::window::signal_choice::{WindowSignalsChoice, choose_among};
 use faer::{Mat, MatRef};
 use iir::LowPass;
 
+/// Relative tolerance on sampling intervals: records (or the segments of a
+/// log split at its gaps) fitted together, and a record against the model's
+/// interval, are accepted when their median sampling intervals agree within
+/// 0.5 %. Two logs of one nominal rate differ by more than their jitter (a
+/// real 250 Hz PX4 log's two halves by 0.3 %: the autopilot's clock and
+/// dropped samples), and a 0.5 % time-scale error moves a 50-sample
+/// window's span by a quarter of a sample; two nominal rates (200 and 250
+/// Hz) differ by 20 %. docs/formats.md states it.
+pub const INTERVAL_TOLERANCE: f64 = 5e-3;
+
 /// Records prepared for fitting, prediction or diagnosis, with the sensor
 /// (its calibration) and pre-processing they were prepared with: a fit on
 /// them keeps both, so nothing prepared one way is fitted as if it were
@@ -176,7 +186,7 @@ impl<S: Sensor> Prepared<S> {
         let names = extras(first_record);
         for (name, r) in rest {
             let dt = (first_record.median_dt(), r.median_dt());
-            if (dt.0 - dt.1).abs() > crate::model::INTERVAL_TOLERANCE * dt.0 {
+            if (dt.0 - dt.1).abs() > INTERVAL_TOLERANCE * dt.0 {
                 return Err(SysidError::RecordsDiffer {
                     first: first_name.clone(),
                     other: name.clone(),
@@ -185,7 +195,7 @@ impl<S: Sensor> Prepared<S> {
                         dt.0,
                         dt.1,
                         100.0 * (dt.1 / dt.0 - 1.0).abs(),
-                        100.0 * crate::model::INTERVAL_TOLERANCE
+                        100.0 * INTERVAL_TOLERANCE
                     ),
                 });
             }

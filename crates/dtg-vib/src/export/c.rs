@@ -131,6 +131,8 @@ typedef {real} dtg_real;
 #define DTG_N_EFFECTS {n_effects}
 /* 1: outside the training range the network part holds (docs/formats.md). */
 #define DTG_FADE {fades}
+/* 1: the fade also judges each window's vibration shape (its spectrum). */
+#define DTG_FADE_SHAPE {fade_shape}
 /* The network's input: 0 = the window, 1 = per signal its current sample,
  * window mean and window rms about the mean. */
 #define DTG_INPUT_STATS {input}
@@ -187,6 +189,7 @@ int dtg_flush(dtg_state *s, double rate_deg_h[DTG_N_GYROS], double accel_out_g[D
         n_signals = m.n_signals(),
         n_extra = extra.len(),
         fades = i32::from(m.fades()),
+        fade_shape = i32::from(m.fades_by_shape()),
         input = m.input_kind(),
         time = unit.columns().time,
         gyros = names(&unit.gyro_names()),

@@ -64,14 +64,33 @@ static dtg_real fade_weight(dtg_state *s, int first) {
     int k, i;
     for (k = 0; k < NA; k++) {
         const dtg_real *x = s->fade_ring[k] + s->ring_pos;
-        dtg_real sum = R(0), ss = R(0), mean, level, em, el;
+        dtg_real sum = R(0), ss = R(0), mean, var, level, em, el;
         for (i = 0; i < l; i++) sum += x[i];
         mean = sum / R(l);
         for (i = 0; i < l; i++) ss += (x[i] - mean) * (x[i] - mean);
-        level = SQRT(ss / R(l));
+        var = ss / R(l);
+        level = SQRT(var);
         em = excess(mean, FADE[4 * k], FADE[4 * k + 1]) / FADE[4 * NA];
         el = excess(level, FADE[4 * k + 2], FADE[4 * k + 3]) / FADE[4 * NA];
         d2 += em * em + el * el;
+#if DTG_FADE_SHAPE
+        {
+            /* The vibration's shape (sysid::operating::shape): the rms of
+             * the sample-to-sample change over sqrt(2) rms, its excess
+             * beyond the training interval in shape scales, gated by the
+             * level (0 up to one scale, 1 from two). */
+            const dtg_real *sh = FADE + 4 * NA + 4 + N;
+            dtg_real dd = R(0), rho = R(0), g, es;
+            if (l >= 2 && var > R(0)) {
+                for (i = 1; i < l; i++) dd += (x[i] - x[i - 1]) * (x[i] - x[i - 1]);
+                rho = SQRT(dd / (R(2) * R(l - 1)) / var);
+            }
+            g = (level - FADE[4 * NA]) / FADE[4 * NA];
+            g = g < R(0) ? R(0) : (g > R(1) ? R(1) : g);
+            es = g * excess(rho, sh[2 * k], sh[2 * k + 1]) / sh[2 * NA];
+            d2 += es * es;
+        }
+#endif
     }
     d = SQRT(d2);
     if (d <= FADE[4 * NA + 1]) {
@@ -85,7 +104,13 @@ static dtg_real fade_weight(dtg_state *s, int first) {
         s->fade_w = w0;
     } else {
         /* Within 1e-9 of its input the one-pole takes it. */
-        dtg_real w = s->fade_w + FADE[4 * NA + 3] * (w0 - s->fade_w);
+#if DTG_FADE_SHAPE
+        /* Toward a lower weight the block's fall gain. */
+        dtg_real gain = w0 < s->fade_w ? FADE[4 * NA + 4 + N + 2 * NA + 1] : FADE[4 * NA + 3];
+#else
+        dtg_real gain = FADE[4 * NA + 3];
+#endif
+        dtg_real w = s->fade_w + gain * (w0 - s->fade_w);
         s->fade_w = FABS(w0 - w) <= R(1e-9) ? w0 : w;
     }
     return s->fade_w;

@@ -245,7 +245,7 @@ pub(super) fn arrays(m: &Model) -> String {
     if m.fades() {
         let fade: Vec<f64> = m.floats(Part::Fade).collect();
         s += &reals(
-            "Per accelerometer: mean min, max, level min, max (g); scale (g),\n * tolerance, width, smoother gain; each channel's network at rest (deg/h).",
+            "Per accelerometer: mean min, max, level min, max (g); scale (g),\n * tolerance, width, smoother gain; each channel's network at rest (deg/h);\n * with DTG_FADE_SHAPE per accelerometer shape min, max, then the shape scale\n * and the smoother's gain toward a lower weight.",
             "FADE",
             &fade,
         );

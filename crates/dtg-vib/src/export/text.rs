@@ -118,6 +118,23 @@ fn range_text(w: &mut String, points: Option<&OperatingPoints>) {
             r.mean_min[k], r.mean_max[k], r.level_min[k], r.level_max[k]
         );
     }
+    if let Some(s) = &r.shape {
+        let _ = writeln!(
+            w,
+            "per axis, the vibration shape ρ = √(Σ(vᵢ − vᵢ₋₁)² / (2(L − 1)) / level²) the training windows above {} g of level spanned; its excess beyond them counts in d over {}, times min(1, max(0, level / {} g − 1))",
+            r.scale, s.scale, r.scale
+        );
+        for (k, sig) in r.signals.iter().enumerate() {
+            let _ = writeln!(w, "  {sig}: shape {:e} to {:e}", s.min[k], s.max[k]);
+        }
+        let _ = writeln!(
+            w,
+            "toward a lower w₀ the one-pole's time constant is {} s (0: at once)",
+            r.fade
+                .fall_time_constant_s
+                .unwrap_or(r.fade.time_constant_s)
+        );
+    }
     let _ = writeln!(
         w,
         "d = √Σ(excess beyond each interval / {} g)²; w₀ = 1 for d ≤ {:e}, smoothstep to 0 at d = {:e}; w = one-pole of w₀ (gain α), τ = {} s\nheld h_c from the network at rest {}; at w = 1 error_c uses rbf_c and h_c ← h_c + α·(rbf_c − h_c), below it h_c stays and error_c uses h_c + w·(rbf_c − h_c) in place of the RBF sum",

@@ -1,7 +1,8 @@
 //! The fade block of the onboard tables: the model's per-axis training
 //! range and how its network part fades beyond it
 //! (`sysid::operating::fade`), as the evaluator reads it
-//! (`dtg_onboard::fade_floats` numbers after the channels).
+//! (`dtg_onboard::fade_floats` numbers after the channels; the vibration
+//! shape's range at its end, flag `FLAG_FADE_SHAPE`, when the model has one).
 
 use super::error::ExportError;
 use crate::unit_sensor::UnitModel;
@@ -9,8 +10,8 @@ use sysid::operating::OperatingPoints;
 
 /// The fade block of a model with a training range (`None` without one:
 /// the tables then do not fade, as the model does not): its range over the
-/// unit's accelerometers' windows.
-pub(super) fn fade_block(model: &UnitModel) -> Result<Option<Vec<f64>>, ExportError> {
+/// unit's accelerometers' windows, and whether it ends with the shape's.
+pub(super) fn fade_block(model: &UnitModel) -> Result<Option<(Vec<f64>, bool)>, ExportError> {
     let m = model.inner();
     let unit = model.unit();
     fade_block_of(
@@ -39,7 +40,7 @@ fn fade_block_of(
     dt_s: f64,
     (signals, n_channels): (&[String], usize),
     (channel, supported): (String, &'static str),
-) -> Result<Option<Vec<f64>>, ExportError> {
+) -> Result<Option<(Vec<f64>, bool)>, ExportError> {
     let Some(range) = points.and_then(|o| o.range.as_ref()) else {
         return Ok(None);
     };
@@ -61,7 +62,8 @@ fn fade_block_of(
         )));
     }
     let n_a = signals.len();
-    let mut f = Vec::with_capacity(dtg_onboard::fade_floats(n_a, n_channels));
+    let shape = range.shape.is_some();
+    let mut f = Vec::with_capacity(dtg_onboard::fade_floats(n_a, n_channels, shape));
     for k in 0..n_a {
         f.extend([
             range.mean_min[k],
@@ -77,6 +79,17 @@ fn fade_block_of(
         range.fade.alpha(dt_s),
     ]);
     f.extend(&range.network_mean);
-    debug_assert_eq!(f.len(), dtg_onboard::fade_floats(n_a, n_channels));
-    Ok(Some(f))
+    if let Some(s) = &range.shape {
+        for k in 0..n_a {
+            f.extend([s.min[k], s.max[k]]);
+        }
+        f.extend([s.scale, range.fade.fall_alpha(dt_s)]);
+    } else if range.fade.fall_time_constant_s.is_some() {
+        return Err(unsupported(
+            "a fade whose weight falls by its own time constant without a vibration shape range"
+                .into(),
+        ));
+    }
+    debug_assert_eq!(f.len(), dtg_onboard::fade_floats(n_a, n_channels, shape));
+    Ok(Some((f, shape)))
 }

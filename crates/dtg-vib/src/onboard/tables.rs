@@ -10,8 +10,8 @@ use super::error::ExportError;
 use crate::signal::LowPass;
 use crate::unit_sensor::{UnitEffect, UnitModel};
 use dtg_onboard::{
-    FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, MAGIC, MAX_ACCELS,
-    MAX_CHANNELS, MAX_SIGNALS, VERSION, gyro,
+    FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, FLAG_FADE_SHAPE, MAGIC,
+    MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS, VERSION, gyro,
 };
 use nalgebra::Vector3;
 use nav_sensors::calibration::GyroCoefficients;
@@ -102,7 +102,9 @@ pub fn tables(model: &UnitModel) -> Result<Tables, ExportError> {
     let triad = calibration.and(accel_axes(unit));
     let fade = super::fade::fade_block(model)?;
     let flags = calibration.map_or(0, |_| FLAG_CALIBRATION)
-        | fade.as_ref().map_or(0, |_| FLAG_FADE)
+        | fade.as_ref().map_or(0, |(_, shape)| {
+            FLAG_FADE | if *shape { FLAG_FADE_SHAPE } else { 0 }
+        })
         | triad.map_or(0, |_| FLAG_ACCEL_TRIAD);
     let (words, params) = header_words(model, &extra, flags, &in_filter)?;
     let mut f = geometry_and_calibration(model, triad);
@@ -111,7 +113,7 @@ pub fn tables(model: &UnitModel) -> Result<Tables, ExportError> {
     for (c, p) in m.channels().iter().zip(&params) {
         network_floats(c, p, &mut f)?;
     }
-    if let Some(block) = fade {
+    if let Some((block, _)) = fade {
         f.extend(block);
     }
     assemble(&words, &f, extra)

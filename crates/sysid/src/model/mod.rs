@@ -12,6 +12,7 @@ pub(crate) use fade::network_means;
 use crate::error::SysidError;
 use crate::inference::Coefficient;
 use crate::operating::OperatingPoints;
+pub use crate::prepared::INTERVAL_TOLERANCE;
 use crate::prepared::Prepared;
 use crate::preprocess::Preprocess;
 use crate::recipe::{FitSettings, Recipe};
@@ -267,16 +268,6 @@ pub struct Model<S: Sensor> {
     operating_points: Option<OperatingPoints>,
     choice: Option<ChoiceReport>,
 }
-
-/// Relative tolerance on sampling intervals: records (or the segments of a
-/// log split at its gaps) fitted together, and a record against the model's
-/// interval, are accepted when their median sampling intervals agree within
-/// 0.5 %. Two logs of one nominal rate differ by more than their jitter (a
-/// real 250 Hz PX4 log's two halves by 0.3 %: the autopilot's clock and
-/// dropped samples), and a 0.5 % time-scale error moves a 50-sample
-/// window's span by a quarter of a sample; two nominal rates (200 and 250
-/// Hz) differ by 20 %. docs/formats.md states it.
-pub const INTERVAL_TOLERANCE: f64 = 5e-3;
 
 impl<S: Sensor> Model<S> {
     /// A model from its parts, checked for what they must agree on (a

@@ -43,7 +43,9 @@
 //! [`FadeSettings::width`] more scales, then smoothed by a one-pole
 //! low-pass of time constant [`FadeSettings::time_constant_s`] that starts
 //! at the first window's own weight: `w[n] = w[n−1] + α·(w₀[n] − w[n−1])`,
-//! `α = 1 − exp(−Δt/τ)`, taking `w₀[n]` once within [`SNAP`] of it. The
+//! `α = 1 − exp(−Δt/τ)`, taking `w₀[n]` once within [`SNAP`] of it; toward
+//! a lower weight the gain is [`FadeSettings::fall_alpha`] (1 for a model
+//! fitted now: the weight falls at once and comes back by τ). The
 //! onboard evaluator and the exported C compute the same, in the same order.
 
 pub use super::fade_settings::{FADE_WIDTH, FadeSettings};
@@ -70,17 +72,24 @@ pub fn raw_weight(d: f64, tolerance: f64, width: f64) -> f64 {
     1.0 - u * u * (3.0 - 2.0 * u)
 }
 
-/// The one-pole smoother of the weight, sample by sample.
+/// The one-pole smoother of the weight, sample by sample: gain `alpha`
+/// toward a higher weight, `fall` toward a lower one.
 #[derive(Debug, Clone, Copy)]
 pub struct Smoother {
     alpha: f64,
+    fall: f64,
     state: Option<f64>,
 }
 
 impl Smoother {
-    /// A smoother of gain `alpha` ([`FadeSettings::alpha`]) at rest.
-    pub fn new(alpha: f64) -> Self {
-        Self { alpha, state: None }
+    /// A smoother of gains `alpha` ([`FadeSettings::alpha`]) and `fall`
+    /// ([`FadeSettings::fall_alpha`]) at rest.
+    pub fn new(alpha: f64, fall: f64) -> Self {
+        Self {
+            alpha,
+            fall,
+            state: None,
+        }
     }
 
     /// The smoothed weight after `w0`; the first starts at `w0` itself, and
@@ -90,7 +99,10 @@ impl Smoother {
     pub fn step(&mut self, w0: f64) -> f64 {
         let w = match self.state {
             None => w0,
-            Some(w) => snap(w + self.alpha * (w0 - w), w0),
+            Some(w) => {
+                let gain = if w0 < w { self.fall } else { self.alpha };
+                snap(w + gain * (w0 - w), w0)
+            }
         };
         self.state = Some(w);
         w
@@ -125,10 +137,10 @@ pub fn weights<S: Sensor>(
 ) -> Result<Weights, SysidError> {
     let rows: Vec<usize> = (0..prepared.rows()).collect();
     let distance = range.distances(&statistics(prepared, range.window, &rows)?);
-    let alpha = range.fade.alpha(dt_s);
+    let (alpha, fall) = (range.fade.alpha(dt_s), range.fade.fall_alpha(dt_s));
     let mut weight = Vec::with_capacity(distance.len());
     for (_, part) in prepared.record_rows() {
-        let mut s = Smoother::new(alpha);
+        let mut s = Smoother::new(alpha, fall);
         weight.extend(
             distance[part]
                 .iter()
@@ -212,7 +224,7 @@ pub fn rest_rows<S: Sensor>(
 ) -> Result<Vec<usize>, SysidError> {
     let k = prepared.sensor().operating_signals().len();
     let stats = statistics(prepared, length, rows)?;
-    let level = |s: &Vec<f64>| s[k..].iter().map(|l| l * l).sum::<f64>();
+    let level = |s: &Vec<f64>| s[k..2 * k].iter().map(|l| l * l).sum::<f64>();
     let mut order: Vec<usize> = (0..rows.len()).collect();
     order.sort_by(|&a, &b| level(&stats[a]).total_cmp(&level(&stats[b])));
     let n = ((rows.len() as f64 * REST_SHARE).ceil() as usize).clamp(1, rows.len().max(1));
@@ -227,12 +239,26 @@ mod tests {
 
     #[test]
     fn the_smoothed_weight_starts_at_its_input_and_snaps_back_to_one() {
-        let mut s = Smoother::new(FadeSettings::for_window(50, 0.02).alpha(0.02));
+        let f = FadeSettings {
+            fall_time_constant_s: None,
+            ..FadeSettings::for_window(50, 0.02)
+        };
+        let mut s = Smoother::new(f.alpha(0.02), f.fall_alpha(0.02));
         assert_eq!(s.step(0.0), 0.0);
         let w: Vec<f64> = (0..2000).map(|_| s.step(1.0)).collect();
         assert!(w[0] > 0.0 && w[0] < 0.05, "{}", w[0]);
         assert!(w.windows(2).all(|p| p[1] >= p[0]), "monotone");
         assert_eq!(*w.last().unwrap(), 1.0, "exactly the fitted model again");
+    }
+
+    #[test]
+    fn the_weight_falls_at_once_and_comes_back_by_its_time_constant() {
+        let f = FadeSettings::for_window(50, 0.02);
+        let mut s = Smoother::new(f.alpha(0.02), f.fall_alpha(0.02));
+        assert_eq!(s.step(1.0), 1.0);
+        assert_eq!(s.step(0.2), 0.2, "down at once");
+        let up = s.step(1.0);
+        assert!(up > 0.2 && up < 0.25, "{up}");
     }
 
     #[test]

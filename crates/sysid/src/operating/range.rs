@@ -15,6 +15,7 @@
 //! applied to its own record is unchanged).
 
 use super::fade_settings::FadeSettings;
+use super::shape::{ShapeRange, shape};
 use crate::error::SysidError;
 use crate::prepared::Prepared;
 use crate::sensor::Sensor;
@@ -81,19 +82,29 @@ pub(crate) fn moments<S: Sensor>(
 
 /// Per row in `rows`, the window (of `length` samples ending at the row's
 /// sample) statistics of each operating signal: the means of every signal,
-/// then their levels, in the sensor's unit.
+/// then their levels, in the sensor's unit, then their shapes
+/// ([`super::shape::shape`]).
 pub fn statistics<S: Sensor>(
     prepared: &Prepared<S>,
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    Ok(moments(prepared, length, rows)?
-        .into_iter()
-        .map(|m| {
-            let means = m.iter().map(|(mean, _)| *mean);
-            means.chain(m.iter().map(|(_, var)| var.sqrt())).collect()
+    let sensor = prepared.sensor();
+    let names = sensor.operating_signals();
+    let k = names.len();
+    rows.iter()
+        .map(|&r| {
+            let (record, end) = prepared.locate(r);
+            let span = end + 1 - length.min(end + 1)..=end;
+            let mut p = vec![0.0; 3 * k];
+            for (j, name) in names.iter().enumerate() {
+                let a = &crate::prepared::signal(sensor, record, name)?[span.clone()];
+                let (mean, var) = mean_and_variance(a);
+                (p[j], p[k + j], p[2 * k + j]) = (mean, var.sqrt(), shape(a, var));
+            }
+            Ok(p)
         })
-        .collect())
+        .collect()
 }
 
 /// What a model saw of each operating signal, and its fade.
@@ -124,6 +135,11 @@ pub struct TrainingRange {
     /// ([`fade::rest_rows`](super::fade::rest_rows)), in the target's unit;
     /// a record's hold starts there ([`fade`](super::fade)).
     pub network_mean: Vec<f64>,
+    /// Each signal's vibration shape over the training windows
+    /// ([`super::shape`]; absent in files written before: such a model
+    /// judges mean and level alone, as it did).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<ShapeRange>,
 }
 
 impl TrainingRange {
@@ -151,6 +167,7 @@ impl TrainingRange {
         }
         let fold =
             |j: usize, f: fn(f64, f64) -> f64| all.iter().map(|p| p[j]).reduce(f).unwrap_or(0.0);
+        let scale = sensor.operating_scale();
         let mut range = Self {
             mean_min: (0..k).map(|j| fold(j, f64::min)).collect(),
             mean_max: (0..k).map(|j| fold(j, f64::max)).collect(),
@@ -158,12 +175,18 @@ impl TrainingRange {
             level_max: (0..k).map(|j| fold(k + j, f64::max)).collect(),
             signals,
             window: length,
-            scale: sensor.operating_scale(),
+            scale,
             tolerance: 0.0,
             fade: FadeSettings::for_window(length, prepared.calibrated().dt()),
             network_mean,
+            shape: None,
         };
-        let d = range.distances(&statistics(prepared, length, val)?);
+        // The shapes of every fitted window, validation too: the tolerance
+        // stays the mean and level's, and a fitted record is inside.
+        let val_stats = statistics(prepared, length, val)?;
+        let fitted: Vec<&[f64]> = all.iter().chain(&val_stats).map(Vec::as_slice).collect();
+        range.shape = Some(ShapeRange::from_training(&fitted, k, scale));
+        let d = range.distances(&val_stats);
         range.tolerance = d.into_iter().fold(0.0, f64::max);
         Ok(range)
     }
@@ -206,16 +229,23 @@ impl TrainingRange {
                 self.window, self.scale
             ));
         }
-        Ok(())
+        match &self.shape {
+            Some(shape) => shape.check(k).or_else(bad),
+            None => Ok(()),
+        }
     }
 
-    /// Each window's distance outside the range, in `scale`s (0 inside the
-    /// training interval of every coordinate), from [`statistics`].
+    /// Each window's distance outside the range (0 inside the training
+    /// interval of every coordinate), from [`statistics`]: mean and level
+    /// in `scale`s, shape in its own ([`super::shape`]).
     pub fn distances(&self, stats: &[Vec<f64>]) -> Vec<f64> {
         stats.iter().map(|p| self.distance(p)).collect()
     }
 
-    /// One window's distance outside the range, in `scale`s.
+    /// One window's distance outside the range: the norm of each
+    /// coordinate's excess, mean and level in `scale`s, shape (when the
+    /// range has one) in its own, summed per signal in this order (the
+    /// onboard evaluator sums alike).
     pub fn distance(&self, p: &[f64]) -> f64 {
         let k = self.signals.len();
         let mut sum = 0.0;
@@ -223,6 +253,10 @@ impl TrainingRange {
             let m = excess(p[j], self.mean_min[j], self.mean_max[j]) / self.scale;
             let l = excess(p[k + j], self.level_min[j], self.level_max[j]) / self.scale;
             sum += m * m + l * l;
+            if let Some(shape) = &self.shape {
+                let s = shape.term(j, p[k + j], p[2 * k + j], self.scale);
+                sum += s * s;
+            }
         }
         sum.sqrt()
     }
@@ -297,12 +331,41 @@ impl TrainingRange {
                 ));
             }
         }
+        out.extend(self.shape_lacks(stats, n));
         out
+    }
+
+    /// The signals whose vibration has a shape (spectrum) the model did not
+    /// see on more than 1% of the `n` windows `stats`, in words.
+    fn shape_lacks(&self, stats: &[Vec<f64>], n: usize) -> Vec<String> {
+        let (k, Some(shape)) = (self.signals.len(), &self.shape) else {
+            return Vec::new();
+        };
+        (0..k)
+            .filter_map(|j| {
+                let far: Vec<f64> = stats
+                    .iter()
+                    .filter(|p| shape.term(j, p[k + j], p[2 * k + j], self.scale) > self.tolerance.max(1.0))
+                    .map(|p| p[2 * k + j])
+                    .collect();
+                (far.len() * 100 > n).then(|| {
+                    let lo = far.iter().copied().fold(f64::INFINITY, f64::min);
+                    let hi = far.iter().copied().fold(0.0, f64::max);
+                    format!(
+                        "the vibration on {} has another spectrum: its shape (rms of the sample-to-sample change over √2 × rms; 1 white, toward 0 slower) reaches {lo:.2}–{hi:.2} where the model saw {:.2}–{:.2} ({:.0}% of its windows beyond)",
+                        self.signals[j],
+                        shape.min[j],
+                        shape.max[j],
+                        100.0 * far.len() as f64 / n as f64
+                    )
+                })
+            })
+            .collect()
     }
 }
 
 /// How far `v` lies beyond `[lo, hi]` (0 inside).
-fn excess(v: f64, lo: f64, hi: f64) -> f64 {
+pub(crate) fn excess(v: f64, lo: f64, hi: f64) -> f64 {
     (lo - v).max(v - hi).max(0.0)
 }
 
@@ -324,6 +387,7 @@ mod tests {
             tolerance: 0.2,
             fade: FadeSettings::for_window(50, 0.02),
             network_mean: vec![0.0],
+            shape: None,
         }
     }
 
@@ -339,6 +403,42 @@ mod tests {
         // Two coordinates beyond add in quadrature.
         let d2 = r.distance(&[0.04, 0.0, 1.0, 0.07, 0.01, 0.3]);
         assert!((d2 - (0.6f64.powi(2) + 0.8f64.powi(2)).sqrt()).abs() < 1e-12);
+    }
+
+    /// A range as files written before the shape hold it: no shape, no
+    /// fall time constant. It loads, judges mean and level alone and its
+    /// weight falls by the same one-pole as it rises (today's fade).
+    #[test]
+    fn a_range_written_before_the_shape_fades_as_it_did() {
+        let mut json = serde_json::to_value(z_run()).unwrap();
+        json["fade"]
+            .as_object_mut()
+            .unwrap()
+            .remove("fall_time_constant_s");
+        assert!(json.get("shape").is_none());
+        let r: TrainingRange = serde_json::from_value(json).unwrap();
+        assert_eq!(
+            (r.shape.as_ref(), r.fade.fall_time_constant_s),
+            (None, None)
+        );
+        assert_eq!(r.fade.fall_alpha(0.02), r.fade.alpha(0.02));
+        // A window of another shape at the z run's level: inside without the
+        // shape, outside with it.
+        let p = [0.0, 0.0, 1.0, 0.01, 0.01, 0.3, 1.0, 1.0, 0.4];
+        assert_eq!(r.distance(&p), 0.0);
+        let with = TrainingRange {
+            shape: Some(ShapeRange {
+                min: vec![0.0, 0.0, 1.05],
+                max: vec![2.0, 2.0, 1.35],
+                scale: super::super::shape::SHAPE_SCALE,
+            }),
+            ..r
+        };
+        assert!(
+            (with.distance(&p) - 6.5).abs() < 1e-9,
+            "{}",
+            with.distance(&p)
+        );
     }
 
     #[test]
