@@ -15,7 +15,7 @@ use sysid::fit::ModelChoice;
 use sysid::window::signal_choice::WindowSignalsChoice;
 use sysid::{CentreMethod, FilterSpec, FitSettings, Sensor, WindowSpec};
 
-use super::records::{Read, check_observable, read_records, sensor, unit_of};
+use super::records::{Read, check_observable, parity_in_motion, read_records, sensor, unit_of};
 
 use super::parse::{
     parse_count, parse_fraction, parse_hz, parse_latitude, parse_order, parse_rate, parse_ridge,
@@ -167,11 +167,13 @@ impl FitRecipe {
     pub fn resolve(a: &FitArgs) -> Result<Self> {
         let unit = unit_of(a.unit.as_deref())?;
         let (mut options, reference) = options(a, &unit)?;
-        let sensor = sensor(unit, a.calib.as_deref(), reference)?;
-        let read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
+        let mut sensor = sensor(unit, a.calib.as_deref(), reference)?;
+        let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
         for (_, r) in &read.records {
             check_against_record(a, r)?;
         }
+        read.notes
+            .extend(parity_in_motion(&mut sensor, &read.records));
         check_observable(&sensor, &read.records)?;
         let window = match window_auto(a)? {
             true => {

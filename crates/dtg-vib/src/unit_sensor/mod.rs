@@ -41,7 +41,7 @@ pub use model::{FORMAT_VERSION, UnitModel};
 pub(crate) use observable::largest_axis_std;
 pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
 pub use parity::{ResidueSeries, ResidueStats, pooled};
-pub use preprocess::{Preprocess, RateReference};
+pub use preprocess::{PARITY_NOTE, Preprocess, RateReference};
 pub use separate::response;
 pub use signals::{UnitRecord, read_unit_records, to_record, to_signals};
 pub use window::default_window_signals;
@@ -124,6 +124,20 @@ impl UnitSensor {
         Ok((0..s.len())
             .map(|i| cols.iter().map(|c| c[i]).collect())
             .collect())
+    }
+
+    /// The rate reference at each sample of a calibrated record, deg/h,
+    /// or `None` without one.
+    pub(crate) fn reference_rates(
+        &self,
+        s: &Signals,
+    ) -> Result<Option<Vec<Vector3<f64>>>, UnitSensorError> {
+        if self.rate_reference == RateReference::None {
+            return Ok(None);
+        }
+        Ok(self
+            .rate_reference
+            .rates_deg_h(&self.unit, &self.gyro_rows(s)?))
     }
 
     /// How much the least-squares rate varies over `samples`: the largest
@@ -210,25 +224,29 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
-        let reference = self.rate_reference.rate_deg_h();
+        let reference = self.reference_rates(calibrated).map_err(boxed)?;
         (0..self.unit.gyros().len())
             .map(|k| {
                 let mut y = self.gyro_column(calibrated, k).map_err(boxed)?.to_vec();
-                if let Some(w) = reference {
-                    let r = self.unit.gyros()[k].input.dot(&w);
-                    y.iter_mut().for_each(|v| *v -= r);
+                if let Some(w) = &reference {
+                    let input = self.unit.gyros()[k].input;
+                    y.iter_mut().zip(w).for_each(|(v, w)| *v -= input.dot(w));
                 }
                 Ok(y)
             })
             .collect()
     }
 
+    /// The unit's accelerometers; for a unit of several IMUs with more
+    /// accelerometers than the loop's operating points take, the first
+    /// gyro's IMU's (they share the vehicle's specific force).
     fn operating_signals(&self) -> Vec<String> {
-        self.unit
-            .accel_names()
-            .iter()
-            .map(|n| n.to_string())
-            .collect()
+        let all = self.unit.accel_names();
+        let names = match all.len() > sysid::operating::MAX_COORDINATES - 1 {
+            true if !self.unit.gyros().is_empty() => self.unit.imu_accel_names(0),
+            _ => all,
+        };
+        names.iter().map(|n| n.to_string()).collect()
     }
 
     fn operating_scale(&self) -> f64 {
