@@ -13,6 +13,7 @@
 mod applied;
 mod apply;
 mod calibration;
+mod dynamic;
 pub mod check;
 mod effect;
 mod error;
@@ -32,6 +33,7 @@ pub use applied::{
 };
 pub use apply::Applied;
 pub use calibration::{calibration_from_json, from_paper, load_calibration};
+pub use dynamic::{ACCEL_PREFIX, Dynamic, DynamicError, MAX_LAG, Stimulus, expand_dynamic};
 pub use effect::{
     ANISOINERTIA_MIN_RATE_DEG_S, COLUMN_PREFIX, RATE_EFFECTS, TERM_EFFECTS, UnitEffect,
     UnitEffectError,
@@ -152,6 +154,82 @@ impl UnitSensor {
             .map(|&i| self.unit.least_squares_rate(&rows[i]) / 3600.0)
             .collect();
         largest_axis_std(&rates)
+    }
+}
+
+impl UnitSensor {
+    /// The rate the dynamic effects read, per sample, deg/h: the reference
+    /// where one is given, the unit's least-squares rate H⁺m otherwise.
+    fn dynamic_rate(&self, s: &Signals) -> Result<Vec<Vector3<f64>>, UnitSensorError> {
+        if let Some(w) = self.reference_rates(s)? {
+            return Ok(w);
+        }
+        let rows = self.gyro_rows(s)?;
+        Ok(rows
+            .iter()
+            .map(|m| self.unit.least_squares_rate(m))
+            .collect())
+    }
+
+    /// The columns of the dynamic effects among `effects`, in their order.
+    fn dynamic_columns(
+        &self,
+        s: &Signals,
+        channel: usize,
+        effects: &[UnitEffect],
+    ) -> Result<Vec<Vec<f64>>, UnitSensorError> {
+        let dynamic: Vec<&Dynamic> = effects
+            .iter()
+            .filter_map(|e| match e {
+                UnitEffect::Dynamic(d) => Some(d),
+                _ => None,
+            })
+            .collect();
+        let rate = match dynamic.iter().any(|d| d.reads_rate()) {
+            true => self.dynamic_rate(s)?,
+            false => Vec::new(),
+        };
+        let input = self.unit.gyros()[channel].input;
+        dynamic
+            .iter()
+            .map(|d| {
+                self.check_dynamic(channel, d)?;
+                let accel = match &d.stimulus {
+                    Stimulus::Accel(n) => s.column(n).ok_or_else(|| self.missing(s, n))?,
+                    _ => &[],
+                };
+                Ok(d.column(&input, &rate, accel))
+            })
+            .collect()
+    }
+
+    /// A dynamic effect the channel can take: an accelerometer of the
+    /// unit, a misalignment about an axis other than the input's.
+    fn check_dynamic(&self, channel: usize, d: &Dynamic) -> Result<(), UnitEffectError> {
+        let g = &self.unit.gyros()[channel];
+        let wrong = |valid: Vec<String>| UnitEffectError::WrongDynamic {
+            channel: g.name.clone(),
+            id: d.to_string(),
+            valid,
+        };
+        match &d.stimulus {
+            Stimulus::Accel(n) if !self.unit.accel_names().contains(&n.as_str()) => Err(wrong(
+                self.unit
+                    .accel_names()
+                    .iter()
+                    .map(|a| format!("{ACCEL_PREFIX}{a}"))
+                    .collect(),
+            )),
+            Stimulus::AxisRate(a) if dynamic::is_input_axis(&g.input, *a) => Err(wrong(
+                Axis::ALL
+                    .iter()
+                    .filter(|x| !dynamic::is_input_axis(&g.input, **x))
+                    .map(|x| format!("ma_{x}"))
+                    .chain(std::iter::once("sf (its input axis)".to_string()))
+                    .collect(),
+            )),
+            _ => Ok(()),
+        }
     }
 }
 
@@ -323,6 +401,9 @@ impl sysid::Sensor for UnitSensor {
     fn parse_effect(&self, channel: usize, id: &str) -> Result<UnitEffect, SensorError> {
         let e: UnitEffect = id.parse().map_err(boxed)?;
         let g = &self.unit.gyros()[channel];
+        if let UnitEffect::Dynamic(d) = &e {
+            self.check_dynamic(channel, d).map_err(boxed)?;
+        }
         if !e.fits(&g.model) {
             return Err(boxed(UnitEffectError::WrongModel {
                 channel: g.name.clone(),
@@ -333,6 +414,7 @@ impl sysid::Sensor for UnitSensor {
                     .map(|e| match e {
                         UnitEffect::Term(t) => t.id(),
                         UnitEffect::Column(_) => "col:NAME",
+                        UnitEffect::Dynamic(_) => "sf, ma_x, acc:ACCEL (@LAG)",
                     })
                     .collect(),
             }));
@@ -360,6 +442,9 @@ impl sysid::Sensor for UnitSensor {
                     }));
             }
         }
+        let dynamic = self
+            .dynamic_columns(calibrated, channel, effects)
+            .map_err(boxed)?;
         let force = self.specific_force(calibrated).map_err(boxed)?;
         let covariance = within_interval_covariance(&force);
         let needs_rate = effects.iter().any(is_anisoinertia);
@@ -384,9 +469,11 @@ impl sysid::Sensor for UnitSensor {
             })
             .collect();
         let extra = self.extra_columns(calibrated);
+        let mut dynamic = dynamic.into_iter();
         let columns = effects
             .iter()
             .map(|e| match e {
+                UnitEffect::Dynamic(_) => Ok(dynamic.next().unwrap_or_default()),
                 UnitEffect::Term(t) => Ok(sensed.iter().map(|s| gyro.regressor(*t, s)).collect()),
                 UnitEffect::Column(c) => calibrated
                     .column(c)
