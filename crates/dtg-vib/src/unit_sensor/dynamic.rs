@@ -75,7 +75,9 @@ impl Dynamic {
                 _ => tap("rate about the input axis".to_string()),
             },
             Stimulus::AxisRate(a) => match self.lag {
-                0 => format!("input-axis misalignment (cross-axis sensitivity to the rate about unit {a})"),
+                0 => format!(
+                    "input-axis misalignment (cross-axis sensitivity to the rate about unit {a})"
+                ),
                 _ => tap(format!("rate about unit {a}")),
             },
             Stimulus::Accel(name) => format!(
@@ -113,7 +115,9 @@ impl Dynamic {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum DynamicError {
     /// Not a dynamic id at all.
-    #[error("'{0}' is not a dynamic effect (sf, ma_x, ma_y, ma_z, acc:NAME, each with an optional @LAG)")]
+    #[error(
+        "'{0}' is not a dynamic effect (sf, ma_x, ma_y, ma_z, acc:NAME, each with an optional @LAG)"
+    )]
     Unknown(String),
     /// A lag out of range.
     #[error("'{given}': the lag after @ must be a whole number of samples from 0 to {MAX_LAG}")]
@@ -144,9 +148,7 @@ impl std::str::FromStr for Dynamic {
             "ma_y" => Stimulus::AxisRate(Axis::Y),
             "ma_z" => Stimulus::AxisRate(Axis::Z),
             b => match b.strip_prefix(ACCEL_PREFIX).map(str::trim) {
-                Some(name) if !name.is_empty() && name != "*" => {
-                    Stimulus::Accel(name.to_string())
-                }
+                Some(name) if !name.is_empty() && name != "*" => Stimulus::Accel(name.to_string()),
                 _ => return Err(DynamicError::Unknown(s.into())),
             },
         };
@@ -212,7 +214,10 @@ pub fn expand_dynamic(
             .filter(|a| !is_input_axis(input, **a))
             .map(|a| format!("ma_{a}"))
             .collect(),
-        "acc:*" => accels.iter().map(|n| format!("{ACCEL_PREFIX}{n}")).collect(),
+        "acc:*" => accels
+            .iter()
+            .map(|n| format!("{ACCEL_PREFIX}{n}"))
+            .collect(),
         b => vec![b.to_string()],
     };
     Ok(bases

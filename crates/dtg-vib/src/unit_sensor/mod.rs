@@ -13,8 +13,8 @@
 mod applied;
 mod apply;
 mod calibration;
-mod dynamic;
 pub mod check;
+mod dynamic;
 mod effect;
 mod error;
 pub mod fdi;
