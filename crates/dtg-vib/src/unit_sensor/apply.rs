@@ -220,6 +220,28 @@ impl Applied {
         }
         out
     }
+
+    /// Each gyro's compensated output ([`Applied::compensated`]) less the
+    /// model's rate reference, as [`Applied::calibrated_gyros`] holds the
+    /// output before: on a record fitted in parity the reference varies
+    /// with the motion, which neither series must carry.
+    pub fn compensated_gyros(&self) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        let sensor = self.prepared.sensor();
+        let gyros = sensor.unit.gyros();
+        let mut out = vec![Vec::new(); gyros.len()];
+        for ((s, first, _), c) in self.records().into_iter().zip(self.compensated()?) {
+            let reference = sensor.reference_rates(s).ok().flatten();
+            for (k, g) in gyros.iter().enumerate() {
+                let r = |i: usize| {
+                    reference
+                        .as_ref()
+                        .map_or(0.0, |w| g.input.dot(&w[first + i]))
+                };
+                out[k].extend(c.gyro_at(k).iter().enumerate().map(|(i, v)| v - r(i)));
+            }
+        }
+        Ok(out)
+    }
 }
 
 /// A causal model run through the onboard evaluator, record by record;
