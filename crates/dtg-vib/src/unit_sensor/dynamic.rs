@@ -6,7 +6,9 @@
 //! One regressor column per effect: a FIR is one effect per tap, its id the
 //! lag in samples after `@` (`sf@2`: the rate about the input axis two
 //! samples earlier). The rate is the reference rate where one is given, the
-//! unit's own least-squares rate H⁺m otherwise (in flight).
+//! unit's own least-squares rate H⁺m otherwise (in flight). `delay` is the
+//! gyro's time offset against that rate: a gyro that reads ω(t − τ) errs by
+//! −τ·ω̇ along its input axis to first order.
 
 use nalgebra::Vector3;
 use nav_sensors::geometry::Axis;
@@ -24,6 +26,9 @@ const PPM: f64 = 1e-6;
 pub enum Stimulus {
     /// The rate about the gyro's input axis (`sf`).
     InputRate,
+    /// Minus the rate's derivative about the input axis (`delay`): the
+    /// coefficient is the gyro's delay, ms.
+    InputRateDelay,
     /// The rate about a unit axis (`ma_x`, `ma_y`, `ma_z`).
     AxisRate(Axis),
     /// The specific force an accelerometer of the unit reads (`acc:NAME`).
@@ -39,6 +44,7 @@ pub enum Stimulus {
 /// assert_eq!("sf".parse::<Dynamic>().unwrap().unit(), "ppm");
 /// assert_eq!("ma_z".parse::<Dynamic>().unwrap().unit(), "µrad");
 /// assert_eq!("acc:a2y@5".parse::<Dynamic>().unwrap().unit(), "deg/h/g");
+/// assert_eq!("delay".parse::<Dynamic>().unwrap().unit(), "ms");
 /// assert!("sf@99".parse::<Dynamic>().is_err());
 /// assert!("g_x".parse::<Dynamic>().is_err());
 /// ```
@@ -58,6 +64,7 @@ impl Dynamic {
     pub fn unit(&self) -> &'static str {
         match (&self.stimulus, self.lag) {
             (Stimulus::AxisRate(_), 0) => "µrad",
+            (Stimulus::InputRateDelay, _) => "ms",
             (Stimulus::InputRate | Stimulus::AxisRate(_), _) => "ppm",
             (Stimulus::Accel(_), _) => "deg/h/g",
         }
@@ -67,9 +74,13 @@ impl Dynamic {
     pub fn description(&self) -> String {
         let tap = |what: String| match self.lag {
             0 => what,
-            k => format!("frequency response: {what}, FIR tap {k} samples earlier"),
+            k => format!("frequency response: {what}, FIR tap {k} sample(s) earlier"),
         };
         match &self.stimulus {
+            Stimulus::InputRateDelay => tap(
+                "time delay (latency) of the output against the unit's rate about the input axis"
+                    .to_string(),
+            ),
             Stimulus::InputRate => match self.lag {
                 0 => "scale-factor error (rate about the input axis)".to_string(),
                 _ => tap("rate about the input axis".to_string()),
@@ -84,7 +95,7 @@ impl Dynamic {
                 "vibration response to the specific force of accelerometer {name}{}",
                 match self.lag {
                     0 => String::new(),
-                    k => format!(", FIR tap {k} samples earlier"),
+                    k => format!(", FIR tap {k} sample(s) earlier"),
                 }
             ),
         }
@@ -98,10 +109,23 @@ impl Dynamic {
     /// The regressor column: the stimulus `lag` samples earlier (the first
     /// sample's value before the record starts). `rate` is the rate per
     /// sample, deg/h, unit frame; `accel` the accelerometer's column, g;
-    /// `input` the gyro's input axis.
-    pub fn column(&self, input: &Vector3<f64>, rate: &[Vector3<f64>], accel: &[f64]) -> Vec<f64> {
+    /// `input` the gyro's input axis; `dt_s` the sampling interval.
+    pub fn column(
+        &self,
+        input: &Vector3<f64>,
+        rate: &[Vector3<f64>],
+        accel: &[f64],
+        dt_s: f64,
+    ) -> Vec<f64> {
         let now: Vec<f64> = match &self.stimulus {
             Stimulus::InputRate => rate.iter().map(|w| input.dot(w) * PPM).collect(),
+            // −dω/dt in deg/h per ms (backward difference; 0 at the start).
+            Stimulus::InputRateDelay => (0..rate.len())
+                .map(|i| match i {
+                    0 => 0.0,
+                    i => -input.dot(&(rate[i] - rate[i - 1])) / (dt_s * 1e3),
+                })
+                .collect(),
             Stimulus::AxisRate(a) => rate.iter().map(|w| w[a.index()] * PPM).collect(),
             Stimulus::Accel(_) => accel.to_vec(),
         };
@@ -116,7 +140,7 @@ impl Dynamic {
 pub enum DynamicError {
     /// Not a dynamic id at all.
     #[error(
-        "'{0}' is not a dynamic effect (sf, ma_x, ma_y, ma_z, acc:NAME, each with an optional @LAG)"
+        "'{0}' is not a dynamic effect (sf, ma_x, ma_y, ma_z, delay, acc:NAME, each with an optional @LAG)"
     )]
     Unknown(String),
     /// A lag out of range.
@@ -144,6 +168,7 @@ impl std::str::FromStr for Dynamic {
         };
         let stimulus = match base {
             "sf" => Stimulus::InputRate,
+            "delay" => Stimulus::InputRateDelay,
             "ma_x" => Stimulus::AxisRate(Axis::X),
             "ma_y" => Stimulus::AxisRate(Axis::Y),
             "ma_z" => Stimulus::AxisRate(Axis::Z),
@@ -160,6 +185,7 @@ impl fmt::Display for Dynamic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.stimulus {
             Stimulus::InputRate => f.write_str("sf")?,
+            Stimulus::InputRateDelay => f.write_str("delay")?,
             Stimulus::AxisRate(a) => write!(f, "ma_{a}")?,
             Stimulus::Accel(n) => write!(f, "{ACCEL_PREFIX}{n}")?,
         }

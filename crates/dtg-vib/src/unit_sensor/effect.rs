@@ -72,7 +72,7 @@ pub const RATE_EFFECTS: [RateTerm; 9] = RateTerm::SPECIFIC_FORCE;
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum UnitEffectError {
     /// Not a known id.
-    #[error("unknown effect '{given}' (rate gyros: {}; dtg channels: {}; any channel: sf, ma_x, ma_y, ma_z, acc:ACCEL, each with an optional @LAG; col:NAME for an extra record column)", rate_ids().join(", "), dtg_ids().join(", "))]
+    #[error("unknown effect '{given}' (rate gyros: {}; dtg channels: {}; any channel: sf, ma_x, ma_y, ma_z, delay, acc:ACCEL, each with an optional @LAG; col:NAME for an extra record column)", rate_ids().join(", "), dtg_ids().join(", "))]
     Unknown {
         /// What was given.
         given: String,

@@ -190,6 +190,11 @@ impl UnitSensor {
             false => Vec::new(),
         };
         let input = self.unit.gyros()[channel].input;
+        let t = s.t();
+        let dt_s = match t.len() {
+            0 | 1 => 1.0,
+            n => (t[n - 1] - t[0]) / (n - 1) as f64,
+        };
         dynamic
             .iter()
             .map(|d| {
@@ -198,7 +203,7 @@ impl UnitSensor {
                     Stimulus::Accel(n) => s.column(n).ok_or_else(|| self.missing(s, n))?,
                     _ => &[],
                 };
-                Ok(d.column(&input, &rate, accel))
+                Ok(d.column(&input, &rate, accel, dt_s))
             })
             .collect()
     }
@@ -265,9 +270,9 @@ pub(crate) fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
 }
 
 /// The dynamic effects a channel fitted in parity is offered (as
-/// `--effects` items): on the real three-IMU flights they meet the issue's
-/// acceptance (docs/tutorial.md, "Flight data").
-pub const FLIGHT_EFFECTS: [&str; 3] = ["sf@0..4", "ma_*@0..4", "acc:*@0..5"];
+/// `--effects` items): the delay, and the taps that on the real three-IMU
+/// flights meet the acceptance (docs/tutorial.md, "Flight data").
+pub const FLIGHT_EFFECTS: [&str; 4] = ["delay", "sf@0..4", "ma_*@0..4", "acc:*@0..5"];
 
 /// Smallest spread an operating point's coordinate is divided by, g: a
 /// coordinate the training windows held constant (gravity along x in a
@@ -438,7 +443,7 @@ impl sysid::Sensor for UnitSensor {
                     .map(|e| match e {
                         UnitEffect::Term(t) => t.id(),
                         UnitEffect::Column(_) => "col:NAME",
-                        UnitEffect::Dynamic(_) => "sf, ma_x, acc:ACCEL (@LAG)",
+                        UnitEffect::Dynamic(_) => "sf, ma_x, delay, acc:ACCEL (@LAG)",
                     })
                     .collect(),
             }));
