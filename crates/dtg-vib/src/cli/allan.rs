@@ -137,7 +137,11 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     if unresolved {
         println!("{NOT_RESOLVED}");
     }
-    if let Some(note) = no_residue_note(&unit) {
+    if let Some(note) = no_residue_note(
+        &unit,
+        m.as_ref()
+            .map_or(&RateReference::None, |m| &m.inner().sensor().rate_reference),
+    ) {
         println!("{note}");
     }
     if let Some(p) = &page {

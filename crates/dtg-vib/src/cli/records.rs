@@ -226,13 +226,25 @@ pub fn check_observable(sensor: &UnitSensor, records: &[(String, Record)]) -> Re
 }
 
 /// The note that a unit of three gyros has no parity residue, where one
-/// would be shown.
-pub fn no_residue_note(unit: &Unit) -> Option<String> {
+/// would be shown; its channels are judged against the rate reference only
+/// when there is one.
+pub fn no_residue_note(unit: &Unit, reference: &RateReference) -> Option<String> {
     unit.residue_names().is_empty().then(|| {
         format!(
-            "note: the unit '{}' has {} gyros: nothing is redundant, so it has no parity residue; its channels are judged against the rate reference (rms before and after per channel)",
+            "note: the unit '{}' has {} gyros: nothing is redundant, so it has no parity residue; its channels are judged {} (rms before and after per channel)",
             unit.name(),
-            unit.gyros().len()
+            unit.gyros().len(),
+            judged(reference)
         )
     })
+}
+
+/// How a unit without parity residues is judged, by its rate reference.
+pub fn judged(reference: &RateReference) -> &'static str {
+    match reference.is_true_rate() {
+        true => "against the rate reference",
+        false => {
+            "by their own outputs (no rate reference: each channel's constant rate stays in its bias)"
+        }
+    }
 }
