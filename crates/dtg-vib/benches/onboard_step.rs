@@ -62,7 +62,7 @@ fn specs() -> Vec<Spec> {
 
 /// Writes `spec`'s tables now and then, and its C, into `dir`.
 fn write_tables(spec: &Spec, dir: &Path) -> Result<(), String> {
-    let then = if spec.unit.is_paper_format() {
+    let then = if spec.unit.file_format() == nav_sensors::unit::FileFormat::Paper {
         LAYOUT_2
     } else {
         LAYOUT_3

@@ -115,10 +115,7 @@ impl AllanAnalysis {
             ),
             Some(m) => {
                 let applied = Applied::unsplit(m, &[(String::new(), record)])?;
-                let c = applied.compensated()?.remove(0);
-                let after: Vec<Vec<f64>> = (0..unit.gyros().len())
-                    .map(|k| c.gyro_at(k).to_vec())
-                    .collect();
+                let after = applied.compensated_gyros()?;
                 let first = applied.prepared.first_sample();
                 (applied.calibrated_gyros(), Some(after), first)
             }

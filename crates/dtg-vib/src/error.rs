@@ -78,5 +78,5 @@ pub enum DtgVibError {
     Table(#[from] tabular::TableError),
     /// A unit's records or effects (the plug-in of any unit).
     #[error(transparent)]
-    Unit(#[from] crate::unit_sensor::UnitSensorError),
+    Unit(#[from] crate::unit_sensor::error::UnitSensorError),
 }

@@ -18,16 +18,15 @@
 //! length and seed are those `tests/unit_loop.rs` accepts.
 
 use crate::error::DtgVibError;
-use crate::report::{DiagnosisExtra, NoiseFloor, Wording, write_diagnosis_report_of};
+use crate::report::{ChannelWording, DiagnosisExtra, NoiseFloor, write_diagnosis_report_of};
 use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{
-    Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, from_paper,
-    to_signals,
+    Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, to_signals,
 };
 use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::geometry::Axis;
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Components, Scenario, UnitHiddenEffect, simulate, simulate_unit};
+use nav_sensors::sim::{Components, Scenario, UnitHiddenEffect, simulate_unit};
 use nav_sensors::unit::{GyroModel, Unit};
 use nav_sensors::vibration::Drive;
 use std::path::{Path, PathBuf};
@@ -154,26 +153,11 @@ struct Simulated {
     components: Option<Components>,
 }
 
-/// Simulates `s` on `unit` and writes its files into `dir`. The paper's
-/// unit runs the paper's simulator, which also gives the noise floors the
-/// final page compares the residual with, until the unit's gives them too.
+/// Simulates `s` on `unit` and writes its files into `dir`, in the unit's
+/// file formats; the noise floors the final page compares the residual
+/// with are the components those files hold (the paper's formats write
+/// them).
 fn simulate_into(unit: &Unit, s: &Scenario, dir: &Path) -> Result<Simulated, DtgVibError> {
-    if unit.is_paper_format() {
-        let sim = simulate(s)?;
-        sim.write_dir(dir)?;
-        let hidden = sim
-            .truth
-            .hidden
-            .iter()
-            .map(|h| Hidden::new(h.channel.name(), h.term.id(), h.coefficient, &h.unit))
-            .collect();
-        return Ok(Simulated {
-            calibration: from_paper(&sim.calibration),
-            record: sim.record,
-            hidden,
-            components: Some(sim.components),
-        });
-    }
     let sim = simulate_unit(unit, s)?;
     sim.write_dir(dir)?;
     let hidden = sim
@@ -183,10 +167,10 @@ fn simulate_into(unit: &Unit, s: &Scenario, dir: &Path) -> Result<Simulated, Dtg
         .map(|h| Hidden::new(&h.channel, &h.term, h.coefficient, &h.unit))
         .collect();
     Ok(Simulated {
+        components: sim.written_components().cloned(),
         record: sim.record,
         calibration: sim.calibration,
         hidden,
-        components: None,
     })
 }
 
@@ -394,7 +378,7 @@ pub fn run(
 
     progress("diagnosing the baseline");
     let diagnose = DiagnoseOptions::default();
-    let wording = Wording::of_unit(unit);
+    let wording = ChannelWording::of_unit(unit);
     let min_err = diagnose.rank.min_err();
     let diagnosis = sysid::explain::diagnose_records(base.model.inner(), &named, &diagnose)?;
     let diagnosis_report =

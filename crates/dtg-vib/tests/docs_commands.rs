@@ -226,6 +226,8 @@ fn run_doc(doc: &str) {
     std::os::unix::fs::symlink(root().join("peers"), dir.join("peers")).unwrap();
     // The real IMU logs the tutorial's "Your own unit" reads.
     std::os::unix::fs::symlink(root().join("data"), dir.join("data")).unwrap();
+    // The unit files the tutorial's "Flight data" reads.
+    std::os::unix::fs::symlink(root().join("units"), dir.join("units")).unwrap();
     let (dtg, rbf) = binaries();
     let prelude = format!(
         "dtg-vib() {{ '{}' \"$@\"; }}\nrbf() {{ '{}' \"$@\"; }}\n",

@@ -214,7 +214,7 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
     );
     let renamed = Unit::from_toml(&renamed_text, "renamed.toml").unwrap();
     assert_eq!(renamed.gyro_names(), ["F", "E", "D", "C", "B", "A"]);
-    assert!(!renamed.is_paper_format());
+    assert_eq!(renamed.file_format(), nav_sensors::unit::FileFormat::Unit);
     // The record and calibration in its names, order and units.
     let r = &sim.record;
     let gyros = (0..6)

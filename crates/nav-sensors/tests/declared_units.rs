@@ -109,8 +109,8 @@ fn a_g_log_declared_m_s2_warns_on_its_specific_force() {
     assert!((magnitude_g * 9.80665 - 1.0).abs() < 0.05, "{magnitude_g}");
 }
 
-/// A paper-format calibration given with another unit is refused naming
-/// the format that unit takes.
+/// A calibration of a built-in unit (the paper's, in its format) given
+/// with another unit is refused naming the unit it belongs to.
 #[test]
 fn a_paper_format_calibration_with_another_unit_is_refused_naming_the_format() {
     use nav_sensors::calibration::{UnitCalibration, UnitCalibrationError};
@@ -118,11 +118,11 @@ fn a_paper_format_calibration_with_another_unit_is_refused_naming_the_format() {
     assert_eq!(paper.check(&Unit::paper()), Ok(()));
     let err = paper.check(&triad()).unwrap_err();
     assert!(
-        matches!(err, UnitCalibrationError::PaperFormat { .. }),
+        matches!(err, UnitCalibrationError::OtherBuiltin { .. }),
         "{err}"
     );
     assert!(
-        err.to_string().starts_with("the calibration is in the paper's format (DTG tables for gyros X, X1, Y, Y1, Z, Z1: the paper's unit, --unit paper), but units/triad.toml has gyros gx, gy, gz: give a unit calibration"),
+        err.to_string().starts_with("the calibration is of the built-in unit 'paper' (gyros X, X1, Y, Y1, Z, Z1: --unit paper), but units/triad.toml has gyros gx, gy, gz: give a unit calibration"),
         "{err}"
     );
     // Another unit's calibration with a name the unit lacks stays `Unknown`.

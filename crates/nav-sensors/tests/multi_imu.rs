@@ -3,8 +3,8 @@
 //! triads with several accelerometer triads is accepted, each IMU has its
 //! own specific force beside the unit's, and ground calibration
 //! compensates each IMU's accelerometer triad. `units/multi-imu.toml`
-//! describes the real three-IMU flights of `shared/realdata/multi-imu/`
-//! (checked against them when they are on disk).
+//! describes the real three-IMU flights of `data/realdata/multi-imu/`
+//! (checked against them).
 
 use nav_sensors::accel::{AccelCoefficients, compensate_triad};
 use nav_sensors::calibration::UnitCalibration;
@@ -125,16 +125,14 @@ fn imu_keys_are_checked() {
     assert_eq!(u.imu_accel_names(0).len(), 9);
 }
 
-/// The real flights, when they are on disk: read with the unit, one
+/// The real flights (in-tree, data/realdata/multi-imu/): read with the unit, one
 /// segment each at 120 Hz, and the README's rms of g1 and of g1 − g2
 /// (deg/s) come back.
 #[test]
-fn the_real_flights_read_with_the_unit_when_present() {
+fn the_real_flights_read_with_the_unit() {
     let u = multi_imu();
-    let dirs = [
-        "../../data/realdata/multi-imu",
-        "../../../shared/realdata/multi-imu",
-    ];
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/realdata/multi-imu");
     let table = [
         (
             "qdr_horizontal_path11.csv",
@@ -149,14 +147,6 @@ fn the_real_flights_read_with_the_unit_when_present() {
             [1.464, 0.896, 0.475],
         ),
     ];
-    let Some(dir) = dirs
-        .iter()
-        .map(|d| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(d))
-        .find(|d| d.join(table[0].0).exists())
-    else {
-        eprintln!("notice: the multi-IMU flights are not on disk; their check is skipped");
-        return;
-    };
     let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
     for (file, rows, g1, g1_g2) in table {
         let read = Record::read_with_unit(dir.join(file), &u).unwrap();

@@ -29,9 +29,11 @@ fn short(name: &str, seconds: f64) -> Scenario {
     }
 }
 
-/// `simulate_unit(paper)` is `simulate`: the record, the calibration (as
-/// the paper unit's), the truth (as the paper unit's, every field) and the
-/// component series, all bit for bit, and the record CSV byte for byte.
+/// `simulate` is `simulate_unit(paper)` in the paper's types: the
+/// calibration and truth converted to the paper's formats read back as the
+/// unit's bit for bit (every field), the record and components are the
+/// same, and the paper unit's files are the paper's (`components.csv`, no
+/// `unit.toml`), its record CSV byte for byte.
 #[test]
 fn the_paper_unit_through_the_unit_path_is_todays_simulation_bit_for_bit() {
     for name in ["paper_z_random", "triaxial_hidden", "flight", "sine-sweep"] {
@@ -61,10 +63,12 @@ fn the_paper_unit_through_the_unit_path_is_todays_simulation_bit_for_bit() {
         assert_eq!(unit.components, today.components, "{name}: components");
         // The record file the paper's simulate writes, byte for byte.
         let dir = std::env::temp_dir().join(format!("nav-sensors-one-sim-{name}"));
+        let _ = std::fs::remove_dir_all(&dir);
         today.write_dir(dir.join("paper")).unwrap();
         unit.write_dir(dir.join("unit")).unwrap();
         let bytes = |d: &str| std::fs::read(dir.join(d).join("record.csv")).unwrap();
         assert_eq!(bytes("paper"), bytes("unit"), "{name}: record.csv");
+        assert!(dir.join("unit/components.csv").exists() && !dir.join("unit/unit.toml").exists());
     }
 }
 

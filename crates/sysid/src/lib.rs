@@ -29,11 +29,13 @@
 //!       suggestions, fits again)
 //! ```
 //!
-//! The diagnosis fits no model: what it reads is fitted by the loop layer
+//! The diagnosis fits no channel model: the models it reads (the model,
+//! its mirror, a longer window) are fitted by the loop layer
 //! ([`explain`]). It calls the fit layer for one estimate only, a
 //! suggestion's coefficient by the fit's own cross-fitted partialling
-//! (`fit::cross_fitted_theta`, whose nuisance networks it fits), so that
-//! the diagnosis and the refit state the same number and interval.
+//! (`fit::cross_fitted_theta`, in `diagnose/estimate.rs`: that estimator
+//! fits its nuisance networks), so that the diagnosis and the refit state
+//! the same number and interval.
 //!
 //! ```
 //! use sysid::example::{Line, line_record};

@@ -177,7 +177,11 @@ fn geometry(spec: &Spec, version: u32, rng: &mut Xoshiro256Plus) -> Vec<f64> {
 /// The tables of `spec` in layout `version` ([`LAYOUT_2`] for the paper's
 /// unit, [`LAYOUT_3`] for another, [`VERSION`]): the same numbers in each.
 pub fn tables(spec: &Spec, version: u32) -> Vec<u8> {
-    assert!(version == VERSION || version == LAYOUT_3 || spec.unit.is_paper_format());
+    assert!(
+        version == VERSION
+            || version == LAYOUT_3
+            || spec.unit.file_format() == nav_sensors::unit::FileFormat::Paper
+    );
     let stats = spec.input == dtg_onboard::input::STATISTICS;
     let smoother = LowPass::butterworth(2, 0.1, 50.0).expect("a low-pass");
     let lp = LowPass::butterworth(4, 5.0, 50.0).expect("a low-pass");

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use super::records::{no_residue_note, open_model, read_records, turning, unit_of};
 use super::report::guard_report;
-use dtg_vib::unit_sensor::MOVING_RATE_STD_DEG_S;
+use dtg_vib::unit_sensor::{MOVING_RATE_STD_DEG_S, RateReference};
 
 /// The flags of `allan`.
 #[derive(Args)]
@@ -68,7 +68,12 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         .iter()
         .max_by_key(|(_, r)| r.len())
         .expect("read_records gives at least one segment");
-    if let Some(std) = turning(&unit, record) {
+    // A model fitted in parity removes the unit's own rate from every
+    // channel before and after: the motion is not in the deviations.
+    let parity = m
+        .as_ref()
+        .is_some_and(|m| m.inner().sensor().rate_reference == RateReference::Parity);
+    if let Some(std) = turning(&unit, record).filter(|_| !parity) {
         eprintln!(
             "warning: {name}: the unit turns (its rate varies by {std:.2} deg/s over 1-s averages, above {MOVING_RATE_STD_DEG_S} deg/s): the deviations hold the motion as well as the sensors' noise"
         );
@@ -132,7 +137,11 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     if unresolved {
         println!("{NOT_RESOLVED}");
     }
-    if let Some(note) = no_residue_note(&unit) {
+    if let Some(note) = no_residue_note(
+        &unit,
+        m.as_ref()
+            .map_or(&RateReference::None, |m| &m.inner().sensor().rate_reference),
+    ) {
         println!("{note}");
     }
     if let Some(p) = &page {

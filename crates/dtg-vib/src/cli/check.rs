@@ -82,7 +82,7 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         }
     } else {
         print_check(&c);
-        if let Some(note) = no_residue_note(m.unit()) {
+        if let Some(note) = no_residue_note(m.unit(), &m.inner().sensor().rate_reference) {
             println!("{note}");
         }
         if let Some(p) = page {

@@ -88,6 +88,9 @@ fn rate_reference_note(r: &RateReference) -> String {
             "a table rate of {}, {}, {} deg/s about cluster x, y, z",
             rate_deg_s[0], rate_deg_s[1], rate_deg_s[2]
         ),
+        RateReference::Parity => {
+            "the unit's own least-squares rate, sample by sample (the model was fitted in parity on a moving record)".to_string()
+        }
     };
     format!(
         "rate reference removed: {what}, as stored in the model; to change it, refit with --earth-rate LAT or --table-rate WX,WY,WZ"

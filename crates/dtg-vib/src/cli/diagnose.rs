@@ -3,7 +3,7 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::report::{Wording, write_diagnosis_report_of};
+use dtg_vib::report::{ChannelWording, write_diagnosis_report_of};
 use std::path::{Path, PathBuf};
 
 use super::findings::print_diagnosis;
@@ -62,7 +62,7 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            let wording = Wording::of_unit(m.unit());
+            let wording = ChannelWording::of_unit(m.unit());
             Some(write_diagnosis_report_of(
                 &d,
                 options.rank.min_err(),

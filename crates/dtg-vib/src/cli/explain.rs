@@ -4,7 +4,7 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::report::{Wording, write_diagnosis_report_of};
+use dtg_vib::report::{ChannelWording, write_diagnosis_report_of};
 use dtg_vib::unit_sensor::UnitModel;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -74,7 +74,7 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
             Some(write_diagnosis_report_of(
                 last,
                 diagnose_options.rank.min_err(),
-                &Wording::of_unit(unit),
+                &ChannelWording::of_unit(unit),
                 dir,
             )?)
         }

@@ -6,7 +6,9 @@
 use anyhow::{Result, anyhow};
 use clap::Args;
 use dtg_vib::split::Holdout;
-use dtg_vib::unit_sensor::{RateReference, UnitEffect, UnitEffectError, UnitSensor};
+use dtg_vib::unit_sensor::{
+    RateReference, UnitEffect, UnitEffectError, UnitSensor, expand_dynamic,
+};
 use nav_sensors::record::Record;
 use nav_sensors::sim::Site;
 use nav_sensors::unit::Unit;
@@ -15,7 +17,7 @@ use sysid::fit::ModelChoice;
 use sysid::window::signal_choice::WindowSignalsChoice;
 use sysid::{CentreMethod, FilterSpec, FitSettings, Sensor, WindowSpec};
 
-use super::records::{Read, check_observable, read_records, sensor, unit_of};
+use super::records::{Read, check_observable, parity_in_motion, read_records, sensor, unit_of};
 
 use super::parse::{
     parse_count, parse_fraction, parse_hz, parse_latitude, parse_order, parse_rate, parse_ridge,
@@ -167,11 +169,13 @@ impl FitRecipe {
     pub fn resolve(a: &FitArgs) -> Result<Self> {
         let unit = unit_of(a.unit.as_deref())?;
         let (mut options, reference) = options(a, &unit)?;
-        let sensor = sensor(unit, a.calib.as_deref(), reference)?;
-        let read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
+        let mut sensor = sensor(unit, a.calib.as_deref(), reference)?;
+        let mut read = read_records(&a.data, &sensor.unit, 2 * a.window)?;
         for (_, r) in &read.records {
             check_against_record(a, r)?;
         }
+        read.notes
+            .extend(parity_in_motion(&mut sensor, &read.records));
         check_observable(&sensor, &read.records)?;
         let window = match window_auto(a)? {
             true => {
@@ -284,20 +288,44 @@ fn options(a: &FitArgs, unit: &Unit) -> Result<(sysid::FitOptions<UnitEffect>, R
 }
 
 /// Each channel's effects: `--effects` (for every channel, each checked
-/// against its model), then its `--add-effect CHANNEL=ID`s, each once.
+/// against its model), then its `--add-effect CHANNEL=ID`s, each once. An
+/// item may stand for several dynamic effects (`ma_*`, `acc:*`, `@A..B`:
+/// [`expand_dynamic`]), expanded for each channel.
 fn effects(a: &FitArgs, unit: &Unit) -> Result<Vec<Vec<UnitEffect>>> {
-    let common = UnitEffect::parse_list(&a.effects.join(","))?;
+    let items: Vec<&str> = a
+        .effects
+        .iter()
+        .flat_map(|e| e.split(','))
+        .map(str::trim)
+        .filter(|s| !s.is_empty() && *s != "bias")
+        .collect();
     let plug = UnitSensor::new(unit.clone());
-    let mut per: Vec<Vec<UnitEffect>> = Vec::new();
-    for k in 0..unit.gyros().len() {
-        let mut e = Vec::new();
-        for x in &common {
-            e.push(
-                plug.parse_effect(k, &x.id())
-                    .map_err(|err| anyhow!("--effects {x}: {err}"))?,
-            );
+    let accels = unit.accel_names();
+    let of = |k: usize, item: &str, flag: &str| -> Result<Vec<UnitEffect>> {
+        let input = unit.gyros()[k].input;
+        expand_dynamic(item, &input, &accels)
+            .map_err(|err| anyhow!("{flag}{item}: {err}"))?
+            .iter()
+            .map(|id| {
+                // An id no channel takes is refused as it is.
+                id.parse::<UnitEffect>()?;
+                plug.parse_effect(k, id)
+                    .map_err(|err| anyhow!("{flag}{id}: {err}"))
+            })
+            .collect()
+    };
+    let mut per: Vec<Vec<UnitEffect>> = vec![Vec::new(); unit.gyros().len()];
+    let mut add = |k: usize, e: Vec<UnitEffect>| {
+        for x in e {
+            if !per[k].contains(&x) {
+                per[k].push(x);
+            }
         }
-        per.push(e);
+    };
+    for k in 0..unit.gyros().len() {
+        for item in &items {
+            add(k, of(k, item, "--effects ")?);
+        }
     }
     for s in &a.add_effect {
         let (channel, id) = s
@@ -311,12 +339,7 @@ fn effects(a: &FitArgs, unit: &Unit) -> Result<Vec<Vec<UnitEffect>>> {
                 channel: channel.to_string(),
                 valid: unit.gyro_names().iter().map(|n| n.to_string()).collect(),
             })?;
-        let e = plug
-            .parse_effect(k, id)
-            .map_err(|err| anyhow!("--add-effect {channel}={id}: {err}"))?;
-        if !per[k].contains(&e) {
-            per[k].push(e);
-        }
+        add(k, of(k, id, &format!("--add-effect {channel}="))?);
     }
     Ok(per)
 }

@@ -5,8 +5,8 @@
 
 use anyhow::{Result, anyhow, bail};
 use dtg_vib::unit_sensor::{
-    MOVING_RATE_STD_DEG_S, RateReference, UnitModel, UnitSensor, UnitSensorError, load_calibration,
-    observability, read_unit_records, to_signals,
+    MOVING_RATE_STD_DEG_S, PARITY_NOTE, RateReference, UnitModel, UnitSensor, UnitSensorError,
+    load_calibration, observability, read_unit_records, to_signals,
 };
 use nav_sensors::record::{Record, declared_unit_warnings, is_ulog};
 use nav_sensors::unit::Unit;
@@ -183,6 +183,23 @@ pub fn sensor(unit: Unit, calib: Option<&Path>, reference: RateReference) -> Res
     })
 }
 
+/// A redundant unit (one with parity residues) given no rate reference,
+/// on records one of which turns, is fitted in parity: its rate reference
+/// becomes the unit's own least-squares rate ([`RateReference::Parity`]).
+/// Returns the one line saying so and what that cannot observe.
+pub fn parity_in_motion(sensor: &mut UnitSensor, records: &[(String, Record)]) -> Option<String> {
+    if sensor.rate_reference != RateReference::None || sensor.unit.residue_names().is_empty() {
+        return None;
+    }
+    let (name, std) = records
+        .iter()
+        .find_map(|(n, r)| turning(&sensor.unit, r).map(|s| (n, s)))?;
+    sensor.rate_reference = RateReference::Parity;
+    Some(format!(
+        "note: {name}: the unit turns (its rate varies by {std:.2} deg/s over 1-s averages) and no rate reference is given, so it is fitted in parity: {PARITY_NOTE}"
+    ))
+}
+
 /// Refuses records on which the gyro errors are not observable: a moving
 /// unit without a rate reference (each target would be the motion).
 pub fn check_observable(sensor: &UnitSensor, records: &[(String, Record)]) -> Result<()> {
@@ -209,13 +226,25 @@ pub fn check_observable(sensor: &UnitSensor, records: &[(String, Record)]) -> Re
 }
 
 /// The note that a unit of three gyros has no parity residue, where one
-/// would be shown.
-pub fn no_residue_note(unit: &Unit) -> Option<String> {
+/// would be shown; its channels are judged against the rate reference only
+/// when there is one.
+pub fn no_residue_note(unit: &Unit, reference: &RateReference) -> Option<String> {
     unit.residue_names().is_empty().then(|| {
         format!(
-            "note: the unit '{}' has {} gyros: nothing is redundant, so it has no parity residue; its channels are judged against the rate reference (rms before and after per channel)",
+            "note: the unit '{}' has {} gyros: nothing is redundant, so it has no parity residue; its channels are judged {} (rms before and after per channel)",
             unit.name(),
-            unit.gyros().len()
+            unit.gyros().len(),
+            judged(reference)
         )
     })
+}
+
+/// How a unit without parity residues is judged, by its rate reference.
+pub fn judged(reference: &RateReference) -> &'static str {
+    match reference.is_true_rate() {
+        true => "against the rate reference",
+        false => {
+            "by their own outputs (no rate reference: each channel's constant rate stays in its bias)"
+        }
+    }
 }

@@ -141,7 +141,7 @@ fn print_baseline_table(m: &UnitModel, base: &Applied, this: &Applied) {
 /// gyros, that there is no residue.
 pub fn print_parity(m: &UnitModel, p: &Parity) {
     if p.residues.is_empty() {
-        if let Some(note) = no_residue_note(m.unit()) {
+        if let Some(note) = no_residue_note(m.unit(), &m.inner().sensor().rate_reference) {
             println!("{note}");
         }
         return;

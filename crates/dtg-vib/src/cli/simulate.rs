@@ -4,7 +4,7 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use cli_support::progress::Progress;
-use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::sim::Scenario;
 use std::path::PathBuf;
 
 /// The flags of `simulate`.
@@ -48,7 +48,6 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         unit,
     } = a;
     let unit = super::records::unit_of(unit.as_deref())?;
-    let unit = (!unit.is_paper_format()).then_some(unit);
     let scenario_path = scenario.clone();
     let mut s = match (scenario, builtin) {
         (Some(path), _) => Scenario::load(&path)?,
@@ -71,32 +70,11 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         s.validate()
             .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
     }
-    if let Some(unit) = unit {
-        return simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress);
-    }
-    outfile::guard_dir(
-        "--out",
-        &out,
-        &nav_sensors::sim::Simulation::FILES,
-        &[("--scenario", scenario_path.as_deref())],
-    )?;
-    progress.say(format!("simulating '{}' ({} s)", s.name, s.duration_s));
-    let sim = simulate(&s)?;
-    sim.write_dir(&out).with_context(|| {
-        format!(
-            "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
-            s.name
-        )
-    })?;
-    drop(progress);
-    for name in nav_sensors::sim::Simulation::FILES {
-        println!("wrote {}", out.join(name).display());
-    }
-    Ok(())
+    simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress)
 }
 
-/// `simulate --unit`: the same physics on the unit's gyros and
-/// accelerometers, written in its column names and units.
+/// The scenario's physics on the unit's gyros and accelerometers, written
+/// in the unit's file formats ([`nav_sensors::unit::FileFormat`]).
 fn simulate_unit(
     unit: &nav_sensors::unit::Unit,
     s: &Scenario,
@@ -108,7 +86,7 @@ fn simulate_unit(
     outfile::guard_dir(
         "--out",
         out,
-        &UnitSimulation::FILES,
+        &UnitSimulation::files(unit),
         &[("--scenario", scenario_path)],
     )?;
     progress.say(format!(
@@ -125,7 +103,7 @@ fn simulate_unit(
         )
     })?;
     drop(progress);
-    for name in UnitSimulation::FILES {
+    for name in UnitSimulation::files(unit) {
         println!("wrote {}", out.join(name).display());
     }
     for n in &sim.truth.not_applied {

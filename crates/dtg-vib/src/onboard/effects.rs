@@ -42,6 +42,7 @@ pub(super) fn effect_entry(
                 .expect("extra columns are collected from the effects");
             Ok((kind::COLUMN, idx as u32, vec![]))
         }
+        UnitEffect::Dynamic(d) => Err(unsupported(d.to_string())),
         UnitEffect::Term(GyroTerm::Rate(t)) => {
             let axes = letters(t.id());
             if RateTerm::SPECIFIC_FORCE[..3].contains(t) {

@@ -15,7 +15,7 @@ pub use compensation::{
     DiagnosisExtra, Evaluated, FdiShown, NoiseFloor, PageNumbers, Parity, ReportExtras, ResidueRms,
     build_page, parity_on_samples,
 };
-pub use diagnosis::{Wording, write_diagnosis_report, write_diagnosis_report_of};
+pub use diagnosis::{ChannelWording, write_diagnosis_report, write_diagnosis_report_of};
 pub use provenance::Provenance;
 
 #[cfg(test)]

@@ -36,7 +36,7 @@ pub fn compensated(m: &UnitModel, segment: &Signals) -> Result<Record, DtgVibErr
         })
         .collect();
     let s = Signals::new(calibrated.t()[first..].to_vec(), columns)
-        .map_err(super::UnitSensorError::from)?;
+        .map_err(super::error::UnitSensorError::from)?;
     Ok(to_record(m.unit(), &s)?)
 }
 

@@ -208,17 +208,39 @@ impl Applied {
     /// and fault detection read beside [`Applied::compensated`]'s.
     pub fn calibrated_gyros(&self) -> Vec<Vec<f64>> {
         let sensor = self.prepared.sensor();
-        let reference = sensor.rate_reference.rate_deg_h();
         let gyros = sensor.unit.gyros();
         let mut out = vec![Vec::new(); gyros.len()];
         for (s, first, _) in self.records() {
+            let reference = sensor.reference_rates(s).ok().flatten();
             for (k, g) in gyros.iter().enumerate() {
-                let r = reference.map_or(0.0, |w| g.input.dot(&w));
+                let r = |i: usize| reference.as_ref().map_or(0.0, |w| g.input.dot(&w[i]));
                 let column = s.column(&g.name).unwrap_or(&[]);
-                out[k].extend(column.iter().skip(first).map(|v| v - r));
+                out[k].extend(column.iter().enumerate().skip(first).map(|(i, v)| v - r(i)));
             }
         }
         out
+    }
+
+    /// Each gyro's compensated output ([`Applied::compensated`]) less the
+    /// model's rate reference, as [`Applied::calibrated_gyros`] holds the
+    /// output before: on a record fitted in parity the reference varies
+    /// with the motion, which neither series must carry.
+    pub fn compensated_gyros(&self) -> Result<Vec<Vec<f64>>, DtgVibError> {
+        let sensor = self.prepared.sensor();
+        let gyros = sensor.unit.gyros();
+        let mut out = vec![Vec::new(); gyros.len()];
+        for ((s, first, _), c) in self.records().into_iter().zip(self.compensated()?) {
+            let reference = sensor.reference_rates(s).ok().flatten();
+            for (k, g) in gyros.iter().enumerate() {
+                let r = |i: usize| {
+                    reference
+                        .as_ref()
+                        .map_or(0.0, |w| g.input.dot(&w[first + i]))
+                };
+                out[k].extend(c.gyro_at(k).iter().enumerate().map(|(i, v)| v - r(i)));
+            }
+        }
+        Ok(out)
     }
 }
 

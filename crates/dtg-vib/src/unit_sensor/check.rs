@@ -75,10 +75,14 @@ pub fn check(
     let calibrated = p.calibrated();
     let all: Vec<usize> = (0..calibrated.len()).collect();
     let rate_std_deg_s = p.sensor().rate_variation_deg_s(calibrated, &all);
-    let note = (rate_std_deg_s > MOVING_RATE_DEG_S).then(|| {
-        format!(
+    let parity = p.sensor().rate_reference == super::RateReference::Parity;
+    let note = (rate_std_deg_s > MOVING_RATE_DEG_S).then(|| match parity {
+        false => format!(
             "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): each channel's rms before and after holds that motion, which no fixed rate reference removes; the parity residues cancel any rate, judge the model on this record by them"
-        )
+        ),
+        true => format!(
+            "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): the model was fitted in parity, so each channel's rms before and after is of its parity-projected output (the motion removed); the pooled parity residue says how much the model transfers"
+        ),
     });
     let residues = applied.residues();
     let every: Vec<usize> = (0..p.rows()).collect();

@@ -4,7 +4,10 @@
 //! frame (`g_x` … `gg_yz`), and `col:NAME` for the record's extra columns.
 //! The ids of the two models are disjoint (upper-case axes for a DTG,
 //! lower-case for the unit frame), so an id alone says which term it is.
+//! Any channel also takes the dynamic effects ([`Dynamic`]: `sf`, `ma_x`,
+//! `acc:NAME`, each with an optional `@LAG`).
 
+use super::dynamic::{Dynamic, DynamicError};
 use nav_sensors::dtg::DtgTerm;
 use nav_sensors::rate::RateTerm;
 use nav_sensors::unit::{GyroModel, GyroTerm};
@@ -29,6 +32,8 @@ pub enum UnitEffect {
     Term(GyroTerm),
     /// An extra numeric column of the record, taken as is.
     Column(String),
+    /// A response to the rate or to an accelerometer, at a lag.
+    Dynamic(Dynamic),
 }
 
 /// The DTG terms that can be effects: those a vibration test excites through
@@ -67,11 +72,14 @@ pub const RATE_EFFECTS: [RateTerm; 9] = RateTerm::SPECIFIC_FORCE;
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum UnitEffectError {
     /// Not a known id.
-    #[error("unknown effect '{given}' (rate gyros: {}; dtg channels: {}; col:NAME for an extra record column)", rate_ids().join(", "), dtg_ids().join(", "))]
+    #[error("unknown effect '{given}' (rate gyros: {}; dtg channels: {}; any channel: sf, ma_x, ma_y, ma_z, delay, acc:ACCEL, each with an optional @LAG; col:NAME for an extra record column)", rate_ids().join(", "), dtg_ids().join(", "))]
     Unknown {
         /// What was given.
         given: String,
     },
+    /// A dynamic effect's lag out of range.
+    #[error(transparent)]
+    Dynamic(#[from] DynamicError),
     /// `col:` with no name.
     #[error("effect '{given}' names no column: write col:NAME, e.g. col:temp")]
     EmptyColumn {
@@ -89,6 +97,16 @@ pub enum UnitEffectError {
         id: String,
         /// The ids it takes.
         valid: Vec<&'static str>,
+    },
+    /// A dynamic effect the channel cannot take.
+    #[error("effect '{id}' does not apply to channel {channel}: take one of {}", valid.join(", "))]
+    WrongDynamic {
+        /// The channel.
+        channel: String,
+        /// The id given.
+        id: String,
+        /// What it takes instead.
+        valid: Vec<String>,
     },
     /// A `CHANNEL=ID` whose channel the unit has not.
     #[error("'{given}': unknown channel '{channel}' (the unit's channels: {})", valid.join(", "))]
@@ -130,6 +148,7 @@ impl UnitEffect {
         match self {
             UnitEffect::Term(t) => t.id().to_string(),
             UnitEffect::Column(c) => format!("{COLUMN_PREFIX}{c}"),
+            UnitEffect::Dynamic(d) => d.to_string(),
         }
     }
 
@@ -138,6 +157,7 @@ impl UnitEffect {
         match self {
             UnitEffect::Term(t) => t.ieee_name().to_string(),
             UnitEffect::Column(c) => format!("sensitivity to the record's '{c}' column"),
+            UnitEffect::Dynamic(d) => d.description(),
         }
     }
 
@@ -147,6 +167,7 @@ impl UnitEffect {
             UnitEffect::Term(t) => t.unit().to_string(),
             UnitEffect::Column(c) if c == "temp" => "deg/h/°C".to_string(),
             UnitEffect::Column(c) => format!("deg/h per unit of {c}"),
+            UnitEffect::Dynamic(d) => d.unit().to_string(),
         }
     }
 
@@ -172,7 +193,7 @@ impl UnitEffect {
     /// Whether a gyro of this model takes the effect.
     pub fn fits(&self, model: &GyroModel) -> bool {
         match self {
-            UnitEffect::Column(_) => true,
+            UnitEffect::Column(_) | UnitEffect::Dynamic(_) => true,
             UnitEffect::Term(GyroTerm::Rate(_)) => matches!(model, GyroModel::Rate),
             UnitEffect::Term(GyroTerm::Dtg(_)) => matches!(model, GyroModel::Dtg { .. }),
         }
@@ -223,7 +244,11 @@ impl std::str::FromStr for UnitEffect {
         if let Some(t) = RATE_EFFECTS.iter().find(|t| t.id() == s) {
             return Ok(UnitEffect::Term(GyroTerm::Rate(*t)));
         }
-        Err(UnitEffectError::Unknown { given: s.into() })
+        match s.parse::<Dynamic>() {
+            Ok(d) => Ok(UnitEffect::Dynamic(d)),
+            Err(DynamicError::Unknown(_)) => Err(UnitEffectError::Unknown { given: s.into() }),
+            Err(e) => Err(e.into()),
+        }
     }
 }
 

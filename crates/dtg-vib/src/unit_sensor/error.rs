@@ -56,7 +56,7 @@ pub enum UnitSensorError {
     Signals(#[from] sysid::SignalsError),
     /// An effect id is wrong for the channel.
     #[error(transparent)]
-    Effect(#[from] super::UnitEffectError),
+    Effect(#[from] super::effect::UnitEffectError),
     /// Anisoinertia where the rate is not observable.
     #[error(
         "channel {channel}: effect {effect} (anisoinertia) needs a varying angular rate seen by the other gyros, but the rate varies by only {rate_std_deg_s:.3} deg/s (< {min_deg_s} deg/s) or the other gyros do not span three axes: drop it or fit on a rate-table record of a redundant unit"

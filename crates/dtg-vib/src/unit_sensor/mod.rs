@@ -14,8 +14,9 @@ mod applied;
 mod apply;
 mod calibration;
 pub mod check;
+mod dynamic;
 mod effect;
-mod error;
+pub(crate) mod error;
 pub mod fdi;
 mod model;
 mod observable;
@@ -32,6 +33,7 @@ pub use applied::{
 };
 pub use apply::Applied;
 pub use calibration::{calibration_from_json, from_paper, load_calibration};
+pub use dynamic::{ACCEL_PREFIX, Dynamic, DynamicError, MAX_LAG, Stimulus, expand_dynamic};
 pub use effect::{
     ANISOINERTIA_MIN_RATE_DEG_S, COLUMN_PREFIX, RATE_EFFECTS, TERM_EFFECTS, UnitEffect,
     UnitEffectError,
@@ -41,7 +43,7 @@ pub use model::{FORMAT_VERSION, UnitModel};
 pub(crate) use observable::largest_axis_std;
 pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
 pub use parity::{ResidueSeries, ResidueStats, pooled};
-pub use preprocess::{Preprocess, RateReference};
+pub use preprocess::{PARITY_NOTE, Preprocess, RateReference};
 pub use separate::response;
 pub use signals::{UnitRecord, read_unit_records, to_record, to_signals};
 pub use window::default_window_signals;
@@ -126,6 +128,20 @@ impl UnitSensor {
             .collect())
     }
 
+    /// The rate reference at each sample of a calibrated record, deg/h,
+    /// or `None` without one.
+    pub(crate) fn reference_rates(
+        &self,
+        s: &Signals,
+    ) -> Result<Option<Vec<Vector3<f64>>>, UnitSensorError> {
+        if self.rate_reference == RateReference::None {
+            return Ok(None);
+        }
+        Ok(self
+            .rate_reference
+            .rates_deg_h(&self.unit, &self.gyro_rows(s)?))
+    }
+
     /// How much the least-squares rate varies over `samples`: the largest
     /// standard deviation of its three axes, deg/s.
     fn rate_variation_deg_s(&self, s: &Signals, samples: &[usize]) -> f64 {
@@ -141,6 +157,105 @@ impl UnitSensor {
     }
 }
 
+impl UnitSensor {
+    /// The rate the dynamic effects read, per sample, deg/h: the reference
+    /// where one is given, the unit's least-squares rate H⁺m otherwise.
+    fn dynamic_rate(&self, s: &Signals) -> Result<Vec<Vector3<f64>>, UnitSensorError> {
+        if let Some(w) = self.reference_rates(s)? {
+            return Ok(w);
+        }
+        let rows = self.gyro_rows(s)?;
+        Ok(rows
+            .iter()
+            .map(|m| self.unit.least_squares_rate(m))
+            .collect())
+    }
+
+    /// The columns of the dynamic effects among `effects`, in their order.
+    fn dynamic_columns(
+        &self,
+        s: &Signals,
+        channel: usize,
+        effects: &[UnitEffect],
+    ) -> Result<Vec<Vec<f64>>, UnitSensorError> {
+        let dynamic: Vec<&Dynamic> = effects
+            .iter()
+            .filter_map(|e| match e {
+                UnitEffect::Dynamic(d) => Some(d),
+                _ => None,
+            })
+            .collect();
+        let rate = match dynamic.iter().any(|d| d.reads_rate()) {
+            true => self.dynamic_rate(s)?,
+            false => Vec::new(),
+        };
+        let input = self.unit.gyros()[channel].input;
+        let t = s.t();
+        let dt_s = match t.len() {
+            0 | 1 => 1.0,
+            n => (t[n - 1] - t[0]) / (n - 1) as f64,
+        };
+        dynamic
+            .iter()
+            .map(|d| {
+                self.check_dynamic(channel, d)?;
+                let accel = match &d.stimulus {
+                    Stimulus::Accel(n) => s.column(n).ok_or_else(|| self.missing(s, n))?,
+                    _ => &[],
+                };
+                Ok(d.column(&input, &rate, accel, dt_s))
+            })
+            .collect()
+    }
+
+    /// The dynamic effects a channel fitted in parity is offered: the
+    /// research's causal linear model (scale factor and misalignments with
+    /// their rate taps to 4 samples, every accelerometer's taps to 5);
+    /// none against a true or no rate reference, where the record is still
+    /// or table-mounted and the rate does not vary.
+    fn flight_candidates(&self, channel: usize) -> Vec<UnitEffect> {
+        if self.rate_reference != RateReference::Parity {
+            return Vec::new();
+        }
+        let input = self.unit.gyros()[channel].input;
+        let accels = self.unit.accel_names();
+        FLIGHT_EFFECTS
+            .iter()
+            .flat_map(|item| expand_dynamic(item, &input, &accels).unwrap_or_default())
+            .filter_map(|id| id.parse().ok())
+            .collect()
+    }
+
+    /// A dynamic effect the channel can take: an accelerometer of the
+    /// unit, a misalignment about an axis other than the input's.
+    fn check_dynamic(&self, channel: usize, d: &Dynamic) -> Result<(), UnitEffectError> {
+        let g = &self.unit.gyros()[channel];
+        let wrong = |valid: Vec<String>| UnitEffectError::WrongDynamic {
+            channel: g.name.clone(),
+            id: d.to_string(),
+            valid,
+        };
+        match &d.stimulus {
+            Stimulus::Accel(n) if !self.unit.accel_names().contains(&n.as_str()) => Err(wrong(
+                self.unit
+                    .accel_names()
+                    .iter()
+                    .map(|a| format!("{ACCEL_PREFIX}{a}"))
+                    .collect(),
+            )),
+            Stimulus::AxisRate(a) if dynamic::is_input_axis(&g.input, *a) => Err(wrong(
+                Axis::ALL
+                    .iter()
+                    .filter(|x| !dynamic::is_input_axis(&g.input, **x))
+                    .map(|x| format!("ma_{x}"))
+                    .chain(std::iter::once("sf (its input axis)".to_string()))
+                    .collect(),
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// For gyro `j`, the least-squares rate operator of the other gyros (row j
 /// of H zeroed), or `None` when they do not span three dimensions (a unit
 /// of three gyros): a channel's own output never enters its regressors.
@@ -153,6 +268,11 @@ pub(crate) fn rate_without(unit: &Unit, j: usize) -> Option<DMatrix<f64>> {
     }
     svd.pseudo_inverse(1e-12).ok()
 }
+
+/// The dynamic effects a channel fitted in parity is offered (as
+/// `--effects` items): the delay, and the taps that on the real three-IMU
+/// flights meet the acceptance (docs/tutorial.md, "Flight data").
+pub const FLIGHT_EFFECTS: [&str; 4] = ["delay", "sf@0..4", "ma_*@0..4", "acc:*@0..5"];
 
 /// Smallest spread an operating point's coordinate is divided by, g: a
 /// coordinate the training windows held constant (gravity along x in a
@@ -210,25 +330,29 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
-        let reference = self.rate_reference.rate_deg_h();
+        let reference = self.reference_rates(calibrated).map_err(boxed)?;
         (0..self.unit.gyros().len())
             .map(|k| {
                 let mut y = self.gyro_column(calibrated, k).map_err(boxed)?.to_vec();
-                if let Some(w) = reference {
-                    let r = self.unit.gyros()[k].input.dot(&w);
-                    y.iter_mut().for_each(|v| *v -= r);
+                if let Some(w) = &reference {
+                    let input = self.unit.gyros()[k].input;
+                    y.iter_mut().zip(w).for_each(|(v, w)| *v -= input.dot(w));
                 }
                 Ok(y)
             })
             .collect()
     }
 
+    /// The unit's accelerometers; for a unit of several IMUs with more
+    /// accelerometers than the loop's operating points take, the first
+    /// gyro's IMU's (they share the vehicle's specific force).
     fn operating_signals(&self) -> Vec<String> {
-        self.unit
-            .accel_names()
-            .iter()
-            .map(|n| n.to_string())
-            .collect()
+        let all = self.unit.accel_names();
+        let names = match all.len() > sysid::operating::MAX_COORDINATES - 1 {
+            true if !self.unit.gyros().is_empty() => self.unit.imu_accel_names(0),
+            _ => all,
+        };
+        names.iter().map(|n| n.to_string()).collect()
     }
 
     fn operating_scale(&self) -> f64 {
@@ -257,6 +381,7 @@ impl sysid::Sensor for UnitSensor {
         let rate_std = self.rate_variation_deg_s(calibrated, samples);
         UnitEffect::terms_of(model)
             .into_iter()
+            .chain(self.flight_candidates(channel))
             .chain(
                 self.extra_columns(calibrated)
                     .into_iter()
@@ -305,6 +430,9 @@ impl sysid::Sensor for UnitSensor {
     fn parse_effect(&self, channel: usize, id: &str) -> Result<UnitEffect, SensorError> {
         let e: UnitEffect = id.parse().map_err(boxed)?;
         let g = &self.unit.gyros()[channel];
+        if let UnitEffect::Dynamic(d) = &e {
+            self.check_dynamic(channel, d).map_err(boxed)?;
+        }
         if !e.fits(&g.model) {
             return Err(boxed(UnitEffectError::WrongModel {
                 channel: g.name.clone(),
@@ -315,6 +443,7 @@ impl sysid::Sensor for UnitSensor {
                     .map(|e| match e {
                         UnitEffect::Term(t) => t.id(),
                         UnitEffect::Column(_) => "col:NAME",
+                        UnitEffect::Dynamic(_) => "sf, ma_x, delay, acc:ACCEL (@LAG)",
                     })
                     .collect(),
             }));
@@ -342,6 +471,9 @@ impl sysid::Sensor for UnitSensor {
                     }));
             }
         }
+        let dynamic = self
+            .dynamic_columns(calibrated, channel, effects)
+            .map_err(boxed)?;
         let force = self.specific_force(calibrated).map_err(boxed)?;
         let covariance = within_interval_covariance(&force);
         let needs_rate = effects.iter().any(is_anisoinertia);
@@ -366,9 +498,11 @@ impl sysid::Sensor for UnitSensor {
             })
             .collect();
         let extra = self.extra_columns(calibrated);
+        let mut dynamic = dynamic.into_iter();
         let columns = effects
             .iter()
             .map(|e| match e {
+                UnitEffect::Dynamic(_) => Ok(dynamic.next().unwrap_or_default()),
                 UnitEffect::Term(t) => Ok(sensed.iter().map(|s| gyro.regressor(*t, s)).collect()),
                 UnitEffect::Column(c) => calibrated
                     .column(c)

@@ -8,15 +8,21 @@ use nav_sensors::sim::Site;
 use serde::{Deserialize, Serialize};
 use sysid::{FilterSpec, WindowSpec};
 
-/// The true angular rate the unit saw, if known; subtracted from every
-/// channel (eq. 4) so the model learns errors only. Without one, the constant
-/// rate of a stationary test is absorbed by each channel's bias.
+/// The angular rate subtracted from every channel (eq. 4) so the model
+/// learns errors only: the true rate where known, the unit's own
+/// least-squares rate on a moving redundant unit. Without one, the
+/// constant rate of a stationary test is absorbed by each channel's bias.
 ///
 /// ```
 /// use dtg_vib::unit_sensor::RateReference;
 /// let r = RateReference::Table { rate_deg_s: [0.0, 0.0, 10.0] };
 /// assert_eq!(r.rate_deg_h().unwrap().z, 36000.0);
 /// assert!(RateReference::None.rate_deg_h().is_none());
+/// let tetra = nav_sensors::unit::Unit::builtin("tetra").unwrap();
+/// // A rate common to the gyros leaves nothing in parity.
+/// let m: Vec<f64> = tetra.gyros().iter().map(|g| g.input.dot(&nalgebra::Vector3::new(10.0, -3.0, 2.0))).collect();
+/// let w = RateReference::Parity.rates_deg_h(&tetra, &[m]).unwrap();
+/// assert!((w[0] - nalgebra::Vector3::new(10.0, -3.0, 2.0)).norm() < 1e-9);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case", tag = "kind")]
@@ -34,7 +40,16 @@ pub enum RateReference {
         /// Rate about cluster x, y, z, deg/s.
         rate_deg_s: [f64; 3],
     },
+    /// No true rate, on a moving unit of four or more gyros: the unit's own
+    /// least-squares rate H⁺m, sample by sample, so each channel's target
+    /// is its parity-projected output (P m)_j, P = I − H H⁺. What every
+    /// gyro sees alike (the error's component in H's column space, such as
+    /// a misalignment common to all gyros) is not observable.
+    Parity,
 }
+
+/// The one line that says what a parity-referenced model cannot see.
+pub const PARITY_NOTE: &str = "each channel's target is its output less the unit's least-squares rate along its input axis (its parity-projected output, P = I - H H+): only the differences between gyros are observable; an error common to the gyros (H's column space: a bias, scale factor, misalignment or delay all gyros share) is not, and is not fitted";
 
 impl RateReference {
     /// Checks the reference can be a rate: a latitude in [−90°, 90°] with
@@ -49,7 +64,7 @@ impl RateReference {
             .into())
         };
         match self {
-            RateReference::None => Ok(()),
+            RateReference::None | RateReference::Parity => Ok(()),
             RateReference::Earth { site } => {
                 if !(-90.0..=90.0).contains(&site.latitude_deg) {
                     return bad(
@@ -81,15 +96,36 @@ impl RateReference {
         }
     }
 
-    /// The reference rate in the cluster frame, deg/h.
+    /// The known constant reference rate in the cluster frame, deg/h
+    /// (`None` without one, and for the unit's own rate, which varies).
     pub fn rate_deg_h(&self) -> Option<nalgebra::Vector3<f64>> {
         match self {
-            RateReference::None => None,
+            RateReference::None | RateReference::Parity => None,
             RateReference::Earth { site } => site.earth_rate_cluster_deg_h(),
             RateReference::Table { rate_deg_s } => {
                 Some(nalgebra::Vector3::from(*rate_deg_s) * 3600.0)
             }
         }
+    }
+
+    /// The reference rate at each sample of the gyro outputs `rows`
+    /// (deg/h, file order), cluster frame, deg/h; `None` without one.
+    pub fn rates_deg_h(
+        &self,
+        unit: &nav_sensors::unit::Unit,
+        rows: &[Vec<f64>],
+    ) -> Option<Vec<nalgebra::Vector3<f64>>> {
+        match self {
+            RateReference::Parity => {
+                Some(rows.iter().map(|m| unit.least_squares_rate(m)).collect())
+            }
+            r => r.rate_deg_h().map(|w| vec![w; rows.len()]),
+        }
+    }
+
+    /// Whether the reference is a true rate (a known Earth or table rate).
+    pub fn is_true_rate(&self) -> bool {
+        self.rate_deg_h().is_some()
     }
 }
 

@@ -3,7 +3,7 @@
 //! segments: a gap splits the log, and each segment is then one record of
 //! several (no window, filter or fold crosses a gap).
 
-use super::UnitSensorError;
+use super::error::UnitSensorError;
 use nav_sensors::record::{Record, TimeReport};
 use nav_sensors::unit::Unit;
 use std::path::Path;

@@ -30,21 +30,28 @@ impl UnitSensor {
         &self,
         records: &[(String, &Record)],
     ) -> Result<WindowSignalsChoice, DtgVibError> {
-        let names: Vec<String> = self
+        let all: Vec<String> = self
             .unit
             .accel_names()
             .iter()
             .map(|n| n.to_string())
             .collect();
+        // The accelerometers a window may read: the loop's operating signals.
+        let names = sysid::Sensor::operating_signals(self);
         let accels = records
             .iter()
             .map(|(n, r)| {
                 let accel: Vec<Vec<f64>> = match &self.calibration {
                     Some(c) => c.compensate_accels(&self.unit, r),
-                    None => (0..names.len()).map(|k| r.accel_at(k).to_vec()).collect(),
+                    None => (0..all.len()).map(|k| r.accel_at(k).to_vec()).collect(),
                 };
-                let s = Signals::new(r.t().to_vec(), names.iter().cloned().zip(accel).collect())
-                    .map_err(sysid::SysidError::from)?;
+                let columns = all
+                    .iter()
+                    .cloned()
+                    .zip(accel)
+                    .filter(|(a, _)| names.contains(a))
+                    .collect();
+                let s = Signals::new(r.t().to_vec(), columns).map_err(sysid::SysidError::from)?;
                 if self.calibration.is_some() {
                     check_calibrated(&s, names.iter().map(String::as_str)).map_err(|e| {
                         sysid::SysidError::Sensor(Box::new(e)).in_record(n, records.len())

@@ -116,13 +116,18 @@ pub enum UnitCalibrationError {
         /// The unit file.
         unit_file: String,
     },
-    /// A calibration in the paper's format (its gyros X … Z1) given with
-    /// another unit.
+    /// A calibration of a built-in unit's gyros (every name and model)
+    /// given with another unit.
     #[error(
-        "the calibration is in the paper's format (DTG tables for gyros X, X1, Y, Y1, Z, Z1: the paper's unit, --unit paper), but {unit_file} has gyros {}: give a unit calibration with a table per gyro of that unit, each saying its \"model\" (docs/formats.md, \"Unit calibration JSON\"; `dtg-vib calibrate --unit` writes one)",
+        "the calibration is of the built-in unit '{builtin}' (gyros {}: --unit {builtin}), but {unit_file} has gyros {}: give a unit calibration with a table per gyro of that unit, each saying its \"model\" (docs/formats.md, \"Unit calibration JSON\"; `dtg-vib calibrate --unit` writes one)",
+        builtin_gyros.join(", "),
         unit_gyros.join(", ")
     )]
-    PaperFormat {
+    OtherBuiltin {
+        /// The built-in unit whose gyros the calibration names.
+        builtin: String,
+        /// Its gyros.
+        builtin_gyros: Vec<String>,
         /// The unit file.
         unit_file: String,
         /// The unit's gyros.
@@ -276,8 +281,10 @@ impl UnitCalibration {
     pub fn check(&self, unit: &Unit) -> Result<(), UnitCalibrationError> {
         for (name, c) in &self.gyros {
             let Some(k) = unit.gyro_index(name) else {
-                if self.is_papers() {
-                    return Err(UnitCalibrationError::PaperFormat {
+                if let Some((builtin, of)) = self.builtin_unit() {
+                    return Err(UnitCalibrationError::OtherBuiltin {
+                        builtin: builtin.to_string(),
+                        builtin_gyros: of.gyro_names().iter().map(|n| n.to_string()).collect(),
                         unit_file: unit.file().to_string(),
                         unit_gyros: unit.gyro_names().iter().map(|n| n.to_string()).collect(),
                     });
@@ -312,15 +319,20 @@ impl UnitCalibration {
         Ok(())
     }
 
-    /// Whether the gyros are the paper's six, each a DTG table: a
-    /// calibration of the paper's format (or of the paper's unit).
-    fn is_papers(&self) -> bool {
-        self.gyros.len() == Channel::ALL.len()
-            && Channel::ALL.iter().all(|c| {
-                self.gyros
-                    .get(c.name())
-                    .is_some_and(|g| matches!(g, GyroCoefficients::Dtg(_)))
-            })
+    /// The built-in unit whose gyros these tables are (every name, and each
+    /// table of that gyro's model), if one is: a calibration given with the
+    /// wrong unit is then told which unit it belongs to.
+    fn builtin_unit(&self) -> Option<(&'static str, Unit)> {
+        Unit::BUILTIN_NAMES.into_iter().find_map(|name| {
+            let u = Unit::builtin(name).ok()?;
+            let same = u.gyros().len() == self.gyros.len()
+                && u.gyros().iter().all(|g| {
+                    self.gyros
+                        .get(&g.name)
+                        .is_some_and(|c| c.model() == g.model.name())
+                });
+            same.then_some((name, u))
+        })
     }
 
     /// Compensates a record of the unit, at its output rate: first the
@@ -360,9 +372,12 @@ impl UnitCalibration {
         }
         let n = record.len();
         let accel = self.compensate_accels(unit, record);
+        // One sample's outputs in a buffer reused from sample to sample (an
+        // allocation a sample showed in the demo's profile).
+        let mut row = vec![0.0; accel.len()];
         let force: Vec<Vector3<f64>> = (0..n)
             .map(|i| {
-                let row: Vec<f64> = accel.iter().map(|a| a[i]).collect();
+                row.iter_mut().zip(&accel).for_each(|(r, a)| *r = a[i]);
                 unit.specific_force(&row)
             })
             .collect();
@@ -379,10 +394,11 @@ impl UnitCalibration {
             .collect();
         let channels = unit.gyros().len();
         let mut gyro: Vec<Vec<f64>> = (0..channels).map(|k| record.gyro_at(k).to_vec()).collect();
+        let mut current = vec![0.0; channels];
         for _pass in 0..2 {
             let mut next: Vec<Vec<f64>> = (0..channels).map(|_| Vec::with_capacity(n)).collect();
             for i in 0..n {
-                let current: Vec<f64> = gyro.iter().map(|g| g[i]).collect();
+                current.iter_mut().zip(&gyro).for_each(|(c, g)| *c = g[i]);
                 let sensed = Sensed {
                     rate_deg_h: unit.least_squares_rate(&current),
                     specific_force_g: force[i],
@@ -481,6 +497,37 @@ impl From<Calibration> for UnitCalibration {
                 .map(|(a, t)| (a.column().to_string(), t))
                 .collect(),
         }
+    }
+}
+
+impl UnitCalibration {
+    /// The paper unit's calibration in the paper's format (the file the
+    /// built-in `paper` writes, [`crate::unit::FileFormat::Paper`]): the
+    /// inverse of [`UnitCalibration::from`] a [`Calibration`]. `None` when a
+    /// table is not a DTG channel of the paper's or an accelerometer `ax`,
+    /// `ay`, `az`.
+    pub(crate) fn to_paper(&self) -> Option<Calibration> {
+        let gyros = self
+            .gyros
+            .iter()
+            .map(|(name, c)| match c {
+                GyroCoefficients::Dtg(t) => Some((name.parse::<Channel>().ok()?, *t)),
+                GyroCoefficients::Rate(_) => None,
+            })
+            .collect::<Option<_>>()?;
+        let accels = self
+            .accels
+            .iter()
+            .map(|(name, t)| {
+                let axis = Axis::ALL.into_iter().find(|a| a.column() == name)?;
+                Some((axis, *t))
+            })
+            .collect::<Option<_>>()?;
+        Some(Calibration {
+            format_version: Calibration::FORMAT_VERSION,
+            gyros,
+            accels,
+        })
     }
 }
 

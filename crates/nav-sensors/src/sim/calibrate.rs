@@ -13,8 +13,7 @@ use rand_distr::{Distribution, StandardNormal};
 use super::scenario::{CalibrationError, Scenario};
 use crate::accel::AccelCoefficients;
 use crate::dtg::{DtgCoefficients, DtgTerm};
-use crate::files::calibration::{Calibration, GyroCoefficients, UnitCalibration};
-use crate::geometry::{Axis, Channel};
+use crate::files::calibration::{GyroCoefficients, UnitCalibration};
 use crate::rate::{RateCoefficients, RateTerm};
 use crate::unit::{GyroTerm, Unit};
 
@@ -101,30 +100,6 @@ fn draw_accel(t: AccelCoefficients, e: &CalibrationError, rng: &mut impl Rng) ->
         misalignment_p_urad: draw(t.misalignment_p_urad, e.accel_misalignment_urad),
         kip_ug_per_g2: draw(t.kip_ug_per_g2, 0.0),
         kio_ug_per_g2: draw(t.kio_ug_per_g2, 0.0),
-    }
-}
-
-/// Draws the calibration of the paper's unit for a scenario.
-pub(crate) fn ground_calibration(s: &Scenario, rng: &mut impl Rng) -> Calibration {
-    let e = &s.calibration_error;
-    let mut gyros = BTreeMap::new();
-    for c in Channel::ALL {
-        let hidden: Vec<DtgTerm> = s
-            .hidden
-            .iter()
-            .filter(|h| h.channel == c)
-            .map(|h| h.term)
-            .collect();
-        gyros.insert(c, draw_dtg(s.gyro(c), e, &hidden, rng));
-    }
-    let accels = Axis::ALL
-        .iter()
-        .map(|&a| (a, draw_accel(s.accel(a), e, rng)))
-        .collect();
-    Calibration {
-        format_version: Calibration::FORMAT_VERSION,
-        gyros,
-        accels,
     }
 }
 

@@ -23,16 +23,12 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use super::budget::budget;
-use super::calibrate::ground_calibration;
 use super::error::SimError;
 use super::motion::MotionProfile;
-use super::output::Simulation;
 use super::scenario::Scenario;
 use crate::accel::AccelCoefficients;
 use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, Rect2nDetector};
-use crate::files::record::Record;
-use crate::geometry::{Axis, ChannelFrame, DtgAxes};
+use crate::geometry::{Axis, DtgAxes};
 use crate::rate::{RateCoefficients, RateInput, RateTerm};
 use crate::vibration::VibrationHistory;
 
@@ -549,64 +545,5 @@ pub(crate) fn run(
         accel,
         noise,
         temp_meas,
-    })
-}
-
-/// The paper's six DTG channels and three accelerometers as the scenario
-/// gives them.
-fn paper_physics(s: &Scenario) -> (Vec<GyroPhysics>, Vec<AccelPhysics>) {
-    let gyros = ChannelFrame::all()
-        .iter()
-        .map(|frame| GyroPhysics::dtg(s, frame.axes(), s.gyro(frame.channel)))
-        .collect();
-    let accels = Axis::ALL
-        .map(|axis| AccelPhysics::Modelled {
-            axis,
-            coefficients: s.accel(axis),
-        })
-        .to_vec();
-    (gyros, accels)
-}
-
-/// Simulates a scenario: the record, the calibration a user would have and
-/// the truth (with the per-channel noise floor), plus per-channel component
-/// series. The same scenario (seed included) always gives identical results.
-///
-/// ```
-/// use nav_sensors::sim::{simulate, Scenario};
-/// use nav_sensors::geometry::Channel;
-/// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
-/// let sim = simulate(&s).unwrap();
-/// assert_eq!(sim.record.len(), 50);
-/// assert!((sim.record.dt() - 0.02).abs() < 1e-12);
-/// // Shaker off at first: Z reads Earth rate plus its drift, az reads 1 g.
-/// assert!((sim.record.accel(nav_sensors::record::Axis::Z)[0] - 1.0).abs() < 1e-3);
-/// ```
-pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
-    s.validate()?;
-    let (gyros, accels) = paper_physics(s);
-    let Run {
-        hr,
-        t,
-        gyro,
-        accel,
-        noise,
-        temp_meas,
-    } = run(s, gyros, &accels)?;
-    let mut gyro = gyro.into_iter();
-    let mut accel = accel.into_iter();
-    let record = Record::new(
-        t,
-        std::array::from_fn(|_| gyro.next().expect("six channels")),
-        std::array::from_fn(|_| accel.next().expect("three accelerometers")),
-        vec![("temp".to_string(), temp_meas.clone())],
-    )?;
-    let calibration = ground_calibration(s, &mut stream(s.seed, Stream::Calibration));
-    let (truth, components) = budget(s, &hr, &noise, &temp_meas, &calibration, record.t());
-    Ok(Simulation {
-        record,
-        calibration,
-        truth,
-        components,
     })
 }

@@ -20,7 +20,6 @@ pub mod truth;
 mod unit;
 mod unit_truth;
 
-pub use engine::simulate;
 pub use error::SimError;
 pub use motion::{MotionProfile, Phase};
 pub use output::{Components, Simulation};
@@ -31,5 +30,5 @@ pub use scenario::{
 };
 pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
 pub use thermal::Thermal;
-pub use unit::{UnitSimulation, simulate_unit};
+pub use unit::{UnitSimulation, simulate, simulate_unit};
 pub use unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};

@@ -515,16 +515,6 @@ impl Scenario {
             .unwrap_or_default()
     }
 
-    /// The terms of a channel the ground calibration does not see, in the
-    /// scenario's order.
-    pub(crate) fn hidden_terms(&self, channel: Channel) -> Vec<DtgTerm> {
-        self.hidden
-            .iter()
-            .filter(|h| h.channel == channel)
-            .map(|h| h.term)
-            .collect()
-    }
-
     /// The true coefficients of an accelerometer (zero when not listed).
     ///
     /// ```

@@ -18,7 +18,7 @@ use super::budget::{Reference, channel_budget};
 use super::calibrate::unit_ground_calibration;
 use super::engine::{AccelPhysics, GyroPhysics, Run, Stream, run, stream};
 use super::error::SimError;
-use super::output::Components;
+use super::output::{Components, Simulation};
 use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
 use super::unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
@@ -28,7 +28,7 @@ use crate::files::calibration::{GyroCoefficients, UnitCalibration};
 use crate::files::record::Record;
 use crate::geometry::{Axis, Channel};
 use crate::rate::{RateInput, RateTerm};
-use crate::unit::{Gyro, GyroModel, GyroTerm, Unit};
+use crate::unit::{FileFormat, Gyro, GyroModel, GyroTerm, Unit};
 use stats::{rms, std_dev};
 
 /// The result of [`simulate_unit`]: the record (deg/h and g inside; written
@@ -59,7 +59,8 @@ pub struct UnitSimulation {
 }
 
 impl UnitSimulation {
-    /// File names written by [`UnitSimulation::write_dir`].
+    /// File names written by [`UnitSimulation::write_dir`] in the unit
+    /// formats ([`FileFormat::Unit`]).
     ///
     /// ```
     /// assert!(nav_sensors::sim::UnitSimulation::FILES.contains(&"unit.toml"));
@@ -72,9 +73,54 @@ impl UnitSimulation {
         "unit.toml",
     ];
 
-    /// Writes `record.csv` (the unit's column names and units),
-    /// `calibration.json`, `truth.json`, `scenario.toml` and `unit.toml`
-    /// into `dir` (created if needed).
+    /// The files [`UnitSimulation::write_dir`] writes for `unit`: in its
+    /// file formats ([`Unit::file_format`]).
+    ///
+    /// ```
+    /// use nav_sensors::sim::UnitSimulation;
+    /// use nav_sensors::unit::Unit;
+    /// assert!(UnitSimulation::files(&Unit::paper()).contains(&"components.csv"));
+    /// assert!(UnitSimulation::files(&Unit::builtin("tetra").unwrap()).contains(&"unit.toml"));
+    /// ```
+    pub fn files(unit: &Unit) -> [&'static str; 5] {
+        match unit.file_format() {
+            FileFormat::Unit => Self::FILES,
+            FileFormat::Paper => Simulation::FILES,
+        }
+    }
+
+    /// The per-sample components its files hold (`components.csv` of the
+    /// paper's formats; the unit formats write none).
+    ///
+    /// ```
+    /// use nav_sensors::sim::{simulate_unit, Scenario};
+    /// use nav_sensors::unit::Unit;
+    /// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
+    /// assert!(simulate_unit(&Unit::paper(), &s).unwrap().written_components().is_some());
+    /// assert!(simulate_unit(&Unit::builtin("triad").unwrap(), &s).unwrap().written_components().is_none());
+    /// ```
+    pub fn written_components(&self) -> Option<&Components> {
+        match self.unit.file_format() {
+            FileFormat::Unit => None,
+            FileFormat::Paper => Some(&self.components),
+        }
+    }
+
+    /// The paper unit's simulation in the paper's types (`None` for a unit
+    /// whose sensors are not the paper's).
+    fn to_paper(&self) -> Option<Simulation> {
+        Some(Simulation {
+            record: self.record.clone(),
+            calibration: self.calibration.to_paper()?,
+            truth: self.truth.to_paper()?,
+            components: self.components.clone(),
+        })
+    }
+
+    /// Writes [`UnitSimulation::files`] into `dir` (created if needed): in
+    /// the unit formats, `record.csv` (the unit's column names and units),
+    /// `calibration.json`, `truth.json`, `scenario.toml` and `unit.toml`;
+    /// in the paper's, [`Simulation::write_dir`]'s files.
     ///
     /// ```
     /// use nav_sensors::sim::{simulate_unit, Scenario, UnitSimulation};
@@ -91,6 +137,13 @@ impl UnitSimulation {
     /// ```
     pub fn write_dir(&self, dir: impl AsRef<Path>) -> Result<(), SimError> {
         let dir = dir.as_ref();
+        let paper = match self.unit.file_format() {
+            FileFormat::Unit => None,
+            FileFormat::Paper => self.to_paper(),
+        };
+        if let Some(paper) = paper {
+            return paper.write_dir(dir);
+        }
         let io = |path: &Path| {
             let path = path.display().to_string();
             move |source| SimError::Io { path, source }
@@ -241,10 +294,31 @@ fn accel_physics(unit: &Unit, s: &Scenario) -> (Vec<AccelPhysics>, Vec<AccelCoef
         .unzip()
 }
 
+/// The paper's unit simulated ([`simulate_unit`] on [`Unit::paper`]), in
+/// the paper's types: the record, the calibration a user would have, the
+/// truth (with the per-channel noise floor) and the per-channel component
+/// series. The same scenario (seed included) always gives identical results.
+///
+/// ```
+/// use nav_sensors::sim::{simulate, Scenario};
+/// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
+/// let sim = simulate(&s).unwrap();
+/// assert_eq!(sim.record.len(), 50);
+/// assert!((sim.record.dt() - 0.02).abs() < 1e-12);
+/// // Shaker off at first: Z reads Earth rate plus its drift, az reads 1 g.
+/// assert!((sim.record.accel(nav_sensors::record::Axis::Z)[0] - 1.0).abs() < 1e-3);
+/// ```
+pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
+    let sim = simulate_unit(&Unit::paper(), s)?;
+    Ok(sim
+        .to_paper()
+        .expect("the paper unit's simulation is in the paper's names (tested)"))
+}
+
 /// Simulates a scenario on any unit: the record, the calibration a user
 /// would have and the truth. The same unit and scenario (seed included)
 /// always give identical results; on the paper's unit the record is the
-/// one [`super::simulate`] gives, bit for bit.
+/// one the paper's files hold.
 ///
 /// ```
 /// use nav_sensors::sim::{simulate, simulate_unit, Scenario};

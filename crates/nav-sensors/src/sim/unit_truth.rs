@@ -9,7 +9,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::scenario::Scenario;
-use super::truth::{Truth, TruthFileError};
+use super::truth::{ChannelTruth, Collinear, HiddenTruth, Truth, TruthFileError};
 use crate::files::calibration::GyroCoefficients;
 use crate::geometry::{Channel, Residue};
 use crate::unit::Unit;
@@ -297,5 +297,80 @@ impl From<Truth> for UnitTruth {
                 t.residue_after_true_compensation_rms_deg_h,
             ),
         }
+    }
+}
+
+/// The paper unit's truth in the paper's format (the file the built-in
+/// `paper` writes, [`crate::unit::FileFormat::Paper`]): the inverse of
+/// [`UnitTruth::from`] a [`Truth`], every number as it is. `None` when a
+/// name is not the paper's (a channel, term or residue of another unit).
+impl UnitTruth {
+    pub(crate) fn to_paper(&self) -> Option<Truth> {
+        let by_name = |m: &BTreeMap<String, f64>| -> Option<BTreeMap<Residue, f64>> {
+            m.iter().map(|(r, v)| Some((r.parse().ok()?, *v))).collect()
+        };
+        let mut channels = BTreeMap::new();
+        for ct in &self.channels {
+            let GyroCoefficients::Dtg(coefficients) = ct.coefficients else {
+                return None;
+            };
+            let channel: Channel = ct.channel.parse().ok()?;
+            let truth = ChannelTruth {
+                coefficients,
+                noise_floor_deg_h: ct.noise_floor_deg_h,
+                level_only_noise_floor_deg_h: ct.level_only_noise_floor_deg_h,
+                noise_rms_deg_h: ct.noise_rms_deg_h,
+                motion_rms_deg_h: ct.motion_rms_deg_h,
+                unmodelled_rms_deg_h: ct.unmodelled_rms_deg_h,
+                rectification_expected_rms_deg_h: ct.rectification_expected_rms_deg_h,
+                predictable_rms_deg_h: ct.predictable_rms_deg_h,
+                rectification_at_full_level_deg_h: ct
+                    .rectification_at_full_level_deg_h
+                    .iter()
+                    .map(|(term, v)| Some((term.parse().ok()?, *v)))
+                    .collect::<Option<_>>()?,
+                after_true_compensation_rms_deg_h: ct.after_true_compensation_rms_deg_h,
+                calibration_error_rms_deg_h: ct.calibration_error_rms_deg_h,
+                collinear: ct
+                    .collinear
+                    .iter()
+                    .map(|p| {
+                        Some(Collinear {
+                            a: p.a.parse().ok()?,
+                            b: p.b.parse().ok()?,
+                            correlation: p.correlation,
+                        })
+                    })
+                    .collect::<Option<_>>()?,
+            };
+            channels.insert(channel, truth);
+        }
+        let hidden = self
+            .hidden
+            .iter()
+            .map(|h| {
+                Some(HiddenTruth {
+                    channel: h.channel.parse().ok()?,
+                    term: h.term.parse().ok()?,
+                    coefficient: h.coefficient,
+                    unit: h.unit.clone(),
+                    description: h.description.clone(),
+                    rms_deg_h: h.rms_deg_h,
+                    ratio_to_noise_floor: h.ratio_to_noise_floor,
+                })
+            })
+            .collect::<Option<_>>()?;
+        Some(Truth {
+            format_version: Truth::FORMAT_VERSION,
+            scenario: self.scenario.clone(),
+            earth_rate_cluster_deg_h: self.earth_rate_cluster_deg_h,
+            gravity_cluster_g: self.gravity_cluster_g,
+            hidden,
+            channels,
+            residue_noise_floor_deg_h: by_name(&self.residue_noise_floor_deg_h)?,
+            residue_after_true_compensation_rms_deg_h: by_name(
+                &self.residue_after_true_compensation_rms_deg_h,
+            )?,
+        })
     }
 }

@@ -389,8 +389,35 @@ pub struct Unit {
     /// The `[ulog]` table, when the file has one.
     ulog: Option<ulog::UlogTable>,
     file: String,
+    file_format: FileFormat,
     paper_geometry: bool,
     geometry: UnitGeometry,
+}
+
+/// The formats a unit's simulated test is written in ([`Unit::file_format`]).
+/// Data of the built-in units' table, not a key of the unit file: the
+/// built-in `paper` keeps writing the files every release before units
+/// wrote, so scripts reading them go on working; every other unit, a copy
+/// of the paper's file included, writes the unit formats.
+///
+/// ```
+/// use nav_sensors::unit::{FileFormat, Unit};
+/// assert_eq!(Unit::paper().file_format(), FileFormat::Paper);
+/// assert_eq!(Unit::builtin("tetra").unwrap().file_format(), FileFormat::Unit);
+/// let copy = Unit::from_toml(Unit::builtin_toml("paper").unwrap(), "copy.toml").unwrap();
+/// assert_eq!(copy.file_format(), FileFormat::Unit);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FileFormat {
+    /// The record in the unit's column names and units, the calibration
+    /// and truth keyed by its sensors' names, and the unit file beside them
+    /// (docs/formats.md, "Unit calibration JSON").
+    #[default]
+    Unit,
+    /// The paper's formats (docs/formats.md): the calibration's DTG tables
+    /// without `model` and its accelerometers by axis, the truth by
+    /// channel, and the per-sample noise components (`components.csv`).
+    Paper,
 }
 
 /// Equal when every key of the file is equal (the file it came from aside).
@@ -407,14 +434,28 @@ impl PartialEq for Unit {
 }
 
 /// The built-in units, embedded from the workspace's `units/` folder (their
-/// one source: the file a user copies is what `--unit NAME` runs).
-const BUILTIN: [(&str, &str); 4] = [
-    ("paper", include_str!("../../../../units/paper.toml")),
-    ("triad", include_str!("../../../../units/triad.toml")),
-    ("tetra", include_str!("../../../../units/tetra.toml")),
+/// one source: the file a user copies is what `--unit NAME` runs), with the
+/// formats their simulated files are written in.
+const BUILTIN: [(&str, &str, FileFormat); 4] = [
+    (
+        "paper",
+        include_str!("../../../../units/paper.toml"),
+        FileFormat::Paper,
+    ),
+    (
+        "triad",
+        include_str!("../../../../units/triad.toml"),
+        FileFormat::Unit,
+    ),
+    (
+        "tetra",
+        include_str!("../../../../units/tetra.toml"),
+        FileFormat::Unit,
+    ),
     (
         "dual-triad",
         include_str!("../../../../units/dual-triad.toml"),
+        FileFormat::Unit,
     ),
 ];
 
@@ -459,11 +500,16 @@ impl Unit {
     /// assert_eq!(err.to_string(), "unknown unit 'quad' (built-in: paper, triad, tetra, dual-triad; or give a FILE.toml)");
     /// ```
     pub fn builtin(name: &str) -> Result<Self, UnitError> {
-        let text = Self::builtin_toml(name).ok_or_else(|| UnitError::UnknownBuiltin {
-            given: name.to_string(),
-            valid: Self::BUILTIN_NAMES.to_vec(),
-        })?;
-        Self::from_toml(text, &format!("units/{name}.toml"))
+        let (_, text, file_format) =
+            BUILTIN.iter().find(|(n, _, _)| *n == name).ok_or_else(|| {
+                UnitError::UnknownBuiltin {
+                    given: name.to_string(),
+                    valid: Self::BUILTIN_NAMES.to_vec(),
+                }
+            })?;
+        let mut unit = Self::from_toml(text, &format!("units/{name}.toml"))?;
+        unit.file_format = *file_format;
+        Ok(unit)
     }
 
     /// The built-in units whose columns a record's header has (the time
@@ -504,7 +550,10 @@ impl Unit {
     /// assert!(nav_sensors::unit::Unit::builtin_toml("nope").is_none());
     /// ```
     pub fn builtin_toml(name: &str) -> Option<&'static str> {
-        BUILTIN.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+        BUILTIN
+            .iter()
+            .find(|(n, _, _)| *n == name)
+            .map(|(_, t, _)| *t)
     }
 
     /// The paper's unit (the default of every command).
@@ -557,7 +606,7 @@ impl Unit {
         ulog: Option<ulog::UlogTable>,
         file: String,
     ) -> Self {
-        let paper_geometry = is_paper_geometry(&gyros);
+        let paper_geometry = paper_geometry(&gyros);
         let geometry = UnitGeometry::new(&gyros, &accels, &residues, imus);
         Self {
             name,
@@ -568,6 +617,7 @@ impl Unit {
             residues,
             ulog,
             file,
+            file_format: FileFormat::Unit,
             paper_geometry,
             geometry,
         }
@@ -795,28 +845,15 @@ impl Unit {
         self.paper_geometry
     }
 
-    /// Whether a record of this unit is the paper's format exactly (paper
-    /// geometry, accelerometers `ax, ay, az` on the unit axes, time `t` in
-    /// seconds, deg/h and g, no temperature column named): such a record is
-    /// read by the paper's strict reader ([`crate::record::Record::read_csv`]).
+    /// The formats its simulated files are written in (the built-in
+    /// units' table; a unit read from a file writes the unit formats).
     ///
     /// ```
-    /// use nav_sensors::unit::Unit;
-    /// assert!(Unit::paper().is_paper_format());
-    /// assert!(!Unit::builtin("tetra").unwrap().is_paper_format());
+    /// use nav_sensors::unit::{FileFormat, Unit};
+    /// assert_eq!(Unit::builtin("triad").unwrap().file_format(), FileFormat::Unit);
     /// ```
-    pub fn is_paper_format(&self) -> bool {
-        self.paper_geometry
-            && self.accel_names() == crate::geometry::Axis::ALL.map(|a| a.column())
-            && self
-                .accels
-                .iter()
-                .zip(crate::geometry::Axis::ALL)
-                .all(|(a, axis)| a.input == axis.unit_vector())
-            && self.columns.time == "t"
-            && self.columns.time_scale == 1.0
-            && self.columns.temperature.is_none()
-            && self.units == Units::default()
+    pub fn file_format(&self) -> FileFormat {
+        self.file_format
     }
 
     /// The derived geometry (H, least squares, parity).
@@ -982,7 +1019,7 @@ impl<'de> Deserialize<'de> for Unit {
 }
 
 /// Names X..Z1 in order, `dtg`, with today's frames to the last bit.
-fn is_paper_geometry(gyros: &[Gyro]) -> bool {
+fn paper_geometry(gyros: &[Gyro]) -> bool {
     gyros.len() == 6
         && gyros.iter().zip(Channel::ALL).all(|(g, c)| {
             let frame = crate::geometry::ChannelFrame::of(c);

@@ -40,7 +40,8 @@ fn every_builtin_parses_and_round_trips() {
 #[test]
 fn paper_unit_is_todays_geometry_bit_for_bit() {
     let u = Unit::paper();
-    assert!(u.has_paper_geometry() && u.is_paper_format());
+    assert!(u.has_paper_geometry());
+    assert_eq!(u.file_format(), super::FileFormat::Paper);
     let bits = |a: &Vector3<f64>, b: &Vector3<f64>| {
         a.iter()
             .zip(b.iter())

@@ -6,7 +6,7 @@
 use super::context::Context;
 use super::estimate::{Estimator, restate};
 use super::model_and_mirror::CrossFit;
-use super::rank::{Ranking, Unexcited, rank};
+use super::rank::{Ranking, Unexcited, rank, rank_suggestions};
 use super::records::record_separations;
 use crate::error::SysidError;
 use crate::model::ChannelModelOf;
@@ -224,7 +224,7 @@ fn add_screened<E: Effect, A>(
             )
         })
         .collect();
-    let screened: Ranking<A> = rank(target, &candidates, opts.rank);
+    let screened: Ranking<A> = rank_suggestions(target, &candidates, opts.rank);
     for id in screened.suggested.clone() {
         if !ranking.suggested.contains(&id) && !collinear_with_suggested(ranking, &screened, &id) {
             if let Some(c) = ranking.candidates.iter_mut().find(|c| c.effect == id) {

@@ -127,8 +127,10 @@ fn residual_findings(
         out.push(format!(
             "{:.0}% of the residual power lies in {}–{} Hz, {:.1}× a white floor there{}",
             100.0 * b.share,
-            b.f_lo_hz,
-            b.f_hi_hz,
+            // A band edge at a log's Nyquist frequency (60.0024 Hz of a
+            // 120.005-Hz log) is printed to 0.1 mHz, not to the last bit.
+            (b.f_lo_hz * 1e4).round() / 1e4,
+            (b.f_hi_hz * 1e4).round() / 1e4,
             b.ratio_to_floor,
             if b.f_hi_hz <= 0.5 {
                 format!(

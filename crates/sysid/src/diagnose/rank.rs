@@ -185,6 +185,38 @@ pub fn rank<E: Effect, A>(
     candidates: &[(E, Vec<f64>)],
     opts: RankOptions,
 ) -> Ranking<A> {
+    rank_as(residual, candidates, opts, Detail::Every)
+}
+
+/// What [`rank`] suggests, and with what each suggestion is collinear:
+/// the forward selection and its tests alone. The other candidates carry
+/// their first-step ERR only (no interval of their own, no collinearity),
+/// for a caller that reads the suggestions (the diagnosis's screen).
+#[track_caller]
+pub(crate) fn rank_suggestions<E: Effect, A>(
+    residual: &[f64],
+    candidates: &[(E, Vec<f64>)],
+    opts: RankOptions,
+) -> Ranking<A> {
+    rank_as(residual, candidates, opts, Detail::Suggestions)
+}
+
+/// How much of each candidate a ranking states.
+#[derive(Clone, Copy, PartialEq)]
+enum Detail {
+    /// Every candidate alone (coefficient, interval, collinearity).
+    Every,
+    /// The suggestions' collinearity only.
+    Suggestions,
+}
+
+#[track_caller]
+fn rank_as<E: Effect, A>(
+    residual: &[f64],
+    candidates: &[(E, Vec<f64>)],
+    opts: RankOptions,
+    detail: Detail,
+) -> Ranking<A> {
     let n = residual.len();
     assert!(
         candidates.iter().all(|(_, c)| c.len() == n),
@@ -220,8 +252,23 @@ pub fn rank<E: Effect, A>(
         Err(_) => (vec![0.0; m], Vec::new()),
     };
     let mut effective_samples = n as f64;
-    let mut out = single_candidates(r, &live, &first_errs, opts, &mut effective_samples);
+    let mut out = match detail {
+        Detail::Every => single_candidates(r, &live, &first_errs, opts, &mut effective_samples),
+        Detail::Suggestions => live
+            .iter()
+            .zip(&first_errs)
+            .map(|((e, _), &err)| candidate(*e, err))
+            .collect(),
+    };
     let suggested = walk_path(r, &live, &picks, &mut out, opts, p_threshold);
+    if detail == Detail::Suggestions {
+        for (j, c) in out.iter_mut().enumerate() {
+            if suggested.contains(&c.effect) {
+                c.collinear_with = collinear(&live, j, opts);
+                c.alternatives = c.collinear_with.clone();
+            }
+        }
+    }
     out.sort_by(|a, b| b.err.total_cmp(&a.err));
     Ranking {
         candidates: out,
@@ -271,8 +318,6 @@ fn single_candidates<E: Effect, A>(
     effective_samples: &mut f64,
 ) -> Vec<Candidate<A>> {
     let n = r.len();
-    // Collinearity is about shape: the correlation compares centred columns.
-    let corr = stats::correlation;
     let ci = |f: &HacFit, j: usize| f.interval(j, 0.95);
 
     live.iter()
@@ -284,31 +329,49 @@ fn single_candidates<E: Effect, A>(
             {
                 *effective_samples = n as f64 / f.bandwidth as f64;
             }
-            let collinear_with: Vec<String> = live
-                .iter()
-                .enumerate()
-                .filter(|&(i, (_, other))| i != j && corr(c, other).abs() >= opts.collinearity)
-                .map(|(_, (o, _))| o.id())
-                .collect();
             Candidate {
-                effect: e.id(),
-                err: first_errs[j],
                 coef: alone.as_ref().map_or(dot(c, r) / dot(c, c), |f| f.coef[0]),
                 coef_se: alone.as_ref().map_or(f64::NAN, |f| f.se[0]),
                 coef_ci95: alone.as_ref().map_or([f64::NAN; 2], |f| ci(f, 0)),
-                unit: e.unit(),
-                description: e.description(),
-                rank: None,
-                conditional_err: None,
-                p_value: None,
-                significant: false,
-                alternatives: Vec::new(),
-                separation: None,
-                record_separations: Vec::new(),
-                caveats: Vec::new(),
-                collinear_with,
+                collinear_with: collinear(live, j, opts),
+                ..candidate(*e, first_errs[j])
             }
         })
+        .collect()
+}
+
+/// A candidate with its first-step ERR and nothing tested yet.
+fn candidate<E: Effect, A>(e: &E, err: f64) -> Candidate<A> {
+    Candidate {
+        effect: e.id(),
+        err,
+        coef: f64::NAN,
+        coef_se: f64::NAN,
+        coef_ci95: [f64::NAN; 2],
+        unit: e.unit(),
+        description: e.description(),
+        rank: None,
+        conditional_err: None,
+        p_value: None,
+        significant: false,
+        collinear_with: Vec::new(),
+        alternatives: Vec::new(),
+        separation: None,
+        record_separations: Vec::new(),
+        caveats: Vec::new(),
+    }
+}
+
+/// The ids of the live candidates collinear with candidate `j`.
+fn collinear<E: Effect>(live: &[(&E, &[f64])], j: usize, opts: RankOptions) -> Vec<String> {
+    // Collinearity is about shape: the correlation compares centred columns.
+    let c = live[j].1;
+    live.iter()
+        .enumerate()
+        .filter(|&(i, (_, other))| {
+            i != j && stats::correlation(c, other).abs() >= opts.collinearity
+        })
+        .map(|(_, (o, _))| o.id())
         .collect()
 }
 

@@ -51,19 +51,33 @@ pub(crate) fn moments<S: Sensor>(
 ) -> Result<Vec<Vec<(f64, f64)>>, SysidError> {
     let sensor = prepared.sensor();
     let names = sensor.operating_signals();
-    rows.iter()
-        .map(|&r| {
-            let (record, end) = prepared.locate(r);
-            let span = end + 1 - length.min(end + 1)..=end;
-            names
+    // Each record's signals looked up once, not once a row: the lookup asks
+    // the sensor for its signal names, which allocates.
+    let mut columns: Vec<(&crate::signals::Signals, Vec<&[f64]>)> = Vec::new();
+    let mut out = Vec::with_capacity(rows.len());
+    for &r in rows {
+        let (record, end) = prepared.locate(r);
+        let at = match columns.iter().position(|(s, _)| std::ptr::eq(*s, record)) {
+            Some(at) => at,
+            None => {
+                let cols = names
+                    .iter()
+                    .map(|name| crate::prepared::signal(sensor, record, name))
+                    .collect::<Result<Vec<_>, _>>()?;
+                columns.push((record, cols));
+                columns.len() - 1
+            }
+        };
+        let span = end + 1 - length.min(end + 1)..=end;
+        out.push(
+            columns[at]
+                .1
                 .iter()
-                .map(|name| {
-                    let a = crate::prepared::signal(sensor, record, name)?;
-                    Ok(mean_and_variance(&a[span.clone()]))
-                })
-                .collect()
-        })
-        .collect()
+                .map(|a| mean_and_variance(&a[span.clone()]))
+                .collect(),
+        );
+    }
+    Ok(out)
 }
 
 /// Per row in `rows`, the window (of `length` samples ending at the row's

@@ -9,7 +9,7 @@ use crate::diagnose::Band;
 use crate::report::common::{fmt, short};
 use crate::report::diagnosis::channel::candidate_cells;
 use crate::report::diagnosis::overview::failing_cell;
-use crate::report::diagnosis::reading::{Wording, candidate_columns};
+use crate::report::diagnosis::reading::{ChannelWording, candidate_columns};
 use nav_sensors::geometry::Axis;
 use plot::{Section, Table};
 use std::fmt::Display;
@@ -99,7 +99,7 @@ fn where_it_fails<C: Display>(d: &DiagnosisExtra<'_, C>) -> Section {
 }
 
 /// Section "Diagnosis".
-fn diagnosis<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &Wording) -> Section {
+fn diagnosis<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &ChannelWording) -> Section {
     let mut t = Table::new([
         "channel",
         "suggested",
@@ -166,6 +166,9 @@ fn diagnosis<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &Wording) -> Sectio
 }
 
 /// Both sections.
-pub(super) fn sections<C: Display>(d: &DiagnosisExtra<'_, C>, wording: &Wording) -> [Section; 2] {
+pub(super) fn sections<C: Display>(
+    d: &DiagnosisExtra<'_, C>,
+    wording: &ChannelWording,
+) -> [Section; 2] {
     [where_it_fails(d), diagnosis(d, wording)]
 }

@@ -22,7 +22,7 @@ mod summary;
 
 use crate::error::DtgVibError;
 use crate::report::common::{Drawn, save_all};
-use crate::report::diagnosis::Wording;
+use crate::report::diagnosis::ChannelWording;
 use ctx::Ctx;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
@@ -101,7 +101,7 @@ fn assemble<C: Display>(
         .section(summary::section(ctx, extras))
         .section(fit::section(drawn));
     if let Some(d) = &extras.diagnosis {
-        for sec in diagnosis::sections(d, &Wording::of_unit(ctx.unit)) {
+        for sec in diagnosis::sections(d, &ChannelWording::of_unit(ctx.unit)) {
             page = page.section(sec);
         }
     }

@@ -21,7 +21,7 @@ pub(super) fn reduction(s: &ResidueRms) -> f64 {
 /// Why a unit has no residue, in a sentence.
 pub(super) fn no_residue(ctx: &Ctx<'_>) -> String {
     format!(
-        "The unit has {} gyros: nothing is redundant, so it has no parity residue and no fault detection; its channels are judged against the rate reference (Summary).",
+        "The unit has {} gyros: nothing is redundant, so it has no parity residue and no fault detection; its channels are judged by their rms before and after (Summary).",
         ctx.unit.gyros().len()
     )
 }

@@ -16,7 +16,7 @@ use plot::HtmlReport;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
 
-pub use reading::Wording;
+pub use reading::ChannelWording;
 
 /// Writes the diagnosis figures and `index.html` into `dir`; `min_err` is
 /// the suggestion threshold drawn on the ERR charts.
@@ -28,7 +28,7 @@ pub fn write_diagnosis_report(
     write_diagnosis_report_of(
         diag,
         min_err,
-        &Wording::of_unit(&nav_sensors::unit::Unit::paper()),
+        &ChannelWording::of_unit(&nav_sensors::unit::Unit::paper()),
         dir,
     )
 }
@@ -38,7 +38,7 @@ pub fn write_diagnosis_report(
 pub fn write_diagnosis_report_of<C: Display>(
     diag: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
     min_err: f64,
-    wording: &Wording,
+    wording: &ChannelWording,
     dir: &Path,
 ) -> Result<PathBuf, DtgVibError> {
     let mut figs = figures::figures(diag, min_err);

@@ -11,7 +11,7 @@ use sysid::diagnose::Diagnosis;
 
 /// What the page says of a unit's channels and candidate ids.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Wording {
+pub struct ChannelWording {
     /// The channels in the overview's column sentence (the paper's: "X,
     /// X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3").
     pub channels: String,
@@ -21,16 +21,16 @@ pub struct Wording {
     pub ids: String,
 }
 
-impl Wording {
+impl ChannelWording {
     /// Any unit: its gyros by name and model, a DTG's two axes together
     /// (they share a spin axis), and the candidate ids its models take.
     ///
     /// ```
     /// let u = nav_sensors::unit::Unit::builtin("tetra").unwrap();
-    /// let w = dtg_vib::report::Wording::of_unit(&u);
+    /// let w = dtg_vib::report::ChannelWording::of_unit(&u);
     /// assert_eq!(w.n_channels, 4);
     /// assert!(w.channels.starts_with("g1, g2, g3, g4: rate gyros of"), "{}", w.channels);
-    /// let p = dtg_vib::report::Wording::of_unit(&nav_sensors::unit::Unit::paper());
+    /// let p = dtg_vib::report::ChannelWording::of_unit(&nav_sensors::unit::Unit::paper());
     /// assert_eq!(p.channels, "X, X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3");
     /// ```
     pub fn of_unit(unit: &nav_sensors::unit::Unit) -> Self {
@@ -99,7 +99,7 @@ pub(in crate::report) fn worth_text(min_err: f64) -> String {
 pub(in crate::report) const OVERVIEW_COLUMNS: &str = "Overview columns. channel: the gyro channel (X, X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3). effects: the physical effects the model already has on it. val rms: the rms of the residual (measured minus predicted) on the validation rows, deg/h. val fit %: 100·(1 − ‖residual‖/‖measured − its mean‖) on those rows, as MATLAB's compare reports it (100 = perfect, 0 = no better than a constant). suggested: the candidate effects that pass both thresholds below, to add with --add-effect. failing tests: the residual-correlation tests that fail (whiteness: the residual is correlated with itself past the model's memory; independence:IN: it is correlated with input IN at some lag; billings_voon_u2_e, _e_eu, _u2_e2: Billings–Voon tests for an even function of an input, a residual × input product, or a residual level that follows the input's square), each at 1% after a Bonferroni correction over its lags.";
 
 /// [`OVERVIEW_COLUMNS`] with `wording`'s channels.
-fn overview_columns(wording: &Wording) -> String {
+fn overview_columns(wording: &ChannelWording) -> String {
     OVERVIEW_COLUMNS.replace(
         "(X, X1: gyro 1; Y, Y1: gyro 2; Z, Z1: gyro 3)",
         &format!("({})", wording.channels),
@@ -112,7 +112,7 @@ fn overview_columns(wording: &Wording) -> String {
 pub(in crate::report) fn candidate_columns(
     min_err: f64,
     p_threshold: &str,
-    wording: &Wording,
+    wording: &ChannelWording,
 ) -> String {
     let columns = format!(
         "Candidate columns. effect: the candidate's id ({}); ✓ marks a suggestion. \
@@ -138,7 +138,11 @@ pub(in crate::report) fn candidate_columns(
 }
 
 /// The section.
-pub(super) fn section<C, A>(diag: &Diagnosis<C, A>, min_err: f64, wording: &Wording) -> Section {
+pub(super) fn section<C, A>(
+    diag: &Diagnosis<C, A>,
+    min_err: f64,
+    wording: &ChannelWording,
+) -> Section {
     let p = diag
         .channels
         .first()

@@ -140,7 +140,6 @@ impl Record {
     /// assert_eq!(rec.gyro_names(), ["g1", "g2", "g3", "g4"]);
     /// assert_eq!(rec.gyro_named("g3").unwrap()[0], 3.0);
     /// assert_eq!(rec.temperature().unwrap()[0], 25.0);
-    /// assert!(!rec.is_paper_layout());
     /// ```
     pub fn from_series(
         t: Vec<f64>,
@@ -259,18 +258,6 @@ impl Record {
     /// ```
     pub fn dt(&self) -> f64 {
         (self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64
-    }
-
-    /// Whether the record has the paper's sensors (X, X1, Y, Y1, Z, Z1; ax,
-    /// ay, az, in that order), which the [`Channel`]-indexed accessors need.
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// assert!(rec.is_paper_layout());
-    /// ```
-    pub fn is_paper_layout(&self) -> bool {
-        self.paper
     }
 
     /// The position of a paper channel, or a panic naming what the record has.

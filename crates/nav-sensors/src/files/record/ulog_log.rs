@@ -15,8 +15,7 @@ use ulog::Ulog;
 
 use super::error::RecordError;
 use super::time::GAP_FACTOR;
-use super::unit_csv::{Scales, UnitRecords, from_table};
-use crate::unit::{RateUnit, SpecificForceUnit, Unit};
+use crate::unit::Unit;
 
 /// Whether the file at `path` starts as a ULog file does (a file that
 /// cannot be opened is not: the CSV reader then says why).
@@ -27,8 +26,9 @@ pub fn is_ulog(path: &Path) -> bool {
         .is_ok_and(|()| Ulog::is_ulog(&head))
 }
 
-/// Reads the ULog file at `path` with `unit` (see the module documentation).
-pub(super) fn read(path: &Path, unit: &Unit) -> Result<UnitRecords, RecordError> {
+/// The table of the ULog file at `path` that `unit` reads (see the module
+/// documentation), in PX4's units.
+pub(super) fn table(path: &Path, unit: &Unit) -> Result<NumericTable, RecordError> {
     let file = path.display().to_string();
     let table = unit.ulog_table().ok_or_else(|| RecordError::NoUlogTable {
         file: file.clone(),
@@ -52,14 +52,5 @@ pub(super) fn read(path: &Path, unit: &Unit) -> Result<UnitRecords, RecordError>
         header.push(name);
         columns.push(values);
     }
-    let scales = Scales {
-        time: 1.0,
-        rate: RateUnit::RadPerSecond.to_deg_h(),
-        force: SpecificForceUnit::MetresPerSecond2.to_g(),
-    };
-    from_table(
-        NumericTable::from_columns(&file, header, columns)?,
-        unit,
-        &scales,
-    )
+    Ok(NumericTable::from_columns(&file, header, columns)?)
 }

@@ -14,7 +14,7 @@ use tabular::NumericTable;
 use super::Record;
 use super::error::RecordError;
 use super::time::TimeReport;
-use crate::unit::Unit;
+use crate::unit::{RateUnit, SpecificForceUnit, Unit};
 
 /// A log read with a unit: one record per segment between gaps, and what
 /// the time column showed.
@@ -61,7 +61,7 @@ impl Record {
     pub fn read_with_unit(path: impl AsRef<Path>, unit: &Unit) -> Result<UnitRecords, RecordError> {
         let path = path.as_ref();
         if super::ulog_log::is_ulog(path) {
-            return super::ulog_log::read(path, unit);
+            return from_table(super::ulog_log::table(path, unit)?, unit, &Scales::px4());
         }
         from_table(NumericTable::read(path)?, unit, &Scales::of(unit))
     }
@@ -192,6 +192,16 @@ pub(super) struct Scales {
 }
 
 impl Scales {
+    /// A ULog's: PX4's units (s, rad/s, m/s²), whatever the unit's
+    /// `[units]` say of its CSV logs.
+    fn px4() -> Self {
+        Self {
+            time: 1.0,
+            rate: RateUnit::RadPerSecond.to_deg_h(),
+            force: SpecificForceUnit::MetresPerSecond2.to_g(),
+        }
+    }
+
     /// The unit file's: `time_scale` and `[units]`, for its CSV logs.
     fn of(unit: &Unit) -> Self {
         Self {
@@ -495,7 +505,7 @@ mod tests {
             r.records,
             vec![Record::from_reader(csv.as_bytes(), "log.csv").unwrap()]
         );
-        assert!(r.records[0].is_paper_layout());
+        assert_eq!(r.records[0].gyro(crate::geometry::Channel::Y1)[0], 4.0);
         // The paper's CSV takes the rule of every unit: jitter is accepted
         // (the strict reader refuses it), a gap splits.
         let jitter = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0.02,1,2,3,4,5,6,0,0,1\n0.041,1,2,3,4,5,6,0,0,1\n";
