@@ -47,9 +47,10 @@ const UNIT: &str = "units/multi-imu.toml";
 const EFFECTS: &str = "sf@0..4,ma_*@0..4,acc:*@0..5";
 
 /// Fits `data` (the loop's blocked split: first half trains, second
-/// validates) into `out`; returns the fit's JSON.
+/// validates) into `out`; returns the fit's JSON, after checking it said
+/// in one line that it fits in parity and what that cannot observe.
 fn fit(data: &str, out: &Path) -> serde_json::Value {
-    json(&dtg_vib(&[
+    let o = dtg_vib(&[
         "fit",
         "--unit",
         UNIT,
@@ -67,7 +68,15 @@ fn fit(data: &str, out: &Path) -> serde_json::Value {
         "--json",
         "--out",
         out.to_str().unwrap(),
-    ]))
+    ]);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    let note: Vec<&str> = e
+        .lines()
+        .filter(|l| l.contains("fitted in parity"))
+        .collect();
+    assert_eq!(note.len(), 1, "{e}");
+    assert!(note[0].contains("is not, and is not fitted"), "{e}");
+    json(&o)
 }
 
 /// The pooled rms (deg/s) of a residue list, before and after: √(mean of
@@ -156,4 +165,75 @@ fn the_flights_are_fitted_in_parity_and_meet_the_acceptance() {
     let t = text(&o);
     assert!(t.contains("pooled") && t.contains("worse"), "{t}");
     assert!(t.contains("fitted in parity"), "{t}");
+}
+
+/// The other commands work on a model fitted in parity: compensate writes
+/// the log, allan's before and after are both free of the motion (no
+/// "turns" warning, and the compensated parity residues' angle random walk
+/// is below the one before), diagnose ranks the dynamic effects, and export
+/// writes the equations.
+#[test]
+fn the_commands_work_on_a_model_fitted_in_parity() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("path1.json");
+    let o = dtg_vib(&[
+        "fit",
+        "--unit",
+        UNIT,
+        "--data",
+        V,
+        "--no-filter",
+        "--effects",
+        "sf,ma_*,delay",
+        "--max-centres",
+        "1",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+        "--out",
+        m.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("delay"), "{}", text(&o));
+    let model = m.to_str().unwrap();
+    let out = dir.path().join("c.csv");
+    let o = dtg_vib(&[
+        "compensate",
+        "--model",
+        model,
+        "--data",
+        V,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        text(&o).contains("the unit's own least-squares rate"),
+        "{}",
+        text(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap().lines().count(),
+        3901 - 49 + 1
+    );
+    let a = json(&dtg_vib(&[
+        "allan", "--model", model, "--data", V, "--json",
+    ]));
+    let o = dtg_vib(&["allan", "--model", model, "--data", V]);
+    assert!(!text(&o).contains("the unit turns"), "{}", text(&o));
+    assert_eq!(a["compensated"], true);
+    let d = dtg_vib(&["diagnose", "--model", model, "--data", V]);
+    assert!(d.status.success(), "{}", text(&d));
+    assert!(text(&d).contains("validation rms"), "{}", text(&d));
+    let ex = dir.path().join("ex");
+    let o = dtg_vib(&[
+        "export",
+        "--model",
+        model,
+        "--lang",
+        "text",
+        "--out",
+        ex.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
 }
