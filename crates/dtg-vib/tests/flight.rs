@@ -46,10 +46,11 @@ const UNIT: &str = "units/multi-imu.toml";
 /// The recommended causal linear model per gyro (research report §4).
 const EFFECTS: &str = "sf@0..4,ma_*@0..4,acc:*@0..5";
 
-/// Fits `data` (the loop's blocked split: first half trains, second
-/// validates) into `out`; returns the fit's JSON.
-fn fit(data: &str, out: &Path) -> serde_json::Value {
-    json(&dtg_vib(&[
+/// Fits `data` with `effects` (the loop's blocked split: first half trains, second
+/// validates) into `out`; returns the fit's JSON, after checking it said
+/// in one line that it fits in parity and what that cannot observe.
+fn fit(data: &str, effects: &str, out: &Path) -> serde_json::Value {
+    let o = dtg_vib(&[
         "fit",
         "--unit",
         UNIT,
@@ -57,7 +58,7 @@ fn fit(data: &str, out: &Path) -> serde_json::Value {
         data,
         "--no-filter",
         "--effects",
-        EFFECTS,
+        effects,
         "--max-centres",
         "1",
         "--input",
@@ -67,7 +68,15 @@ fn fit(data: &str, out: &Path) -> serde_json::Value {
         "--json",
         "--out",
         out.to_str().unwrap(),
-    ]))
+    ]);
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    let note: Vec<&str> = e
+        .lines()
+        .filter(|l| l.contains("fitted in parity"))
+        .collect();
+    assert_eq!(note.len(), 1, "{e}");
+    assert!(note[0].contains("is not, and is not fitted"), "{e}");
+    json(&o)
 }
 
 /// The pooled rms (deg/s) of a residue list, before and after: √(mean of
@@ -105,7 +114,7 @@ fn validation_pooled(model: &Path, data: &str, csv: &Path) -> (f64, f64) {
 fn the_flights_are_fitted_in_parity_and_meet_the_acceptance() {
     let dir = tempfile::tempdir().unwrap();
     let mh = dir.path().join("path11.json");
-    let fitted = fit(H, &mh);
+    let fitted = fit(H, EFFECTS, &mh);
     // The effects are named with intervals: every channel's scale factor,
     // misalignments, rate taps and accelerometer taps, each with its unit
     // and a 95% interval about its value.
@@ -131,7 +140,7 @@ fn the_flights_are_fitted_in_parity_and_meet_the_acceptance() {
     );
 
     let mv = dir.path().join("path1.json");
-    fit(V, &mv);
+    fit(V, EFFECTS, &mv);
     let (before_v, after_v) = validation_pooled(&mv, V, &dir.path().join("rv.csv"));
     assert!(before_v > 3.0 && before_v < 4.5, "before {before_v}");
     assert!(
@@ -156,4 +165,55 @@ fn the_flights_are_fitted_in_parity_and_meet_the_acceptance() {
     let t = text(&o);
     assert!(t.contains("pooled") && t.contains("worse"), "{t}");
     assert!(t.contains("fitted in parity"), "{t}");
+}
+
+/// The other commands work on a model fitted in parity: compensate writes
+/// the log, allan's before and after are both free of the motion (no
+/// "turns" warning), diagnose ranks the dynamic effects, and export writes
+/// the equations.
+#[test]
+fn the_commands_work_on_a_model_fitted_in_parity() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("path1.json");
+    let fitted = fit(V, "sf,ma_*,delay", &m);
+    let delay = &fitted["channels"][0]["effect_coefficients"]["delay"];
+    assert_eq!(delay["unit"], "ms", "{fitted}");
+    let model = m.to_str().unwrap();
+    let out = dir.path().join("c.csv");
+    let run = |args: &[&str]| {
+        let o = dtg_vib(args);
+        assert!(o.status.success(), "{args:?}: {}", text(&o));
+        text(&o)
+    };
+    let t = run(&[
+        "compensate",
+        "--model",
+        model,
+        "--data",
+        V,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(t.contains("the unit's own least-squares rate"), "{t}");
+    // One header, then every sample from the first full window (49) on.
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap().lines().count(),
+        1 + 3901 - 49
+    );
+    let t = run(&["allan", "--model", model, "--data", V]);
+    assert!(!t.contains("the unit turns") && t.contains("after"), "{t}");
+    let t = run(&["diagnose", "--model", model, "--data", V]);
+    assert!(t.contains("validation rms"), "{t}");
+    let ex = dir.path().join("ex");
+    run(&[
+        "export",
+        "--model",
+        model,
+        "--lang",
+        "text",
+        "--out",
+        ex.to_str().unwrap(),
+    ]);
+    let eq = std::fs::read_to_string(ex.join("equations.txt")).unwrap();
+    assert!(eq.contains("delay: time delay"), "{eq}");
 }
