@@ -136,9 +136,11 @@ fn builtin_suggestion(path: &Path, unit: &Unit) -> Option<String> {
         .next()?
         .ok()?;
     let header: Vec<&str> = first.split(',').map(str::trim).collect();
+    // A unit's name is its description ("paper: three skewed …"); a
+    // built-in's file is units/NAME.toml.
     let name = Unit::builtins_matching(&header)
         .into_iter()
-        .find(|n| *n != unit.name())?;
+        .find(|n| format!("units/{n}.toml") != unit.file())?;
     Some(format!(
         "; the log has the columns of built-in unit {name}: add --unit {name}"
     ))
