@@ -11,6 +11,7 @@ in Python.
 
 import json
 import os
+import tempfile
 import warnings
 
 import numpy as np
@@ -330,6 +331,18 @@ class Model:
     def save(self, path):
         """Writes the model file ``dtg-vib compensate --model`` reads, atomically."""
         self._native.save(os.fspath(path))
+
+    @classmethod
+    def _from_json(cls, text):
+        with tempfile.TemporaryDirectory(prefix="rbf_dtg-") as d:
+            path = os.path.join(d, "model.json")
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+            return cls.load(path)
+
+    def __reduce__(self):
+        # pickled as its model file, which compensates bit-identically once read back
+        return (Model._from_json, (self.to_json(),))
 
     @property
     def unit(self):

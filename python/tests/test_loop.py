@@ -108,6 +108,14 @@ def test_model_files_are_the_commands(base, demo, cli, tmp_path, dtg_vib):
     np.testing.assert_array_equal(cli_model.compensate(demo.record).to_numpy(), base.compensate(demo.record).to_numpy())
 
 
+def test_a_pickled_model_compensates_bit_identically(base, demo):
+    import pickle
+
+    back = pickle.loads(pickle.dumps(base))
+    assert back.to_json() == base.to_json()
+    np.testing.assert_array_equal(back.compensate(demo.record).to_numpy(), base.compensate(demo.record).to_numpy())
+
+
 def test_the_demo_loop_in_python(demo, base, diagnosis):
     """simulate, fit, diagnose names Y1 col:temp, refit with it: Y1's error falls."""
     record, calibration, truth = demo
