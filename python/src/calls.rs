@@ -156,6 +156,5 @@ pub fn explain(
 /// Writes a text file atomically, as the command writes its outputs.
 #[pyfunction]
 pub fn write_text(path: PathBuf, text: &str) -> PyResult<()> {
-    outfile::write_bytes(&path, text.as_bytes().to_vec())
-        .map_err(|e| raise(anyhow::anyhow!("{}: {e}", path.display())))
+    outfile::write_bytes(&path, text).map_err(|e| raise(anyhow::anyhow!("{}: {e}", path.display())))
 }

@@ -41,7 +41,8 @@ impl Model {
     /// Reads a model file (`dtg-vib fit --out`).
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let model = detached(py, |_| UnitModel::load(&path))?.map_err(raise)?;
+        let model = detached(py, |_| UnitModel::load(&path).map_err(anyhow::Error::from))?
+            .map_err(raise)?;
         Ok(Self::fitted(model, None))
     }
 
