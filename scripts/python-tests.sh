@@ -39,7 +39,7 @@ export PATH=$venv/bin:$PATH   # the pinned maturin, which pip's build runs
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-deps --no-build-isolation --force-reinstall ./python
 
-cargo build --release -p rbf-cli
+cargo build --release -p rbf-cli -p dtg-vib
 cd "$root/target"   # not python/: its rbf_dtg folder (no extension) would shadow the installed package
 RBF_DTG_REQUIRE_BINARIES=1 RBF_DTG_BIN_DIR=$root/target/release \
     "$venv/bin/python" -m pytest -q -p no:cacheprovider "$root/python/tests" "$@"

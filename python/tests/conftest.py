@@ -1,4 +1,4 @@
-"""Shared fixtures: the repository, the `rbf` binary, seeded data."""
+"""Shared fixtures: the repository, the `rbf` and `dtg-vib` binaries, seeded data."""
 
 import os
 import subprocess
@@ -26,6 +26,11 @@ def _binary(name):
 @pytest.fixture(scope="session")
 def rbf_bin():
     return _binary("rbf")
+
+
+@pytest.fixture(scope="session")
+def dtg_vib():
+    return _binary("dtg-vib")
 
 
 def run(cmd, **kw):

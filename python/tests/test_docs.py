@@ -33,6 +33,11 @@ def test_docs_python_blocks_print_what_the_docs_say(tmp_path, monkeypatch):
             assert out.getvalue() == expected, f"block {i + 1} printed:\n{out.getvalue()}"
     # the model file block wrote what `rbf predict` reads
     assert (tmp_path / "sunspots-model.json").read_text().startswith("{")
+    # and the loop's block the model file `dtg-vib compensate --model` reads
+    import rbf_dtg
+
+    saved = rbf_dtg.Model.load(tmp_path / "demo-model.json")
+    assert saved.to_json() == namespace["model"].to_json()
 
 
 def test_docs_refusals_write_nothing(tmp_path):

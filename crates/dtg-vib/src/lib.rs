@@ -14,12 +14,15 @@
 //! record → [`unit_sensor`] (the unit as a [`sysid::Sensor`]: calibration,
 //! rate reference, candidate effects, the model file, apply, check, parity
 //! residues with fault detection) → [`allan`], [`export`] / [`onboard`] →
-//! [`diagnose`] → report ([`unit_page`], [`unit_demo`]). The loop's own
+//! [`diagnose`] → report ([`unit_page`], [`unit_demo`]). [`commands`]
+//! is each command's work from its flags to its result, which the binary
+//! prints and the Python package returns. The loop's own
 //! modules are re-exported under their old paths ([`split`], [`window`],
 //! [`inference`], [`residuals`], [`operating`]).
 
 pub mod allan;
 pub mod caveats;
+pub mod commands;
 pub mod diagnose;
 pub mod error;
 pub mod export;

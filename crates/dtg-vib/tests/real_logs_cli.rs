@@ -34,6 +34,19 @@ fn a_log_of_a_built_in_unit_read_without_unit_gets_the_flag_to_add() {
     let e = stderr(&o);
     assert!(e.contains("add --unit triad"), "{e}");
     assert_eq!(e.lines().count(), 1, "{e}");
+    // A log of the unit given, refused for a cell, gets no flag to add:
+    // its unit is already the one its columns name.
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.csv");
+    std::fs::write(
+        &bad,
+        "t,gx,gy,gz,ax,ay,az\n0,0,0,0,0,0,9.8\n0.01,0,NaN,0,0,0,9.8\n",
+    )
+    .unwrap();
+    let o = dtg_vib(&["allan", "--unit", "triad", "--data", bad.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(e.contains("column 'gy': 'NaN' is not finite"), "{e}");
+    assert!(!e.contains("add --unit"), "{e}");
 }
 
 #[test]

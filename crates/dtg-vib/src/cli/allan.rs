@@ -7,8 +7,8 @@ use cli_support::progress::Progress;
 use dtg_vib::numfmt::short;
 use std::path::PathBuf;
 
-use super::records::{no_residue_note, open_model, read_records, turning, unit_of};
 use super::report::guard_report;
+use dtg_vib::commands::records::{no_residue_note, open_model, read_records, turning, unit_of};
 use dtg_vib::unit_sensor::{MOVING_RATE_STD_DEG_S, RateReference};
 
 /// The flags of `allan`.

@@ -7,11 +7,11 @@ use dtg_vib::unit_sensor::Applied;
 use dtg_vib::unit_sensor::check::{DEFAULT_OUTSIDE_THRESHOLD, TransferCheck};
 use std::path::PathBuf;
 
-use super::parse::parse_share;
-use super::records::{no_residue_note, open_model, records_of};
 use super::report::{guard_report, model_page};
 use super::residues::print_residues_on;
 use super::terms;
+use dtg_vib::commands::parse::parse_share;
+use dtg_vib::commands::records::{no_residue_note, open_model, records_of};
 
 /// The flags of `check`.
 #[derive(Args)]

@@ -5,10 +5,11 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::unit_sensor::{Applied, RateReference};
+use dtg_vib::commands::compensate::{Compensated, compensate};
+use dtg_vib::unit_sensor::RateReference;
 use std::path::PathBuf;
 
-use super::records::{open_model, records_of};
+use dtg_vib::commands::records::{open_model, records_of};
 
 /// The flags of `compensate`.
 #[derive(Args)]
@@ -46,20 +47,11 @@ pub fn run(a: CompensateArgs, progress: Progress) -> Result<()> {
     )?;
     let read = records_of(&m, std::slice::from_ref(&data))?;
     progress.say("compensating");
-    let applied = Applied::unsplit(&m, &read.borrowed())?;
-    let mut text: Vec<u8> = Vec::new();
-    let mut rows = 0;
-    for (k, ((name, _), r)) in read.records.iter().zip(applied.compensated()?).enumerate() {
-        rows += r.len();
-        let mut part = Vec::new();
-        r.write_with_unit(&mut part, name, m.unit())?;
-        // One header: later segments continue the first's columns.
-        let header_end = match k {
-            0 => 0,
-            _ => part.iter().position(|&b| b == b'\n').map_or(0, |i| i + 1),
-        };
-        text.extend_from_slice(&part[header_end..]);
-    }
+    let Compensated {
+        text,
+        rows,
+        first_sample,
+    } = compensate(&m, &read)?;
     outfile::write_bytes(&out, text).map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
     drop(progress);
     read.say_notes();
@@ -71,7 +63,7 @@ pub fn run(a: CompensateArgs, progress: Progress) -> Result<()> {
         "wrote {} ({rows} rows in the unit's names and units, from {} segment(s): each segment's first {} samples have no full window)",
         out.display(),
         read.records.len(),
-        applied.prepared.first_sample()
+        first_sample
     );
     Ok(())
 }

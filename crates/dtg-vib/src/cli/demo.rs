@@ -10,9 +10,9 @@ use cli_support::progress::Progress;
 use dtg_vib::unit_demo::{Demo, DemoOptions, found_text, hidden_text};
 use std::path::PathBuf;
 
-use super::records::unit_of;
 use super::report::print_parity;
 use super::residues::print_residues;
+use dtg_vib::commands::records::unit_of;
 
 /// The flags of `demo`.
 #[derive(Args)]

@@ -7,9 +7,9 @@ use dtg_vib::report::{ChannelWording, write_diagnosis_report_of};
 use std::path::{Path, PathBuf};
 
 use super::findings::print_diagnosis;
-use super::records::{borrowed, check_observable, once_each, open_model, records_of, signals};
 use super::report::guard_report;
-use super::thresholds::Thresholds;
+use dtg_vib::commands::records::{once_each, open_model, records_of};
+use dtg_vib::commands::thresholds::Thresholds;
 
 /// The flags of `diagnose`.
 #[derive(Args)]
@@ -54,11 +54,9 @@ pub fn run(a: DiagnoseArgs, progress: Progress) -> Result<()> {
         .collect();
     guard_report(report.as_deref(), &inputs)?;
     let read = records_of(&m, &data)?;
-    check_observable(m.inner().sensor(), &read.records)?;
-    let named = signals(&read.records)?;
     progress.say("diagnosing (the model's mirror is fitted on its validation rows)");
+    let d = dtg_vib::commands::diagnose::diagnose(&m, &read, thresholds)?;
     let options = thresholds.options();
-    let d = sysid::explain::diagnose_records(m.inner(), &borrowed(&named), &options)?;
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");

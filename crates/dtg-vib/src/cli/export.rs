@@ -5,7 +5,7 @@ use anyhow::Result;
 use clap::Args;
 use std::path::{Path, PathBuf};
 
-use super::records::open_model;
+use dtg_vib::commands::records::open_model;
 
 /// The flags of `export`.
 #[derive(Args)]

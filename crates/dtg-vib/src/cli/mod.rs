@@ -6,11 +6,11 @@
 //! | module | what |
 //! |---|---|
 //! | [`simulate`], [`fit`], [`compensate`], [`residues`], [`report`], [`check`], [`diagnose`], [`explain`], [`allan`], [`export`], [`demo`] | the subcommands |
-//! | [`fit_args`] | the flags of a fit (`fit`, `explain`), resolved once into what the fit is told |
-//! | [`records`] | the unit, a model file, the plug-in and logs read with the unit, as every command resolves them |
-//! | [`thresholds`] | when the diagnosis suggests an effect (`diagnose`, `explain`) |
-//! | [`parse`] | validators of numeric flags, each saying the valid range |
 //! | [`terms`] | what the words the tables print mean, in a line under them |
+//!
+//! The flags a fit and a diagnosis share, the records as every command
+//! reads them and each command's work are the library's
+//! ([`dtg_vib::commands`]): the Python package calls the same functions.
 
 pub mod allan;
 pub mod check;
@@ -21,15 +21,11 @@ pub mod explain;
 pub mod export;
 pub mod findings;
 pub mod fit;
-pub mod fit_args;
 pub mod fleet;
-pub mod parse;
-pub mod records;
 pub mod report;
 pub mod residues;
 pub mod simulate;
 pub mod terms;
-pub mod thresholds;
 
 use clap::{Parser, Subcommand};
 
@@ -56,7 +52,7 @@ pub enum Command {
     // Negative numbers are values here: a southern latitude (--earth-rate -33.9),
     // a table turning backwards (--table-rate -1,0,0).
     #[command(allow_negative_numbers = true)]
-    Fit(Box<fit_args::FitArgs>),
+    Fit(Box<dtg_vib::commands::fit_args::FitArgs>),
     /// Write the record compensated by a model.
     Compensate(compensate::CompensateArgs),
     /// Write the parity residues (the paper's K0..K5 of eq. 6; P0.. of another unit), with a model the compensated ones, and test them for a fault.

@@ -11,8 +11,8 @@ use dtg_vib::unit_sensor::{Applied, UnitModel};
 use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
-use super::records::{no_residue_note, open_model, records_of};
 use super::residues::print_residues;
+use dtg_vib::commands::records::{no_residue_note, open_model, records_of};
 
 /// The flags of `report`.
 #[derive(Args)]

@@ -13,7 +13,7 @@ use nav_sensors::unit::Unit;
 use serde::Serialize;
 use std::path::PathBuf;
 
-use super::records::{Read, open_model, read_records, unit_of};
+use dtg_vib::commands::records::{Read, open_model, read_records, unit_of};
 
 /// The flags of `residues`.
 #[derive(Args)]
@@ -39,10 +39,10 @@ pub struct ResiduesArgs {
     json: bool,
     /// Fault detection (units of four gyros or more): the gyros' white
     /// noise per sample, deg/h; default read from the record.
-    #[arg(long = "fdi-sigma", value_parser = super::parse::parse_sigma)]
+    #[arg(long = "fdi-sigma", value_parser = dtg_vib::commands::parse::parse_sigma)]
     fdi_sigma: Option<f64>,
     /// Fault detection: the false-alarm probability per sample.
-    #[arg(long = "fdi-false-alarm", default_value_t = fdi::DEFAULT_FALSE_ALARM, value_parser = super::parse::parse_alpha)]
+    #[arg(long = "fdi-false-alarm", default_value_t = fdi::DEFAULT_FALSE_ALARM, value_parser = dtg_vib::commands::parse::parse_alpha)]
     fdi_false_alarm: f64,
 }
 

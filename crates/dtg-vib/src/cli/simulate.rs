@@ -1,10 +1,10 @@
 //! `dtg-vib simulate`: a sensor-unit vibration test from a scenario, written
 //! as the record and its ground truth.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use nav_sensors::sim::Scenario;
+use dtg_vib::commands;
 use std::path::PathBuf;
 
 /// The flags of `simulate`.
@@ -47,66 +47,22 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
         out,
         unit,
     } = a;
-    let unit = super::records::unit_of(unit.as_deref())?;
-    let scenario_path = scenario.clone();
-    let mut s = match (scenario, builtin) {
-        (Some(path), _) => Scenario::load(&path)?,
-        (None, Some(name)) => Scenario::builtin(&name).with_context(|| {
-            format!(
-                "unknown built-in scenario '{name}' (valid: {})",
-                Scenario::BUILTIN.join(", ")
-            )
-        })?,
-        (None, None) => Scenario::default(),
-    };
-    if let Some(seed) = seed {
-        s.seed = seed;
-    }
-    if let Some(d) = duration {
-        s.duration_s = d;
-    }
-    if let Some(p) = &scenario_path {
-        // Named with the file, before anything is written.
-        s.validate()
-            .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
-    }
-    simulate_unit(&unit, &s, &out, scenario_path.as_deref(), progress)
-}
-
-/// The scenario's physics on the unit's gyros and accelerometers, written
-/// in the unit's file formats ([`nav_sensors::unit::FileFormat`]).
-fn simulate_unit(
-    unit: &nav_sensors::unit::Unit,
-    s: &Scenario,
-    out: &std::path::Path,
-    scenario_path: Option<&std::path::Path>,
-    progress: Progress,
-) -> Result<()> {
-    use nav_sensors::sim::UnitSimulation;
-    outfile::guard_dir(
-        "--out",
-        out,
-        &UnitSimulation::files(unit),
-        &[("--scenario", scenario_path)],
-    )?;
+    let unit = commands::records::unit_of(unit.as_deref())?;
+    let s = commands::simulate::scenario(scenario.as_deref(), builtin.as_deref(), seed, duration)?;
+    let files = commands::simulate::files(&unit);
+    outfile::guard_dir("--out", &out, &files, &[("--scenario", scenario.as_deref())])?;
     progress.say(format!(
         "simulating '{}' ({} s) on the unit '{}'",
         s.name,
         s.duration_s,
         unit.name()
     ));
-    let sim = nav_sensors::sim::simulate_unit(unit, s)?;
-    sim.write_dir(out).with_context(|| {
-        format!(
-            "scenario '{}' gives values no reader takes: check the magnitudes and units of its numbers",
-            s.name
-        )
-    })?;
+    let notes = commands::simulate::simulate_into(&s, &unit, &out)?;
     drop(progress);
-    for name in UnitSimulation::files(unit) {
+    for name in files {
         println!("wrote {}", out.join(name).display());
     }
-    for n in &sim.truth.not_applied {
+    for n in &notes {
         eprintln!("note: {n}");
     }
     Ok(())

@@ -3,11 +3,11 @@
 //! carries its unit), the unit's plug-in with its calibration and rate
 //! reference, and logs read with the unit in segments between time gaps.
 
-use anyhow::{Result, anyhow, bail};
-use dtg_vib::unit_sensor::{
+use crate::unit_sensor::{
     MOVING_RATE_STD_DEG_S, PARITY_NOTE, RateReference, UnitModel, UnitSensor, UnitSensorError,
     load_calibration, observability, read_unit_records, to_signals,
 };
+use anyhow::{Result, anyhow, bail};
 use nav_sensors::record::{Record, declared_unit_warnings, is_ulog};
 use nav_sensors::unit::Unit;
 use std::path::{Path, PathBuf};
@@ -136,9 +136,11 @@ fn builtin_suggestion(path: &Path, unit: &Unit) -> Option<String> {
         .next()?
         .ok()?;
     let header: Vec<&str> = first.split(',').map(str::trim).collect();
+    // A unit's name is its description ("paper: three skewed …"); a
+    // built-in's file is units/NAME.toml.
     let name = Unit::builtins_matching(&header)
         .into_iter()
-        .find(|n| *n != unit.name())?;
+        .find(|n| format!("units/{n}.toml") != unit.file())?;
     Some(format!(
         "; the log has the columns of built-in unit {name}: add --unit {name}"
     ))
@@ -247,4 +249,27 @@ pub fn judged(reference: &RateReference) -> &'static str {
             "by their own outputs (no rate reference: each channel's constant rate stays in its bias)"
         }
     }
+}
+
+/// Records of `unit` as one CSV in its column names and units: one header,
+/// then every record's rows (a log's segments, one after the other); with
+/// the number of data rows.
+pub fn unit_csv<'a>(
+    records: impl IntoIterator<Item = (&'a str, &'a Record)>,
+    unit: &Unit,
+) -> Result<(Vec<u8>, usize)> {
+    let mut text: Vec<u8> = Vec::new();
+    let mut rows = 0;
+    for (k, (name, r)) in records.into_iter().enumerate() {
+        rows += r.len();
+        let mut part = Vec::new();
+        r.write_with_unit(&mut part, name, unit)?;
+        // One header: later records continue the first's columns.
+        let header_end = match k {
+            0 => 0,
+            _ => part.iter().position(|&b| b == b'\n').map_or(0, |i| i + 1),
+        };
+        text.extend_from_slice(&part[header_end..]);
+    }
+    Ok((text, rows))
 }

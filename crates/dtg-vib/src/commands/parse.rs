@@ -80,7 +80,7 @@ pub fn parse_hz(s: &str) -> Result<f64, String> {
 
 /// A low-pass order the filter takes.
 pub fn parse_order(s: &str) -> Result<usize, String> {
-    let max = dtg_vib::signal::MAX_ORDER;
+    let max = crate::signal::MAX_ORDER;
     match s.trim().parse::<usize>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
         _ => Err(format!("must be a whole number from 1 to {max}")),

@@ -1,7 +1,7 @@
 //! When the diagnosis suggests an effect: the flags `diagnose` and `explain` share.
 
+use crate::diagnose::DiagnoseOptions;
 use clap::Args;
-use dtg_vib::diagnose::DiagnoseOptions;
 
 use super::parse::{parse_alpha, parse_gain};
 

@@ -3,12 +3,12 @@
 //! the loop's options with each channel's effects, the records read with
 //! the unit, and the window's signals the records chose.
 
-use anyhow::{Result, anyhow};
-use clap::Args;
-use dtg_vib::split::Holdout;
-use dtg_vib::unit_sensor::{
+use crate::split::Holdout;
+use crate::unit_sensor::{
     RateReference, UnitEffect, UnitEffectError, UnitSensor, expand_dynamic,
 };
+use anyhow::{Result, anyhow};
+use clap::Args;
 use nav_sensors::record::Record;
 use nav_sensors::sim::Site;
 use nav_sensors::unit::Unit;
@@ -249,7 +249,7 @@ fn options(a: &FitArgs, unit: &Unit) -> Result<(sysid::FitOptions<UnitEffect>, R
         // choose (FitRecipe::resolve).
         window: WindowSpec::new(
             match window_auto(a)? {
-                true => dtg_vib::unit_sensor::default_window_signals(unit),
+                true => crate::unit_sensor::default_window_signals(unit),
                 false => a.window_signals.clone(),
             },
             a.window,
@@ -351,7 +351,7 @@ fn split(a: &FitArgs) -> Result<(Holdout, Option<String>)> {
         true => Holdout::Blocked {
             train_fraction: a.train_fraction,
         },
-        false => match dtg_vib::split::parse(&a.split).map_err(|_| {
+        false => match crate::split::parse(&a.split).map_err(|_| {
             anyhow::anyhow!(
                 "--split {}: use blocked, interleaved or by-record (with --validate-on)",
                 a.split
@@ -455,8 +455,8 @@ fn check_against_record(a: &FitArgs, record: &Record) -> Result<()> {
         ("--input-cutoff", a.input_cutoff),
     ] {
         if let Some(c) = cutoff {
-            dtg_vib::signal::LowPass::butterworth(a.filter_order, c, 1.0 / record.dt())
-                .map_err(|e| anyhow::anyhow!("{flag} {}: {e}", dtg_vib::signal::num(c)))?;
+            crate::signal::LowPass::butterworth(a.filter_order, c, 1.0 / record.dt())
+                .map_err(|e| anyhow::anyhow!("{flag} {}: {e}", crate::signal::num(c)))?;
         }
     }
     Ok(())
