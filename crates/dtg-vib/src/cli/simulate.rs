@@ -50,7 +50,12 @@ pub fn run(a: SimulateArgs, progress: Progress) -> Result<()> {
     let unit = commands::records::unit_of(unit.as_deref())?;
     let s = commands::simulate::scenario(scenario.as_deref(), builtin.as_deref(), seed, duration)?;
     let files = commands::simulate::files(&unit);
-    outfile::guard_dir("--out", &out, &files, &[("--scenario", scenario.as_deref())])?;
+    outfile::guard_dir(
+        "--out",
+        &out,
+        &files,
+        &[("--scenario", scenario.as_deref())],
+    )?;
     progress.say(format!(
         "simulating '{}' ({} s) on the unit '{}'",
         s.name,

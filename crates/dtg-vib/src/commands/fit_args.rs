@@ -4,9 +4,7 @@
 //! the unit, and the window's signals the records chose.
 
 use crate::split::Holdout;
-use crate::unit_sensor::{
-    RateReference, UnitEffect, UnitEffectError, UnitSensor, expand_dynamic,
-};
+use crate::unit_sensor::{RateReference, UnitEffect, UnitEffectError, UnitSensor, expand_dynamic};
 use anyhow::{Result, anyhow};
 use clap::Args;
 use nav_sensors::record::Record;
