@@ -11,21 +11,11 @@
 //! flight says how much it transfers (it does not: the timing and vibration
 //! terms belong to one recording).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn dtg_vib(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-        .arg("--quiet")
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
+mod workspace_cli;
+use workspace_cli::dtg_vib;
 
 fn text(o: &Output) -> String {
     format!(

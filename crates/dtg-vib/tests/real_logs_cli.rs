@@ -3,21 +3,10 @@
 //! warnings of a turning record and of declared units the data contradict,
 //! and a PX4 ULog read as its CSV.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn dtg_vib(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-        .arg("--quiet")
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
+mod workspace_cli;
+use workspace_cli::{dtg_vib, root};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
