@@ -231,6 +231,21 @@ fn the_no_std_evaluator_equals_the_batch_pipeline() {
     }
 }
 
+/// The model at `m`, its batch fade weights on `rec` and the record's first
+/// prepared sample (weights are indexed from it).
+fn fade_weights(m: &Path, rec: &Record) -> (UnitModel, Vec<f64>, usize) {
+    let model = load(m);
+    let prepared = model.inner().prepare(&to_signals(rec).unwrap()).unwrap();
+    let w = model
+        .inner()
+        .fade_weights(&prepared)
+        .unwrap()
+        .expect("a new model has a training range")
+        .weight;
+    let first = prepared.first_sample();
+    (model, w, first)
+}
+
 #[test]
 fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
     let rec = Record::read_csv(outside_record()).unwrap();
@@ -238,15 +253,7 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
     // network part before it, in batch, onboard and C alike.
     for m in [plain(), rich(), statistics()] {
         // Guards the comparison: the network must fade out and come back.
-        let model = load(m);
-        let prepared = model.inner().prepare(&to_signals(&rec).unwrap()).unwrap();
-        let w = model
-            .inner()
-            .fade_weights(&prepared)
-            .unwrap()
-            .expect("a new model has a training range")
-            .weight;
-        let first = prepared.first_sample();
+        let (model, w, first) = fade_weights(m, &rec);
         assert_eq!(w[100], 1.0, "inside before the shift");
         assert!(
             w[3000 - first] < 1e-3,
@@ -272,15 +279,7 @@ fn the_fade_outside_the_training_range_is_the_same_in_batch_and_onboard() {
 fn the_fade_on_another_spectrum_is_the_same_in_batch_onboard_and_c() {
     let rec = Record::read_csv(other_shape_record()).unwrap();
     for m in [plain(), rich(), statistics()] {
-        let model = load(m);
-        let prepared = model.inner().prepare(&to_signals(&rec).unwrap()).unwrap();
-        let w = model
-            .inner()
-            .fade_weights(&prepared)
-            .unwrap()
-            .unwrap()
-            .weight;
-        let first = prepared.first_sample();
+        let (model, w, first) = fade_weights(m, &rec);
         let lowest = w[3200 - first..4400 - first]
             .iter()
             .copied()
