@@ -3,7 +3,8 @@
 //! specific force and rates the evaluator computes.
 
 use super::error::ExportError;
-use crate::unit_sensor::{UnitEffect, rate_without};
+use crate::unit_sensor::effect::UnitEffect;
+use crate::unit_sensor::sensor::rate_without;
 use dtg_onboard::kind;
 use nalgebra::Vector3;
 use nav_sensors::dtg::DtgTerm;

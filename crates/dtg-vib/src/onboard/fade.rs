@@ -5,7 +5,7 @@
 //! shape's range at its end, flag `FLAG_FADE_SHAPE`, when the model has one).
 
 use super::error::ExportError;
-use crate::unit_sensor::UnitModel;
+use crate::unit_sensor::model::UnitModel;
 use sysid::operating::OperatingPoints;
 
 /// The fade block of a model with a training range (`None` without one:

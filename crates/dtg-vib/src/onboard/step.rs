@@ -5,7 +5,7 @@
 use super::error::ExportError;
 use super::tables::{Tables, tables};
 use crate::error::DtgVibError;
-use crate::unit_sensor::UnitModel;
+use crate::unit_sensor::model::UnitModel;
 use nav_sensors::record::Record;
 
 /// A record run through the onboard evaluator, from the first sample with

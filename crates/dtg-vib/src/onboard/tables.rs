@@ -8,7 +8,8 @@
 use super::effects::effect_entry;
 use super::error::ExportError;
 use crate::signal::LowPass;
-use crate::unit_sensor::{UnitEffect, UnitModel};
+use crate::unit_sensor::effect::UnitEffect;
+use crate::unit_sensor::model::UnitModel;
 use dtg_onboard::{
     FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, FLAG_FADE_SHAPE, MAGIC,
     MAX_ACCELS, MAX_CHANNELS, MAX_SIGNALS, VERSION, gyro,

@@ -6,10 +6,11 @@
 //! through the onboard evaluator (the code a flight computer runs), a
 //! zero-phase one as a batch.
 
+use super::error::UnitSensorError;
 use super::model::UnitModel;
 use super::parity::{ResidueSeries, ResidueStats};
+use super::sensor::UnitSensor;
 use super::signals::{to_record, to_signals};
-use super::{UnitSensor, UnitSensorError};
 use crate::error::DtgVibError;
 use crate::onboard::{ExportError, Stepped, step_record};
 use nav_sensors::record::Record;

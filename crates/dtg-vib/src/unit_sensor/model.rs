@@ -7,7 +7,9 @@
 //! paper unit's model; every file written now carries its unit.
 
 use super::calibration::from_paper;
-use super::{Preprocess, UnitEffect, UnitSensor};
+use super::effect::UnitEffect;
+use super::preprocess::StoredPreprocess;
+use super::sensor::UnitSensor;
 use crate::error::DtgVibError;
 use crate::split::Holdout;
 use nav_sensors::calibration::{Calibration, UnitCalibration};
@@ -43,7 +45,7 @@ struct FileRef<'a> {
 #[derive(Serialize)]
 struct ModelRef<'a> {
     unit: &'a Unit,
-    preprocess: Preprocess,
+    preprocess: StoredPreprocess,
     calibration: Option<&'a UnitCalibration>,
     dt_s: f64,
     split: Holdout,
@@ -72,7 +74,7 @@ pub(crate) const KIND: &str = "dtg-vib compensation model";
 struct ModelOwned<C> {
     #[serde(default)]
     unit: Option<Unit>,
-    preprocess: Preprocess,
+    preprocess: StoredPreprocess,
     calibration: Option<C>,
     dt_s: f64,
     split: Holdout,
@@ -162,7 +164,7 @@ impl UnitModel {
                 format_version: FORMAT_VERSION,
                 model: ModelRef {
                     unit: &s.unit,
-                    preprocess: Preprocess::of(m.preprocess(), s.rate_reference),
+                    preprocess: StoredPreprocess::of(m.preprocess(), s.rate_reference),
                     calibration: s.calibration.as_ref(),
                     dt_s: m.dt_s(),
                     split: m.split(),

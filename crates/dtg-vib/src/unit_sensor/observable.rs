@@ -4,7 +4,7 @@
 //! error plus a constant (the bias takes it), but on a moving vehicle is
 //! the vehicle's motion: a fit would model the flight, not the gyro.
 
-use super::UnitSensor;
+use super::sensor::UnitSensor;
 use nav_sensors::record::Record;
 
 /// How much the unit turns on a record: the largest standard deviation,

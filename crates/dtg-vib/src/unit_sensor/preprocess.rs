@@ -129,15 +129,16 @@ impl RateReference {
     }
 }
 
-/// How a record is prepared for the models.
+/// How a record is prepared for the models, as a model file stores it:
+/// the loop's [`sysid::Preprocess`] and the unit's rate reference.
 ///
 /// ```
-/// let p = dtg_vib::unit_sensor::Preprocess::default();
+/// let p = dtg_vib::unit_sensor::StoredPreprocess::default();
 /// assert_eq!(p.window.length(), 50);
 /// assert!(p.window.is_auto()); // the signals the records choose
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Preprocess {
+pub struct StoredPreprocess {
     /// Zero-phase low-pass of the gyro outputs and effect columns, or none.
     pub filter: Option<FilterSpec>,
     /// Zero-phase low-pass of the windowed input signals, or none. None by
@@ -174,7 +175,7 @@ pub struct Preprocess {
     pub smoother: Option<sysid::Smoother>,
 }
 
-impl Preprocess {
+impl StoredPreprocess {
     /// The loop's part of it (all but the rate reference, which is the
     /// plug-in's).
     pub fn sysid(&self) -> sysid::Preprocess {
@@ -202,7 +203,7 @@ impl Preprocess {
     }
 }
 
-impl Default for Preprocess {
+impl Default for StoredPreprocess {
     /// The loop's default (low-pass of the outputs, unfiltered 50-sample
     /// windows of the signals the records choose, as the CLI's
     /// `--window-signals auto`), no rate reference.

@@ -4,7 +4,7 @@
 //! mean specific force g₀ is r(g₀) + ℓ·a + q·a²), with each channel's
 //! regressors taken from its own model and axes in the unit file.
 
-use super::UnitEffect;
+use super::effect::UnitEffect;
 use crate::diagnose::separate::{Group, advise};
 use nalgebra::Vector3;
 use nav_sensors::geometry::Axis;

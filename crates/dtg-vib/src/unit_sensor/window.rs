@@ -3,7 +3,7 @@
 //! significant in some record ([`sysid::window::signal_choice`]), each calibrated.
 
 use super::range::check_calibrated;
-use super::{MIN_SCALE_G, UnitSensor};
+use super::sensor::{MIN_SCALE_G, UnitSensor};
 use crate::error::DtgVibError;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
