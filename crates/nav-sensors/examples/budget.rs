@@ -8,8 +8,12 @@
 
 use std::time::Instant;
 
+use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::geometry::{Channel, Residue};
-use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::record::Record;
+use nav_sensors::sim::{Scenario, Simulation, simulate};
+use nav_sensors::truth::Truth;
+use nav_sensors::unit::Unit;
 
 use stats::{rms, std_dev};
 
@@ -33,7 +37,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         sim.write_dir(&dir)?;
         println!("wrote {dir}");
     }
-    let t = &sim.truth;
+    print_channels(&sim.truth);
+    let compensated =
+        UnitCalibration::from(sim.calibration.clone()).compensate(&Unit::paper(), &sim.record)?;
+    print_residues(&sim, &compensated);
+    let az = sim.record.accel(nav_sensors::record::Axis::Z);
+    for w in [50usize, 250] {
+        window_proxy(&sim, &variance_feature(az, w), w);
+    }
+    for w in [50usize, 250] {
+        blocked_split_proxy(&compensated, &variance_feature(az, w), w);
+    }
+    for h in &sim.truth.hidden {
+        println!(
+            "\nhidden {}/{} = {} {}: {:.3} deg/h rms visible, {:.2}x the floor",
+            h.channel, h.term, h.coefficient, h.unit, h.rms_deg_h, h.ratio_to_noise_floor
+        );
+    }
+    Ok(())
+}
+
+/// Per channel the error budget of the truth.
+fn print_channels(t: &Truth) {
     println!(
         "\n{:<4} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8}  collinear",
         "ch",
@@ -69,8 +94,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             pairs.join(" ")
         );
     }
-    let raw = sim.record.residues();
-    let comp = sim.calibration.compensate(&sim.record).residues();
+}
+
+/// Per residue the raw, calibrated and true-compensation levels against its floor.
+fn print_residues(sim: &Simulation, compensated: &Record) {
+    let t = &sim.truth;
+    let paper = Unit::paper();
+    let raw = sim.record.unit_residues(&paper);
+    let comp = compensated.unit_residues(&paper);
     println!(
         "\n{:<3} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "K", "raw std", "cal rms", "cal std", "true rms", "floor", "rms/floor"
@@ -89,99 +120,90 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             rms(&comp[k]) / floor
         );
     }
-    // A proxy of what a windowed model can do: fit each channel's
-    // unmodelled + noise series by a + b·mean(az²) over the last 50 samples.
-    let az = sim.record.accel(nav_sensors::record::Axis::Z);
-    let n = az.len();
-    for w in [50usize, 250] {
-        let feat: Vec<f64> = (0..n)
+}
+
+/// The variance of `az` over the last `w` samples, sample by sample.
+fn variance_feature(az: &[f64], w: usize) -> Vec<f64> {
+    (0..az.len())
+        .map(|i| {
+            let lo = i.saturating_sub(w - 1);
+            let m = az[lo..=i].iter().sum::<f64>() / (i - lo + 1) as f64;
+            az[lo..=i].iter().map(|a| (a - m) * (a - m)).sum::<f64>() / (i - lo + 1) as f64
+        })
+        .collect()
+}
+
+/// The least-squares line `y ≈ my + b·(f − mf)` of `y` on `feat`: (mf, my, b).
+fn line(feat: &[f64], y: &[f64]) -> (f64, f64, f64) {
+    let m = feat.len() as f64;
+    let (mf, my) = (feat.iter().sum::<f64>() / m, y.iter().sum::<f64>() / m);
+    let b = feat
+        .iter()
+        .zip(y)
+        .map(|(f, y)| (f - mf) * (y - my))
+        .sum::<f64>()
+        / feat.iter().map(|f| (f - mf) * (f - mf)).sum::<f64>();
+    (mf, my, b)
+}
+
+/// A proxy of what a windowed model can do: fit each channel's
+/// unmodelled + noise series by a + b·var(az) over the last `w` samples.
+fn window_proxy(sim: &Simulation, feat: &[f64], w: usize) {
+    let n = feat.len();
+    println!("\nwindow proxy (a + b*var(az over {w} samples)):");
+    for c in Channel::ALL {
+        let y: Vec<f64> = (0..n)
             .map(|i| {
-                let lo = i.saturating_sub(w - 1);
-                let m = az[lo..=i].iter().sum::<f64>() / (i - lo + 1) as f64;
-                az[lo..=i].iter().map(|a| (a - m) * (a - m)).sum::<f64>() / (i - lo + 1) as f64
+                sim.components.get(&format!("{c}_unmodelled")).unwrap()[i]
+                    + sim.components.get(&format!("{c}_noise")).unwrap()[i]
             })
             .collect();
-        println!("\nwindow proxy (a + b*var(az over {w} samples)):");
-        for c in Channel::ALL {
-            let y: Vec<f64> = (0..n)
-                .map(|i| {
-                    sim.components.get(&format!("{c}_unmodelled")).unwrap()[i]
-                        + sim.components.get(&format!("{c}_noise")).unwrap()[i]
-                })
-                .collect();
-            let (mf, my) = (
-                feat.iter().sum::<f64>() / n as f64,
-                y.iter().sum::<f64>() / n as f64,
-            );
-            let b = feat
-                .iter()
-                .zip(&y)
-                .map(|(f, y)| (f - mf) * (y - my))
-                .sum::<f64>()
-                / feat.iter().map(|f| (f - mf) * (f - mf)).sum::<f64>();
-            let res: Vec<f64> = feat
-                .iter()
-                .zip(&y)
-                .map(|(f, y)| y - my - b * (f - mf))
-                .collect();
-            println!(
-                "  {c}: rms before {:.3}, after {:.3}, factor {:.2}",
-                rms(&y),
-                rms(&res),
-                rms(&y) / rms(&res)
-            );
-        }
-    }
-    // The same proxy on the paper's procedure: fit on the first 70% of the
-    // ground-calibration-compensated record (blocked split), predict the
-    // last 30%, and compare the residues' rms there before and after.
-    let compensated = sim.calibration.compensate(&sim.record);
-    let split = n * 7 / 10;
-    for w in [50usize, 250] {
-        let feat: Vec<f64> = (0..n)
-            .map(|i| {
-                let lo = i.saturating_sub(w - 1);
-                let m = az[lo..=i].iter().sum::<f64>() / (i - lo + 1) as f64;
-                az[lo..=i].iter().map(|a| (a - m) * (a - m)).sum::<f64>() / (i - lo + 1) as f64
-            })
-            .collect();
-        let mut corrected: [Vec<f64>; 6] = Default::default();
-        for c in Channel::ALL {
-            let y = compensated.gyro(c);
-            let (f_tr, y_tr) = (&feat[..split], &y[..split]);
-            let m = split as f64;
-            let (mf, my) = (f_tr.iter().sum::<f64>() / m, y_tr.iter().sum::<f64>() / m);
-            let b = f_tr
-                .iter()
-                .zip(y_tr)
-                .map(|(f, y)| (f - mf) * (y - my))
-                .sum::<f64>()
-                / f_tr.iter().map(|f| (f - mf) * (f - mf)).sum::<f64>();
-            corrected[c.index()] = (0..n).map(|i| y[i] - my - b * (feat[i] - mf)).collect();
-        }
-        let before = compensated.residues();
-        let after = compensated.with_gyro(corrected).residues();
-        let factors: Vec<String> = Residue::ALL
+        let (mf, my, b) = line(feat, &y);
+        let res: Vec<f64> = feat
             .iter()
-            .map(|r| {
-                let k = r.index();
-                format!(
-                    "{} {:.2}",
-                    r.name(),
-                    rms(&before[k][split..]) / rms(&after[k][split..])
-                )
-            })
+            .zip(&y)
+            .map(|(f, y)| y - my - b * (f - mf))
             .collect();
         println!(
-            "blocked-split proxy, window {w}: residue rms reduction on validation: {}",
-            factors.join(", ")
+            "  {c}: rms before {:.3}, after {:.3}, factor {:.2}",
+            rms(&y),
+            rms(&res),
+            rms(&y) / rms(&res)
         );
     }
-    for h in &t.hidden {
-        println!(
-            "\nhidden {}/{} = {} {}: {:.3} deg/h rms visible, {:.2}x the floor",
-            h.channel, h.term, h.coefficient, h.unit, h.rms_deg_h, h.ratio_to_noise_floor
-        );
-    }
-    Ok(())
+}
+
+/// The same proxy on the paper's procedure: fit on the first 70% of the
+/// ground-calibration-compensated record (blocked split), predict the
+/// last 30%, and compare the residues' rms there before and after.
+fn blocked_split_proxy(compensated: &Record, feat: &[f64], w: usize) {
+    let n = feat.len();
+    let split = n * 7 / 10;
+    let corrected: Vec<Vec<f64>> = (0..compensated.gyro_names().len())
+        .map(|k| {
+            let y = compensated.gyro_at(k);
+            let (mf, my, b) = line(&feat[..split], &y[..split]);
+            (0..n).map(|i| y[i] - my - b * (feat[i] - mf)).collect()
+        })
+        .collect();
+    let paper = Unit::paper();
+    let before = compensated.unit_residues(&paper);
+    let after = compensated
+        .with_gyro_series(corrected)
+        .unit_residues(&paper);
+    let factors: Vec<String> = Residue::ALL
+        .iter()
+        .map(|r| {
+            let k = r.index();
+            format!(
+                "{} {:.2}",
+                r.name(),
+                rms(&before[k][split..]) / rms(&after[k][split..])
+            )
+        })
+        .collect();
+    println!(
+        "blocked-split proxy, window {w}: residue rms reduction on validation: {}",
+        factors.join(", ")
+    );
 }

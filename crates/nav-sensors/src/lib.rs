@@ -14,26 +14,29 @@
 //! - [`noise`]: Allan deviation and the IEEE Std 952 noise terms read from it;
 //! - [`sim`]: scenarios and the shaker-test simulator;
 //! - [`record`], [`calibration`], [`truth`]: the files a test produces;
-//! - [`regressors`]: what the physics makes of a record (frame accelerations,
-//!   DTG term regressors, parity residues);
+//! - [`regressors`]: what the physics makes of a record of any unit
+//!   (specific force, term regressors, parity residues);
 //! - [`signal`]: the second-order sections the sensor dynamics use.
 //!
 //! The paper's experiment in a few lines: simulate the Z-axis random test,
 //! compensate with the ground calibration, and look at a parity residue.
 //!
 //! ```
-//! use nav_sensors::geometry::{Channel, Residue};
-//! use nav_sensors::sim::{simulate, Scenario};
+//! use nav_sensors::sim::{simulate_unit, Scenario};
+//! use nav_sensors::unit::Unit;
 //!
-//! let sim = simulate(&Scenario { duration_s: 20.0, ..Scenario::default() }).unwrap();
-//! let compensated = sim.calibration.compensate(&sim.record);
-//! let k0 = &compensated.residues()[Residue::K0.index()];
+//! let paper = Unit::paper();
+//! let sim = simulate_unit(&paper, &Scenario { duration_s: 20.0, ..Scenario::default() }).unwrap();
+//! let compensated = sim.calibration.compensate(&paper, &sim.record).unwrap();
+//! let k0 = &compensated.unit_residues(&paper)[0];
+//! assert_eq!(paper.residue_names()[0], "K0");
 //! let rms = |x: &[f64]| (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt();
 //! // Shaker off for the first 5 s: K0 is noise; then vibration rectifies.
-//! assert!(rms(&k0[..250]) < 2.0 * sim.truth.residue_noise_floor_deg_h[&Residue::K0]);
+//! assert!(rms(&k0[..250]) < 2.0 * sim.truth.residue_noise_floor_deg_h["K0"]);
 //! assert!(rms(&k0[500..]) > 3.0 * rms(&k0[..250]));
-//! // What no model of the record can remove, per channel:
-//! assert!(sim.truth.noise_floor_deg_h(Channel::Z) > 0.0);
+//! // What no model of the record can remove, per channel (here Z):
+//! assert_eq!(sim.truth.channels[4].channel, "Z");
+//! assert!(sim.truth.channels[4].noise_floor_deg_h > 0.0);
 //! ```
 
 pub mod accel;

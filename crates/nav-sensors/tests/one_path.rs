@@ -1,7 +1,6 @@
 //! The paper's files read as the unit's (issue 33): the paper's
 //! calibration JSON (a file, or the `calibration` embedded in a paper
-//! model file written before) as a `UnitCalibration` compensating to the
-//! same numbers, and the paper's truth file as a `UnitTruth`; a record of
+//! model file written before) as a `UnitCalibration`, and the paper's truth file as a `UnitTruth`; a record of
 //! any unit, the paper's CSV included, through the one unit reader. On the
 //! fixtures dtg-vib 5b6a72d wrote (`crates/dtg-vib/tests/fixtures/legacy`).
 
@@ -20,7 +19,7 @@ fn legacy(file: &str) -> PathBuf {
 }
 
 #[test]
-fn the_paper_calibration_reads_as_the_unit_calibration_and_compensates_the_same() {
+fn the_paper_calibration_reads_as_the_unit_calibration() {
     let path = legacy("paper/calibration.json");
     let paper = Calibration::load(&path).unwrap();
     let unit_cal = UnitCalibration::load(&path).unwrap();
@@ -43,20 +42,9 @@ fn the_paper_calibration_reads_as_the_unit_calibration_and_compensates_the_same(
     );
     assert!(unit_cal.to_json().contains("\"model\": \"dtg\""));
 
-    let record = Record::read_csv(legacy("paper/record.csv")).unwrap();
-    let today = paper.compensate(&record);
-    let one = unit_cal.compensate(&unit, &record).unwrap();
-    let mut worst: f64 = 0.0;
-    for k in 0..6 {
-        for (a, b) in today.gyro_at(k).iter().zip(one.gyro_at(k)) {
-            worst = worst.max((a - b).abs());
-        }
-    }
-    for k in 0..3 {
-        assert_eq!(today.accel_at(k), one.accel_at(k));
-    }
-    println!("largest difference of the compensated gyros: {worst:e} deg/h");
-    assert!(worst < 1e-9, "{worst:e} deg/h");
+    // Its numbers: `compensate` of the paper model fixtures (which carry
+    // this calibration) within 1e-9 deg/h of 5b6a72d's, in dtg-vib's
+    // tests/one_path.rs.
 }
 
 #[test]

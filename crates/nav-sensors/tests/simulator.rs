@@ -1,14 +1,24 @@
 //! The simulator's physics and files, tested through the public API.
 
 use nav_sensors::accel::{AccelCoefficients, AccelNoise};
+use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
 use nav_sensors::geometry::{Channel, ChannelFrame, residues};
 use nav_sensors::record::Axis;
+use nav_sensors::record::Record;
 use nav_sensors::sim::{
-    CalibrationError, HiddenEffect, Scenario, ScenarioError, SimError, simulate,
+    CalibrationError, HiddenEffect, Scenario, ScenarioError, SimError, Simulation, simulate,
 };
+use nav_sensors::unit::Unit;
 use nav_sensors::vibration::{Drive, LevelSchedule, PsdTable, Segment, VibrationConfig};
 use stats::mean;
+
+/// The record compensated with the simulation's ground calibration.
+fn compensate(sim: &Simulation) -> Record {
+    UnitCalibration::from(sim.calibration.clone())
+        .compensate(&Unit::paper(), &sim.record)
+        .unwrap()
+}
 
 /// The default site and rates with ideal, noiseless sensors, no vibration,
 /// constant temperature at the reference and an exact calibration.
@@ -109,7 +119,7 @@ fn sine_rectifies_through_anisoelastic_terms_as_d_a_squared_over_two() {
             "X1 sample {i}"
         );
     }
-    let compensated = sim.calibration.compensate(&sim.record);
+    let compensated = compensate(&sim);
     let left = mean(compensated.gyro(Channel::Z)) - earth_on(Channel::Z, &s);
     assert!(
         (left - analytic).abs() < 0.01 * analytic,
@@ -360,7 +370,7 @@ fn exact_calibration_compensates_a_quiet_record_to_earth_rate() {
     s.thermal.sensor_noise_c = 0.0;
     s.calibration_error = CalibrationError::none();
     let sim = simulate(&s).unwrap();
-    let comp = sim.calibration.compensate(&sim.record);
+    let comp = compensate(&sim);
     for c in Channel::ALL {
         let raw = sim.record.gyro(c)[0] - earth_on(c, &s);
         assert!(raw.abs() > 0.1, "{c} has errors to compensate");

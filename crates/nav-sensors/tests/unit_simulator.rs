@@ -270,23 +270,3 @@ fn written_files_read_back_in_the_units_own_units() {
         }
     }
 }
-
-#[test]
-fn unit_compensation_of_the_paper_unit_is_todays() {
-    let s = short("triaxial_hidden", 4.0);
-    let today = simulate(&s).unwrap();
-    let unit = simulate_unit(&Unit::paper(), &s).unwrap();
-    let a = today.calibration.compensate(&today.record);
-    let b = unit
-        .calibration
-        .compensate(&Unit::paper(), &unit.record)
-        .unwrap();
-    for k in 0..6 {
-        for (x, y) in a.gyro_at(k).iter().zip(b.gyro_at(k)) {
-            assert!((x - y).abs() < 1e-9, "{x} vs {y}");
-        }
-    }
-    for k in 0..3 {
-        assert_eq!(a.accel_at(k), b.accel_at(k));
-    }
-}

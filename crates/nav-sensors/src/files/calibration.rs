@@ -1,18 +1,17 @@
-//! The ground calibration handed to the user (JSON), and compensation of a
-//! record with it.
+//! The paper's ground calibration format (JSON): DTG tables by channel,
+//! accelerometer tables by axis. Compensation is the unit calibration's
+//! ([`UnitCalibration::compensate`]).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 pub use super::error::CalibrationFileError;
-use super::record::Record;
 pub use super::unit_calibration::{GyroCoefficients, UnitCalibration, UnitCalibrationError};
-use crate::accel::{AccelCoefficients, compensate_triad};
-use crate::dtg::{DtgCoefficients, DtgInput, DtgTerm, within_interval_covariance};
-use crate::geometry::{Axis, Channel, ChannelFrame, least_squares_rate};
+use crate::accel::AccelCoefficients;
+use crate::dtg::{DtgCoefficients, DtgTerm};
+use crate::geometry::{Axis, Channel};
 
 /// Ground-calibrated coefficients: per gyro channel the DTG terms that ground
 /// calibration determines (bias, scale factor, misalignment, g-sensitive,
@@ -141,94 +140,5 @@ impl Calibration {
     /// ```
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), CalibrationFileError> {
         super::io::save_calibration(self, path.as_ref())
-    }
-
-    /// Compensates a record with these coefficients, as a user can at the
-    /// 50-Hz output rate: first the accelerometers (static inverse, the
-    /// three axes jointly), then every gyro channel with the inverse DTG
-    /// model, using the compensated accelerations resolved into that
-    /// channel's (I, O, S) frame and the other-axis rates from the
-    /// least-squares rate of the six channels (two passes: raw, then
-    /// compensated). `temp` and `rect_2n` are not compensated (ground
-    /// calibration does not cover them). Extra columns pass through.
-    ///
-    /// ```
-    /// use nav_sensors::calibration::Calibration;
-    /// use nav_sensors::dtg::DtgCoefficients;
-    /// use nav_sensors::geometry::{ideal_outputs, Channel};
-    /// use nav_sensors::record::Record;
-    /// let w = nalgebra::Vector3::new(14.9, 0.0, 2.2);
-    /// let mut m = ideal_outputs(&w);
-    /// m[Channel::Z.index()] += 1.5 + 0.8 * 1.0; // bias + g_I·(1 g)
-    /// let gyro = std::array::from_fn(|k| vec![m[k]; 3]);
-    /// let rec = Record::new(vec![0.02, 0.04, 0.06], gyro, [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![]).unwrap();
-    /// let mut cal = Calibration::ideal();
-    /// cal.gyros.insert(Channel::Z, DtgCoefficients { bias_deg_h: 1.5, g_i_deg_h_g: 0.8, ..Default::default() });
-    /// let out = cal.compensate(&rec);
-    /// assert!((out.gyro(Channel::Z)[0] - 2.2).abs() < 1e-12);
-    /// ```
-    pub fn compensate(&self, record: &Record) -> Record {
-        let n = record.len();
-        let accel = self.compensate_accel(record);
-        let frames = ChannelFrame::all();
-        // The gyro output holds the interval mean of each g² product; the
-        // product of the accelerometers' interval means misses the
-        // within-interval covariance, estimated from neighbouring means.
-        let means: Vec<Vector3<f64>> = (0..n)
-            .map(|i| Vector3::new(accel[0][i], accel[1][i], accel[2][i]))
-            .collect();
-        let covariance = within_interval_covariance(&means);
-        let gyro_coefficients = Channel::ALL.map(|c| self.gyro(c));
-        let mut gyro: [Vec<f64>; 6] =
-            std::array::from_fn(|k| record.gyro(Channel::ALL[k]).to_vec());
-        for _pass in 0..2 {
-            let mut next: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(n));
-            for i in 0..n {
-                let current: [f64; 6] = std::array::from_fn(|k| gyro[k][i]);
-                let rate = least_squares_rate(&current);
-                let f = Vector3::new(accel[0][i], accel[1][i], accel[2][i]);
-                for (k, frame) in frames.iter().enumerate() {
-                    let x =
-                        DtgInput::resolved(frame, &rate, &f).with_covariance(frame, &covariance[i]);
-                    let measured = record.gyro(frame.channel)[i];
-                    next[k].push(gyro_coefficients[k].compensate_deg_h(measured, &x));
-                }
-            }
-            gyro = next;
-        }
-        record.with_gyro(gyro).with_accel(accel)
-    }
-
-    /// The accelerometer triad of `record` compensated (x, y, z, in g), as
-    /// [`Calibration::compensate`] gives it, without the gyros: what reads
-    /// only the specific force (the window's axes) need not pay for the
-    /// gyro model.
-    ///
-    /// ```
-    /// use nav_sensors::accel::AccelCoefficients;
-    /// use nav_sensors::calibration::Calibration;
-    /// use nav_sensors::geometry::Axis;
-    /// use nav_sensors::record::Record;
-    /// let rec = Record::new(vec![0.02, 0.04], std::array::from_fn(|_| vec![0.0; 2]),
-    ///     [vec![0.1; 2], vec![0.0; 2], vec![1.0; 2]], vec![]).unwrap();
-    /// let mut cal = Calibration::ideal();
-    /// cal.accels.insert(Axis::Z, AccelCoefficients { bias_ug: 500.0, ..Default::default() });
-    /// let full = cal.compensate(&rec);
-    /// let accel = cal.compensate_accel(&rec);
-    /// for a in Axis::ALL {
-    ///     assert_eq!(accel[a.index()], full.accel(a));
-    /// }
-    /// ```
-    pub fn compensate_accel(&self, record: &Record) -> [Vec<f64>; 3] {
-        let n = record.len();
-        let coefficients = Axis::ALL.map(|a| self.accel(a));
-        let mut accel: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(n));
-        for i in 0..n {
-            let a = compensate_triad(&coefficients, &record.accel_sample(i));
-            for k in 0..3 {
-                accel[k].push(a[k]);
-            }
-        }
-        accel
     }
 }

@@ -343,7 +343,6 @@ impl UnitCalibration {
     /// gyro outputs hold interval means of g² products) and the
     /// least-squares rate of all gyros (two passes: raw, then compensated).
     /// `temp` is not compensated (ground calibration does not cover it).
-    /// For the paper's unit this gives [`crate::calibration::Calibration::compensate`]'s numbers.
     ///
     /// ```
     /// use nav_sensors::calibration::{GyroCoefficients, UnitCalibration};
