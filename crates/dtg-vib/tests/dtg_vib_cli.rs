@@ -1121,7 +1121,9 @@ fn allan_json_has_the_contract_keys_and_after_is_what_compensate_writes() {
         comp.to_str().unwrap(),
     ]);
     let rec = nav_sensors::record::Record::read_csv(&comp).unwrap();
-    let y1 = rec.gyro(nav_sensors::geometry::Channel::Y1);
+    let y1 = rec
+        .gyro_named(nav_sensors::geometry::Channel::Y1.name())
+        .unwrap();
     let factors: Vec<usize> = (0..9).map(|k| 1 << k).collect();
     let expected = nav_sensors::noise::overlapping_adev(y1, 0.02, &factors).unwrap();
     let got = with["channels"][3]["adev_after"].as_array().unwrap();

@@ -136,11 +136,10 @@ fn outside_record() -> &'static Path {
     static P: OnceLock<PathBuf> = OnceLock::new();
     P.get_or_init(|| {
         let rec = record();
-        let mut acc: [Vec<f64>; 3] =
-            std::array::from_fn(|k| rec.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec());
+        let mut acc: Vec<Vec<f64>> = (0..3).map(|k| rec.accel_at(k).to_vec()).collect();
         acc[0][2000..3500].iter_mut().for_each(|v| *v += 2.0);
         let p = dir().join("outside.csv");
-        rec.with_accel(acc).write_csv(&p).unwrap();
+        rec.with_accel_series(acc).write_csv(&p).unwrap();
         p
     })
 }
@@ -154,8 +153,7 @@ fn other_shape_record() -> &'static Path {
     static P: OnceLock<PathBuf> = OnceLock::new();
     P.get_or_init(|| {
         let rec = record();
-        let mut acc: [Vec<f64>; 3] =
-            std::array::from_fn(|k| rec.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec());
+        let mut acc: Vec<Vec<f64>> = (0..3).map(|k| rec.accel_at(k).to_vec()).collect();
         for a in acc.iter_mut() {
             let part = &mut a[3000..4500];
             let n = part.len() as f64;
@@ -174,7 +172,7 @@ fn other_shape_record() -> &'static Path {
             }
         }
         let p = dir().join("other-shape.csv");
-        rec.with_accel(acc).write_csv(&p).unwrap();
+        rec.with_accel_series(acc).write_csv(&p).unwrap();
         p
     })
 }
@@ -342,17 +340,18 @@ fn a_causal_model_never_looks_ahead() {
     let model = load(rich());
     let rec = record();
     let n = 3000;
-    let mut acc: [Vec<f64>; 3] =
-        std::array::from_fn(|k| rec.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec());
+    let mut acc: Vec<Vec<f64>> = (0..3).map(|k| rec.accel_at(k).to_vec()).collect();
     for a in acc.iter_mut() {
         a[n..].iter_mut().for_each(|v| *v += 0.3);
     }
-    let gyro: [Vec<f64>; 6] = std::array::from_fn(|k| {
-        let mut g = rec.gyro(Channel::ALL[k]).to_vec();
-        g[n..].iter_mut().for_each(|v| *v -= 5.0);
-        g
-    });
-    let changed = rec.with_accel(acc).with_gyro(gyro);
+    let gyro: Vec<Vec<f64>> = (0..6)
+        .map(|k| {
+            let mut g = rec.gyro_at(k).to_vec();
+            g[n..].iter_mut().for_each(|v| *v -= 5.0);
+            g
+        })
+        .collect();
+    let changed = rec.with_accel_series(acc).with_gyro_series(gyro);
     let prepare = |r: &Record| model.inner().prepare(&to_signals(r).unwrap()).unwrap();
     let (p0, p1) = (prepare(&rec), prepare(&changed));
     let (a, b) = (

@@ -79,8 +79,8 @@ fn records_that_differ_are_refused_with_both_names() {
     let mut cols = vec![];
     let b = Record::new(
         a.t().to_vec(),
-        std::array::from_fn(|k| a.gyro(Channel::ALL[k]).to_vec()),
-        std::array::from_fn(|k| a.accel(nav_sensors::geometry::Axis::ALL[k]).to_vec()),
+        std::array::from_fn(|k| a.gyro_at(k).to_vec()),
+        std::array::from_fn(|k| a.accel_at(k).to_vec()),
         {
             cols.push(("pressure_hpa".to_string(), vec![1013.0; a.len()]));
             cols

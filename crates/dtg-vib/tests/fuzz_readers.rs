@@ -249,10 +249,12 @@ fn record_bounded(r: &Record) -> bool {
             .all(|x| x.is_finite() && x.abs() <= tabular::MAX_MAGNITUDE)
     };
     ok(r.t())
-        && Channel::ALL.iter().all(|&c| ok(r.gyro(c)))
+        && Channel::ALL
+            .iter()
+            .all(|&c| ok(r.gyro_named(c.name()).unwrap()))
         && nav_sensors::geometry::Axis::ALL
             .iter()
-            .all(|&a| ok(r.accel(a)))
+            .all(|&a| ok(r.accel_named(a.column()).unwrap()))
         && r.extra_names().iter().all(|n| ok(r.extra(n).unwrap()))
 }
 

@@ -8,7 +8,8 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use nav_sensors::sim::{Scenario, simulate};
+use nav_sensors::sim::{Scenario, simulate_unit};
+use nav_sensors::unit::Unit;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("simulate");
@@ -16,14 +17,14 @@ fn bench(c: &mut Criterion) {
     for name in Scenario::BUILTIN {
         let scenario = Scenario::builtin(name).expect("built-in");
         group.bench_function(name, |b| {
-            b.iter(|| simulate(black_box(&scenario)).expect("simulates"))
+            b.iter(|| simulate_unit(&Unit::paper(), black_box(&scenario)).expect("simulates"))
         });
     }
     let scenario = Scenario::default();
     let dir = std::env::temp_dir().join("nav-sensors-bench");
     group.bench_function("paper_z_random+write_dir", |b| {
         b.iter(|| {
-            simulate(black_box(&scenario))
+            simulate_unit(&Unit::paper(), black_box(&scenario))
                 .expect("simulates")
                 .write_dir(&dir)
                 .expect("writes")

@@ -8,11 +8,8 @@
 
 use std::time::Instant;
 
-use nav_sensors::calibration::UnitCalibration;
-use nav_sensors::geometry::{Channel, Residue};
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Scenario, Simulation, simulate};
-use nav_sensors::truth::Truth;
+use nav_sensors::sim::{Scenario, UnitSimulation, UnitTruth, simulate_unit};
 use nav_sensors::unit::Unit;
 
 use stats::{rms, std_dev};
@@ -26,7 +23,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => Scenario::load(&arg)?,
     };
     let start = Instant::now();
-    let sim = simulate(&scenario)?;
+    let paper = Unit::paper();
+    let sim = simulate_unit(&paper, &scenario)?;
     println!(
         "{}: simulated {} s in {:.3} s",
         scenario.name,
@@ -38,15 +36,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("wrote {dir}");
     }
     print_channels(&sim.truth);
-    let compensated =
-        UnitCalibration::from(sim.calibration.clone()).compensate(&Unit::paper(), &sim.record)?;
+    let compensated = sim.calibration.compensate(&paper, &sim.record)?;
     print_residues(&sim, &compensated);
-    let az = sim.record.accel(nav_sensors::record::Axis::Z);
+    let az = sim.record.accel_named("az").expect("the paper's az");
     for w in [50usize, 250] {
         window_proxy(&sim, &variance_feature(az, w), w);
     }
     for w in [50usize, 250] {
-        blocked_split_proxy(&compensated, &variance_feature(az, w), w);
+        blocked_split_proxy(&paper, &compensated, &variance_feature(az, w), w);
     }
     for h in &sim.truth.hidden {
         println!(
@@ -58,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// Per channel the error budget of the truth.
-fn print_channels(t: &Truth) {
+fn print_channels(t: &UnitTruth) {
     println!(
         "\n{:<4} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8}  collinear",
         "ch",
@@ -72,8 +69,7 @@ fn print_channels(t: &Truth) {
         "calerr",
         "after"
     );
-    for c in Channel::ALL {
-        let ct = &t.channels[&c];
+    for ct in &t.channels {
         let pairs: Vec<String> = ct
             .collinear
             .iter()
@@ -81,7 +77,7 @@ fn print_channels(t: &Truth) {
             .collect();
         println!(
             "{:<4} {:>7.3} {:>7.3} {:>7.3} {:>7.3} {:>8.3} {:>8.3} {:>8.3} {:>8.4} {:>8.3}  {}",
-            c.name(),
+            ct.channel,
             ct.noise_floor_deg_h,
             ct.level_only_noise_floor_deg_h,
             ct.noise_rms_deg_h,
@@ -97,25 +93,23 @@ fn print_channels(t: &Truth) {
 }
 
 /// Per residue the raw, calibrated and true-compensation levels against its floor.
-fn print_residues(sim: &Simulation, compensated: &Record) {
+fn print_residues(sim: &UnitSimulation, compensated: &Record) {
     let t = &sim.truth;
-    let paper = Unit::paper();
-    let raw = sim.record.unit_residues(&paper);
-    let comp = compensated.unit_residues(&paper);
+    let raw = sim.record.unit_residues(&sim.unit);
+    let comp = compensated.unit_residues(&sim.unit);
     println!(
         "\n{:<3} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "K", "raw std", "cal rms", "cal std", "true rms", "floor", "rms/floor"
     );
-    for r in Residue::ALL {
-        let k = r.index();
-        let floor = t.residue_noise_floor_deg_h[&r];
+    for (k, r) in sim.unit.residue_names().iter().enumerate() {
+        let floor = t.residue_noise_floor_deg_h[r];
         println!(
             "{:<3} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>9.2}",
-            r.name(),
+            r,
             std_dev(&raw[k]),
             rms(&comp[k]),
             std_dev(&comp[k]),
-            t.residue_after_true_compensation_rms_deg_h[&r],
+            t.residue_after_true_compensation_rms_deg_h[r],
             floor,
             rms(&comp[k]) / floor
         );
@@ -148,10 +142,10 @@ fn line(feat: &[f64], y: &[f64]) -> (f64, f64, f64) {
 
 /// A proxy of what a windowed model can do: fit each channel's
 /// unmodelled + noise series by a + b·var(az) over the last `w` samples.
-fn window_proxy(sim: &Simulation, feat: &[f64], w: usize) {
+fn window_proxy(sim: &UnitSimulation, feat: &[f64], w: usize) {
     let n = feat.len();
     println!("\nwindow proxy (a + b*var(az over {w} samples)):");
-    for c in Channel::ALL {
+    for c in sim.unit.gyro_names() {
         let y: Vec<f64> = (0..n)
             .map(|i| {
                 sim.components.get(&format!("{c}_unmodelled")).unwrap()[i]
@@ -176,7 +170,7 @@ fn window_proxy(sim: &Simulation, feat: &[f64], w: usize) {
 /// The same proxy on the paper's procedure: fit on the first 70% of the
 /// ground-calibration-compensated record (blocked split), predict the
 /// last 30%, and compare the residues' rms there before and after.
-fn blocked_split_proxy(compensated: &Record, feat: &[f64], w: usize) {
+fn blocked_split_proxy(paper: &Unit, compensated: &Record, feat: &[f64], w: usize) {
     let n = feat.len();
     let split = n * 7 / 10;
     let corrected: Vec<Vec<f64>> = (0..compensated.gyro_names().len())
@@ -186,18 +180,16 @@ fn blocked_split_proxy(compensated: &Record, feat: &[f64], w: usize) {
             (0..n).map(|i| y[i] - my - b * (feat[i] - mf)).collect()
         })
         .collect();
-    let paper = Unit::paper();
-    let before = compensated.unit_residues(&paper);
-    let after = compensated
-        .with_gyro_series(corrected)
-        .unit_residues(&paper);
-    let factors: Vec<String> = Residue::ALL
+    let before = compensated.unit_residues(paper);
+    let after = compensated.with_gyro_series(corrected).unit_residues(paper);
+    let factors: Vec<String> = paper
+        .residue_names()
         .iter()
-        .map(|r| {
-            let k = r.index();
+        .enumerate()
+        .map(|(k, r)| {
             format!(
                 "{} {:.2}",
-                r.name(),
+                r,
                 rms(&before[k][split..]) / rms(&after[k][split..])
             )
         })

@@ -13,7 +13,8 @@
 //! - [`vibration`]: PSD tables, synthesis, schedules, Welch PSD;
 //! - [`noise`]: Allan deviation and the IEEE Std 952 noise terms read from it;
 //! - [`sim`]: scenarios and the shaker-test simulator;
-//! - [`record`], [`calibration`], [`truth`]: the files a test produces;
+//! - [`record`], [`calibration`]: the files a test produces (the truth is
+//!   [`sim::UnitTruth`]);
 //! - [`regressors`]: what the physics makes of a record of any unit
 //!   (specific force, term regressors, parity residues);
 //! - [`signal`]: the second-order sections the sensor dynamics use.
@@ -53,4 +54,3 @@ pub mod unit;
 pub mod vibration;
 
 pub use files::{calibration, record};
-pub use sim::truth;

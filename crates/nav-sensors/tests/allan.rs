@@ -6,8 +6,14 @@ use nav_sensors::accel::AccelNoise;
 use nav_sensors::dtg::DtgNoise;
 use nav_sensors::geometry::{Channel, Residue, residues};
 use nav_sensors::noise::{AllanCurve, NoiseTerms, overlapping_adev};
-use nav_sensors::sim::{CalibrationError, Scenario, simulate};
+use nav_sensors::sim::{CalibrationError, Scenario, SimError, UnitSimulation, simulate_unit};
+use nav_sensors::unit::Unit;
 use nav_sensors::vibration::VibrationConfig;
+
+/// The paper's unit simulated on `s`.
+fn simulate(s: &Scenario) -> Result<UnitSimulation, SimError> {
+    simulate_unit(&Unit::paper(), s)
+}
 
 /// The default unit (every deterministic term, the presets' noise) on a
 /// shaker that stays off, so the gyros read a constant plus their noise.
@@ -37,7 +43,7 @@ fn simulated_angle_random_walk_is_recovered_within_ten_percent() {
     let sim = simulate(&quiet(200.0, s.gyros.noise)).unwrap();
     let r = &sim.record;
     for c in Channel::ALL {
-        let curve = AllanCurve::octaves(r.gyro(c), r.dt(), 0.683).unwrap();
+        let curve = AllanCurve::octaves(r.gyro_named(c.name()).unwrap(), r.dt(), 0.683).unwrap();
         let arw = NoiseTerms::fit(&curve).arw;
         let e = arw.estimate().unwrap_or_else(|| panic!("{c}: {arw:?}"));
         assert!((e.value / truth - 1.0).abs() < 0.1, "{c}: {e:?} vs {truth}");
@@ -45,7 +51,10 @@ fn simulated_angle_random_walk_is_recovered_within_ten_percent() {
     }
     let mut k: [Vec<f64>; 6] = Default::default();
     for i in 0..r.len() {
-        for (series, v) in k.iter_mut().zip(residues(&r.gyro_sample(i))) {
+        for (series, v) in k
+            .iter_mut()
+            .zip(residues(&r.gyro_row(i).try_into().unwrap()))
+        {
             series.push(v);
         }
     }
@@ -79,11 +88,11 @@ fn simulated_rate_random_walk_rises_as_root_tau_over_three() {
     let factors = [1, 4, 16, 64];
     let mut pooled = [0.0; 4];
     for c in Channel::ALL {
-        let adev = overlapping_adev(r.gyro(c), r.dt(), &factors).unwrap();
+        let adev = overlapping_adev(r.gyro_named(c.name()).unwrap(), r.dt(), &factors).unwrap();
         for (p, a) in pooled.iter_mut().zip(adev) {
             *p += a * a / 6.0;
         }
-        let curve = AllanCurve::octaves(r.gyro(c), r.dt(), 0.683).unwrap();
+        let curve = AllanCurve::octaves(r.gyro_named(c.name()).unwrap(), r.dt(), 0.683).unwrap();
         let rrw = NoiseTerms::fit(&curve).rrw;
         let e = rrw.estimate().unwrap_or_else(|| panic!("{c}: {rrw:?}"));
         assert!((e.value / k - 1.0).abs() < 0.2, "{c}: {e:?}");
@@ -123,7 +132,7 @@ fn gauss_markov_bias_peaks_where_the_closed_form_says() {
     let factors = [25, 50, 100, 200];
     let mut pooled = [0.0; 4];
     for c in Channel::ALL {
-        let adev = overlapping_adev(r.gyro(c), r.dt(), &factors).unwrap();
+        let adev = overlapping_adev(r.gyro_named(c.name()).unwrap(), r.dt(), &factors).unwrap();
         for (p, a) in pooled.iter_mut().zip(adev) {
             *p += a * a / 6.0;
         }

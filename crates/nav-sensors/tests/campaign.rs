@@ -3,9 +3,14 @@
 //! and varies the rates the gyros see.
 
 use nav_sensors::geometry::{Axis, Channel};
-use nav_sensors::sim::{Scenario, simulate};
-use nav_sensors::truth::Truth;
+use nav_sensors::sim::{Scenario, SimError, UnitSimulation, UnitTruth, simulate_unit};
+use nav_sensors::unit::Unit;
 use stats::{mean, std_dev};
+
+/// The paper's unit simulated on `s`.
+fn simulate(s: &Scenario) -> Result<UnitSimulation, SimError> {
+    simulate_unit(&Unit::paper(), s)
+}
 
 #[test]
 fn every_builtin_simulates_and_writes_its_truth() {
@@ -22,14 +27,18 @@ fn every_builtin_simulates_and_writes_its_truth() {
         let out = dir.join(name);
         sim.write_dir(&out).unwrap();
         let text = std::fs::read_to_string(out.join("truth.json")).unwrap();
-        let truth: Truth = serde_json::from_str(&text).unwrap();
+        // The paper's truth file (no `unit` key) reads as the unit's truth.
+        let top: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(top.get("unit").is_none(), "{name}");
+        let truth = UnitTruth::from_json(&text, "truth.json").unwrap();
         // JSON keeps the numbers to rounding, the scenario exactly.
         assert_eq!(truth.scenario, sim.truth.scenario, "{name}");
-        for (c, ch) in &truth.channels {
-            let want = sim.truth.channels[c].noise_floor_deg_h;
+        for (ch, want) in truth.channels.iter().zip(&sim.truth.channels) {
+            let want = want.noise_floor_deg_h;
             assert!(
                 (ch.noise_floor_deg_h - want).abs() <= 1e-12 * want,
-                "{name} {c}"
+                "{name} {}",
+                ch.channel
             );
         }
         assert!(out.join("record.csv").is_file() && out.join("calibration.json").is_file());
@@ -51,7 +60,7 @@ fn campaign_runs_drive_their_own_axis() {
             ..Scenario::builtin(name).unwrap()
         };
         let sim = simulate(&s).unwrap();
-        let tail = |a: Axis| std_dev(&sim.record.accel(a)[32 * 50..]);
+        let tail = |a: Axis| std_dev(&sim.record.accel_named(a.column()).unwrap()[32 * 50..]);
         let driven = tail(axis);
         for other in Axis::ALL.into_iter().filter(|&a| a != axis) {
             assert!(
@@ -61,7 +70,7 @@ fn campaign_runs_drive_their_own_axis() {
             );
         }
         // The unit stands z up on every shaker run.
-        assert!((mean(sim.record.accel(Axis::Z)) - 1.0).abs() < 0.01);
+        assert!((mean(sim.record.accel_named(Axis::Z.column()).unwrap()) - 1.0).abs() < 0.01);
     }
 }
 
@@ -72,9 +81,9 @@ fn flight_moves_gravity_among_the_axes_and_varies_the_rates() {
     assert!(s.duration_s >= 600.0, "at least 10 minutes");
     let sim = simulate(&s).unwrap();
     let rec = &sim.record;
-    let ax = rec.accel(Axis::X);
-    let ay = rec.accel(Axis::Y);
-    let az = rec.accel(Axis::Z);
+    let ax = rec.accel_named(Axis::X.column()).unwrap();
+    let ay = rec.accel_named(Axis::Y.column()).unwrap();
+    let az = rec.accel_named(Axis::Z.column()).unwrap();
     // One-second means, to look through the vibration.
     let secs = |x: &[f64]| -> Vec<f64> { x.chunks(50).map(mean).collect() };
     let (mx, my, mz) = (secs(ax), secs(ay), secs(az));
@@ -112,7 +121,7 @@ fn flight_moves_gravity_among_the_axes_and_varies_the_rates() {
     // The rates vary: a gyro's one-second means move by deg/s in the
     // S-turns, by little more than its drift noise in steady cruise.
     for c in Channel::ALL {
-        let g = secs(rec.gyro(c));
+        let g = secs(rec.gyro_named(c.name()).unwrap());
         let spread = std_dev(&g[545..630]);
         assert!(
             spread > 1000.0,

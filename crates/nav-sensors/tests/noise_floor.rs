@@ -7,9 +7,15 @@ use nalgebra::{DMatrix, DVector};
 use nav_sensors::geometry::Channel;
 use nav_sensors::record::Axis;
 use nav_sensors::signal::LowPass;
-use nav_sensors::sim::{Scenario, Simulation, simulate};
+use nav_sensors::sim::{Scenario, SimError, UnitSimulation, simulate_unit};
+use nav_sensors::unit::Unit;
 
 use stats::{rms, std_dev};
+
+/// The paper's unit simulated on `s`.
+fn simulate(s: &Scenario) -> Result<UnitSimulation, SimError> {
+    simulate_unit(&Unit::paper(), s)
+}
 
 /// 4th-order Butterworth low-pass at `fc`, run forward then backward (zero
 /// phase, 8th-order magnitude), the ends extended by odd reflection.
@@ -40,11 +46,11 @@ fn filtfilt_passes_slow_signals_and_stops_fast_ones() {
 /// columns. This contains every true term's regressor at 50 Hz (linear and
 /// lag-0 products) and, jointly over the axes, more than the simulator's
 /// floor uses.
-fn oracle_design(sim: &Simulation) -> Vec<Vec<f64>> {
+fn oracle_design(sim: &UnitSimulation) -> Vec<Vec<f64>> {
     let n = sim.record.len();
     let mut lagged = Vec::new();
     for axis in [Axis::X, Axis::Y, Axis::Z] {
-        let a = sim.record.accel(axis);
+        let a = sim.record.accel_named(axis.column()).unwrap();
         let m = a.iter().sum::<f64>() / n as f64;
         for p in -3i64..=3 {
             let col: Vec<f64> = (0..n as i64)
@@ -139,7 +145,7 @@ fn floor_is_not_above_what_a_linear_model_of_the_accelerations_leaves() {
             .collect();
         let floor = get(&format!("{c}_floor"));
         let level_only: Vec<f64> = (0..n).map(|i| y[i] - expected[i]).collect();
-        let ct = &sim.truth.channels[&c];
+        let ct = &sim.truth.channels[c.index()];
         assert!((std_dev(&floor) - ct.noise_floor_deg_h).abs() < 1e-12);
         assert!((std_dev(&level_only) - ct.level_only_noise_floor_deg_h).abs() < 1e-12);
 
@@ -196,13 +202,15 @@ fn floor_is_not_above_what_a_linear_model_of_the_accelerations_leaves() {
 #[test]
 fn floor_moves_only_where_the_record_reveals_the_motion() {
     let z = simulate(&Scenario::default()).unwrap();
-    for (c, ct) in &z.truth.channels {
+    for ct in &z.truth.channels {
+        let c = &ct.channel;
         let r = ct.noise_floor_deg_h / ct.level_only_noise_floor_deg_h;
         assert!((0.97..=1.0).contains(&r), "{c}: {r}");
         assert!(ct.predictable_rms_deg_h > 0.9 * ct.rectification_expected_rms_deg_h);
     }
     let tri = simulate(&Scenario::triaxial_hidden()).unwrap();
-    for (c, ct) in &tri.truth.channels {
+    for ct in &tri.truth.channels {
+        let c = &ct.channel;
         assert!(
             ct.noise_floor_deg_h < ct.level_only_noise_floor_deg_h,
             "{c}"

@@ -1,23 +1,35 @@
 //! The simulator's physics and files, tested through the public API.
 
 use nav_sensors::accel::{AccelCoefficients, AccelNoise};
-use nav_sensors::calibration::UnitCalibration;
+use nav_sensors::calibration::GyroCoefficients;
 use nav_sensors::dtg::{DtgCoefficients, DtgNoise, DtgTerm};
 use nav_sensors::geometry::{Channel, ChannelFrame, residues};
 use nav_sensors::record::Axis;
 use nav_sensors::record::Record;
 use nav_sensors::sim::{
-    CalibrationError, HiddenEffect, Scenario, ScenarioError, SimError, Simulation, simulate,
+    CalibrationError, HiddenEffect, Scenario, ScenarioError, SimError, UnitSimulation,
+    simulate_unit,
 };
 use nav_sensors::unit::Unit;
 use nav_sensors::vibration::{Drive, LevelSchedule, PsdTable, Segment, VibrationConfig};
 use stats::mean;
 
+/// The paper's unit simulated on `s`.
+fn simulate(s: &Scenario) -> Result<UnitSimulation, SimError> {
+    simulate_unit(&Unit::paper(), s)
+}
+
 /// The record compensated with the simulation's ground calibration.
-fn compensate(sim: &Simulation) -> Record {
-    UnitCalibration::from(sim.calibration.clone())
-        .compensate(&Unit::paper(), &sim.record)
-        .unwrap()
+fn compensate(sim: &UnitSimulation) -> Record {
+    sim.calibration.compensate(&sim.unit, &sim.record).unwrap()
+}
+
+/// The ground calibration's DTG table of a channel.
+fn calibrated(sim: &UnitSimulation, channel: &str) -> DtgCoefficients {
+    match sim.calibration.gyros[channel] {
+        GyroCoefficients::Dtg(t) => t,
+        GyroCoefficients::Rate(_) => panic!("{channel} is a DTG channel"),
+    }
 }
 
 /// The default site and rates with ideal, noiseless sensors, no vibration,
@@ -62,21 +74,21 @@ fn ideal_stationary_unit_reads_earth_rate_and_one_g_with_zero_residues() {
     let sim = simulate(&s).unwrap();
     let r = &sim.record;
     for c in Channel::ALL {
-        for v in r.gyro(c) {
+        for v in r.gyro_named(c.name()).unwrap() {
             assert!((v - earth_on(c, &s)).abs() < 1e-9, "{c}: {v}");
         }
     }
     for i in 0..r.len() {
-        assert!((r.accel(Axis::Z)[i] - 1.0).abs() < 1e-12);
-        assert!(r.accel(Axis::X)[i].abs() < 1e-12);
-        for k in residues(&r.gyro_sample(i)) {
+        assert!((r.accel_named(Axis::Z.column()).unwrap()[i] - 1.0).abs() < 1e-12);
+        assert!(r.accel_named(Axis::X.column()).unwrap()[i].abs() < 1e-12);
+        for k in residues(&r.gyro_row(i).try_into().unwrap()) {
             assert!(k.abs() < 1e-9);
         }
     }
     // x north, z up at 8.5° N: Ω·cos φ on X, Ω·sin φ on Z.
     let lat = 8.5f64.to_radians();
-    assert!((r.gyro(Channel::X)[0] - 15.041067 * lat.cos()).abs() < 1e-6);
-    assert!((r.gyro(Channel::Z)[0] - 15.041067 * lat.sin()).abs() < 1e-6);
+    assert!((r.gyro_named(Channel::X.name()).unwrap()[0] - 15.041067 * lat.cos()).abs() < 1e-6);
+    assert!((r.gyro_named(Channel::Z.name()).unwrap()[0] - 15.041067 * lat.sin()).abs() < 1e-6);
 }
 
 /// Sine vibration of amplitude A on an anisoelastic coefficient D: the
@@ -105,8 +117,8 @@ fn sine_rectifies_through_anisoelastic_terms_as_d_a_squared_over_two() {
     );
     let sim = simulate(&s).unwrap();
     let analytic = d * amp * amp / 2.0;
-    let z = sim.record.gyro(Channel::Z);
-    let x1 = sim.record.gyro(Channel::X1);
+    let z = sim.record.gyro_named(Channel::Z.name()).unwrap();
+    let x1 = sim.record.gyro_named(Channel::X1.name()).unwrap();
     for i in 0..sim.record.len() {
         let drift_z = z[i] - earth_on(Channel::Z, &s) - d; // d·1 g² from gravity
         assert!(
@@ -120,7 +132,7 @@ fn sine_rectifies_through_anisoelastic_terms_as_d_a_squared_over_two() {
         );
     }
     let compensated = compensate(&sim);
-    let left = mean(compensated.gyro(Channel::Z)) - earth_on(Channel::Z, &s);
+    let left = mean(compensated.gyro_named(Channel::Z.name()).unwrap()) - earth_on(Channel::Z, &s);
     assert!(
         (left - analytic).abs() < 0.01 * analytic,
         "compensation left {left}"
@@ -140,7 +152,8 @@ fn non_commensurate_sine_rectifies_to_the_same_mean() {
         },
     );
     let sim = simulate(&s).unwrap();
-    let drift = mean(sim.record.gyro(Channel::Z)) - earth_on(Channel::Z, &s) - d;
+    let drift =
+        mean(sim.record.gyro_named(Channel::Z.name()).unwrap()) - earth_on(Channel::Z, &s) - d;
     let analytic = d * amp * amp / 2.0;
     assert!(
         (drift - analytic).abs() < 0.01 * analytic,
@@ -184,7 +197,7 @@ fn angular_vibration_rectifies_through_2n_and_anisoinertia() {
     let (wx, wy) = ((rx * v).to_degrees(), (ry * v).to_degrees());
     let h = std::f64::consts::FRAC_1_SQRT_2;
     // Skip the first 0.2 s: the 2N band-pass (Q = 10) settles in ~10 ms.
-    let tail = |c: Channel| mean(&sim.record.gyro(c)[10..]) - earth_on(c, &s);
+    let tail = |c: Channel| mean(&sim.record.gyro_named(c.name()).unwrap()[10..]) - earth_on(c, &s);
     let rect = tail(Channel::X);
     let expect = k2n * wx * wx / 2.0;
     assert!(
@@ -230,8 +243,9 @@ fn accelerometer_k2_rectifies_random_vibration_into_k2_sigma_squared() {
     // square. (A plain mean of az would also hold the servo loop's end
     // transient, group delay × last sample / N ≈ 30 µg here; the loop is
     // linear, so it cancels in the difference.)
-    let shift_ug =
-        (mean(with_k2.record.accel(Axis::Z)) - mean(without.record.accel(Axis::Z))) * 1e6;
+    let shift_ug = (mean(with_k2.record.accel_named(Axis::Z.column()).unwrap())
+        - mean(without.record.accel_named(Axis::Z.column()).unwrap()))
+        * 1e6;
     let expect_ug = k2 * (1.0 + psd.grms().powi(2));
     // 1%: the realised variance matches the table's to < 0.01%.
     assert!(
@@ -283,7 +297,7 @@ fn default_vibration_error_dominates_the_floor_and_follows_the_level() {
     let sim = simulate(&Scenario::default()).unwrap();
     let t = sim.record.t();
     for c in Channel::ALL {
-        let ct = &sim.truth.channels[&c];
+        let ct = &sim.truth.channels[c.index()];
         let ratio = ct.rectification_expected_rms_deg_h / ct.noise_floor_deg_h;
         assert!(ratio > 4.0, "{c}: expected/floor {ratio}");
         assert!(ct.noise_floor_deg_h > ct.noise_rms_deg_h);
@@ -302,18 +316,19 @@ fn default_vibration_error_dominates_the_floor_and_follows_the_level() {
         assert!((r - 4.0).abs() < 0.4, "{c}: 0 dB / −6 dB = {r}");
     }
     // Under a single-axis Z drive, channel X's a_O and a_S both follow a_z.
-    let x = &sim.truth.channels[&Channel::X];
+    let x = &sim.truth.channels[Channel::X.index()];
     assert!(
         x.collinear
             .iter()
-            .any(|p| p.a == DtgTerm::GO && p.b == DtgTerm::GS)
+            .any(|p| p.a == DtgTerm::GO.id() && p.b == DtgTerm::GS.id())
     );
 }
 
 #[test]
 fn triaxial_scenarios_hide_what_they_say_and_nothing_else() {
     let clean = simulate(&Scenario::triaxial_clean()).unwrap();
-    for (c, ct) in &clean.truth.channels {
+    for ct in &clean.truth.channels {
+        let c = &ct.channel;
         assert!(ct.collinear.is_empty(), "{c}: {:?}", ct.collinear);
         assert!(
             ct.calibration_error_rms_deg_h < 0.05 * ct.noise_floor_deg_h,
@@ -326,7 +341,8 @@ fn triaxial_scenarios_hide_what_they_say_and_nothing_else() {
     let hidden = simulate(&Scenario::triaxial_hidden()).unwrap();
     assert_eq!(hidden.truth.hidden.len(), 2);
     for h in &hidden.truth.hidden {
-        assert_eq!(hidden.calibration.gyro(h.channel).get(h.term), 0.0);
+        let term: DtgTerm = h.term.parse().unwrap();
+        assert_eq!(calibrated(&hidden, &h.channel).get(term), 0.0);
         assert!(h.coefficient != 0.0);
         // Visible but not trivially so: 7.2× on Y1 (gg_IS), 5.3× on Z
         // (temp) against floors that condition on the 50-Hz accelerations.
@@ -350,7 +366,7 @@ fn noise_floor_of_a_quiet_unit_is_the_angle_random_walk() {
     let sim = simulate(&s).unwrap();
     let expect = 60.0 * 0.001 / 0.02f64.sqrt();
     for c in Channel::ALL {
-        let f = sim.truth.noise_floor_deg_h(c);
+        let f = sim.truth.channels[c.index()].noise_floor_deg_h;
         // 2000 samples: the sample standard deviation is within ±5% with
         // probability > 0.99.
         assert!((f / expect - 1.0).abs() < 0.05, "{c}: {f} vs {expect}");
@@ -372,13 +388,13 @@ fn exact_calibration_compensates_a_quiet_record_to_earth_rate() {
     let sim = simulate(&s).unwrap();
     let comp = compensate(&sim);
     for c in Channel::ALL {
-        let raw = sim.record.gyro(c)[0] - earth_on(c, &s);
+        let raw = sim.record.gyro_named(c.name()).unwrap()[0] - earth_on(c, &s);
         assert!(raw.abs() > 0.1, "{c} has errors to compensate");
-        for v in comp.gyro(c) {
+        for v in comp.gyro_named(c.name()).unwrap() {
             assert!((v - earth_on(c, &s)).abs() < 1e-6, "{c}: {v}");
         }
     }
-    for v in comp.accel(Axis::Z) {
+    for v in comp.accel_named(Axis::Z.column()).unwrap() {
         assert!((v - 1.0).abs() < 1e-12);
     }
 }
@@ -446,7 +462,7 @@ fn formats_doc_example_parses_and_simulates() {
     let sim = simulate(&s).unwrap();
     assert_eq!(sim.record.len(), 500);
     assert_eq!(sim.truth.hidden.len(), 1);
-    assert_eq!(sim.calibration.gyro(Channel::Y1).gg_is_deg_h_g2, 0.0);
+    assert_eq!(calibrated(&sim, "Y1").gg_is_deg_h_g2, 0.0);
 }
 
 /// Pulse quantisation: every output is a whole number of pulses per
@@ -463,7 +479,13 @@ fn pulse_quantisation_carries_the_remainder() {
     let lsb_deg_h = q_arcsec / 0.02; // one pulse per interval, deg/h
     for c in Channel::ALL {
         let (mut a, mut b) = (0.0, 0.0);
-        for (e, q) in exact.record.gyro(c).iter().zip(quant.record.gyro(c)) {
+        for (e, q) in exact
+            .record
+            .gyro_named(c.name())
+            .unwrap()
+            .iter()
+            .zip(quant.record.gyro_named(c.name()).unwrap())
+        {
             let pulses = q / lsb_deg_h;
             assert!((pulses - pulses.round()).abs() < 1e-6, "{c}: {q}");
             a += e;
@@ -479,8 +501,7 @@ fn pulse_quantisation_carries_the_remainder() {
     // quantisation noise shows in the truth's sensor-noise part. (On Y, with
     // no Earth rate, the angle may never leave the first pulse: then the
     // output is exactly the true zero rate, and so is its noise.)
-    let noise =
-        |sim: &nav_sensors::sim::Simulation| sim.truth.channels[&Channel::X].noise_rms_deg_h;
+    let noise = |sim: &UnitSimulation| sim.truth.channels[Channel::X.index()].noise_rms_deg_h;
     assert!(noise(&quant) > 5.0 * noise(&exact));
 }
 

@@ -7,7 +7,7 @@
 use nav_sensors::calibration::{GyroCoefficients, UnitCalibration};
 use nav_sensors::rate::RateCoefficients;
 use nav_sensors::record::Record;
-use nav_sensors::sim::{Scenario, UnitTruth, simulate, simulate_unit};
+use nav_sensors::sim::{Scenario, simulate_unit};
 use nav_sensors::unit::Unit;
 
 const SCENARIOS: [&str; 9] = [
@@ -29,47 +29,31 @@ fn short(name: &str, seconds: f64) -> Scenario {
     }
 }
 
-/// `simulate` is `simulate_unit(paper)` in the paper's types: the
-/// calibration and truth converted to the paper's formats read back as the
-/// unit's bit for bit (every field), the record and components are the
-/// same, and the paper unit's files are the paper's (`components.csv`, no
-/// `unit.toml`), its record CSV byte for byte.
+/// The paper's unit writes the paper's files (`components.csv`, no
+/// `unit.toml`), and they are the files dtg-vib 5b6a72d wrote for the same
+/// scenario, byte for byte (`crates/dtg-vib/tests/fixtures/legacy/paper`,
+/// its README says how they were made).
 #[test]
-fn the_paper_unit_through_the_unit_path_is_todays_simulation_bit_for_bit() {
-    for name in ["paper_z_random", "triaxial_hidden", "flight", "sine-sweep"] {
-        // Long enough for the vibration to start (the paper's test is off for 5 s).
-        let s = short(name, 8.0);
-        let today = simulate(&s).unwrap();
-        let unit = simulate_unit(&Unit::paper(), &s).unwrap();
-        assert_eq!(unit.record, today.record, "{name}: record");
-        // The calibration draws the same numbers in the same order.
-        assert_eq!(
-            unit.calibration,
-            UnitCalibration::from(today.calibration.clone()),
-            "{name}: calibration"
-        );
-        // The budget is the same computation, every field of it.
-        assert_eq!(
-            unit.truth,
-            UnitTruth::from(today.truth.clone()),
-            "{name}: truth"
-        );
-        assert!(
-            unit.truth
-                .channels
-                .iter()
-                .any(|c| c.calibration_error_rms_deg_h > 0.0)
-        );
-        assert_eq!(unit.components, today.components, "{name}: components");
-        // The record file the paper's simulate writes, byte for byte.
-        let dir = std::env::temp_dir().join(format!("nav-sensors-one-sim-{name}"));
-        let _ = std::fs::remove_dir_all(&dir);
-        today.write_dir(dir.join("paper")).unwrap();
-        unit.write_dir(dir.join("unit")).unwrap();
-        let bytes = |d: &str| std::fs::read(dir.join(d).join("record.csv")).unwrap();
-        assert_eq!(bytes("paper"), bytes("unit"), "{name}: record.csv");
-        assert!(dir.join("unit/components.csv").exists() && !dir.join("unit/unit.toml").exists());
+fn the_paper_unit_writes_the_files_5b6a72d_wrote() {
+    let legacy = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../dtg-vib/tests/fixtures/legacy/paper");
+    let s = Scenario::load(legacy.join("scenario.toml")).unwrap();
+    let sim = simulate_unit(&Unit::paper(), &s).unwrap();
+    let dir = std::env::temp_dir().join(format!("nav-sensors-paper-files-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    sim.write_dir(&dir).unwrap();
+    for file in [
+        "record.csv",
+        "calibration.json",
+        "truth.json",
+        "scenario.toml",
+    ] {
+        let written = std::fs::read(dir.join(file)).unwrap();
+        let before = std::fs::read(legacy.join(file)).unwrap();
+        assert!(written == before, "{file} differs from 5b6a72d's");
     }
+    assert!(dir.join("components.csv").exists() && !dir.join("unit.toml").exists());
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

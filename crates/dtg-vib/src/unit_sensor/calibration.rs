@@ -4,9 +4,8 @@
 //! keyed `x`, `y`, `z`), read as the unit calibration it is.
 
 use crate::error::DtgVibError;
-use nav_sensors::calibration::{
-    Calibration, CalibrationFileError, GyroCoefficients, UnitCalibration,
-};
+use nav_sensors::calibration::{CalibrationFileError, GyroCoefficients, UnitCalibration};
+use nav_sensors::dtg::DtgTerm;
 use std::path::Path;
 
 /// Reads a calibration file of either format.
@@ -30,39 +29,31 @@ pub fn load_calibration(path: &Path) -> Result<UnitCalibration, DtgVibError> {
     calibration_from_json(&text, &shown).map_err(DtgVibError::from)
 }
 
-/// Parses calibration JSON of either format; `path` names it in errors,
-/// which are those of the format the text is written in (a unit
-/// calibration's gyro tables carry a `model` tag).
+/// Parses calibration JSON of either format (a unit calibration's gyro
+/// tables carry a `model` tag; the paper's do not); `path` names it in
+/// errors.
 pub fn calibration_from_json(
     text: &str,
     path: &str,
 ) -> Result<UnitCalibration, CalibrationFileError> {
-    match UnitCalibration::from_json(text, path) {
-        Ok(c) => Ok(c),
-        Err(unit_error) => match Calibration::from_json(text, path) {
-            Ok(c) => Ok(from_paper(&c)),
-            Err(_) if text.contains("\"model\"") => Err(unit_error),
-            Err(paper_error) => Err(paper_error),
-        },
-    }
+    UnitCalibration::from_json(text, path)
 }
 
-/// A calibration of the paper's unit as its unit calibration: each
-/// channel's table under its name (without `temp` and `rect_2n`, which
-/// ground calibration never covers and the paper's compensation zeroed),
-/// each axis's accelerometer under its column name (`ax`, `ay`, `az`).
-pub fn from_paper(c: &Calibration) -> UnitCalibration {
-    UnitCalibration {
-        format_version: UnitCalibration::FORMAT_VERSION,
-        gyros: c
-            .gyros
-            .keys()
-            .map(|&ch| (ch.name().to_string(), GyroCoefficients::Dtg(c.gyro(ch))))
-            .collect(),
-        accels: c
-            .accels
-            .iter()
-            .map(|(a, k)| (a.column().to_string(), *k))
-            .collect(),
-    }
+/// The calibration a paper model file written before the one format
+/// embeds, as the paper unit's: each DTG table without `temp` and
+/// `rect_2n`, which ground calibration never covers and the paper's
+/// compensation zeroed.
+pub(crate) fn from_paper(c: UnitCalibration) -> UnitCalibration {
+    let gyros = c
+        .gyros
+        .into_iter()
+        .map(|(name, t)| match t {
+            GyroCoefficients::Dtg(t) => (
+                name,
+                GyroCoefficients::Dtg(t.without(&[DtgTerm::Temp, DtgTerm::Rect2N])),
+            ),
+            rate => (name, rate),
+        })
+        .collect();
+    UnitCalibration { gyros, ..c }
 }

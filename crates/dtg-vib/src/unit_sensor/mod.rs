@@ -33,7 +33,7 @@ pub use applied::{
     residue_series, residues_of,
 };
 pub use apply::Applied;
-pub use calibration::{calibration_from_json, from_paper, load_calibration};
+pub use calibration::{calibration_from_json, load_calibration};
 pub use dynamic::{ACCEL_PREFIX, Dynamic, DynamicError, MAX_LAG, Stimulus, expand_dynamic};
 pub use effect::{
     ANISOINERTIA_MIN_RATE_DEG_S, COLUMN_PREFIX, RATE_EFFECTS, TERM_EFFECTS, UnitEffect,

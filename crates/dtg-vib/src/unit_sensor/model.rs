@@ -12,7 +12,7 @@ use super::preprocess::StoredPreprocess;
 use super::sensor::UnitSensor;
 use crate::error::DtgVibError;
 use crate::split::Holdout;
-use nav_sensors::calibration::{Calibration, UnitCalibration};
+use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::unit::Unit;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -197,9 +197,9 @@ impl UnitModel {
         check_header(text, path)?;
         let probe: Probe = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
         if !probe.model.is_some_and(|m| m.contains_key("unit")) {
-            let f: FileOwned<Calibration> =
+            let mut f: FileOwned<UnitCalibration> =
                 serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
-            let calibration = f.model.calibration.as_ref().map(from_paper);
+            let calibration = f.model.calibration.take().map(from_paper);
             return Self::from_owned(f.model, Unit::paper(), calibration, path);
         }
         // The unit's keys are checked as it is read, before its file is

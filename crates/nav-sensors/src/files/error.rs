@@ -1,11 +1,11 @@
-//! The error of reading or writing a calibration file, shared by the
-//! paper's calibration, the unit calibration and their common I/O.
+//! The error of reading or writing a calibration file (of either format)
+//! and its common I/O.
 
 /// Reading or writing a calibration file failed.
 ///
 /// ```
-/// use nav_sensors::calibration::{Calibration, CalibrationFileError};
-/// let err = Calibration::from_json("{\"format_version\": 9, \"gyros\": {}, \"accels\": {}}", "c.json").unwrap_err();
+/// use nav_sensors::calibration::{CalibrationFileError, UnitCalibration};
+/// let err = UnitCalibration::from_json("{\"format_version\": 9, \"gyros\": {}, \"accels\": {}}", "c.json").unwrap_err();
 /// assert!(matches!(err, CalibrationFileError::Version { found: 9, .. }));
 /// ```
 #[derive(Debug, thiserror::Error)]

@@ -1,9 +1,9 @@
 //! The ground calibration of any unit (JSON), and compensation of a record
 //! of that unit with it. Keyed by the unit's channel and accelerometer
 //! names, each gyro table saying its model. The paper's calibration format
-//! ([`crate::calibration::Calibration`]: DTG tables without `model`,
-//! accelerometers by axis `x`, `y`, `z`), as a file or embedded in a paper
-//! model file written before, reads as the paper unit's calibration.
+//! (DTG tables without `model`, accelerometers by axis `x`, `y`, `z`), as a
+//! file or embedded in a paper model file written before, reads as the
+//! paper unit's calibration.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -11,7 +11,7 @@ use std::path::Path;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::calibration::Calibration;
+use super::calibration::PaperCalibration;
 use super::error::CalibrationFileError;
 use super::record::Record;
 use crate::accel::{AccelCoefficients, compensate_triad};
@@ -171,13 +171,14 @@ pub enum UnitCalibrationError {
 /// ```
 ///
 /// The paper's calibration format reads as the paper unit's calibration
-/// (the same as [`UnitCalibration::from`] a [`Calibration`]):
+/// (each channel's DTG table under its name, each axis's accelerometer
+/// under its column, every value as it is):
 ///
 /// ```
-/// use nav_sensors::calibration::{Calibration, UnitCalibration};
+/// use nav_sensors::calibration::{GyroCoefficients, UnitCalibration};
 /// let paper = r#"{"format_version": 1, "gyros": {"Z": {"bias_deg_h": 2.0}}, "accels": {"z": {"bias_ug": 50.0}}}"#;
 /// let cal = UnitCalibration::from_json(paper, "c.json").unwrap();
-/// assert_eq!(cal, UnitCalibration::from(Calibration::from_json(paper, "c.json").unwrap()));
+/// assert!(matches!(cal.gyros["Z"], GyroCoefficients::Dtg(t) if t.bias_deg_h == 2.0));
 /// assert_eq!(cal.accels["az"].bias_ug, 50.0);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -478,34 +479,13 @@ fn triad(unit: &Unit, members: &[usize]) -> Option<[usize; 3]> {
     Some([x, y, z])
 }
 
-/// The paper's calibration as the paper unit's: each channel's DTG table
-/// under its name (X … Z1), each axis's accelerometer table under its
-/// column (`ax`, `ay`, `az`), every value as it is.
-impl From<Calibration> for UnitCalibration {
-    fn from(c: Calibration) -> Self {
-        Self {
-            format_version: Self::FORMAT_VERSION,
-            gyros: c
-                .gyros
-                .into_iter()
-                .map(|(ch, t)| (ch.name().to_string(), GyroCoefficients::Dtg(t)))
-                .collect(),
-            accels: c
-                .accels
-                .into_iter()
-                .map(|(a, t)| (a.column().to_string(), t))
-                .collect(),
-        }
-    }
-}
-
 impl UnitCalibration {
     /// The paper unit's calibration in the paper's format (the file the
-    /// built-in `paper` writes, [`crate::unit::FileFormat::Paper`]): the
-    /// inverse of [`UnitCalibration::from`] a [`Calibration`]. `None` when a
+    /// built-in `paper` writes, [`crate::unit::FileFormat::Paper`]), every
+    /// value as it is: the inverse of reading that format. `None` when a
     /// table is not a DTG channel of the paper's or an accelerometer `ax`,
     /// `ay`, `az`.
-    pub(crate) fn to_paper(&self) -> Option<Calibration> {
+    pub(crate) fn to_paper(&self) -> Option<PaperCalibration> {
         let gyros = self
             .gyros
             .iter()
@@ -522,8 +502,8 @@ impl UnitCalibration {
                 Some((axis, *t))
             })
             .collect::<Option<_>>()?;
-        Some(Calibration {
-            format_version: Calibration::FORMAT_VERSION,
+        Some(PaperCalibration {
+            format_version: PaperCalibration::FORMAT_VERSION,
             gyros,
             accels,
         })

@@ -8,8 +8,9 @@ use crate::vibration::VibrationError;
 /// Everything that can stop a simulation or writing its files.
 ///
 /// ```
-/// use nav_sensors::sim::{simulate, Scenario, SimError};
-/// let err = simulate(&Scenario { output_rate_hz: 0.0, ..Scenario::default() }).unwrap_err();
+/// use nav_sensors::sim::{simulate_unit, Scenario, SimError};
+/// let paper = nav_sensors::unit::Unit::paper();
+/// let err = simulate_unit(&paper, &Scenario { output_rate_hz: 0.0, ..Scenario::default() }).unwrap_err();
 /// assert!(matches!(err, SimError::Scenario(_)));
 /// ```
 #[derive(Debug, thiserror::Error)]

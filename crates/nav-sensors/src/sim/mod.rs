@@ -16,13 +16,13 @@ mod presets;
 mod scenario;
 mod site;
 mod thermal;
-pub mod truth;
+mod truth;
 mod unit;
 mod unit_truth;
 
 pub use error::SimError;
 pub use motion::{MotionProfile, Phase};
-pub use output::{Components, Simulation};
+pub use output::Components;
 pub use presets::low_frequency_psd;
 pub use scenario::{
     AccelSet, CalibrationError, GyroSet, HiddenEffect, Scenario, ScenarioError, UnitGyros,
@@ -30,5 +30,6 @@ pub use scenario::{
 };
 pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
 pub use thermal::Thermal;
-pub use unit::{UnitSimulation, simulate, simulate_unit};
+pub use truth::TruthFileError;
+pub use unit::{UnitSimulation, simulate_unit};
 pub use unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};

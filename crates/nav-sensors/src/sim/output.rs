@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::error::SimError;
 use super::truth::Truth;
-use crate::files::calibration::Calibration;
+use crate::files::calibration::PaperCalibration;
 use crate::files::record::Record;
 
 /// Named per-sample series that explain a record (same time base):
@@ -59,7 +59,7 @@ impl Components {
     /// A series by name.
     ///
     /// ```
-    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// let sim = nav_sensors::sim::simulate_unit(&nav_sensors::unit::Unit::paper(), &nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
     /// assert_eq!(sim.components.get("Z_floor").unwrap().len(), 50);
     /// ```
     pub fn get(&self, name: &str) -> Option<&[f64]> {
@@ -72,7 +72,7 @@ impl Components {
     /// The series' names.
     ///
     /// ```
-    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// let sim = nav_sensors::sim::simulate_unit(&nav_sensors::unit::Unit::paper(), &nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
     /// assert_eq!(sim.components.names()[0], "level_squared");
     /// ```
     pub fn names(&self) -> &[String] {
@@ -99,33 +99,19 @@ impl Components {
     }
 }
 
-/// The result of [`crate::sim::simulate`].
-///
-/// ```
-/// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
-/// assert_eq!(sim.record.len(), 50);
-/// assert_eq!(sim.truth.scenario.duration_s, 1.0);
-/// assert!(sim.calibration.gyros.contains_key(&nav_sensors::geometry::Channel::X));
-/// ```
-#[derive(Debug, Clone)]
-pub struct Simulation {
-    /// The test record (what the instruments delivered).
-    pub record: Record,
-    /// The ground calibration handed to the user.
-    pub calibration: Calibration,
-    /// Everything used, and the noise floor.
-    pub truth: Truth,
-    /// Per-sample component series.
-    pub components: Components,
+/// A simulation in the paper's file formats ([`crate::unit::FileFormat::Paper`],
+/// what the built-in `paper` unit writes): the record, the calibration and
+/// truth in the paper's shapes, and the per-sample components.
+pub(crate) struct PaperFiles {
+    pub(crate) record: Record,
+    pub(crate) calibration: PaperCalibration,
+    pub(crate) truth: Truth,
+    pub(crate) components: Components,
 }
 
-impl Simulation {
-    /// File names written by [`Simulation::write_dir`].
-    ///
-    /// ```
-    /// assert!(nav_sensors::sim::Simulation::FILES.contains(&"truth.json"));
-    /// ```
-    pub const FILES: [&'static str; 5] = [
+impl PaperFiles {
+    /// File names written by [`PaperFiles::write_dir`].
+    pub(crate) const FILES: [&'static str; 5] = [
         "record.csv",
         "calibration.json",
         "truth.json",
@@ -135,17 +121,7 @@ impl Simulation {
 
     /// Writes `record.csv`, `calibration.json`, `truth.json`,
     /// `components.csv` and `scenario.toml` into `dir` (created if needed).
-    ///
-    /// ```
-    /// use nav_sensors::sim::{simulate, Scenario, Simulation};
-    /// let dir = std::env::temp_dir().join("nav-sensors-doc-write-dir");
-    /// let sim = simulate(&Scenario { duration_s: 1.0, ..Scenario::default() }).unwrap();
-    /// sim.write_dir(&dir).unwrap();
-    /// for f in Simulation::FILES { assert!(dir.join(f).exists()); }
-    /// let back = nav_sensors::record::Record::read_csv(dir.join("record.csv")).unwrap();
-    /// assert_eq!(back, sim.record);
-    /// ```
-    pub fn write_dir(&self, dir: impl AsRef<Path>) -> Result<(), SimError> {
+    pub(crate) fn write_dir(&self, dir: impl AsRef<Path>) -> Result<(), SimError> {
         let dir = dir.as_ref();
         let io = |path: &Path| {
             let path = path.display().to_string();

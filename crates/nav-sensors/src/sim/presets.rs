@@ -199,7 +199,8 @@ impl Scenario {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::simulate;
+    use crate::sim::simulate_unit;
+    use crate::unit::Unit;
 
     fn scenarios_dir() -> std::path::PathBuf {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
@@ -241,8 +242,9 @@ mod tests {
                 ..s
             };
             let file = Scenario::load(scenarios_dir().join(format!("{name}.toml"))).unwrap();
-            let a = simulate(&short(Scenario::builtin(name).unwrap())).unwrap();
-            let b = simulate(&short(file)).unwrap();
+            let a =
+                simulate_unit(&Unit::paper(), &short(Scenario::builtin(name).unwrap())).unwrap();
+            let b = simulate_unit(&Unit::paper(), &short(file)).unwrap();
             assert_eq!(a.record, b.record, "{name}");
             assert_eq!(a.truth, b.truth, "{name}");
         }

@@ -208,7 +208,7 @@ pub struct HiddenEffect {
 /// table of the channel's model, and the hidden effects by channel name and
 /// term id. A channel listed nowhere is an ideal gyro, except that a `dtg`
 /// channel named like one of the paper's takes `gyros.channels` (so the
-/// paper's unit reads the scenario as [`crate::sim::simulate`] does).
+/// paper's unit reads the scenario's paper tables).
 ///
 /// ```
 /// let text = "[rate.g2]\ng_y_deg_h_g = 0.5\n[[hidden]]\nchannel = \"g2\"\nterm = \"g_y\"\n";

@@ -1,5 +1,5 @@
-//! The simulator for any unit: the same vibration, motion and thermal
-//! physics as the paper's ([`super::simulate`]), producing the unit's gyros
+//! The simulator of any unit, the paper's included: vibration, motion and
+//! thermal physics producing the unit's gyros
 //! (each with its DTG or rate model, in its axes) and accelerometers. The
 //! scenario's `[unit]` table gives the gyros' coefficients and hidden
 //! effects by channel name and term id ([`super::UnitGyros`]); a channel
@@ -18,7 +18,7 @@ use super::budget::{Reference, channel_budget};
 use super::calibrate::unit_ground_calibration;
 use super::engine::{AccelPhysics, GyroPhysics, Run, Stream, run, stream};
 use super::error::SimError;
-use super::output::{Components, Simulation};
+use super::output::{Components, PaperFiles};
 use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
 use super::unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
@@ -53,8 +53,8 @@ pub struct UnitSimulation {
     pub calibration: UnitCalibration,
     /// Everything used, and the noise floors.
     pub truth: UnitTruth,
-    /// Per-sample component series (as [`super::Simulation`]'s, named by
-    /// the unit's channels).
+    /// Per-sample component series ([`Components`], named by the unit's
+    /// channels).
     pub components: Components,
 }
 
@@ -85,7 +85,7 @@ impl UnitSimulation {
     pub fn files(unit: &Unit) -> [&'static str; 5] {
         match unit.file_format() {
             FileFormat::Unit => Self::FILES,
-            FileFormat::Paper => Simulation::FILES,
+            FileFormat::Paper => PaperFiles::FILES,
         }
     }
 
@@ -106,10 +106,10 @@ impl UnitSimulation {
         }
     }
 
-    /// The paper unit's simulation in the paper's types (`None` for a unit
-    /// whose sensors are not the paper's).
-    fn to_paper(&self) -> Option<Simulation> {
-        Some(Simulation {
+    /// The paper unit's simulation in the paper's file shapes (`None` for
+    /// a unit whose sensors are not the paper's).
+    fn to_paper(&self) -> Option<PaperFiles> {
+        Some(PaperFiles {
             record: self.record.clone(),
             calibration: self.calibration.to_paper()?,
             truth: self.truth.to_paper()?,
@@ -120,7 +120,8 @@ impl UnitSimulation {
     /// Writes [`UnitSimulation::files`] into `dir` (created if needed): in
     /// the unit formats, `record.csv` (the unit's column names and units),
     /// `calibration.json`, `truth.json`, `scenario.toml` and `unit.toml`;
-    /// in the paper's, [`Simulation::write_dir`]'s files.
+    /// in the paper's, `record.csv`, `calibration.json`, `truth.json`,
+    /// `components.csv` and `scenario.toml`.
     ///
     /// ```
     /// use nav_sensors::sim::{simulate_unit, Scenario, UnitSimulation};
@@ -294,37 +295,20 @@ fn accel_physics(unit: &Unit, s: &Scenario) -> (Vec<AccelPhysics>, Vec<AccelCoef
         .unzip()
 }
 
-/// The paper's unit simulated ([`simulate_unit`] on [`Unit::paper`]), in
-/// the paper's types: the record, the calibration a user would have, the
-/// truth (with the per-channel noise floor) and the per-channel component
-/// series. The same scenario (seed included) always gives identical results.
-///
-/// ```
-/// use nav_sensors::sim::{simulate, Scenario};
-/// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
-/// let sim = simulate(&s).unwrap();
-/// assert_eq!(sim.record.len(), 50);
-/// assert!((sim.record.dt() - 0.02).abs() < 1e-12);
-/// // Shaker off at first: Z reads Earth rate plus its drift, az reads 1 g.
-/// assert!((sim.record.accel(nav_sensors::record::Axis::Z)[0] - 1.0).abs() < 1e-3);
-/// ```
-pub fn simulate(s: &Scenario) -> Result<Simulation, SimError> {
-    let sim = simulate_unit(&Unit::paper(), s)?;
-    Ok(sim
-        .to_paper()
-        .expect("the paper unit's simulation is in the paper's names (tested)"))
-}
-
 /// Simulates a scenario on any unit: the record, the calibration a user
 /// would have and the truth. The same unit and scenario (seed included)
 /// always give identical results; on the paper's unit the record is the
 /// one the paper's files hold.
 ///
 /// ```
-/// use nav_sensors::sim::{simulate, simulate_unit, Scenario};
+/// use nav_sensors::sim::{simulate_unit, Scenario};
 /// use nav_sensors::unit::Unit;
 /// let s = Scenario { duration_s: 1.0, ..Scenario::default() };
-/// assert_eq!(simulate_unit(&Unit::paper(), &s).unwrap().record, simulate(&s).unwrap().record);
+/// let paper = simulate_unit(&Unit::paper(), &s).unwrap();
+/// assert_eq!(paper.record.len(), 50);
+/// assert!((paper.record.dt() - 0.02).abs() < 1e-12);
+/// // Shaker off at first: az reads 1 g.
+/// assert!((paper.record.accel_named("az").unwrap()[0] - 1.0).abs() < 1e-3);
 /// let tetra = simulate_unit(&Unit::builtin("tetra").unwrap(), &s).unwrap();
 /// assert_eq!(tetra.record.gyro_names(), ["g1", "g2", "g3", "g4"]);
 /// ```

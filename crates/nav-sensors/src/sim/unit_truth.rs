@@ -1,7 +1,7 @@
 //! The truth of a simulation of any unit (JSON): the unit, the scenario,
 //! every channel's true coefficients and error budget, the hidden effects
-//! and the residue noise floors. The paper's truth file
-//! ([`super::truth::Truth`], no `unit` key) reads as the paper unit's truth.
+//! and the residue noise floors. The paper's truth file format (no `unit`
+//! key, `super::truth`) reads as the paper unit's truth.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -68,8 +68,8 @@ pub struct UnitCollinear {
     pub correlation: f64,
 }
 
-/// One channel's truth and error budget at the output rate (definitions
-/// as in [`super::truth::ChannelTruth`]). The fields after
+/// One channel's truth and error budget at the output rate (the noise
+/// floor's definition: docs/nav-sensors.md §8). The fields after
 /// `after_true_compensation_rms_deg_h` read as zero or empty from a file
 /// written before they were (unit truth files of 5b6a72d).
 ///
@@ -188,17 +188,20 @@ impl UnitTruth {
     }
 
     /// Parses truth JSON, of a unit or the paper's format (no `unit` key:
-    /// read as the paper unit's truth, [`UnitTruth::from`] a [`Truth`]);
-    /// `path` labels errors.
+    /// read as the paper unit's truth); `path` labels errors.
     ///
     /// ```
-    /// use nav_sensors::sim::{simulate, Scenario, UnitTruth};
+    /// use nav_sensors::sim::{simulate_unit, Scenario, UnitTruth};
+    /// use nav_sensors::unit::Unit;
     /// assert!(UnitTruth::from_json("{}", "t.json").is_err());
-    /// let json = simulate(&Scenario { duration_s: 1.0, ..Default::default() }).unwrap().truth.to_json();
+    /// let sim = simulate_unit(&Unit::paper(), &Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// let dir = std::env::temp_dir().join("nav-sensors-doc-paper-truth");
+    /// sim.write_dir(&dir).unwrap();
+    /// let json = std::fs::read_to_string(dir.join("truth.json")).unwrap();
+    /// assert!(!json.contains("\"unit\""));
     /// let read = UnitTruth::from_json(&json, "truth.json").unwrap();
-    /// assert_eq!(read.unit, nav_sensors::unit::Unit::paper());
-    /// let paper = nav_sensors::truth::Truth::from_json(&json, "truth.json").unwrap();
-    /// assert_eq!(read, UnitTruth::from(paper));
+    /// assert_eq!((&read.unit, &read.scenario), (&Unit::paper(), &sim.truth.scenario));
+    /// assert_eq!(read.channels[5].channel, "Z1");
     /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Self, TruthFileError> {
         /// Only whether the file names its unit.

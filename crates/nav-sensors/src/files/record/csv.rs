@@ -19,9 +19,10 @@ impl Record {
     /// Reads and validates a record CSV.
     ///
     /// ```
-    /// use nav_sensors::sim::{simulate, Scenario};
+    /// use nav_sensors::sim::{simulate_unit, Scenario};
     /// let dir = std::env::temp_dir().join("nav-sensors-doc-read-csv");
-    /// simulate(&Scenario { duration_s: 1.0, ..Default::default() }).unwrap().write_dir(&dir).unwrap();
+    /// let paper = nav_sensors::unit::Unit::paper();
+    /// simulate_unit(&paper, &Scenario { duration_s: 1.0, ..Default::default() }).unwrap().write_dir(&dir).unwrap();
     /// let rec = nav_sensors::record::Record::read_csv(dir.join("record.csv")).unwrap();
     /// assert_eq!(rec.len(), 50);
     /// ```

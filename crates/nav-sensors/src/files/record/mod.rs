@@ -41,15 +41,13 @@ pub const SENSOR_COLUMNS: [&str; 9] = ["X", "X1", "Y", "Y1", "Z", "Z1", "ax", "a
 /// accelerometers' outputs (g) and any extra numeric columns (one of which
 /// a unit may name its temperature column), each series named.
 ///
-/// A record of the paper's unit has the six channels X, X1, Y, Y1, Z, Z1
-/// and the accelerometers ax, ay, az ([`Record::new`], [`Record::read_csv`]),
-/// and the [`Channel`]- and [`Axis`]-indexed accessors serve it. A record of
-/// any unit names its sensors as the unit does ([`Record::from_series`],
-/// [`Record::read_with_unit`]) and is read by index or name.
+/// A record names its sensors as its unit does ([`Record::from_series`],
+/// [`Record::read_with_unit`]; the paper's unit's are the six channels X,
+/// X1, Y, Y1, Z, Z1 and the accelerometers ax, ay, az, [`Record::new`],
+/// [`Record::read_csv`]) and is read by index or name.
 ///
 /// ```
-/// use nav_sensors::record::{Axis, Record};
-/// use nav_sensors::geometry::Channel;
+/// use nav_sensors::record::Record;
 /// let csv = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az,temp\n\
 ///            0.00,1,2,3,4,5,6,0,0,1,25.0\n\
 ///            0.02,1,2,3,4,5,6,0,0,1,25.1\n\
@@ -57,8 +55,8 @@ pub const SENSOR_COLUMNS: [&str; 9] = ["X", "X1", "Y", "Y1", "Z", "Z1", "ax", "a
 /// let r = Record::from_reader(csv.as_bytes(), "inline.csv").unwrap();
 /// assert_eq!(r.len(), 3);
 /// assert!((r.dt() - 0.02).abs() < 1e-15);
-/// assert_eq!(r.gyro(Channel::Y1), &[4.0, 4.0, 4.0]);
-/// assert_eq!(r.accel(Axis::Z), &[1.0, 1.0, 1.0]);
+/// assert_eq!(r.gyro_named("Y1").unwrap(), &[4.0, 4.0, 4.0]);
+/// assert_eq!(r.accel_at(2), &[1.0, 1.0, 1.0]);
 /// assert_eq!(r.extra("temp").unwrap()[2], 25.2);
 /// assert_eq!(r.extra_names(), vec!["temp"]);
 /// assert_eq!(r.slice(1..3).t(), &[0.02, 0.04]);
@@ -77,9 +75,6 @@ pub struct Record {
     extra: Vec<(String, Vec<f64>)>,
     /// The extra column that holds the unit's temperature, when it names one.
     temperature: Option<String>,
-    /// Gyros X..Z1 and accelerometers ax, ay, az in that order: the
-    /// paper-indexed accessors then index directly.
-    paper: bool,
 }
 
 /// Named series, in order.
@@ -192,16 +187,6 @@ impl Record {
         {
             return Err(RecordError::NoTemperature { name: name.clone() });
         }
-        let paper = gyros.len() == 6
-            && accels.len() == 3
-            && gyros
-                .iter()
-                .zip(Channel::ALL)
-                .all(|((n, _), c)| n == c.name())
-            && accels
-                .iter()
-                .zip(Axis::ALL)
-                .all(|((n, _), a)| n == a.column());
         let (gyro_names, gyro) = gyros.into_iter().unzip();
         let (accel_names, accel) = accels.into_iter().unzip();
         Ok(Self {
@@ -212,7 +197,6 @@ impl Record {
             accel,
             extra,
             temperature,
-            paper,
         })
     }
 
@@ -258,71 +242,6 @@ impl Record {
     /// ```
     pub fn dt(&self) -> f64 {
         (self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64
-    }
-
-    /// The position of a paper channel, or a panic naming what the record has.
-    #[track_caller]
-    fn channel_index(&self, channel: Channel) -> usize {
-        if self.paper {
-            return channel.index();
-        }
-        self.gyro_names
-            .iter()
-            .position(|n| n == channel.name())
-            .unwrap_or_else(|| {
-                panic!(
-                    "the record has no channel {channel} (its gyros: {}); use gyro_at or gyro_named",
-                    self.gyro_names.join(", ")
-                )
-            })
-    }
-
-    /// The position of a cluster-axis accelerometer (`ax`, `ay`, `az`).
-    #[track_caller]
-    fn axis_index(&self, axis: Axis) -> usize {
-        if self.paper {
-            return axis.index();
-        }
-        self.accel_names
-            .iter()
-            .position(|n| n == axis.column())
-            .unwrap_or_else(|| {
-                panic!(
-                    "the record has no accelerometer {} (its accelerometers: {}); use accel_at or accel_named",
-                    axis.column(),
-                    self.accel_names.join(", ")
-                )
-            })
-    }
-
-    /// One gyro channel's outputs, deg/h (a channel the record has).
-    ///
-    /// # Panics
-    /// When the record has no gyro of that name (a record of another unit).
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// assert_eq!(rec.gyro(nav_sensors::geometry::Channel::X1), &[1.0, 1.0, 1.0]);
-    /// ```
-    #[track_caller]
-    pub fn gyro(&self, channel: Channel) -> &[f64] {
-        &self.gyro[self.channel_index(channel)]
-    }
-
-    /// One accelerometer's outputs, g (`ax`, `ay`, `az`).
-    ///
-    /// # Panics
-    /// When the record has no accelerometer of that name.
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// assert_eq!(rec.accel(nav_sensors::record::Axis::Z), &[1.0, 1.0, 1.0]);
-    /// ```
-    #[track_caller]
-    pub fn accel(&self, axis: Axis) -> &[f64] {
-        &self.accel[self.axis_index(axis)]
     }
 
     /// The gyros' names, in the unit's order.
@@ -447,24 +366,6 @@ impl Record {
         self.extra.iter().map(|(n, _)| n.as_str()).collect()
     }
 
-    /// The six gyro outputs at sample `i`, in [`Channel::ALL`] order.
-    ///
-    /// # Panics
-    /// On a record without the paper's channels.
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// assert_eq!(rec.gyro_sample(0), [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
-    /// ```
-    #[track_caller]
-    pub fn gyro_sample(&self, i: usize) -> [f64; 6] {
-        if self.paper {
-            return std::array::from_fn(|k| self.gyro[k][i]);
-        }
-        std::array::from_fn(|k| self.gyro(Channel::ALL[k])[i])
-    }
-
     /// Every gyro's output at sample `i`, in the unit's order, deg/h.
     ///
     /// ```
@@ -487,29 +388,6 @@ impl Record {
     #[track_caller]
     pub fn accel_row(&self, i: usize) -> Vec<f64> {
         self.accel.iter().map(|a| a[i]).collect()
-    }
-
-    /// The three accelerations `ax, ay, az` at sample `i`, g.
-    ///
-    /// # Panics
-    /// On a record without accelerometers named `ax`, `ay`, `az` (use
-    /// [`crate::unit::Unit::specific_force`] with [`Record::accel_row`]).
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// assert_eq!(rec.accel_sample(2), nalgebra::Vector3::new(0.0, 0.0, 1.0));
-    /// ```
-    #[track_caller]
-    pub fn accel_sample(&self, i: usize) -> nalgebra::Vector3<f64> {
-        if self.paper {
-            return nalgebra::Vector3::new(self.accel[0][i], self.accel[1][i], self.accel[2][i]);
-        }
-        nalgebra::Vector3::new(
-            self.accel(Axis::X)[i],
-            self.accel(Axis::Y)[i],
-            self.accel(Axis::Z)[i],
-        )
     }
 
     /// The samples in `range` (time values kept as they are).
@@ -551,26 +429,7 @@ impl Record {
             accel: Vec::new(),
             extra: Vec::new(),
             temperature: self.temperature.clone(),
-            paper: self.paper,
         }
-    }
-
-    /// A copy with new gyro outputs for the paper's six channels (same time
-    /// base and other columns).
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// let zero = rec.with_gyro(std::array::from_fn(|_| vec![0.0; 3]));
-    /// assert_eq!(zero.gyro(nav_sensors::geometry::Channel::Z1), &[0.0; 3]);
-    /// ```
-    #[track_caller]
-    pub fn with_gyro(&self, gyro: [Vec<f64>; 6]) -> Record {
-        assert!(
-            self.paper,
-            "with_gyro takes the paper's six channels; use with_gyro_series"
-        );
-        self.with_gyro_series(gyro.to_vec())
     }
 
     /// A copy with new gyro outputs, one series per gyro in the unit's order.
@@ -591,23 +450,6 @@ impl Record {
             gyro,
             ..self.clone()
         }
-    }
-
-    /// A copy with new accelerometer outputs (`ax`, `ay`, `az` of the paper's unit).
-    ///
-    /// ```
-    /// let rec = nav_sensors::record::Record::new(vec![0.02, 0.04, 0.06], std::array::from_fn(|k| vec![k as f64; 3]),
-    ///     [vec![0.0; 3], vec![0.0; 3], vec![1.0; 3]], vec![("temp".into(), vec![25.0, 25.1, 25.2])]).unwrap();
-    /// let moved = rec.with_accel([vec![0.5; 3], vec![0.0; 3], vec![1.0; 3]]);
-    /// assert_eq!(moved.accel(nav_sensors::record::Axis::X)[0], 0.5);
-    /// ```
-    #[track_caller]
-    pub fn with_accel(&self, accel: [Vec<f64>; 3]) -> Record {
-        assert!(
-            self.paper,
-            "with_accel takes ax, ay, az; use with_accel_series"
-        );
-        self.with_accel_series(accel.to_vec())
     }
 
     /// A copy with new accelerometer outputs, one series per accelerometer

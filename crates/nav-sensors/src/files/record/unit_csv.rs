@@ -123,7 +123,7 @@ impl Record {
     /// ```
     /// use nav_sensors::record::Record;
     /// use nav_sensors::unit::Unit;
-    /// let sim = nav_sensors::sim::simulate(&nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
+    /// let sim = nav_sensors::sim::simulate_unit(&Unit::paper(), &nav_sensors::sim::Scenario { duration_s: 1.0, ..Default::default() }).unwrap();
     /// let path = std::env::temp_dir().join("nav-sensors-doc-write-unit.csv");
     /// sim.record.write_csv_with_unit(&path, &Unit::paper()).unwrap();
     /// assert_eq!(Record::read_csv(&path).unwrap(), sim.record);
@@ -505,7 +505,12 @@ mod tests {
             r.records,
             vec![Record::from_reader(csv.as_bytes(), "log.csv").unwrap()]
         );
-        assert_eq!(r.records[0].gyro(crate::geometry::Channel::Y1)[0], 4.0);
+        assert_eq!(
+            r.records[0]
+                .gyro_named(crate::geometry::Channel::Y1.name())
+                .unwrap()[0],
+            4.0
+        );
         // The paper's CSV takes the rule of every unit: jitter is accepted
         // (the strict reader refuses it), a gap splits.
         let jitter = "t,X,X1,Y,Y1,Z,Z1,ax,ay,az\n0,1,2,3,4,5,6,0,0,1\n0.02,1,2,3,4,5,6,0,0,1\n0.041,1,2,3,4,5,6,0,0,1\n";
