@@ -11,6 +11,7 @@ mod error;
 mod lsq;
 mod motion;
 mod output;
+mod paper_truth;
 mod predictable;
 mod presets;
 mod scenario;
@@ -18,7 +19,6 @@ mod site;
 mod thermal;
 mod truth;
 mod unit;
-mod unit_truth;
 
 pub use error::SimError;
 pub use motion::{MotionProfile, Phase};
@@ -30,6 +30,5 @@ pub use scenario::{
 };
 pub use site::{Direction, EARTH_RATE_DEG_H, Orientation, Site};
 pub use thermal::Thermal;
-pub use truth::TruthFileError;
+pub use truth::{TruthFileError, UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
 pub use unit::{UnitSimulation, simulate_unit};
-pub use unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};

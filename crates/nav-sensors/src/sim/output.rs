@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use super::error::SimError;
-use super::truth::Truth;
+use super::paper_truth::Truth;
 use crate::files::calibration::PaperCalibration;
 use crate::files::record::Record;
 

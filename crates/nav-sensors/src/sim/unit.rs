@@ -21,7 +21,7 @@ use super::error::SimError;
 use super::output::{Components, PaperFiles};
 use super::predictable;
 use super::scenario::{Scenario, ScenarioError};
-use super::unit_truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
+use super::truth::{UnitChannelTruth, UnitCollinear, UnitHiddenTruth, UnitTruth};
 use crate::accel::AccelCoefficients;
 use crate::dtg::{DtgInput, DtgTerm};
 use crate::files::calibration::{GyroCoefficients, UnitCalibration};
