@@ -230,16 +230,13 @@ fn regressor_slope(unit: &Unit, term: &'static str, seed: u64) -> f64 {
 /// covariance fitted through three neighbouring means,
 /// `nav_sensors::dtg::within_interval_covariance`), tracks the slow part of
 /// a 3–20 Hz product, what the 5-Hz low-pass keeps, only to 1/1.09: the
-/// drift regressed on it has slope 1.091, 1.099 and 1.088 (seeds 1–3;
-/// gg_xx 1.104, 1.091, 1.090; g_x 1.000). The loop's estimate is then high
-/// before any network, and more after the partialling (the refit's gg_xy
-/// at 0.05 deg/h/g², seeds 1–6: 12–28 % high, its 95 % interval ±17–25 %),
-/// which keeps of the regressor what the window's network cannot represent.
-/// Not an interval too narrow: a regressor that is not what the gyro felt.
-/// A band-limited reconstruction (Wiener, flat to 0.42 of the sample rate)
-/// over ±3 neighbouring means gives 0.998–1.000 on the same records; the
-/// estimate is shared with the ground calibration and the onboard
-/// compensator, so it changes there too. Fails until then.
+/// drift regressed on it has slope 1.091, 1.099 and 1.088 on seeds 1–3
+/// (g_x: 1.000). The loop's estimate is then high before any network, and
+/// its intervals sit above the truth (`rate_gyro_g_terms_named_over_seeds`
+/// prints those that miss). Not an interval too narrow: a regressor that is
+/// not what the gyro felt. The estimate is shared with the ground
+/// calibration and the onboard compensator, so its fix changes them too.
+/// Fails until then.
 #[test]
 #[ignore = "fails until the within-interval estimate resolves 3–20 Hz (issue 35 §1)"]
 fn the_g2_regressor_is_what_the_gyro_felt() {
