@@ -105,6 +105,12 @@ fn a_pair_collinear_on_the_z_run_is_named_by_the_three_axis_campaign() {
     // covering the hidden coefficient, and the record that could not tell.
     let named: Vec<(String, &Record)> = runs.iter().map(|(n, s)| (n.clone(), &s.record)).collect();
     let (model, _) = fit_records(&named, Some(calibration), &options);
+    // The library's default window (`--window-signals auto`): every axis
+    // the runs vibrate on, which the network could read a g-term through.
+    assert_eq!(
+        model.inner().preprocess().window.signals(),
+        ["ax", "ay", "az"]
+    );
     let d = diagnose_records(model.inner(), &named, &opts);
     assert_eq!(d.records.len(), 3);
     let x = &d.channels[Channel::X.index()];

@@ -142,11 +142,13 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
 /// what the network left in its residual before the screen (g_x at 0.15
 /// deg/h/g went unnamed in 3 of 3 seeds with the window reading ax, ay, az).
 /// Measured (seeds 1–20): g_x 20/20 exact, 20/20 covered; g_y 20, 19;
-/// g_z 20, 20; clean twins 0/20; gg_xy at 0.05 deg/h/g² 17/20 exact and
-/// 13/20 covered (its intervals sit above the truth: the screen removes a
-/// quadratic in the window rms, so a g² term is named by the model's ranking
-/// alone, with the g² regressor's inflated vibration part) — this test
-/// fails on gg_xy until that is fixed.
+/// g_z 20, 20 (each 20/20 refits within 1.1× the twin); clean twins 0/20;
+/// gg_xy at 0.05 deg/h/g² 17/20 exact, 13/20 covered, 19/20 refits
+/// within (again 2026-11-29). Its three misses name nothing (seeds 11, 13,
+/// 20: power); the four named intervals that miss lie above the truth
+/// (lower ends 0.0500–0.0558), because its regressor is not what the gyro
+/// felt (`the_g2_regressor_is_what_the_gyro_felt`). This test fails on
+/// gg_xy until both are fixed.
 #[test]
 #[ignore = "statistical: 100 loops, minutes"]
 fn rate_gyro_g_terms_named_over_seeds() {
@@ -162,7 +164,8 @@ fn rate_gyro_g_terms_named_over_seeds() {
 }
 
 /// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
-/// 1–20): g_S 20/20 exact, 18/20 covered; g_O 20, 19; clean twins 0/20.
+/// 1–20, again 2026-11-29): g_S 20/20 exact, 18/20 covered, 20/20 refits
+/// within 1.1× the twin; g_O 20, 19, 20; clean twins 0/20.
 #[test]
 #[ignore = "statistical: 60 loops, minutes"]
 fn dtg_g_terms_named_over_seeds() {
@@ -178,4 +181,125 @@ fn hidden_g_x_named_with_the_default_window() {
     assert_eq!(suggesting, 0);
     let r = rates(&unit, ("g2", "g_x", 0.25), 3..4, &twin_rms);
     assert_eq!((r.exact, r.covered, r.refit_within), (1, 1, 1), "{r:?}");
+}
+
+/// The slope of the drift a hidden `term` (coefficient 1) adds to g2's
+/// record on the regressor the loop states it with, both low-passed as the
+/// loop's targets are (4th order, 5 Hz, zero-phase): 1 when the regressor
+/// is what the gyro felt.
+fn regressor_slope(unit: &Unit, term: &'static str, seed: u64) -> f64 {
+    use dtg_vib::unit_sensor::{RateReference, UnitSensor, to_signals};
+    use sysid::Sensor;
+    let with =
+        nav_sensors::sim::simulate_unit(unit, &triaxial(SECONDS, seed, &[("g2", term, 1.0)]))
+            .unwrap();
+    let without = nav_sensors::sim::simulate_unit(unit, &triaxial(SECONDS, seed, &[])).unwrap();
+    let (a, b) = (
+        to_signals(&with.record).unwrap(),
+        to_signals(&without.record).unwrap(),
+    );
+    let drift: Vec<f64> = a
+        .column("g2")
+        .unwrap()
+        .iter()
+        .zip(b.column("g2").unwrap())
+        .map(|(x, y)| x - y)
+        .collect();
+    let sensor = UnitSensor {
+        unit: unit.clone(),
+        calibration: Some(without.calibration.clone()),
+        rate_reference: RateReference::None,
+    };
+    let channel = unit.gyros().iter().position(|g| g.name == "g2").unwrap();
+    let effect = sensor.parse_effect(channel, term).unwrap();
+    let calibrated = sensor.calibrate(&b).unwrap();
+    let r = &sensor.regressors(&calibrated, channel, &[effect]).unwrap()[0];
+    let low_pass = |x: &[f64]| {
+        let y = iir::LowPass::butterworth(4, 5.0, 50.0)
+            .unwrap()
+            .filtfilt(x)
+            .unwrap();
+        let mean = stats::mean(&y);
+        y.iter().map(|v| v - mean).collect::<Vec<f64>>()
+    };
+    let (d, r) = (low_pass(&drift), low_pass(r));
+    let dot = |p: &[f64], q: &[f64]| p.iter().zip(q).map(|(x, y)| x * y).sum::<f64>();
+    dot(&d, &r) / dot(&r, &r)
+}
+
+/// Why a hidden `gg_xy`'s intervals miss the truth (issue 35 §1): its
+/// regressor, the record's estimate of each 50-Hz interval's mean of
+/// f_x·f_y (the product of the interval means plus the within-interval
+/// covariance fitted through three neighbouring means,
+/// `nav_sensors::dtg::within_interval_covariance`), tracks the slow part of
+/// a 3–20 Hz product, what the 5-Hz low-pass keeps, only to 1/1.09: the
+/// drift regressed on it has slope 1.091, 1.099 and 1.088 on seeds 1–3
+/// (g_x: 1.000). The loop's estimate is then high before any network, and
+/// its intervals sit above the truth (`rate_gyro_g_terms_named_over_seeds`
+/// prints those that miss). Not an interval too narrow: a regressor that is
+/// not what the gyro felt. The estimate is shared with the ground
+/// calibration and the onboard compensator, so its fix changes them too.
+/// Fails until then.
+#[test]
+#[ignore = "fails until the within-interval estimate resolves 3–20 Hz (issue 35 §1)"]
+fn the_g2_regressor_is_what_the_gyro_felt() {
+    let unit = Unit::builtin("tetra").unwrap();
+    for seed in 1..4 {
+        let linear = regressor_slope(&unit, "g_x", seed);
+        let product = regressor_slope(&unit, "gg_xy", seed);
+        eprintln!("seed {seed}: slope g_x {linear:.4}, gg_xy {product:.4}");
+        assert!((linear - 1.0).abs() < 0.02, "g_x: {linear}");
+        assert!((product - 1.0).abs() < 0.02, "gg_xy: {product}");
+    }
+}
+
+/// Issue 35 §1: the library's default window (`FitOptions::new`) and the
+/// command line's (`--window-signals auto`, the default) are one: on records
+/// vibrated on three axes both read the same signals (ax, ay and az), at
+/// the same length, with the same pre-processing otherwise.
+#[test]
+fn the_library_and_the_command_line_default_to_one_window() {
+    use clap::Parser;
+    use dtg_vib::commands::fit_args::{FitArgs, FitRecipe};
+    use dtg_vib::unit_sensor::to_signals;
+
+    #[derive(Parser)]
+    struct Flags {
+        #[command(flatten)]
+        fit: FitArgs,
+    }
+    let unit = Unit::builtin("tetra").unwrap();
+    let sim = nav_sensors::sim::simulate_unit(&unit, &triaxial(20.0, 1, &[])).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    sim.write_dir(dir.path()).unwrap();
+    let file = |f: &str| dir.path().join(f).display().to_string();
+    let flags = Flags::try_parse_from([
+        "fit",
+        "--unit",
+        "tetra",
+        "--data",
+        &file("record.csv"),
+        "--calib",
+        &file("calibration.json"),
+        "--out",
+        &file("model.json"),
+    ])
+    .unwrap();
+    let cli = FitRecipe::resolve(&flags.fit).unwrap();
+
+    let library = sysid::FitOptions::<dtg_vib::unit_sensor::UnitEffect>::new(unit.gyros().len());
+    assert!(library.recipe.preprocess.window.is_auto());
+    let (_, record) = &cli.read.records[0];
+    let signals = to_signals(record).unwrap();
+    let prepared = sysid::Prepared::new_many(
+        &cli.sensor,
+        &[("r".into(), &signals)],
+        &library.recipe.preprocess,
+    )
+    .unwrap();
+    let chosen = prepared.preprocess();
+    let cli_pre = &cli.options.recipe.preprocess;
+    assert_eq!(cli_pre.window.signals(), ["ax", "ay", "az"]);
+    assert_eq!(chosen.window, cli_pre.window);
+    assert_eq!(chosen, cli_pre);
 }
