@@ -208,3 +208,17 @@ def test_bad_input_raises_the_commands_message_and_writes_nothing(cli, tmp_path,
     written = sorted(p.name for p in tmp_path.rglob("*"))
     assert written == (["index.html", "out"] if case == "report over its record" else []), written
     assert staged() == before
+
+
+def test_plot_measured_vs_predicted_draws_the_diagnosis_series(cli):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    _, record, model, _ = cli
+    diagnosis = model.diagnose(record)
+    ax = diagnosis.plot_measured_vs_predicted("Y1")
+    t, measured, predicted = diagnosis.series["Y1"]
+    assert [line.get_label() for line in ax.get_lines()] == ["measured", "predicted"]
+    np.testing.assert_array_equal(ax.get_lines()[1].get_ydata(), predicted)
+    assert ax.get_ylabel() == "Y1 (deg/h)"
