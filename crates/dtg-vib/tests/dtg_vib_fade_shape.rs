@@ -11,21 +11,9 @@
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-}
-
-fn ok(cmd: &mut Command) -> String {
-    let out = cmd.arg("--quiet").output().expect("binary runs");
-    assert!(
-        out.status.success(),
-        "{cmd:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
+mod workspace_cli;
+use workspace_cli::{bin, ok};
 
 /// The z run's scenario with its random drive's PSD moved to 2–12 Hz
 /// (0.015 g²/Hz: the same 0.33 g rms on az at 0 dB) and seed 7.

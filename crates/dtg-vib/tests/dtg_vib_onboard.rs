@@ -13,26 +13,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
+mod workspace_cli;
+use workspace_cli::{bin, ok};
+
 /// deg/h: the bound on every channel and sample.
 const EQUAL_DEG_H: f64 = 1e-9;
 
 /// The model file at `path`, through the one reader.
 fn load(path: &Path) -> UnitModel {
     UnitModel::load(path).unwrap()
-}
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_dtg-vib"))
-}
-
-fn ok(cmd: &mut Command) -> String {
-    let out = cmd.arg("--quiet").output().expect("binary runs");
-    assert!(
-        out.status.success(),
-        "{cmd:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
 }
 
 fn dir() -> &'static Path {
