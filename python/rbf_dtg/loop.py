@@ -103,6 +103,26 @@ def _flags(options):
     return flags
 
 
+def _pyplot(what):
+    """matplotlib's pyplot, or an ImportError saying how to get it."""
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        raise ImportError(
+            f"{what} draws with matplotlib, which is not installed: "
+            "python -m pip install matplotlib (or install the package with './python[plot]')"
+        ) from e
+    return plt
+
+
+def _native_model(model, what="model"):
+    if model is None:
+        return None
+    if isinstance(model, Model):
+        return model._native
+    raise Error(f"{what}: a Model (rbf_dtg.fit, rbf_dtg.Model.load), not {type(model).__name__}")
+
+
 class Unit:
     """A sensor unit, as the command's ``--unit`` names it: a built-in unit
     (``paper``, ``triad``, ``tetra``, ``dual-triad``) or a unit file."""
@@ -248,6 +268,120 @@ class Explanation(tuple):
         return self
 
 
+def residues(record, unit=None, model=None, fdi_sigma=None, fdi_false_alarm=None):
+    """``dtg-vib residues``: the parity residues of every sample (the paper's
+    K0..K5, another unit's P0, …; deg/h) as the command's ``--out`` CSV has
+    them: ``t``, each residue R as logged and, with a model, ``R_pre``
+    (pre-processed), ``R_comp`` (less the prediction) and ``R_out`` (of the
+    gyros as ``compensate`` writes them). ``frame.attrs["json"]`` is the
+    command's ``--json`` object: each residue's rms, the fault-detection test
+    (``fdi_sigma`` deg/h per sample, default read from the record;
+    ``fdi_false_alarm`` per sample) and what it found before and after, and
+    with a model the residues on its validation rows. A unit of three gyros
+    has no residue and is refused."""
+    table, text, notes = _native.residues(_source(record), _unit_arg(unit), _native_model(model),
+                                          fdi_sigma, fdi_false_alarm)
+    _warn(notes)
+    frame = _frame(table)
+    frame.attrs["json"] = json.loads(text)
+    return frame
+
+
+ALLAN_COLUMNS = ["series", "kind", "tau_s", "adev_before_deg_h", "low_before_deg_h", "high_before_deg_h",
+                 "adev_after_deg_h", "low_after_deg_h", "high_after_deg_h"]
+
+
+def allan(record, unit=None, model=None, confidence=None):
+    """``dtg-vib allan``: the overlapping Allan deviation of every gyro channel
+    and parity residue of the record's longest segment, before and, with a
+    model, after its compensation. One row per series and τ (s): the deviation
+    and its interval at ``confidence`` (two-sided, default the command's
+    0.683), in deg/h. ``frame.attrs["json"]`` is the command's ``--json``
+    object, with the IEEE 952 noise terms of each series."""
+    text, notes = _native.allan(_source(record), _unit_arg(unit), _native_model(model), confidence)
+    _warn(notes)
+    j = json.loads(text)
+    rows = []
+    for kind, key in (("channel", "channels"), ("residue", "residues")):
+        for s in j[key]:
+            before, after = s["adev_before_detail"], s.get("adev_after_detail")
+            for i, tau in enumerate(s["tau_s"]):
+                rows.append([s[kind], kind, tau, s["adev_before"][i], before["low"][i], before["high"][i],
+                             s["adev_after"][i] if after else np.nan, after["low"][i] if after else np.nan,
+                             after["high"][i] if after else np.nan])
+    frame = pd.DataFrame(rows, columns=ALLAN_COLUMNS)
+    frame.attrs["json"] = j
+    return frame
+
+
+def plot_allan(frame, series=None, ax=None):
+    """The Allan deviation of :func:`allan`'s frame, log-log (deg/h against τ
+    in s): each series before (solid) and after (dashed) with its interval
+    shaded. ``series``: the names to draw (default every channel). Needs
+    matplotlib."""
+    plt = _pyplot("plot_allan")
+    if series is None:
+        series = list(dict.fromkeys(frame.series[frame.kind == "channel"]))
+    elif isinstance(series, str):
+        series = [series]
+    unknown = [s for s in series if s not in set(frame.series)]
+    if unknown:
+        raise Error(f"plot_allan: no series {', '.join(unknown)}; the frame has {', '.join(dict.fromkeys(frame.series))}")
+    ax = ax or plt.subplots(figsize=(7, 5))[1]
+    for name in series:
+        s = frame[frame.series == name]
+        (line,) = ax.loglog(s.tau_s, s.adev_before_deg_h, label=f"{name} before")
+        ax.fill_between(s.tau_s, s.low_before_deg_h, s.high_before_deg_h, color=line.get_color(), alpha=0.15, lw=0)
+        if s.adev_after_deg_h.notna().any():
+            ax.loglog(s.tau_s, s.adev_after_deg_h, "--", color=line.get_color(), label=f"{name} after")
+            ax.fill_between(s.tau_s, s.low_after_deg_h, s.high_after_deg_h, color=line.get_color(), alpha=0.1, lw=0)
+    ax.set(xlabel="τ (s)", ylabel="Allan deviation (deg/h)", title="Overlapping Allan deviation")
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize="small")
+    return ax
+
+
+class Report:
+    """What ``model.report`` wrote (``dtg-vib report``): ``index``, the page;
+    ``figures``, its figures' SVG files in page order; and the numbers the
+    command prints: ``validation`` (each residue's rms before and after on the
+    validation rows, deg/h), ``residues`` (on every sample), ``fdi`` (the
+    fault-detection lines) and ``against_baseline`` (each channel's
+    validation rms under the baseline and this model). In a notebook it
+    shows its figures inline as SVG."""
+
+    def __init__(self, index, printed, notes):
+        every, fdi, validation, against = printed
+        self.index = os.fspath(index)
+        self.dir = os.path.dirname(self.index)
+        self.notes = notes
+        self.residues = pd.DataFrame(every, columns=["residue", "rms_before", "rms_after"])
+        self.fdi = list(fdi)
+        self.validation = pd.DataFrame(json.loads(validation))
+        self.against_baseline = pd.DataFrame(against, columns=["channel", "val_rms_baseline", "val_rms"])
+
+    @property
+    def figures(self):
+        import re
+
+        with open(self.index, encoding="utf-8") as f:
+            html = f.read()
+        stems = dict.fromkeys(re.findall(r'<img src="([^"/]+)\.png"', html))
+        return [os.path.join(self.dir, f"{s}.svg") for s in stems if os.path.exists(os.path.join(self.dir, f"{s}.svg"))]
+
+    def __repr__(self):
+        return f"Report({self.index}: {len(self.figures)} figures)"
+
+    def _repr_html_(self):
+        import html
+
+        parts = [f"<b>report</b> <code>{html.escape(self.index)}</code>"]
+        for path in self.figures:
+            with open(path, encoding="utf-8") as f:
+                parts.append(f"<div>{f.read()}</div>")
+        return "".join(parts)
+
+
 class Diagnosis:
     """What a model is missing (``dtg-vib diagnose``): ``findings``, one row per
     channel and candidate effect; ``channels``, one row per channel; ``notes``,
@@ -291,7 +425,7 @@ class Diagnosis:
 
     def plot_measured_vs_predicted(self, channel, ax=None):
         """Measured against predicted output of one channel over time (matplotlib)."""
-        import matplotlib.pyplot as plt
+        plt = _pyplot("plot_measured_vs_predicted")
 
         t, measured, predicted = self.series[channel]
         ax = ax or plt.subplots(figsize=(8, 3))[1]
@@ -399,6 +533,26 @@ class Model:
         _warn(notes)
         return _frame(table)
 
+    def residues(self, record, fdi_sigma=None, fdi_false_alarm=None):
+        """``dtg-vib residues --model``: :func:`residues` with this model."""
+        return residues(record, model=self, fdi_sigma=fdi_sigma, fdi_false_alarm=fdi_false_alarm)
+
+    def allan(self, record, confidence=None):
+        """``dtg-vib allan --model``: :func:`allan` with this model."""
+        return allan(record, model=self, confidence=confidence)
+
+    def report(self, record, out_dir, baseline=None):
+        """``dtg-vib report``: writes the figures and index.html of the model on
+        the record into ``out_dir`` (made if missing; each file atomically, never
+        over an input), against ``baseline`` (a model of the same unit) where
+        given. Returns a :class:`Report`."""
+        label = _label(record, "DataFrame") if isinstance(record, pd.DataFrame) else os.fspath(record)
+        command = f"rbf_dtg {_native.__version__}: model.report({label}, {os.fspath(out_dir)!r})"
+        index, printed, notes = self._native.report(_source(record), os.fspath(out_dir), command,
+                                                    _native_model(baseline, "baseline"))
+        _warn(notes)
+        return Report(index, printed, notes)
+
     def to_json(self):
         """The model file's text."""
         return self._native.to_json()
@@ -409,6 +563,6 @@ class Model:
         return f"Model(unit '{self.unit.name}'; effects {per})"
 
     def _repr_html_(self):
-        e = self.effects
-        return (f"<b>model of the unit {self.unit.name}</b>" + self.channels.to_html(index=False)
-                + (e.to_html(index=False) if len(e) else ""))
+        c = self.channels[["channel", "effects", "val_rms"]].rename(columns={"val_rms": "validation rms (deg/h)"})
+        c["effects"] = c["effects"].replace("", "—")
+        return f"<b>model of the unit {self.unit.name}</b>" + c.to_html(index=False, float_format="{:.4f}".format)

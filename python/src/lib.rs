@@ -15,8 +15,10 @@
 //! | [`table`] | the command's CSV output as Python's columns |
 //! | [`unit`] | a unit as `--unit` resolves it |
 //! | [`calls`] | `read_record`, `simulate`, `fit`, `explain`: the `dtg-vib` commands' library functions |
-//! | [`model`] | a unit's model: `diagnose`, `compensate`, the model file |
+//! | [`analyses`] | `residues`, `allan`: a record's, with or without a model |
+//! | [`model`] | a unit's model: `diagnose`, `check`, `compensate`, `report`, the model file |
 
+mod analyses;
 mod arrays;
 mod calls;
 mod error;
@@ -42,6 +44,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(calls::fit, m)?)?;
     m.add_function(wrap_pyfunction!(calls::explain, m)?)?;
     m.add_function(wrap_pyfunction!(calls::write_text, m)?)?;
+    m.add_function(wrap_pyfunction!(analyses::residues, m)?)?;
+    m.add_function(wrap_pyfunction!(analyses::allan, m)?)?;
     m.add_class::<model::Model>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

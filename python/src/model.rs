@@ -9,7 +9,9 @@ use dtg_vib::commands::diagnose::diagnose as diagnose_records;
 use dtg_vib::commands::fit_report::FitReport;
 use dtg_vib::commands::parse::parse_share;
 use dtg_vib::commands::records::records_of;
+use dtg_vib::commands::report::{Caller, Reported, report as report_records};
 use dtg_vib::unit_sensor::check::{self, DEFAULT_OUTSIDE_THRESHOLD};
+use dtg_vib::unit_sensor::fdi;
 use dtg_vib::unit_sensor::{Applied, UnitModel};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -34,7 +36,23 @@ impl Model {
     pub fn fitted(model: UnitModel, seconds: Option<f64>) -> Self {
         Self { model, seconds }
     }
+
+    /// The library's model.
+    pub fn inner(&self) -> &UnitModel {
+        &self.model
+    }
 }
+
+/// What `report` prints besides the page: each residue's rms on every
+/// sample `(name, before, after)`, the fault-detection lines, the
+/// residues on the validation rows (JSON), each channel's validation rms
+/// under the baseline and this model.
+type Printed = (
+    Vec<(String, f64, Option<f64>)>,
+    Vec<String>,
+    String,
+    Vec<(String, f64, f64)>,
+);
 
 #[pymethods]
 impl Model {
@@ -136,6 +154,58 @@ impl Model {
         serde_json::to_string(&c).map_err(raise)
     }
 
+    /// `dtg-vib report` on the record into `out` (a model or a baseline
+    /// handed over from memory staged as a file): `(index.html, printed, notes)`.
+    #[pyo3(signature = (record, out, command, baseline=None))]
+    fn report(
+        &self,
+        py: Python<'_>,
+        record: Source,
+        out: PathBuf,
+        command: String,
+        baseline: Option<PyRef<'_, Model>>,
+    ) -> PyResult<(PathBuf, Printed, Vec<String>)> {
+        let stage = Stage::new()?;
+        let data = stage.path(&record)?;
+        let user_data = matches!(record, Source::Path(_)).then_some(data.as_path());
+        outfile::guard_dir("out_dir", &out, &["index.html"], &[("record", user_data)])
+            .map_err(raise)?;
+        let base = baseline.as_ref().map(|b| b.inner());
+        let (index, printed, notes) = detached(py, |_| -> anyhow::Result<_> {
+            let model_file = stage.file("model.json");
+            self.model.save(&model_file)?;
+            let base_file = stage.file("baseline.json");
+            if let Some(b) = base {
+                b.save(&base_file)?;
+            }
+            let mut read = records_of(&self.model, std::slice::from_ref(&data))?;
+            stage.rename(&mut read.records);
+            let caller = Caller {
+                command: Some(command),
+                staged: Some(stage.dir()),
+            };
+            let files = [data.clone()];
+            let baseline = base.map(|b| (b, base_file.as_path()));
+            let r = report_records(
+                &self.model,
+                &model_file,
+                &read,
+                &files,
+                baseline,
+                &out,
+                caller,
+            )?;
+            Ok((
+                r.written.index.clone(),
+                printed(&self.model, &r)?,
+                read.notes,
+            ))
+        })?
+        .map_err(|e| stage.raise(e))?;
+        let notes = notes.iter().map(|n| stage.clean(n)).collect();
+        Ok((index, printed, notes))
+    }
+
     /// `dtg-vib compensate` on the record: `(columns, notes, seconds in Rust)`.
     fn compensate<'py>(
         &self,
@@ -156,4 +226,38 @@ impl Model {
         let frame = columns.into_py(py);
         Ok((frame, notes, start.elapsed().as_secs_f64()))
     }
+}
+
+/// The numbers `report` prints.
+fn printed(m: &UnitModel, r: &Reported) -> anyhow::Result<Printed> {
+    let p = &r.written.parity;
+    let every = p
+        .residues
+        .iter()
+        .map(|x| (x.name.clone(), x.before, x.after))
+        .collect();
+    let lines = p.fdi.as_ref().map_or_else(Vec::new, |f| {
+        f.found
+            .iter()
+            .map(|(what, s)| fdi::line(what, s, &f.setting))
+            .collect()
+    });
+    let validation = serde_json::to_string(&r.applied.validation_residues())?;
+    let against = match &r.baseline {
+        Some(b) => m
+            .unit()
+            .gyro_names()
+            .into_iter()
+            .enumerate()
+            .map(|(k, c)| {
+                (
+                    c.to_string(),
+                    b.scores(k).val_rms,
+                    r.applied.scores(k).val_rms,
+                )
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    Ok((every, lines, validation, against))
 }

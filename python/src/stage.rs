@@ -70,6 +70,11 @@ impl Stage {
         Ok(Self { dir, prefix })
     }
 
+    /// The folder.
+    pub fn dir(&self) -> &std::path::Path {
+        self.dir.path()
+    }
+
     /// A path in the folder.
     pub fn file(&self, name: &str) -> PathBuf {
         self.dir.path().join(name)

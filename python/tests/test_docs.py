@@ -38,6 +38,10 @@ def test_docs_python_blocks_print_what_the_docs_say(tmp_path, monkeypatch):
 
     saved = rbf_dtg.Model.load(tmp_path / "demo-model.json")
     assert saved.to_json() == namespace["model"].to_json()
+    # and the report's block the command's page, its figures SVG files
+    figures = namespace["report"].figures
+    assert figures and all((tmp_path / f).read_text().startswith("<svg") for f in figures)
+    assert '<img src="fit_all_channels.png"' in (tmp_path / "demo-report/index.html").read_text()
 
 
 def test_docs_refusals_write_nothing(tmp_path):

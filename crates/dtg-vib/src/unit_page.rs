@@ -65,6 +65,13 @@ pub struct Page<'a> {
     pub diagnosis: Option<DiagnosisExtra<'a, String>>,
     /// The records' noise floor per channel, when known (a simulation's).
     pub noise_floor: Option<NoiseFloor<'a>>,
+    /// The call the provenance names, where it is not this process's
+    /// command line (a call of the Python package).
+    pub command: Option<String>,
+    /// The folder in which inputs handed over from memory (a DataFrame, a
+    /// model) were written for the page: the provenance shows their paths
+    /// without it.
+    pub staged: Option<&'a Path>,
 }
 
 impl<'a> Page<'a> {
@@ -82,6 +89,8 @@ impl<'a> Page<'a> {
             files: Vec::new(),
             diagnosis: None,
             noise_floor: None,
+            command: None,
+            staged: None,
         }
     }
 }
@@ -166,11 +175,15 @@ pub fn write_page(
     if let Some((_, p)) = page.baseline {
         files.push(("baseline model".into(), p.to_path_buf()));
     }
-    let provenance = Provenance::of_this_process(files);
+    let mut provenance = Provenance::of_this_process(files);
+    if let Some(command) = page.command {
+        provenance.command = command;
+    }
+    provenance.staged = page.staged.map(Path::to_path_buf);
     let source = page.source.clone().unwrap_or_else(|| {
         page.data
             .iter()
-            .map(|d| d.display().to_string())
+            .map(|d| provenance.shown(d).display().to_string())
             .collect::<Vec<_>>()
             .join(", ")
     });

@@ -1,5 +1,6 @@
 //! `dtg-vib allan`: overlapping Allan deviation and IEEE 952 noise terms of
-//! every channel and residue, before and after a model.
+//! every channel and residue, before and after a model. The work is
+//! [`dtg_vib::commands::allan`]'s; here the flags and the printing.
 
 use anyhow::Result;
 use clap::Args;
@@ -8,8 +9,9 @@ use dtg_vib::numfmt::short;
 use std::path::PathBuf;
 
 use super::report::guard_report;
-use dtg_vib::commands::records::{no_residue_note, open_model, read_records, turning, unit_of};
-use dtg_vib::unit_sensor::{MOVING_RATE_STD_DEG_S, RateReference};
+use dtg_vib::commands::allan::{DEFAULT_CONFIDENCE, allan};
+use dtg_vib::commands::records::{no_residue_note, read_records, unit_and_min};
+use dtg_vib::unit_sensor::{RateReference, UnitModel};
 
 /// The flags of `allan`.
 #[derive(Args)]
@@ -22,7 +24,7 @@ pub struct AllanArgs {
     #[arg(long)]
     model: Option<PathBuf>,
     /// Two-sided confidence level of the intervals.
-    #[arg(long, default_value_t = 0.683)]
+    #[arg(long, default_value_t = DEFAULT_CONFIDENCE)]
     confidence: f64,
     /// Print one JSON object on stdout.
     #[arg(long)]
@@ -47,54 +49,36 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
         report,
         unit,
     } = a;
-    let m = model
-        .as_deref()
-        .map(|p| open_model(p, unit.as_deref()))
-        .transpose()?;
-    let unit = match &m {
-        Some(m) => m.unit().clone(),
-        None => unit_of(unit.as_deref())?,
-    };
+    let m = model.as_deref().map(UnitModel::load).transpose()?;
+    let shown = model.as_deref().map(|p| p.display().to_string());
+    let (unit, min) = unit_and_min(
+        m.as_ref(),
+        shown.as_deref().unwrap_or_default(),
+        unit.as_deref(),
+    )?;
     guard_report(
         report.as_deref(),
         &[("--data", Some(&data)), ("--model", model.as_deref())],
     )?;
-    let min = m
-        .as_ref()
-        .map_or(2, |m| 2 * m.inner().preprocess().window.length());
     let read = read_records(std::slice::from_ref(&data), &unit, min)?;
-    let (name, record) = read
-        .records
-        .iter()
-        .max_by_key(|(_, r)| r.len())
-        .expect("read_records gives at least one segment");
-    // A model fitted in parity removes the unit's own rate from every
-    // channel before and after: the motion is not in the deviations.
-    let parity = m
-        .as_ref()
-        .is_some_and(|m| m.inner().sensor().rate_reference == RateReference::Parity);
-    if let Some(std) = turning(&unit, record).filter(|_| !parity) {
-        eprintln!(
-            "warning: {name}: the unit turns (its rate varies by {std:.2} deg/s over 1-s averages, above {MOVING_RATE_STD_DEG_S} deg/s): the deviations hold the motion as well as the sensors' noise"
-        );
-    }
     progress.say("computing Allan deviations");
-    let a = dtg_vib::allan::AllanAnalysis::new(&unit, m.as_ref(), record, confidence)?;
+    let r = allan(&unit, m.as_ref(), &read, confidence)?;
+    if let Some(w) = &r.warning {
+        progress.clear();
+        eprintln!("warning: {w}");
+    }
+    let (name, a) = (&r.segment, &r.analysis);
     let page = match &report {
         Some(dir) => {
             progress.say("drawing figures");
-            Some(dtg_vib::report::write_allan_report(&a, name, dir)?)
+            Some(dtg_vib::report::write_allan_report(a, name, dir)?)
         }
         None => None,
     };
     progress.clear();
     read.say_notes();
     if json {
-        let mut v = a.to_json();
-        v["unit"] = serde_json::Value::String(unit.name().to_string());
-        v["segment"] = serde_json::Value::String(name.clone());
-        v["compensated"] = serde_json::Value::Bool(a.compensated);
-        println!("{v}");
+        println!("{}", r.to_json());
         if let Some(p) = &page {
             eprintln!("report: {}", p.display());
         }
@@ -103,7 +87,7 @@ pub fn run(a: AllanArgs, progress: Progress) -> Result<()> {
     let tau = &a.channels[0].before.points;
     println!(
         "Overlapping Allan deviation of {name}{}: {} samples from sample {}{}, τ = {} to {} s; {:.1}% intervals",
-        match read.records.len() {
+        match r.segments {
             1 => "",
             _ => " (the longest segment between time gaps)",
         },

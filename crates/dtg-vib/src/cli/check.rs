@@ -7,11 +7,12 @@ use dtg_vib::unit_sensor::Applied;
 use dtg_vib::unit_sensor::check::{DEFAULT_OUTSIDE_THRESHOLD, TransferCheck};
 use std::path::PathBuf;
 
-use super::report::{guard_report, model_page};
+use super::report::guard_report;
 use super::residues::print_residues_on;
 use super::terms;
 use dtg_vib::commands::parse::parse_share;
 use dtg_vib::commands::records::{no_residue_note, open_model, records_of};
+use dtg_vib::commands::report::{Caller, model_page};
 
 /// The flags of `check`.
 #[derive(Args)]
@@ -67,7 +68,18 @@ pub fn run(a: CheckArgs, progress: Progress) -> Result<()> {
         Some(dir) => {
             progress.say("drawing figures");
             let data = [data.clone()];
-            Some(model_page(&m, &model, &read.records, &data, None, dir)?.index)
+            Some(
+                model_page(
+                    &m,
+                    &model,
+                    &read.records,
+                    &data,
+                    None,
+                    dir,
+                    Caller::default(),
+                )?
+                .index,
+            )
         }
         None => None,
     };

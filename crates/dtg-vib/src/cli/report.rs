@@ -1,14 +1,15 @@
 //! `dtg-vib report`: the figures and index.html of a model on a record
 //! (also written by `check --report`), and what they show in numbers: the
-//! residues, each channel against a baseline, fault detection.
+//! residues, each channel against a baseline, fault detection. The work is
+//! [`dtg_vib::commands::report`]'s; here the flags and the printing.
 
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::unit_page::{Page, Parity, Written, write_page};
+use dtg_vib::commands::report::{Caller, report};
+use dtg_vib::unit_page::Parity;
 use dtg_vib::unit_sensor::fdi;
 use dtg_vib::unit_sensor::{Applied, UnitModel};
-use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
 use super::residues::print_residues;
@@ -58,39 +59,29 @@ pub fn run(a: ReportArgs, progress: Progress) -> Result<()> {
         ],
     )?;
     let base = baseline.as_deref().map(UnitModel::load).transpose()?;
-    if let (Some(b), Some(path)) = (&base, &baseline)
-        && b.unit() != m.unit()
-    {
-        anyhow::bail!(
-            "--baseline {}: fitted with the unit '{}', the model with '{}': a baseline must be a model of the same unit",
-            path.display(),
-            b.unit().name(),
-            m.unit().name()
-        );
-    }
     let read = records_of(&m, std::slice::from_ref(&data))?;
-    progress.say("applying the model");
-    let records = read.borrowed();
-    let applied = Applied::new(&m, &records)?;
-    let base_applied = match &base {
-        Some(b) => Some(Applied::new(b, &records)?),
-        None => None,
-    };
     progress.say("drawing figures");
     let files = [data.clone()];
     let baseline_page = base.as_ref().zip(baseline.as_deref());
-    let Written { index, parity, .. } =
-        model_page(&m, &model, &read.records, &files, baseline_page, &out)?;
+    let r = report(
+        &m,
+        &model,
+        &read,
+        &files,
+        baseline_page,
+        &out,
+        Caller::default(),
+    )?;
     drop(progress);
     read.say_notes();
     if !m.unit().residue_names().is_empty() {
-        print_residues(&applied.validation_residues());
+        print_residues(&r.applied.validation_residues());
     }
-    if let Some(ba) = &base_applied {
-        print_baseline_table(&m, ba, &applied);
+    if let Some(ba) = &r.baseline {
+        print_baseline_table(&m, ba, &r.applied);
     }
-    print_parity(&m, &parity);
-    println!("report: {}", index.display());
+    print_parity(&m, &r.written.parity);
+    println!("report: {}", r.written.index.display());
     Ok(())
 }
 
@@ -102,23 +93,6 @@ pub fn guard_report(report: Option<&Path>, inputs: &[(&str, Option<&Path>)]) -> 
         outfile::guard_dir("--report", dir, &["index.html"], inputs)?;
     }
     Ok(())
-}
-
-/// The page of a model on records with the files' provenance: `report`
-/// and `check --report`.
-pub fn model_page(
-    m: &UnitModel,
-    model: &Path,
-    records: &[(String, Record)],
-    data: &[PathBuf],
-    baseline: Option<(&UnitModel, &Path)>,
-    dir: &Path,
-) -> Result<Written> {
-    let page = Page {
-        baseline,
-        ..Page::new(model, data)
-    };
-    Ok(write_page(m, records, page, dir)?)
 }
 
 /// Each channel's validation rms under the baseline and this model.

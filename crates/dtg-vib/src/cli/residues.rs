@@ -2,18 +2,19 @@
 //! eq. 6, another unit's P0, … = V·m) of every sample, and with a model the
 //! pre-processed and compensated ones; fault detection (four gyros or more)
 //! and isolation (five or more) on them; the residue tables other commands
-//! print. A unit of three gyros has none, and says so.
+//! print. A unit of three gyros has none, and says so. The work is
+//! [`dtg_vib::commands::residues`]'s; here the flags and the printing.
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::unit_sensor::fdi::{self, FdiSetting, FdiSummary};
-use dtg_vib::unit_sensor::{Applied, ResidueSeries, ResidueStats, UnitModel, pooled, residues_of};
-use nav_sensors::unit::Unit;
-use serde::Serialize;
+use dtg_vib::commands::residues::{Residues, refuse_without_residues, residues};
+use dtg_vib::unit_sensor::fdi;
+use dtg_vib::unit_sensor::{ResidueStats, pooled};
 use std::path::PathBuf;
 
-use dtg_vib::commands::records::{Read, open_model, read_records, unit_of};
+use dtg_vib::commands::records::{read_records, unit_and_min};
+use dtg_vib::unit_sensor::UnitModel;
 
 /// The flags of `residues`.
 #[derive(Args)]
@@ -46,224 +47,60 @@ pub struct ResiduesArgs {
     fdi_false_alarm: f64,
 }
 
-/// One residue's rms in `residues --json`.
-#[derive(Serialize)]
-struct ResidueJson<'a> {
-    residue: &'a str,
-    rms_before_deg_h: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    rms_after_deg_h: Option<f64>,
-}
-
-/// Fault detection in `residues --json`.
-#[derive(Serialize)]
-struct FdiJson<'a> {
-    #[serde(flatten)]
-    setting: &'a FdiSetting,
-    before: &'a FdiSummary,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    after: Option<&'a FdiSummary>,
-}
-
-/// The series `residues` writes and tests: per row its time, the gyros as
-/// logged and (with a model) compensated, and the residues of the
-/// pre-processed outputs before and after the prediction with the
-/// validation rows' table.
-struct Series {
-    t: Vec<f64>,
-    before: Vec<Vec<f64>>,
-    after: Option<Vec<Vec<f64>>>,
-    pre_comp: Option<ResidueSeries>,
-    validation: Option<Vec<ResidueStats>>,
-}
-
-/// Every segment's samples as logged (without a model), or from its first
-/// full window on with the model's compensation.
-fn series(unit: &Unit, model: Option<&UnitModel>, read: &Read) -> Result<Series> {
-    let n = unit.gyros().len();
-    let Some(m) = model else {
-        let mut t = Vec::new();
-        let mut before = vec![Vec::new(); n];
-        for (_, r) in &read.records {
-            t.extend_from_slice(r.t());
-            for (k, g) in before.iter_mut().enumerate() {
-                g.extend_from_slice(r.gyro_at(k));
-            }
-        }
-        return Ok(Series {
-            t,
-            before,
-            after: None,
-            pre_comp: None,
-            validation: None,
-        });
-    };
-    let applied = Applied::unsplit(m, &read.borrowed())?;
-    let first = applied.prepared.first_sample();
-    let mut before = vec![Vec::new(); n];
-    for (_, r) in &read.records {
-        for (k, g) in before.iter_mut().enumerate() {
-            g.extend_from_slice(&r.gyro_at(k)[first..]);
-        }
-    }
-    let mut after = vec![Vec::new(); n];
-    for c in applied.compensated()? {
-        for (k, g) in after.iter_mut().enumerate() {
-            g.extend_from_slice(c.gyro_at(k));
-        }
-    }
-    let residues = applied.residues();
-    // The validation rows of the model's split, if these records have them.
-    let validation = match m.inner().rows(&applied.prepared) {
-        Ok((_, val)) => Some(residues.stats(&val)),
-        Err(_) => None,
-    };
-    Ok(Series {
-        t: residues.t.clone(),
-        before,
-        after: Some(after),
-        pre_comp: Some(residues),
-        validation,
-    })
-}
-
 /// Writes the residues and prints their rms before and after and what
 /// fault detection found (or all of it as one JSON object).
 pub fn run(a: ResiduesArgs, progress: Progress) -> Result<()> {
-    let model = a
-        .model
-        .as_deref()
-        .map(|m| open_model(m, a.unit.as_deref()))
-        .transpose()?;
-    let unit = match &model {
-        Some(m) => m.unit().clone(),
-        None => unit_of(a.unit.as_deref())?,
-    };
+    let model = a.model.as_deref().map(UnitModel::load).transpose()?;
+    let shown = a.model.as_deref().map(|p| p.display().to_string());
+    let (unit, min) = unit_and_min(
+        model.as_ref(),
+        shown.as_deref().unwrap_or_default(),
+        a.unit.as_deref(),
+    )?;
     outfile::guard_file(
         "--out",
         &a.out,
         &[("--data", Some(&a.data)), ("--model", a.model.as_deref())],
     )?;
     refuse_without_residues(&unit)?;
-    let min = model
-        .as_ref()
-        .map_or(2, |m| 2 * m.inner().preprocess().window.length());
     let read = read_records(std::slice::from_ref(&a.data), &unit, min)?;
     progress.say("computing the parity residues");
-    let s = series(&unit, model.as_ref(), &read)?;
-    let pb = residues_of(&unit, &s.before);
-    let pa = s.after.as_ref().map(|a| residues_of(&unit, a));
-    // Set up before anything is written: a threshold that overflows is the
-    // flags' fault, said with them.
-    let (test, setting) = fdi::setting(&unit, a.fdi_sigma, a.fdi_false_alarm, &pb)
-        .map_err(|e| {
-            anyhow::anyhow!(
-                "fault detection with --fdi-sigma {} and --fdi-false-alarm {:e}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
-                a.fdi_sigma
-                    .map_or("(read from the record)".to_string(), |v| format!("{v:e}")),
-                a.fdi_false_alarm
-            )
-        })?;
-    write_csv(&a.out, &unit, &s, &pb, pa.as_deref())?;
-    let found_before = fdi::run(&unit, &test, &s.before);
-    let found_after = s.after.as_ref().map(|g| fdi::run(&unit, &test, g));
+    // Everything is computed (and a flag refused) before anything is written.
+    let r = residues(&unit, model.as_ref(), &read, a.fdi_sigma, a.fdi_false_alarm)?;
+    let (header, columns) = r.columns();
+    let h: Vec<&str> = header.iter().map(String::as_str).collect();
+    tabular::write_csv(&a.out, &h, &columns)?;
     drop(progress);
     read.say_notes();
-    let rows: Vec<ResidueJson<'_>> = unit
-        .residue_names()
-        .iter()
-        .enumerate()
-        .map(|(k, n)| ResidueJson {
-            residue: n,
-            rms_before_deg_h: stats::rms(&pb[k]),
-            rms_after_deg_h: pa.as_ref().map(|p| stats::rms(&p[k])),
-        })
-        .collect();
     if a.json {
-        let mut v = serde_json::json!({
-            "unit": unit.name(),
-            "samples": s.t.len(),
-            "residues": rows,
-            "fdi": FdiJson {
-                setting: &setting,
-                before: &found_before,
-                after: found_after.as_ref(),
-            },
-        });
-        if let Some(val) = &s.validation {
-            v["validation"] = serde_json::to_value(val)?;
-        }
-        println!("{v}");
+        println!("{}", r.to_json()?);
         eprintln!("wrote {}", a.out.display());
         return Ok(());
     }
-    if let Some(val) = &s.validation {
+    if let Some(val) = &r.validation {
         print_residues(val);
     }
-    print_every_sample(&rows, &setting, &found_before, found_after.as_ref());
+    print_every_sample(&r);
     eprintln!("wrote {}", a.out.display());
     Ok(())
 }
 
-/// A unit of three gyros has no residue: refused in one line saying what
-/// judges its channels instead.
-fn refuse_without_residues(unit: &Unit) -> Result<()> {
-    if unit.residue_names().is_empty() {
-        bail!(
-            "the unit '{}' ({}) has {} gyros: nothing is redundant, so it has no parity residue and no fault detection; judge its channels against a rate reference instead (dtg-vib fit --unit … --table-rate or --earth-rate, then dtg-vib check)",
-            unit.name(),
-            unit.file(),
-            unit.gyros().len()
-        );
-    }
-    Ok(())
-}
-
-/// `t`, the residues as logged, and with a model `R_pre`, `R_comp` and
-/// `R_out` for each residue R.
-fn write_csv(
-    out: &std::path::Path,
-    unit: &Unit,
-    s: &Series,
-    pb: &[Vec<f64>],
-    pa: Option<&[Vec<f64>]>,
-) -> Result<()> {
-    let names = unit.residue_names();
-    let mut header: Vec<String> = vec!["t".into()];
-    header.extend(names.iter().cloned());
-    let mut columns: Vec<&[f64]> = vec![&s.t];
-    columns.extend(pb.iter().map(Vec::as_slice));
-    if let Some(r) = &s.pre_comp {
-        header.extend(names.iter().map(|n| format!("{n}_pre")));
-        columns.extend(r.before.iter().map(Vec::as_slice));
-        header.extend(names.iter().map(|n| format!("{n}_comp")));
-        columns.extend(r.after.iter().map(Vec::as_slice));
-    }
-    if let Some(pa) = pa {
-        header.extend(names.iter().map(|n| format!("{n}_out")));
-        columns.extend(pa.iter().map(Vec::as_slice));
-    }
-    let h: Vec<&str> = header.iter().map(String::as_str).collect();
-    Ok(tabular::write_csv(out, &h, &columns)?)
-}
-
 /// Each residue's rms over every sample, as logged and (with a model) as
 /// `compensate` writes the gyros, and the fault-detection lines.
-fn print_every_sample(
-    rows: &[ResidueJson<'_>],
-    setting: &FdiSetting,
-    before: &FdiSummary,
-    after: Option<&FdiSummary>,
-) {
+fn print_every_sample(r: &Residues) {
+    let (rows, setting) = (&r.rms, &r.setting);
     let with_after = rows.iter().any(|r| r.rms_after_deg_h.is_some());
     println!(
         "residue  rms before  {}(deg/h, every sample)",
         if with_after { "rms after  " } else { "" }
     );
-    for r in rows {
-        match r.rms_after_deg_h {
-            Some(a) => println!("{:>7}  {:>10.4}  {a:>9.4}", r.residue, r.rms_before_deg_h),
-            None => println!("{:>7}  {:>10.4}", r.residue, r.rms_before_deg_h),
+    for row in rows {
+        match row.rms_after_deg_h {
+            Some(a) => println!(
+                "{:>7}  {:>10.4}  {a:>9.4}",
+                row.residue, row.rms_before_deg_h
+            ),
+            None => println!("{:>7}  {:>10.4}", row.residue, row.rms_before_deg_h),
         }
     }
     println!(
@@ -276,8 +113,8 @@ fn print_every_sample(
             fdi::SigmaSource::Estimated => "read from the record; --fdi-sigma to state it",
         }
     );
-    println!("{}", fdi::line("as logged", before, setting));
-    if let Some(a) = after {
+    println!("{}", fdi::line("as logged", &r.found_before, setting));
+    if let Some(a) = &r.found_after {
         println!("{}", fdi::line("compensated", a, setting));
     }
 }

@@ -8,9 +8,10 @@
 //! | [`fit_args`] | the flags of a fit (`fit`, `explain`), resolved once into what the fit is told |
 //! | [`thresholds`] | when the diagnosis suggests an effect (`diagnose`, `explain`) |
 //! | [`parse`] | validators of numeric flags, each saying the valid range |
-//! | [`simulate`], [`fit`], [`diagnose`], [`explain`], [`compensate`] | the commands' work |
+//! | [`simulate`], [`fit`], [`diagnose`], [`explain`], [`compensate`], [`residues`], [`allan`], [`report`] | the commands' work |
 //! | [`fit_report`] | `fit --json` |
 
+pub mod allan;
 pub mod compensate;
 pub mod diagnose;
 pub mod explain;
@@ -19,5 +20,7 @@ pub mod fit_args;
 pub mod fit_report;
 pub mod parse;
 pub mod records;
+pub mod report;
+pub mod residues;
 pub mod simulate;
 pub mod thresholds;

@@ -26,17 +26,35 @@ pub fn unit_of(arg: Option<&str>) -> Result<Unit> {
 /// if given, must be the unit it stores.
 pub fn open_model(path: &Path, arg: Option<&str>) -> Result<UnitModel> {
     let m = UnitModel::load(path)?;
+    model_unit(&m, &path.display().to_string(), arg)?;
+    Ok(m)
+}
+
+/// Refuses a `--unit` that is not the one the model (named `what`) stores.
+pub fn model_unit(m: &UnitModel, what: &str, arg: Option<&str>) -> Result<()> {
     if let Some(arg) = arg {
         let u = unit_of(Some(arg))?;
         if &u != m.unit() {
             bail!(
-                "--unit {arg}: {} was fitted with the unit '{}', which it stores: drop --unit (a model carries its unit)",
-                path.display(),
+                "--unit {arg}: {what} was fitted with the unit '{}', which it stores: drop --unit (a model carries its unit)",
                 m.unit().name()
             );
         }
     }
-    Ok(m)
+    Ok(())
+}
+
+/// The unit of a command that takes `--unit` and an optional model: the
+/// model's (`--unit` refused if another), else `--unit`'s; and the shortest
+/// segment it reads, two of the model's windows (two samples without one).
+pub fn unit_and_min(m: Option<&UnitModel>, what: &str, arg: Option<&str>) -> Result<(Unit, usize)> {
+    match m {
+        Some(m) => {
+            model_unit(m, what, arg)?;
+            Ok((m.unit().clone(), 2 * m.inner().preprocess().window.length()))
+        }
+        None => Ok((unit_of(arg)?, 2)),
+    }
 }
 
 /// Refuses a record given twice: fitted twice it would weigh double, and a

@@ -11,6 +11,10 @@ pub struct Provenance {
     pub files: Vec<(String, PathBuf)>,
     /// The command line, as typed (or the demo's equivalent).
     pub command: String,
+    /// The folder in which inputs handed over from memory were written
+    /// (the Python package's DataFrames and models): their paths are shown
+    /// without it, as the caller named them.
+    pub staged: Option<PathBuf>,
 }
 
 impl Provenance {
@@ -39,7 +43,16 @@ impl Provenance {
                 })
                 .collect::<Vec<_>>()
                 .join(" "),
+            staged: None,
         }
+    }
+
+    /// `path` as the page shows it: without the folder of staged inputs.
+    pub fn shown<'p>(&self, path: &'p Path) -> &'p Path {
+        self.staged
+            .as_deref()
+            .and_then(|d| path.strip_prefix(d).ok())
+            .unwrap_or(path)
     }
 
     /// The provenance table: each file with its SHA-256, the tool's version,
@@ -48,7 +61,11 @@ impl Provenance {
         let mut t = Table::new(["what", "value", "SHA-256"])
             .caption("Provenance: what produced this report.");
         for (role, path) in &self.files {
-            t = t.row([role.clone(), path.display().to_string(), file_sha256(path)]);
+            t = t.row([
+                role.clone(),
+                self.shown(path).display().to_string(),
+                file_sha256(path),
+            ]);
         }
         t.row([
             "tool".to_string(),
