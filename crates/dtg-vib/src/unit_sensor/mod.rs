@@ -18,6 +18,7 @@ mod dynamic;
 mod effect;
 pub(crate) mod error;
 pub mod fdi;
+pub mod frequency_response;
 mod model;
 mod observable;
 mod parity;
