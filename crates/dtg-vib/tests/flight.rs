@@ -121,6 +121,38 @@ fn the_flights_are_fitted_in_parity_and_meet_the_acceptance() {
         }
     }
     assert_eq!(channels[0]["effect_coefficients"]["ma_y"]["unit"], "µrad");
+    // Each tap family read as a filter: g1x's sf (delay and gain per band
+    // to the 60 Hz Nyquist frequency) and its twelve families in all.
+    let families = channels[0]["frequency_response"].as_array().unwrap();
+    assert_eq!(families.len(), 1 + 2 + 9, "{families:?}");
+    for f in families {
+        let line: Vec<String> = f["bands"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|b| {
+                let (g, hz) = (&b["gain"], &b["band_hz"]);
+                format!(
+                    "{:.0}–{:.0} Hz {:.4e} [{:.4e}, {:.4e}]",
+                    hz[0].as_f64().unwrap(),
+                    hz[1].as_f64().unwrap(),
+                    g["value"].as_f64().unwrap(),
+                    g["ci95"][0].as_f64().unwrap(),
+                    g["ci95"][1].as_f64().unwrap()
+                )
+            })
+            .collect();
+        assert_eq!(line.len(), 4);
+        println!(
+            "path_11 g1x {} ({}): {}",
+            f["family"],
+            f["unit"],
+            line.join(", ")
+        );
+    }
+    let delay = &families[0]["delay_ms"];
+    println!("path_11 g1x sf delay, ms: {delay}");
+    assert!(delay["ci95"][0].as_f64().unwrap() < delay["value"].as_f64().unwrap());
     let (before, after) = validation_pooled(&mh, H, &dir.path().join("rh.csv"));
     // Before: the research recipe's 5.149 deg/s (its training mean removed).
     assert!((before - 5.149).abs() < 0.01, "before {before}");

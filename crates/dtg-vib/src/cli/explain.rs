@@ -11,7 +11,7 @@ use sysid::explain::ExplainStage;
 pub use dtg_vib::commands::explain::ExplainArgs;
 
 use super::findings::print_rounds;
-use super::fit::{FitReport, print_fit_channels};
+use super::fit::{FitReport, print_fit_channels, print_frequency_responses};
 use super::report::guard_report;
 use dtg_vib::commands::fit_args::{FitRecipe, fit_inputs};
 
@@ -66,6 +66,7 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     println!("unit: {} ({})", unit.name(), unit.file());
     print_rounds(&rounds, converged, a.max_rounds);
     print_fit_channels(m.channels());
+    print_frequency_responses(m);
     if let Some(w) = m.choice().and_then(|c| c.window_signals.as_ref()) {
         println!("{}", w.line());
     }

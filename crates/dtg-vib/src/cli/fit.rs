@@ -51,6 +51,7 @@ pub fn run(a: FitArgs, progress: Progress) -> Result<()> {
     }
     println!("unit: {} ({})", sensor.unit.name(), sensor.unit.file());
     print_fit_channels(m.channels());
+    print_frequency_responses(m);
     if let Some(c) = m.choice() {
         print_choice(c);
     }
@@ -177,6 +178,30 @@ pub fn print_record_scores(channels: &[String], per: &[Vec<sysid::fit::RecordSco
             .collect();
         println!("{:>7}  {}", channels[k], cells.join(", "));
     }
+}
+
+/// Each channel's FIR tap families read as filters, one line each (none
+/// when no channel has a family of two or more taps).
+pub fn print_frequency_responses(m: &sysid::Model<UnitSensor>) {
+    use dtg_vib::unit_sensor::frequency_response::{BANDS, lines, responses};
+    let all: Vec<String> = m
+        .channels()
+        .iter()
+        .flat_map(|c| {
+            lines(
+                &c.channel().to_string(),
+                &responses(c.effects(), c.coefficients(), m.dt_s()),
+            )
+        })
+        .collect();
+    if all.is_empty() {
+        return;
+    }
+    println!(
+        "frequency response of each tap family (mean response over {BANDS} bands to {} Hz; 95% intervals from the taps' joint covariance):",
+        dtg_vib::numfmt::short((5.0 / m.dt_s()).round() / 10.0)
+    );
+    all.iter().for_each(|l| println!("{l}"));
 }
 
 /// Each channel's centres, scores and effect coefficients (the fit's

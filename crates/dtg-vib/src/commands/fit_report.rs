@@ -4,6 +4,7 @@
 //! `explain --json` holds one as its final fit.
 
 use crate::unit_sensor::UnitSensor;
+use crate::unit_sensor::frequency_response::{FamilyResponse, responses};
 
 /// `fit --json`.
 #[derive(serde::Serialize)]
@@ -44,6 +45,10 @@ struct ChannelReport {
     /// Validation rms per record, with several records.
     #[serde(skip_serializing_if = "Option::is_none")]
     records: Option<Vec<sysid::fit::RecordScore>>,
+    /// The frequency response of each family of two or more FIR taps
+    /// (delay, gain and phase per band, with 95% intervals).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    frequency_response: Vec<FamilyResponse>,
 }
 
 /// One effect coefficient of [`ChannelReport`].
@@ -67,6 +72,9 @@ impl FitReport {
         };
         let mut r = Self::of_channels(model.channels(), split, fit_seconds).with_choice(model);
         r.unit = model.sensor().unit.name().to_string();
+        for (report, c) in r.channels.iter_mut().zip(model.channels()) {
+            report.frequency_response = responses(c.effects(), c.coefficients(), model.dt_s());
+        }
         r
     }
 
@@ -127,6 +135,7 @@ impl FitReport {
                     bias: c.bias(),
                     effect_coefficients,
                     records: None,
+                    frequency_response: Vec::new(),
                 }
             })
             .collect();

@@ -18,6 +18,7 @@ mod dynamic;
 pub(crate) mod effect;
 pub(crate) mod error;
 pub mod fdi;
+pub mod frequency_response;
 pub(crate) mod model;
 mod observable;
 mod parity;

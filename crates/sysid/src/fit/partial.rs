@@ -39,12 +39,25 @@ pub(super) struct Rows<'a> {
 const CROSS_FIT_CHUNKS: [usize; 3] = [4, 6, 8];
 
 /// Several cross-fits' estimates as one (Chernozhukov et al. 2018, §3.4):
-/// θ the mean, σ² the mean of σ_s² + (θ_s − θ)², the fewest degrees of freedom.
+/// θ the mean, σ² the mean of σ_s² + (θ_s − θ)², the fewest degrees of
+/// freedom; the joint covariance likewise, the mean of Σ_s + (θ_s − θ)(θ_s − θ)ᵀ.
 fn combine_splits(fits: &[HacFit]) -> Option<HacFit> {
     let first = fits.first()?;
     let s = fits.len() as f64;
     let p = first.coef.len();
     let mut out = first.clone();
+    let means: Vec<f64> = (0..p)
+        .map(|j| fits.iter().map(|f| f.coef[j]).sum::<f64>() / s)
+        .collect();
+    for a in 0..p {
+        for b in 0..p {
+            out.cov[a][b] = fits
+                .iter()
+                .map(|f| f.cov[a][b] + (f.coef[a] - means[a]) * (f.coef[b] - means[b]))
+                .sum::<f64>()
+                / s;
+        }
+    }
     for j in 0..p {
         let mean = fits.iter().map(|f| f.coef[j]).sum::<f64>() / s;
         let var = fits
@@ -286,6 +299,7 @@ pub(super) fn coefficients(
                 let half = f.interval(j, 0.95).map(|b| b - f.coef[j]);
                 let v = theta[j];
                 Coefficient::new(v, f.se[j], [v + half[0], v + half[1]], unit.as_str())
+                    .with_covariance(f.cov[j].clone())
             })
             .collect(),
         None => Vec::new(),

@@ -20,6 +20,11 @@ pub struct HacFit {
     pub coef: Vec<f64>,
     /// Standard error of each β (HAC).
     pub se: Vec<f64>,
+    /// The joint covariance of β (HAC: R⁻¹ Ω R⁻ᵀ from the QR factor, which
+    /// is σ² R⁻¹ R⁻ᵀ for white residuals), row-major p × p; its diagonal is
+    /// `se`². A quantity derived from several coefficients takes its
+    /// interval from it ([`super::derived`]).
+    pub cov: Vec<Vec<f64>>,
     /// Bartlett truncation lag of the long-run variance, samples.
     pub bandwidth: usize,
     /// Equivalent degrees of freedom of the long-run variance (1.5·n/bandwidth):
@@ -137,7 +142,7 @@ pub fn hac_regression(y: &[f64], x: &[&[f64]]) -> Result<HacFit, InferenceError>
     let bandwidth = andrews_bandwidth(&scores);
     let omega = long_run_covariance(&scores, bandwidth);
     let dof = (1.5 * n as f64 / bandwidth as f64).max(1.0);
-    // Columns of R⁻¹, then Cov = R⁻¹ Ω R⁻ᵀ; only the diagonal is needed.
+    // Columns of R⁻¹, then Cov = R⁻¹ Ω R⁻ᵀ.
     let rinv: Vec<Vec<f64>> = (0..p)
         .map(|k| {
             let mut unit = vec![0.0; p];
@@ -145,21 +150,42 @@ pub fn hac_regression(y: &[f64], x: &[&[f64]]) -> Result<HacFit, InferenceError>
             back_substitute(&r, &unit)
         })
         .collect(); // rinv[k] = column k of R⁻¹
-    let se = (0..p)
-        .map(|j| {
-            let row: Vec<f64> = (0..p).map(|k| rinv[k][j]).collect();
-            let mut s = 0.0;
-            for a in 0..p {
-                for b in 0..p {
-                    s += row[a] * omega[a][b] * row[b];
-                }
-            }
-            s.max(0.0).sqrt()
+    let rows: Vec<Vec<f64>> = (0..p)
+        .map(|j| (0..p).map(|k| rinv[k][j]).collect())
+        .collect(); // rows[j] = row j of R⁻¹
+    // (R⁻¹ Ω) once; the diagonal summed term by term as the standard
+    // errors always were, so they do not move in the last digit.
+    let left: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| {
+            (0..p)
+                .map(|b| (0..p).map(|a| r[a] * omega[a][b]).sum())
+                .collect()
         })
         .collect();
+    let cov: Vec<Vec<f64>> = (0..p)
+        .map(|i| {
+            (0..p)
+                .map(|j| match i == j {
+                    true => {
+                        let mut s = 0.0;
+                        for a in 0..p {
+                            for b in 0..p {
+                                s += rows[i][a] * omega[a][b] * rows[i][b];
+                            }
+                        }
+                        s
+                    }
+                    false => dot(&left[i], &rows[j]),
+                })
+                .collect()
+        })
+        .collect();
+    let se = (0..p).map(|j| cov[j][j].max(0.0).sqrt()).collect();
     Ok(HacFit {
         coef,
         se,
+        cov,
         bandwidth,
         dof,
         rss: dot(&e, &e),

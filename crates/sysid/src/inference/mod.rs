@@ -15,9 +15,11 @@
 //! and what it merely memorised on its own block is not.
 
 mod blocks;
+pub mod derived;
 mod hac;
 
 pub use blocks::{Blocks, residualise};
+pub use derived::{Derived, DerivedError};
 pub use hac::{HacFit, andrews_bandwidth, hac_regression};
 
 use serde::{Deserialize, Serialize};
@@ -54,6 +56,12 @@ pub struct Coefficient {
     pub se: f64,
     /// 95% confidence interval, same unit.
     pub ci95: [f64; 2],
+    /// Its covariance with each coefficient of the same fit, in the fit's
+    /// effect order (this one's own entry is `se`²): the row of the joint
+    /// covariance that intervals of derived quantities need
+    /// ([`derived`]). Empty where the fit kept none (files written before).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub cov: Vec<f64>,
 }
 
 impl Coefficient {
@@ -64,7 +72,14 @@ impl Coefficient {
             unit: unit.into(),
             se,
             ci95,
+            cov: Vec::new(),
         }
+    }
+
+    /// The same coefficient with its row of the fit's joint covariance.
+    pub fn with_covariance(mut self, row: Vec<f64>) -> Self {
+        self.cov = row;
+        self
     }
 
     /// Whether the 95% interval contains `v`.

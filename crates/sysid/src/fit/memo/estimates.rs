@@ -112,6 +112,7 @@ mod tests {
         let fit = |coef: f64| HacFit {
             coef: vec![coef],
             se: vec![0.1],
+            cov: vec![vec![0.01]],
             bandwidth: 3,
             dof: 10.0,
             rss: 1.0,
