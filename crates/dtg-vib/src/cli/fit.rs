@@ -78,86 +78,120 @@ pub fn stride_note(m: &sysid::Model<UnitSensor>) {
 /// validation rms and worst ADEV after/before, the chosen one marked, and
 /// what it cost and gained against the paper's model (raw, no smoother).
 pub fn print_choice(c: &sysid::fit::ChoiceReport) {
-    if let Some(w) = &c.window_signals {
-        println!("{}", w.line());
+    for line in choice_lines(c) {
+        println!("{line}");
     }
-    if c.adev_runs == 0
-        && c.candidates.len() == 1
-        && c.networks_shrunk.is_empty()
-        && c.bias_instability_raised.is_empty()
-        && c.input_sample.is_none()
-    {
-        // Only the window was chosen: no input or smoother to tell of.
-        return;
+}
+
+/// An ADEV ratio as the table says it: "not judged" when no run was long
+/// enough (NaN).
+fn adev_ratio(r: f64) -> String {
+    if r.is_nan() {
+        "not judged".to_string()
+    } else {
+        format!("{r:.3}")
     }
+}
+
+/// The lines [`print_choice`] prints. The candidates' table only when there
+/// was a choice (more than one candidate, or an ADEV run or an input
+/// sample): with one candidate given (`--input raw --smoother none`) it
+/// would compare that candidate with itself.
+pub fn choice_lines(c: &sysid::fit::ChoiceReport) -> Vec<String> {
+    let mut out: Vec<String> = c.window_signals.iter().map(|w| w.line()).collect();
+    let chose = c.candidates.len() > 1 || c.adev_runs > 0 || c.input_sample.is_some();
+    if chose {
+        out.extend(candidate_lines(c));
+    }
+    for s in &c.networks_shrunk {
+        out.push(format!("  network shrunk (bias and effects kept): {s}"));
+    }
+    for s in &c.bias_instability_raised {
+        out.push(format!("  bias instability raised: {s}"));
+    }
+    out
+}
+
+/// The choice's header, its candidates' table, the input sample and the
+/// cost and gain against raw/none.
+fn candidate_lines(c: &sysid::fit::ChoiceReport) -> Vec<String> {
     let label = sysid::Smoother::label;
-    println!(
-        "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",
-        c.chosen().input,
-        label(c.chosen().smoother),
-        c.candidates.len(),
-        c.adev_runs
-    );
-    println!(
+    let mut out = vec![
+        format!(
+            "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",
+            c.chosen().input,
+            label(c.chosen().smoother),
+            c.candidates.len(),
+            c.adev_runs
+        ),
         "  input       smoother  val rms (deg/h)  worst ADEV after/before (channel, τ s)  passes"
-    );
+            .to_string(),
+    ];
     for (i, k) in c.candidates.iter().enumerate() {
-        println!(
-            "{} {:<10}  {:<8}  {:>15.4}  {:>6.3} ({}, {:.2}){:>14}",
+        let worst = match k.worst_adev_ratio.is_nan() {
+            true => format!("{:>10}", "not judged"),
+            false => format!(
+                "{:>6.3} ({}, {:.2})",
+                k.worst_adev_ratio, k.worst_channel, k.worst_tau_s
+            ),
+        };
+        out.push(format!(
+            "{} {:<10}  {:<8}  {:>15.4}  {worst}{:>14}",
             if i == c.chosen { "*" } else { " " },
             k.input.to_string(),
             label(k.smoother),
             k.mean_val_rms,
-            k.worst_adev_ratio,
-            k.worst_channel,
-            k.worst_tau_s,
             if k.passes { "yes" } else { "no" }
-        );
+        ));
     }
     if let Some(s) = &c.input_sample {
-        let best = |input| {
-            s.candidates
-                .iter()
-                .filter(|k| k.input == input)
-                .map(|k| k.mean_val_rms)
-                .fold(f64::INFINITY, f64::min)
-        };
-        let inputs: Vec<String> = sysid::ModelInput::ALL
+        out.extend(input_sample_lines(s));
+    }
+    let w = c.chosen();
+    if let Some(b) = c.baseline().filter(|&b| b != w) {
+        out.push(format!(
+            "  against raw/none: validation rms {:.4} → {:.4} deg/h, worst ADEV ratio {} → {}",
+            b.mean_val_rms,
+            w.mean_val_rms,
+            adev_ratio(b.worst_adev_ratio),
+            adev_ratio(w.worst_adev_ratio)
+        ));
+    }
+    out
+}
+
+/// How the input was chosen on a sample of the record.
+fn input_sample_lines(s: &sysid::fit::InputSample) -> Vec<String> {
+    let best = |input| {
+        s.candidates
             .iter()
-            .filter(|&&i| best(i).is_finite())
-            .map(|&i| format!("{i} {:.4}", best(i)))
-            .collect();
-        println!(
-            "  the input was chosen on a sample of {} rows ({} chunks spread over the record; best validation rms there: {} deg/h), and only it was fitted on the whole record",
-            s.rows,
-            s.chunks,
-            inputs.join(", ")
-        );
-        if let Some(t) = &s.shared_centres {
-            println!(
-                "  one centre selection for all channels on that sample: mean validation rms {:.4} against {:.4} deg/h with one per channel; {}",
-                t.shared_mean_val_rms,
-                t.per_channel_mean_val_rms,
-                match t.taken {
-                    true => "the record was fitted with one (within 1%)",
-                    false => "the record was fitted with one per channel",
-                }
-            );
-        }
+            .filter(|k| k.input == input)
+            .map(|k| k.mean_val_rms)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let inputs: Vec<String> = sysid::ModelInput::ALL
+        .iter()
+        .filter(|&&i| best(i).is_finite())
+        .map(|&i| format!("{i} {:.4}", best(i)))
+        .collect();
+    let mut out = vec![format!(
+        "  the input was chosen on a sample of {} rows ({} chunks spread over the record; best validation rms there: {} deg/h), and only it was fitted on the whole record",
+        s.rows,
+        s.chunks,
+        inputs.join(", ")
+    )];
+    if let Some(t) = &s.shared_centres {
+        out.push(format!(
+            "  one centre selection for all channels on that sample: mean validation rms {:.4} against {:.4} deg/h with one per channel; {}",
+            t.shared_mean_val_rms,
+            t.per_channel_mean_val_rms,
+            match t.taken {
+                true => "the record was fitted with one (within 1%)",
+                false => "the record was fitted with one per channel",
+            }
+        ));
     }
-    if let Some(b) = c.baseline() {
-        let w = c.chosen();
-        println!(
-            "  against raw/none: validation rms {:.4} → {:.4} deg/h, worst ADEV ratio {:.3} → {:.3}",
-            b.mean_val_rms, w.mean_val_rms, b.worst_adev_ratio, w.worst_adev_ratio
-        );
-    }
-    for s in &c.networks_shrunk {
-        println!("  network shrunk (bias and effects kept): {s}");
-    }
-    for s in &c.bias_instability_raised {
-        println!("  bias instability raised: {s}");
-    }
+    out
 }
 
 /// Validation rms of each channel on each record.
@@ -219,5 +253,76 @@ pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
                 e.join(", ")
             }
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sysid::fit::{Candidate, ChoiceReport};
+
+    fn candidate(input: sysid::ModelInput, rms: f64, adev: f64) -> Candidate {
+        Candidate {
+            input,
+            smoother: None,
+            val_rms: vec![rms],
+            mean_val_rms: rms,
+            worst_adev_ratio: adev,
+            worst_channel: if adev.is_nan() {
+                String::new()
+            } else {
+                "g1".into()
+            },
+            worst_tau_s: if adev.is_nan() { f64::NAN } else { 0.5 },
+            worst_excess: adev,
+            passes: true,
+        }
+    }
+
+    fn report(candidates: Vec<Candidate>, shrunk: Vec<String>) -> ChoiceReport {
+        ChoiceReport {
+            candidates,
+            chosen: 0,
+            adev_runs: 0,
+            networks_shrunk: shrunk,
+            input_sample: None,
+            bias_instability_raised: Vec::new(),
+            window_signals: None,
+        }
+    }
+
+    /// One candidate given (`--input raw --smoother none`): no table
+    /// comparing it with itself, no NaN; the shrunk networks still said.
+    #[test]
+    fn one_candidate_prints_no_choice_and_no_nan() {
+        let raw = candidate(sysid::ModelInput::Raw, 3878.78, f64::NAN);
+        let lines = choice_lines(&report(vec![raw], vec!["g1 to zero".into()]));
+        assert_eq!(
+            lines,
+            ["  network shrunk (bias and effects kept): g1 to zero"],
+            "{lines:?}"
+        );
+    }
+
+    /// Two candidates whose ADEV was not judged: the table and the line
+    /// against raw/none say "not judged", never NaN.
+    #[test]
+    fn an_unjudged_adev_is_said_not_judged() {
+        let mut c = report(
+            vec![
+                candidate(sysid::ModelInput::Raw, 2.0, f64::NAN),
+                candidate(sysid::ModelInput::Statistics, 1.0, f64::NAN),
+            ],
+            Vec::new(),
+        );
+        c.chosen = 1;
+        let text = choice_lines(&c).join("\n");
+        assert!(!text.contains("NaN"), "{text}");
+        assert!(
+            text.contains("against raw/none: validation rms 2.0000 → 1.0000 deg/h, worst ADEV ratio not judged → not judged"),
+            "{text}"
+        );
+        c.candidates[1].worst_adev_ratio = 0.95;
+        assert!(choice_lines(&c).join("\n").contains("not judged → 0.950"));
     }
 }
