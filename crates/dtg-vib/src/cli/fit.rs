@@ -8,6 +8,7 @@ use dtg_vib::commands::fit::{Fitted, fit};
 use dtg_vib::unit_sensor::UnitSensor;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use sysid::Sensor;
+use sysid::inference::Coefficient;
 
 pub use dtg_vib::commands::fit_report::FitReport;
 
@@ -215,50 +216,134 @@ pub fn print_record_scores(channels: &[String], per: &[Vec<sysid::fit::RecordSco
 
 /// Each channel's centres, scores and effect coefficients (the fit's
 /// estimates, from the training rows), each with its standard error and 95%
-/// interval.
+/// interval. A family of taps (`ID`, `ID@1`, … of a dynamic effect) takes
+/// one line below its channel's ([`effect_cells`]); `--json` holds every tap.
 pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
     channels: &[sysid::ChannelModel<C, E>],
 ) {
     println!(
-        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI; a family of taps in one line, every tap in --json)"
     );
     for c in channels {
         let s = c.scores();
-        let e: Vec<String> = c
+        let effects: Vec<(String, Option<Coefficient>)> = c
             .effects()
             .iter()
             .enumerate()
-            .map(|(j, e)| match c.coefficients() {
-                Some(k) => format!(
-                    "{} {:.4} ± {:.4} {} ({:.4} to {:.4})",
-                    e.id(),
-                    k[j].value,
-                    k[j].se,
-                    k[j].unit,
-                    k[j].ci95[0],
-                    k[j].ci95[1]
-                ),
-                None => e.id(),
-            })
+            .map(|(j, e)| (e.id(), c.coefficients().map(|k| k[j].clone())))
             .collect();
+        let (singles, families) = effect_cells(&effects);
         println!(
             "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
             c.channel().to_string(),
             c.n_centres(),
             s.train_rms,
             s.val_rms,
-            if e.is_empty() {
-                "—".into()
-            } else {
-                e.join(", ")
+            match (singles.is_empty(), families.is_empty()) {
+                (true, true) => "—".into(),
+                (true, false) => format!("{} effects:", effects.len()),
+                _ => singles.join(", "),
             }
         );
+        for f in families {
+            println!("{:>9}{f}", "");
+        }
     }
+}
+
+/// An effect with its coefficient as the table prints it.
+fn effect_cell(id: &str, k: Option<&Coefficient>) -> String {
+    match k {
+        Some(k) => format!(
+            "{id} {:.4} ± {:.4} {} ({:.4} to {:.4})",
+            k.value, k.se, k.unit, k.ci95[0], k.ci95[1]
+        ),
+        None => id.to_string(),
+    }
+}
+
+/// A channel's effects in the table: the effects alone, and one line per
+/// family of two or more taps (ids `ID` and `ID@LAG` of one `ID`) with its
+/// lags, how many taps are significant (95% interval excluding
+/// zero) and its largest tap in magnitude, in the order the effects come.
+fn effect_cells(effects: &[(String, Option<Coefficient>)]) -> (Vec<String>, Vec<String>) {
+    let base = |id: &str| -> (String, usize) {
+        match id.rsplit_once('@').map(|(b, l)| (b, l.parse::<usize>())) {
+            Some((b, Ok(lag))) => (b.to_string(), lag),
+            _ => (id.to_string(), 0),
+        }
+    };
+    let mut order: Vec<String> = Vec::new();
+    for (id, _) in effects {
+        let b = base(id).0;
+        if !order.contains(&b) {
+            order.push(b);
+        }
+    }
+    let (mut singles, mut families) = (Vec::new(), Vec::new());
+    for b in order {
+        let taps: Vec<(usize, &String, Option<&Coefficient>)> = effects
+            .iter()
+            .filter(|(id, _)| base(id).0 == b)
+            .map(|(id, k)| (base(id).1, id, k.as_ref()))
+            .collect();
+        if let [(_, id, k)] = taps[..] {
+            singles.push(effect_cell(id, k));
+            continue;
+        }
+        let lags = taps.iter().map(|t| t.0);
+        let (lo, hi) = (lags.clone().min().unwrap_or(0), lags.max().unwrap_or(0));
+        let known: Vec<(&String, &Coefficient)> = taps
+            .iter()
+            .filter_map(|(_, id, k)| k.map(|k| (*id, k)))
+            .collect();
+        let Some((largest, k)) = known
+            .iter()
+            .max_by(|a, b| a.1.value.abs().total_cmp(&b.1.value.abs()))
+        else {
+            families.push(format!("{b}@{lo}..{hi} ({} taps)", taps.len()));
+            continue;
+        };
+        let significant = known
+            .iter()
+            .filter(|(_, k)| k.ci95[0] > 0.0 || k.ci95[1] < 0.0)
+            .count();
+        families.push(format!(
+            "{b}@{lo}..{hi} ({} taps): {significant} significant; largest {}",
+            taps.len(),
+            effect_cell(largest, Some(k))
+        ));
+    }
+    (singles, families)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A family of taps takes one line (lags, count, unit, significant
+    /// taps, the largest); an effect alone prints as itself.
+    #[test]
+    fn a_family_of_taps_is_one_line() {
+        let k = |v: f64, lo: f64, hi: f64| Some(Coefficient::new(v, 1.0, [lo, hi], "ppm"));
+        let effects = vec![
+            (
+                "g_z".to_string(),
+                Some(Coefficient::new(2.0, 0.5, [1.0, 3.0], "deg/h/g")),
+            ),
+            ("sf".to_string(), k(-3.0, -5.0, -1.0)),
+            ("sf@1".to_string(), k(7.0, 5.0, 9.0)),
+            ("sf@2".to_string(), k(0.5, -1.5, 2.5)),
+        ];
+        let (singles, families) = effect_cells(&effects);
+        assert_eq!(singles, ["g_z 2.0000 ± 0.5000 deg/h/g (1.0000 to 3.0000)"]);
+        assert_eq!(
+            families,
+            [
+                "sf@0..2 (3 taps): 2 significant; largest sf@1 7.0000 ± 1.0000 ppm (5.0000 to 9.0000)"
+            ]
+        );
+    }
     use sysid::fit::{Candidate, ChoiceReport};
 
     fn candidate(input: sysid::ModelInput, rms: f64, adev: f64) -> Candidate {
