@@ -274,15 +274,13 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
 
 /// The command line end to end on a tetra: simulate, explain, then the
 /// model's commands with no --unit (the model carries it).
-#[test]
-fn the_command_line_runs_the_loop_on_a_tetra() {
-    let dir = scratch_dir("dtg-vib-unit-loop");
+/// `dtg-vib simulate --unit tetra` of `sc` into `dir/sim`.
+fn simulate_tetra(dir: &std::path::Path, mut sc: Scenario) -> std::path::PathBuf {
     let scenario = dir.join("tetra.toml");
-    let mut sc = triaxial(60.0, 41, &TETRA);
     sc.name = "tetra".into();
     sc.save(&scenario).unwrap();
     let sim = dir.join("sim");
-    DTG_VIB.check(&[
+    let r = DTG_VIB.check(&[
         "simulate",
         "--unit",
         "tetra",
@@ -291,6 +289,14 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
         "--out",
         s(&sim),
     ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    sim
+}
+
+#[test]
+fn the_command_line_runs_the_loop_on_a_tetra() {
+    let dir = scratch_dir("dtg-vib-unit-loop");
+    let sim = simulate_tetra(&dir, triaxial(60.0, 41, &TETRA));
     let record = sim.join("record.csv");
     let calib = sim.join("calibration.json");
     let model = dir.join("m.json");
@@ -550,21 +556,7 @@ fn assert_rates_within_bounds(
 #[test]
 fn a_units_temperature_column_is_in_celsius_whatever_it_is_called() {
     let dir = scratch_dir("dtg-vib-board-temp");
-    let scenario = dir.join("tetra.toml");
-    let mut sc = triaxial(20.0, 43, &[("g3", "temp", 0.05)]);
-    sc.name = "tetra".into();
-    sc.save(&scenario).unwrap();
-    let sim = dir.join("sim");
-    let r = DTG_VIB.check(&[
-        "simulate",
-        "--unit",
-        "tetra",
-        "--scenario",
-        s(&scenario),
-        "--out",
-        s(&sim),
-    ]);
-    assert_eq!(r.code, 0, "{}", r.stderr);
+    let sim = simulate_tetra(&dir, triaxial(20.0, 43, &[("g3", "temp", 0.05)]));
     let csv = std::fs::read_to_string(sim.join("record.csv")).unwrap();
     let (header, rows) = csv.split_once('\n').unwrap();
     assert!(header.ends_with(",temp"), "{header}");

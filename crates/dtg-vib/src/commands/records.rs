@@ -292,3 +292,33 @@ pub fn unit_csv<'a>(
     }
     Ok((text, rows))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// "Judged against the rate reference" only when there is one (issue
+    /// 34 §4): a triad with a table rate is; without, or in parity, it is
+    /// judged by its own outputs.
+    #[test]
+    fn against_the_rate_reference_only_with_one() {
+        let triad = Unit::builtin("triad").unwrap();
+        let table = RateReference::Table {
+            rate_deg_s: [0.0, 0.0, 10.0],
+        };
+        let with = no_residue_note(&triad, &table).unwrap();
+        assert!(
+            with.ends_with("judged against the rate reference (rms before and after per channel)"),
+            "{with}"
+        );
+        for r in [RateReference::None, RateReference::Parity] {
+            let without = no_residue_note(&triad, &r).unwrap();
+            assert!(
+                !without.contains("rate reference (rms")
+                    && without.contains("by their own outputs"),
+                "{without}"
+            );
+        }
+        assert!(no_residue_note(&Unit::builtin("tetra").unwrap(), &table).is_none());
+    }
+}
