@@ -222,7 +222,7 @@ pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
     channels: &[sysid::ChannelModel<C, E>],
 ) {
     println!(
-        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI; a family of taps in one line, every tap in --json)"
+        "channel  centres  train rms  val rms  (deg/h)  effects (coefficient ± standard error, 95% CI)"
     );
     for c in channels {
         let s = c.scores();
