@@ -92,6 +92,13 @@ fn a_deg_s_log_declared_as_deg_h_is_warned_about() {
         e.contains("warning") && e.contains("gx") && e.contains("deg/s"),
         "{e}"
     );
+    // One "warning:" per line, then the log, then what it says.
+    let w = e.lines().find(|l| l.contains("still noise")).unwrap();
+    assert!(
+        w.starts_with("warning: data/realdata/px4_cubeorange_vtol_ground.csv: column gx:")
+            && w.matches("warning").count() == 1,
+        "{w}"
+    );
 }
 
 /// `allan --data X.ulg` gives the deviations of its CSV (the CSV pyulog

@@ -274,15 +274,13 @@ fn the_paper_unit_renamed_reordered_in_deg_s_and_m_s2_gives_the_same_fit() {
 
 /// The command line end to end on a tetra: simulate, explain, then the
 /// model's commands with no --unit (the model carries it).
-#[test]
-fn the_command_line_runs_the_loop_on_a_tetra() {
-    let dir = scratch_dir("dtg-vib-unit-loop");
+/// `dtg-vib simulate --unit tetra` of `sc` into `dir/sim`.
+fn simulate_tetra(dir: &std::path::Path, mut sc: Scenario) -> std::path::PathBuf {
     let scenario = dir.join("tetra.toml");
-    let mut sc = triaxial(60.0, 41, &TETRA);
     sc.name = "tetra".into();
     sc.save(&scenario).unwrap();
     let sim = dir.join("sim");
-    DTG_VIB.check(&[
+    let r = DTG_VIB.check(&[
         "simulate",
         "--unit",
         "tetra",
@@ -291,6 +289,14 @@ fn the_command_line_runs_the_loop_on_a_tetra() {
         "--out",
         s(&sim),
     ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    sim
+}
+
+#[test]
+fn the_command_line_runs_the_loop_on_a_tetra() {
+    let dir = scratch_dir("dtg-vib-unit-loop");
+    let sim = simulate_tetra(&dir, triaxial(60.0, 41, &TETRA));
     let record = sim.join("record.csv");
     let calib = sim.join("calibration.json");
     let model = dir.join("m.json");
@@ -540,4 +546,67 @@ fn assert_rates_within_bounds(
         covered * 10 >= intervals * 9,
         "{name}: 95% intervals covered the truth {covered}/{intervals} times (bound: 90%)"
     );
+}
+
+/// A unit's temperature column is in °C whatever it is called (issue 34
+/// §4): a tetra log whose temperature column is `board_temp`, with a unit
+/// file naming it (`columns.temperature`), fits `col:board_temp` in
+/// deg/h/°C, and the model read back says so (its export); the same column
+/// in a unit that does not name it is "per unit of board_temp".
+#[test]
+fn a_units_temperature_column_is_in_celsius_whatever_it_is_called() {
+    let dir = scratch_dir("dtg-vib-board-temp");
+    let sim = simulate_tetra(&dir, triaxial(20.0, 43, &[("g3", "temp", 0.05)]));
+    let csv = std::fs::read_to_string(sim.join("record.csv")).unwrap();
+    let (header, rows) = csv.split_once('\n').unwrap();
+    assert!(header.ends_with(",temp"), "{header}");
+    let record = dir.join("board.csv");
+    std::fs::write(
+        &record,
+        format!("{}board_temp\n{rows}", header.trim_end_matches("temp")),
+    )
+    .unwrap();
+    let tetra = Unit::builtin_toml("tetra").unwrap();
+    let named = tetra.replace("time = \"t\"", "time = \"t\"\ntemperature = \"board_temp\"");
+    assert_ne!(named, tetra);
+    let coefficient_unit = |unit_toml: &str, tag: &str| {
+        let unit = dir.join(format!("{tag}.toml"));
+        std::fs::write(&unit, unit_toml).unwrap();
+        let model = dir.join(format!("{tag}.json"));
+        let r = DTG_VIB.check(&[
+            "fit",
+            "--unit",
+            s(&unit),
+            "--data",
+            s(&record),
+            "--effects",
+            "col:board_temp",
+            "--max-centres",
+            "2",
+            "--json",
+            "--out",
+            s(&model),
+        ]);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        let j: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        let u = j["channels"][2]["effect_coefficients"]["col:board_temp"]["unit"].clone();
+        let ex = dir.join(format!("{tag}-export"));
+        let r = DTG_VIB.check(&[
+            "export",
+            "--model",
+            s(&model),
+            "--lang",
+            "text",
+            "--out",
+            s(&ex),
+        ]);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        let eq = std::fs::read_to_string(ex.join("equations.txt")).unwrap();
+        (u, eq)
+    };
+    let (u, eq) = coefficient_unit(&named, "named");
+    assert_eq!(u, "deg/h/°C");
+    assert!(eq.contains("deg/h/°C)·LP[col:board_temp]"), "{eq}");
+    let (u, _) = coefficient_unit(tetra, "unnamed");
+    assert_eq!(u, "deg/h per unit of board_temp");
 }

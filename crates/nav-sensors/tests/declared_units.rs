@@ -6,6 +6,10 @@
 //! The still-noise check catches a quiet MEMS log (the CubeOrange's); a
 //! noisy one in deg/s taken for deg/h reads like a navigation-grade gyro
 //! (the bench log's gx, 0.07 deg/h/√Hz) and is left to the tilt check.
+//! The tilt check stays silent on the real three-IMU quadrotor flights
+//! (`data/realdata/multi-imu/`), whose accelerometers read the thrust that
+//! turns with the body, and its false-alarm rate on clean pieces of every
+//! real and simulated log is measured by the ignored test below.
 
 use nav_sensors::record::{DeclaredUnitWarning, Record, declared_unit_warnings};
 use nav_sensors::unit::{RateUnit, SpecificForceUnit, Unit};
@@ -27,6 +31,14 @@ fn declaring(rate: &str, force: &str) -> Unit {
     Unit::from_toml(&toml, "declared.toml").unwrap()
 }
 
+fn multi_imu() -> Unit {
+    Unit::load(format!(
+        "{}/../../units/multi-imu.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+}
+
 fn longest(file: &str, unit: &Unit) -> Record {
     let r = Record::read_with_unit(path(file), unit).unwrap();
     r.records.into_iter().max_by_key(Record::len).unwrap()
@@ -34,6 +46,14 @@ fn longest(file: &str, unit: &Unit) -> Record {
 
 #[test]
 fn logs_read_as_declared_give_no_warning() {
+    let multi = multi_imu();
+    for file in [
+        "multi-imu/qdr_horizontal_path11.csv",
+        "multi-imu/qdr_vertical_path1.csv",
+    ] {
+        let w = declared_unit_warnings(&multi, &longest(file, &multi), false);
+        assert!(w.is_empty(), "{file}: {w:?}");
+    }
     for (file, still) in [
         ("px4_fmuv4pro_bench.csv", true),
         ("px4_cubeorange_vtol_ground.csv", true),
@@ -132,4 +152,95 @@ fn a_paper_format_calibration_with_another_unit_is_refused_naming_the_format() {
         cal.check(&triad()),
         Err(UnitCalibrationError::Unknown { .. })
     ));
+}
+
+/// Whether the tilt check warns on `rec` read with `unit`.
+fn tilt_warns(unit: &Unit, rec: &Record) -> bool {
+    declared_unit_warnings(unit, rec, false)
+        .iter()
+        .any(|w| matches!(w, DeclaredUnitWarning::TiltChange { .. }))
+}
+
+/// `rec` (deg/h inside) as a deg/s log read with a unit declaring deg/h:
+/// every rate 3600× too small.
+fn as_if_deg_h(rec: &Record) -> Record {
+    let n = rec.gyro_names().len();
+    rec.with_gyro_series(
+        (0..n)
+            .map(|k| rec.gyro_at(k).iter().map(|w| w / 3600.0).collect())
+            .collect(),
+    )
+}
+
+/// The tilt check on 30-s pieces of clean logs, read as declared: every
+/// real log of `data/realdata/` (two quadrotor flights, two hand-held, a
+/// bench and a ground log) and three seeds of the simulated 12-min flight
+/// (`scenarios/flight.toml`, a triad: coordinated turns, S-turns, take-off
+/// roll). The false-alarm rate: none of the 78 pieces warns
+/// (asserted: at most 1). The same pieces as deg/s logs declared deg/h
+/// (the hand-held and simulated ones that turn by 20 deg or more) warn
+/// on 11 of 75 (printed per log: the others turn less than 20 deg or
+/// their accelerometers read manoeuvre, not gravity).
+#[test]
+#[ignore = "statistical: the tilt check's false-alarm rate on 78 clean pieces (about 15 s)"]
+fn the_tilt_check_false_alarm_rate_on_clean_pieces() {
+    let mut logs: Vec<(String, Unit, Record)> = Vec::new();
+    let multi = multi_imu();
+    for f in [
+        "multi-imu/qdr_horizontal_path11.csv",
+        "multi-imu/qdr_vertical_path1.csv",
+    ] {
+        logs.push((f.into(), multi.clone(), longest(f, &multi)));
+    }
+    for f in [
+        "px4_auav_x21_handheld.csv",
+        "xio_fusion_handheld.csv",
+        "px4_fmuv4pro_bench.csv",
+        "px4_cubeorange_vtol_ground.csv",
+    ] {
+        logs.push((f.into(), triad(), longest(f, &triad())));
+    }
+    let scenario = nav_sensors::sim::Scenario::load(format!(
+        "{}/../../scenarios/flight.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    for seed in 1..=3 {
+        let s = nav_sensors::sim::Scenario {
+            seed,
+            ..scenario.clone()
+        };
+        let sim = nav_sensors::sim::simulate_unit(&triad(), &s).unwrap();
+        logs.push((
+            format!("simulated flight, seed {seed}"),
+            triad(),
+            sim.record,
+        ));
+    }
+    let deg_h = declaring("deg/h", "m/s^2");
+    let (mut pieces, mut alarms, mut wrong, mut caught) = (0, 0, 0, 0);
+    for (name, unit, rec) in &logs {
+        let caught_before = caught;
+        let per = (30.0 / rec.dt()).round() as usize;
+        for start in (0..rec.len().saturating_sub(per / 2)).step_by(per) {
+            let piece = rec.slice(start..(start + per).min(rec.len()));
+            pieces += 1;
+            if tilt_warns(unit, &piece) {
+                alarms += 1;
+                eprintln!("false alarm: {name} from sample {start}");
+            }
+            if unit.name() == triad().name() {
+                wrong += 1;
+                caught += usize::from(tilt_warns(&deg_h, &as_if_deg_h(&piece)));
+            }
+        }
+        eprintln!(
+            "{name}: declared deg/h, caught in {} piece(s)",
+            caught - caught_before
+        );
+    }
+    eprintln!(
+        "tilt check: {alarms} false alarm(s) in {pieces} clean pieces; deg/s declared deg/h caught in {caught} of {wrong} triad pieces"
+    );
+    assert!(alarms <= 1, "{alarms} of {pieces}");
 }

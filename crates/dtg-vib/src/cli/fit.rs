@@ -8,6 +8,7 @@ use dtg_vib::commands::fit::{Fitted, fit};
 use dtg_vib::unit_sensor::UnitSensor;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use sysid::Sensor;
+use sysid::inference::Coefficient;
 
 pub use dtg_vib::commands::fit_report::FitReport;
 
@@ -79,86 +80,120 @@ pub fn stride_note(m: &sysid::Model<UnitSensor>) {
 /// validation rms and worst ADEV after/before, the chosen one marked, and
 /// what it cost and gained against the paper's model (raw, no smoother).
 pub fn print_choice(c: &sysid::fit::ChoiceReport) {
-    if let Some(w) = &c.window_signals {
-        println!("{}", w.line());
+    for line in choice_lines(c) {
+        println!("{line}");
     }
-    if c.adev_runs == 0
-        && c.candidates.len() == 1
-        && c.networks_shrunk.is_empty()
-        && c.bias_instability_raised.is_empty()
-        && c.input_sample.is_none()
-    {
-        // Only the window was chosen: no input or smoother to tell of.
-        return;
+}
+
+/// An ADEV ratio as the table says it: "not judged" when no run was long
+/// enough (NaN).
+fn adev_ratio(r: f64) -> String {
+    if r.is_nan() {
+        "not judged".to_string()
+    } else {
+        format!("{r:.3}")
     }
+}
+
+/// The lines [`print_choice`] prints. The candidates' table only when there
+/// was a choice (more than one candidate, or an ADEV run or an input
+/// sample): with one candidate given (`--input raw --smoother none`) it
+/// would compare that candidate with itself.
+pub fn choice_lines(c: &sysid::fit::ChoiceReport) -> Vec<String> {
+    let mut out: Vec<String> = c.window_signals.iter().map(|w| w.line()).collect();
+    let chose = c.candidates.len() > 1 || c.adev_runs > 0 || c.input_sample.is_some();
+    if chose {
+        out.extend(candidate_lines(c));
+    }
+    for s in &c.networks_shrunk {
+        out.push(format!("  network shrunk (bias and effects kept): {s}"));
+    }
+    for s in &c.bias_instability_raised {
+        out.push(format!("  bias instability raised: {s}"));
+    }
+    out
+}
+
+/// The choice's header, its candidates' table, the input sample and the
+/// cost and gain against raw/none.
+fn candidate_lines(c: &sysid::fit::ChoiceReport) -> Vec<String> {
     let label = sysid::Smoother::label;
-    println!(
-        "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",
-        c.chosen().input,
-        label(c.chosen().smoother),
-        c.candidates.len(),
-        c.adev_runs
-    );
-    println!(
+    let mut out = vec![
+        format!(
+            "input and smoother: chosen {} / {} among {} candidates (lowest mean validation rms whose compensation keeps ADEV ≤ before × (1 + hw68) at every τ; {} validation run(s) checked):",
+            c.chosen().input,
+            label(c.chosen().smoother),
+            c.candidates.len(),
+            c.adev_runs
+        ),
         "  input       smoother  val rms (deg/h)  worst ADEV after/before (channel, τ s)  passes"
-    );
+            .to_string(),
+    ];
     for (i, k) in c.candidates.iter().enumerate() {
-        println!(
-            "{} {:<10}  {:<8}  {:>15.4}  {:>6.3} ({}, {:.2}){:>14}",
+        let worst = match k.worst_adev_ratio.is_nan() {
+            true => format!("{:>10}", "not judged"),
+            false => format!(
+                "{:>6.3} ({}, {:.2})",
+                k.worst_adev_ratio, k.worst_channel, k.worst_tau_s
+            ),
+        };
+        out.push(format!(
+            "{} {:<10}  {:<8}  {:>15.4}  {worst}{:>14}",
             if i == c.chosen { "*" } else { " " },
             k.input.to_string(),
             label(k.smoother),
             k.mean_val_rms,
-            k.worst_adev_ratio,
-            k.worst_channel,
-            k.worst_tau_s,
             if k.passes { "yes" } else { "no" }
-        );
+        ));
     }
     if let Some(s) = &c.input_sample {
-        let best = |input| {
-            s.candidates
-                .iter()
-                .filter(|k| k.input == input)
-                .map(|k| k.mean_val_rms)
-                .fold(f64::INFINITY, f64::min)
-        };
-        let inputs: Vec<String> = sysid::ModelInput::ALL
+        out.extend(input_sample_lines(s));
+    }
+    let w = c.chosen();
+    if let Some(b) = c.baseline().filter(|&b| b != w) {
+        out.push(format!(
+            "  against raw/none: validation rms {:.4} → {:.4} deg/h, worst ADEV ratio {} → {}",
+            b.mean_val_rms,
+            w.mean_val_rms,
+            adev_ratio(b.worst_adev_ratio),
+            adev_ratio(w.worst_adev_ratio)
+        ));
+    }
+    out
+}
+
+/// How the input was chosen on a sample of the record.
+fn input_sample_lines(s: &sysid::fit::InputSample) -> Vec<String> {
+    let best = |input| {
+        s.candidates
             .iter()
-            .filter(|&&i| best(i).is_finite())
-            .map(|&i| format!("{i} {:.4}", best(i)))
-            .collect();
-        println!(
-            "  the input was chosen on a sample of {} rows ({} chunks spread over the record; best validation rms there: {} deg/h), and only it was fitted on the whole record",
-            s.rows,
-            s.chunks,
-            inputs.join(", ")
-        );
-        if let Some(t) = &s.shared_centres {
-            println!(
-                "  one centre selection for all channels on that sample: mean validation rms {:.4} against {:.4} deg/h with one per channel; {}",
-                t.shared_mean_val_rms,
-                t.per_channel_mean_val_rms,
-                match t.taken {
-                    true => "the record was fitted with one (within 1%)",
-                    false => "the record was fitted with one per channel",
-                }
-            );
-        }
+            .filter(|k| k.input == input)
+            .map(|k| k.mean_val_rms)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let inputs: Vec<String> = sysid::ModelInput::ALL
+        .iter()
+        .filter(|&&i| best(i).is_finite())
+        .map(|&i| format!("{i} {:.4}", best(i)))
+        .collect();
+    let mut out = vec![format!(
+        "  the input was chosen on a sample of {} rows ({} chunks spread over the record; best validation rms there: {} deg/h), and only it was fitted on the whole record",
+        s.rows,
+        s.chunks,
+        inputs.join(", ")
+    )];
+    if let Some(t) = &s.shared_centres {
+        out.push(format!(
+            "  one centre selection for all channels on that sample: mean validation rms {:.4} against {:.4} deg/h with one per channel; {}",
+            t.shared_mean_val_rms,
+            t.per_channel_mean_val_rms,
+            match t.taken {
+                true => "the record was fitted with one (within 1%)",
+                false => "the record was fitted with one per channel",
+            }
+        ));
     }
-    if let Some(b) = c.baseline() {
-        let w = c.chosen();
-        println!(
-            "  against raw/none: validation rms {:.4} → {:.4} deg/h, worst ADEV ratio {:.3} → {:.3}",
-            b.mean_val_rms, w.mean_val_rms, b.worst_adev_ratio, w.worst_adev_ratio
-        );
-    }
-    for s in &c.networks_shrunk {
-        println!("  network shrunk (bias and effects kept): {s}");
-    }
-    for s in &c.bias_instability_raised {
-        println!("  bias instability raised: {s}");
-    }
+    out
 }
 
 /// Validation rms of each channel on each record.
@@ -206,7 +241,8 @@ pub fn print_frequency_responses(m: &sysid::Model<UnitSensor>) {
 
 /// Each channel's centres, scores and effect coefficients (the fit's
 /// estimates, from the training rows), each with its standard error and 95%
-/// interval.
+/// interval. A family of taps (`ID`, `ID@1`, … of a dynamic effect) takes
+/// one line below its channel's ([`effect_cells`]); `--json` holds every tap.
 pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
     channels: &[sysid::ChannelModel<C, E>],
 ) {
@@ -215,34 +251,188 @@ pub fn print_fit_channels<C: Clone + std::fmt::Display, E: sysid::Effect>(
     );
     for c in channels {
         let s = c.scores();
-        let e: Vec<String> = c
+        let effects: Vec<(String, Option<Coefficient>)> = c
             .effects()
             .iter()
             .enumerate()
-            .map(|(j, e)| match c.coefficients() {
-                Some(k) => format!(
-                    "{} {:.4} ± {:.4} {} ({:.4} to {:.4})",
-                    e.id(),
-                    k[j].value,
-                    k[j].se,
-                    k[j].unit,
-                    k[j].ci95[0],
-                    k[j].ci95[1]
-                ),
-                None => e.id(),
-            })
+            .map(|(j, e)| (e.id(), c.coefficients().map(|k| k[j].clone())))
             .collect();
+        let (singles, families) = effect_cells(&effects);
         println!(
             "{:>7}  {:>7}  {:>9.4}  {:>7.4}           {}",
             c.channel().to_string(),
             c.n_centres(),
             s.train_rms,
             s.val_rms,
-            if e.is_empty() {
-                "—".into()
-            } else {
-                e.join(", ")
+            match (singles.is_empty(), families.is_empty()) {
+                (true, true) => "—".into(),
+                (true, false) => format!("{} effects:", effects.len()),
+                _ => singles.join(", "),
             }
         );
+        for f in families {
+            println!("{:>9}{f}", "");
+        }
+    }
+}
+
+/// An effect with its coefficient as the table prints it.
+fn effect_cell(id: &str, k: Option<&Coefficient>) -> String {
+    match k {
+        Some(k) => format!(
+            "{id} {:.4} ± {:.4} {} ({:.4} to {:.4})",
+            k.value, k.se, k.unit, k.ci95[0], k.ci95[1]
+        ),
+        None => id.to_string(),
+    }
+}
+
+/// A channel's effects in the table: the effects alone, and one line per
+/// family of two or more taps (ids `ID` and `ID@LAG` of one `ID`) with its
+/// lags, how many taps are significant (95% interval excluding
+/// zero) and its largest tap in magnitude, in the order the effects come.
+fn effect_cells(effects: &[(String, Option<Coefficient>)]) -> (Vec<String>, Vec<String>) {
+    let base = |id: &str| -> (String, usize) {
+        match id.rsplit_once('@').map(|(b, l)| (b, l.parse::<usize>())) {
+            Some((b, Ok(lag))) => (b.to_string(), lag),
+            _ => (id.to_string(), 0),
+        }
+    };
+    let mut order: Vec<String> = Vec::new();
+    for (id, _) in effects {
+        let b = base(id).0;
+        if !order.contains(&b) {
+            order.push(b);
+        }
+    }
+    let (mut singles, mut families) = (Vec::new(), Vec::new());
+    for b in order {
+        let taps: Vec<(usize, &String, Option<&Coefficient>)> = effects
+            .iter()
+            .filter(|(id, _)| base(id).0 == b)
+            .map(|(id, k)| (base(id).1, id, k.as_ref()))
+            .collect();
+        if let [(_, id, k)] = taps[..] {
+            singles.push(effect_cell(id, k));
+            continue;
+        }
+        let lags = taps.iter().map(|t| t.0);
+        let (lo, hi) = (lags.clone().min().unwrap_or(0), lags.max().unwrap_or(0));
+        let known: Vec<(&String, &Coefficient)> = taps
+            .iter()
+            .filter_map(|(_, id, k)| k.map(|k| (*id, k)))
+            .collect();
+        let Some((largest, k)) = known
+            .iter()
+            .max_by(|a, b| a.1.value.abs().total_cmp(&b.1.value.abs()))
+        else {
+            families.push(format!("{b}@{lo}..{hi} ({} taps)", taps.len()));
+            continue;
+        };
+        let significant = known
+            .iter()
+            .filter(|(_, k)| k.ci95[0] > 0.0 || k.ci95[1] < 0.0)
+            .count();
+        families.push(format!(
+            "{b}@{lo}..{hi} ({} taps): {significant} significant; largest {}",
+            taps.len(),
+            effect_cell(largest, Some(k))
+        ));
+    }
+    (singles, families)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A family of taps takes one line (lags, count, unit, significant
+    /// taps, the largest); an effect alone prints as itself.
+    #[test]
+    fn a_family_of_taps_is_one_line() {
+        let k = |v: f64, lo: f64, hi: f64| Some(Coefficient::new(v, 1.0, [lo, hi], "ppm"));
+        let effects = vec![
+            (
+                "g_z".to_string(),
+                Some(Coefficient::new(2.0, 0.5, [1.0, 3.0], "deg/h/g")),
+            ),
+            ("sf".to_string(), k(-3.0, -5.0, -1.0)),
+            ("sf@1".to_string(), k(7.0, 5.0, 9.0)),
+            ("sf@2".to_string(), k(0.5, -1.5, 2.5)),
+        ];
+        let (singles, families) = effect_cells(&effects);
+        assert_eq!(singles, ["g_z 2.0000 ± 0.5000 deg/h/g (1.0000 to 3.0000)"]);
+        assert_eq!(
+            families,
+            [
+                "sf@0..2 (3 taps): 2 significant; largest sf@1 7.0000 ± 1.0000 ppm (5.0000 to 9.0000)"
+            ]
+        );
+    }
+    use sysid::fit::{Candidate, ChoiceReport};
+
+    fn candidate(input: sysid::ModelInput, rms: f64, adev: f64) -> Candidate {
+        Candidate {
+            input,
+            smoother: None,
+            val_rms: vec![rms],
+            mean_val_rms: rms,
+            worst_adev_ratio: adev,
+            worst_channel: if adev.is_nan() {
+                String::new()
+            } else {
+                "g1".into()
+            },
+            worst_tau_s: if adev.is_nan() { f64::NAN } else { 0.5 },
+            worst_excess: adev,
+            passes: true,
+        }
+    }
+
+    fn report(candidates: Vec<Candidate>, shrunk: Vec<String>) -> ChoiceReport {
+        ChoiceReport {
+            candidates,
+            chosen: 0,
+            adev_runs: 0,
+            networks_shrunk: shrunk,
+            input_sample: None,
+            bias_instability_raised: Vec::new(),
+            window_signals: None,
+        }
+    }
+
+    /// One candidate given (`--input raw --smoother none`): no table
+    /// comparing it with itself, no NaN; the shrunk networks still said.
+    #[test]
+    fn one_candidate_prints_no_choice_and_no_nan() {
+        let raw = candidate(sysid::ModelInput::Raw, 3878.78, f64::NAN);
+        let lines = choice_lines(&report(vec![raw], vec!["g1 to zero".into()]));
+        assert_eq!(
+            lines,
+            ["  network shrunk (bias and effects kept): g1 to zero"],
+            "{lines:?}"
+        );
+    }
+
+    /// Two candidates whose ADEV was not judged: the table and the line
+    /// against raw/none say "not judged", never NaN.
+    #[test]
+    fn an_unjudged_adev_is_said_not_judged() {
+        let mut c = report(
+            vec![
+                candidate(sysid::ModelInput::Raw, 2.0, f64::NAN),
+                candidate(sysid::ModelInput::Statistics, 1.0, f64::NAN),
+            ],
+            Vec::new(),
+        );
+        c.chosen = 1;
+        let text = choice_lines(&c).join("\n");
+        assert!(!text.contains("NaN"), "{text}");
+        assert!(
+            text.contains("against raw/none: validation rms 2.0000 → 1.0000 deg/h, worst ADEV ratio not judged → not judged"),
+            "{text}"
+        );
+        c.candidates[1].worst_adev_ratio = 0.95;
+        assert!(choice_lines(&c).join("\n").contains("not judged → 0.950"));
     }
 }

@@ -8,7 +8,7 @@ use crate::unit_sensor::{
     load_calibration, observability, read_unit_records, to_signals,
 };
 use anyhow::{Result, anyhow, bail};
-use nav_sensors::record::{Record, declared_unit_warnings, is_ulog};
+use nav_sensors::record::{GLITCH_Z, Record, declared_unit_warnings, glitches, is_ulog};
 use nav_sensors::unit::Unit;
 use std::path::{Path, PathBuf};
 use sysid::Signals;
@@ -110,6 +110,7 @@ pub fn read_records(data: &[PathBuf], unit: &Unit, min_samples: usize) -> Result
         })?;
         notes.extend(read.gaps_notice(&d.display().to_string()));
         notes.extend(declared_unit_notes(d, unit, &read.segments));
+        notes.extend(glitch_notes(unit, &read.segments));
         records.extend(read.segments);
     }
     Ok(Read { records, notes })
@@ -138,6 +139,24 @@ fn declared_unit_notes(path: &Path, unit: &Unit, segments: &[(String, Record)]) 
     declared_unit_warnings(unit, longest, still)
         .into_iter()
         .map(|w| format!("warning: {}: {w}", path.display()))
+        .collect()
+}
+
+/// One line per segment with glitches (nav_sensors::record::glitches):
+/// which gyro strays at which rows, counted from the segment's first.
+fn glitch_notes(unit: &Unit, segments: &[(String, Record)]) -> Vec<String> {
+    segments
+        .iter()
+        .filter_map(|(name, r)| {
+            let g = glitches(unit, r);
+            (!g.is_empty()).then(|| {
+                let list: Vec<String> = g.iter().map(ToString::to_string).collect();
+                format!(
+                    "note: {name}: glitches at {}: there the gyro strays from the other gyros (its parity-projected output beyond {GLITCH_Z} robust σ of its own spread; no clean sample of the real flights reaches 8) as a dropout or a transmission error does; rows count from the log's first sample (0); they are kept: cut them from the log to leave them out of the fit",
+                    list.join(", ")
+                )
+            })
+        })
         .collect()
 }
 
@@ -290,4 +309,34 @@ pub fn unit_csv<'a>(
         text.extend_from_slice(&part[header_end..]);
     }
     Ok((text, rows))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// "Judged against the rate reference" only when there is one (issue
+    /// 34 §4): a triad with a table rate is; without, or in parity, it is
+    /// judged by its own outputs.
+    #[test]
+    fn against_the_rate_reference_only_with_one() {
+        let triad = Unit::builtin("triad").unwrap();
+        let table = RateReference::Table {
+            rate_deg_s: [0.0, 0.0, 10.0],
+        };
+        let with = no_residue_note(&triad, &table).unwrap();
+        assert!(
+            with.ends_with("judged against the rate reference (rms before and after per channel)"),
+            "{with}"
+        );
+        for r in [RateReference::None, RateReference::Parity] {
+            let without = no_residue_note(&triad, &r).unwrap();
+            assert!(
+                !without.contains("rate reference (rms")
+                    && without.contains("by their own outputs"),
+                "{without}"
+            );
+        }
+        assert!(no_residue_note(&Unit::builtin("tetra").unwrap(), &table).is_none());
+    }
 }

@@ -36,7 +36,7 @@ pub(super) fn effect_entry(
     };
     let letters = |id: &str| -> Vec<char> { id.rsplit('_').next().unwrap_or("").chars().collect() };
     match effect {
-        UnitEffect::Column(name) => {
+        UnitEffect::Column(name) | UnitEffect::Temperature(name) => {
             let idx = extra
                 .iter()
                 .position(|e| e == name)

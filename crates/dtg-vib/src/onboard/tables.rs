@@ -46,7 +46,7 @@ pub fn extra_columns(model: &UnitModel) -> Vec<String> {
     }
     for c in model.inner().channels() {
         for e in c.effects() {
-            if let UnitEffect::Column(n) = e {
+            if let Some(n) = e.column_name() {
                 add(n);
             }
         }

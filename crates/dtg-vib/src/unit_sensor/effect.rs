@@ -30,8 +30,12 @@ use std::fmt;
 pub enum UnitEffect {
     /// A term of the channel's model.
     Term(GyroTerm),
-    /// An extra numeric column of the record, taken as is.
+    /// An extra numeric column of the record, taken as is, in whatever
+    /// unit it is logged.
     Column(String),
+    /// The unit's temperature column (`columns.temperature`, °C whatever
+    /// it is called; `temp` for a unit that names none), taken as is.
+    Temperature(String),
     /// A response to the rate or to an accelerometer, at a lag.
     Dynamic(Dynamic),
 }
@@ -147,7 +151,7 @@ impl UnitEffect {
     pub fn id(&self) -> String {
         match self {
             UnitEffect::Term(t) => t.id().to_string(),
-            UnitEffect::Column(c) => format!("{COLUMN_PREFIX}{c}"),
+            UnitEffect::Column(c) | UnitEffect::Temperature(c) => format!("{COLUMN_PREFIX}{c}"),
             UnitEffect::Dynamic(d) => d.to_string(),
         }
     }
@@ -157,6 +161,9 @@ impl UnitEffect {
         match self {
             UnitEffect::Term(t) => t.ieee_name().to_string(),
             UnitEffect::Column(c) => format!("sensitivity to the record's '{c}' column"),
+            UnitEffect::Temperature(c) => {
+                format!("thermal sensitivity (the unit's temperature, column '{c}')")
+            }
             UnitEffect::Dynamic(d) => d.description(),
         }
     }
@@ -165,9 +172,54 @@ impl UnitEffect {
     pub fn unit(&self) -> String {
         match self {
             UnitEffect::Term(t) => t.unit().to_string(),
-            UnitEffect::Column(c) if c == "temp" => "deg/h/°C".to_string(),
+            UnitEffect::Temperature(_) => "deg/h/°C".to_string(),
             UnitEffect::Column(c) => format!("deg/h per unit of {c}"),
             UnitEffect::Dynamic(d) => d.unit().to_string(),
+        }
+    }
+
+    /// The effect of an extra column `name`: the temperature effect when it
+    /// is `unit`'s temperature column (`Unit::column_unit` says °C), a
+    /// plain column otherwise. Without a unit (an id read alone), `temp` is
+    /// the temperature, as in a unit that names no temperature column.
+    ///
+    /// ```
+    /// use dtg_vib::unit_sensor::UnitEffect;
+    /// use nav_sensors::unit::Unit;
+    /// let toml = Unit::builtin_toml("triad").unwrap().replace("time = \"t\"", "time = \"t\"\ntemperature = \"board_temp\"");
+    /// let unit = Unit::from_toml(&toml, "u.toml").unwrap();
+    /// assert_eq!(UnitEffect::column("board_temp", Some(&unit)).unit(), "deg/h/°C");
+    /// assert_eq!(UnitEffect::column("temp", Some(&unit)).unit(), "deg/h per unit of temp");
+    /// assert_eq!(UnitEffect::column("temp", None).unit(), "deg/h/°C");
+    /// ```
+    pub fn column(name: &str, unit: Option<&nav_sensors::unit::Unit>) -> UnitEffect {
+        let celsius = match unit {
+            Some(u) => u.column_unit(name) == Some("°C"),
+            None => name == "temp",
+        };
+        match celsius {
+            true => UnitEffect::Temperature(name.to_string()),
+            false => UnitEffect::Column(name.to_string()),
+        }
+    }
+
+    /// The effect as `unit` reads it: a column's role from the unit file
+    /// ([`UnitEffect::column`]); every other effect as it is. An id read
+    /// alone (a model file, a flag) is resolved so before use.
+    pub fn resolved(self, unit: &nav_sensors::unit::Unit) -> UnitEffect {
+        match self {
+            UnitEffect::Column(c) | UnitEffect::Temperature(c) => {
+                UnitEffect::column(&c, Some(unit))
+            }
+            e => e,
+        }
+    }
+
+    /// The record column the effect reads, if it is a column's.
+    pub fn column_name(&self) -> Option<&str> {
+        match self {
+            UnitEffect::Column(c) | UnitEffect::Temperature(c) => Some(c),
+            UnitEffect::Term(_) | UnitEffect::Dynamic(_) => None,
         }
     }
 
@@ -193,7 +245,7 @@ impl UnitEffect {
     /// Whether a gyro of this model takes the effect.
     pub fn fits(&self, model: &GyroModel) -> bool {
         match self {
-            UnitEffect::Column(_) | UnitEffect::Dynamic(_) => true,
+            UnitEffect::Column(_) | UnitEffect::Temperature(_) | UnitEffect::Dynamic(_) => true,
             UnitEffect::Term(GyroTerm::Rate(_)) => matches!(model, GyroModel::Rate),
             UnitEffect::Term(GyroTerm::Dtg(_)) => matches!(model, GyroModel::Dtg { .. }),
         }
@@ -236,7 +288,7 @@ impl std::str::FromStr for UnitEffect {
             if name.trim().is_empty() {
                 return Err(UnitEffectError::EmptyColumn { given: s.into() });
             }
-            return Ok(UnitEffect::Column(name.trim().to_string()));
+            return Ok(UnitEffect::column(name.trim(), None));
         }
         if let Some(t) = TERM_EFFECTS.iter().find(|t| t.id() == s) {
             return Ok(UnitEffect::Term(GyroTerm::Dtg(*t)));

@@ -241,6 +241,12 @@ impl UnitModel {
             c.check(&unit)
                 .map_err(|e| corrupt(format!("calibration: {e}")))?;
         }
+        // Effects are stored by id: a column's role comes from the unit.
+        let channels = m
+            .channels
+            .into_iter()
+            .map(|c| c.map_effects(|e| e.resolved(&unit)))
+            .collect();
         let inner = sysid::Model::from_parts(sysid::ModelParts {
             sensor: UnitSensor {
                 unit,
@@ -250,7 +256,7 @@ impl UnitModel {
             preprocess: m.preprocess.sysid(),
             dt_s: m.dt_s,
             split: m.split,
-            channels: m.channels,
+            channels,
             settings: m.fit,
             records: m.records,
             validated_on: m.validated_on,

@@ -347,7 +347,7 @@ impl sysid::Sensor for UnitSensor {
             .chain(
                 self.extra_columns(calibrated)
                     .into_iter()
-                    .map(UnitEffect::Column),
+                    .map(|c| UnitEffect::column(&c, Some(&self.unit))),
             )
             .map(|e| {
                 if !is_anisoinertia(&e) {
@@ -390,7 +390,10 @@ impl sysid::Sensor for UnitSensor {
     }
 
     fn parse_effect(&self, channel: usize, id: &str) -> Result<UnitEffect, SensorError> {
-        let e: UnitEffect = id.parse().map_err(boxed)?;
+        let e = id
+            .parse::<UnitEffect>()
+            .map_err(boxed)?
+            .resolved(&self.unit);
         let g = &self.unit.gyros()[channel];
         if let UnitEffect::Dynamic(d) = &e {
             self.check_dynamic(channel, d).map_err(boxed)?;
@@ -404,7 +407,7 @@ impl sysid::Sensor for UnitSensor {
                     .iter()
                     .map(|e| match e {
                         UnitEffect::Term(t) => t.id(),
-                        UnitEffect::Column(_) => "col:NAME",
+                        UnitEffect::Column(_) | UnitEffect::Temperature(_) => "col:NAME",
                         UnitEffect::Dynamic(_) => "sf, ma_x, delay, acc:ACCEL (@LAG)",
                     })
                     .collect(),
@@ -466,7 +469,7 @@ impl sysid::Sensor for UnitSensor {
             .map(|e| match e {
                 UnitEffect::Dynamic(_) => Ok(dynamic.next().unwrap_or_default()),
                 UnitEffect::Term(t) => Ok(sensed.iter().map(|s| gyro.regressor(*t, s)).collect()),
-                UnitEffect::Column(c) => calibrated
+                UnitEffect::Column(c) | UnitEffect::Temperature(c) => calibrated
                     .column(c)
                     .filter(|_| extra.contains(c))
                     .map(<[f64]>::to_vec)

@@ -106,7 +106,7 @@ pub fn separation(
             ids: group.iter().map(UnitEffect::id).collect(),
             kappa,
             responsive: terms.iter().all(Option::is_some),
-            has_column: group.iter().any(|e| matches!(e, UnitEffect::Column(_))),
+            has_column: group.iter().any(|e| e.column_name().is_some()),
         },
         var.iter().sum::<f64>().sqrt(),
         current,

@@ -130,6 +130,14 @@ impl<C: Clone, E> ChannelModel<C, E> {
         &self.effects
     }
 
+    /// The same model with each effect as `f` makes it: for a plug-in whose
+    /// effect, read back from a file by its id alone, takes what only the
+    /// sensor knows (a column's unit). `f` must keep the id.
+    pub fn map_effects(mut self, f: impl Fn(E) -> E) -> Self {
+        self.effects = self.effects.into_iter().map(f).collect();
+        self
+    }
+
     /// Estimated effect coefficients, in each effect's unit, in the order of
     /// [`ChannelModel::effects`].
     pub fn effect_coefficients(&self) -> Vec<f64> {

@@ -12,6 +12,7 @@
 mod csv;
 mod declared_units;
 mod error;
+mod glitches;
 mod time;
 mod ulog_log;
 mod unit_csv;
@@ -20,6 +21,7 @@ pub use declared_units::{
     DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, declared_unit_warnings,
 };
 pub use error::RecordError;
+pub use glitches::{GLITCH_NEIGHBOUR_Z, GLITCH_Z, Glitch, glitches};
 pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
 pub use ulog_log::is_ulog;
 pub use unit_csv::UnitRecords;
