@@ -296,7 +296,7 @@ fn simulate_tetra(dir: &std::path::Path, mut sc: Scenario) -> std::path::PathBuf
 #[test]
 fn the_command_line_runs_the_loop_on_a_tetra() {
     let dir = scratch_dir("dtg-vib-unit-loop");
-    let sim = simulate_tetra(&dir, triaxial(60.0, 41, &TETRA));
+    let sim = simulate_tetra(dir, triaxial(60.0, 41, &TETRA));
     let record = sim.join("record.csv");
     let calib = sim.join("calibration.json");
     let model = dir.join("m.json");
@@ -556,7 +556,7 @@ fn assert_rates_within_bounds(
 #[test]
 fn a_units_temperature_column_is_in_celsius_whatever_it_is_called() {
     let dir = scratch_dir("dtg-vib-board-temp");
-    let sim = simulate_tetra(&dir, triaxial(20.0, 43, &[("g3", "temp", 0.05)]));
+    let sim = simulate_tetra(dir, triaxial(20.0, 43, &[("g3", "temp", 0.05)]));
     let csv = std::fs::read_to_string(sim.join("record.csv")).unwrap();
     let (header, rows) = csv.split_once('\n').unwrap();
     assert!(header.ends_with(",temp"), "{header}");
