@@ -42,7 +42,8 @@ pub enum DerivedError {
 /// // Two taps, se 0.1 and 0.2, covariance −0.01, t = 2 (ci = value ± 2 se).
 /// let a = Coefficient::new(1.0, 0.1, [0.8, 1.2], "u").with_covariance(vec![0.01, -0.01]);
 /// let b = Coefficient::new(2.0, 0.2, [1.6, 2.4], "u").with_covariance(vec![-0.01, 0.04]);
-/// let d = Derived::new(&[a.clone(), b]).unwrap();
+/// let coefs = [a.clone(), b];
+/// let d = Derived::new(&coefs).unwrap();
 /// let sum = d.linear(&[(0, 1.0), (1, 1.0)], "u");
 /// assert!((sum.value - 3.0).abs() < 1e-12 && (sum.se - 0.03f64.sqrt()).abs() < 1e-12);
 /// assert!((sum.ci95[1] - 3.0 - 2.0 * 0.03f64.sqrt()).abs() < 1e-12);
