@@ -14,7 +14,7 @@
 //! record → [`unit_sensor`] (the unit as a [`sysid::Sensor`]: calibration,
 //! rate reference, candidate effects, the model file, apply, check, parity
 //! residues with fault detection) → [`allan`], [`export`] / [`onboard`] →
-//! [`diagnose`] → report ([`unit_page`], [`unit_demo`]). [`commands`]
+//! [`diagnose`] → report ([`page`], [`demo`]). [`commands`]
 //! is each command's work from its flags to its result, which the binary
 //! prints and the Python package returns. The loop's own
 //! modules are re-exported under their old paths ([`split`], [`window`],
@@ -23,16 +23,16 @@
 pub mod allan;
 pub mod caveats;
 pub mod commands;
+pub mod demo;
 pub mod diagnose;
 pub mod error;
 pub mod export;
 pub mod fleet;
 pub mod numfmt;
 pub mod onboard;
+pub mod page;
 pub mod report;
 pub mod signal;
-pub mod unit_demo;
-pub mod unit_page;
 pub mod unit_sensor;
 
 pub use error::DtgVibError;

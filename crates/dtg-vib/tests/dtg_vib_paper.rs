@@ -95,10 +95,10 @@ fn a_report_on_another_record_shows_that_records_channel_scores() {
     model.save(&path).unwrap();
     let unit_model = UnitModel::load(&path).unwrap();
     let data = [dir.join("other.csv")];
-    let written = dtg_vib::unit_page::write_page(
+    let written = dtg_vib::page::write_page(
         &unit_model,
         &[("other".to_string(), other.clone())],
-        dtg_vib::unit_page::Page::new(&path, &data),
+        dtg_vib::page::Page::new(&path, &data),
         &dir.join("report"),
     )
     .unwrap();

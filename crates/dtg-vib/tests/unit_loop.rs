@@ -57,7 +57,7 @@ fn triaxial(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
 /// network sees (a g² along z would be, and would test nothing).
 fn along_z(seconds: f64, seed: u64, hidden: &[Hidden]) -> Scenario {
     let mut s = triaxial(seconds, seed, hidden);
-    dtg_vib::unit_demo::shake_along_z(&mut s);
+    dtg_vib::demo::shake_along_z(&mut s);
     s
 }
 

@@ -1,5 +1,5 @@
 //! `dtg-vib demo`: the main job on a built-in default, end to end, on any
-//! unit ([`dtg_vib::unit_demo`]), and what it prints: what was hidden, the
+//! unit ([`dtg_vib::demo`]), and what it prints: what was hidden, the
 //! baseline's residues, the diagnosis, what the refit found against the
 //! truth, each channel's rms before and after, the residues with fault
 //! detection, and where the pages are.
@@ -7,7 +7,7 @@
 use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
-use dtg_vib::unit_demo::{Demo, DemoOptions, found_text, hidden_text};
+use dtg_vib::demo::{Demo, DemoOptions, found_text, hidden_text};
 use std::path::PathBuf;
 
 use super::report::print_parity;
@@ -54,7 +54,7 @@ pub fn run(a: DemoArgs, progress: Progress) -> Result<()> {
     }
     outfile::guard_dir("--out", &out, &[], &[])?;
     let options = DemoOptions { window_signals };
-    let d = dtg_vib::unit_demo::run(&unit, &options, &out, &|step| progress.say(step))?;
+    let d = dtg_vib::demo::run(&unit, &options, &out, &|step| progress.say(step))?;
     drop(progress);
     println!(
         "The demo on the unit '{}' ({}), a simulated vibration test ({}):",

@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use cli_support::progress::Progress;
 use dtg_vib::commands::report::{Caller, report};
-use dtg_vib::unit_page::Parity;
+use dtg_vib::page::Parity;
 use dtg_vib::unit_sensor::fdi;
 use dtg_vib::unit_sensor::{Applied, UnitModel};
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@ use nav_sensors::record::Record;
 use std::path::{Path, PathBuf};
 
 use super::records::Read;
-use crate::unit_page::{Page, Written, write_page};
+use crate::page::{Page, Written, write_page};
 use crate::unit_sensor::{Applied, UnitModel};
 
 /// Who asks for a page besides the command line: the call the provenance

@@ -1,7 +1,7 @@
 //! One unit's task: its `explain` (the command line's own, run as a child
 //! process with the manifest's options as its flags, so a unit gets
 //! exactly what `dtg-vib explain --unit …` gives), then its page
-//! ([`crate::unit_page`]) of the final model on its records, all built in
+//! ([`crate::page`]) of the final model on its records, all built in
 //! a staging folder and renamed into `DIR/units/ID` whole. A unit whose
 //! folder holds `task.json` is done and skipped; a unit that fails leaves
 //! `failed.json` with the one-line reason (and is run again by a rerun).
@@ -13,7 +13,7 @@ use super::layout::{
 use super::manifest::{Entry, Manifest, ManifestError};
 use super::measure::{Cost, Meter};
 use crate::error::DtgVibError;
-use crate::unit_page::{Page, write_page};
+use crate::page::{Page, write_page};
 use crate::unit_sensor::{UnitModel, read_unit_records};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

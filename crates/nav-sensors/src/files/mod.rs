@@ -6,5 +6,5 @@
 pub mod calibration;
 mod error;
 pub(crate) mod io;
+pub(crate) mod paper_calibration;
 pub mod record;
-mod unit_calibration;

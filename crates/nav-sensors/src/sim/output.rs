@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::error::SimError;
 use super::paper_truth::Truth;
-use crate::files::calibration::PaperCalibration;
+use crate::files::paper_calibration::PaperCalibration;
 use crate::files::record::Record;
 
 /// Named per-sample series that explain a record (same time base):

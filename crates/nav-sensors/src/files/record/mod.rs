@@ -5,7 +5,7 @@
 //! slicing); [`RecordError`] lists what can be wrong with one, and the CSV
 //! format (header `t,X,X1,Y,Y1,Z,Z1,ax,ay,az` then the extra columns; t in
 //! s, gyro outputs in deg/h, accelerations in g along the cluster axes) is
-//! read and written in `csv.rs`. What the physics makes of a record (the
+//! read and written in `paper_csv.rs`. What the physics makes of a record (the
 //! accelerations in a channel's frame, a DTG term's regressor, the parity
 //! residues) is in [`crate::regressors`].
 
@@ -13,10 +13,11 @@ mod csv;
 mod declared_units;
 mod error;
 mod glitches;
+mod paper_csv;
 mod time;
 mod ulog_log;
-mod unit_csv;
 
+pub use csv::UnitRecords;
 pub use declared_units::{
     DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, declared_unit_warnings,
 };
@@ -24,7 +25,6 @@ pub use error::RecordError;
 pub use glitches::{GLITCH_NEIGHBOUR_Z, GLITCH_Z, Glitch, glitches};
 pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
 pub use ulog_log::is_ulog;
-pub use unit_csv::UnitRecords;
 
 use std::ops::Range;
 

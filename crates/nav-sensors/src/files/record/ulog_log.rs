@@ -2,7 +2,7 @@
 //! triad's `sensor_combined` default, [`Unit::ulog_table`]) says which
 //! topic instance and field fills each column; `ulog` joins them on the
 //! base stream's time stamps, and the table so made goes through the one
-//! path of every log ([`super::unit_csv::from_table`]): the same checks,
+//! path of every log ([`super::csv::from_table`]): the same checks,
 //! gap split and conversions as a CSV. A ULog's values are in PX4's units
 //! (rad/s, m/s², °C, time in µs made s from the first row), whatever the
 //! unit's `[units]` say of its CSV logs.

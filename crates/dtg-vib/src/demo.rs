@@ -18,8 +18,8 @@
 //! length and seed are those `tests/unit_loop.rs` accepts.
 
 use crate::error::DtgVibError;
+use crate::page::{Page, Parity, write_page};
 use crate::report::{ChannelWording, DiagnosisExtra, NoiseFloor, write_diagnosis_report_of};
-use crate::unit_page::{Page, Parity, write_page};
 use crate::unit_sensor::{
     Applied, ResidueStats, UnitEffect, UnitModel, UnitSensor, default_window_signals, to_signals,
 };
@@ -92,7 +92,7 @@ pub fn scenario(unit: &Unit) -> Result<Scenario, DtgVibError> {
         )
     };
     let mut s = Scenario::triaxial_hidden();
-    s.name = "unit_demo".into();
+    s.name = "demo".into();
     s.hidden.clear();
     s.duration_s = 60.0;
     s.seed = seed;
@@ -126,7 +126,7 @@ pub fn scenario(unit: &Unit) -> Result<Scenario, DtgVibError> {
 ///
 /// ```
 /// let mut s = nav_sensors::sim::Scenario::triaxial_hidden();
-/// dtg_vib::unit_demo::shake_along_z(&mut s);
+/// dtg_vib::demo::shake_along_z(&mut s);
 /// assert!(s.vibration.drives.iter().all(|d| d.axis() != nav_sensors::geometry::Axis::X));
 /// ```
 pub fn shake_along_z(s: &mut Scenario) {
