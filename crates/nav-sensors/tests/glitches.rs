@@ -56,3 +56,36 @@ fn pieces_of_the_clean_flights_give_no_glitch() {
         }
     }
 }
+
+/// A four-gyro unit (tetra) has one residue: a glitch on any gyro moves it
+/// alike, so the screen detects it and names every gyro, not one picked by
+/// rounding (the rule of `nav_sensors::fdi`: four gyros detect but cannot
+/// isolate).
+#[test]
+fn a_glitch_a_four_gyro_unit_cannot_isolate_names_every_gyro() {
+    let unit = Unit::builtin("tetra").unwrap();
+    let mut csv = format!("t,{},ax,ay,az\n", unit.gyro_names().join(","));
+    for i in 0..100 {
+        let g: Vec<String> = (0..4)
+            .map(|k| {
+                let ripple = if (i + k) % 2 == 0 { 0.01 } else { -0.01 };
+                ripple + if i == 50 && k == 1 { 5.0 } else { 0.0 }
+            })
+            .map(|v: f64| v.to_string())
+            .collect();
+        csv += &format!("{},{},0,0,1\n", i as f64 * 0.01, g.join(","));
+    }
+    let rec = &Record::from_reader_with_unit(csv.as_bytes(), "tetra.csv", &unit)
+        .unwrap()
+        .records[0];
+    let g = glitches(&unit, rec);
+    assert_eq!(g.len(), 1, "{g:?}");
+    assert_eq!(g[0].rows, 50..51);
+    assert_eq!(g[0].candidates, ["g1", "g2", "g3", "g4"], "{g:?}");
+    assert!(
+        g[0].to_string()
+            .starts_with("one of g1, g2, g3, g4 (the unit cannot tell which) row 50"),
+        "{}",
+        g[0]
+    );
+}

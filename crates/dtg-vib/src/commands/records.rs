@@ -152,7 +152,7 @@ fn glitch_notes(unit: &Unit, segments: &[(String, Record)]) -> Vec<String> {
             (!g.is_empty()).then(|| {
                 let list: Vec<String> = g.iter().map(ToString::to_string).collect();
                 format!(
-                    "note: {name}: glitches at {}: there the gyro strays from the other gyros (its parity-projected output beyond {GLITCH_Z} robust σ of its own spread; no clean sample of the real flights reaches 8) as a dropout or a transmission error does; rows count from the log's first sample (0); they are kept: cut them from the log to leave them out of the fit",
+                    "note: {name}: glitches at {}: there the gyro strays from the other gyros (its parity-projected output beyond {GLITCH_Z} robust σ of its own spread; no clean sample of the real flights reaches 8) as a dropout or a transmission error does; rows count from the first sample of {name} (0) and times are the log's; they are kept: cut them from the log to leave them out of the fit",
                     list.join(", ")
                 )
             })

@@ -115,8 +115,10 @@ fn family(
             }
         })
         .collect();
+    // No delay where the phase has passed ±90° (see `phase_delay`).
     let delay_ms = (id.stimulus == Stimulus::InputRate)
-        .then(|| derived::phase_delay(d, taps, dt_s, UNITY_PPM, edges[0]));
+        .then(|| derived::phase_delay(d, taps, dt_s, UNITY_PPM, edges[0]))
+        .flatten();
     FamilyResponse {
         family: id.to_string(),
         lags: taps.iter().map(|t| t.1).collect(),

@@ -251,15 +251,28 @@ pub fn band_weights(taps: &Taps, dt_s: f64, band: [f64; 2]) -> [Vec<(usize, f64)
 /// centroid Σ k g_k / Σ g_k, the group delay at 0 Hz, is not used: a short
 /// FIR fitted to a fractional delay matches it where the motion has its
 /// power, and its slope at 0 Hz is off by 1% on a quadrotor's rates.
+///
+/// `None` where the phase no longer tells the delay: the band's mean
+/// response has no positive real part (the phase has passed ±90°), or the
+/// phase delay and the taps' centroid disagree by more than a sample. The
+/// second catches a long delay whose band-mean phase has wrapped while the
+/// band's real factor changed sign (a pure 10-sample delay reads as 2
+/// samples over the lowest of four bands).
 pub fn phase_delay(
     d: &Derived<'_>,
     taps: &Taps,
     dt_s: f64,
     unity: f64,
     band: [f64; 2],
-) -> Coefficient {
+) -> Option<Coefficient> {
     let [re, im] = band_weights(taps, dt_s, band);
     let (x, y) = (unity + d.value(&re), d.value(&im));
+    let sum: Vec<(usize, f64)> = taps.iter().map(|&(i, _)| (i, 1.0)).collect();
+    let moment: Vec<(usize, f64)> = taps.iter().map(|&(i, k)| (i, k as f64)).collect();
+    let centroid_samples = d.value(&moment) / (unity + d.value(&sum));
+    if x <= 0.0 {
+        return None;
+    }
     let m2 = x * x + y * y;
     let scale = -1e3 / (std::f64::consts::TAU * 0.5 * (band[0] + band[1]));
     let grad: Vec<(usize, f64)> = re
@@ -267,7 +280,9 @@ pub fn phase_delay(
         .zip(&im)
         .map(|(&(i, r), &(_, m))| (i, scale * (x * m - y * r) / m2))
         .collect();
-    d.delta(scale * y.atan2(x), &grad, "ms")
+    let delay = d.delta(scale * y.atan2(x), &grad, "ms");
+    let agree = (delay.value / (1e3 * dt_s) - centroid_samples).abs() <= 1.0;
+    agree.then_some(delay)
 }
 
 #[cfg(test)]
@@ -427,9 +442,12 @@ mod tests {
         let d = Derived::new(&coefs).unwrap();
         let dt = 0.008;
         let band = bands(dt, 4)[0];
-        let pure = phase_delay(&d, &[(1, 1)], dt, 0.0, band);
+        let pure = phase_delay(&d, &[(1, 1)], dt, 0.0, band).unwrap();
         assert!((pure.value - 8.0).abs() < 1e-9, "{pure:?}");
-        let t = phase_delay(&d, &[(0, 0), (1, 1)], dt, 1e6, band);
+        // Ten samples late is past a quarter period of the band's centre
+        // (16 samples): the phase has wrapped, so no delay is given.
+        assert_eq!(phase_delay(&d, &[(1, 10)], dt, 0.0, band), None);
+        let t = phase_delay(&d, &[(0, 0), (1, 1)], dt, 1e6, band).unwrap();
         assert!((t.value / 2.0 - 1.0).abs() < 0.03, "{t:?}");
         assert!(t.se > 0.0 && t.se < 1e-4, "{t:?}");
     }

@@ -32,8 +32,13 @@ pub const GLITCH_NEIGHBOUR_Z: f64 = 5.0;
 /// Samples of one gyro that stray from the others (see the module).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Glitch {
-    /// The gyro.
+    /// The gyro that best explains it.
     pub column: String,
+    /// Every gyro that explains it as well as `column` does, `column`
+    /// among them, in the unit's order: more than one where the unit can
+    /// detect but not isolate (four gyros: every one of them), so the
+    /// glitch is not pinned on one by rounding.
+    pub candidates: Vec<String>,
     /// The samples, counted from the record's first (0).
     pub rows: Range<usize>,
     /// Their first and last time stamps, s.
@@ -49,10 +54,14 @@ impl fmt::Display for Glitch {
             1 => format!("row {}", self.rows.start),
             _ => format!("rows {}–{last}", self.rows.start),
         };
+        let who = match self.candidates.as_slice() {
+            [_] | [] => self.column.clone(),
+            many => format!("one of {} (the unit cannot tell which)", many.join(", ")),
+        };
         write!(
             f,
-            "{} {rows} (t {:.3}–{:.3} s, {:.1} σ)",
-            self.column, self.t_s.0, self.t_s.1, self.peak_z
+            "{who} {rows} (t {:.3}–{:.3} s, {:.1} σ)",
+            self.t_s.0, self.t_s.1, self.peak_z
         )
     }
 }
@@ -116,8 +125,15 @@ pub fn glitches(unit: &Unit, record: &Record) -> Vec<Glitch> {
             while end < n && z[end] > GLITCH_NEIGHBOUR_Z {
                 end += 1;
             }
+            // Ties within rounding: gyros the projection cannot tell apart.
+            let best = deviations[k][i];
+            let candidates = (0..deviations.len())
+                .filter(|&j| deviations[j][i] >= best * (1.0 - 1e-9))
+                .map(|j| unit.gyros()[j].name.clone())
+                .collect();
             out.push(Glitch {
                 column: unit.gyros()[k].name.clone(),
+                candidates,
                 rows: start..end,
                 t_s: (t[start], t[end - 1]),
                 peak_z: z[start..end].iter().copied().fold(0.0, f64::max),
