@@ -162,7 +162,7 @@ impl UnitEffect {
             UnitEffect::Term(t) => t.ieee_name().to_string(),
             UnitEffect::Column(c) => format!("sensitivity to the record's '{c}' column"),
             UnitEffect::Temperature(c) => {
-                format!("thermal sensitivity (the unit's temperature, column '{c}')")
+                format!("thermal sensitivity to column '{c}', the unit's temperature")
             }
             UnitEffect::Dynamic(d) => d.description(),
         }
