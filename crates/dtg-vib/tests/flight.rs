@@ -36,28 +36,9 @@ const UNIT: &str = "units/multi-imu.toml";
 /// The recommended causal linear model per gyro (research report §4).
 const EFFECTS: &str = "sf@0..4,ma_*@0..4,acc:*@0..5";
 
-/// `COMMAND --unit UNIT --data DATA --effects EFFECTS` with the linear
-/// model's flags (unfiltered, one centre, raw input, no smoother), then
-/// `more`.
+/// `COMMAND` on the flight unit with the linear model's flags.
 fn linear<'a>(command: &'a str, data: &'a str, effects: &'a str, more: &[&'a str]) -> Vec<&'a str> {
-    let mut args = vec![
-        command,
-        "--unit",
-        UNIT,
-        "--data",
-        data,
-        "--no-filter",
-        "--effects",
-        effects,
-        "--max-centres",
-        "1",
-        "--input",
-        "raw",
-        "--smoother",
-        "none",
-    ];
-    args.extend_from_slice(more);
-    args
+    workspace_cli::linear(command, UNIT, data, effects, more)
 }
 
 /// Fits `data` with `effects` (the loop's blocked split: first half trains, second

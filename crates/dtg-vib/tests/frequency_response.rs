@@ -138,25 +138,14 @@ fn fit(dir: &Path, seed: u64) -> serde_json::Value {
 fn fit_with(dir: &Path, seed: u64, effects: &str) -> serde_json::Value {
     let data = dir.join(format!("flight{seed}.csv"));
     flight(seed, &data);
-    let o = dtg_vib(&[
+    let out = dir.join(format!("m{seed}.json"));
+    let o = dtg_vib(&workspace_cli::linear(
         "fit",
-        "--unit",
         "units/multi-imu.toml",
-        "--data",
         data.to_str().unwrap(),
-        "--no-filter",
-        "--effects",
         effects,
-        "--max-centres",
-        "1",
-        "--input",
-        "raw",
-        "--smoother",
-        "none",
-        "--json",
-        "--out",
-        dir.join(format!("m{seed}.json")).to_str().unwrap(),
-    ]);
+        &["--json", "--out", out.to_str().unwrap()],
+    ));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     serde_json::from_slice(&o.stdout).unwrap()
 }

@@ -38,3 +38,33 @@ pub fn ok(cmd: &mut Command) -> String {
     );
     String::from_utf8(out.stdout).unwrap()
 }
+
+/// `COMMAND --unit UNIT --data DATA --effects EFFECTS` with the flight's
+/// linear model's flags (unfiltered, one centre, raw input, no smoother),
+/// then `more`.
+pub fn linear<'a>(
+    command: &'a str,
+    unit: &'a str,
+    data: &'a str,
+    effects: &'a str,
+    more: &[&'a str],
+) -> Vec<&'a str> {
+    let mut args = vec![
+        command,
+        "--unit",
+        unit,
+        "--data",
+        data,
+        "--no-filter",
+        "--effects",
+        effects,
+        "--max-centres",
+        "1",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+    ];
+    args.extend_from_slice(more);
+    args
+}
