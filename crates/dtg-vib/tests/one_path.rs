@@ -459,3 +459,40 @@ fn demo_runs_on_any_unit_and_takes_window_signals() {
     ]);
     assert!(e.contains("give auto alone or a list of signals"), "{e}");
 }
+
+/// `residues` and `report` state one fault-detection test: without
+/// `--fdi-sigma` both read σ from the record's parity vectors V·m, so on
+/// the paper's unit (whose named residues, such as K0 = x0 − x1, have
+/// another scale than V·m) they print the same σ and the same alarms.
+#[test]
+fn residues_and_report_read_one_sigma_on_the_papers_unit() {
+    let dir = scratch_dir("dtg-vib-one-path-one-sigma");
+    let (model, data) = (legacy("paper/model.json"), legacy("paper/record.csv"));
+    let r = DTG_VIB.check(&[
+        "residues",
+        "--model",
+        s(&model),
+        "--data",
+        s(&data),
+        "--out",
+        s(&dir.join("res.csv")),
+        "--json",
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["fdi"]["sigma_source"], "estimated");
+    let alarms = v["fdi"]["before"]["alarms"].as_u64().unwrap();
+    let tests = v["fdi"]["before"]["tests"].as_u64().unwrap();
+    let page = DTG_VIB.check(&[
+        "report",
+        "--model",
+        s(&model),
+        "--data",
+        s(&data),
+        "--out",
+        s(&dir.join("page")),
+    ]);
+    assert_eq!(page.code, 0, "{}", page.stderr);
+    let said = format!("fault detection, as logged: {alarms} of {tests} samples alarmed");
+    assert!(page.stdout.contains(&said), "{said}\n{}", page.stdout);
+}

@@ -133,7 +133,7 @@ pub fn residues(
     let pb = residues_of(unit, &before);
     let pa = after.as_ref().map(|a| residues_of(unit, a));
     // A threshold that overflows is the flags' fault, said with them.
-    let (test, setting) = fdi::setting(unit, fdi_sigma, fdi_false_alarm, &pb).map_err(|e| {
+    let (test, setting) = fdi::setting(unit, fdi_sigma, fdi_false_alarm, &before).map_err(|e| {
         anyhow!(
             "fault detection with --fdi-sigma {} and --fdi-false-alarm {:e}: {e}: give a noise level and false-alarm probability whose threshold σ·√q is a finite positive number (e.g. --fdi-sigma 0.1 --fdi-false-alarm 1e-3)",
             fdi_sigma.map_or("(read from the record)".to_string(), |v| format!("{v:e}")),

@@ -88,16 +88,22 @@ pub fn sigma_from_differences(parity: &[Vec<f64>]) -> f64 {
 }
 
 /// The test for `unit` at false-alarm probability `p_fa`, with σ given or
-/// read from `parity` (the series σ is estimated on).
+/// read from the gyro series `gyros` (per channel, deg/h, equal lengths)
+/// through their parity vectors V·m: the threshold is on ‖V·m‖, so σ is
+/// read on the same scale whatever the unit names as its residues (a named
+/// residue such as the paper's K0 = x0 − x1 has √2 times a gyro's noise).
 pub fn setting(
     unit: &Unit,
     sigma: Option<f64>,
     p_fa: f64,
-    parity: &[Vec<f64>],
+    gyros: &[Vec<f64>],
 ) -> Result<(ParityFdi, FdiSetting), FdiError> {
     let (sigma, source) = match sigma {
         Some(s) => (s, SigmaSource::Given),
-        None => (sigma_from_differences(parity), SigmaSource::Estimated),
+        None => (
+            sigma_from_differences(&parity_vectors(unit, gyros)),
+            SigmaSource::Estimated,
+        ),
     };
     let fdi = ParityFdi::for_false_alarm(unit, sigma, p_fa)?;
     let n = unit.gyros().len();
@@ -111,6 +117,22 @@ pub fn setting(
             isolation_possible: (0..n).any(|k| fdi.can_isolate(k)),
         },
     ))
+}
+
+/// V·m per sample of gyro series (per channel, equal lengths), per row of V.
+pub fn parity_vectors(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let len = gyros.first().map_or(0, Vec::len);
+    let mut out = vec![Vec::with_capacity(len); unit.parity_matrix().nrows()];
+    let mut row = vec![0.0; gyros.len()];
+    for i in 0..len {
+        for (r, g) in row.iter_mut().zip(gyros) {
+            *r = g[i];
+        }
+        for (o, p) in out.iter_mut().zip(unit.parity_vector(&row)) {
+            o.push(p);
+        }
+    }
+    out
 }
 
 /// Runs `fdi` on every sample of the gyro series `gyros` (per channel,
@@ -212,17 +234,7 @@ mod tests {
         for v in &mut gyros[3][n / 2..] {
             *v += 3.0;
         }
-        let parity: Vec<Vec<f64>> = {
-            let mut p = vec![Vec::new(); unit.residue_names().len()];
-            for i in 0..n {
-                let row: Vec<f64> = gyros.iter().map(|g| g[i]).collect();
-                for (o, v) in p.iter_mut().zip(unit.residues(&row)) {
-                    o.push(v);
-                }
-            }
-            p
-        };
-        let (fdi, set) = setting(&unit, None, 1e-3, &parity).unwrap();
+        let (fdi, set) = setting(&unit, None, 1e-3, &gyros).unwrap();
         assert!((set.sigma_deg_h - 0.1).abs() < 0.02, "{set:?}");
         let s = run(&unit, &fdi, &gyros);
         assert!(s.alarms >= n / 2 - 10, "{s:?}");
@@ -239,5 +251,24 @@ mod tests {
             e.to_string()
                 .contains("fault detection needs at least 4 gyros")
         );
+    }
+
+    #[test]
+    fn the_paper_units_parity_vectors_are_orthonormal_combinations() {
+        // K0 = X − X1 has twice a gyro's noise variance; V·m has one per row.
+        let u = nav_sensors::unit::Unit::paper();
+        let e = |k: usize| -> Vec<Vec<f64>> {
+            (0..6).map(|j| vec![f64::from(u8::from(j == k))]).collect()
+        };
+        let total: f64 = (0..6)
+            .map(|k| {
+                super::parity_vectors(&u, &e(k))
+                    .iter()
+                    .map(|p| p[0] * p[0])
+                    .sum::<f64>()
+            })
+            .sum();
+        // trace(VᵀV) = rows of V = 6 − 3.
+        assert!((total - 3.0).abs() < 1e-12, "{total}");
     }
 }

@@ -52,10 +52,7 @@ fn fault_detection(
     if unit.gyros().len() < 4 {
         return None;
     }
-    // σ from V·m, whatever the unit names as its residues: the test's
-    // threshold is on ‖V·m‖ (a named residue such as eq. 6's K0 = x0 − x1
-    // has another scale).
-    let (test, setting) = fdi::setting(unit, sigma, p_fa, &parity_vectors(unit, before)).ok()?;
+    let (test, setting) = fdi::setting(unit, sigma, p_fa, before).ok()?;
     Some(FdiShown {
         setting,
         found: vec![
@@ -63,22 +60,6 @@ fn fault_detection(
             ("compensated".to_string(), fdi::run(unit, &test, after)),
         ],
     })
-}
-
-/// V·m per sample of gyro series (per channel, equal lengths), per row of V.
-fn parity_vectors(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let len = gyros.first().map_or(0, Vec::len);
-    let mut out = vec![Vec::with_capacity(len); unit.parity_matrix().nrows()];
-    let mut row = vec![0.0; gyros.len()];
-    for i in 0..len {
-        for (r, g) in row.iter_mut().zip(gyros) {
-            *r = g[i];
-        }
-        for (o, p) in out.iter_mut().zip(unit.parity_vector(&row)) {
-            o.push(p);
-        }
-    }
-    out
 }
 
 /// The residues' rms on every sample as logged and compensated: the series
@@ -128,26 +109,4 @@ pub(super) fn paragraphs(f: &FdiShown, unit: &Unit) -> Vec<String> {
             .map(|(what, found)| format!("{}.", fdi::line(what, found, st))),
     );
     out
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_paper_units_parity_vectors_are_orthonormal_combinations() {
-        // K0 = X − X1 has twice a gyro's noise variance; V·m has one per row.
-        let u = nav_sensors::unit::Unit::paper();
-        let e = |k: usize| -> Vec<Vec<f64>> {
-            (0..6).map(|j| vec![f64::from(u8::from(j == k))]).collect()
-        };
-        let total: f64 = (0..6)
-            .map(|k| {
-                super::parity_vectors(&u, &e(k))
-                    .iter()
-                    .map(|p| p[0] * p[0])
-                    .sum::<f64>()
-            })
-            .sum();
-        // trace(VᵀV) = rows of V = 6 − 3.
-        assert!((total - 3.0).abs() < 1e-12, "{total}");
-    }
 }
