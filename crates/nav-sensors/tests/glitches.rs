@@ -5,7 +5,7 @@
 //! toward zero and back), and nowhere else on either flight; no clean
 //! sample of either flight reaches 8 robust σ.
 
-use nav_sensors::record::{GLITCH_Z, Record, glitches};
+use nav_sensors::record::{GLITCH_Z, Record, glitch_scores, glitches};
 use nav_sensors::unit::Unit;
 
 fn flight(file: &str) -> (Unit, Record) {
@@ -54,6 +54,34 @@ fn pieces_of_the_clean_flights_give_no_glitch() {
             assert!(clean, "{file} from {start}: {g:?}");
             start += 1000;
         }
+    }
+}
+
+/// The module's false-alarm statement: outside path_11's glitches and
+/// their neighbours (rows 4680–4705), no sample of either flight reaches
+/// 8 robust σ on any gyro, a margin of 2 σ below [`GLITCH_Z`].
+#[test]
+fn no_clean_sample_of_either_flight_reaches_8_sigma() {
+    for file in ["qdr_horizontal_path11.csv", "qdr_vertical_path1.csv"] {
+        let (unit, rec) = flight(file);
+        let mut highest = (0.0_f64, String::new(), 0);
+        for (k, z) in glitch_scores(&unit, &rec).iter().enumerate() {
+            for (i, &v) in z.iter().enumerate() {
+                let glitch = file.contains("path11") && (4680..4705).contains(&i);
+                if !glitch && v > highest.0 {
+                    highest = (v, unit.gyros()[k].name.clone(), i);
+                }
+            }
+        }
+        eprintln!(
+            "{file}: highest clean score {:.2} σ ({} row {})",
+            highest.0, highest.1, highest.2
+        );
+        assert!(highest.0 < 8.0, "{file}: {highest:?}");
+        assert!(
+            highest.0 > 3.0,
+            "{file}: a score that never leaves 3 σ is not a score: {highest:?}"
+        );
     }
 }
 

@@ -144,6 +144,14 @@ pub fn glitches(unit: &Unit, record: &Record) -> Vec<Glitch> {
     out
 }
 
+/// Each gyro's score per sample, in robust σ from its median, of its
+/// parity-projected output (see the module); zeros for a gyro the others
+/// fully explain (a triad's). [`glitches`] starts a glitch beyond
+/// [`GLITCH_Z`].
+pub fn glitch_scores(unit: &Unit, record: &Record) -> Vec<Vec<f64>> {
+    robust_scores(unit, record).0
+}
+
 /// Each gyro's distance from its median per sample, of its
 /// parity-projected output: in robust σ (zeros for a gyro the others fully
 /// explain, a triad's), and in deg/h over the square root of its diagonal

@@ -22,7 +22,7 @@ pub use declared_units::{
     DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, declared_unit_warnings,
 };
 pub use error::RecordError;
-pub use glitches::{GLITCH_NEIGHBOUR_Z, GLITCH_Z, Glitch, glitches};
+pub use glitches::{GLITCH_NEIGHBOUR_Z, GLITCH_Z, Glitch, glitch_scores, glitches};
 pub use time::{GAP_FACTOR, Gap, INTERVAL_TOLERANCE, TimeReport};
 pub use ulog_log::is_ulog;
 
