@@ -940,6 +940,37 @@ fn table_rate_takes_the_documented_comma_form() {
         m["model"]["preprocess"]["rate_reference"]["rate_deg_s"],
         serde_json::json!([0.0, 0.0, 0.01])
     );
+    // Against the table rate the diagnosis says each gyro's own rate terms
+    // are observable (issue 34 §2); in parity it says only their
+    // differences are (tests/flight.rs), and without a reference nothing.
+    let path = dir().join("table-rate.json");
+    let d: serde_json::Value = serde_json::from_str(&ok(&[
+        "diagnose",
+        "--model",
+        path.to_str().unwrap(),
+        "--data",
+        &record(),
+        "--json",
+    ]))
+    .unwrap();
+    let lines = d["observable"].as_array().expect("an observable list");
+    assert_eq!(lines.len(), 3, "one line per family: {lines:?}");
+    let sf = lines[0].as_str().unwrap();
+    assert!(
+        sf.starts_with("sf, sf@k (scale-factor error): against the rate reference each gyro's own is observable"),
+        "{sf}"
+    );
+    assert!(!sf.contains("differences between gyros"), "{sf}");
+    let d: serde_json::Value = serde_json::from_str(&ok(&[
+        "diagnose",
+        "--model",
+        model(),
+        "--data",
+        &record(),
+        "--json",
+    ]))
+    .unwrap();
+    assert!(d.get("observable").is_none(), "{}", d["observable"]);
 }
 
 #[test]

@@ -353,4 +353,13 @@ pub trait Sensor: Clone + Send + Sync {
     fn residues(&self) -> Vec<(String, Vec<f64>)> {
         Vec::new()
     }
+
+    /// What the records can observe of each family of effects, one line
+    /// per family (`sf: …`): what the target's reference lets a fit tell
+    /// apart and what it cannot (an inertial unit fitted in parity sees
+    /// only the differences between its gyros). The diagnosis states them
+    /// (its JSON's `observable`). None by default.
+    fn observable(&self) -> Vec<String> {
+        Vec::new()
+    }
 }

@@ -533,4 +533,10 @@ impl sysid::Sensor for UnitSensor {
             .map(|(r, name)| (name.clone(), (0..c.ncols()).map(|j| c[(r, j)]).collect()))
             .collect()
     }
+
+    /// The rate-dependent families, as the rate reference lets a record
+    /// observe them.
+    fn observable(&self) -> Vec<String> {
+        super::observable::rate_families_observable(&self.rate_reference)
+    }
 }
