@@ -292,6 +292,47 @@ fn flight_halves(dir: &Path, data: &str) -> [std::path::PathBuf; 2] {
     })
 }
 
+/// The first 10 s of the vertical flight (1200 rows), written into `dir`.
+fn first_10_s(dir: &Path) -> std::path::PathBuf {
+    let text_v = std::fs::read_to_string(workspace_cli::root().join(V)).unwrap();
+    let cut = dir.join("cut.csv");
+    let head: Vec<&str> = text_v.lines().take(1201).collect();
+    std::fs::write(&cut, head.join("\n") + "\n").unwrap();
+    cut
+}
+
+/// A window may read any IMU's accelerometers (issue 34 §3: each gyro's
+/// own IMU's are its operating signals), not only the first IMU's that
+/// place the operating point; a gyro output is still refused, naming
+/// what a window may read.
+#[test]
+fn a_window_reads_any_imus_accelerometers() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = first_10_s(dir.path());
+    let model = dir.path().join("m.json");
+    let args = |signals: &'static str| {
+        let mut a = vec!["fit", "--unit", UNIT, "--data", cut.to_str().unwrap()];
+        a.extend(["--window-signals", signals, "--max-centres", "5"]);
+        a.extend(["--out", model.to_str().unwrap()]);
+        a
+    };
+    let o = dtg_vib(&args("a2x,a2y,a2z"));
+    assert!(o.status.success(), "{}", text(&o));
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+    assert_eq!(
+        m["model"]["preprocess"]["window"]["signals"],
+        serde_json::json!(["a2x", "a2y", "a2z"])
+    );
+    let o = dtg_vib(&args("g1x"));
+    let t = text(&o);
+    assert!(!o.status.success(), "{t}");
+    assert!(
+        t.contains("window signal 'g1x' cannot be windowed")
+            && t.contains("(ax, ay, az, a2x, a2y, a2z, a3x, a3y, a3z)"),
+        "{t}"
+    );
+}
+
 /// `explain` and `report` work in parity too (issue 34 §1), on the first
 /// 10 s of the vertical flight (1200 rows: seconds, not the whole flight):
 /// explain says it fits in parity and runs its first round's diagnosis,
@@ -299,10 +340,7 @@ fn flight_halves(dir: &Path, data: &str) -> [std::path::PathBuf; 2] {
 #[test]
 fn explain_and_report_work_in_parity() {
     let dir = tempfile::tempdir().unwrap();
-    let text_v = std::fs::read_to_string(workspace_cli::root().join(V)).unwrap();
-    let cut = dir.path().join("cut.csv");
-    let head: Vec<&str> = text_v.lines().take(1201).collect();
-    std::fs::write(&cut, head.join("\n") + "\n").unwrap();
+    let cut = first_10_s(dir.path());
     let (cut, model) = (cut.to_str().unwrap(), dir.path().join("m.json"));
     let o = dtg_vib(&linear(
         "explain",

@@ -269,6 +269,15 @@ pub trait Sensor: Clone + Send + Sync {
     /// residual's regimes and its nonlinear tests are taken along each.
     fn operating_signals(&self) -> Vec<String>;
 
+    /// The operating signals of channel `channel`: those its own
+    /// vibration input is (an inertial unit of several IMUs: its gyro's
+    /// IMU's accelerometers). A window may read any channel's. The shared
+    /// [`Sensor::operating_signals`] by default.
+    fn operating_signals_of(&self, channel: usize) -> Vec<String> {
+        let _ = channel;
+        self.operating_signals()
+    }
+
     /// The smallest spread an operating point's coordinate is divided by,
     /// in the operating signals' unit: a coordinate the training windows
     /// held constant measures a change of this size as one unit, not as

@@ -317,6 +317,18 @@ impl sysid::Sensor for UnitSensor {
         names.iter().map(|n| n.to_string()).collect()
     }
 
+    /// Gyro `channel`'s IMU's accelerometers (every accelerometer when the
+    /// unit groups none into IMUs).
+    fn operating_signals_of(&self, channel: usize) -> Vec<String> {
+        match channel < self.unit.gyros().len() {
+            true => self.unit.imu_accel_names(channel),
+            false => self.unit.accel_names(),
+        }
+        .iter()
+        .map(|n| n.to_string())
+        .collect()
+    }
+
     fn operating_scale(&self) -> f64 {
         MIN_SCALE_G
     }
