@@ -847,17 +847,17 @@ fn compensate_writes_the_record_format() {
     assert_eq!(text.lines().count(), 1 + 5000 - 49);
 }
 
+/// `diagnose --json` of `model` on the record.
+fn diagnosis(model: &str) -> serde_json::Value {
+    let text = ok(&["diagnose", "--model", model, "--data", &record(), "--json"]);
+    serde_json::from_str(text.trim()).expect("one JSON object")
+}
+
 #[test]
 fn diagnose_json_has_the_contract_keys() {
-    let text = ok(&[
-        "diagnose",
-        "--model",
-        model(),
-        "--data",
-        &record(),
-        "--json",
-    ]);
-    let v: serde_json::Value = serde_json::from_str(text.trim()).expect("one JSON object");
+    let v = diagnosis(model());
+    // Without a rate reference no rate family is said observable.
+    assert!(v.get("observable").is_none(), "{}", v["observable"]);
     let channels = v["channels"].as_array().unwrap();
     assert_eq!(channels.len(), 6);
     for c in channels {
@@ -940,6 +940,19 @@ fn table_rate_takes_the_documented_comma_form() {
         m["model"]["preprocess"]["rate_reference"]["rate_deg_s"],
         serde_json::json!([0.0, 0.0, 0.01])
     );
+    // Against the table rate the diagnosis says each gyro's own rate terms
+    // are observable (issue 34 §2); in parity it says only their
+    // differences are (tests/flight.rs); without a reference it says
+    // nothing (diagnose_json_has_the_contract_keys).
+    let d = diagnosis(dir().join("table-rate.json").to_str().unwrap());
+    let lines = d["observable"].as_array().expect("an observable list");
+    assert_eq!(lines.len(), 3, "one line per family: {lines:?}");
+    let sf = lines[0].as_str().unwrap();
+    assert!(
+        sf.starts_with("sf, sf@k (scale-factor error): against the rate reference each gyro's own is observable"),
+        "{sf}"
+    );
+    assert!(!sf.contains("differences between gyros"), "{sf}");
 }
 
 #[test]

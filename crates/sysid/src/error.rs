@@ -119,8 +119,9 @@ pub enum SysidError {
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),
-    /// A windowed signal is not a column of the record.
-    #[error("window signal '{name}' is not a record column (use {} or an extra column: {})", operating.join(", "), if available.is_empty() { "the record has none".to_string() } else { available.join(", ") })]
+    /// A windowed signal is not one a window may read: not a column of the
+    /// record, or not an operating signal (an output, say).
+    #[error("window signal '{name}' cannot be windowed: a window reads the sensor's operating signals ({}) or an extra column of the record ({})", operating.join(", "), if available.is_empty() { "it has none".to_string() } else { available.join(", ") })]
     WindowSignal {
         /// The signal asked for.
         name: String,

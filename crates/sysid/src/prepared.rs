@@ -656,13 +656,21 @@ fn apply(filter: &Option<LowPass>, causal: bool, x: &[f64]) -> Result<Vec<f64>, 
 }
 
 /// A signal a window or a test may read: one of the sensor's operating
-/// signals or an extra column of the record (never its outputs).
+/// signals (shared, or of any channel: [`Sensor::operating_signals_of`])
+/// or an extra column of the record (never its outputs).
 pub fn signal<'r, S: Sensor>(
     sensor: &S,
     record: &'r Signals,
     name: &str,
 ) -> Result<&'r [f64], SysidError> {
-    let operating = sensor.operating_signals();
+    let mut operating = sensor.operating_signals();
+    for k in 0..sensor.channels().len() {
+        for s in sensor.operating_signals_of(k) {
+            if !operating.contains(&s) {
+                operating.push(s);
+            }
+        }
+    }
     let extras = sensor.extra_columns(record);
     let known = operating.iter().chain(&extras).any(|n| n == name);
     match record.column(name) {

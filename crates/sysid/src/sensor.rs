@@ -269,6 +269,15 @@ pub trait Sensor: Clone + Send + Sync {
     /// residual's regimes and its nonlinear tests are taken along each.
     fn operating_signals(&self) -> Vec<String>;
 
+    /// The operating signals of channel `channel`: those its own
+    /// vibration input is (an inertial unit of several IMUs: its gyro's
+    /// IMU's accelerometers). A window may read any channel's. The shared
+    /// [`Sensor::operating_signals`] by default.
+    fn operating_signals_of(&self, channel: usize) -> Vec<String> {
+        let _ = channel;
+        self.operating_signals()
+    }
+
     /// The smallest spread an operating point's coordinate is divided by,
     /// in the operating signals' unit: a coordinate the training windows
     /// held constant measures a change of this size as one unit, not as
@@ -351,6 +360,15 @@ pub trait Sensor: Clone + Send + Sync {
     /// instability no higher after compensation than before. None by
     /// default.
     fn residues(&self) -> Vec<(String, Vec<f64>)> {
+        Vec::new()
+    }
+
+    /// What the records can observe of each family of effects, one line
+    /// per family (`sf: …`): what the target's reference lets a fit tell
+    /// apart and what it cannot (an inertial unit fitted in parity sees
+    /// only the differences between its gyros). The diagnosis states them
+    /// (its JSON's `observable`). None by default.
+    fn observable(&self) -> Vec<String> {
         Vec::new()
     }
 }

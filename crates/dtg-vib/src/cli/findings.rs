@@ -3,7 +3,8 @@
 //! paper's unit and any unit file) print through here.
 
 /// The diagnosis as `diagnose` prints it: each channel's rms, fit and
-/// suggestions with its findings, then what the words used mean.
+/// suggestions with its findings, what the records can observe of each
+/// effect family (when the sensor says), then what the words used mean.
 pub fn print_diagnosis<C: std::fmt::Display>(
     d: &sysid::diagnose::Diagnosis<C, nav_sensors::geometry::Axis>,
 ) {
@@ -21,6 +22,12 @@ pub fn print_diagnosis<C: std::fmt::Display>(
         );
         for f in &c.findings {
             println!("     {f}");
+        }
+    }
+    if !d.observable.is_empty() {
+        println!("what these records can observe:");
+        for line in &d.observable {
+            println!("  {line}");
         }
     }
     let terms = super::terms::diagnosis_terms(d);

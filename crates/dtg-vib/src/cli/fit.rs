@@ -216,19 +216,20 @@ pub fn print_record_scores(channels: &[String], per: &[Vec<sysid::fit::RecordSco
 }
 
 /// Each channel's FIR tap families read as filters, one line each (none
-/// when no channel has a family of two or more taps).
+/// when no channel has a family of two or more taps); when the model kept
+/// no joint covariance of its coefficients, one line saying so instead.
 pub fn print_frequency_responses(m: &sysid::Model<UnitSensor>) {
     use dtg_vib::unit_sensor::frequency_response::{BANDS, lines, responses};
-    let all: Vec<String> = m
-        .channels()
-        .iter()
-        .flat_map(|c| {
-            lines(
-                &c.channel().to_string(),
-                &responses(c.effects(), c.coefficients(), m.dt_s()),
-            )
-        })
-        .collect();
+    let mut all = Vec::new();
+    for c in m.channels() {
+        match responses(c.effects(), c.coefficients(), m.dt_s()) {
+            Ok(families) => all.extend(lines(&c.channel().to_string(), &families)),
+            Err(e) => {
+                println!("frequency response of the tap families: not given: {e}");
+                return;
+            }
+        }
+    }
     if all.is_empty() {
         return;
     }

@@ -73,7 +73,10 @@ impl FitReport {
         let mut r = Self::of_channels(model.channels(), split, fit_seconds).with_choice(model);
         r.unit = model.sensor().unit.name().to_string();
         for (report, c) in r.channels.iter_mut().zip(model.channels()) {
-            report.frequency_response = responses(c.effects(), c.coefficients(), model.dt_s());
+            // Without the covariance the text output says why; the JSON
+            // holds no response.
+            report.frequency_response =
+                responses(c.effects(), c.coefficients(), model.dt_s()).unwrap_or_default();
         }
         r
     }

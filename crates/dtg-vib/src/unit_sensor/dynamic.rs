@@ -59,14 +59,26 @@ pub struct Dynamic {
 /// Prefix of the accelerometer-response ids.
 pub const ACCEL_PREFIX: &str = "acc:";
 
+impl Stimulus {
+    /// The unit of a tap of this stimulus's FIR, and of the family's gain
+    /// per band: a misalignment's µrad (its lag 0) and a tap's ppm are one
+    /// scale (10⁻⁶ of the rate), so a family's gain sums them in ppm.
+    pub fn tap_unit(&self) -> &'static str {
+        match self {
+            Stimulus::InputRateDelay => "ms",
+            Stimulus::InputRate | Stimulus::AxisRate(_) => "ppm",
+            Stimulus::Accel(_) => "deg/h/g",
+        }
+    }
+}
+
 impl Dynamic {
-    /// The coefficient's unit.
+    /// The coefficient's unit: its stimulus's tap unit, but µrad for a
+    /// misalignment (the lag-0 term about another axis).
     pub fn unit(&self) -> &'static str {
         match (&self.stimulus, self.lag) {
             (Stimulus::AxisRate(_), 0) => "µrad",
-            (Stimulus::InputRateDelay, _) => "ms",
-            (Stimulus::InputRate | Stimulus::AxisRate(_), _) => "ppm",
-            (Stimulus::Accel(_), _) => "deg/h/g",
+            (s, _) => s.tap_unit(),
         }
     }
 

@@ -17,7 +17,7 @@ use super::effect::UnitEffect;
 use crate::numfmt::fmt;
 use serde::Serialize;
 use sysid::inference::Coefficient;
-use sysid::inference::derived::{self, Derived};
+use sysid::inference::derived::{self, Derived, DerivedError};
 
 /// Bands the Nyquist range is split into.
 pub const BANDS: usize = 4;
@@ -59,16 +59,17 @@ pub struct FamilyResponse {
 
 /// The responses of every family of two or more taps among a channel's
 /// `effects`, with `coefs` their fitted coefficients (with the joint
-/// covariance) at the sampling interval `dt_s`; none when the fit kept no
-/// covariance (a model written before it did).
+/// covariance) at the sampling interval `dt_s`; none when there is no such
+/// family.
+///
+/// # Errors
+/// Why a channel with a family has no response: the fit kept no joint
+/// covariance (a model written before it did), or no interval.
 pub fn responses(
     effects: &[UnitEffect],
     coefs: Option<&[Coefficient]>,
     dt_s: f64,
-) -> Vec<FamilyResponse> {
-    let Some(d) = coefs.and_then(|c| Derived::new(c).ok()) else {
-        return Vec::new();
-    };
+) -> Result<Vec<FamilyResponse>, DerivedError> {
     let mut families: Vec<(Stimulus, Vec<(usize, usize)>)> = Vec::new();
     for (i, e) in effects.iter().enumerate() {
         let UnitEffect::Dynamic(Dynamic { stimulus, lag }) = e else {
@@ -82,11 +83,15 @@ pub fn responses(
             None => families.push((stimulus.clone(), vec![(i, *lag)])),
         }
     }
-    families
+    families.retain(|(_, taps)| taps.len() >= 2);
+    if families.is_empty() {
+        return Ok(Vec::new());
+    }
+    let d = Derived::new(coefs.unwrap_or_default())?;
+    Ok(families
         .into_iter()
-        .filter(|(_, taps)| taps.len() >= 2)
         .map(|(stimulus, taps)| family(&d, stimulus, &taps, dt_s))
-        .collect()
+        .collect())
 }
 
 /// One family's response.
@@ -97,10 +102,7 @@ fn family(
     dt_s: f64,
 ) -> FamilyResponse {
     let id = Dynamic { stimulus, lag: 0 };
-    let unit = match id.stimulus {
-        Stimulus::Accel(_) => "deg/h/g",
-        _ => "ppm",
-    };
+    let unit = id.stimulus.tap_unit();
     let edges = derived::bands(dt_s, BANDS);
     let bands = edges
         .iter()
@@ -167,4 +169,59 @@ pub fn lines(channel: &str, families: &[FamilyResponse]) -> Vec<String> {
             )
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two taps of each of three stimuli, independent, se 0.1.
+    fn families(with_covariance: bool) -> (Vec<UnitEffect>, Vec<Coefficient>) {
+        let ids = ["ma_x", "ma_x@1", "sf", "sf@1", "acc:ax", "acc:ax@1"];
+        let effects: Vec<UnitEffect> = ids.iter().map(|i| i.parse().unwrap()).collect();
+        let n = ids.len();
+        let coefs = (0..n)
+            .map(|i| {
+                let c = Coefficient::new(1.0, 0.1, [0.8, 1.2], "u");
+                match with_covariance {
+                    true => c.with_covariance((0..n).map(|j| f64::from(i == j) * 0.01).collect()),
+                    false => c,
+                }
+            })
+            .collect();
+        (effects, coefs)
+    }
+
+    #[test]
+    fn a_family_gain_is_in_the_unit_of_its_taps() {
+        let (effects, coefs) = families(true);
+        let r = responses(&effects, Some(&coefs), 0.01).unwrap();
+        let units: Vec<(&str, &str)> = r
+            .iter()
+            .map(|f| (f.family.as_str(), f.unit.as_str()))
+            .collect();
+        assert_eq!(
+            units,
+            [("ma_x", "ppm"), ("sf", "ppm"), ("acc:ax", "deg/h/g")]
+        );
+        // The unit the model gives each tap after the first (ma_x's lag 0
+        // is a misalignment, µrad: the same 10⁻⁶ scale).
+        for (f, e) in r.iter().zip([&effects[1], &effects[3], &effects[5]]) {
+            assert_eq!(f.unit, sysid::Effect::unit(e), "{}", f.family);
+        }
+        assert_eq!(sysid::Effect::unit(&effects[0]), "µrad");
+    }
+
+    #[test]
+    fn a_model_without_the_covariance_says_why_it_has_no_response() {
+        let (effects, coefs) = families(false);
+        let e = responses(&effects, Some(&coefs), 0.01).unwrap_err();
+        assert_eq!(e, DerivedError::NoCovariance);
+        // No family of two taps: nothing to say, covariance or not.
+        assert!(
+            responses(&effects[..1], Some(&coefs[..1]), 0.01)
+                .unwrap()
+                .is_empty()
+        );
+    }
 }

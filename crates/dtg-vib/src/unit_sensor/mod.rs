@@ -42,7 +42,9 @@ pub use effect::{
 };
 pub use error::UnitSensorError;
 pub use model::{FORMAT_VERSION, UnitModel};
-pub use observable::{MOVING_RATE_STD_DEG_S, Observability, observability};
+pub use observable::{
+    MOVING_RATE_STD_DEG_S, Observability, observability, rate_families_observable,
+};
 pub use parity::{ResidueSeries, ResidueStats, pooled};
 pub use preprocess::{PARITY_NOTE, RateReference, StoredPreprocess};
 pub use sensor::{FLIGHT_EFFECTS, MIN_SCALE_G, UnitSensor};

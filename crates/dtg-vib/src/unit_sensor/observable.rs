@@ -4,6 +4,7 @@
 //! error plus a constant (the bias takes it), but on a moving vehicle is
 //! the vehicle's motion: a fit would model the flight, not the gyro.
 
+use super::preprocess::RateReference;
 use super::sensor::UnitSensor;
 use nav_sensors::record::Record;
 
@@ -57,4 +58,70 @@ pub(crate) fn largest_axis_std(v: &[nalgebra::Vector3<f64>]) -> f64 {
             (v.iter().map(|w| (w[k] - m).powi(2)).sum::<f64>() / n).sqrt()
         })
         .fold(0.0, f64::max)
+}
+
+/// A family of rate-dependent effects (IEEE Std 952, 1431 terms) and what
+/// every gyro sharing it looks like.
+struct RateFamily {
+    /// Its effect ids.
+    ids: &'static str,
+    /// Its name.
+    name: &'static str,
+    /// The part of it every gyro shares.
+    common: &'static str,
+    /// What a known reference rate needs to excite it.
+    excited_by: &'static str,
+}
+
+const RATE_FAMILIES: [RateFamily; 3] = [
+    RateFamily {
+        ids: "sf, sf@k",
+        name: "scale-factor error",
+        common: "a scale-factor error equal on every gyro",
+        excited_by: "a constant reference rate makes it a constant the bias takes: records at other rates tell them apart",
+    },
+    RateFamily {
+        ids: "ma_x, ma_y, ma_z, ma_*@k",
+        name: "misalignment / cross-axis sensitivity",
+        common: "a misalignment common to every gyro (the whole unit turned)",
+        excited_by: "a constant reference rate makes it a constant the bias takes: records at other rates tell them apart",
+    },
+    RateFamily {
+        ids: "delay, sf@1..4",
+        name: "the gyro's frequency response to the rate",
+        common: "a delay or bandwidth every gyro shares",
+        excited_by: "only where the reference rate changes (a constant rate has no dynamics)",
+    },
+];
+
+/// What a record can observe of each family of rate-dependent effects
+/// under `reference`, one line per family: in parity only the differences
+/// between gyros; against a known rate each gyro's own term; nothing
+/// without a reference (a still record: no rate term is a candidate).
+///
+/// ```
+/// use dtg_vib::unit_sensor::{RateReference, rate_families_observable};
+/// let parity = rate_families_observable(&RateReference::Parity);
+/// assert!(parity[0].contains("only its differences between gyros"));
+/// let table = rate_families_observable(&RateReference::Table { rate_deg_s: [0.0, 0.0, 10.0] });
+/// assert!(table[0].contains("each gyro's own"));
+/// assert!(rate_families_observable(&RateReference::None).is_empty());
+/// ```
+pub fn rate_families_observable(reference: &RateReference) -> Vec<String> {
+    let what = |f: &RateFamily| match reference {
+        RateReference::Parity => Some(format!(
+            "in parity (no rate reference) only its differences between gyros are observable; {} is not",
+            f.common
+        )),
+        RateReference::Earth { .. } | RateReference::Table { .. } => Some(format!(
+            "against the rate reference each gyro's own is observable; {}",
+            f.excited_by
+        )),
+        // A still record without a reference: no rate term is a candidate.
+        RateReference::None => None,
+    };
+    RATE_FAMILIES
+        .iter()
+        .filter_map(|f| Some(format!("{} ({}): {}", f.ids, f.name, what(f)?)))
+        .collect()
 }

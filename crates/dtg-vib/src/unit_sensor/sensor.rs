@@ -317,6 +317,18 @@ impl sysid::Sensor for UnitSensor {
         names.iter().map(|n| n.to_string()).collect()
     }
 
+    /// Gyro `channel`'s IMU's accelerometers (every accelerometer when the
+    /// unit groups none into IMUs).
+    fn operating_signals_of(&self, channel: usize) -> Vec<String> {
+        match channel < self.unit.gyros().len() {
+            true => self.unit.imu_accel_names(channel),
+            false => self.unit.accel_names(),
+        }
+        .iter()
+        .map(|n| n.to_string())
+        .collect()
+    }
+
     fn operating_scale(&self) -> f64 {
         MIN_SCALE_G
     }
@@ -532,5 +544,11 @@ impl sysid::Sensor for UnitSensor {
             .enumerate()
             .map(|(r, name)| (name.clone(), (0..c.ncols()).map(|j| c[(r, j)]).collect()))
             .collect()
+    }
+
+    /// The rate-dependent families, as the rate reference lets a record
+    /// observe them.
+    fn observable(&self) -> Vec<String> {
+        super::observable::rate_families_observable(&self.rate_reference)
     }
 }

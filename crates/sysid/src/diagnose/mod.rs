@@ -146,6 +146,10 @@ pub struct Diagnosis<C, A = String> {
     pub records: Vec<String>,
     /// Per channel, in the sensor's channel order.
     pub channels: Vec<ChannelDiagnosis<C, A>>,
+    /// What the records can observe of each effect family, one line per
+    /// family ([`Sensor::observable`]; absent when the sensor says nothing).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub observable: Vec<String>,
 }
 
 /// Diagnoses `model` on the record(s) it was fitted on, `prepared` by
@@ -238,7 +242,11 @@ pub fn diagnose_prepared<S: Sensor>(
         parts if parts.len() > 1 => parts.into_iter().map(|(n, _)| n.to_string()).collect(),
         _ => Vec::new(),
     };
-    Ok(Diagnosis { records, channels })
+    Ok(Diagnosis {
+        records,
+        channels,
+        observable: prepared.sensor().observable(),
+    })
 }
 
 impl<C: Clone + PartialEq, A> Diagnosis<C, A> {
