@@ -320,11 +320,12 @@ fn the_kernels_at_the_cpus_width_give_the_baseline_bits() {
         let m = Model::parse(&b).unwrap();
         for n in [9, 17, 26, 40] {
             let mut state = std::vec![0.0; m.state_len()];
-            let mut ev = Evaluator::new(m, &mut state).unwrap();
-            for a in &acc[..n] {
-                ev.step(&[0.0; 6], a, &[]).unwrap();
+            {
+                let mut ev = Evaluator::new(m, &mut state).unwrap();
+                for a in &acc[..n] {
+                    ev.step(&[0.0; 6], a, &[]).unwrap();
+                }
             }
-            drop(ev);
             // One sample is pending; the windows hold the n − 1 before it.
             let ring_pos = (n - 1) % m.window_len();
             let mut got = ([0.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
