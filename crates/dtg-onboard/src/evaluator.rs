@@ -5,10 +5,10 @@
 use crate::calibration::{calibrated_force, compensate_gyros, covariance, quad};
 use crate::error::Error;
 use crate::fade::fade_weight;
-use crate::kernels::network_terms;
 use crate::layout::{MAX_ACCELS, MAX_CHANNELS, input, kind, kind_params_of};
 use crate::maths::{cascade, dot, sqrt};
 use crate::model::Model;
+use crate::vector::network_terms;
 
 /// One step's result. Only the first [`Output::n_channels`] (and
 /// [`Output::n_accels`]) entries are the model's; the rest are zero.

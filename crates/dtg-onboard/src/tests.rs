@@ -306,3 +306,36 @@ fn tables_of_layout_2_run_as_the_same_model_of_the_layout_written_now() {
         }
     }
 }
+
+/// The kernels at the CPU's vector width (vector.rs: AVX2 where the CPU
+/// runs it) give the bits of the baseline build, on either input, with a
+/// part block of lanes and channels of different signals. On a CPU without
+/// AVX2 both calls take the baseline build.
+#[test]
+fn the_kernels_at_the_cpus_width_give_the_baseline_bits() {
+    let masks = [1, 4, 5, 7, 2, 7];
+    let acc = accels(40);
+    for input in [input::STATISTICS, input::RAW] {
+        let b = tables(VERSION, input, 21, masks, &[0, 1, 2]);
+        let m = Model::parse(&b).unwrap();
+        for n in [9, 17, 26, 40] {
+            let mut state = std::vec![0.0; m.state_len()];
+            {
+                let mut ev = Evaluator::new(m, &mut state).unwrap();
+                for a in &acc[..n] {
+                    ev.step(&[0.0; 6], a, &[]).unwrap();
+                }
+            }
+            // One sample is pending; the windows hold the n − 1 before it.
+            let ring_pos = (n - 1) % m.window_len();
+            let mut got = ([0.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
+            let mut want = got;
+            crate::vector::network_terms(&m, &state, ring_pos, &mut got.0, &mut got.1);
+            crate::kernels::network_terms(&m, &state, ring_pos, &mut want.0, &mut want.1);
+            assert!(want.0[..6].iter().all(|v| *v != 0.0), "input {input}");
+            let bits = |v: &[f64; MAX_CHANNELS]| v.map(f64::to_bits);
+            assert_eq!(bits(&got.0), bits(&want.0), "input {input}, {n} samples");
+            assert_eq!(bits(&got.1), bits(&want.1), "input {input}, {n} samples");
+        }
+    }
+}

@@ -6,7 +6,10 @@
 //! the compensated log of `dtg-vib compensate` on standard output,
 //! [`super::c_main`]). Only the C99 library (`fabs`, `sqrt`, `expf` in f32,
 //! `memcpy`; the f64 exponential is written out); no dynamic memory, no
-//! globals but the tables.
+//! globals but the tables. On x86-64 with glibc, gcc and clang build the
+//! kernels twice (`target_clones`: AVX2 and the baseline, chosen at load
+//! time, the same bits; [`super::c_kernels`]); `-DDTG_NO_CLONES` or any
+//! other target builds the one portable function.
 
 use super::precision::Precision;
 use crate::onboard::{ExportError, Tables, tables};

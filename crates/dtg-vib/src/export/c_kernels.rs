@@ -25,6 +25,7 @@ pub(super) fn kernels(precision: Precision) -> String {
         Precision::F32 => "#define EXP_NEG(x) expf(x)\n",
     };
     [
+        VECTOR_CLONES_C,
         exp,
         &LANE_SUM_C.replace("{LANES}", &LANES.to_string()),
         "#if DTG_INPUT_STATS\n",
@@ -46,7 +47,7 @@ const EXP_NEG11_C: &str = r#"#include <stdint.h>
  * Estrin's scheme; 2^n from the bits), so that both give the same bits.
  * Below -708 its value is not used (the caller takes 0): a loop over it
  * without a branch or clamp is one the compiler vectorises. */
-static double exp_neg11(double x) {
+static DTG_INLINE double exp_neg11(double x) {
     const double LOG2E = 0x1.71547652b82fep+0, LN2_HI = 0x1.62e42feep-1;
     const double LN2_LO = 0x1.a39ef35793c76p-33, SHIFT = 0x1.8p+52;
     double t = x * LOG2E + SHIFT, n = t - SHIFT, r = (x - n * LN2_HI) - n * LN2_LO;
@@ -62,6 +63,30 @@ static double exp_neg11(double x) {
     return p * scale;
 }
 #define EXP_NEG(x) exp_neg11(x)
+"#;
+
+/// The kernels compiled twice where the toolchain can choose at load time
+/// (gcc or clang on x86-64 ELF with glibc's ifunc): for AVX2, four lanes
+/// to a vector instead of SSE2's two, and for the baseline instruction
+/// set. AVX2 without FMA rounds every operation as SSE2 does, so both give
+/// the same bits; `-DDTG_NO_CLONES` or another target builds the one
+/// portable function.
+const VECTOR_CLONES_C: &str = r#"/* The kernels for AVX2 and for the baseline x86-64, chosen at load time
+ * (ifunc): the same operations in the same order, four lanes to a vector
+ * instead of two, so the same bits; the exponential inlined into both.
+ * Elsewhere, or with -DDTG_NO_CLONES, the one portable function. */
+#if defined(__x86_64__) && defined(__ELF__) && defined(__GLIBC__) && !defined(DTG_NO_CLONES) \
+    && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define DTG_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#define DTG_INLINE __attribute__((always_inline)) inline
+#endif
+#endif
+#ifndef DTG_VECTOR_CLONES
+#define DTG_VECTOR_CLONES
+#define DTG_INLINE
+#endif
+
 "#;
 
 /// The lanes' partial sums added pairwise into the first, in the Rust
@@ -103,6 +128,7 @@ const STATISTICS_C: &str = r#"/* Adds each channel's kernel terms to ys[c] and n
  * less the set's mean and its squared norm; per block of DTG_LANES centres
  * each argument V + W q + sum_d x'_d U_d in eight named sums, the
  * exponentials, the weighted terms into one partial sum per lane. */
+DTG_VECTOR_CLONES
 static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
     dtg_real acc[N][DTG_LANES];
     int c, b, i, d, mb;
@@ -157,6 +183,7 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
  * centres each argument (the windows' distance times -1/beta^2; 0 past the
  * set's last centre), the exponentials, the weighted terms into one
  * partial sum per lane. */
+DTG_VECTOR_CLONES
 static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
     dtg_real acc[N][DTG_LANES];
     const int l = DTG_WINDOW_LEN;
