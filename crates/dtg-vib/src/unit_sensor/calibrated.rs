@@ -12,9 +12,7 @@
 
 use nav_sensors::calibration::UnitCalibration;
 use nav_sensors::unit::Unit;
-use std::collections::VecDeque;
-use std::sync::Mutex;
-use sysid::fit::{Digest, Digester};
+use sysid::fit::{Digest, Digester, Store};
 use sysid::{SensorError, Signals};
 
 /// Largest record (rows) whose calibration is remembered.
@@ -24,7 +22,7 @@ pub const MAX_ROWS: usize = 100_000;
 /// explain loop over three records asks for three).
 const CAPACITY: usize = 8;
 
-static CALIBRATED: Mutex<VecDeque<(Digest, Signals)>> = Mutex::new(VecDeque::new());
+static CALIBRATED: Store<Signals> = Store::new(CAPACITY);
 
 /// `calibrate()` of `raw` by `calibration` on `unit`, taken from the
 /// records remembered when the same one was calibrated before. Failures are
@@ -38,26 +36,12 @@ pub(super) fn remembered(
         return calibrate();
     }
     let key = digest((unit, calibration), raw);
-    if let Some((_, s)) = lock().iter().find(|(k, _)| *k == key) {
-        return Ok(s.clone());
+    if let Some(s) = CALIBRATED.recall(key) {
+        return Ok(s);
     }
     let calibrated = calibrate()?;
-    let mut all = lock();
-    if !all.iter().any(|(k, _)| *k == key) {
-        if all.len() >= CAPACITY {
-            all.pop_front();
-        }
-        all.push_back((key, calibrated.clone()));
-    }
+    CALIBRATED.keep(key, &calibrated);
     Ok(calibrated)
-}
-
-/// The store; a panic elsewhere while it was held leaves it usable (an
-/// entry is pushed whole or not at all).
-fn lock() -> std::sync::MutexGuard<'static, VecDeque<(Digest, Signals)>> {
-    CALIBRATED
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 /// Everything the calibration reads: the unit, its calibration (each as

@@ -41,7 +41,7 @@ pub use input_choice::{
     SMALLER_INPUT_TOLERANCE, SharedCentresTrial,
 };
 pub use input_sample::SHARED_CENTRES_TOLERANCE;
-pub use memo::digest::{Digest, Digester};
+pub use memo::digest::{Digest, Digester, Store};
 pub use network::{MAX_SELECTION_ROWS, selection_stride};
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};

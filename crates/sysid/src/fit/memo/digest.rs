@@ -4,7 +4,9 @@
 //! arrays.
 
 use faer::MatRef;
+use std::collections::VecDeque;
 use std::hash::{DefaultHasher, Hash, Hasher};
+use std::sync::Mutex;
 
 /// A 128-bit digest: two SipHashes of the same words, salted apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,6 +69,49 @@ impl Digester {
     /// The digest of everything added so far.
     pub fn finish(&self) -> Digest {
         Digest(self.0.finish(), self.1.finish())
+    }
+}
+
+/// Values remembered by digest, at most `capacity` (the oldest dropped
+/// first); a panic elsewhere while it was held leaves it usable (an entry
+/// is pushed whole or not at all).
+pub struct Store<T> {
+    entries: Mutex<VecDeque<(Digest, T)>>,
+    capacity: usize,
+}
+
+impl<T: Clone> Store<T> {
+    /// An empty store of at most `capacity` values (usable as a `static`).
+    pub const fn new(capacity: usize) -> Self {
+        Self {
+            entries: Mutex::new(VecDeque::new()),
+            capacity,
+        }
+    }
+
+    /// The value remembered under `key`, if any.
+    pub fn recall(&self, key: Digest) -> Option<T> {
+        self.lock()
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v.clone())
+    }
+
+    /// Remembers `value` under `key` unless one is there already.
+    pub fn keep(&self, key: Digest, value: &T) {
+        let mut all = self.lock();
+        if !all.iter().any(|(k, _)| *k == key) {
+            if all.len() >= self.capacity {
+                all.pop_front();
+            }
+            all.push_back((key, value.clone()));
+        }
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, VecDeque<(Digest, T)>> {
+        self.entries
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 }
 
