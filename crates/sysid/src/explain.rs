@@ -47,16 +47,37 @@ pub fn diagnose_records<S: Sensor>(
     records: &[(String, &Signals)],
     options: &DiagnoseOptions,
 ) -> Result<Diagnosis<S::Channel, S::Axis>, SysidError> {
+    let mut diagnosis = diagnose_untried(model, records, options)?;
+    try_longer_window(&mut diagnosis, model, records, options);
+    Ok(diagnosis)
+}
+
+/// [`diagnose_records`] without the longer window's trial.
+fn diagnose_untried<S: Sensor>(
+    model: &Model<S>,
+    records: &[(String, &Signals)],
+    options: &DiagnoseOptions,
+) -> Result<Diagnosis<S::Channel, S::Axis>, SysidError> {
     let prepared = model.prepare_many(records)?;
     let mirror = mirror(model, &prepared)?;
-    let mut diagnosis = diagnose_prepared(model, &prepared, &mirror, options)?;
+    diagnose_prepared(model, &prepared, &mirror, options)
+}
+
+/// Where a residual stays correlated beyond the model's window and
+/// `options.try_settings` is on: the recipe refitted with a three times
+/// longer window, and the diagnosis told what it gained.
+fn try_longer_window<S: Sensor>(
+    diagnosis: &mut Diagnosis<S::Channel, S::Axis>,
+    model: &Model<S>,
+    records: &[(String, &Signals)],
+    options: &DiagnoseOptions,
+) {
     if options.try_settings && !diagnosis.slow_channels().is_empty() {
         let longer = model.preprocess().window.length() * 3;
         if let Ok(trial) = refit_with_window(model, records, longer) {
             diagnosis.note_window_trial(longer, &trial);
         }
     }
-    Ok(diagnosis)
 }
 
 /// An effect a round added, with the evidence for it.
@@ -110,7 +131,8 @@ pub struct Round<C, A = String> {
     pub added: Vec<Added<C, A>>,
     /// Validation rms of every channel after this round's fit.
     pub channels: Vec<ChannelRms<C>>,
-    /// This round's diagnosis (not serialised: a diagnosis has its own JSON).
+    /// This round's diagnosis (not serialised: a diagnosis has its own
+    /// JSON); only the last round's holds the longer window's trial.
     #[serde(skip)]
     pub diagnosis: Diagnosis<C, A>,
 }
@@ -180,8 +202,13 @@ pub fn explain<S: Sensor>(
             }
         })?;
         progress(ExplainStage::Diagnosing(n));
-        let diagnosis = diagnose_records(&model, records, diagnose_options)?;
+        // The longer window's trial only adds a finding, which no later
+        // round reads: it is made for the last round's diagnosis alone.
+        let mut diagnosis = diagnose_untried(&model, records, diagnose_options)?;
         let next = suggestions(&diagnosis, &options);
+        if next.is_empty() || rounds.len() + 1 >= max_rounds {
+            try_longer_window(&mut diagnosis, &model, records, diagnose_options);
+        }
         let channels = model
             .channels()
             .iter()

@@ -30,9 +30,12 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
         converged,
         model,
         seconds,
-    } = explain(&recipe, a.thresholds, a.max_rounds, &|stage| {
-        show_stage(&progress, &fitted, n, stage)
-    })?;
+    } = explain(
+        &recipe,
+        (a.thresholds, a.report.is_some()),
+        a.max_rounds,
+        &|stage| show_stage(&progress, &fitted, n, stage),
+    )?;
     model.save(&f.out)?;
     let page = match &a.report {
         Some(dir) => {

@@ -48,20 +48,26 @@ pub fn explain_takes(f: &FitArgs) -> Result<()> {
     Ok(())
 }
 
-/// Runs the loop on the recipe's records, at most `max_rounds` fits.
+/// Runs the loop on the recipe's records, at most `max_rounds` fits; the
+/// last diagnosis tries a longer window only when `reported` (its page is
+/// the one place that finding shows: the trial refits every channel).
 pub fn explain(
     recipe: &FitRecipe,
-    thresholds: Thresholds,
+    (thresholds, reported): (Thresholds, bool),
     max_rounds: u64,
     progress: &(dyn Fn(sysid::explain::ExplainStage<String>) + Sync),
 ) -> Result<Explained> {
     let named = signals(&recipe.read.records)?;
     let start = std::time::Instant::now();
+    let diagnose = sysid::diagnose::DiagnoseOptions {
+        try_settings: reported,
+        ..thresholds.options()
+    };
     let e = sysid::explain::explain(
         &recipe.sensor,
         &borrowed(&named),
         &recipe.options,
-        &thresholds.options(),
+        &diagnose,
         max_rounds as usize,
         progress,
     )?;

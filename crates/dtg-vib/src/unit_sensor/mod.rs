@@ -12,6 +12,7 @@
 
 mod applied;
 mod apply;
+mod calibrated;
 mod calibration;
 pub mod check;
 mod dynamic;

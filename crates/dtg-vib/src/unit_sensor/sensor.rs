@@ -9,6 +9,7 @@ use nav_sensors::rate::RateTerm;
 use nav_sensors::unit::{GyroTerm, Sensed, Unit};
 use sysid::{Candidacy, OperatingStats, SensorError, Separation, Signals, Wording};
 
+use super::calibrated;
 use super::dynamic::{self, ACCEL_PREFIX, Dynamic, Stimulus, expand_dynamic};
 use super::effect::{ANISOINERTIA_MIN_RATE_DEG_S, UnitEffect, UnitEffectError};
 use super::error::UnitSensorError;
@@ -252,6 +253,21 @@ fn is_anisoinertia(e: &UnitEffect) -> bool {
     matches!(e, UnitEffect::Term(GyroTerm::Dtg(t)) if DtgTerm::ANISOINERTIA.contains(t))
 }
 
+impl UnitSensor {
+    /// `raw` compensated with the ground calibration `c`, checked in range.
+    fn calibrated(&self, c: &UnitCalibration, raw: &Signals) -> Result<Signals, SensorError> {
+        let record = to_record(&self.unit, raw).map_err(boxed)?;
+        let out = c
+            .compensate(&self.unit, &record)
+            .map_err(|e| boxed(UnitSensorError::Calibration(e.to_string())))?;
+        let calibrated = to_signals(&out).map_err(boxed)?;
+        let names = self.unit.gyro_names().into_iter();
+        range::check_calibrated(&calibrated, names.chain(self.unit.accel_names()))
+            .map_err(|e| Box::new(e) as SensorError)?;
+        Ok(calibrated)
+    }
+}
+
 impl sysid::Sensor for UnitSensor {
     type Channel = String;
     type Effect = UnitEffect;
@@ -280,15 +296,7 @@ impl sysid::Sensor for UnitSensor {
         let Some(c) = &self.calibration else {
             return Ok(raw.clone());
         };
-        let record = to_record(&self.unit, raw).map_err(boxed)?;
-        let out = c
-            .compensate(&self.unit, &record)
-            .map_err(|e| boxed(UnitSensorError::Calibration(e.to_string())))?;
-        let calibrated = to_signals(&out).map_err(boxed)?;
-        let names = self.unit.gyro_names().into_iter();
-        range::check_calibrated(&calibrated, names.chain(self.unit.accel_names()))
-            .map_err(|e| Box::new(e) as SensorError)?;
-        Ok(calibrated)
+        calibrated::remembered((&self.unit, c), raw, || self.calibrated(c, raw))
     }
 
     fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {

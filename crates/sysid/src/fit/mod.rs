@@ -41,6 +41,7 @@ pub use input_choice::{
     SMALLER_INPUT_TOLERANCE, SharedCentresTrial,
 };
 pub use input_sample::SHARED_CENTRES_TOLERANCE;
+pub use memo::digest::{Digest, Digester, Store};
 pub use network::{MAX_SELECTION_ROWS, selection_stride};
 pub use partial::MIN_BLOCK_ROWS;
 pub(crate) use partial::{cross_fitted_theta, raw_windows, theta_rows};
@@ -190,14 +191,22 @@ pub fn mirror<S: Sensor>(model: &Model<S>, prepared: &Prepared<S>) -> Result<Mod
 }
 
 /// `model`'s recipe fitted again on `records` with windows of `length`
-/// samples, split within each record: the trial the diagnosis's advice on a
-/// slow residual rests on.
+/// samples, split within each record, on the input the model's choice took
+/// (its smoother chosen again): the trial the diagnosis's advice on a slow
+/// residual rests on.
 pub fn refit_with_window<S: Sensor>(
     model: &Model<S>,
     records: &[(String, &Signals)],
     length: usize,
 ) -> Result<Model<S>, SysidError> {
     let mut recipe = model.recipe();
+    // The input the model's choice took on these records: the trial varies
+    // the window alone (its smoother is still chosen). Fitting every input
+    // again cost more than the rest of the loop (the raw input of a
+    // 150-sample window over three axes is 450 columns).
+    if let Some(choice) = recipe.settings.choice.as_mut() {
+        choice.inputs = vec![recipe.preprocess.input];
+    }
     let signals = recipe.preprocess.window.signals().to_vec();
     recipe.preprocess.window = crate::window::WindowSpec::new(signals, length)?;
     let prepared = Prepared::new_many(model.sensor(), records, &recipe.preprocess)?;

@@ -16,18 +16,16 @@
 //! themselves, the settings and the leakage gap. Failures are not
 //! remembered: they are computed again, and say so again.
 
-use super::digest::{Digest, Digester};
+use super::digest::{Digest, Digester, Store};
 use crate::inference::HacFit;
 use crate::recipe::FitSettings;
 use faer::{Mat, MatRef};
-use std::collections::VecDeque;
-use std::sync::Mutex;
 
 /// Estimates remembered; the oldest is dropped beyond this (each is a few
 /// numbers per effect).
 const CAPACITY: usize = 256;
 
-static ESTIMATES: Mutex<VecDeque<(Digest, Option<HacFit>)>> = Mutex::new(VecDeque::new());
+static ESTIMATES: Store<Option<HacFit>> = Store::new(CAPACITY);
 
 /// `estimate()`, the cross-fitted θ of `y` on the effect columns `z` over
 /// rows `theta_rows` of the windows `x_theta`, taken from the estimates
@@ -44,26 +42,12 @@ pub(in crate::fit) fn remembered<E>(
     estimate: impl FnOnce() -> Result<Option<HacFit>, E>,
 ) -> Result<Option<HacFit>, E> {
     let key = digest((x_theta, z, y), theta_rows, settings, gap);
-    if let Some((_, f)) = lock().iter().find(|(k, _)| *k == key) {
-        return Ok(f.clone());
+    if let Some(f) = ESTIMATES.recall(key) {
+        return Ok(f);
     }
     let f = estimate()?;
-    let mut all = lock();
-    if !all.iter().any(|(k, _)| *k == key) {
-        if all.len() >= CAPACITY {
-            all.pop_front();
-        }
-        all.push_back((key, f.clone()));
-    }
+    ESTIMATES.keep(key, &f);
     Ok(f)
-}
-
-/// The store; a panic elsewhere while it was held leaves it usable (an
-/// entry is pushed whole or not at all).
-fn lock() -> std::sync::MutexGuard<'static, VecDeque<(Digest, Option<HacFit>)>> {
-    ESTIMATES
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 /// Everything [`crate::fit::partial::cross_fitted_theta`] reads: the rows `theta_rows` of

@@ -5,5 +5,5 @@
 //! bit for bit.
 
 pub(super) mod channel_fits;
-mod digest;
+pub mod digest;
 pub(super) mod estimates;
