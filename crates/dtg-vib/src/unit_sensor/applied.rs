@@ -208,14 +208,24 @@ pub struct BeforeAfter {
 /// assert_eq!(p.len(), 1);
 /// ```
 pub fn residues_of(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    per_sample(gyros, unit.residue_names().len(), |row| unit.residues(row))
+}
+
+/// `f` of each sample's row of the gyro series (per channel, equal
+/// lengths), as `width` series: the residues, or the parity vectors V·m.
+pub(crate) fn per_sample<T: IntoIterator<Item = f64>>(
+    gyros: &[Vec<f64>],
+    width: usize,
+    f: impl Fn(&[f64]) -> T,
+) -> Vec<Vec<f64>> {
     let len = gyros.first().map_or(0, Vec::len);
-    let mut out = vec![Vec::with_capacity(len); unit.residue_names().len()];
+    let mut out = vec![Vec::with_capacity(len); width];
     let mut row = vec![0.0; gyros.len()];
     for i in 0..len {
         for (r, g) in row.iter_mut().zip(gyros) {
             *r = g[i];
         }
-        for (o, v) in out.iter_mut().zip(unit.residues(&row)) {
+        for (o, v) in out.iter_mut().zip(f(&row)) {
             o.push(v);
         }
     }

@@ -121,18 +121,9 @@ pub fn setting(
 
 /// V·m per sample of gyro series (per channel, equal lengths), per row of V.
 pub fn parity_vectors(unit: &Unit, gyros: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let len = gyros.first().map_or(0, Vec::len);
-    let mut out = vec![Vec::with_capacity(len); unit.parity_matrix().nrows()];
-    let mut row = vec![0.0; gyros.len()];
-    for i in 0..len {
-        for (r, g) in row.iter_mut().zip(gyros) {
-            *r = g[i];
-        }
-        for (o, p) in out.iter_mut().zip(unit.parity_vector(&row)) {
-            o.push(p);
-        }
-    }
-    out
+    super::applied::per_sample(gyros, unit.parity_matrix().nrows(), |row| {
+        unit.parity_vector(row)
+    })
 }
 
 /// Runs `fdi` on every sample of the gyro series `gyros` (per channel,
