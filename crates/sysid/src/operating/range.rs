@@ -41,6 +41,42 @@ pub(crate) fn mean_and_variance(a: &[f64]) -> (f64, f64) {
     (m, a.iter().map(|v| (v - m).powi(2)).sum::<f64>() / n)
 }
 
+/// Each record's operating-signal columns, looked up once and not once a
+/// row: the lookup asks the sensor for its signal names, which allocates.
+struct Columns<'p, S: Sensor> {
+    sensor: &'p S,
+    names: Vec<String>,
+    seen: Vec<(&'p crate::signals::Signals, Vec<&'p [f64]>)>,
+}
+
+impl<'p, S: Sensor> Columns<'p, S> {
+    fn new(prepared: &'p Prepared<S>) -> Self {
+        let sensor = prepared.sensor();
+        Self {
+            sensor,
+            names: sensor.operating_signals(),
+            seen: Vec::new(),
+        }
+    }
+
+    /// The operating signals' columns of `record`, in the sensor's order.
+    fn of(&mut self, record: &'p crate::signals::Signals) -> Result<&[&'p [f64]], SysidError> {
+        let at = match self.seen.iter().position(|(s, _)| std::ptr::eq(*s, record)) {
+            Some(at) => at,
+            None => {
+                let cols = self
+                    .names
+                    .iter()
+                    .map(|name| crate::prepared::signal(self.sensor, record, name))
+                    .collect::<Result<Vec<_>, _>>()?;
+                self.seen.push((record, cols));
+                self.seen.len() - 1
+            }
+        };
+        Ok(&self.seen[at].1)
+    }
+}
+
 /// Per row in `rows`, each operating signal's mean and variance over the
 /// window of `length` samples that ends at the row's sample (the one pass
 /// over the windows both the joint points and the range read).
@@ -49,29 +85,14 @@ pub(crate) fn moments<S: Sensor>(
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<(f64, f64)>>, SysidError> {
-    let sensor = prepared.sensor();
-    let names = sensor.operating_signals();
-    // Each record's signals looked up once, not once a row: the lookup asks
-    // the sensor for its signal names, which allocates.
-    let mut columns: Vec<(&crate::signals::Signals, Vec<&[f64]>)> = Vec::new();
+    let mut columns = Columns::new(prepared);
     let mut out = Vec::with_capacity(rows.len());
     for &r in rows {
         let (record, end) = prepared.locate(r);
-        let at = match columns.iter().position(|(s, _)| std::ptr::eq(*s, record)) {
-            Some(at) => at,
-            None => {
-                let cols = names
-                    .iter()
-                    .map(|name| crate::prepared::signal(sensor, record, name))
-                    .collect::<Result<Vec<_>, _>>()?;
-                columns.push((record, cols));
-                columns.len() - 1
-            }
-        };
         let span = end + 1 - length.min(end + 1)..=end;
         out.push(
-            columns[at]
-                .1
+            columns
+                .of(record)?
                 .iter()
                 .map(|a| mean_and_variance(&a[span.clone()]))
                 .collect(),
@@ -89,22 +110,21 @@ pub fn statistics<S: Sensor>(
     length: usize,
     rows: &[usize],
 ) -> Result<Vec<Vec<f64>>, SysidError> {
-    let sensor = prepared.sensor();
-    let names = sensor.operating_signals();
-    let k = names.len();
-    rows.iter()
-        .map(|&r| {
-            let (record, end) = prepared.locate(r);
-            let span = end + 1 - length.min(end + 1)..=end;
-            let mut p = vec![0.0; 3 * k];
-            for (j, name) in names.iter().enumerate() {
-                let a = &crate::prepared::signal(sensor, record, name)?[span.clone()];
-                let (mean, var) = mean_and_variance(a);
-                (p[j], p[k + j], p[2 * k + j]) = (mean, var.sqrt(), shape(a, var));
-            }
-            Ok(p)
-        })
-        .collect()
+    let k = prepared.sensor().operating_signals().len();
+    let mut columns = Columns::new(prepared);
+    let mut out = Vec::with_capacity(rows.len());
+    for &r in rows {
+        let (record, end) = prepared.locate(r);
+        let span = end + 1 - length.min(end + 1)..=end;
+        let mut p = vec![0.0; 3 * k];
+        for (j, column) in columns.of(record)?.iter().enumerate() {
+            let a = &column[span.clone()];
+            let (mean, var) = mean_and_variance(a);
+            (p[j], p[k + j], p[2 * k + j]) = (mean, var.sqrt(), shape(a, var));
+        }
+        out.push(p);
+    }
+    Ok(out)
 }
 
 /// What a model saw of each operating signal, and its fade.
