@@ -32,15 +32,26 @@ pub(super) fn remembered(
     raw: &Signals,
     calibrate: impl FnOnce() -> Result<Signals, SensorError>,
 ) -> Result<Signals, SensorError> {
+    remembered_in(&CALIBRATED, (unit, calibration), raw, calibrate)
+}
+
+/// [`remembered`] with the store given (a test's own, which tests running
+/// alongside cannot fill).
+fn remembered_in(
+    store: &Store<Signals>,
+    (unit, calibration): (&Unit, &UnitCalibration),
+    raw: &Signals,
+    calibrate: impl FnOnce() -> Result<Signals, SensorError>,
+) -> Result<Signals, SensorError> {
     if raw.len() > MAX_ROWS {
         return calibrate();
     }
     let key = digest((unit, calibration), raw);
-    if let Some(s) = CALIBRATED.recall(key) {
+    if let Some(s) = store.recall(key) {
         return Ok(s);
     }
     let calibrated = calibrate()?;
-    CALIBRATED.keep(key, &calibrated);
+    store.keep(key, &calibrated);
     Ok(calibrated)
 }
 
@@ -77,8 +88,12 @@ mod tests {
             Signals::new(vec![0.0, 0.02, 0.04], vec![("X".into(), vec![v, 1.0, 2.0])]).unwrap()
         };
         let marked = |v: f64| Ok(raw(v));
+        let store = Store::new(CAPACITY);
         let ask = |r: &Signals, c: &UnitCalibration, v: f64| {
-            remembered((&unit, c), r, || marked(v)).unwrap().columns()[0].1[0]
+            remembered_in(&store, (&unit, c), r, || marked(v))
+                .unwrap()
+                .columns()[0]
+                .1[0]
         };
         assert_eq!(ask(&raw(0.5), &cal, 10.0), 10.0);
         assert_eq!(ask(&raw(0.5), &cal, 11.0), 10.0, "remembered");
