@@ -58,7 +58,7 @@ pub(super) fn restate<S: Sensor>(
     effects.extend(suggested.iter().cloned());
     let z = prepared.effect_matrix(channel, &effects)?;
     let y = prepared.target(channel);
-    let estimate = crate::fit::cross_fitted_theta(est.x, &z, y, &est.rows, est.settings, est.gap);
+    let estimate = crate::fit::cross_fitted_theta(est.x, &z, y, est.rows, est.settings, est.gap);
     let first = model.effects().len();
     for (i, e) in suggested.iter().enumerate() {
         let id = e.id();
