@@ -130,6 +130,18 @@ fn each_channel_reads_its_own_signals_by_default() {
     let predicted = model.predict(&again).unwrap();
     let prepared_alone = alone.prepare(&one).unwrap();
     assert_eq!(predicted[0], alone.predict(&prepared_alone).unwrap()[0]);
+    // A file whose window names another number of channels' lists is refused.
+    let mut parts = model.into_parts();
+    parts.preprocess.window = WindowSpec::per_channel(
+        vec![vec!["u".into()], vec!["v".into()], vec!["u".into()]],
+        50,
+    )
+    .unwrap();
+    let e = sysid::Model::from_parts(parts).unwrap_err();
+    assert!(
+        e.contains("the signals of 3 channels, not of each of the model's 2"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -339,13 +339,9 @@ impl<S: Sensor> Model<S> {
         if w.length() == 0 || w.signals().is_empty() {
             return Err("the window needs at least one sample of one signal".into());
         }
-        let per_channel = w.is_per_channel();
-        if per_channel && (0..self.channels.len()).any(|k| w.signals_of(k).is_empty()) {
+        if let Some(lists) = w.channel_lists().filter(|&l| l != self.channels.len()) {
             return Err(format!(
-                "the window names the signals of {} channels, not of each of the model's {}",
-                (0..self.channels.len())
-                    .filter(|&k| !w.signals_of(k).is_empty())
-                    .count(),
+                "the window names the signals of {lists} channels, not of each of the model's {}",
                 self.channels.len()
             ));
         }

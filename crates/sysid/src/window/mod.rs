@@ -198,6 +198,13 @@ impl WindowSpec {
         !self.channels.is_empty()
     }
 
+    /// How many channels' lists the window names, when channels read
+    /// different signals (`None` when every channel reads
+    /// [`WindowSpec::signals`]).
+    pub fn channel_lists(&self) -> Option<usize> {
+        self.is_per_channel().then_some(self.channels.len())
+    }
+
     /// The channels of `n` that read the same signals, each group with
     /// the window of its signals, in the order of their first channel:
     /// one group of every channel when they read alike.
