@@ -11,7 +11,9 @@
 //! turns with the body, and its false-alarm rate on clean pieces of every
 //! real and simulated log is measured by the ignored test below.
 
-use nav_sensors::record::{DeclaredUnitWarning, Record, declared_unit_warnings};
+use nav_sensors::record::{
+    DeclaredUnitWarning, Record, TILT_EXPLAINED, declared_unit_warnings, tilt_misses,
+};
 use nav_sensors::unit::{RateUnit, SpecificForceUnit, Unit};
 
 fn path(file: &str) -> String {
@@ -243,4 +245,49 @@ fn the_tilt_check_false_alarm_rate_on_clean_pieces() {
         "tilt check: {alarms} false alarm(s) in {pieces} clean pieces; deg/s declared deg/h caught in {caught} of {wrong} triad pieces"
     );
     assert!(alarms <= 1, "{alarms} of {pieces}");
+}
+
+/// The figures [`TILT_EXPLAINED`]'s documentation gives for choosing 0.5,
+/// measured: on the real quadrotor flights the declared deg/s rates miss
+/// the accelerometers' tilt change by more than a gyro turning nothing
+/// (their accelerometers read the thrust, which turns with the body), so
+/// no unit explains it and the check says nothing; on the hand-held log
+/// the declared rates miss by a quarter of what turning nothing misses,
+/// well inside the bound. Tolerance: half a unit in the documented last
+/// digit.
+#[test]
+fn the_tilt_bound_sits_between_a_quadrotor_and_a_hand_held_log() {
+    let multi = multi_imu();
+    let cases = [
+        (
+            "multi-imu/qdr_horizontal_path11.csv",
+            &multi,
+            6.7,
+            2.4,
+            0.05,
+        ),
+        ("multi-imu/qdr_vertical_path1.csv", &multi, 8.2, 6.2, 0.05),
+    ];
+    for (file, unit, declared, unturned, tol) in cases {
+        let m = tilt_misses(unit, &longest(file, unit)).unwrap();
+        eprintln!(
+            "{file}: tilt {:.0} deg; miss per step as declared {:.2} deg, turning nothing {:.2} deg, best {:.2} deg in {}",
+            m.tilt_deg, m.as_declared_deg, m.unturned_deg, m.best_deg, m.likely
+        );
+        assert!((m.as_declared_deg - declared).abs() <= tol, "{file}: {m:?}");
+        assert!((m.unturned_deg - unturned).abs() <= tol, "{file}: {m:?}");
+        assert!(
+            m.best_deg > TILT_EXPLAINED * m.unturned_deg,
+            "{file}: {m:?}"
+        );
+    }
+    let hand = longest("px4_auav_x21_handheld.csv", &triad());
+    let m = tilt_misses(&triad(), &hand).unwrap();
+    eprintln!(
+        "hand-held: miss per step as declared {:.3} deg, turning nothing {:.3} deg",
+        m.as_declared_deg, m.unturned_deg
+    );
+    assert!((m.as_declared_deg - 0.26).abs() <= 0.005, "{m:?}");
+    assert!((m.unturned_deg - 1.01).abs() <= 0.005, "{m:?}");
+    assert!(m.as_declared_deg < TILT_EXPLAINED * m.unturned_deg, "{m:?}");
 }

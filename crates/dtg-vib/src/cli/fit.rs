@@ -221,15 +221,24 @@ pub fn print_record_scores(channels: &[String], per: &[Vec<sysid::fit::RecordSco
 pub fn print_frequency_responses(m: &sysid::Model<UnitSensor>) {
     use dtg_vib::unit_sensor::frequency_response::{BANDS, lines, responses};
     let mut all = Vec::new();
+    // Each reason once, with the channels it holds for: a model without the
+    // joint covariance gives every channel the same one.
+    let mut missing: Vec<(String, Vec<String>)> = Vec::new();
     for c in m.channels() {
         match responses(c.effects(), c.coefficients(), m.dt_s()) {
             Ok(families) => all.extend(lines(&c.channel().to_string(), &families)),
             Err(e) => {
-                println!("frequency response of the tap families: not given: {e}");
-                return;
+                let (reason, name) = (e.to_string(), c.channel().to_string());
+                match missing.iter_mut().find(|(r, _)| *r == reason) {
+                    Some((_, names)) => names.push(name),
+                    None => missing.push((reason, vec![name])),
+                }
             }
         }
     }
+    missing_response_lines(&missing, m.channels().len())
+        .iter()
+        .for_each(|l| println!("{l}"));
     if all.is_empty() {
         return;
     }
@@ -238,6 +247,22 @@ pub fn print_frequency_responses(m: &sysid::Model<UnitSensor>) {
         dtg_vib::numfmt::short((5.0 / m.dt_s()).round() / 10.0)
     );
     all.iter().for_each(|l| println!("{l}"));
+}
+
+/// One line per reason a frequency response is not given, naming its
+/// channels unless it holds for all `channels` of the model.
+fn missing_response_lines(missing: &[(String, Vec<String>)], channels: usize) -> Vec<String> {
+    missing
+        .iter()
+        .map(|(reason, names)| {
+            let of = if names.len() == channels {
+                String::new()
+            } else {
+                format!(" ({})", names.join(", "))
+            };
+            format!("frequency response of the tap families{of}: not given: {reason}")
+        })
+        .collect()
 }
 
 /// Each channel's centres, scores and effect coefficients (the fit's
@@ -368,6 +393,31 @@ mod tests {
             [
                 "sf@0..2 (3 taps): 2 significant; largest sf@1 7.0000 ± 1.0000 ppm (5.0000 to 9.0000)"
             ]
+        );
+    }
+
+    /// A reason that holds for every channel is said once without names;
+    /// one that holds for some names them, and no channel's reason hides
+    /// another's.
+    #[test]
+    fn each_missing_response_reason_is_said_with_its_channels() {
+        let missing = vec![
+            (
+                "no covariance".to_string(),
+                vec!["g1".to_string(), "g2".to_string()],
+            ),
+            ("no interval".to_string(), vec!["g3".to_string()]),
+        ];
+        assert_eq!(
+            missing_response_lines(&missing, 3),
+            [
+                "frequency response of the tap families (g1, g2): not given: no covariance",
+                "frequency response of the tap families (g3): not given: no interval",
+            ]
+        );
+        assert_eq!(
+            missing_response_lines(&missing[..1], 2),
+            ["frequency response of the tap families: not given: no covariance"]
         );
     }
     use sysid::fit::{Candidate, ChoiceReport};

@@ -14,7 +14,7 @@
 //! - a turning record's rates: the gravity direction the accelerometers
 //!   read one quarter second after another turns as the gyros' integrated
 //!   rate turns it. Another unit is proposed only when its rates explain
-//!   that turn ([`EXPLAINED`]); where no unit does (a rotorcraft, whose
+//!   that turn ([`TILT_EXPLAINED`]); where no unit does (a rotorcraft, whose
 //!   accelerometers read the thrust that turns with it), the check is
 //!   silent.
 
@@ -57,7 +57,7 @@ const TILT_STEP_S: f64 = 0.25;
 /// step, turning nothing by 2.4 and 6.2), so no unit explains their tilt
 /// and the check says nothing; a hand-held log's deg/s rates miss by 0.26
 /// deg where turning nothing misses by 1.01.
-const EXPLAINED: f64 = 0.5;
+pub const TILT_EXPLAINED: f64 = 0.5;
 
 /// A declared unit the data contradict.
 #[derive(Debug, Clone, PartialEq)]
@@ -230,15 +230,40 @@ fn gyro_noise(unit: &Unit, record: &Record) -> Vec<DeclaredUnitWarning> {
     out
 }
 
-fn tilt_change(unit: &Unit, record: &Record) -> Option<DeclaredUnitWarning> {
+/// What the tilt check weighs on a record (a step is [`TILT_STEP_S`]):
+/// how far the accelerometers' gravity turns, and how far the gyros' rates
+/// miss it read in the declared unit, in the unit that explains it best,
+/// and by a gyro that turns nothing. None when the record is shorter than
+/// three steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TiltMisses {
+    /// The gravity direction's change summed over the steps, deg.
+    pub tilt_deg: f64,
+    /// The mean miss per step with the declared rate unit, deg.
+    pub as_declared_deg: f64,
+    /// The rate unit whose reading misses least.
+    pub likely: RateUnit,
+    /// Its mean miss per step, deg.
+    pub best_deg: f64,
+    /// The mean miss per step of a gyro that turns nothing (the tilt
+    /// change per step), deg.
+    pub unturned_deg: f64,
+}
+
+/// The tilt check's figures on `record` read with `unit`
+/// ([`TiltMisses`]).
+pub fn tilt_misses(unit: &Unit, record: &Record) -> Option<TiltMisses> {
+    figures(unit, record, 0.0)
+}
+
+/// [`tilt_misses`], or None as soon as gravity turns by less than
+/// `min_tilt_deg` (the misses are the costly part).
+fn figures(unit: &Unit, record: &Record, min_tilt_deg: f64) -> Option<TiltMisses> {
     let n = record.len();
     let per_s = ((TILT_STEP_S / record.dt()).round() as usize).max(1);
     if n < 3 * per_s {
         return None;
     }
-    let rate: Vec<Vector3<f64>> = (0..n)
-        .map(|i| unit.least_squares_rate(&record.gyro_row(i)))
-        .collect();
     let gravity: Vec<Vector3<f64>> = (0..n / per_s)
         .map(|c| {
             (c * per_s..(c + 1) * per_s)
@@ -252,9 +277,12 @@ fn tilt_change(unit: &Unit, record: &Record) -> Option<DeclaredUnitWarning> {
         .map(|w| w[0].angle(&w[1]))
         .sum::<f64>()
         .to_degrees();
-    if tilt < MIN_TILT_DEG {
+    if tilt < min_tilt_deg {
         return None;
     }
+    let rate: Vec<Vector3<f64>> = (0..n)
+        .map(|i| unit.least_squares_rate(&record.gyro_row(i)))
+        .collect();
     // The mean angle between each step's gravity and the previous step's,
     // turned by the gyros' rate (× `scale`) over the samples
     // between their middles: in the body frame gravity turns by −ω.
@@ -272,25 +300,38 @@ fn tilt_change(unit: &Unit, record: &Record) -> Option<DeclaredUnitWarning> {
         (sum / (gravity.len() - 1) as f64).to_degrees()
     };
     let declared = unit.units().rate;
-    let as_declared = miss(1.0);
     let (likely, best) = RATE_UNITS
         .into_iter()
         .map(|u| (u, miss(u.to_deg_h() / declared.to_deg_h())))
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    Some(TiltMisses {
+        tilt_deg: tilt,
+        as_declared_deg: miss(1.0),
+        likely,
+        best_deg: best,
+        unturned_deg: miss(0.0),
+    })
+}
+
+fn tilt_change(unit: &Unit, record: &Record) -> Option<DeclaredUnitWarning> {
+    let m = figures(unit, record, MIN_TILT_DEG)?;
     // Another unit must explain the tilt clearly better than the declared,
     // and explain it at all: better than a gyro that turns nothing (whose
     // miss is the tilt change per step). Where no unit does, the
     // accelerometers read thrust or manoeuvre, not gravity, and the check
     // cannot tell.
-    let unturned = miss(0.0);
-    if likely == declared || best > EXPLAINED * as_declared || best > EXPLAINED * unturned {
+    let declared = unit.units().rate;
+    if m.likely == declared
+        || m.best_deg > TILT_EXPLAINED * m.as_declared_deg
+        || m.best_deg > TILT_EXPLAINED * m.unturned_deg
+    {
         return None;
     }
     Some(DeclaredUnitWarning::TiltChange {
         columns: record.gyro_names().to_vec(),
-        tilt_deg: tilt,
-        miss_deg: (as_declared, best),
+        tilt_deg: m.tilt_deg,
+        miss_deg: (m.as_declared_deg, m.best_deg),
         declared,
-        likely,
+        likely: m.likely,
     })
 }

@@ -19,7 +19,8 @@ mod ulog_log;
 
 pub use csv::UnitRecords;
 pub use declared_units::{
-    DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, declared_unit_warnings,
+    DeclaredUnitWarning, GYRO_DENSITY_SPAN_DEG_H_RT_HZ, TILT_EXPLAINED, TiltMisses,
+    declared_unit_warnings, tilt_misses,
 };
 pub use error::RecordError;
 pub use glitches::{GLITCH_NEIGHBOUR_Z, GLITCH_Z, Glitch, glitch_scores, glitches};
