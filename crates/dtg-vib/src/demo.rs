@@ -259,15 +259,12 @@ fn fit_options(
 ) -> Result<sysid::FitOptions<UnitEffect>, DtgVibError> {
     let mut options = sysid::FitOptions::<UnitEffect>::new(sensor.unit.gyros().len());
     options.recipe.settings.choice = Some(sysid::fit::ModelChoice::default());
-    let taken = match signals.as_deref() {
-        Some([auto]) if auto == "auto" => {
-            sysid::choose_window_signals(sensor, named)?.taken.clone()
-        }
-        Some(s) => s.to_vec(),
-        None => default_window_signals(&sensor.unit),
-    };
-    options.recipe.preprocess.window =
-        WindowSpec::new(taken, 50).map_err(sysid::SysidError::from)?;
+    options.recipe.preprocess.window = match signals.as_deref() {
+        Some([auto]) if auto == "auto" => sysid::choose_window_signals(sensor, named)?.window(50),
+        Some(s) => WindowSpec::new(s.to_vec(), 50),
+        None => WindowSpec::new(default_window_signals(&sensor.unit), 50),
+    }
+    .map_err(sysid::SysidError::from)?;
     Ok(options)
 }
 

@@ -269,16 +269,21 @@ fn the_three_run_model_with_added_terms_reads_every_vibrating_axis_and_adds_no_v
     // (ax 5%, ay 3% of az's dynamic rms); the three runs along every axis.
     let sensor: UnitSensor = paper_fit::sensor(calibration);
     let z_only = sensor.choose_window_signals(&named[2..]).unwrap();
-    assert_eq!(z_only.taken, ["az"]);
+    assert_eq!(z_only.choices[0].taken, ["az"]);
     let chosen = sensor.choose_window_signals(&named).unwrap();
-    assert_eq!(chosen.taken, ["ax", "ay", "az"]);
+    assert_eq!(
+        chosen.choices.len(),
+        1,
+        "the paper's unit: one choice for every channel"
+    );
+    assert_eq!(chosen.choices[0].taken, ["ax", "ay", "az"]);
     let mut options = options();
     paper_fit::add(
         &mut options,
         &["X=gg_SS", "X1=gg_SS", "Y=gg_OO", "Y1=gg_II"],
     );
     let window = &mut options.recipe.preprocess.window;
-    *window = sysid::WindowSpec::new(chosen.taken.clone(), window.length()).unwrap();
+    *window = chosen.window(window.length()).unwrap();
     let (model, _) = fit_records(&named, calibration, &options);
     // Issue 23's transfer bound on every channel of every run and the
     // flight, and the channels with added terms fall on every shaker run

@@ -834,6 +834,40 @@ fn nine_gyros() -> &'static Path {
     })
 }
 
+/// Two IMUs, each of three rate gyros and its own accelerometer triad
+/// (tests/fixtures/onboard/two-imus.toml): by default each gyro's network
+/// reads its own IMU's accelerometers, so the channels' windows differ.
+/// Fitted without a ground calibration: the onboard tables carry one
+/// accelerometer triad's calibration, not one per IMU.
+fn two_imus() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        let s = unit_sim(two_imus_file(), "z-axis");
+        let out = dir().join("two-imus.json");
+        ok(bin()
+            .args([
+                "fit",
+                "--causal",
+                "--max-centers",
+                "20",
+                "--unit",
+                two_imus_file(),
+            ])
+            .arg("--data")
+            .arg(s.join("record.csv"))
+            .args(["--add-effect", "gx2=g_y", "--out"])
+            .arg(&out));
+        out
+    })
+}
+
+fn two_imus_file() -> &'static str {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/onboard/two-imus.toml"
+    )
+}
+
 fn nine_gyros_file() -> &'static str {
     concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -887,9 +921,10 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
     (worst, lowest)
 }
 
-fn unit_models() -> [(&'static Path, PathBuf); 5] {
+fn unit_models() -> [(&'static Path, PathBuf); 6] {
     [
         (nine_gyros(), unit_sim(nine_gyros_file(), "z-axis")),
+        (two_imus(), unit_sim(two_imus_file(), "z-axis")),
         (tetra(), unit_sim("tetra", "triaxial_hidden")),
         (triad(), unit_sim("triad", "z-axis")),
         (dual_triad(), unit_sim("dual-triad", "triaxial_hidden")),
@@ -955,6 +990,19 @@ fn the_unit_models_exercise_what_they_claim() {
     assert!((0..9).all(|c| o.gyro_model(c) == gyro::RATE));
     assert!(m.inner().sensor().calibration.is_some() && o.fades());
     assert_eq!((o.input_kind(), o.n_effects(3)), (input::STATISTICS, 1));
+    // Each gyro's network on its own IMU's accelerometer (the z run
+    // vibrates along z): the model's list holds both, each channel's mask
+    // its own.
+    let (m, t) = parsed(two_imus());
+    let o = Model::parse(&t.bytes).unwrap();
+    let w = &m.inner().preprocess().window;
+    assert_eq!(w.signals(), ["az1", "az2"]);
+    assert_eq!(
+        (w.signals_of(0), w.signals_of(5)),
+        (&["az1".to_string()][..], &["az2".to_string()][..])
+    );
+    let masks: Vec<u32> = (0..6).map(|c| o.signal_mask(c)).collect();
+    assert_eq!(masks, [1, 1, 1, 2, 2, 2]);
 }
 
 #[test]

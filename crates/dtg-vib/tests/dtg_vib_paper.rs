@@ -144,7 +144,7 @@ fn the_six_channels_share_one_centre_selection_and_keep_their_own_weights() {
     assert!(model.inner().settings().shared_centres);
     let first = &model.inner().channels()[0];
     let applied = applied(&model, &sim.record);
-    let windows = applied.prepared.window_matrix();
+    let windows = applied.prepared.window_matrix(0);
     let rows = &applied.train;
     let x = faer::Mat::from_fn(rows.len(), windows.ncols(), |i, j| windows[(rows[i], j)]);
     let basis = first.rbf().features(x.as_ref());

@@ -319,10 +319,17 @@ fn a_window_reads_any_imus_accelerometers() {
     let o = dtg_vib(&args("a2x,a2y,a2z"));
     assert!(o.status.success(), "{}", text(&o));
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+    // A named list is every channel's: no per-channel lists, no choice.
     assert_eq!(
         m["model"]["preprocess"]["window"]["signals"],
         serde_json::json!(["a2x", "a2y", "a2z"])
     );
+    assert!(
+        m["model"]["preprocess"]["window"]["channels"].is_null(),
+        "{}",
+        m["model"]["preprocess"]["window"]
+    );
+    assert!(m["model"]["choice"]["window_signals"].is_null());
     let o = dtg_vib(&args("g1x"));
     let t = text(&o);
     assert!(!o.status.success(), "{t}");
@@ -331,6 +338,84 @@ fn a_window_reads_any_imus_accelerometers() {
             && t.contains("(ax, ay, az, a2x, a2y, a2z, a3x, a3y, a3z)"),
         "{t}"
     );
+}
+
+/// By default (`--window-signals auto`) each gyro's network reads its own
+/// IMU's accelerometers (issue 34 §3): the model file names each channel's
+/// signals, all of its own IMU, and `fit --json` holds one choice per IMU
+/// naming its gyros.
+#[test]
+fn each_gyros_window_reads_its_own_imus_accelerometers_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = first_10_s(dir.path());
+    let model = dir.path().join("m.json");
+    let o = dtg_vib(&[
+        "fit",
+        "--unit",
+        UNIT,
+        "--data",
+        cut.to_str().unwrap(),
+        "--max-centres",
+        "5",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+        "--json",
+        "--out",
+        model.to_str().unwrap(),
+    ]);
+    let fitted = json(&o);
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+    let window = &m["model"]["preprocess"]["window"];
+    let own = |imu: usize| match imu {
+        1 => ["ax", "ay", "az"].map(String::from),
+        i => ["x", "y", "z"].map(|a| format!("a{i}{a}")),
+    };
+    let lists: Vec<Vec<String>> = serde_json::from_value(window["channels"].clone()).unwrap();
+    assert_eq!(lists.len(), 9, "{window}");
+    for (k, list) in lists.iter().enumerate() {
+        assert!(!list.is_empty(), "{window}");
+        assert!(
+            list.iter().all(|s| own(k / 3 + 1).contains(s)),
+            "gyro {k}: {list:?}"
+        );
+    }
+    for (file, what) in [
+        (&m["model"]["choice"], "model file"),
+        (&fitted["choice"], "--json"),
+    ] {
+        let choices = file["window_signals"]
+            .as_array()
+            .unwrap_or_else(|| panic!("{what}: {file}"));
+        assert_eq!(choices.len(), 3, "{what}");
+        for (i, c) in choices.iter().enumerate() {
+            let gyros: Vec<String> = ["x", "y", "z"]
+                .iter()
+                .map(|a| format!("g{}{a}", i + 1))
+                .collect();
+            assert_eq!(c["channels"], serde_json::json!(gyros), "{what}");
+            assert_eq!(c["taken"], serde_json::json!(lists[3 * i]), "{what}");
+            let measured: Vec<&str> = c["signals"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|s| s["signal"].as_str().unwrap())
+                .collect();
+            assert_eq!(measured, own(i + 1), "{what}");
+        }
+    }
+    // The model file reads back and its text export names each IMU's window.
+    let o = dtg_vib(&[
+        "export",
+        "--lang",
+        "text",
+        "--model",
+        model.to_str().unwrap(),
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("## Window of g2x, g2y, g2z\n"), "{t}");
 }
 
 /// `explain` and `report` work in parity too (issue 34 §1), on the first

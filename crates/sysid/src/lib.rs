@@ -76,7 +76,7 @@ pub use model::{
     ChannelModel, ChannelModelOf, ChannelScores, Faded, INTERVAL_TOLERANCE, Model, ModelParts,
     score,
 };
-pub use prepared::{Prepared, choose_window_signals, signal};
+pub use prepared::{Prepared, choose_window_signals, signal, window_candidates};
 pub use preprocess::{FilterSpec, Preprocess};
 pub use recipe::{CentreMethod, FitOptions, FitSettings, Recipe};
 pub use sensor::{

@@ -9,8 +9,8 @@ use crate::error::SysidError;
 use crate::preprocess::Preprocess;
 use crate::sensor::Sensor;
 use crate::signals::Signals;
-use crate::window::Windows;
-use crate::window::signal_choice::{WindowSignalsChoice, choose_among};
+use crate::window::signal_choice::{ChannelSignals, WindowSignalsChoice, choose_per_channel};
+use crate::window::{WindowSpec, Windows};
 use faer::{Mat, MatRef};
 use iir::LowPass;
 
@@ -41,7 +41,7 @@ pub const INTERVAL_TOLERANCE: f64 = 5e-3;
 /// let pre = sysid::Preprocess { filter: None, window: sysid::WindowSpec::new(vec!["u".into()], 10)?, ..Default::default() };
 /// let p = sysid::Prepared::new(&Line, &rec, &pre)?;
 /// assert_eq!((p.rows(), p.first_sample()), (91, 9));
-/// assert_eq!(p.target(0)[0], 2.0 * p.windows().row(0)[9]);
+/// assert_eq!(p.target(0)[0], 2.0 * p.windows(0).row(0)[9]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone)]
@@ -55,10 +55,16 @@ pub struct Prepared<S: Sensor> {
     filter: Option<LowPass>,
     /// Filtered targets per channel, full length.
     targets: Vec<Vec<f64>>,
-    windows: Windows,
-    /// The window's signals as the records chose them, when the
-    /// pre-processing asked them to ([`crate::window::WindowSignals::Auto`]).
-    window_choice: Option<WindowSignalsChoice>,
+    /// The windows of each group of channels that read the same signals
+    /// ([`WindowSpec::groups`]): one for a window every channel shares.
+    windows: Vec<Windows>,
+    /// Each channel's entry of `windows`.
+    group_of: Vec<usize>,
+    /// The window's signals as the records chose them (one choice per group
+    /// of channels choosing among the same signals), when the
+    /// pre-processing asked them to ([`crate::window::WindowSignals::Auto`]);
+    /// empty when it named them.
+    window_choice: Vec<WindowSignalsChoice>,
 }
 
 /// One record of a multi-record preparation.
@@ -114,7 +120,7 @@ impl<S: Sensor> Prepared<S> {
             .iter()
             .map(|y| apply(&filter, causal, y))
             .collect::<Result<Vec<_>, _>>()?;
-        let windows = inputs(sensor, &calibrated, pre)?;
+        let (windows, group_of) = inputs(sensor, &calibrated, pre)?;
         Ok(Self {
             sensor: sensor.clone(),
             preprocess: pre.clone(),
@@ -123,16 +129,18 @@ impl<S: Sensor> Prepared<S> {
             filter,
             targets,
             windows,
-            window_choice: None,
+            group_of,
+            window_choice: Vec::new(),
         })
     }
 
     /// The window's signals as the records chose them (each signal's
-    /// dynamic rms, what was taken and why), when the pre-processing asked
-    /// them to ([`crate::window::WindowSignals::Auto`]); `None` when it
+    /// dynamic rms, what was taken and why: one choice per group of
+    /// channels choosing among the same signals), when the pre-processing
+    /// asked them to ([`crate::window::WindowSignals::Auto`]); empty when it
     /// named them.
-    pub fn window_choice(&self) -> Option<&WindowSignalsChoice> {
-        self.window_choice.as_ref()
+    pub fn window_choice(&self) -> &[WindowSignalsChoice] {
+        &self.window_choice
     }
 
     /// The same records with the network's input `input` (a fit's choice
@@ -141,14 +149,14 @@ impl<S: Sensor> Prepared<S> {
         let mut pre = self.preprocess.clone();
         pre.input = input;
         let windows = if self.parts.is_empty() {
-            inputs(&self.sensor, &self.calibrated, &pre)?
+            inputs(&self.sensor, &self.calibrated, &pre)?.0
         } else {
             let parts = self
                 .parts
                 .iter()
-                .map(|p| inputs(&self.sensor, &p.calibrated, &pre))
-                .collect::<Result<Vec<_>, _>>()?;
-            Windows::concat(&parts)
+                .map(|p| Ok(inputs(&self.sensor, &p.calibrated, &pre)?.0))
+                .collect::<Result<Vec<_>, SysidError>>()?;
+            concat_groups(&parts)
         };
         Ok(Self {
             preprocess: pre,
@@ -298,7 +306,7 @@ impl<S: Sensor> Prepared<S> {
             &prepared.iter().map(|p| &p.calibrated).collect::<Vec<_>>(),
             first,
         );
-        let windows = Windows::concat(
+        let windows = concat_groups(
             &prepared
                 .iter()
                 .map(|p| p.windows.clone())
@@ -313,6 +321,7 @@ impl<S: Sensor> Prepared<S> {
             filter: head.filter,
             targets,
             windows,
+            group_of: head.group_of,
             window_choice: head.window_choice,
         }
     }
@@ -382,31 +391,47 @@ impl<S: Sensor> Prepared<S> {
 
     /// Number of rows (windows).
     pub fn rows(&self) -> usize {
-        self.windows.len()
+        self.windows[0].len()
     }
 
     /// Record sample of row 0.
     pub fn first_sample(&self) -> usize {
-        self.windows.first_sample()
+        self.windows[0].first_sample()
     }
 
-    /// The windows as an `rows × dim` matrix.
-    pub fn window_matrix(&self) -> Mat<f64> {
-        let w = &self.windows;
+    /// Channel `channel`'s windows as an `rows × dim` matrix.
+    pub fn window_matrix(&self, channel: usize) -> Mat<f64> {
+        let w = self.windows(channel);
         Mat::from_fn(w.len(), w.dim(), |i, j| w.row(i)[j])
     }
 
-    /// The windows as an `rows × dim` matrix view of the prepared windows
-    /// themselves ([`Windows::matrix`]; nothing is copied): what
-    /// [`Prepared::window_matrix`] holds, without its copy (400 MB for a
-    /// 1M-row record of 50-sample windows).
-    pub fn window_view(&self) -> MatRef<'_, f64> {
-        self.windows.matrix()
+    /// Channel `channel`'s windows as an `rows × dim` matrix view of the
+    /// prepared windows themselves ([`Windows::matrix`]; nothing is
+    /// copied): what [`Prepared::window_matrix`] holds, without its copy
+    /// (400 MB for a 1M-row record of 50-sample windows).
+    pub fn window_view(&self, channel: usize) -> MatRef<'_, f64> {
+        self.windows(channel).matrix()
     }
 
-    /// The windows.
-    pub fn windows(&self) -> &Windows {
-        &self.windows
+    /// Channel `channel`'s windows.
+    pub fn windows(&self, channel: usize) -> &Windows {
+        &self.windows[self.group_of[channel]]
+    }
+
+    /// The channels that read the same windows, each group with a view of
+    /// them ([`WindowSpec::groups`]): one group of every channel when they
+    /// share one window.
+    pub fn window_groups(&self) -> Vec<(Vec<usize>, MatRef<'_, f64>)> {
+        self.windows
+            .iter()
+            .enumerate()
+            .map(|(g, w)| {
+                let members = (0..self.group_of.len())
+                    .filter(|&k| self.group_of[k] == g)
+                    .collect();
+                (members, w.matrix())
+            })
+            .collect()
     }
 
     /// Channel `channel`'s filtered target over the whole record.
@@ -547,19 +572,21 @@ impl<S: Sensor> Prepared<S> {
 }
 
 /// The window's signals for `sensor` chosen from its raw `records` (each
-/// calibrated first) by [`crate::window::signal_choice`]'s rule: what
-/// [`Prepared`] does for a window of [`crate::window::WindowSignals::Auto`].
+/// calibrated first) by [`crate::window::signal_choice`]'s rule, each
+/// channel's among its own operating signals
+/// ([`Sensor::operating_signals_of`]): what [`Prepared`] does for a window
+/// of [`crate::window::WindowSignals::Auto`].
 ///
 /// ```
 /// # use sysid::example::{Line, line_record};
 /// let c = sysid::choose_window_signals(&Line, &[("r".into(), &line_record(500, 1.0, 1))])?;
-/// assert_eq!(c.taken, ["u"]);
+/// assert_eq!(c.signals, [["u"]]);
 /// # Ok::<(), sysid::SysidError>(())
 /// ```
 pub fn choose_window_signals<S: Sensor>(
     sensor: &S,
     records: &[(String, &Signals)],
-) -> Result<WindowSignalsChoice, SysidError> {
+) -> Result<ChannelSignals, SysidError> {
     if records.is_empty() {
         return Err(SysidError::NoRecords);
     }
@@ -588,13 +615,27 @@ fn calibrate_each<S: Sensor>(
         .collect()
 }
 
+/// Each channel's candidates for its window's signals: its own operating
+/// signals ([`Sensor::operating_signals_of`]), or the shared ones
+/// ([`Sensor::operating_signals`]) when every channel's are alike.
+pub fn window_candidates<S: Sensor>(sensor: &S) -> Vec<Vec<String>> {
+    let n = sensor.channels().len();
+    let own: Vec<Vec<String>> = (0..n).map(|k| sensor.operating_signals_of(k)).collect();
+    match own.iter().all(|o| *o == own[0]) {
+        true => vec![sensor.operating_signals(); n],
+        false => own,
+    }
+}
+
 /// [`choose_window_signals`] on records `sensor` calibrated.
 fn choose_on_calibrated<S: Sensor>(
     sensor: &S,
     calibrated: &[(String, &Signals)],
-) -> Result<WindowSignalsChoice, SysidError> {
-    Ok(choose_among(
-        &sensor.operating_signals(),
+) -> Result<ChannelSignals, SysidError> {
+    let names: Vec<String> = sensor.channels().iter().map(|c| c.to_string()).collect();
+    Ok(choose_per_channel(
+        &window_candidates(sensor),
+        &names,
         calibrated,
         sensor.operating_scale(),
         &sensor.wording().operating_unit,
@@ -602,42 +643,70 @@ fn choose_on_calibrated<S: Sensor>(
 }
 
 /// `pre` with its window's signals named: as it is when it names them, else
-/// chosen from the calibrated records (with the choice).
+/// chosen from the calibrated records (with the choices).
 fn chosen_window<S: Sensor>(
     sensor: &S,
     pre: &Preprocess,
     calibrated: &[(String, &Signals)],
-) -> Result<(Preprocess, Option<WindowSignalsChoice>), SysidError> {
+) -> Result<(Preprocess, Vec<WindowSignalsChoice>), SysidError> {
     if !pre.window.is_auto() {
-        return Ok((pre.clone(), None));
+        return Ok((pre.clone(), Vec::new()));
     }
-    let choice = choose_on_calibrated(sensor, calibrated)?;
+    let chosen = choose_on_calibrated(sensor, calibrated)?;
     let mut named = pre.clone();
-    named.window = crate::window::WindowSpec::new(choice.taken.clone(), pre.window.length())?;
-    Ok((named, Some(choice)))
+    named.window = chosen.window(pre.window.length())?;
+    Ok((named, chosen.choices))
 }
 
-/// The network's inputs of one calibrated record: its windowed signals
-/// through the input low-pass, formed as `pre.input` says.
+/// The network's inputs of one calibrated record: for each group of
+/// channels that read the same signals ([`WindowSpec::groups`]), its
+/// windowed signals through the input low-pass, formed as `pre.input`
+/// says; and each channel's group.
 fn inputs<S: Sensor>(
     sensor: &S,
     calibrated: &Signals,
     pre: &Preprocess,
-) -> Result<Windows, SysidError> {
+) -> Result<(Vec<Windows>, Vec<usize>), SysidError> {
     let input_filter = pre
         .input_filter
         .map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
         .transpose()?;
-    let mut signals = Vec::with_capacity(pre.window.signals().len());
-    for name in pre.window.signals() {
+    let groups = pre.window.groups(sensor.channels().len().max(1));
+    let mut group_of = vec![0; sensor.channels().len()];
+    let mut windows = Vec::with_capacity(groups.len());
+    for (g, (members, spec)) in groups.iter().enumerate() {
+        members.iter().for_each(|&k| group_of[k] = g);
+        windows.push(group_inputs(sensor, calibrated, pre, &input_filter, spec)?);
+    }
+    Ok((windows, group_of))
+}
+
+/// The network's inputs of one group's window `spec` on one record.
+fn group_inputs<S: Sensor>(
+    sensor: &S,
+    calibrated: &Signals,
+    pre: &Preprocess,
+    input_filter: &Option<LowPass>,
+    spec: &WindowSpec,
+) -> Result<Windows, SysidError> {
+    let mut signals = Vec::with_capacity(spec.signals().len());
+    for name in spec.signals() {
         signals.push(apply(
-            &input_filter,
+            input_filter,
             pre.causal,
             signal(sensor, calibrated, name)?,
         )?);
     }
     let refs: Vec<&[f64]> = signals.iter().map(Vec::as_slice).collect();
-    Ok(pre.input.build(&pre.window, &refs)?)
+    Ok(pre.input.build(spec, &refs)?)
+}
+
+/// Each group's windows of several records, one after another
+/// ([`Windows::concat`]): `parts[r][g]` is record r's of group g.
+fn concat_groups(parts: &[Vec<Windows>]) -> Vec<Windows> {
+    (0..parts[0].len())
+        .map(|g| Windows::concat(&parts.iter().map(|p| p[g].clone()).collect::<Vec<_>>()))
+        .collect()
 }
 
 /// `x` through the filter (forward–backward, or one causal pass), or as it

@@ -70,7 +70,7 @@ pub fn run(a: ExplainArgs, progress: Progress) -> Result<()> {
     print_rounds(&rounds, converged, a.max_rounds);
     print_fit_channels(m.channels());
     print_frequency_responses(m);
-    if let Some(w) = m.choice().and_then(|c| c.window_signals.as_ref()) {
+    for w in m.choice().iter().flat_map(|c| &c.window_signals) {
         println!("{}", w.line());
     }
     println!("model: {} ({:.1} s)", f.out.display(), seconds);

@@ -448,7 +448,7 @@ mod tests {
             networks_shrunk: shrunk,
             input_sample: None,
             bias_instability_raised: Vec::new(),
-            window_signals: None,
+            window_signals: Vec::new(),
         }
     }
 

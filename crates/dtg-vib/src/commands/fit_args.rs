@@ -156,8 +156,10 @@ pub struct FitRecipe {
     pub options: sysid::FitOptions<UnitEffect>,
     /// The records (a log's segments between time gaps, each a record).
     pub read: Read,
-    /// The window's signals the records chose (`--window-signals auto`).
-    pub window: Option<WindowSignalsChoice>,
+    /// The window's signals the records chose (`--window-signals auto`):
+    /// one choice, or one per group of gyros choosing among their own
+    /// IMU's accelerometers; empty when the flags named them.
+    pub window: Vec<WindowSignalsChoice>,
 }
 
 impl FitRecipe {
@@ -179,10 +181,10 @@ impl FitRecipe {
             true => {
                 let c = sensor.choose_window_signals(&read.borrowed())?;
                 let w = &mut options.recipe.preprocess.window;
-                *w = WindowSpec::new(c.taken.clone(), w.length())?;
-                Some(c)
+                *w = c.window(w.length())?;
+                c.choices
             }
-            false => None,
+            false => Vec::new(),
         };
         Ok(Self {
             sensor,
@@ -195,9 +197,9 @@ impl FitRecipe {
     /// The loop's model with the choice of its window's signals in its
     /// report, when the records chose them.
     pub fn with_window(&self, model: sysid::Model<UnitSensor>) -> sysid::Model<UnitSensor> {
-        match &self.window {
-            Some(w) => model.with_window_signals(w.clone()),
-            None => model,
+        match self.window.is_empty() {
+            false => model.with_window_signals(self.window.clone()),
+            true => model,
         }
     }
 }

@@ -20,7 +20,7 @@ pub fn equations(model: &UnitModel) -> String {
             model.unit().name()
         ),
         m.dt_s(),
-        m.preprocess(),
+        (m.preprocess(), &model.unit().gyro_names()),
         &|w| calibration_text(w, model),
         &|w| {
             for c in m.channels() {
@@ -32,12 +32,12 @@ pub fn equations(model: &UnitModel) -> String {
 }
 
 /// The equations of any model: its title line, output period and
-/// pre-processing, what `calibration` and `channels` write, and the
-/// training range of `points`.
+/// pre-processing (of channels `names`), what `calibration` and `channels`
+/// write, and the training range of `points`.
 fn equations_with(
     title: &str,
     dt_s: f64,
-    pre: &sysid::Preprocess,
+    (pre, names): (&sysid::Preprocess, &[&str]),
     calibration: &dyn Fn(&mut String),
     channels: &dyn Fn(&mut String),
     points: Option<&OperatingPoints>,
@@ -63,26 +63,22 @@ fn equations_with(
     filter_text(w, &pre.filter, pre.causal, dt_s);
     let _ = writeln!(w, "\n## Low-pass of the windowed signals");
     filter_text(w, &pre.input_filter, pre.causal, dt_s);
-    let win = &pre.window;
-    match pre.input {
-        sysid::ModelInput::Raw => {
-            let _ = writeln!(
-                w,
-                "\n## Window\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
-                win.length(),
-                win.signals().join(", then "),
-                win.dim()
-            );
-        }
-        sysid::ModelInput::Statistics => {
-            let _ = writeln!(
-                w,
-                "\n## Window\nx = for each of {} in turn: the current sample, the mean and the rms about the mean of its last {} samples (running sums s1 += v − v_old, s2 += v² − v_old²; mean = s1/L, rms = √max(s2/L − mean², 0)), g (or the column's unit); {} inputs",
-                win.signals().join(", "),
-                win.length(),
-                pre.input.dim(win)
-            );
-        }
+    // One window for every channel, or one per group of channels that read
+    // their own signals (each gyro its own IMU's accelerometers).
+    let groups = pre.window.groups(names.len().max(1));
+    for (members, win) in &groups {
+        let of = match groups.len() {
+            1 => String::new(),
+            _ => format!(
+                " of {}",
+                members
+                    .iter()
+                    .map(|&k| names[k])
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        window_text(w, pre.input, win, &of);
     }
     if let Some(sm) = pre.smoother {
         let _ = writeln!(
@@ -98,6 +94,30 @@ fn equations_with(
     channels(w);
     range_text(w, points);
     s
+}
+
+/// The window `win` (of the channels `of` names) as the network reads it.
+fn window_text(w: &mut String, input: sysid::ModelInput, win: &sysid::WindowSpec, of: &str) {
+    match input {
+        sysid::ModelInput::Raw => {
+            let _ = writeln!(
+                w,
+                "\n## Window{of}\nx = the last {} samples (oldest first) of {}, g (or the column's unit); {} inputs",
+                win.length(),
+                win.signals().join(", then "),
+                win.dim()
+            );
+        }
+        sysid::ModelInput::Statistics => {
+            let _ = writeln!(
+                w,
+                "\n## Window{of}\nx = for each of {} in turn: the current sample, the mean and the rms about the mean of its last {} samples (running sums s1 += v − v_old, s2 += v² − v_old²; mean = s1/L, rms = √max(s2/L − mean², 0)), g (or the column's unit); {} inputs",
+                win.signals().join(", "),
+                win.length(),
+                input.dim(win)
+            );
+        }
+    }
 }
 
 /// The training range and the fade of the network part beyond it

@@ -153,9 +153,15 @@ fn header_words(
         GyroModel::Dtg { .. } => gyro::DTG,
         GyroModel::Rate => gyro::RATE,
     }));
-    // Every channel's network reads the model's one list of signals.
-    let all = u32::MAX >> (32 - signals.len().max(1));
-    words.extend(std::iter::repeat_n(all, unit.gyros().len()));
+    // Each channel's network reads its own signals among the model's list
+    // (every one of them when the channels share one window).
+    for k in 0..unit.gyros().len() {
+        words.push(signal_mask(
+            signals,
+            pre.window.signals_of(k),
+            &unit.gyros()[k].name,
+        )?);
+    }
     for s in signals {
         let code = match unit.accel_names().iter().position(|a| a == s) {
             Some(i) => i,
@@ -186,6 +192,25 @@ fn header_words(
     }
     words[2] = words.len() as u32;
     Ok((words, params))
+}
+
+/// The mask of `own` (a channel's window signals) among the model's
+/// `signals`: bit i for signal i. The evaluator feeds a channel's network
+/// its signals in the model's order, so a channel whose own order differs
+/// is refused.
+fn signal_mask(signals: &[String], own: &[String], channel: &str) -> Result<u32, ExportError> {
+    let at: Vec<usize> = own
+        .iter()
+        .filter_map(|s| signals.iter().position(|t| t == s))
+        .collect();
+    if at.len() != own.len() || !at.is_sorted() {
+        return Err(ExportError::Unsupported {
+            channel: channel.to_string(),
+            what: format!("a window over {} (in this order)", own.join(", ")),
+            supported: "each channel's window signals in the order of the model's list",
+        });
+    }
+    Ok(at.iter().fold(0, |m, &i| m | (1u32 << i)))
 }
 
 /// The sample interval, the log's units, each gyro's (I, O, S) axes (a

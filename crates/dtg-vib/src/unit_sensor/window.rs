@@ -8,7 +8,7 @@ use crate::error::DtgVibError;
 use nav_sensors::record::Record;
 use nav_sensors::unit::Unit;
 use sysid::Signals;
-use sysid::window::signal_choice::{WindowSignalsChoice, choose_among};
+use sysid::window::signal_choice::{ChannelSignals, choose_per_channel};
 
 impl UnitSensor {
     /// The window's signals the named records choose, each record's
@@ -23,21 +23,28 @@ impl UnitSensor {
     /// let mut s = dtg_vib::unit_sensor::UnitSensor::new(unit);
     /// s.calibration = Some(z.calibration.clone());
     /// let c = s.choose_window_signals(&[("z".into(), &z.record)])?;
-    /// assert_eq!(c.taken, ["az"]);
+    /// assert_eq!(c.signals, vec![vec!["az".to_string()]; 6]);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn choose_window_signals(
         &self,
         records: &[(String, &Record)],
-    ) -> Result<WindowSignalsChoice, DtgVibError> {
+    ) -> Result<ChannelSignals, DtgVibError> {
         let all: Vec<String> = self
             .unit
             .accel_names()
             .iter()
             .map(|n| n.to_string())
             .collect();
-        // The accelerometers a window may read: the loop's operating signals.
-        let names = sysid::Sensor::operating_signals(self);
+        // The accelerometers each gyro's window may read: its own IMU's, or
+        // the loop's operating signals when every gyro's are alike.
+        let candidates = sysid::window_candidates(self);
+        let mut names: Vec<String> = Vec::new();
+        for s in candidates.iter().flatten() {
+            if !names.contains(s) {
+                names.push(s.clone());
+            }
+        }
         let accels = records
             .iter()
             .map(|(n, r)| {
@@ -62,7 +69,11 @@ impl UnitSensor {
             .collect::<Result<Vec<(String, Signals)>, DtgVibError>>()?;
         let borrowed: Vec<(String, &Signals)> =
             accels.iter().map(|(n, s)| (n.clone(), s)).collect();
-        Ok(choose_among(&names, &borrowed, MIN_SCALE_G, "g").map_err(sysid::SysidError::from)?)
+        let gyros: Vec<String> = self.unit.gyros().iter().map(|g| g.name.clone()).collect();
+        Ok(
+            choose_per_channel(&candidates, &gyros, &borrowed, MIN_SCALE_G, "g")
+                .map_err(sysid::SysidError::from)?,
+        )
     }
 }
 

@@ -20,14 +20,14 @@ use crate::recipe::FitSettings;
 use crate::sensor::{Effect, Sensor};
 use faer::MatRef;
 
-/// What the fit's estimator needs, shared by every channel of a diagnosis.
+/// What the fit's estimator needs for one channel of a diagnosis.
 pub(super) struct Estimator<'a> {
-    /// The raw windows (what the partialling networks read).
+    /// The channel's raw windows (what the partialling networks read).
     pub(super) x: MatRef<'a, f64>,
     /// The model's settings (the networks' grid, seed, ridge).
     pub(super) settings: &'a FitSettings,
     /// The rows the refit estimates on ([`crate::fit::theta_rows`]).
-    pub(super) rows: Vec<usize>,
+    pub(super) rows: &'a [usize],
     /// The leakage gap between blocks, rows.
     pub(super) gap: usize,
 }
@@ -58,7 +58,7 @@ pub(super) fn restate<S: Sensor>(
     effects.extend(suggested.iter().cloned());
     let z = prepared.effect_matrix(channel, &effects)?;
     let y = prepared.target(channel);
-    let estimate = crate::fit::cross_fitted_theta(est.x, &z, y, &est.rows, est.settings, est.gap);
+    let estimate = crate::fit::cross_fitted_theta(est.x, &z, y, est.rows, est.settings, est.gap);
     let first = model.effects().len();
     for (i, e) in suggested.iter().enumerate() {
         let id = e.id();
@@ -133,9 +133,9 @@ mod tests {
             let est = Estimator {
                 x: raw
                     .as_ref()
-                    .map_or(prepared.window_view(), |p| p.window_view()),
+                    .map_or(prepared.window_view(0), |p| p.window_view(0)),
                 settings: base.settings(),
-                rows: crate::fit::theta_rows(&train, &val),
+                rows: &crate::fit::theta_rows(&train, &val),
                 gap: crate::split::leakage_gap(&prepared),
             };
             let column: Vec<f64> = (0..100).map(|i| f64::from(i % 7)).collect();

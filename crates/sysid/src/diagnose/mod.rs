@@ -181,15 +181,28 @@ pub fn diagnose_prepared<S: Sensor>(
     let predictions = model.predict(prepared)?;
     let (train, val) = model.rows(prepared)?;
     let mirror_predictions = mirror.predict(prepared)?;
-    let x = prepared.window_matrix();
+    // Each group of channels' windows, copied once.
+    let windows: Vec<(Vec<usize>, faer::Mat<f64>)> = prepared
+        .window_groups()
+        .into_iter()
+        .map(|(members, x)| (members, x.to_owned()))
+        .collect();
+    let x_of = |k: usize| {
+        let (_, x) = windows
+            .iter()
+            .find(|(m, _)| m.contains(&k))
+            .expect("every channel reads a group's windows");
+        x
+    };
     let context = Context::new(prepared, &val)?;
     let raw = crate::fit::raw_windows(prepared)?;
-    let estimator = estimate::Estimator {
+    let theta_rows = crate::fit::theta_rows(&train, &val);
+    let estimator = |k: usize| estimate::Estimator {
         x: raw
             .as_ref()
-            .map_or(prepared.window_view(), |p| p.window_view()),
+            .map_or(prepared.window_view(k), |p| p.window_view(k)),
         settings: model.settings(),
-        rows: crate::fit::theta_rows(&train, &val),
+        rows: &theta_rows,
         gap: crate::split::leakage_gap(prepared),
     };
     // The suggestion threshold is shared over the model's channels.
@@ -208,7 +221,7 @@ pub fn diagnose_prepared<S: Sensor>(
         .enumerate()
         .map(|(i, c)| {
             let halves = CrossFit {
-                x: &x,
+                x: x_of(i),
                 ridge: model.settings().ridge,
                 channel: i,
                 halves: [
@@ -233,7 +246,7 @@ pub fn diagnose_prepared<S: Sensor>(
                 &predictions[i],
                 rows,
                 &halves,
-                (&context, &estimator),
+                (&context, &estimator(i)),
                 &options,
             )
         })

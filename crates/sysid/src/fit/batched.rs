@@ -44,14 +44,14 @@ struct Pending<S: Sensor> {
     theta: Option<Theta>,
 }
 
-/// Every channel of `recipe` fitted as [`memo::recall`]
-/// fits it, on the windows `x_train` (rows `train` of `x`), effects'
-/// coefficients on `theta_rows` of `x_theta` (or `known(k)`), in the
-/// sensor's channel order.
+/// The channels `channels` of `recipe` (those that read the windows `x`)
+/// fitted as [`memo::recall`] fits them, on the windows `x_train` (rows
+/// `train` of `x`), effects' coefficients on `theta_rows` of `x_theta` (or
+/// `known(k)`), in the order of `channels`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn fit_channels<'a, S: Sensor>(
     records: Option<Records>,
-    prepared: &Prepared<S>,
+    (prepared, channels): (&Prepared<S>, &[usize]),
     (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     x_train: &Mat<f64>,
     (train, theta_rows): (&[usize], &[usize]),
@@ -59,10 +59,9 @@ pub(super) fn fit_channels<'a, S: Sensor>(
     known: &(dyn Fn(usize) -> Option<&'a [Coefficient]> + Sync),
 ) -> Result<Vec<ChannelFit<S>>, SysidError> {
     let settings = &recipe.settings;
-    let n_channels = prepared.sensor().channels().len();
-    let before: Vec<Before<S>> = (0..n_channels)
-        .into_par_iter()
-        .map(|k| {
+    let before: Vec<Before<S>> = channels
+        .par_iter()
+        .map(|&k| {
             let rows = (train, theta_rows, known(k));
             let effects = recipe.effects_of(k);
             let (key, found) = memo::recall(records, prepared, rows, k, effects, settings)?;
@@ -120,7 +119,7 @@ pub(super) fn fit_channels<'a, S: Sensor>(
             })))
         })
         .collect::<Result<_, SysidError>>()?;
-    let pending: Vec<usize> = (0..n_channels)
+    let pending: Vec<usize> = (0..before.len())
         .filter(|&k| matches!(before[k], Before::Network(_)))
         .collect();
     let mut y = Mat::<f64>::zeros(train.len(), pending.len());
@@ -135,7 +134,7 @@ pub(super) fn fit_channels<'a, S: Sensor>(
         y.as_ref(),
         leakage_gap(prepared),
     );
-    finish(prepared, before, networks)
+    finish(prepared, channels, before, networks)
 }
 
 /// Each channel's fit: the one remembered or fitted alone, or its pending
@@ -143,12 +142,13 @@ pub(super) fn fit_channels<'a, S: Sensor>(
 /// channel in order), each remembered.
 fn finish<S: Sensor>(
     prepared: &Prepared<S>,
+    channels: &[usize],
     before: Vec<Before<S>>,
     networks: Vec<Result<rbf::RbfModel, rbf::RbfError>>,
 ) -> Result<Vec<ChannelFit<S>>, SysidError> {
     let mut networks = networks.into_iter();
     let mut out = Vec::with_capacity(before.len());
-    for (k, b) in before.into_iter().enumerate() {
+    for (&k, b) in channels.iter().zip(before) {
         out.push(match b {
             Before::Done(f) => *f,
             Before::Network(p) => {
@@ -271,7 +271,7 @@ mod tests {
         recipe.effects[0] = vec![Slope];
         recipe.settings.max_centres = 12;
         let prepared = Prepared::new(&Line, &rec, &recipe.preprocess).unwrap();
-        let x = prepared.window_view();
+        let x = prepared.window_view(0);
         let rows: Vec<usize> = (0..prepared.rows()).step_by(2).collect();
         let xt = gather(x, &rows);
         let target = prepared.target(0);

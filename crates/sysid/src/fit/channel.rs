@@ -68,9 +68,27 @@ pub(super) fn scored<S: Sensor>(
 
 /// Every fit's predictions on the rows of `x` (the kernels computed once
 /// for fits that share centres).
+#[cfg(test)]
 pub(super) fn predictions<S: Sensor>(fits: &[ChannelFit<S>], x: MatRef<'_, f64>) -> Vec<Vec<f64>> {
     let networks: Vec<&rbf::RbfModel> = fits.iter().map(|f| &f.model).collect();
-    let mut out = crate::model::network_outputs(&networks, x);
+    with_effects(fits, crate::model::network_outputs(&networks, x))
+}
+
+/// [`predictions`] of every channel's fit (`fits[k]`: channel k's), each
+/// on its own windows.
+pub(super) fn channel_predictions<S: Sensor>(
+    prepared: &Prepared<S>,
+    fits: &[ChannelFit<S>],
+) -> Vec<Vec<f64>> {
+    let networks: Vec<&rbf::RbfModel> = fits.iter().map(|f| &f.model).collect();
+    with_effects(
+        fits,
+        crate::model::channel_network_outputs(prepared, &networks),
+    )
+}
+
+/// Network outputs `out` (one per fit) with each fit's effects added.
+fn with_effects<S: Sensor>(fits: &[ChannelFit<S>], mut out: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
     for (y, f) in out.iter_mut().zip(fits) {
         let t = f.model.linear_coefficients();
         let theta: Vec<f64> = (0..t.nrows()).map(|j| t[(j, 0)]).collect();
@@ -348,7 +366,7 @@ mod tests {
                 model: m.rbf().clone(),
                 coefficients: m.coefficients().map(<[_]>::to_vec).unwrap_or_default(),
             };
-            let x = prepared.window_view();
+            let x = prepared.window_view(0);
             let f = refit_weights(&prepared, x, &train, f, &recipe.settings).unwrap();
             let yhat = predictions(std::slice::from_ref(&f), x);
             let again = scored(&prepared, &train, &val, f, &yhat[0]).unwrap();

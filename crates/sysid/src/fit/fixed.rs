@@ -5,7 +5,7 @@
 
 use super::batched;
 use super::channel::{
-    ChannelFit, gather, inner_folds_fit, predictions, refit_weights, scored, windows_vary,
+    ChannelFit, channel_predictions, gather, inner_folds_fit, refit_weights, scored, windows_vary,
 };
 use super::memo::channel_fits::Records;
 use super::network::selection_stride;
@@ -14,13 +14,14 @@ use super::progress::{FitStage, Progress};
 use super::shared;
 use crate::error::SysidError;
 use crate::inference::Coefficient;
-use crate::model::{ChannelModelOf, Model, ModelParts, network_means};
+use crate::model::{ChannelModelOf, Model, ModelParts, channel_network_means};
 use crate::operating::OperatingPoints;
 use crate::operating::fade::rest_rows;
 use crate::operating::range::TrainingRange;
 use crate::prepared::Prepared;
 use crate::recipe::Recipe;
 use crate::sensor::Sensor;
+use faer::MatRef;
 use rayon::prelude::*;
 
 /// Which rows estimate the effects' coefficients.
@@ -80,10 +81,13 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
     let settings = &recipe.settings;
     let channels = prepared.sensor().channels();
     let (train, val) = (train.to_vec(), val.to_vec());
-    // A view of the prepared windows, not a copy: only the rows a fit works
-    // on are gathered (all training rows, or the selection subsample).
-    let x = prepared.window_view();
-    windows_vary(x, &train, recipe.preprocess.window.signals())?;
+    // Each group of channels that read the same windows is fitted on a view
+    // of them, not a copy: only the rows a fit works on are gathered (all
+    // training rows, or the selection subsample).
+    let groups = prepared.window_groups();
+    for (members, x) in &groups {
+        windows_vary(*x, &train, recipe.preprocess.window.signals_of(members[0]))?;
+    }
     let stride = selection_stride(train.len());
     let sel: Vec<usize> = train.iter().step_by(stride).copied().collect();
     inner_folds_fit(prepared, sel.len(), settings.inner_folds)?;
@@ -103,42 +107,19 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
         true => partial::raw_windows(prepared)?,
         false => None,
     };
-    let x_theta = raw.as_ref().map_or(x, |p| p.window_view());
-    let x_fit = gather(x, fit_on);
-    let remembered = (!settings.shared_centres)
-        .then(|| Records::of(prepared, (x, x_theta)))
-        .flatten();
     let known = |k: usize| coef.stored(k, recipe.effects_of(k).len());
-    let rows = (fit_on.as_slice(), theta_rows.as_slice());
-    let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
-        true => shared::fit_channels_shared(prepared, (x, x_theta), &x_fit, rows, recipe, &known)?,
-        // Each channel's own network, their candidate columns computed once.
-        false => batched::fit_channels(
-            remembered,
-            prepared,
-            (x, x_theta),
-            &x_fit,
-            rows,
-            recipe,
-            &known,
-        )?,
-    };
+    let mut fits: Vec<ChannelFit<S>> = Vec::with_capacity(channels.len());
+    for (members, x) in groups {
+        let x_theta = raw.as_ref().map_or(x, |p| p.window_view(members[0]));
+        let rows = (train.as_slice(), fit_on.as_slice(), theta_rows.as_slice());
+        let group = (prepared, members.as_slice());
+        fits.extend(fit_group(group, (x, x_theta), rows, recipe, &known)?);
+    }
+    fits.sort_by_key(|f| f.channel);
     channels
         .iter()
         .for_each(|c| progress(FitStage::ChannelDone(c.clone())));
-    drop(x_fit);
-    // On a subsample, the weights are solved again on every training row,
-    // over row blocks (memory independent of the number of rows), before
-    // the channel is scored: for channels that share centres, in one solve.
-    let fits = match (stride, settings.shared_centres) {
-        (1, _) => fits,
-        (_, true) => shared::refit_weights_shared(prepared, x, &train, fits, settings)?,
-        (_, false) => fits
-            .into_par_iter()
-            .map(|f| refit_weights(prepared, x, &train, f, settings))
-            .collect::<Result<_, _>>()?,
-    };
-    let yhat = predictions(&fits, x);
+    let yhat = channel_predictions(prepared, &fits);
     let fitted: Vec<ChannelModelOf<S>> = fits
         .into_iter()
         .zip(&yhat)
@@ -153,7 +134,7 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
     let others: Vec<usize> = (0..prepared.rows()).filter(|&r| !trained[r]).collect();
     // The network at rest: where a record that starts outside holds it.
     let rest = rest_rows(prepared, length, &train)?;
-    let means = network_means::<S>(&fitted, x, &rest);
+    let means = channel_network_means::<S>(&fitted, prepared, &rest);
     operating_points.range = Some(TrainingRange::from_training(
         prepared, length, &train, &others, means,
     )?);
@@ -176,4 +157,44 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
         reason: "a fit gave an inconsistent model (a bug: please report it)",
     })?;
     Ok((model, yhat))
+}
+
+/// The channels `channels` (those that read the windows `x`; `x_theta`
+/// their raw windows) fitted on rows `fit_on` of `train`, effects'
+/// coefficients on `theta_rows` (or `known(k)`), in the order of
+/// `channels`: on a subsample, each network's weights solved again on
+/// every training row.
+fn fit_group<'a, S: Sensor>(
+    (prepared, channels): (&Prepared<S>, &[usize]),
+    (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
+    (train, fit_on, theta_rows): (&[usize], &[usize], &[usize]),
+    recipe: &Recipe<S::Effect>,
+    known: &(dyn Fn(usize) -> Option<&'a [Coefficient]> + Sync),
+) -> Result<Vec<ChannelFit<S>>, SysidError> {
+    let settings = &recipe.settings;
+    let x_fit = gather(x, fit_on);
+    let remembered = (!settings.shared_centres)
+        .then(|| Records::of(prepared, (x, x_theta)))
+        .flatten();
+    let rows = (fit_on, theta_rows);
+    let group = (prepared, channels);
+    let fits: Vec<ChannelFit<S>> = match settings.shared_centres {
+        true => shared::fit_channels_shared(group, (x, x_theta), &x_fit, rows, recipe, known)?,
+        // Each channel's own network, their candidate columns computed once.
+        false => {
+            batched::fit_channels(remembered, group, (x, x_theta), &x_fit, rows, recipe, known)?
+        }
+    };
+    drop(x_fit);
+    // On a subsample, the weights are solved again on every training row,
+    // over row blocks (memory independent of the number of rows), before
+    // the channel is scored: for channels that share centres, in one solve.
+    match (fit_on.len() == train.len(), settings.shared_centres) {
+        (true, _) => Ok(fits),
+        (false, true) => shared::refit_weights_shared(prepared, x, train, fits, settings),
+        (false, false) => fits
+            .into_par_iter()
+            .map(|f| refit_weights(prepared, x, train, f, settings))
+            .collect(),
+    }
 }

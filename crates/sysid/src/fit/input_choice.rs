@@ -135,7 +135,7 @@ pub(super) fn fit_choosing<S: Sensor>(
         networks_shrunk: Vec::new(),
         input_sample: sampled.map(|(_, s)| s),
         bias_instability_raised: Vec::new(),
-        window_signals: None,
+        window_signals: Vec::new(),
     });
     Ok(model)
 }

@@ -131,8 +131,8 @@ mod tests {
             let start = c * span + (span - 2_500) / 2;
             for i in [0, 1_000, 2_499] {
                 assert_eq!(
-                    sample.windows().row(r.start + i),
-                    prepared.windows().row(start + i),
+                    sample.windows(0).row(r.start + i),
+                    prepared.windows(0).row(start + i),
                     "{name} row {i}"
                 );
             }

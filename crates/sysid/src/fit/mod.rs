@@ -94,8 +94,8 @@ pub fn fit_prepared<S: Sensor>(
         progress,
     )?;
     model.set_validated_on(options.validate_on.clone());
-    if let Some(choice) = prepared.window_choice() {
-        model = model.with_window_signals(choice.clone());
+    if !prepared.window_choice().is_empty() {
+        model = model.with_window_signals(prepared.window_choice().to_vec());
     }
     Ok(model)
 }
@@ -207,8 +207,7 @@ pub fn refit_with_window<S: Sensor>(
     if let Some(choice) = recipe.settings.choice.as_mut() {
         choice.inputs = vec![recipe.preprocess.input];
     }
-    let signals = recipe.preprocess.window.signals().to_vec();
-    recipe.preprocess.window = crate::window::WindowSpec::new(signals, length)?;
+    recipe.preprocess.window = recipe.preprocess.window.with_length(length)?;
     let prepared = Prepared::new_many(model.sensor(), records, &recipe.preprocess)?;
     let (train, val) = split_rows(&prepared, recipe.split)?;
     let mut trial = fit_rows(&prepared, &recipe, (&train, &val), Coef::AllRows, &|_| {})?;
@@ -340,7 +339,7 @@ mod tests {
         assert_eq!(model.preprocess().window.signals(), ["u"]);
         assert_eq!(model.preprocess().window.length(), 50);
         assert_eq!(prepared.preprocess().window, model.preprocess().window);
-        let chosen = model.choice().and_then(|c| c.window_signals.as_ref());
+        let chosen = model.choice().and_then(|c| c.window_signals.first());
         assert_eq!(chosen.map(|c| c.taken.clone()), Some(vec!["u".to_string()]));
         // The model's recipe names the signals: a refit chooses nothing again.
         assert!(!model.recipe().preprocess.window.is_auto());
@@ -348,12 +347,7 @@ mod tests {
         options.recipe.preprocess.window =
             crate::window::WindowSpec::new(vec!["u".into()], 50).unwrap();
         let (named, _) = fit_records(&Line, &[("r".into(), &rec)], &options, &|_| {}).unwrap();
-        assert!(
-            named
-                .choice()
-                .and_then(|c| c.window_signals.as_ref())
-                .is_none()
-        );
+        assert!(named.choice().is_none_or(|c| c.window_signals.is_empty()));
         assert_eq!(named.channel(0).scores(), model.channel(0).scores());
     }
 }

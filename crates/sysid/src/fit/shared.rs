@@ -45,12 +45,13 @@ enum Partialled<S: Sensor> {
     Alone(Box<ChannelFit<S>>),
 }
 
-/// Every channel of `recipe` fitted with one centre selection on the
-/// windows `x_fit` (rows `fit_on` of `x`), effects' coefficients estimated
-/// on `theta_rows` of the raw windows `x_theta` (as a per-channel fit
-/// estimates them); in the sensor's channel order.
+/// The channels `channels` of `recipe` (those that read the windows `x`)
+/// fitted with one centre selection on the windows `x_fit` (rows `fit_on`
+/// of `x`), effects' coefficients estimated on `theta_rows` of the raw
+/// windows `x_theta` (as a per-channel fit estimates them); in the order
+/// of `channels`.
 pub(super) fn fit_channels_shared<'a, S: Sensor>(
-    prepared: &Prepared<S>,
+    (prepared, channels): (&Prepared<S>, &[usize]),
     (x, x_theta): (MatRef<'_, f64>, MatRef<'_, f64>),
     x_fit: &Mat<f64>,
     (fit_on, theta_rows): (&[usize], &[usize]),
@@ -58,11 +59,10 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
     known: &(dyn Fn(usize) -> Option<&'a [Coefficient]> + Sync),
 ) -> Result<Vec<ChannelFit<S>>, SysidError> {
     let settings = &recipe.settings;
-    let n_channels = prepared.sensor().channels().len();
     let gap = leakage_gap(prepared);
-    let parts: Vec<Partialled<S>> = (0..n_channels)
-        .into_par_iter()
-        .map(|k| {
+    let parts: Vec<Partialled<S>> = channels
+        .par_iter()
+        .map(|&k| {
             partial_out(
                 prepared,
                 (x, x_theta),
@@ -86,7 +86,7 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
         let Partialled::Shared { z, theta, .. } = &parts[k] else {
             unreachable!("listed as shared")
         };
-        let target = prepared.target(k);
+        let target = prepared.target(channels[k]);
         for (i, &row) in fit_on.iter().enumerate() {
             y[(i, c)] = adjusted(target, z, theta, row);
         }
@@ -102,12 +102,15 @@ pub(super) fn fit_channels_shared<'a, S: Sensor>(
                 gap,
             )
             .map_err(|source| SysidError::Fit {
-                channel: names(prepared, &shared),
+                channel: names(
+                    prepared,
+                    &shared.iter().map(|&k| channels[k]).collect::<Vec<_>>(),
+                ),
                 source,
             })?,
         ),
     };
-    let mut out = Vec::with_capacity(n_channels);
+    let mut out = Vec::with_capacity(channels.len());
     for (k, part) in parts.into_iter().enumerate() {
         out.push(match part {
             Partialled::Alone(f) => *f,
@@ -269,7 +272,10 @@ pub(super) fn refit_weights_shared<S: Sensor>(
         })
         .collect();
     let fail = |source| SysidError::Fit {
-        channel: names(prepared, &members),
+        channel: names(
+            prepared,
+            &members.iter().map(|&k| fits[k].channel).collect::<Vec<_>>(),
+        ),
         source,
     };
     let params = RbfParams::new()
@@ -289,7 +295,10 @@ pub(super) fn refit_weights_shared<S: Sensor>(
         })
         .collect();
     let (n, d, q) = (train.len(), x.ncols(), members.len());
-    let targets: Vec<&[f64]> = members.iter().map(|&k| prepared.target(k)).collect();
+    let targets: Vec<&[f64]> = members
+        .iter()
+        .map(|&k| prepared.target(fits[k].channel))
+        .collect();
     let model = params
         .fit_given_streaming(n, d, 0, q, |start, mut xb, _, mut yb| {
             for i in 0..xb.nrows() {

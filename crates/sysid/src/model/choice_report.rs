@@ -91,9 +91,42 @@ pub struct ChoiceReport {
     pub bias_instability_raised: Vec<String>,
     /// The window's signals chosen from the training records, with each
     /// signal's dynamic rms there (`--window-signals auto`,
-    /// [`crate::window::signal_choice`]); absent when the recipe named them.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub window_signals: Option<WindowSignalsChoice>,
+    /// [`crate::window::signal_choice`]): one choice for every channel, or
+    /// one per group of channels that choose among their own signals
+    /// ([`crate::window::signal_choice::choose_per_channel`]); empty when the
+    /// recipe named them. In a file one choice is an object, several a list.
+    #[serde(default, skip_serializing_if = "Vec::is_empty", with = "one_or_many")]
+    pub window_signals: Vec<WindowSignalsChoice>,
+}
+
+/// The window-signal choices as a file holds them: one as an object (every
+/// file written before channels chose apart), several as a list.
+mod one_or_many {
+    use crate::window::signal_choice::WindowSignalsChoice;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum InFile {
+        One(Box<WindowSignalsChoice>),
+        Many(Vec<WindowSignalsChoice>),
+    }
+
+    pub fn serialize<S: Serializer>(v: &[WindowSignalsChoice], s: S) -> Result<S::Ok, S::Error> {
+        match v {
+            [one] => one.serialize(s),
+            many => many.serialize(s),
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Vec<WindowSignalsChoice>, D::Error> {
+        Ok(match InFile::deserialize(d)? {
+            InFile::One(one) => vec![*one],
+            InFile::Many(many) => many,
+        })
+    }
 }
 
 /// The sample of a large record a choice of input was made on.

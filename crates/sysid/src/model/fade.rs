@@ -34,18 +34,22 @@ impl<S: Sensor> Model<S> {
 
     /// Each channel's network part on every row: the RBF sum without bias
     /// and effects, in the target's unit.
-    pub fn network_parts(&self, windows: &Mat<f64>) -> Vec<Vec<f64>> {
-        self.channels()
-            .iter()
-            .map(|c| {
+    pub fn network_parts(&self, prepared: &Prepared<S>) -> Vec<Vec<f64>> {
+        let mut parts = vec![Vec::new(); self.channels().len()];
+        for (members, view) in prepared.window_groups() {
+            let windows = Mat::from_fn(view.nrows(), view.ncols(), |i, j| view[(i, j)]);
+            for k in members {
+                let c = self.channel(k);
                 let z = Mat::<f64>::zeros(windows.nrows(), c.rbf().n_linear());
                 let b = c.bias();
-                c.predict_with(windows, &z)
+                parts[k] = c
+                    .predict_with(&windows, &z)
                     .into_iter()
                     .map(|v| v - b)
-                    .collect()
-            })
-            .collect()
+                    .collect();
+            }
+        }
+        parts
     }
 
     /// Predicts every channel on every row, with the network part faded
@@ -72,7 +76,7 @@ impl<S: Sensor> Model<S> {
             (Some(w), Some(range)) if w.weight.iter().any(|&v| v < 1.0) => {
                 let parts: Vec<std::ops::Range<usize>> =
                     prepared.record_rows().into_iter().map(|(_, r)| r).collect();
-                let net = self.network_parts(&prepared.window_matrix());
+                let net = self.network_parts(prepared);
                 let alpha = range.fade.alpha(self.dt_s());
                 let held: Vec<Vec<f64>> = net
                     .iter()
@@ -145,4 +149,22 @@ pub(crate) fn network_means<S: Sensor>(
             v.iter().map(|v| v - b).sum::<f64>() / v.len().max(1) as f64
         })
         .collect()
+}
+
+/// [`network_means`] of every channel (`model_channels[k]`: channel k's),
+/// each on its own windows.
+pub(crate) fn channel_network_means<S: Sensor>(
+    model_channels: &[ChannelModelOf<S>],
+    prepared: &Prepared<S>,
+    rows: &[usize],
+) -> Vec<f64> {
+    let mut means = vec![0.0; model_channels.len()];
+    for (members, windows) in prepared.window_groups() {
+        let own: Vec<ChannelModelOf<S>> =
+            members.iter().map(|&k| model_channels[k].clone()).collect();
+        for (&k, m) in members.iter().zip(network_means::<S>(&own, windows, rows)) {
+            means[k] = m;
+        }
+    }
+    means
 }

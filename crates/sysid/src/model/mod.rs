@@ -7,7 +7,7 @@ pub(crate) mod choice_report;
 mod fade;
 
 pub use fade::Faded;
-pub(crate) use fade::network_means;
+pub(crate) use fade::{channel_network_means, network_means};
 
 use crate::error::SysidError;
 use crate::inference::Coefficient;
@@ -182,6 +182,23 @@ impl<C: Clone, E> ChannelModel<C, E> {
     }
 }
 
+/// Each channel's network output ([`network_outputs`]) on its own
+/// windows: `networks[k]` is channel k's, and the channels of a group that
+/// read the same windows are computed together.
+pub(crate) fn channel_network_outputs<S: Sensor>(
+    prepared: &Prepared<S>,
+    networks: &[&RbfModel],
+) -> Vec<Vec<f64>> {
+    let mut out = vec![Vec::new(); networks.len()];
+    for (members, x) in prepared.window_groups() {
+        let nets: Vec<&RbfModel> = members.iter().map(|&k| networks[k]).collect();
+        for (&k, y) in members.iter().zip(network_outputs(&nets, x)) {
+            out[k] = y;
+        }
+    }
+    out
+}
+
 /// Each network's output (bias, tail and kernels; without the effects'
 /// linear part) on the rows of `x`: the kernel columns computed once for
 /// networks that share centres and width (a shared centre selection), else
@@ -322,9 +339,16 @@ impl<S: Sensor> Model<S> {
         if w.length() == 0 || w.signals().is_empty() {
             return Err("the window needs at least one sample of one signal".into());
         }
-        let dim = self.preprocess.input.dim(w);
-        for c in &self.channels {
+        if let Some(lists) = w.channel_lists().filter(|&l| l != self.channels.len()) {
+            return Err(format!(
+                "the window names the signals of {lists} channels, not of each of the model's {}",
+                self.channels.len()
+            ));
+        }
+        for (k, c) in self.channels.iter().enumerate() {
             let ch = &c.channel;
+            let own = w.of_channel(k);
+            let dim = self.preprocess.input.dim(&own);
             c.rbf
                 .check_consistency()
                 .map_err(|e| format!("channel {ch}: {e}"))?;
@@ -334,7 +358,7 @@ impl<S: Sensor> Model<S> {
                     c.rbf.dim(),
                     self.preprocess.input,
                     w.length(),
-                    w.signals().len()
+                    own.signals().len()
                 ));
             }
             if c.rbf.n_linear() != c.effects.len() {
@@ -431,16 +455,16 @@ impl<S: Sensor> Model<S> {
             networks_shrunk: Vec::new(),
             input_sample: None,
             bias_instability_raised: Vec::new(),
-            window_signals: None,
+            window_signals: Vec::new(),
         })
     }
 
     /// The model with the choice of its window's signals in its choice
     /// report (a report of its one candidate when it chose nothing else),
     /// so that the model file and `fit --json` say what was measured.
-    pub fn with_window_signals(mut self, choice: WindowSignalsChoice) -> Self {
+    pub fn with_window_signals(mut self, choices: Vec<WindowSignalsChoice>) -> Self {
         let mut report = self.choice_or_fixed();
-        report.window_signals = Some(choice);
+        report.window_signals = choices;
         self.set_choice(report);
         self
     }
@@ -512,12 +536,11 @@ impl<S: Sensor> Model<S> {
     /// Predicted error of every channel on every row, in the sensor's
     /// channel order.
     pub fn predict(&self, prepared: &Prepared<S>) -> Result<Vec<Vec<f64>>, SysidError> {
-        // A view of the windows, not a copy (400 MB for a 1M-row record of
+        // Views of the windows, not copies (400 MB for a 1M-row record of
         // 50-sample windows).
-        let w = prepared.window_view();
         let records: Vec<_> = prepared.record_rows().into_iter().map(|(_, r)| r).collect();
         let rbfs: Vec<&RbfModel> = self.channels.iter().map(|c| &c.rbf).collect();
-        let networks = network_outputs(&rbfs, w);
+        let networks = channel_network_outputs(prepared, &rbfs);
         self.channels
             .par_iter()
             .zip(networks)

@@ -105,10 +105,31 @@ impl From<WindowSignals> for SignalsInFile {
 /// assert_eq!(w.row(0), &[0.0, 1.0, 2.0]);
 /// assert_eq!(w.row(2), &[2.0, 3.0, 4.0]);
 /// ```
+///
+/// Channels may read windows of different signals (an inertial unit of
+/// several IMUs: each gyro its own IMU's accelerometers): then
+/// [`WindowSpec::signals`] is every signal some channel reads and
+/// [`WindowSpec::signals_of`] one channel's. In a file the per-channel
+/// lists are the key `channels`, written only when channels differ.
+///
+/// ```
+/// use sysid::window::WindowSpec;
+/// let lists = vec![vec!["ax".into()], vec!["bx".into(), "by".into()], vec!["ax".into()]];
+/// let w = WindowSpec::per_channel(lists, 10).unwrap();
+/// assert_eq!((w.signals(), w.signals_of(1)), (&["ax".to_string(), "bx".into(), "by".into()][..], &["bx".to_string(), "by".into()][..]));
+/// assert_eq!(w.groups(3).iter().map(|(c, _)| c.clone()).collect::<Vec<_>>(), [vec![0, 2], vec![1]]);
+/// // Every channel alike: the one shared list, as a window of named signals.
+/// let same = WindowSpec::per_channel(vec![vec!["az".into()]; 3], 10).unwrap();
+/// assert_eq!(same, WindowSpec::new(vec!["az".into()], 10).unwrap());
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct WindowSpec {
     signals: WindowSignals,
     length: usize,
+    /// Each channel's signals, in channel order, when they differ; empty
+    /// when every channel reads [`WindowSpec::signals`] (absent in files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    channels: Vec<Vec<String>>,
 }
 
 impl WindowSpec {
@@ -124,7 +145,91 @@ impl WindowSpec {
         Ok(Self {
             signals: WindowSignals::Named(signals),
             length,
+            channels: Vec::new(),
         })
+    }
+
+    /// A window of `length` samples over each channel's own signals
+    /// (`lists[k]`: channel k's). Every channel alike gives
+    /// [`WindowSpec::new`] of their one list; otherwise
+    /// [`WindowSpec::signals`] is every signal read, in first-read order.
+    pub fn per_channel(lists: Vec<Vec<String>>, length: usize) -> Result<Self, WindowError> {
+        let Some(first) = lists.first() else {
+            return Err(WindowError::NoSignals);
+        };
+        if lists.iter().all(|l| l == first) {
+            return Self::new(first.clone(), length);
+        }
+        if lists.iter().any(Vec::is_empty) {
+            return Err(WindowError::NoSignals);
+        }
+        let mut union: Vec<String> = Vec::new();
+        for s in lists.iter().flatten() {
+            if !union.contains(s) {
+                union.push(s.clone());
+            }
+        }
+        let mut spec = Self::new(union, length)?;
+        spec.channels = lists;
+        Ok(spec)
+    }
+
+    /// The same signals (every channel's own) over `length` samples.
+    pub fn with_length(&self, length: usize) -> Result<Self, WindowError> {
+        if length == 0 {
+            return Err(WindowError::ZeroLength);
+        }
+        Ok(Self {
+            length,
+            ..self.clone()
+        })
+    }
+
+    /// Channel `channel`'s signals, in the order their samples appear in
+    /// its windows.
+    pub fn signals_of(&self, channel: usize) -> &[String] {
+        self.channels
+            .get(channel)
+            .map_or_else(|| self.signals(), Vec::as_slice)
+    }
+
+    /// True when channels read different signals.
+    pub fn is_per_channel(&self) -> bool {
+        !self.channels.is_empty()
+    }
+
+    /// How many channels' lists the window names, when channels read
+    /// different signals (`None` when every channel reads
+    /// [`WindowSpec::signals`]).
+    pub fn channel_lists(&self) -> Option<usize> {
+        self.is_per_channel().then_some(self.channels.len())
+    }
+
+    /// The channels of `n` that read the same signals, each group with
+    /// the window of its signals, in the order of their first channel:
+    /// one group of every channel when they read alike.
+    pub fn groups(&self, n: usize) -> Vec<(Vec<usize>, WindowSpec)> {
+        let mut groups: Vec<(Vec<usize>, WindowSpec)> = Vec::new();
+        for k in 0..n {
+            let signals = self.signals_of(k);
+            match groups.iter_mut().find(|(_, w)| w.signals() == signals) {
+                Some((members, _)) => members.push(k),
+                None => groups.push((vec![k], self.of_channel(k))),
+            }
+        }
+        groups
+    }
+
+    /// Channel `channel`'s window: its signals alone, as every channel's.
+    pub fn of_channel(&self, channel: usize) -> WindowSpec {
+        Self {
+            signals: match self.is_auto() {
+                true => WindowSignals::Auto,
+                false => WindowSignals::Named(self.signals_of(channel).to_vec()),
+            },
+            length: self.length,
+            channels: Vec::new(),
+        }
     }
 
     /// A window of `length` samples over the signals the training records
@@ -141,6 +246,7 @@ impl WindowSpec {
         Ok(Self {
             signals: WindowSignals::Auto,
             length,
+            channels: Vec::new(),
         })
     }
 
@@ -166,6 +272,11 @@ impl WindowSpec {
     /// Input dimension: `length × number of signals`.
     pub fn dim(&self) -> usize {
         self.length * self.signals().len()
+    }
+
+    /// Channel `channel`'s input dimension: `length × its signals`.
+    pub fn dim_of(&self, channel: usize) -> usize {
+        self.length * self.signals_of(channel).len()
     }
 
     /// Forms every full window of the given signals (one slice per name in

@@ -122,6 +122,12 @@ pub struct WindowSignalsChoice {
     /// Set when no record vibrates: what was taken instead, and why.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fallback: Option<String>,
+    /// The channels whose windows this choice is for, when channels choose
+    /// among different signals (each gyro among its own IMU's
+    /// accelerometers, [`choose_per_channel`]); empty when it is every
+    /// channel's.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub channels: Vec<String>,
 }
 
 impl WindowSignalsChoice {
@@ -143,8 +149,12 @@ impl WindowSignalsChoice {
                 self.vibrates_at, self.unit
             ),
         };
+        let of = match self.channels.is_empty() {
+            true => String::new(),
+            false => format!(" of {}", self.channels.join(",")),
+        };
         format!(
-            "window signals: {} (auto; largest dynamic rms {} {}; {why})",
+            "window signals{of}: {} (auto; largest dynamic rms {} {}; {why})",
             self.taken.join(","),
             measured.join(", "),
             self.unit
@@ -237,7 +247,67 @@ pub fn choose_among(
             "each signal's dynamic rms (about the record's mean) on each record; a record vibrates when its strongest signal's reaches {scale} {unit}; a signal is windowed when it is at least {SIGNIFICANT_SHARE} of the strongest in some record that vibrates"
         ),
         fallback,
+        channels: Vec::new(),
     })
+}
+
+/// Each channel's window signals, chosen by [`choose_among`] among its own
+/// candidates (`candidates[k]`: channel k's, a sensor's
+/// [`crate::Sensor::operating_signals_of`]), one choice per distinct list
+/// of candidates: channel k's signals and the choices, each naming its
+/// channels (`names`) when there are several. Channels that share their
+/// candidates (every channel of a sensor of one list) make one choice.
+pub fn choose_per_channel(
+    candidates: &[Vec<String>],
+    names: &[String],
+    records: &[(String, &Signals)],
+    scale: f64,
+    unit: &str,
+) -> Result<ChannelSignals, WindowSignalsError> {
+    let mut lists: Vec<&Vec<String>> = Vec::new();
+    for c in candidates {
+        if !lists.contains(&c) {
+            lists.push(c);
+        }
+    }
+    let mut choices = Vec::with_capacity(lists.len());
+    for list in &lists {
+        let mut choice = choose_among(list, records, scale, unit)?;
+        if lists.len() > 1 {
+            choice.channels = (0..candidates.len())
+                .filter(|&k| candidates[k] == **list)
+                .map(|k| names[k].clone())
+                .collect();
+        }
+        choices.push(choice);
+    }
+    let signals = candidates
+        .iter()
+        .map(|c| {
+            let g = lists
+                .iter()
+                .position(|l| *l == c)
+                .expect("a list of its own");
+            choices[g].taken.clone()
+        })
+        .collect();
+    Ok(ChannelSignals { signals, choices })
+}
+
+/// Each channel's window signals as [`choose_per_channel`] chose them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelSignals {
+    /// Channel k's signals, in channel order.
+    pub signals: Vec<Vec<String>>,
+    /// The choices made, one per distinct list of candidates.
+    pub choices: Vec<WindowSignalsChoice>,
+}
+
+impl ChannelSignals {
+    /// The window of `length` samples over each channel's signals.
+    pub fn window(&self, length: usize) -> Result<super::WindowSpec, super::WindowError> {
+        super::WindowSpec::per_channel(self.signals.clone(), length)
+    }
 }
 
 /// Root mean square about the mean (0 for an empty or non-finite column,

@@ -194,7 +194,7 @@ pub(super) fn keep_networks<S: Sensor>(
             0.0 => 0.0,
             _ => crate::model::network_means::<S>(
                 std::slice::from_ref(&parts.channels[k]),
-                prepared.window_view(),
+                prepared.window_view(k),
                 &rest,
             )[0],
         };
@@ -303,7 +303,7 @@ fn scaled_network<S: Sensor>(
         .parallelism(Par::Seq)
         .check()
         .map_err(|e| fail(e.into()))?;
-    let x = prepared.window_view();
+    let x = prepared.window_view(k);
     let d = x.ncols();
     let network = c.rbf();
     let rbf = params

@@ -1,0 +1,183 @@
+//! Channels whose own operating signals differ (an inertial unit of several
+//! IMUs: each gyro its own IMU's accelerometers) each read a window of
+//! their own signals by default, and a named window is every channel's.
+
+use sysid::example::{Line, Slope, line_record};
+use sysid::{
+    Candidacy, FitOptions, OperatingStats, Sensor, SensorError, Separation, Signals, WindowSpec,
+    Wording,
+};
+
+/// Two [`Line`]s side by side: channel `y` follows `u`, channel `y2`
+/// follows `v`, each its own operating signal.
+#[derive(Debug, Clone, Copy)]
+struct TwoLines;
+
+const OWN: [(&str, &str); 2] = [("y", "u"), ("y2", "v")];
+
+impl Sensor for TwoLines {
+    type Channel = String;
+    type Effect = Slope;
+    type Axis = String;
+
+    fn channels(&self) -> Vec<String> {
+        OWN.iter().map(|(y, _)| y.to_string()).collect()
+    }
+    fn wording(&self) -> Wording {
+        Line.wording()
+    }
+    fn calibrate(&self, raw: &Signals) -> Result<Signals, SensorError> {
+        Ok(raw.clone())
+    }
+    fn targets(&self, calibrated: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
+        OWN.iter()
+            .map(|(y, _)| Ok(calibrated.column(y).ok_or("no target")?.to_vec()))
+            .collect()
+    }
+    fn operating_signals(&self) -> Vec<String> {
+        vec!["u".into()]
+    }
+    fn operating_signals_of(&self, channel: usize) -> Vec<String> {
+        vec![OWN[channel].1.into()]
+    }
+    fn operating_scale(&self) -> f64 {
+        Line.operating_scale()
+    }
+    fn extra_columns(&self, _: &Signals) -> Vec<String> {
+        Vec::new()
+    }
+    fn candidates(&self, _: &Signals, _: &[usize], _: usize) -> Vec<Candidacy<Slope>> {
+        vec![Candidacy::Excited(Slope)]
+    }
+    fn parse_effect(&self, _: usize, id: &str) -> Result<Slope, SensorError> {
+        Line.parse_effect(0, id)
+    }
+    fn regressors(
+        &self,
+        calibrated: &Signals,
+        channel: usize,
+        effects: &[Slope],
+    ) -> Result<Vec<Vec<f64>>, SensorError> {
+        let u = calibrated.column(OWN[channel].1).ok_or("no input")?;
+        Ok(effects.iter().map(|_| u.to_vec()).collect())
+    }
+    fn separation(&self, k: usize, g: &[Slope], c: &[f64], o: &OperatingStats) -> Separation {
+        Line.separation(k, g, c, o)
+    }
+}
+
+/// A record of both lines: `y`, `u` as [`line_record`] of seed 1, `y2`,
+/// `v` as its record of seed 2 and another slope.
+fn record(n: usize) -> (Signals, Signals) {
+    let one = line_record(n, 2.0, 1);
+    let two = line_record(n, -1.0, 2);
+    let col = |r: &Signals, c: &str| r.column(c).unwrap().to_vec();
+    let both = Signals::new(
+        one.t().to_vec(),
+        vec![
+            ("y".into(), col(&one, "y")),
+            ("u".into(), col(&one, "u")),
+            ("y2".into(), col(&two, "y")),
+            ("v".into(), col(&two, "u")),
+        ],
+    )
+    .unwrap();
+    (both, one)
+}
+
+fn options(n: usize) -> FitOptions<Slope> {
+    let mut options = FitOptions::<Slope>::new(n);
+    options.recipe.preprocess.filter = None;
+    options.recipe.settings.max_centres = 6;
+    options
+}
+
+#[test]
+fn each_channel_reads_its_own_signals_by_default() {
+    let (both, one) = record(2000);
+    let (model, _) =
+        sysid::fit_records(&TwoLines, &[("r".into(), &both)], &options(2), &|_| {}).unwrap();
+    let w = &model.preprocess().window;
+    assert_eq!(
+        (w.signals_of(0), w.signals_of(1)),
+        (&["u".to_string()][..], &["v".to_string()][..])
+    );
+    // One choice per channel's candidates, each naming its channel.
+    let choices = &model.choice().unwrap().window_signals;
+    let named: Vec<(Vec<String>, Vec<String>)> = choices
+        .iter()
+        .map(|c| (c.channels.clone(), c.taken.clone()))
+        .collect();
+    assert_eq!(
+        named,
+        [
+            (vec!["y".into()], vec!["u".into()]),
+            (vec!["y2".into()], vec!["v".into()])
+        ]
+    );
+    // Channel y's network is the one a fit of y alone on u makes: the
+    // windows of y2 do not enter it.
+    let (alone, _) =
+        sysid::fit_records(&Line, &[("r".into(), &one)], &options(1), &|_| {}).unwrap();
+    assert_eq!(model.channel(0).rbf(), alone.channel(0).rbf());
+    assert_eq!(model.channel(0).scores(), alone.channel(0).scores());
+    // The model file holds each channel's list and reads back the same.
+    let text = serde_json::to_string(&model.clone().into_parts().preprocess).unwrap();
+    assert!(text.contains(r#""channels":[["u"],["v"]]"#), "{text}");
+    // A record prepared for the model: each channel's windows its own.
+    let again = model.prepare(&both).unwrap();
+    assert_ne!(again.windows(0).row(0), again.windows(1).row(0));
+    let predicted = model.predict(&again).unwrap();
+    let prepared_alone = alone.prepare(&one).unwrap();
+    assert_eq!(predicted[0], alone.predict(&prepared_alone).unwrap()[0]);
+    // A file whose window names another number of channels' lists is refused.
+    let mut parts = model.into_parts();
+    parts.preprocess.window = WindowSpec::per_channel(
+        vec![vec!["u".into()], vec!["v".into()], vec!["u".into()]],
+        50,
+    )
+    .unwrap();
+    let e = sysid::Model::from_parts(parts).unwrap_err();
+    assert!(
+        e.contains("the signals of 3 channels, not of each of the model's 2"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_named_window_is_every_channels() {
+    let (both, _) = record(2000);
+    let mut options = options(2);
+    options.recipe.preprocess.window = WindowSpec::new(vec!["v".into()], 50).unwrap();
+    let (model, _) =
+        sysid::fit_records(&TwoLines, &[("r".into(), &both)], &options, &|_| {}).unwrap();
+    let w = &model.preprocess().window;
+    assert!(!w.is_per_channel());
+    assert_eq!(
+        (w.signals_of(0), w.signals_of(1)),
+        (&["v".to_string()][..], &["v".to_string()][..])
+    );
+    assert!(model.choice().is_none_or(|c| c.window_signals.is_empty()));
+    let text = serde_json::to_string(&model.into_parts().preprocess.window).unwrap();
+    assert_eq!(text, r#"{"signals":["v"],"length":50}"#);
+}
+
+/// A window of one list for every channel, as every file before per-channel
+/// windows holds it, reads as that list for each channel; a file's
+/// per-channel lists read back as written.
+#[test]
+fn window_files_read_as_written() {
+    let old: WindowSpec = serde_json::from_str(r#"{"signals":["ax","az"],"length":50}"#).unwrap();
+    assert_eq!(
+        old,
+        WindowSpec::new(vec!["ax".into(), "az".into()], 50).unwrap()
+    );
+    assert_eq!(old.signals_of(7), ["ax", "az"]);
+    let own = WindowSpec::per_channel(vec![vec!["ax".into()], vec!["bx".into()]], 20).unwrap();
+    let text = serde_json::to_string(&own).unwrap();
+    assert_eq!(
+        text,
+        r#"{"signals":["ax","bx"],"length":20,"channels":[["ax"],["bx"]]}"#
+    );
+    assert_eq!(serde_json::from_str::<WindowSpec>(&text).unwrap(), own);
+}
