@@ -861,6 +861,52 @@ fn two_imus() -> &'static Path {
     })
 }
 
+/// A model of the two-IMU unit fitted with its ground calibration (each
+/// IMU's accelerometer triad calibrated) is not laid out as tables, which
+/// carry one triad's: `export` says so and what to do, and causal
+/// `compensate` runs the batch, which calibrates every accelerometer.
+#[test]
+fn a_calibration_of_several_accelerometer_triads_is_not_exported() {
+    let s = unit_sim(two_imus_file(), "z-axis");
+    let out = dir().join("two-imus-calibrated.json");
+    ok(bin()
+        .args(["fit", "--causal", "--max-centers", "10", "--unit"])
+        .arg(two_imus_file())
+        .arg("--data")
+        .arg(s.join("record.csv"))
+        .arg("--calib")
+        .arg(s.join("calibration.json"))
+        .arg("--out")
+        .arg(&out));
+    let err = dtg_vib::export::tables(&load(&out))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("a calibration of the accelerometers") && err.contains("6 accelerometers"),
+        "{err}"
+    );
+    let res = bin()
+        .args(["export", "--lang", "c", "--model"])
+        .arg(&out)
+        .arg("--out")
+        .arg(dir().join("two-imus-calibrated-c"))
+        .output()
+        .unwrap();
+    assert!(!res.status.success());
+    assert!(
+        String::from_utf8_lossy(&res.stderr).contains("compensate --model"),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    ok(bin()
+        .args(["compensate", "--model"])
+        .arg(&out)
+        .arg("--data")
+        .arg(s.join("record.csv"))
+        .arg("--out")
+        .arg(dir().join("two-imus-calibrated.csv")));
+}
+
 fn two_imus_file() -> &'static str {
     concat!(
         env!("CARGO_MANIFEST_DIR"),

@@ -72,6 +72,43 @@ fn accel_axes(unit: &Unit) -> Option<[usize; 3]> {
     Some([by_axis[0], by_axis[1], by_axis[2]])
 }
 
+/// Refuses a calibration of accelerometers the tables cannot carry: they
+/// hold one triad's, along the unit's x, y, z; the batch calibrates every
+/// accelerometer it has coefficients for (each IMU's triad of a unit of
+/// several), and an evaluator reading them raw would feed its networks
+/// other inputs than the fit's.
+fn accels_calibrated_onboard(
+    unit: &Unit,
+    cal: &nav_sensors::calibration::UnitCalibration,
+    triad: Option<[usize; 3]>,
+) -> Result<(), ExportError> {
+    if triad.is_some() {
+        return Ok(());
+    }
+    let calibrated: Vec<&str> = unit
+        .accels()
+        .iter()
+        .filter(|a| {
+            cal.accels
+                .get(&a.name)
+                .is_some_and(|c| *c != nav_sensors::accel::AccelCoefficients::default())
+        })
+        .map(|a| a.name.as_str())
+        .collect();
+    if calibrated.is_empty() {
+        return Ok(());
+    }
+    Err(ExportError::Unsupported {
+        channel: unit.gyros()[0].name.clone(),
+        what: format!(
+            "a calibration of the accelerometers {} (the unit has {} accelerometers, not one triad along x, y, z)",
+            calibrated.join(", "),
+            unit.accels().len()
+        ),
+        supported: "one accelerometer triad's calibration, along the unit's x, y, z: fit without the accelerometers' coefficients in --calib, or compensate with dtg-vib compensate --model",
+    })
+}
+
 /// A unit's causal model as onboard tables of layout
 /// [`dtg_onboard::VERSION`]. Refuses a zero-phase model, a unit of more
 /// than [`dtg_onboard::MAX_CHANNELS`] gyros or [`dtg_onboard::MAX_ACCELS`]
@@ -101,6 +138,9 @@ pub fn tables(model: &UnitModel) -> Result<Tables, ExportError> {
     let in_filter = input_filter(&pre.input_filter, dt)?;
     let calibration = m.sensor().calibration.as_ref();
     let triad = calibration.and(accel_axes(unit));
+    if let Some(cal) = calibration {
+        accels_calibrated_onboard(unit, cal, triad)?;
+    }
     let fade = super::fade::fade_block(model)?;
     let flags = calibration.map_or(0, |_| FLAG_CALIBRATION)
         | fade.as_ref().map_or(0, |(_, shape)| {
