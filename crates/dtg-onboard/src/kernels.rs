@@ -113,13 +113,13 @@ fn statistics_terms(set: Set, s: &mut Scratch, acc: &mut [[f64; LANES]; MAX_CHAN
     let (m, c, st, _) = set;
     let ch = &m.channels[c];
     let lanes = &st[ch.lanes..ch.lanes + m.kernel_lanes_len(c)];
-    let mut xm = [0.0; 3 * MAX_SIGNALS];
-    let q = centred_statistics(m, c, st, lanes, &mut xm);
     match ch.dim {
-        3 => statistics_terms_of::<3>(set, s, acc, (lanes, &xm, q)),
-        6 => statistics_terms_of::<6>(set, s, acc, (lanes, &xm, q)),
-        9 => statistics_terms_of::<9>(set, s, acc, (lanes, &xm, q)),
+        3 => statistics_terms_of::<3>(set, s, acc, lanes),
+        6 => statistics_terms_of::<6>(set, s, acc, lanes),
+        9 => statistics_terms_of::<9>(set, s, acc, lanes),
         dim => {
+            let mut xm = [0.0; 3 * MAX_SIGNALS];
+            let q = centred_statistics(m, c, st, lanes, &mut xm[..dim]);
             let stride = (dim + 2) * LANES;
             set_blocks(set, s, acc, |b0, arg| {
                 let blocks = lanes[dim + b0 * stride..].chunks_exact(stride);
@@ -131,17 +131,18 @@ fn statistics_terms(set: Set, s: &mut Scratch, acc: &mut [[f64; LANES]; MAX_CHAN
     }
 }
 
-/// [`statistics_terms`] of dimension `D` (`lxq`: the set's lanes, x′ and
-/// ‖x′‖²).
+/// [`statistics_terms`] of dimension `D` (`lanes`: the set's).
 #[inline(always)]
 fn statistics_terms_of<const D: usize>(
     set: Set,
     s: &mut Scratch,
     acc: &mut [[f64; LANES]; MAX_CHANNELS],
-    (lanes, xm, q): (&[f64], &[f64], f64),
+    lanes: &[f64],
 ) {
+    let (m, c, st, _) = set;
     let stride = (D + 2) * LANES;
-    let x: [f64; D] = xm[..D].try_into().unwrap_or([0.0; D]);
+    let mut x = [0.0; D];
+    let q = centred_statistics(m, c, st, lanes, &mut x);
     set_blocks(set, s, acc, |b0, arg| {
         let blocks = lanes[D + b0 * stride..].chunks_exact(stride);
         for (a, block) in arg.iter_mut().zip(blocks) {
@@ -150,9 +151,9 @@ fn statistics_terms_of<const D: usize>(
     });
 }
 
-/// Set `c`'s statistics input centred on the set's mean into `xm`
-/// (x′ = x − m; x: the statistics of the set's signals, in order); returns
-/// ‖x′‖².
+/// Set `c`'s statistics input centred on the set's mean into `xm` (its
+/// dimension long; x′ = x − m; x: the statistics of the set's signals, in
+/// order); returns ‖x′‖².
 #[inline(always)]
 fn centred_statistics(m: &Model, c: usize, st: &[f64], lanes: &[f64], xm: &mut [f64]) -> f64 {
     let ch = &m.channels[c];
@@ -166,7 +167,7 @@ fn centred_statistics(m: &Model, c: usize, st: &[f64], lanes: &[f64], xm: &mut [
         }
     }
     let mut q = 0.0;
-    for x in &xm[..ch.dim] {
+    for x in xm.iter() {
         q += x * x;
     }
     q
