@@ -135,8 +135,10 @@ static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
     int c, i;
     for (c = 0; c < N; c++)
         for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
-    for (c = 0; c < N; c++)
-        if (CENTRE_SET[c] == c) set_terms(s, c, acc);
+    for (c = 0; c < N; c++) {
+        if (CENTRE_SET[c] != c) continue;
+        set_terms(s, c, acc);
+    }
     for (c = 0; c < N; c++) {
         lane_sum(acc[c]);
         ys[c] += acc[c][0];
