@@ -3,7 +3,7 @@
 //! side by side (for the statistics input by the expansion about the set's
 //! mean, [`crate::lanes`]; for the raw window as each window's distance to
 //! the tables' centres), whose exponentials are taken in one branch-free
-//! loop over the block's lanes, and whose terms each sharing channel
+//! loop over a chunk of blocks' lanes, and whose terms each sharing channel
 //! weights into one partial sum per lane; the lanes are added pairwise at
 //! the end. The exported C takes the same blocks in the same order.
 
@@ -14,9 +14,10 @@ use crate::model::Model;
 use fastexp::exp_neg11;
 
 /// Blocks whose exponentials are taken in one loop: a loop of a run-time
-/// length up to this many lanes, which the compiler vectorises (a loop of
-/// a block's [`LANES`] alone it unrolls into scalar code). 16 blocks hold
-/// a set of K ≤ 128 centres in one pass.
+/// length up to this many blocks' lanes, which the compiler vectorises
+/// lane by lane (a loop of one block's [`LANES`] it unrolls into scalar
+/// code; over 16 blocks it vectorised the arguments across blocks, with
+/// gathers). K = 100 centres are two chunks.
 const CHUNK: usize = 8;
 
 /// A chunk's arguments and exponentials, kept across sets and chunks (set
