@@ -80,12 +80,17 @@ const VECTOR_CLONES_C: &str = r#"/* The kernels for AVX2 and for the baseline x8
     && defined(__has_attribute)
 #if __has_attribute(target_clones)
 #define DTG_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#define DTG_INLINE __attribute__((always_inline)) inline
 #endif
 #endif
 #ifndef DTG_VECTOR_CLONES
 #define DTG_VECTOR_CLONES
-#define DTG_INLINE
+#endif
+/* Compiled into the caller: each clone, and a set's blocks with its
+ * dimension a constant (in every build). */
+#if defined(__GNUC__)
+#define DTG_INLINE __attribute__((always_inline)) inline
+#else
+#define DTG_INLINE inline
 #endif
 /* A loop over a set's inputs unrolled where the compiler takes the hint
  * (-O2 does not unroll it by itself). */
@@ -162,10 +167,16 @@ static DTG_INLINE void set_blocks(int c, const dtg_real *ln, const dtg_real *x, 
         const dtg_real *u = ln + dim + (long)(dim + 2) * DTG_LANES * b;
         const dtg_real *v = u + (long)dim * DTG_LANES, *w = v + DTG_LANES;
         dtg_real arg[DTG_LANES], phi[DTG_LANES];
-        for (i = 0; i < DTG_LANES; i++) arg[i] = v[i] + w[i] * q;
+        /* Each half of the lanes a loop of its own: four lanes are one AVX2
+         * vector or two SSE2 ones, which -O2 keeps in registers; over eight
+         * lanes SSE2's loop would go through memory. */
+        for (i = 0; i < DTG_LANES / 2; i++) arg[i] = v[i] + w[i] * q;
+        for (i = DTG_LANES / 2; i < DTG_LANES; i++) arg[i] = v[i] + w[i] * q;
         DTG_UNROLL
-        for (d = 0; d < dim; d++)
-            for (i = 0; i < DTG_LANES; i++) arg[i] += x[d] * u[d * DTG_LANES + i];
+        for (d = 0; d < dim; d++) {
+            for (i = 0; i < DTG_LANES / 2; i++) arg[i] += x[d] * u[d * DTG_LANES + i];
+            for (i = DTG_LANES / 2; i < DTG_LANES; i++) arg[i] += x[d] * u[d * DTG_LANES + i];
+        }
 {EXPS_AND_WEIGHTS}    }
 }
 
