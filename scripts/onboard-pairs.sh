@@ -28,6 +28,8 @@
 # Defaults: --baseline 5b6a72d, --pairs 5, --work target/onboard-pairs; the
 # baseline is built in target/bench-pairs/baseline-SHA (bench-pairs.sh's).
 # A figure taken at load > 1.5 decides nothing: the script says so beside it.
+# $CC and $CFLAGS (default -O2 -std=c99) build both sides' C; with
+# CFLAGS="-O2 -std=c99 -DDTG_NO_CLONES" the current side's portable build.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 REV=5b6a72d; PAIRS=5; WORK="$ROOT/target/onboard-pairs"; COUNT=0
@@ -37,13 +39,13 @@ while [ $# -gt 0 ]; do
         --pairs) PAIRS=$2; shift 2 ;;
         --work) WORK=$2; shift 2 ;;
         --count) COUNT=1; shift ;;
-        -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
         *) echo "onboard-pairs: unknown argument '$1' (flags: --baseline REV, --pairs N, --work DIR, --count)" >&2; exit 2 ;;
     esac
 done
 mkdir -p "$WORK"; WORK=$(cd "$WORK" && pwd)
 HERE="$ROOT/scripts/onboard-pairs"
-CC=${CC:-cc}; CFLAGS="-O2 -std=c99"
+CC=${CC:-cc}; CFLAGS=${CFLAGS:-"-O2 -std=c99"}
 
 # The baseline in its own worktree and target folder; the harness and the
 # C exporter of its tables as examples of its crates.
