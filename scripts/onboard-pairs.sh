@@ -28,6 +28,8 @@
 # Defaults: --baseline 5b6a72d, --pairs 5, --work target/onboard-pairs; the
 # baseline is built in target/bench-pairs/baseline-SHA (bench-pairs.sh's).
 # A figure taken at load > 1.5 decides nothing: the script says so beside it.
+# $CC and $ONBOARD_CFLAGS (default -O2 -std=c99) build both sides' C; with
+# ONBOARD_CFLAGS="-O2 -std=c99 -DDTG_NO_CLONES" the current side's portable build.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 REV=5b6a72d; PAIRS=5; WORK="$ROOT/target/onboard-pairs"; COUNT=0
@@ -37,13 +39,13 @@ while [ $# -gt 0 ]; do
         --pairs) PAIRS=$2; shift 2 ;;
         --work) WORK=$2; shift 2 ;;
         --count) COUNT=1; shift ;;
-        -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
         *) echo "onboard-pairs: unknown argument '$1' (flags: --baseline REV, --pairs N, --work DIR, --count)" >&2; exit 2 ;;
     esac
 done
 mkdir -p "$WORK"; WORK=$(cd "$WORK" && pwd)
 HERE="$ROOT/scripts/onboard-pairs"
-CC=${CC:-cc}; CFLAGS="-O2 -std=c99"
+CC=${CC:-cc}; COPTS=${ONBOARD_CFLAGS:-"-O2 -std=c99"}
 
 # The baseline in its own worktree and target folder; the harness and the
 # C exporter of its tables as examples of its crates.
@@ -77,14 +79,14 @@ rust_step_nine_gyros_k100_stats_first_imu|rust_step_nine_gyros_k100_stats_first_
 while IFS='|' read -r name then unit; do
     "$BASE/target/release/examples/onboard_baseline_c" "$T/$then.dtgo" "$T/$name-c-old" $unit
     for side in "$name-c-old" "$name-c"; do
-        (cd "$T/$side" && $CC $CFLAGS -I. dtg_model.c "$HERE/harness.c" -lm -o harness)
+        (cd "$T/$side" && $CC $COPTS -I. dtg_model.c "$HERE/harness.c" -lm -o harness)
     done
 done <<< "$MODELS"
 
 load() { cut -d' ' -f1 /proc/loadavg; }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%.3f", a/b}'; }
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); baseline $SHA, current $(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet || echo '+changes'); $CC $CFLAGS"
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); baseline $SHA, current $(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet || echo '+changes'); $CC $COPTS"
 
 if [ "$COUNT" = 1 ]; then
     # Instructions of one step: the difference of two step counts cancels

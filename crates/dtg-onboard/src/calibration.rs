@@ -118,24 +118,23 @@ const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 
 /// and the g² terms, with the covariance's factors `e`), term by term with
 /// the gyros side by side (`lanes`: the calibration lanes).
 fn drift_at_rest(lanes: &[f64], n: usize, f: &[f64; 3], e: &[[f64; 3]; 2]) -> [f64; MAX_CHANNELS] {
-    let r = |row: usize| &lanes[row * n..(row + 1) * n];
+    let r = |row: usize| &lanes[row * n..][..n];
     // The specific force and the covariance's factors along each gyro's
     // three regressor axes.
     let mut p = [[[0.0; MAX_CHANNELS]; 3]; 3];
     for (v, pv) in [f, &e[0], &e[1]].into_iter().zip(p.iter_mut()) {
         for (a, pa) in pv.iter_mut().enumerate() {
             let (x, y, z) = (r(3 * a), r(3 * a + 1), r(3 * a + 2));
-            for k in 0..n {
-                pa[k] = x[k] * v[0] + y[k] * v[1] + z[k] * v[2];
+            for (((p, x), y), z) in pa.iter_mut().zip(x).zip(y).zip(z) {
+                *p = x * v[0] + y * v[1] + z * v[2];
             }
         }
     }
     let mut g = [0.0; MAX_CHANNELS];
     g[..n].copy_from_slice(r(row::BIAS));
     for (a, pa) in p[0].iter().enumerate() {
-        let c = r(row::FORCE + a);
-        for k in 0..n {
-            g[k] += pa[k] * c[k];
+        for ((g, p), c) in g.iter_mut().zip(pa).zip(r(row::FORCE + a)) {
+            *g += p * c;
         }
     }
     for (t, &(a, b)) in PAIRS.iter().enumerate() {
@@ -161,8 +160,9 @@ pub(crate) fn compensate_gyros(
     f: &[f64; 3],
     e: &[[f64; 3]; 2],
 ) {
-    let n = gyro.len();
-    let r = |row: usize| &lanes[row * n..(row + 1) * n];
+    // (n ≤ MAX_CHANNELS said so that the arrays' indices need no checks.)
+    let n = gyro.len().min(MAX_CHANNELS);
+    let r = |row: usize| &lanes[row * n..][..n];
     let at_rest = drift_at_rest(lanes, n, f, e);
     let mut raw = [0.0; MAX_CHANNELS];
     raw[..n].copy_from_slice(gyro);
@@ -176,24 +176,21 @@ pub(crate) fn compensate_gyros(
             }
             s
         });
-        let (mut a0, mut b, mut next) = (
-            [0.0; MAX_CHANNELS],
-            [0.0; MAX_CHANNELS],
-            [0.0; MAX_CHANNELS],
-        );
+        let mut next = [0.0; MAX_CHANNELS];
+        let (o, s) = ((r(3), r(4), r(5)), (r(6), r(7), r(8)));
+        let (rate_o, rate_s) = (r(row::RATE_O), r(row::RATE_S));
+        let (ai_io, ai_is, ai_os) = (r(row::AI_IO), r(row::AI_IS), r(row::AI_OS));
         for k in 0..n {
-            let w1 = r(3)[k] * rate[0] + r(4)[k] * rate[1] + r(5)[k] * rate[2];
-            let w2 = r(6)[k] * rate[0] + r(7)[k] * rate[1] + r(8)[k] * rate[2];
-            a0[k] = at_rest[k]
-                + (w1 * r(row::RATE_O)[k] + w2 * r(row::RATE_S)[k])
-                + (w1 * w2) * r(row::AI_OS)[k];
-            b[k] = scale[k] + (w1 * r(row::AI_IO)[k] + w2 * r(row::AI_IS)[k]);
-            next[k] = (raw[k] - a0[k]) / b[k];
-        }
-        for k in 0..n {
-            if m.channels[k].model == gyro::DTG {
-                next[k] = newton(next[k], (a0[k], b[k], nl[k]), raw[k]);
-            }
+            let w1 = o.0[k] * rate[0] + o.1[k] * rate[1] + o.2[k] * rate[2];
+            let w2 = s.0[k] * rate[0] + s.1[k] * rate[1] + s.2[k] * rate[2];
+            let a0 = at_rest[k] + (w1 * rate_o[k] + w2 * rate_s[k]) + (w1 * w2) * ai_os[k];
+            let b = scale[k] + (w1 * ai_io[k] + w2 * ai_is[k]);
+            let w = (raw[k] - a0) / b;
+            next[k] = if m.channels[k].model == gyro::DTG {
+                newton(w, (a0, b, nl[k]), raw[k])
+            } else {
+                w
+            };
         }
         gyro.copy_from_slice(&next[..n]);
     }

@@ -29,6 +29,18 @@ pub struct Output {
 }
 
 impl Output {
+    /// Zero for a model of `n_channels` channels and `n_accels`
+    /// accelerometers.
+    fn zeros(n_channels: usize, n_accels: usize) -> Self {
+        Self {
+            rate_deg_h: [0.0; MAX_CHANNELS],
+            error_deg_h: [0.0; MAX_CHANNELS],
+            accel_g: [0.0; MAX_ACCELS],
+            n_channels,
+            n_accels,
+        }
+    }
+
     /// The compensated rates of the model's channels, deg/h.
     pub fn rates(&self) -> &[f64] {
         &self.rate_deg_h[..self.n_channels]
@@ -127,7 +139,7 @@ impl<'m, 's> Evaluator<'m, 's> {
         accel_g: &[f64],
         extra: &[f64],
     ) -> Result<Option<Output>, Error> {
-        let m = self.model;
+        let m = &self.model;
         let (nc, na) = (m.n_channels, m.n_accels);
         if extra.len() != m.n_extra {
             return Err(Error::Extra {
@@ -144,8 +156,11 @@ impl<'m, 's> Evaluator<'m, 's> {
             }
         }
         let mut cal = [0.0; MAX_ACCELS];
-        let f = calibrated_force(&m, accel_g, &mut cal[..na]);
-        let out = if self.steps >= 1 {
+        let f = calibrated_force(m, accel_g, &mut cal[..na]);
+        // Written in place by the step (an output is 400 bytes: moved up
+        // through process and step it would be copied twice).
+        let mut out = Output::zeros(nc, na);
+        let ready = if self.steps >= 1 {
             // The pending sample's covariance, centred: n − 2, n − 1, n (zero
             // for the first sample, which has one neighbour, as in the batch).
             let e = if self.steps >= 2 {
@@ -155,31 +170,30 @@ impl<'m, 's> Evaluator<'m, 's> {
             } else {
                 [[0.0; 3]; 2]
             };
-            self.process(&e)
+            self.process(&e, &mut out)
         } else {
-            None
+            false
         };
-        let (st, at) = (&mut *self.state, m.st);
+        let (m, st) = (&self.model, &mut *self.state);
+        let at = m.st;
         st.copy_within(PENDING_FORCE..PENDING_FORCE + 3, EARLIER_FORCE);
         st[PENDING_FORCE..PENDING_FORCE + 3].copy_from_slice(&f);
         st[at.accel..at.accel + na].copy_from_slice(&cal[..na]);
         st[at.gyro..at.gyro + nc].copy_from_slice(gyro_deg_h);
         st[at.extra..at.extra + m.n_extra].copy_from_slice(extra);
         self.steps += 1;
-        Ok(out)
+        Ok(ready.then_some(out))
     }
 
     /// The end of a record: the output of the last sample received (its
     /// covariance is zero, as the batch's at a record's end), then back to
     /// rest. `None` if nothing is pending or the windows are not full.
     pub fn flush(&mut self) -> Option<Output> {
-        let out = if self.steps >= 1 {
-            self.process(&[[0.0; 3]; 2])
-        } else {
-            None
-        };
+        let m = &self.model;
+        let mut out = Output::zeros(m.n_channels, m.n_accels);
+        let ready = self.steps >= 1 && self.process(&[[0.0; 3]; 2], &mut out);
         self.reset();
-        out
+        ready.then_some(out)
     }
 
     /// The pending sample's specific force, accelerometers and gyro
@@ -207,27 +221,24 @@ impl<'m, 's> Evaluator<'m, 's> {
     }
 
     /// Compensates the pending sample with its covariance's factors `e`.
-    fn process(&mut self, e: &[[f64; 3]; 2]) -> Option<Output> {
-        let m = self.model;
+    /// Into `out` once the windows are full (true then).
+    fn process(&mut self, e: &[[f64; 3]; 2], out: &mut Output) -> bool {
+        let m = &self.model;
         let first = self.processed == 0;
         let c = self.calibrated(e);
         // Effects, filtered, weighted: the linear part of each prediction.
-        let linear = linear_parts(
-            &m,
-            self.state,
-            (&c.force, &c.gyro[..m.n_channels], e),
-            first,
-        );
+        let linear = linear_parts(m, self.state, (&c.force, &c.gyro[..m.n_channels], e), first);
         self.windows(&c.accel, first);
-        let l = m.window_len as u64;
+        let l = self.model.window_len as u64;
         if self.processed < l {
-            return None;
+            return false;
         }
-        let st = &mut *self.state;
+        let (m, st) = (&self.model, &mut *self.state);
         let weight = m
             .fade
-            .map(|at| fade_weight(&m, at, st, self.ring_pos, self.processed == l));
-        Some(self.predictions(&c, &linear, weight))
+            .map(|at| fade_weight(m, at, st, self.ring_pos, self.processed == l));
+        self.predictions(&c, &linear, weight, out);
+        true
     }
 
     /// The pending sample's window signals (calibrated accelerometers `a`
@@ -235,7 +246,7 @@ impl<'m, 's> Evaluator<'m, 's> {
     /// running sums (and the statistics inputs), its accelerations into the
     /// fade's rings; one sample on.
     fn windows(&mut self, a: &[f64; MAX_ACCELS], first: bool) {
-        let m = self.model;
+        let m = &self.model;
         let st = &mut *self.state;
         let (l, na) = (m.window_len, m.n_accels);
         for s in 0..m.n_signals {
@@ -283,23 +294,19 @@ impl<'m, 's> Evaluator<'m, 's> {
     }
 
     /// Each channel's prediction from its bias, `linear` part and network
-    /// part (faded by `weight`, smoothed), and its compensated rate.
+    /// part (faded by `weight`, smoothed), and its compensated rate, into
+    /// `out` (zero past the model's channels).
     fn predictions(
         &mut self,
         c: &Calibrated,
         linear: &[f64; MAX_CHANNELS],
         weight: Option<f64>,
-    ) -> Output {
-        let m = self.model;
+        out: &mut Output,
+    ) {
+        let m = &self.model;
         let st = &mut *self.state;
         let (nc, na, l) = (m.n_channels, m.n_accels, m.window_len);
-        let mut out = Output {
-            rate_deg_h: [0.0; MAX_CHANNELS],
-            error_deg_h: [0.0; MAX_CHANNELS],
-            accel_g: c.accel,
-            n_channels: nc,
-            n_accels: na,
-        };
+        out.accel_g = c.accel;
         let first_prediction = self.processed == l as u64;
         // Without a smoother the kernels add onto bias and effects, in
         // the order tables of layout version 1 were evaluated.
@@ -311,7 +318,7 @@ impl<'m, 's> Evaluator<'m, 's> {
                 ys[k] = m.f(ch.bias) + linear[k];
             }
         }
-        network_terms(&m, st, self.ring_pos, &mut ys, &mut nets);
+        network_terms(m, st, self.ring_pos, &mut ys, &mut nets);
         let na4 = 4 * na;
         for (k, ch) in m.channels[..nc].iter().enumerate() {
             let (mut y, mut net) = (ys[k], nets[k]);
@@ -355,7 +362,6 @@ impl<'m, 's> Evaluator<'m, 's> {
             out.error_deg_h[k] = y;
             out.rate_deg_h[k] = c.gyro[k] - y;
         }
-        out
     }
 }
 

@@ -3,7 +3,7 @@
 //! side by side (for the statistics input by the expansion about the set's
 //! mean, [`crate::lanes`]; for the raw window as each window's distance to
 //! the tables' centres), whose exponentials are taken in one branch-free
-//! loop over a chunk of blocks, and whose terms each sharing channel
+//! loop over a chunk of blocks' lanes, and whose terms each sharing channel
 //! weights into one partial sum per lane; the lanes are added pairwise at
 //! the end. The exported C takes the same blocks in the same order.
 
@@ -14,8 +14,18 @@ use crate::model::Model;
 use fastexp::exp_neg11;
 
 /// Blocks whose exponentials are taken in one loop: a loop of a run-time
-/// length up to this many lanes, which the compiler vectorises.
-const CHUNK: usize = 4;
+/// length up to this many blocks' lanes, which the compiler vectorises
+/// lane by lane (a loop of one block's [`LANES`] it unrolls into scalar
+/// code; over 16 blocks it vectorised the arguments across blocks, with
+/// gathers). K = 100 centres are two chunks.
+const CHUNK: usize = 8;
+
+/// A chunk's arguments and exponentials, kept across sets and chunks (set
+/// once a step: a chunk reads only the lanes it wrote).
+struct Scratch {
+    arg: [f64; CHUNK * LANES],
+    phi: [f64; CHUNK * LANES],
+}
 
 /// Every channel's kernel terms added to its `ys` and `nets` (the input:
 /// the statistics in `st`, or the windows of the rings whose oldest sample
@@ -31,46 +41,25 @@ pub(crate) fn network_terms(
 ) {
     // One partial sum per lane and channel (each channel is in one set).
     let mut acc = [[0.0; LANES]; MAX_CHANNELS];
-    let stats = m.input == input::STATISTICS;
+    let mut scratch = Scratch {
+        arg: [0.0; CHUNK * LANES],
+        phi: [0.0; CHUNK * LANES],
+    };
     for c in 0..m.n_channels {
         if m.leader[c] != c {
             continue;
         }
         let members = &m.members[c][..m.n_members[c]];
-        let ch = &m.channels[c];
-        let lanes = &st[ch.lanes..ch.lanes + m.kernel_lanes_len(c)];
-        let mut xm = [0.0; 3 * MAX_SIGNALS];
-        let q = if stats {
-            centred_statistics(m, c, st, lanes, &mut xm)
+        let set = (m, c, st, members);
+        if m.input == input::STATISTICS {
+            statistics_terms(set, &mut scratch, &mut acc);
         } else {
-            0.0
-        };
-        let blocks = lane_blocks(ch.n_centres);
-        let mut b0 = 0;
-        while b0 < blocks {
-            let nb = CHUNK.min(blocks - b0);
-            let mut arg = [0.0; CHUNK * LANES];
-            for (b, a) in arg.as_chunks_mut::<LANES>().0[..nb].iter_mut().enumerate() {
-                if stats {
-                    statistics_args(lanes, ch.dim, b0 + b, (&xm[..ch.dim], q), a);
-                } else {
-                    window_args(m, c, st, ring_pos, (lanes, b0 + b), a);
+            let w = &st[m.channels[c].lanes..][..m.kernel_lanes_len(c)];
+            set_blocks(set, &mut scratch, &mut acc, |b0, arg| {
+                for (b, a) in arg.iter_mut().enumerate() {
+                    window_args(m, c, st, ring_pos, (w, b0 + b), a);
                 }
-            }
-            let mut phi = [0.0; CHUNK * LANES];
-            for (p, a) in phi[..nb * LANES].iter_mut().zip(&arg) {
-                *p = exp_neg11(*a);
-            }
-            for &j in members {
-                let j = j as usize;
-                let w = &st[m.channels[j].weight_lanes + b0 * LANES..][..nb * LANES];
-                for (p, w) in phi.chunks_exact(LANES).zip(w.chunks_exact(LANES)) {
-                    for ((a, p), w) in acc[j].iter_mut().zip(p).zip(w) {
-                        *a += p * w;
-                    }
-                }
-            }
-            b0 += nb;
+            });
         }
         for &j in members {
             let sum = lane_sum(&acc[j as usize]);
@@ -80,9 +69,92 @@ pub(crate) fn network_terms(
     }
 }
 
-/// Set `c`'s statistics input centred on the set's mean into `xm`
-/// (x′ = x − m; x: the statistics of the set's signals, in order); returns
-/// ‖x′‖².
+/// A centre set: the model, its leader, the state, its members.
+type Set<'a, 'm> = (&'a Model<'m>, usize, &'a [f64], &'a [u8]);
+
+/// Set `c`'s blocks of [`LANES`] centres, [`CHUNK`] at a time: `args`
+/// writes the arguments of the chunk's blocks from block b₀ on, their exponentials are taken in one
+/// branch-free loop over the chunk, and each member's weights take the
+/// terms into its partial sums `acc`.
+#[inline(always)]
+fn set_blocks(
+    (m, c, st, members): Set,
+    s: &mut Scratch,
+    acc: &mut [[f64; LANES]; MAX_CHANNELS],
+    mut args: impl FnMut(usize, &mut [[f64; LANES]]),
+) {
+    let blocks = lane_blocks(m.channels[c].n_centres);
+    let mut b0 = 0;
+    while b0 < blocks {
+        let nb = CHUNK.min(blocks - b0);
+        args(b0, s.arg[..nb * LANES].as_chunks_mut::<LANES>().0);
+        for (p, a) in s.phi[..nb * LANES].iter_mut().zip(&s.arg) {
+            *p = exp_neg11(*a);
+        }
+        for &j in members {
+            let j = j as usize;
+            let w = &st[m.channels[j].weight_lanes + b0 * LANES..][..nb * LANES];
+            for (p, w) in s.phi.chunks_exact(LANES).zip(w.chunks_exact(LANES)) {
+                for ((a, p), w) in acc[j].iter_mut().zip(p).zip(w) {
+                    *a += p * w;
+                }
+            }
+        }
+        b0 += nb;
+    }
+}
+
+/// Set `c`'s terms on the statistics input: its statistics centred on the
+/// set's mean, their squared norm, its blocks' arguments V + W·q + Σⱼ x′ⱼUⱼ
+/// summed in input order. The dimensions of one, two and three signals are
+/// laid out at compile time, so that the sum over the inputs is unrolled
+/// with a block's lanes in registers.
+#[inline(always)]
+fn statistics_terms(set: Set, s: &mut Scratch, acc: &mut [[f64; LANES]; MAX_CHANNELS]) {
+    let (m, c, st, _) = set;
+    let ch = &m.channels[c];
+    let lanes = &st[ch.lanes..ch.lanes + m.kernel_lanes_len(c)];
+    match ch.dim {
+        3 => statistics_terms_of::<3>(set, s, acc, lanes),
+        6 => statistics_terms_of::<6>(set, s, acc, lanes),
+        9 => statistics_terms_of::<9>(set, s, acc, lanes),
+        dim => {
+            let mut xm = [0.0; 3 * MAX_SIGNALS];
+            let q = centred_statistics(m, c, st, lanes, &mut xm[..dim]);
+            let stride = (dim + 2) * LANES;
+            set_blocks(set, s, acc, |b0, arg| {
+                let blocks = lanes[dim + b0 * stride..].chunks_exact(stride);
+                for (a, block) in arg.iter_mut().zip(blocks) {
+                    block_args(block.as_chunks::<LANES>().0, (&xm[..dim], q), a);
+                }
+            });
+        }
+    }
+}
+
+/// [`statistics_terms`] of dimension `D` (`lanes`: the set's).
+#[inline(always)]
+fn statistics_terms_of<const D: usize>(
+    set: Set,
+    s: &mut Scratch,
+    acc: &mut [[f64; LANES]; MAX_CHANNELS],
+    lanes: &[f64],
+) {
+    let (m, c, st, _) = set;
+    let stride = (D + 2) * LANES;
+    let mut x = [0.0; D];
+    let q = centred_statistics(m, c, st, lanes, &mut x);
+    set_blocks(set, s, acc, |b0, arg| {
+        let blocks = lanes[D + b0 * stride..].chunks_exact(stride);
+        for (a, block) in arg.iter_mut().zip(blocks) {
+            block_args(block.as_chunks::<LANES>().0, (&x, q), a);
+        }
+    });
+}
+
+/// Set `c`'s statistics input centred on the set's mean into `xm` (its
+/// dimension long; x′ = x − m; x: the statistics of the set's signals, in
+/// order); returns ‖x′‖².
 #[inline(always)]
 fn centred_statistics(m: &Model, c: usize, st: &[f64], lanes: &[f64], xm: &mut [f64]) -> f64 {
     let ch = &m.channels[c];
@@ -96,43 +168,10 @@ fn centred_statistics(m: &Model, c: usize, st: &[f64], lanes: &[f64], xm: &mut [
         }
     }
     let mut q = 0.0;
-    for x in &xm[..ch.dim] {
+    for x in xm.iter() {
         q += x * x;
     }
     q
-}
-
-/// The arguments of block `b` of a statistics set (`lanes`: the set's
-/// mean, then its blocks), V + W·q + Σⱼ x′ⱼUⱼ summed in input order
-/// (`xq`: x′ and ‖x′‖²). The dimensions of one, two and three signals
-/// are laid out at compile time, so that the sum over the inputs is
-/// unrolled with the block's lanes in registers.
-#[inline(always)]
-fn statistics_args(lanes: &[f64], dim: usize, b: usize, xq: (&[f64], f64), arg: &mut [f64; LANES]) {
-    match dim {
-        3 => statistics_args_of::<3>(lanes, b, xq, arg),
-        6 => statistics_args_of::<6>(lanes, b, xq, arg),
-        9 => statistics_args_of::<9>(lanes, b, xq, arg),
-        _ => {
-            let stride = (dim + 2) * LANES;
-            let (rows, _) = lanes[dim + b * stride..][..stride].as_chunks::<LANES>();
-            block_args(rows, xq, arg);
-        }
-    }
-}
-
-/// [`statistics_args`] of dimension `D`.
-#[inline(always)]
-fn statistics_args_of<const D: usize>(
-    lanes: &[f64],
-    b: usize,
-    (xm, q): (&[f64], f64),
-    arg: &mut [f64; LANES],
-) {
-    let stride = (D + 2) * LANES;
-    let (rows, _) = lanes[D + b * stride..][..stride].as_chunks::<LANES>();
-    let x: &[f64; D] = xm[..D].try_into().unwrap_or(&[0.0; D]);
-    block_args(rows, (x, q), arg);
 }
 
 /// V + W·q + Σⱼ xⱼUⱼ of one block's `rows` (U's, then V, then W).

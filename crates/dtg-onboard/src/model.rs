@@ -698,9 +698,9 @@ impl<'a> Model<'a> {
 
     #[inline(always)]
     pub(crate) fn w(&self, i: usize) -> u32 {
-        let at = 4 * i;
-        let b = self.bytes;
-        u32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
+        let mut w = [0u8; 4];
+        w.copy_from_slice(&self.bytes[4 * i..4 * i + 4]);
+        u32::from_le_bytes(w)
     }
 }
 

@@ -1,8 +1,9 @@
 //! The kernels of the exported C, in the `dtg-onboard` evaluator's lanes
 //! (crates/dtg-onboard/src/kernels.rs): per centre set, blocks of
-//! [`LANES`] centres whose arguments are eight named sums (the compiler
-//! keeps them in vector registers and pairs them into vector operations),
-//! the exponentials of each block's lanes in one branch-free loop (the f64
+//! [`LANES`] centres whose arguments are summed lane by lane (for the
+//! statistics input the sum over the set's inputs unrolled for one, two or
+//! three signals, so that a block's lanes stay in vector registers), the
+//! exponentials of each block's lanes in one branch-free loop (the f64
 //! exponential is `fastexp::exp_neg11`, constant for constant), each value
 //! times every sharing channel's weight into that channel's partial sum of
 //! its lane; the lanes added pairwise at the end. The arithmetic is the
@@ -11,14 +12,9 @@
 use super::precision::Precision;
 use dtg_onboard::LANES;
 
-// The kernels name one sum per lane.
-const _: () = assert!(
-    LANES == 8,
-    "write the kernels' eight sums for the new LANES"
-);
-
-/// The kernels' exponential, `lane_sum` and `network_terms` (the statistics
-/// input's or the window's), before `process`.
+/// The kernels' exponential, `lane_sum`, one centre set's terms (the
+/// statistics input's or the window's) and `network_terms`, before
+/// `process`.
 pub(super) fn kernels(precision: Precision) -> String {
     let exp = match precision {
         Precision::F64 => EXP_NEG11_C,
@@ -33,10 +29,10 @@ pub(super) fn kernels(precision: Precision) -> String {
         "#else\n",
         WINDOW_C,
         "#endif\n\n",
+        NETWORK_TERMS_C,
     ]
     .concat()
     .replace("{EXPS_AND_WEIGHTS}", EXPS_AND_WEIGHTS_C)
-    .replace("{LANE_SUMS}", LANE_SUMS_C)
 }
 
 /// `fastexp::exp_neg11` on −708 … 0.
@@ -73,18 +69,37 @@ static DTG_INLINE double exp_neg11(double x) {
 /// portable function.
 const VECTOR_CLONES_C: &str = r#"/* The kernels for AVX2 and for the baseline x86-64, chosen at load time
  * (ifunc): the same operations in the same order, four lanes to a vector
- * instead of two, so the same bits; the exponential inlined into both.
- * Elsewhere, or with -DDTG_NO_CLONES, the one portable function. */
+ * instead of two, so the same bits. Every helper they call (exponential,
+ * distance, lane sum) is DTG_INLINE, compiled into each clone: the AVX2
+ * clone calling a baseline helper runs that helper's SSE code with the
+ * YMM registers' upper halves live (gcc keeps them across a call whose
+ * registers it knows, without vzeroupper), which took the raw window's
+ * step from 24 to 55 us. Elsewhere, or with -DDTG_NO_CLONES, the one
+ * portable function. */
 #if defined(__x86_64__) && defined(__ELF__) && defined(__GLIBC__) && !defined(DTG_NO_CLONES) \
     && defined(__has_attribute)
 #if __has_attribute(target_clones)
 #define DTG_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#define DTG_INLINE __attribute__((always_inline)) inline
 #endif
 #endif
 #ifndef DTG_VECTOR_CLONES
 #define DTG_VECTOR_CLONES
-#define DTG_INLINE
+#endif
+/* Compiled into the caller: each clone, and a set's blocks with its
+ * dimension a constant (in every build). */
+#if defined(__GNUC__)
+#define DTG_INLINE __attribute__((always_inline)) inline
+#else
+#define DTG_INLINE inline
+#endif
+/* A loop over a set's inputs unrolled where the compiler takes the hint
+ * (-O2 does not unroll it by itself). */
+#if defined(__clang__)
+#define DTG_UNROLL _Pragma("unroll")
+#elif defined(__GNUC__)
+#define DTG_UNROLL _Pragma("GCC unroll 16")
+#else
+#define DTG_UNROLL
 #endif
 
 "#;
@@ -94,7 +109,7 @@ const VECTOR_CLONES_C: &str = r#"/* The kernels for AVX2 and for the baseline x8
 const LANE_SUM_C: &str = r#"/* Kernel terms are summed in DTG_LANES partial sums (centre k into lane
  * k % DTG_LANES), added pairwise at the end, as the Rust evaluator does. */
 #define DTG_LANES {LANES}
-static void lane_sum(dtg_real *acc) {
+static DTG_INLINE void lane_sum(dtg_real *acc) {
     int w, i;
     for (w = DTG_LANES / 2; w >= 1; w /= 2)
         for (i = 0; i < w; i++) acc[i] += acc[i + w];
@@ -105,59 +120,83 @@ static void lane_sum(dtg_real *acc) {
 /// A block's exponentials and each sharing channel's weighted terms (0
 /// below −708: the exponential's argument is not clamped, its value there
 /// is not used).
-const EXPS_AND_WEIGHTS_C: &str = r#"            for (i = 0; i < DTG_LANES; i++) phi[i] = EXP_NEG(arg[i]);
-            for (mb = 0; mb < SET_N_MEMBERS[c]; mb++) {
-                const int j = SET_MEMBERS[SET_MEMBERS_AT[c] + mb];
-                const dtg_real *wt = WEIGHT_LANES + WEIGHT_AT[j] + (long)DTG_LANES * b;
-                for (i = 0; i < DTG_LANES; i++) acc[j][i] += (arg[i] < R(-708) ? R(0) : phi[i]) * wt[i];
-            }
+const EXPS_AND_WEIGHTS_C: &str = r#"        for (i = 0; i < DTG_LANES; i++) phi[i] = EXP_NEG(arg[i]);
+        for (mb = 0; mb < SET_N_MEMBERS[c]; mb++) {
+            const int j = SET_MEMBERS[SET_MEMBERS_AT[c] + mb];
+            const dtg_real *wt = WEIGHT_LANES + WEIGHT_AT[j] + (long)DTG_LANES * b;
+            for (i = 0; i < DTG_LANES; i++) acc[j][i] += (arg[i] < R(-708) ? R(0) : phi[i]) * wt[i];
+        }
 "#;
 
-/// Each channel's lanes added pairwise onto its `ys` and `nets`.
-const LANE_SUMS_C: &str = r#"    for (c = 0; c < N; c++) {
+/// Every set's terms into its members' partial sums, then each channel's
+/// lanes added pairwise onto its `ys` and `nets`.
+const NETWORK_TERMS_C: &str = r#"/* Adds each channel's kernel terms to ys[c] and nets[c], as the Rust
+ * evaluator's network_terms does: each centre set's terms computed once
+ * (set_terms), into one partial sum per lane of each channel that shares
+ * the set; each channel's lanes added pairwise. */
+DTG_VECTOR_CLONES
+static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
+    dtg_real acc[N][DTG_LANES];
+    int c, i;
+    for (c = 0; c < N; c++)
+        for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
+    for (c = 0; c < N; c++) {
+        if (CENTRE_SET[c] != c) continue;
+        set_terms(s, c, acc);
+    }
+    for (c = 0; c < N; c++) {
         lane_sum(acc[c]);
         ys[c] += acc[c][0];
         nets[c] += acc[c][0];
     }
+}
 "#;
 
 /// The statistics input's kernels: x' = x - m (the set's inputs less its
 /// mean), q = |x'|^2, each centre's argument V + W q + sum_d x'_d U_d.
-const STATISTICS_C: &str = r#"/* Adds each channel's kernel terms to ys[c] and nets[c] (the statistics
- * input), as the Rust evaluator's network_terms does: per set the input
- * less the set's mean and its squared norm; per block of DTG_LANES centres
- * each argument V + W q + sum_d x'_d U_d in eight named sums, the
- * exponentials, the weighted terms into one partial sum per lane. */
-DTG_VECTOR_CLONES
-static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
-    dtg_real acc[N][DTG_LANES];
-    int c, b, i, d, mb;
-    for (c = 0; c < N; c++)
-        for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
-    for (c = 0; c < N; c++) {
-        const dtg_real *ln = KERNEL_LANES + SET_LANES[c];
-        const int dim = SET_N_INPUT[c], nb = (N_CENTRES[c] + DTG_LANES - 1) / DTG_LANES;
-        dtg_real x[DTG_MAX_DIM], q = R(0);
-        if (CENTRE_SET[c] != c) continue;
-        for (d = 0; d < dim; d++) x[d] = s->feat[SET_INPUT[SET_INPUT_AT[c] + d]] - ln[d];
-        for (d = 0; d < dim; d++) q += x[d] * x[d];
-        for (b = 0; b < nb; b++) {
-            const dtg_real *u = ln + dim + (long)(dim + 2) * DTG_LANES * b;
-            const dtg_real *v = u + (long)dim * DTG_LANES, *w = v + DTG_LANES;
-            dtg_real a0 = v[0] + w[0] * q, a1 = v[1] + w[1] * q, a2 = v[2] + w[2] * q,
-                     a3 = v[3] + w[3] * q, a4 = v[4] + w[4] * q, a5 = v[5] + w[5] * q,
-                     a6 = v[6] + w[6] * q, a7 = v[7] + w[7] * q;
-            dtg_real arg[DTG_LANES], phi[DTG_LANES];
-            for (d = 0; d < dim; d++) {
-                const dtg_real xd = x[d], *ud = u + d * DTG_LANES;
-                a0 += xd * ud[0]; a1 += xd * ud[1]; a2 += xd * ud[2]; a3 += xd * ud[3];
-                a4 += xd * ud[4]; a5 += xd * ud[5]; a6 += xd * ud[6]; a7 += xd * ud[7];
-            }
-            arg[0] = a0; arg[1] = a1; arg[2] = a2; arg[3] = a3;
-            arg[4] = a4; arg[5] = a5; arg[6] = a6; arg[7] = a7;
-{EXPS_AND_WEIGHTS}        }
+const STATISTICS_C: &str = r#"/* One set's blocks of DTG_LANES centres: each argument V + W q +
+ * sum_d x'_d U_d, the exponentials, the weighted terms into each member's
+ * partial sum per lane. The caller names dim as a constant where it can,
+ * so that the sum over the inputs is unrolled with the block's lanes in
+ * registers. */
+static DTG_INLINE void set_blocks(int c, const dtg_real *ln, const dtg_real *x, dtg_real q, int dim,
+                                  dtg_real acc[][DTG_LANES]) {
+    const int nb = (N_CENTRES[c] + DTG_LANES - 1) / DTG_LANES;
+    int b, i, d, mb;
+    for (b = 0; b < nb; b++) {
+        const dtg_real *u = ln + dim + (long)(dim + 2) * DTG_LANES * b;
+        const dtg_real *v = u + (long)dim * DTG_LANES, *w = v + DTG_LANES;
+        dtg_real arg[DTG_LANES], phi[DTG_LANES];
+        /* Each half of the lanes a loop of its own: four lanes are one AVX2
+         * vector or two SSE2 ones, which -O2 keeps in registers; over eight
+         * lanes SSE2's loop would go through memory. */
+        for (i = 0; i < DTG_LANES / 2; i++) arg[i] = v[i] + w[i] * q;
+        for (i = DTG_LANES / 2; i < DTG_LANES; i++) arg[i] = v[i] + w[i] * q;
+        DTG_UNROLL
+        for (d = 0; d < dim; d++) {
+            for (i = 0; i < DTG_LANES / 2; i++) arg[i] += x[d] * u[d * DTG_LANES + i];
+            for (i = DTG_LANES / 2; i < DTG_LANES; i++) arg[i] += x[d] * u[d * DTG_LANES + i];
+        }
+{EXPS_AND_WEIGHTS}    }
+}
+
+/* Set c's terms (the statistics input): its inputs less the set's mean,
+ * their squared norm, its blocks. */
+static DTG_INLINE void set_terms(const dtg_state *s, int c, dtg_real acc[][DTG_LANES]) {
+    const dtg_real *ln = KERNEL_LANES + SET_LANES[c];
+    const int dim = SET_N_INPUT[c];
+    dtg_real x[DTG_MAX_DIM], q = R(0);
+    int d;
+    for (d = 0; d < dim; d++) x[d] = s->feat[SET_INPUT[SET_INPUT_AT[c] + d]] - ln[d];
+    for (d = 0; d < dim; d++) q += x[d] * x[d];
+    /* One, two or three signals' statistics; any other size as it is. */
+    switch (dim) {
+    case 3: set_blocks(c, ln, x, q, 3, acc); break;
+    case 6: set_blocks(c, ln, x, q, 6, acc); break;
+    case 9: set_blocks(c, ln, x, q, 9, acc); break;
+    default: set_blocks(c, ln, x, q, dim, acc);
     }
-{LANE_SUMS}}
+}
 "#;
 
 /// The raw window's kernels: each centre's squared distance to the windows
@@ -165,7 +204,7 @@ static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
 /// them), times -1/beta^2.
 const WINDOW_C: &str = r#"/* ||x - c||^2 over n numbers; four partial sums (the Rust evaluator sums
  * the same way) keep the adds independent. */
-static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
+static DTG_INLINE dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     dtg_real acc0 = R(0), acc1 = R(0), acc2 = R(0), acc3 = R(0), tail = R(0), d;
     int i;
     for (i = 0; i + 4 <= n; i += 4) {
@@ -178,38 +217,56 @@ static dtg_real sq_dist(const dtg_real *x, const dtg_real *cen, int n) {
     return (acc0 + acc1) + (acc2 + acc3) + tail;
 }
 
-/* Adds each channel's kernel terms to ys[c] and nets[c] (the raw window),
- * as the Rust evaluator's network_terms does: per block of DTG_LANES
- * centres each argument (the windows' distance times -1/beta^2; 0 past the
- * set's last centre), the exponentials, the weighted terms into one
- * partial sum per lane. */
-DTG_VECTOR_CLONES
-static void network_terms(const dtg_state *s, dtg_real *ys, dtg_real *nets) {
-    dtg_real acc[N][DTG_LANES];
-    const int l = DTG_WINDOW_LEN;
-    int c, b, i, t, mb;
-    for (c = 0; c < N; c++)
-        for (i = 0; i < DTG_LANES; i++) acc[c][i] = R(0);
-    for (c = 0; c < N; c++) {
-        const dtg_real *w = KERNEL_LANES + SET_LANES[c];
-        const int n = N_CENTRES[c], nb = (n + DTG_LANES - 1) / DTG_LANES, ns = SET_N_INPUT[c];
-        if (CENTRE_SET[c] != c) continue;
-        for (b = 0; b < nb; b++) {
-            dtg_real arg[DTG_LANES], phi[DTG_LANES];
-            for (i = 0; i < DTG_LANES; i++) {
-                const int k = b * DTG_LANES + i;
-                const dtg_real *cen;
-                dtg_real r2 = R(0);
-                arg[i] = R(0);
-                if (k >= n) continue;
-                cen = CENTRES + SET_CENTRES[c] + (long)ns * l * k;
-                for (t = 0; t < ns; t++) {
-                    r2 += sq_dist(s->ring[SET_INPUT[SET_INPUT_AT[c] + t]] + s->ring_pos, cen, l);
-                    cen += l;
-                }
-                arg[i] = r2 * w[k];
+/* Set c's terms (the raw window): per block of DTG_LANES centres each
+ * argument (the windows' distance times -1/beta^2; 0 past the set's last
+ * centre), the exponentials, the weighted terms into each member's partial
+ * sum per lane. */
+static DTG_INLINE void set_terms(const dtg_state *s, int c, dtg_real acc[][DTG_LANES]) {
+    const dtg_real *w = KERNEL_LANES + SET_LANES[c];
+    const int l = DTG_WINDOW_LEN, n = N_CENTRES[c], nb = (n + DTG_LANES - 1) / DTG_LANES;
+    const int ns = SET_N_INPUT[c];
+    int b, i, t, mb;
+    for (b = 0; b < nb; b++) {
+        dtg_real arg[DTG_LANES], phi[DTG_LANES];
+        for (i = 0; i < DTG_LANES; i++) {
+            const int k = b * DTG_LANES + i;
+            const dtg_real *cen;
+            dtg_real r2 = R(0);
+            arg[i] = R(0);
+            if (k >= n) continue;
+            cen = CENTRES + SET_CENTRES[c] + (long)ns * l * k;
+            for (t = 0; t < ns; t++) {
+                r2 += sq_dist(s->ring[SET_INPUT[SET_INPUT_AT[c] + t]] + s->ring_pos, cen, l);
+                cen += l;
             }
-{EXPS_AND_WEIGHTS}        }
-    }
-{LANE_SUMS}}
+            arg[i] = r2 * w[k];
+        }
+{EXPS_AND_WEIGHTS}    }
+}
 "#;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The AVX2 clone of `network_terms` calling a helper compiled for the
+    /// baseline runs the helper's SSE code with the YMM registers' upper
+    /// halves live (2.3× the raw window's step): every helper the kernels
+    /// define is compiled into each clone.
+    #[test]
+    fn every_helper_of_the_kernels_is_compiled_into_each_clone() {
+        for precision in [Precision::F64, Precision::F32] {
+            let c = kernels(precision);
+            let helpers: Vec<&str> = c
+                .lines()
+                .filter(|l| l.starts_with("static ") && !l.contains(" network_terms("))
+                .collect();
+            // lane_sum, set_blocks, two set_terms, sq_dist (and exp_neg11).
+            assert!(helpers.len() >= 5, "{precision:?}: {helpers:?}");
+            for h in helpers {
+                assert!(h.starts_with("static DTG_INLINE "), "{precision:?}: {h}");
+            }
+            assert!(c.contains("DTG_VECTOR_CLONES\nstatic void network_terms("));
+        }
+    }
+}
