@@ -167,8 +167,9 @@ fn rate_gyro_g_terms_named_over_seeds() {
 }
 
 /// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
-/// 1–20, again 2026-11-29 with the 6% worth gate): g_S 20/20 exact, 18/20 covered, 20/20 refits
-/// within 1.1× the twin; g_O 20, 19, 20; clean twins 0/20.
+/// 1–20, again 2026-11-29 with the 6% worth gate): g_S 20/20 exact, 18/20
+/// covered, 20/20 refits within 1.1× the twin; g_O 20, 19, 20; clean twins
+/// 0/20.
 #[test]
 #[ignore = "statistical: 60 loops, minutes"]
 fn dtg_g_terms_named_over_seeds() {
