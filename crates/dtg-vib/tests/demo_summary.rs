@@ -131,10 +131,10 @@ fn the_final_page_summary_states_what_is_left_and_what_got_worse() {
     assert!(diag.iter().all(|r| r[1] == "nothing"), "{diag:?}");
     assert!(
         top.contains("found no missing effect that explains it")
-            && top.contains("below the worth threshold ERR 0.19"),
+            && top.contains("below the worth threshold ERR 0.1164"),
         "{top}"
     );
     for r in &diag {
-        assert!(top.contains("ERR ") && r[3].parse::<f64>().unwrap() < 0.19);
+        assert!(top.contains("ERR ") && r[3].parse::<f64>().unwrap() < 0.1164);
     }
 }

@@ -141,14 +141,17 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
 /// Hidden g_x, g_y, g_z and one gg_xy on tetra's rate gyro g2, each below
 /// what the network left in its residual before the screen (g_x at 0.15
 /// deg/h/g went unnamed in 3 of 3 seeds with the window reading ax, ay, az).
-/// Measured (seeds 1–20): g_x 20/20 exact, 20/20 covered; g_y 20, 19;
-/// g_z 20, 20 (each 20/20 refits within 1.1× the twin); clean twins 0/20;
-/// gg_xy at 0.05 deg/h/g² 17/20 exact, 13/20 covered, 19/20 refits
-/// within (again 2026-11-29). Its three misses name nothing (seeds 11, 13,
-/// 20: power); the four named intervals that miss lie above the truth
-/// (lower ends 0.0500–0.0558), because its regressor is not what the gyro
-/// felt (`the_g2_regressor_is_what_the_gyro_felt`). This test fails on
-/// gg_xy until both are fixed.
+/// Measured (seeds 1–20, 2026-11-29, 965 s with the DTG test alongside):
+/// g_x 20/20 exact, 20/20 covered; g_y 20, 19; g_z 20, 20 (each 20/20
+/// refits within 1.1× the twin); clean twins 0/20; gg_xy at 0.05
+/// deg/h/g² 20/20 exact, 20/20 refits within, but 16/20 covered. Named
+/// where it explains least (ERR 0.156 on seed 11) since the worth gate is
+/// a 6% cut of the residual rms (a 10% gate left seeds 11, 13 and 20
+/// unnamed: `gg_xy_named_where_it_explains_least`). The four intervals
+/// that miss (seeds 2, 4, 7, 12) lie above the truth (lower ends
+/// 0.0500–0.0558), because its regressor is not what the gyro felt
+/// (`the_g2_regressor_is_what_the_gyro_felt`). This test fails on gg_xy's
+/// coverage until that is fixed.
 #[test]
 #[ignore = "statistical: 100 loops, minutes"]
 fn rate_gyro_g_terms_named_over_seeds() {
@@ -164,8 +167,9 @@ fn rate_gyro_g_terms_named_over_seeds() {
 }
 
 /// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
-/// 1–20, again 2026-11-29): g_S 20/20 exact, 18/20 covered, 20/20 refits
-/// within 1.1× the twin; g_O 20, 19, 20; clean twins 0/20.
+/// 1–20, again 2026-11-29 with the 6% worth gate): g_S 20/20 exact, 18/20
+/// covered, 20/20 refits within 1.1× the twin; g_O 20, 19, 20; clean twins
+/// 0/20.
 #[test]
 #[ignore = "statistical: 60 loops, minutes"]
 fn dtg_g_terms_named_over_seeds() {
@@ -302,4 +306,22 @@ fn the_library_and_the_command_line_default_to_one_window() {
     assert_eq!(cli_pre.window.signals(), ["ax", "ay", "az"]);
     assert_eq!(chosen.window, cli_pre.window);
     assert_eq!(chosen, cli_pre);
+}
+
+/// The seeds where the hidden `gg_xy` explains least (11, 13, 20: ERR
+/// 0.156–0.169 at p below 10⁻¹²; left unnamed, its refit's validation rms
+/// is 1.107, 1.082 and 1.095× the clean twin's): named exactly, with the
+/// refit within 1.1× the twin, and the twins silent. A gate of a 10% cut
+/// of the residual rms left it unnamed on all three; the short run of the
+/// statistical test above, a minute.
+#[test]
+#[ignore = "statistical: 6 loops, a minute"]
+fn gg_xy_named_where_it_explains_least() {
+    let unit = Unit::builtin("tetra").unwrap();
+    for seed in [11, 13, 20] {
+        let (twin_rms, suggesting) = twins(&unit, seed..seed + 1);
+        assert_eq!(suggesting, 0, "seed {seed}");
+        let r = rates(&unit, ("g2", "gg_xy", 0.05), seed..seed + 1, &twin_rms);
+        assert_eq!((r.exact, r.refit_within), (1, 1), "seed {seed}: {r:?}");
+    }
 }

@@ -13,7 +13,7 @@ pub struct Thresholds {
     #[arg(long, default_value_t = 0.01, value_parser = parse_alpha)]
     alpha: f64,
     /// Worth threshold: suggest an effect only if adding it cuts the channel's residual rms by at least this fraction.
-    #[arg(long = "min-gain", default_value_t = 0.1, value_parser = parse_gain)]
+    #[arg(long = "min-gain", default_value_t = DiagnoseOptions::default().rank.min_rms_reduction, value_parser = parse_gain)]
     min_gain: f64,
 }
 

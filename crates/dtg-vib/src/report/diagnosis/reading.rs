@@ -158,7 +158,7 @@ mod tests {
     #[test]
     fn the_worth_threshold_names_the_flag_value_it_comes_from() {
         let t = super::worth_text(crate::diagnose::RankOptions::default().min_err());
-        assert!(t.starts_with("ERR 0.19 (--min-gain 0.1: "), "{t}");
+        assert!(t.starts_with("ERR 0.1164 (--min-gain 0.06: "), "{t}");
         assert!((super::min_gain(0.19) - 0.1).abs() < 1e-12);
     }
 }
