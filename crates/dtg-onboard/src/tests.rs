@@ -139,10 +139,12 @@ fn run(b: &[u8], acc: &[[f64; 3]]) -> [Vec<(usize, Output)>; 2] {
         let mut outs = Vec::new();
         for (i, a) in acc.iter().enumerate() {
             if let Some(o) = ev.step(&[10.0; 6], a, &[]).unwrap() {
-                outs.push((i - 1, o));
+                outs.push((i - LOOKAHEAD, o));
             }
         }
-        outs.extend(ev.flush().map(|o| (acc.len() - 1, o)));
+        for (k, o) in ev.flush().into_iter().enumerate() {
+            outs.extend(o.map(|o| (acc.len() + k - LOOKAHEAD, o)));
+        }
         assert_eq!(ev.steps(), 0, "flush leaves the evaluator at rest");
         outs
     })
