@@ -66,8 +66,8 @@ pub(crate) fn covariance(window: impl Fn(usize) -> [f64; 3]) -> [[f64; 3]; FACTO
     for (er, row) in e.iter_mut().zip(&WITHIN_INTERVAL_FACTORS) {
         for (j, w) in row.iter().enumerate() {
             let m = window(j);
-            for k in 0..3 {
-                er[k] += *w * m[k];
+            for (x, mk) in er.iter_mut().zip(m) {
+                *x += *w * mk;
             }
         }
     }

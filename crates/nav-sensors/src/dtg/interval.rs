@@ -364,9 +364,9 @@ mod tests {
         let (mut te, mut ee) = (0.0, 0.0);
         let e_mean = est[3..2997].iter().map(|c| c[(0, 0)]).sum::<f64>() / 2994.0;
         let t_mean = truth[3..2997].iter().sum::<f64>() / 2994.0;
-        for n in 3..2997 {
-            let e = est[n][(0, 0)] - e_mean;
-            te += (truth[n] - t_mean) * e;
+        for (c, t) in est.iter().zip(&truth).take(2997).skip(3) {
+            let e = c[(0, 0)] - e_mean;
+            te += (t - t_mean) * e;
             ee += e * e;
         }
         let slope = te / ee;
