@@ -54,16 +54,18 @@ pub const WITHIN_INTERVAL_REACH: usize = 3;
 /// eigenvalues (0.189, 0.0307, 6.9·10⁻⁵, 1.5·10⁻⁶), made exactly
 /// (anti)symmetric in time, the symmetric ones' middle weight set so that
 /// each row sums to zero (a constant has no covariance). The three smaller
-/// eigenvalues (below 4·10⁻¹⁰) are left out: `FᵀF` is within 2·10⁻¹⁰ of `W`.
+/// eigenvalues (below 4·10⁻¹⁰) are left out, and the first row is scaled
+/// by 1 + 5.3·10⁻⁸ so that the four factors keep a linear trend's variance
+/// (slope²/12) exact: `FᵀF` is within 10⁻⁸ of `W`.
 pub const WITHIN_INTERVAL_FACTORS: [[f64; 2 * WITHIN_INTERVAL_REACH + 1]; 4] = [
     [
-        -0.03641163762073738,
-        0.1225354491557866,
-        -0.2800109651437438,
+        -0.03641163955917553,
+        0.12253545567917867,
+        -0.2800109800506244,
         0.0,
-        0.2800109651437438,
-        -0.1225354491557866,
-        0.03641163762073738,
+        0.2800109800506244,
+        -0.12253545567917867,
+        0.03641163955917553,
     ],
     [
         -0.004015306888144132,
@@ -258,7 +260,18 @@ mod tests {
         let w = derived_weights();
         let f = DMatrix::from_fn(4, 7, |r, c| WITHIN_INTERVAL_FACTORS[r][c]);
         let diff = (f.transpose() * &f - &w).abs().max();
-        assert!(diff < 2e-10, "FᵀF is {diff} from W");
+        assert!(diff < 1e-8, "FᵀF is {diff} from W");
+        // A linear trend's variance, 1/12 for a unit slope, exact.
+        let slope: f64 = WITHIN_INTERVAL_FACTORS
+            .iter()
+            .map(|row| {
+                (0..7)
+                    .map(|j| row[j] * (j as f64 - 3.0))
+                    .sum::<f64>()
+                    .powi(2)
+            })
+            .sum();
+        assert!((slope - 1.0 / 12.0).abs() < 1e-16, "{slope}");
         // W itself: the spread of h(τ) about e₀, zero on constants.
         assert!((&w * DVector::from_element(7, 1.0)).abs().max() < 1e-12);
         for row in WITHIN_INTERVAL_FACTORS {
@@ -351,9 +364,9 @@ mod tests {
         let (mut te, mut ee) = (0.0, 0.0);
         let e_mean = est[3..2997].iter().map(|c| c[(0, 0)]).sum::<f64>() / 2994.0;
         let t_mean = truth[3..2997].iter().sum::<f64>() / 2994.0;
-        for n in 3..2997 {
-            let e = est[n][(0, 0)] - e_mean;
-            te += (truth[n] - t_mean) * e;
+        for (c, t) in est.iter().zip(&truth).take(2997).skip(3) {
+            let e = c[(0, 0)] - e_mean;
+            te += (t - t_mean) * e;
             ee += e * e;
         }
         let slope = te / ee;
