@@ -146,3 +146,62 @@ fn collect(v: &serde_json::Value, out: &mut Vec<f64>) {
         _ => {}
     }
 }
+
+/// A model from one 250 Hz PX4 log checks another (issue 34 §4): the
+/// bench log's dropped samples lengthen its mean interval by 1.2 %, so the
+/// model is compared by the median interval its file stores, not the mean;
+/// the same log at 125 Hz (every other row) is still refused, naming both
+/// medians.
+#[test]
+fn a_model_from_one_250_hz_px4_log_checks_another() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("m.json");
+    let m = model.to_str().unwrap();
+    let fit = dtg_vib(&[
+        "fit",
+        "--unit",
+        "triad",
+        "--data",
+        "data/realdata/px4_fmuv4pro_bench.csv",
+        "--out",
+        m,
+    ]);
+    assert!(fit.status.success(), "{}", stderr(&fit));
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&model).unwrap()).unwrap();
+    let (mean, median) = (
+        file["model"]["dt_s"].as_f64().unwrap(),
+        file["model"]["median_dt_s"].as_f64().unwrap(),
+    );
+    assert!((median - 0.004).abs() < 1e-9, "{median}");
+    assert!(mean / median - 1.0 > 5e-3, "mean {mean}, median {median}");
+    let check = dtg_vib(&[
+        "check",
+        "--model",
+        m,
+        "--data",
+        "data/realdata/px4_auav_x21_handheld.csv",
+        "--json",
+    ]);
+    assert!(check.status.success(), "{}", stderr(&check));
+    let out: serde_json::Value = serde_json::from_slice(&check.stdout).unwrap();
+    assert_eq!(out["channels"].as_array().map(Vec::len), Some(3), "{out}");
+    // Three gyros: no residue to point at on a moving record.
+    assert!(!stderr(&check).contains("parity residues cancel"));
+
+    let log = std::fs::read_to_string(root().join("data/realdata/px4_auav_x21_handheld.csv"));
+    let mut lines = log.unwrap().lines().map(str::to_owned).collect::<Vec<_>>();
+    let header = lines.remove(0);
+    let halved: Vec<String> = std::iter::once(header)
+        .chain(lines.into_iter().step_by(2))
+        .collect();
+    let slow = dir.path().join("125hz.csv");
+    std::fs::write(&slow, halved.join("\n") + "\n").unwrap();
+    let o = dtg_vib(&["check", "--model", m, "--data", slow.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        e.contains("sampled every 0.008") && e.contains("fitted at 0.004"),
+        "{e}"
+    );
+}

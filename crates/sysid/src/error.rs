@@ -193,14 +193,16 @@ pub enum SysidError {
         #[source]
         source: rbf::RbfError,
     },
-    /// The record's sample interval differs from the one the model was fitted at.
+    /// The record's median sample interval differs from that of the records
+    /// the model was fitted on by more than [`crate::INTERVAL_TOLERANCE`].
     #[error(
-        "the record is sampled every {record_dt_s} s but the model was fitted at {model_dt_s} s: its filter and windows assume that interval; refit on data at this rate"
+        "the record is sampled every {record_dt_s} s (median interval) but the model was fitted at {model_dt_s} s, more than {pct} % apart: its filters and windows assume that interval; refit on data at this rate",
+        pct = 100.0 * crate::INTERVAL_TOLERANCE
     )]
     SampleInterval {
-        /// The record's, s.
+        /// The record's median, s.
         record_dt_s: f64,
-        /// The model's, s.
+        /// The model's records' median, s.
         model_dt_s: f64,
     },
 }

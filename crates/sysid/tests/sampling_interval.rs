@@ -89,3 +89,39 @@ fn a_model_checks_a_record_of_its_nominal_rate_and_refuses_another() {
         );
     }
 }
+
+/// A record with dropped samples: every 60th sample missing lengthens its
+/// mean interval by 1.7 % but leaves the median. The model keeps the
+/// median and compares by it, so a record without drops at the same rate
+/// is prepared; its parts round-trip it, and parts without it (a file
+/// written before it was stored) read the mean as the median.
+#[test]
+fn a_model_fitted_on_a_record_with_dropped_samples_compares_by_its_median() {
+    let full = record(1, 0.0, 0.0);
+    let keep: Vec<usize> = (0..full.len()).filter(|i| i % 60 != 59).collect();
+    let columns = full
+        .columns()
+        .iter()
+        .map(|(n, c)| (n.clone(), keep.iter().map(|&i| c[i]).collect()))
+        .collect();
+    let dropped = Signals::new(keep.iter().map(|&i| full.t()[i]).collect(), columns).unwrap();
+    assert!(dropped.dt() / dropped.median_dt() - 1.0 > 0.01);
+    let (model, _) =
+        fit_records(&Line, &[("d".to_string(), &dropped)], &options(), &|_| {}).unwrap();
+    assert!(
+        (model.median_dt_s() - 0.02).abs() < 1e-12,
+        "{}",
+        model.median_dt_s()
+    );
+    assert!(model.dt_s() / model.median_dt_s() - 1.0 > 0.01);
+    model.prepare(&record(3, 0.0, 0.0)).unwrap();
+
+    let again = sysid::Model::from_parts(model.clone().into_parts()).unwrap();
+    assert_eq!(again, model);
+    let mut old = model.into_parts();
+    old.median_dt_s = None;
+    let old = sysid::Model::from_parts(old).unwrap();
+    assert_eq!(old.median_dt_s(), old.dt_s());
+    let err = old.prepare(&record(3, 0.0, 0.0)).unwrap_err();
+    assert!(matches!(err, SysidError::SampleInterval { .. }), "{err}");
+}

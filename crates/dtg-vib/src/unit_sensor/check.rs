@@ -76,9 +76,15 @@ pub fn check(
     let all: Vec<usize> = (0..calibrated.len()).collect();
     let rate_std_deg_s = p.sensor().rate_variation_deg_s(calibrated, &all);
     let parity = p.sensor().rate_reference == super::RateReference::Parity;
+    // A unit of three gyros has no residue to point at.
+    let redundant = !p.sensor().unit.residue_names().is_empty();
     let note = (rate_std_deg_s > MOVING_RATE_DEG_S).then(|| match parity {
-        false => format!(
+        false if redundant => format!(
             "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): each channel's rms before and after holds that motion, which no fixed rate reference removes; the parity residues cancel any rate, judge the model on this record by them"
+        ),
+        false => format!(
+            "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): each channel's rms before and after holds that motion, which no fixed rate reference removes, and with {} gyros no parity residue cancels it: judge the model on a still record, or on a rate table with its rate reference",
+            p.sensor().unit.gyros().len()
         ),
         true => format!(
             "the unit moves on this record (its rate varies by {rate_std_deg_s:.2} deg/s rms): the model was fitted in parity, so each channel's rms before and after is of its parity-projected output (the motion removed); the pooled parity residue says how much the model transfers"

@@ -48,6 +48,8 @@ struct ModelRef<'a> {
     preprocess: StoredPreprocess,
     calibration: Option<&'a UnitCalibration>,
     dt_s: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    median_dt_s: Option<f64>,
     split: Holdout,
     channels: &'a [UnitChannelModel],
     fit: &'a FitSettings,
@@ -77,6 +79,8 @@ struct ModelOwned<C> {
     preprocess: StoredPreprocess,
     calibration: Option<C>,
     dt_s: f64,
+    #[serde(default)]
+    median_dt_s: Option<f64>,
     split: Holdout,
     channels: Vec<UnitChannelModel>,
     #[serde(default)]
@@ -167,6 +171,7 @@ impl UnitModel {
                     preprocess: StoredPreprocess::of(m.preprocess(), s.rate_reference),
                     calibration: s.calibration.as_ref(),
                     dt_s: m.dt_s(),
+                    median_dt_s: stored_median(m.dt_s(), m.median_dt_s()),
                     split: m.split(),
                     channels: m.channels(),
                     fit: m.settings(),
@@ -255,6 +260,7 @@ impl UnitModel {
             },
             preprocess: m.preprocess.sysid(),
             dt_s: m.dt_s,
+            median_dt_s: m.median_dt_s,
             split: m.split,
             channels,
             settings: m.fit,
@@ -266,6 +272,13 @@ impl UnitModel {
         .map_err(corrupt)?;
         Ok(Self { inner })
     }
+}
+
+/// The median sample interval as the file stores it: only where it is not
+/// the mean `dt_s` (a record with dropped samples), so that the file of an
+/// evenly sampled record reads as one written before the key existed.
+fn stored_median(dt_s: f64, median_dt_s: f64) -> Option<f64> {
+    ((median_dt_s - dt_s).abs() > 1e-9 * dt_s).then_some(median_dt_s)
 }
 
 /// How a unit read from JSON names its file in messages

@@ -143,6 +143,7 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
         sensor: prepared.sensor().clone(),
         preprocess: recipe.preprocess.clone(),
         dt_s: prepared.calibrated().dt(),
+        median_dt_s: Some(prepared.calibrated().median_dt()),
         split: recipe.split,
         channels: fitted,
         settings: settings.clone(),

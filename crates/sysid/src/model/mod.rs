@@ -246,8 +246,12 @@ pub struct ModelParts<S: Sensor> {
     pub sensor: S,
     /// How records are prepared.
     pub preprocess: Preprocess,
-    /// The sample interval fitted at, s.
+    /// The sample interval fitted at, s: the records' mean, which the
+    /// filters were designed at.
     pub dt_s: f64,
+    /// The records' median sample interval, s, which a record is compared
+    /// by (absent: `dt_s`, as in files written before it was stored).
+    pub median_dt_s: Option<f64>,
     /// The split within each record.
     pub split: Holdout,
     /// One model per channel, in the sensor's channel order.
@@ -285,6 +289,7 @@ pub struct Model<S: Sensor> {
     sensor: S,
     preprocess: Preprocess,
     dt_s: f64,
+    median_dt_s: f64,
     split: Holdout,
     channels: Vec<ChannelModelOf<S>>,
     settings: FitSettings,
@@ -303,6 +308,7 @@ impl<S: Sensor> Model<S> {
             sensor: parts.sensor,
             preprocess: parts.preprocess,
             dt_s: parts.dt_s,
+            median_dt_s: parts.median_dt_s.unwrap_or(parts.dt_s),
             split: parts.split,
             channels: parts.channels,
             settings: parts.settings,
@@ -321,6 +327,7 @@ impl<S: Sensor> Model<S> {
             sensor: self.sensor,
             preprocess: self.preprocess,
             dt_s: self.dt_s,
+            median_dt_s: Some(self.median_dt_s),
             split: self.split,
             channels: self.channels,
             settings: self.settings,
@@ -332,8 +339,10 @@ impl<S: Sensor> Model<S> {
     }
 
     fn check_consistency(&self) -> Result<(), String> {
-        if !(self.dt_s.is_finite() && self.dt_s > 0.0) {
-            return Err(format!("sample interval {} s is not positive", self.dt_s));
+        for dt in [self.dt_s, self.median_dt_s] {
+            if !(dt.is_finite() && dt > 0.0) {
+                return Err(format!("sample interval {dt} s is not positive"));
+            }
         }
         let w = &self.preprocess.window;
         if w.length() == 0 || w.signals().is_empty() {
@@ -391,6 +400,14 @@ impl<S: Sensor> Model<S> {
     /// The sample interval the model was fitted at, s.
     pub fn dt_s(&self) -> f64 {
         self.dt_s
+    }
+
+    /// The median sample interval of the records fitted, s: a record is
+    /// prepared for the model when its own median agrees with it within
+    /// [`INTERVAL_TOLERANCE`] (a log's dropped samples lengthen its mean
+    /// interval, not its median, so two logs of one rate agree).
+    pub fn median_dt_s(&self) -> f64 {
+        self.median_dt_s
     }
 
     /// How the networks were chosen.
@@ -515,10 +532,10 @@ impl<S: Sensor> Model<S> {
     pub fn prepare_many(&self, records: &[(String, &Signals)]) -> Result<Prepared<S>, SysidError> {
         for (name, record) in records {
             let dt = record.median_dt();
-            if ((dt - self.dt_s) / self.dt_s).abs() > INTERVAL_TOLERANCE {
+            if ((dt - self.median_dt_s) / self.median_dt_s).abs() > INTERVAL_TOLERANCE {
                 let e = SysidError::SampleInterval {
                     record_dt_s: dt,
-                    model_dt_s: self.dt_s,
+                    model_dt_s: self.median_dt_s,
                 };
                 return Err(e.in_record(name, records.len()));
             }
