@@ -223,9 +223,7 @@ impl<'m, 's> Evaluator<'m, 's> {
         for slot in outs[LOOKAHEAD - held..].iter_mut() {
             let m = &self.model;
             let mut out = Output::zeros(m.n_channels, m.n_accels);
-            *slot = self
-                .process(&[[0.0; 3]; FACTORS], &mut out)
-                .then_some(out);
+            *slot = self.process(&[[0.0; 3]; FACTORS], &mut out).then_some(out);
             self.shift_pending();
             // The next pending sample's force into the oldest's slot.
             self.state
