@@ -7,7 +7,7 @@
 
 use crate::error::SysidError;
 use crate::preprocess::Preprocess;
-use crate::sensor::Sensor;
+use crate::sensor::{Sensor, every_operating_signal};
 use crate::signals::Signals;
 use crate::window::signal_choice::{ChannelSignals, WindowSignalsChoice, choose_per_channel};
 use crate::window::{WindowSpec, Windows};
@@ -732,14 +732,7 @@ pub fn signal<'r, S: Sensor>(
     record: &'r Signals,
     name: &str,
 ) -> Result<&'r [f64], SysidError> {
-    let mut operating = sensor.operating_signals();
-    for k in 0..sensor.channels().len() {
-        for s in sensor.operating_signals_of(k) {
-            if !operating.contains(&s) {
-                operating.push(s);
-            }
-        }
-    }
+    let operating = every_operating_signal(sensor);
     let extras = sensor.extra_columns(record);
     let known = operating.iter().chain(&extras).any(|n| n == name);
     match record.column(name) {

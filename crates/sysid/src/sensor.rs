@@ -372,3 +372,14 @@ pub trait Sensor: Clone + Send + Sync {
         Vec::new()
     }
 }
+
+/// Every operating signal of `sensor`, once each: the shared ones
+/// ([`Sensor::operating_signals`]), then each channel's others
+/// ([`Sensor::operating_signals_of`]) in channel order: what a window may
+/// read besides a record's extra columns.
+pub fn every_operating_signal<S: Sensor>(sensor: &S) -> Vec<String> {
+    let lists: Vec<Vec<String>> = std::iter::once(sensor.operating_signals())
+        .chain((0..sensor.channels().len()).map(|k| sensor.operating_signals_of(k)))
+        .collect();
+    crate::window::union(&lists)
+}

@@ -39,12 +39,7 @@ impl UnitSensor {
         // The accelerometers each gyro's window may read: its own IMU's, or
         // the loop's operating signals when every gyro's are alike.
         let candidates = sysid::window_candidates(self);
-        let mut names: Vec<String> = Vec::new();
-        for s in candidates.iter().flatten() {
-            if !names.contains(s) {
-                names.push(s.clone());
-            }
-        }
+        let names = sysid::window::union(&candidates);
         let accels = records
             .iter()
             .map(|(n, r)| {

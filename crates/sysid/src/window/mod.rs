@@ -36,6 +36,23 @@ pub enum WindowError {
     TooShort { samples: usize, length: usize },
 }
 
+/// Every name of `lists`, once, in the order first read (list by list,
+/// each in its order): the signals some channel reads.
+///
+/// ```
+/// let lists = [vec!["bx".to_string(), "az".into()], vec!["az".into(), "ax".into()]];
+/// assert_eq!(sysid::window::union(&lists), ["bx", "az", "ax"]);
+/// ```
+pub fn union(lists: &[Vec<String>]) -> Vec<String> {
+    let mut union: Vec<String> = Vec::new();
+    for s in lists.iter().flatten() {
+        if !union.contains(s) {
+            union.push(s.clone());
+        }
+    }
+    union
+}
+
 /// The signals a window reads: named, or chosen from the training records
 /// ([`signal_choice`]) when the records are prepared.
 ///
@@ -163,13 +180,7 @@ impl WindowSpec {
         if lists.iter().any(Vec::is_empty) {
             return Err(WindowError::NoSignals);
         }
-        let mut union: Vec<String> = Vec::new();
-        for s in lists.iter().flatten() {
-            if !union.contains(s) {
-                union.push(s.clone());
-            }
-        }
-        let mut spec = Self::new(union, length)?;
+        let mut spec = Self::new(union(&lists), length)?;
         spec.channels = lists;
         Ok(spec)
     }
