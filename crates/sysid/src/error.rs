@@ -119,6 +119,11 @@ pub enum SysidError {
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),
+    /// The sensor has no channel: nothing to fit, predict or diagnose.
+    #[error(
+        "the sensor has no channel (no output to model): describe at least one (an inertial unit: one gyro)"
+    )]
+    NoChannels,
     /// A windowed signal is not one a window may read: not a column of the
     /// record, or not an operating signal (an output, say).
     #[error("window signal '{name}' cannot be windowed: a window reads the sensor's operating signals ({}) or an extra column of the record ({})", operating.join(", "), if available.is_empty() { "it has none".to_string() } else { available.join(", ") })]

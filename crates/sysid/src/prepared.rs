@@ -643,12 +643,15 @@ fn choose_on_calibrated<S: Sensor>(
 }
 
 /// `pre` with its window's signals named: as it is when it names them, else
-/// chosen from the calibrated records (with the choices).
+/// chosen from the calibrated records (with the choices). Every
+/// preparation starts here, so the sensor's channels and the window's
+/// lists of them are checked here ([`check_channels`]).
 fn chosen_window<S: Sensor>(
     sensor: &S,
     pre: &Preprocess,
     calibrated: &[(String, &Signals)],
 ) -> Result<(Preprocess, Vec<WindowSignalsChoice>), SysidError> {
+    check_channels(sensor.channels().len(), &pre.window)?;
     if !pre.window.is_auto() {
         return Ok((pre.clone(), Vec::new()));
     }
@@ -656,6 +659,14 @@ fn chosen_window<S: Sensor>(
     let mut named = pre.clone();
     named.window = chosen.window(pre.window.length())?;
     Ok((named, chosen.choices))
+}
+
+/// A sensor of `channels` channels, at least one.
+fn check_channels(channels: usize, _window: &WindowSpec) -> Result<(), SysidError> {
+    if channels == 0 {
+        return Err(SysidError::NoChannels);
+    }
+    Ok(())
 }
 
 /// The network's inputs of one calibrated record: for each group of
@@ -671,7 +682,7 @@ fn inputs<S: Sensor>(
         .input_filter
         .map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
         .transpose()?;
-    let groups = pre.window.groups(sensor.channels().len().max(1));
+    let groups = pre.window.groups(sensor.channels().len());
     let mut group_of = vec![0; sensor.channels().len()];
     let mut windows = Vec::with_capacity(groups.len());
     for (g, (members, spec)) in groups.iter().enumerate() {

@@ -181,3 +181,70 @@ fn window_files_read_as_written() {
     );
     assert_eq!(serde_json::from_str::<WindowSpec>(&text).unwrap(), own);
 }
+
+/// [`Line`] with no channel: no output to model.
+#[derive(Debug, Clone, Copy)]
+struct NoChannel;
+
+impl Sensor for NoChannel {
+    type Channel = String;
+    type Effect = Slope;
+    type Axis = String;
+
+    fn channels(&self) -> Vec<String> {
+        Vec::new()
+    }
+    fn wording(&self) -> Wording {
+        Line.wording()
+    }
+    fn calibrate(&self, raw: &Signals) -> Result<Signals, SensorError> {
+        Ok(raw.clone())
+    }
+    fn targets(&self, _: &Signals) -> Result<Vec<Vec<f64>>, SensorError> {
+        Ok(Vec::new())
+    }
+    fn operating_signals(&self) -> Vec<String> {
+        vec!["u".into()]
+    }
+    fn operating_scale(&self) -> f64 {
+        Line.operating_scale()
+    }
+    fn extra_columns(&self, _: &Signals) -> Vec<String> {
+        Vec::new()
+    }
+    fn candidates(&self, _: &Signals, _: &[usize], _: usize) -> Vec<Candidacy<Slope>> {
+        Vec::new()
+    }
+    fn parse_effect(&self, _: usize, id: &str) -> Result<Slope, SensorError> {
+        Line.parse_effect(0, id)
+    }
+    fn regressors(&self, _: &Signals, _: usize, _: &[Slope]) -> Result<Vec<Vec<f64>>, SensorError> {
+        Ok(Vec::new())
+    }
+    fn separation(&self, k: usize, g: &[Slope], c: &[f64], o: &OperatingStats) -> Separation {
+        Line.separation(k, g, c, o)
+    }
+}
+
+/// A sensor of no channel is an error of its own, whether the window names
+/// its signals or leaves them to the records, never a panic.
+#[test]
+fn a_sensor_of_no_channel_is_an_error() {
+    let (_, one) = record(500);
+    for window in [
+        WindowSpec::new(vec!["u".into()], 10).unwrap(),
+        WindowSpec::auto(10).unwrap(),
+    ] {
+        let pre = sysid::Preprocess {
+            filter: None,
+            window,
+            ..Default::default()
+        };
+        let e = sysid::Prepared::new(&NoChannel, &one, &pre).unwrap_err();
+        assert!(matches!(e, sysid::SysidError::NoChannels), "{e}");
+        let e =
+            sysid::Prepared::new_many(&NoChannel, &[("a".into(), &one), ("b".into(), &one)], &pre)
+                .unwrap_err();
+        assert!(matches!(e, sysid::SysidError::NoChannels), "{e}");
+    }
+}
