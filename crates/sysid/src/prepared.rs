@@ -661,12 +661,16 @@ fn chosen_window<S: Sensor>(
     Ok((named, chosen.choices))
 }
 
-/// A sensor of `channels` channels, at least one.
-fn check_channels(channels: usize, _window: &WindowSpec) -> Result<(), SysidError> {
+/// A sensor of `channels` channels, at least one, and a window that names
+/// either one list of signals for all of them or one list for each.
+fn check_channels(channels: usize, window: &WindowSpec) -> Result<(), SysidError> {
     if channels == 0 {
         return Err(SysidError::NoChannels);
     }
-    Ok(())
+    match window.channel_lists() {
+        Some(lists) if lists != channels => Err(SysidError::WindowChannels { lists, channels }),
+        _ => Ok(()),
+    }
 }
 
 /// The network's inputs of one calibrated record: for each group of

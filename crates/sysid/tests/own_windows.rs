@@ -248,3 +248,27 @@ fn a_sensor_of_no_channel_is_an_error() {
         assert!(matches!(e, sysid::SysidError::NoChannels), "{e}");
     }
 }
+
+/// A window naming each channel's signals for another number of channels
+/// than the sensor's (a hand-edited file) is refused when records are
+/// prepared with it, not read as the shared list for the channels it
+/// leaves out.
+#[test]
+fn a_window_of_another_number_of_channel_lists_is_refused() {
+    let (both, _) = record(500);
+    for (n, lists) in [(1, r#"[["v"]]"#), (3, r#"[["u"],["v"],["u"]]"#)] {
+        let text = format!(r#"{{"signals":["u","v"],"length":10,"channels":{lists}}}"#);
+        let pre = sysid::Preprocess {
+            filter: None,
+            window: serde_json::from_str(&text).unwrap(),
+            ..Default::default()
+        };
+        let e = sysid::Prepared::new(&TwoLines, &both, &pre).unwrap_err();
+        assert!(
+            matches!(e, sysid::SysidError::WindowChannels { lists, channels: 2 } if lists == n),
+            "{e}"
+        );
+        let said = format!("of {n} channels, not of each of the sensor's 2");
+        assert!(e.to_string().contains(&said), "{e}");
+    }
+}
