@@ -907,6 +907,34 @@ fn a_calibration_of_several_accelerometer_triads_is_not_exported() {
         .arg(dir().join("two-imus-calibrated.csv")));
 }
 
+/// Three gyros of imu2 and three of no IMU, imu1's accelerometers first
+/// in the file (tests/fixtures/onboard/mixed-imus.toml): on the z run the
+/// first read az2, the others az1 and az2, and the model's list of window
+/// signals keeps the file's order, in which each channel's own list is in
+/// order (what the onboard masks need).
+fn mixed_imus() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| {
+        let s = unit_sim(mixed_imus_file(), "z-axis");
+        let out = dir().join("mixed-imus.json");
+        ok(bin()
+            .args(["fit", "--causal", "--max-centers", "20", "--unit"])
+            .arg(mixed_imus_file())
+            .arg("--data")
+            .arg(s.join("record.csv"))
+            .arg("--out")
+            .arg(&out));
+        out
+    })
+}
+
+fn mixed_imus_file() -> &'static str {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/onboard/mixed-imus.toml"
+    )
+}
+
 fn two_imus_file() -> &'static str {
     concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -967,10 +995,11 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
     (worst, lowest)
 }
 
-fn unit_models() -> [(&'static Path, PathBuf); 6] {
+fn unit_models() -> [(&'static Path, PathBuf); 7] {
     [
         (nine_gyros(), unit_sim(nine_gyros_file(), "z-axis")),
         (two_imus(), unit_sim(two_imus_file(), "z-axis")),
+        (mixed_imus(), unit_sim(mixed_imus_file(), "z-axis")),
         (tetra(), unit_sim("tetra", "triaxial_hidden")),
         (triad(), unit_sim("triad", "z-axis")),
         (dual_triad(), unit_sim("dual-triad", "triaxial_hidden")),
@@ -1049,6 +1078,19 @@ fn the_unit_models_exercise_what_they_claim() {
     );
     let masks: Vec<u32> = (0..6).map(|c| o.signal_mask(c)).collect();
     assert_eq!(masks, [1, 1, 1, 2, 2, 2]);
+    // Gyros of an IMU before gyros of none: the model's list in the unit
+    // file's order of accelerometers, not in the order the channels read
+    // them first, so the last three channels' (az1, az2) is in order.
+    let (m, t) = parsed(mixed_imus());
+    let o = Model::parse(&t.bytes).unwrap();
+    let w = &m.inner().preprocess().window;
+    assert_eq!(w.signals(), ["az1", "az2"]);
+    assert_eq!(
+        (w.signals_of(0), w.signals_of(5)),
+        (&["az2".to_string()][..], w.signals())
+    );
+    let masks: Vec<u32> = (0..6).map(|c| o.signal_mask(c)).collect();
+    assert_eq!(masks, [2, 2, 2, 3, 3, 3]);
 }
 
 #[test]

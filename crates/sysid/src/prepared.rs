@@ -635,6 +635,7 @@ fn choose_on_calibrated<S: Sensor>(
     let names: Vec<String> = sensor.channels().iter().map(|c| c.to_string()).collect();
     Ok(choose_per_channel(
         &window_candidates(sensor),
+        &sensor.signal_order(),
         &names,
         calibrated,
         sensor.operating_scale(),

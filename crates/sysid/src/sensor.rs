@@ -278,6 +278,14 @@ pub trait Sensor: Clone + Send + Sync {
         self.operating_signals()
     }
 
+    /// Every signal a window may read ([`every_operating_signal`]) in the
+    /// sensor's order: when channels read different signals, the window's
+    /// list of them all follows it (an inertial unit: the order of its
+    /// accelerometers in its file). [`every_operating_signal`] by default.
+    fn signal_order(&self) -> Vec<String> {
+        every_operating_signal(self)
+    }
+
     /// The smallest spread an operating point's coordinate is divided by,
     /// in the operating signals' unit: a coordinate the training windows
     /// held constant measures a change of this size as one unit, not as

@@ -134,6 +134,7 @@ fn each_channel_reads_its_own_signals_by_default() {
     let mut parts = model.into_parts();
     parts.preprocess.window = WindowSpec::per_channel(
         vec![vec!["u".into()], vec!["v".into()], vec!["u".into()]],
+        &[],
         50,
     )
     .unwrap();
@@ -173,7 +174,7 @@ fn window_files_read_as_written() {
         WindowSpec::new(vec!["ax".into(), "az".into()], 50).unwrap()
     );
     assert_eq!(old.signals_of(7), ["ax", "az"]);
-    let own = WindowSpec::per_channel(vec![vec!["ax".into()], vec!["bx".into()]], 20).unwrap();
+    let own = WindowSpec::per_channel(vec![vec!["ax".into()], vec!["bx".into()]], &[], 20).unwrap();
     let text = serde_json::to_string(&own).unwrap();
     assert_eq!(
         text,

@@ -66,7 +66,7 @@ impl UnitSensor {
             accels.iter().map(|(n, s)| (n.clone(), s)).collect();
         let gyros: Vec<String> = self.unit.gyros().iter().map(|g| g.name.clone()).collect();
         Ok(
-            choose_per_channel(&candidates, &gyros, &borrowed, MIN_SCALE_G, "g")
+            choose_per_channel(&candidates, &all, &gyros, &borrowed, MIN_SCALE_G, "g")
                 .map_err(sysid::SysidError::from)?,
         )
     }

@@ -257,8 +257,12 @@ pub fn choose_among(
 /// of candidates: channel k's signals and the choices, each naming its
 /// channels (`names`) when there are several. Channels that share their
 /// candidates (every channel of a sensor of one list) make one choice.
+/// `order` is the sensor's order of its signals
+/// ([`crate::Sensor::signal_order`]), the window's list's
+/// ([`ChannelSignals::window`]).
 pub fn choose_per_channel(
     candidates: &[Vec<String>],
+    order: &[String],
     names: &[String],
     records: &[(String, &Signals)],
     scale: f64,
@@ -291,7 +295,11 @@ pub fn choose_per_channel(
             choices[g].taken.clone()
         })
         .collect();
-    Ok(ChannelSignals { signals, choices })
+    Ok(ChannelSignals {
+        signals,
+        choices,
+        order: order.to_vec(),
+    })
 }
 
 /// Each channel's window signals as [`choose_per_channel`] chose them.
@@ -301,12 +309,16 @@ pub struct ChannelSignals {
     pub signals: Vec<Vec<String>>,
     /// The choices made, one per distinct list of candidates.
     pub choices: Vec<WindowSignalsChoice>,
+    /// The sensor's order of its signals ([`crate::Sensor::signal_order`]).
+    pub order: Vec<String>,
 }
 
 impl ChannelSignals {
-    /// The window of `length` samples over each channel's signals.
+    /// The window of `length` samples over each channel's signals, the
+    /// window's list of them in the sensor's order
+    /// ([`super::WindowSpec::per_channel`]).
     pub fn window(&self, length: usize) -> Result<super::WindowSpec, super::WindowError> {
-        super::WindowSpec::per_channel(self.signals.clone(), length)
+        super::WindowSpec::per_channel(self.signals.clone(), &self.order, length)
     }
 }
 
