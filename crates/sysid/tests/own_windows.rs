@@ -273,3 +273,36 @@ fn a_window_of_another_number_of_channel_lists_is_refused() {
         assert!(e.to_string().contains(&said), "{e}");
     }
 }
+
+/// A choice report's `window_signals` reads as one choice or a list of
+/// them; any other shape in a hand-edited file is refused naming the key
+/// and both shapes, and an error inside a choice names the key too.
+#[test]
+fn window_signal_choices_in_a_file_are_one_or_a_list_and_said_so_otherwise() {
+    let (both, _) = record(2000);
+    let c = sysid::choose_window_signals(&TwoLines, &[("r".into(), &both)]).unwrap();
+    let one = serde_json::to_string(&c.choices[0]).unwrap();
+    let many = serde_json::to_string(&c.choices).unwrap();
+    let report =
+        |w: &str| format!(r#"{{"candidates":[],"chosen":0,"adev_runs":0,"window_signals":{w}}}"#);
+    let read = |w: &str| serde_json::from_str::<sysid::fit::ChoiceReport>(&report(w));
+    assert_eq!(read(&one).unwrap().window_signals, c.choices[..1]);
+    assert_eq!(read(&many).unwrap().window_signals, c.choices);
+    for wrong in [r#""az""#, "3", "true"] {
+        let e = read(wrong).unwrap_err().to_string();
+        assert!(
+            e.contains("`window_signals` to hold one window-signal choice (an object"),
+            "{e}"
+        );
+        assert!(
+            e.contains("or a list of them, one per group of channels"),
+            "{e}"
+        );
+        assert!(e.contains("line 1 column"), "{e}");
+    }
+    let no_rule = one.replace(r#","rule":"#, r#","rules":"#);
+    for w in [no_rule.clone(), format!("[{no_rule}]")] {
+        let e = read(&w).unwrap_err().to_string();
+        assert!(e.contains("window_signals: missing field `rule`"), "{e}");
+    }
+}
