@@ -510,6 +510,40 @@ fn the_exported_c_equals_compensate() {
     }
 }
 
+/// The unroll hint reaches gcc from 8 on and clang only: gcc 7 and older
+/// warn of `#pragma GCC unroll`. Seen through the preprocessor as each
+/// compiler's version macros make it.
+#[test]
+fn the_exported_c_hints_unrolling_only_to_compilers_that_know_the_pragma() {
+    let Some(cc) = c_compiler() else {
+        return;
+    };
+    let out = dir().join("c-unroll");
+    ok(bin()
+        .args(["export", "--lang", "c", "--model"])
+        .arg(plain())
+        .arg("--out")
+        .arg(&out));
+    let hints = |macros: &[&str]| {
+        let o = Command::new(&cc)
+            .current_dir(&out)
+            .args(["-E", "-std=c99", "-U__GNUC__", "-U__clang__"])
+            .args(macros)
+            .arg("dtg_model.c")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .matches("unroll")
+            .count()
+    };
+    assert_eq!(hints(&["-D__GNUC__=7"]), 0);
+    assert_eq!(hints(&[]), 0);
+    assert!(hints(&["-D__GNUC__=8"]) > 0);
+    assert!(hints(&["-D__GNUC__=4", "-D__clang__=1"]) > 0);
+}
+
 #[test]
 fn the_exported_c_fades_as_compensate_does() {
     for m in [plain(), rich()] {
