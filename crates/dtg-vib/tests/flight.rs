@@ -418,6 +418,72 @@ fn each_gyros_window_reads_its_own_imus_accelerometers_by_default() {
     assert!(t.contains("## Window of g2x, g2y, g2z\n"), "{t}");
 }
 
+/// An IMU whose accelerometers are constant (a still IMU, a dead triad)
+/// does not fail a fit with `--window-signals auto` (the default): its
+/// gyros' windows are chosen among every accelerometer, one note naming
+/// the IMU, and the other IMUs' choices stand.
+#[test]
+fn an_imu_of_constant_accelerometers_falls_back_with_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = first_10_s(dir.path());
+    let csv = std::fs::read_to_string(&cut).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let dead: Vec<usize> = ["a2x", "a2y", "a2z"]
+        .iter()
+        .map(|a| header.iter().position(|h| h == a).unwrap())
+        .collect();
+    let mut still = header.join(",") + "\n";
+    for line in lines {
+        let mut row: Vec<&str> = line.split(',').collect();
+        dead.iter().for_each(|&k| row[k] = "0.5");
+        still += &(row.join(",") + "\n");
+    }
+    let data = dir.path().join("still-imu2.csv");
+    std::fs::write(&data, still).unwrap();
+    let model = dir.path().join("m.json");
+    let o = dtg_vib(&[
+        "fit",
+        "--unit",
+        UNIT,
+        "--data",
+        data.to_str().unwrap(),
+        "--max-centres",
+        "5",
+        "--input",
+        "raw",
+        "--smoother",
+        "none",
+        "--out",
+        model.to_str().unwrap(),
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    let notes: Vec<&str> = t
+        .lines()
+        .filter(|l| l.starts_with("note:") && l.contains("constant in every record"))
+        .collect();
+    assert_eq!(notes.len(), 1, "{t}");
+    assert!(
+        notes[0].starts_with("note: IMU imu2's accelerometers (a2x, a2y, a2z) are constant in every record (a still IMU or a dead triad): the windows of g2x, g2y, g2z read "),
+        "{t}"
+    );
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+    let lists: Vec<Vec<String>> =
+        serde_json::from_value(m["model"]["preprocess"]["window"]["channels"].clone()).unwrap();
+    assert!(
+        lists[3..6].iter().flatten().all(|s| !s.starts_with("a2")),
+        "{lists:?}"
+    );
+    assert!(
+        lists[0]
+            .iter()
+            .all(|s| ["ax", "ay", "az"].contains(&s.as_str())),
+        "{lists:?}"
+    );
+    assert!(lists[6].iter().all(|s| s.starts_with("a3")), "{lists:?}");
+}
+
 /// `explain` and `report` work in parity too (issue 34 §1), on the first
 /// 10 s of the vertical flight (1200 rows: seconds, not the whole flight):
 /// explain says it fits in parity and runs its first round's diagnosis,

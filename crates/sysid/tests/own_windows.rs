@@ -306,3 +306,50 @@ fn window_signal_choices_in_a_file_are_one_or_a_list_and_said_so_otherwise() {
         assert!(e.contains("window_signals: missing field `rule`"), "{e}");
     }
 }
+
+/// A channel whose own signal is constant in every record (a still IMU, a
+/// dead accelerometer triad) chooses among every channel's signals, said
+/// in its choice, and the other channel's choice stands: the fit does not
+/// fail.
+#[test]
+fn a_channel_whose_own_signals_are_constant_chooses_among_every_channels() {
+    let (both, _) = record(2000);
+    let columns = both
+        .columns()
+        .iter()
+        .map(|(n, v)| match n.as_str() {
+            "v" => (n.clone(), vec![0.25; v.len()]),
+            _ => (n.clone(), v.clone()),
+        })
+        .collect();
+    let still = Signals::new(both.t().to_vec(), columns).unwrap();
+    let c = sysid::choose_window_signals(&TwoLines, &[("r".into(), &still)]).unwrap();
+    assert_eq!(c.signals, [["u"], ["u"]]);
+    assert_eq!(c.constant, [1]);
+    let fell_back = &c.choices[1];
+    assert_eq!(fell_back.channels, ["y2"]);
+    let measured: Vec<&str> = fell_back
+        .signals
+        .iter()
+        .map(|s| s.signal.as_str())
+        .collect();
+    assert_eq!(measured, ["u", "v"]);
+    let why = fell_back.fallback.as_deref().unwrap();
+    assert!(
+        why.starts_with("their own v constant in every record: chosen among every candidate"),
+        "{why}"
+    );
+    assert!(c.choices[0].fallback.is_none());
+    // Every signal constant: still refused, naming them all.
+    let columns = still
+        .columns()
+        .iter()
+        .map(|(n, v)| match n.as_str() {
+            "u" => (n.clone(), vec![1.0; v.len()]),
+            _ => (n.clone(), v.clone()),
+        })
+        .collect();
+    let dead = Signals::new(both.t().to_vec(), columns).unwrap();
+    let e = sysid::choose_window_signals(&TwoLines, &[("r".into(), &dead)]).unwrap_err();
+    assert!(e.to_string().contains("none of u, v varies"), "{e}");
+}

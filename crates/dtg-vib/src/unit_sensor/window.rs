@@ -72,6 +72,31 @@ impl UnitSensor {
     }
 }
 
+impl UnitSensor {
+    /// One line per IMU whose accelerometers were constant in every record
+    /// (a still IMU, a dead triad), so that its gyros' windows were chosen
+    /// among every accelerometer ([`ChannelSignals::constant`]).
+    pub fn constant_imu_notes(&self, chosen: &ChannelSignals) -> Vec<String> {
+        chosen
+            .constant
+            .iter()
+            .map(|&i| {
+                let c = &chosen.choices[i];
+                let first = c.channels.first().and_then(|g| self.unit.gyro_index(g));
+                let imu = first.and_then(|k| self.unit.gyros()[k].imu.clone());
+                let own = first.map(|k| self.unit.imu_accel_names(k).join(", "));
+                format!(
+                    "note: IMU {}'s accelerometers ({}) are constant in every record (a still IMU or a dead triad): the windows of {} read {}, chosen among every accelerometer",
+                    imu.unwrap_or_default(),
+                    own.unwrap_or_default(),
+                    c.channels.join(", "),
+                    c.taken.join(", ")
+                )
+            })
+            .collect()
+    }
+}
+
 /// The window's signals of a unit when neither told nor chosen: its
 /// accelerometer along its z axis (the axis the built-in tests vibrate
 /// along; the paper's window, az), or every accelerometer when none lies
