@@ -748,17 +748,22 @@ fn unit_sim(unit: &str, builtin: &str) -> PathBuf {
 /// A causal model of `unit` on its simulated `builtin` test, with `extra`
 /// fit arguments.
 fn unit_fit(name: &str, unit: &str, builtin: &str, extra: &[&str]) -> PathBuf {
+    sim_fit(name, unit, builtin, true, extra)
+}
+
+/// [`unit_fit`], with the simulation's ground calibration when
+/// `calibrated`.
+fn sim_fit(name: &str, unit: &str, builtin: &str, calibrated: bool, extra: &[&str]) -> PathBuf {
     let s = unit_sim(unit, builtin);
     let out = dir().join(name);
-    ok(bin()
-        .args(["fit", "--causal", "--max-centers", "20", "--unit", unit])
+    let mut fit = bin();
+    fit.args(["fit", "--causal", "--max-centers", "20", "--unit", unit])
         .arg("--data")
-        .arg(s.join("record.csv"))
-        .arg("--calib")
-        .arg(s.join("calibration.json"))
-        .args(extra)
-        .arg("--out")
-        .arg(&out));
+        .arg(s.join("record.csv"));
+    if calibrated {
+        fit.arg("--calib").arg(s.join("calibration.json"));
+    }
+    ok(fit.args(extra).arg("--out").arg(&out));
     out
 }
 
@@ -876,22 +881,8 @@ fn nine_gyros() -> &'static Path {
 fn two_imus() -> &'static Path {
     static M: OnceLock<PathBuf> = OnceLock::new();
     M.get_or_init(|| {
-        let s = unit_sim(two_imus_file(), "z-axis");
-        let out = dir().join("two-imus.json");
-        ok(bin()
-            .args([
-                "fit",
-                "--causal",
-                "--max-centers",
-                "20",
-                "--unit",
-                two_imus_file(),
-            ])
-            .arg("--data")
-            .arg(s.join("record.csv"))
-            .args(["--add-effect", "gx2=g_y", "--out"])
-            .arg(&out));
-        out
+        let effect = ["--add-effect", "gx2=g_y"];
+        sim_fit("two-imus.json", two_imus_file(), "z-axis", false, &effect)
     })
 }
 
@@ -948,18 +939,7 @@ fn a_calibration_of_several_accelerometer_triads_is_not_exported() {
 /// order (what the onboard masks need).
 fn mixed_imus() -> &'static Path {
     static M: OnceLock<PathBuf> = OnceLock::new();
-    M.get_or_init(|| {
-        let s = unit_sim(mixed_imus_file(), "z-axis");
-        let out = dir().join("mixed-imus.json");
-        ok(bin()
-            .args(["fit", "--causal", "--max-centers", "20", "--unit"])
-            .arg(mixed_imus_file())
-            .arg("--data")
-            .arg(s.join("record.csv"))
-            .arg("--out")
-            .arg(&out));
-        out
-    })
+    M.get_or_init(|| sim_fit("mixed-imus.json", mixed_imus_file(), "z-axis", false, &[]))
 }
 
 fn mixed_imus_file() -> &'static str {

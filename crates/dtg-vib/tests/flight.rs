@@ -301,6 +301,17 @@ fn first_10_s(dir: &Path) -> std::path::PathBuf {
     cut
 }
 
+/// A fit of the multi-IMU unit on `data` of 5 centres, raw windows and no
+/// smoother (seconds on 10 s of flight), written to `model`, with `more`
+/// arguments.
+fn small_fit(data: &Path, model: &Path, more: &[&str]) -> Output {
+    let mut args = vec!["fit", "--unit", UNIT, "--data", data.to_str().unwrap()];
+    args.extend(["--max-centres", "5", "--input", "raw", "--smoother", "none"]);
+    args.extend(more);
+    args.extend(["--out", model.to_str().unwrap()]);
+    dtg_vib(&args)
+}
+
 /// A window may read any IMU's accelerometers (issue 34 §3: each gyro's
 /// own IMU's are its operating signals), not only the first IMU's that
 /// place the operating point; a gyro output is still refused, naming
@@ -349,23 +360,7 @@ fn each_gyros_window_reads_its_own_imus_accelerometers_by_default() {
     let dir = tempfile::tempdir().unwrap();
     let cut = first_10_s(dir.path());
     let model = dir.path().join("m.json");
-    let o = dtg_vib(&[
-        "fit",
-        "--unit",
-        UNIT,
-        "--data",
-        cut.to_str().unwrap(),
-        "--max-centres",
-        "5",
-        "--input",
-        "raw",
-        "--smoother",
-        "none",
-        "--json",
-        "--out",
-        model.to_str().unwrap(),
-    ]);
-    let fitted = json(&o);
+    let fitted = json(&small_fit(&cut, &model, &["--json"]));
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
     let window = &m["model"]["preprocess"]["window"];
     let own = |imu: usize| match imu {
@@ -442,21 +437,7 @@ fn an_imu_of_constant_accelerometers_falls_back_with_a_note() {
     let data = dir.path().join("still-imu2.csv");
     std::fs::write(&data, still).unwrap();
     let model = dir.path().join("m.json");
-    let o = dtg_vib(&[
-        "fit",
-        "--unit",
-        UNIT,
-        "--data",
-        data.to_str().unwrap(),
-        "--max-centres",
-        "5",
-        "--input",
-        "raw",
-        "--smoother",
-        "none",
-        "--out",
-        model.to_str().unwrap(),
-    ]);
+    let o = small_fit(&data, &model, &[]);
     let t = text(&o);
     assert!(o.status.success(), "{t}");
     let notes: Vec<&str> = t

@@ -314,15 +314,7 @@ fn window_signal_choices_in_a_file_are_one_or_a_list_and_said_so_otherwise() {
 #[test]
 fn a_channel_whose_own_signals_are_constant_chooses_among_every_channels() {
     let (both, _) = record(2000);
-    let columns = both
-        .columns()
-        .iter()
-        .map(|(n, v)| match n.as_str() {
-            "v" => (n.clone(), vec![0.25; v.len()]),
-            _ => (n.clone(), v.clone()),
-        })
-        .collect();
-    let still = Signals::new(both.t().to_vec(), columns).unwrap();
+    let still = held(&both, "v", 0.25);
     let c = sysid::choose_window_signals(&TwoLines, &[("r".into(), &still)]).unwrap();
     assert_eq!(c.signals, [["u"], ["u"]]);
     assert_eq!(c.constant, [1]);
@@ -341,15 +333,20 @@ fn a_channel_whose_own_signals_are_constant_chooses_among_every_channels() {
     );
     assert!(c.choices[0].fallback.is_none());
     // Every signal constant: still refused, naming them all.
-    let columns = still
-        .columns()
-        .iter()
-        .map(|(n, v)| match n.as_str() {
-            "u" => (n.clone(), vec![1.0; v.len()]),
-            _ => (n.clone(), v.clone()),
-        })
-        .collect();
-    let dead = Signals::new(both.t().to_vec(), columns).unwrap();
+    let dead = held(&still, "u", 1.0);
     let e = sysid::choose_window_signals(&TwoLines, &[("r".into(), &dead)]).unwrap_err();
     assert!(e.to_string().contains("none of u, v varies"), "{e}");
+}
+
+/// `record` with its column `name` held at `value`.
+fn held(record: &Signals, name: &str, value: f64) -> Signals {
+    let columns = record
+        .columns()
+        .iter()
+        .map(|(n, v)| match n == name {
+            true => (n.clone(), vec![value; v.len()]),
+            false => (n.clone(), v.clone()),
+        })
+        .collect();
+    Signals::new(record.t().to_vec(), columns).unwrap()
 }
