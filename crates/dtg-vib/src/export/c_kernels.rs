@@ -96,10 +96,11 @@ const VECTOR_CLONES_C: &str = r#"/* The kernels for AVX2 and for the baseline x8
 #define DTG_INLINE inline
 #endif
 /* A loop over a set's inputs unrolled where the compiler takes the hint
- * (-O2 does not unroll it by itself). */
+ * (-O2 does not unroll it by itself): clang, and gcc from 8 on (older gcc
+ * warns of the pragma it does not know). */
 #if defined(__clang__)
 #define DTG_UNROLL _Pragma("unroll")
-#elif defined(__GNUC__)
+#elif defined(__GNUC__) && __GNUC__ >= 8
 #define DTG_UNROLL _Pragma("GCC unroll 16")
 #else
 #define DTG_UNROLL
