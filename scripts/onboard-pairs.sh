@@ -22,7 +22,8 @@
 # of both sides (equal tables, equal inputs: they agree), and the floor:
 # the step's flops and exponentials (dtg_onboard::Model::flops_per_step,
 # exps_per_step) over the peak scripts/onboard-pairs/peak.c measures on the
-# harness's instruction set (cc -O3 -std=c99; -march=native printed beside).
+# instruction set the kernels run (AVX2 where the CPU has it: both sides
+# choose it at run time; else SSE2; -march=native printed beside).
 # --count: instructions per step under valgrind --tool=callgrind instead
 # (load-proof; (Ir of 2000 steps − Ir of 1000) / 1000).
 # Defaults: --baseline 5b6a72d, --pairs 5, --work target/onboard-pairs; the
@@ -39,7 +40,7 @@ while [ $# -gt 0 ]; do
         --pairs) PAIRS=$2; shift 2 ;;
         --work) WORK=$2; shift 2 ;;
         --count) COUNT=1; shift ;;
-        -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,33p' "$0"; exit 0 ;;
         *) echo "onboard-pairs: unknown argument '$1' (flags: --baseline REV, --pairs N, --work DIR, --count)" >&2; exit 2 ;;
     esac
 done
@@ -109,15 +110,25 @@ if [ "$COUNT" = 1 ]; then
     exit 0
 fi
 
-# The machine's peak on the harness's instruction set (x86-64's SSE2: -O3
-# without -march, so that gcc vectorises peak.c's loops as it does the
-# step's at -O2), and with -march=native beside it.
+# The machine's peak on the instruction set the step's kernels run: both
+# sides choose AVX2 at run time where the CPU has it (dtg-onboard's vector.rs,
+# the C's target_clones), so peak.c built with -mavx2 (no FMA: the kernels
+# round as SSE2 does), else x86-64's SSE2 (-O3 without -march, so that gcc
+# vectorises peak.c's loops as it does the step's at -O2; also with
+# -DDTG_NO_CLONES). Both peaks, and -march=native's, are printed.
 PEAK_C="$T/rust_step_k100_stats3x3_smoothed-c"
 $CC -O3 -std=c99 -I"$PEAK_C" "$HERE/peak.c" -lm -o "$WORK/peak"
+$CC -O3 -mavx2 -std=c99 -I"$PEAK_C" "$HERE/peak.c" -lm -o "$WORK/peak-avx2"
 $CC -O3 -march=native -std=c99 -I"$PEAK_C" "$HERE/peak.c" -lm -o "$WORK/peak-native"
-read -r GF GE < <("$WORK/peak" 2>/dev/null)
+read -r SF SE < <("$WORK/peak" 2>/dev/null)
+read -r AF AE < <("$WORK/peak-avx2" 2>/dev/null)
 read -r NF NE < <("$WORK/peak-native" 2>/dev/null)
-echo "peak (-O3 -std=c99): $GF flops/ns, $GE exponentials/ns; with -march=native: $NF flops/ns, $NE exponentials/ns"
+if grep -qw avx2 /proc/cpuinfo && [[ "$COPTS" != *DTG_NO_CLONES* ]]; then
+    GF=$AF; GE=$AE; ISA="AVX2, the kernels' clone"
+else
+    GF=$SF; GE=$SE; ISA="x86-64 baseline (SSE2)"
+fi
+echo "peak (-O3 -std=c99): $SF flops/ns, $SE exponentials/ns; -mavx2: $AF, $AE; -march=native: $NF, $NE; the floor at $ISA"
 
 printf "%-42s %9s %9s %6s %9s %9s %6s %9s %7s  %s\n" model "Rust then" "Rust now" ratio "C then" "C now" ratio "floor" "flops" "exps  load"
 while IFS='|' read -r name then unit; do
@@ -140,4 +151,4 @@ while IFS='|' read -r name then unit; do
     # warm-up, C over every step): then and now agree within 1e-9.
     echo "  checksums (Rust then, now, C then, now): $sums$(echo "$sums" | awk 'function d(a, b) {return (a-b)^2 > 1e-18*(a^2+1)} {if (d($1,$2) || d($3,$4)) print "  THEN AND NOW DIFFER"}')"
 done <<< "$MODELS"
-echo "floor: flops / peak flops + exponentials / peak exponentials, ns per step, on the harness's instruction set"
+echo "floor: flops / peak flops + exponentials / peak exponentials, ns per step, on the kernels' instruction set ($ISA)"

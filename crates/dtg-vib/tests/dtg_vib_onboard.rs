@@ -531,6 +531,40 @@ fn the_exported_c_equals_compensate() {
     }
 }
 
+/// The unroll hint reaches gcc from 8 on and clang only: gcc 7 and older
+/// warn of `#pragma GCC unroll`. Seen through the preprocessor as each
+/// compiler's version macros make it.
+#[test]
+fn the_exported_c_hints_unrolling_only_to_compilers_that_know_the_pragma() {
+    let Some(cc) = c_compiler() else {
+        return;
+    };
+    let out = dir().join("c-unroll");
+    ok(bin()
+        .args(["export", "--lang", "c", "--model"])
+        .arg(plain())
+        .arg("--out")
+        .arg(&out));
+    let hints = |macros: &[&str]| {
+        let o = Command::new(&cc)
+            .current_dir(&out)
+            .args(["-E", "-std=c99", "-U__GNUC__", "-U__clang__"])
+            .args(macros)
+            .arg("dtg_model.c")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .matches("unroll")
+            .count()
+    };
+    assert_eq!(hints(&["-D__GNUC__=7"]), 0);
+    assert_eq!(hints(&[]), 0);
+    assert!(hints(&["-D__GNUC__=8"]) > 0);
+    assert!(hints(&["-D__GNUC__=4", "-D__clang__=1"]) > 0);
+}
+
 #[test]
 fn the_exported_c_fades_as_compensate_does() {
     for m in [plain(), rich()] {
@@ -735,17 +769,22 @@ fn unit_sim(unit: &str, builtin: &str) -> PathBuf {
 /// A causal model of `unit` on its simulated `builtin` test, with `extra`
 /// fit arguments.
 fn unit_fit(name: &str, unit: &str, builtin: &str, extra: &[&str]) -> PathBuf {
+    sim_fit(name, unit, builtin, true, extra)
+}
+
+/// [`unit_fit`], with the simulation's ground calibration when
+/// `calibrated`.
+fn sim_fit(name: &str, unit: &str, builtin: &str, calibrated: bool, extra: &[&str]) -> PathBuf {
     let s = unit_sim(unit, builtin);
     let out = dir().join(name);
-    ok(bin()
-        .args(["fit", "--causal", "--max-centers", "20", "--unit", unit])
+    let mut fit = bin();
+    fit.args(["fit", "--causal", "--max-centers", "20", "--unit", unit])
         .arg("--data")
-        .arg(s.join("record.csv"))
-        .arg("--calib")
-        .arg(s.join("calibration.json"))
-        .args(extra)
-        .arg("--out")
-        .arg(&out));
+        .arg(s.join("record.csv"));
+    if calibrated {
+        fit.arg("--calib").arg(s.join("calibration.json"));
+    }
+    ok(fit.args(extra).arg("--out").arg(&out));
     out
 }
 
@@ -863,22 +902,8 @@ fn nine_gyros() -> &'static Path {
 fn two_imus() -> &'static Path {
     static M: OnceLock<PathBuf> = OnceLock::new();
     M.get_or_init(|| {
-        let s = unit_sim(two_imus_file(), "z-axis");
-        let out = dir().join("two-imus.json");
-        ok(bin()
-            .args([
-                "fit",
-                "--causal",
-                "--max-centers",
-                "20",
-                "--unit",
-                two_imus_file(),
-            ])
-            .arg("--data")
-            .arg(s.join("record.csv"))
-            .args(["--add-effect", "gx2=g_y", "--out"])
-            .arg(&out));
-        out
+        let effect = ["--add-effect", "gx2=g_y"];
+        sim_fit("two-imus.json", two_imus_file(), "z-axis", false, &effect)
     })
 }
 
@@ -926,6 +951,23 @@ fn a_calibration_of_several_accelerometer_triads_is_not_exported() {
         .arg(s.join("record.csv"))
         .arg("--out")
         .arg(dir().join("two-imus-calibrated.csv")));
+}
+
+/// Three gyros of imu2 and three of no IMU, imu1's accelerometers first
+/// in the file (tests/fixtures/onboard/mixed-imus.toml): on the z run the
+/// first read az2, the others az1 and az2, and the model's list of window
+/// signals keeps the file's order, in which each channel's own list is in
+/// order (what the onboard masks need).
+fn mixed_imus() -> &'static Path {
+    static M: OnceLock<PathBuf> = OnceLock::new();
+    M.get_or_init(|| sim_fit("mixed-imus.json", mixed_imus_file(), "z-axis", false, &[]))
+}
+
+fn mixed_imus_file() -> &'static str {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/onboard/mixed-imus.toml"
+    )
 }
 
 fn two_imus_file() -> &'static str {
@@ -988,10 +1030,11 @@ fn unit_step_against_batch(model_path: &Path, data: &Path) -> (f64, f64) {
     (worst, lowest)
 }
 
-fn unit_models() -> [(&'static Path, PathBuf); 6] {
+fn unit_models() -> [(&'static Path, PathBuf); 7] {
     [
         (nine_gyros(), unit_sim(nine_gyros_file(), "z-axis")),
         (two_imus(), unit_sim(two_imus_file(), "z-axis")),
+        (mixed_imus(), unit_sim(mixed_imus_file(), "z-axis")),
         (tetra(), unit_sim("tetra", "triaxial_hidden")),
         (triad(), unit_sim("triad", "z-axis")),
         (dual_triad(), unit_sim("dual-triad", "triaxial_hidden")),
@@ -1070,6 +1113,19 @@ fn the_unit_models_exercise_what_they_claim() {
     );
     let masks: Vec<u32> = (0..6).map(|c| o.signal_mask(c)).collect();
     assert_eq!(masks, [1, 1, 1, 2, 2, 2]);
+    // Gyros of an IMU before gyros of none: the model's list in the unit
+    // file's order of accelerometers, not in the order the channels read
+    // them first, so the last three channels' (az1, az2) is in order.
+    let (m, t) = parsed(mixed_imus());
+    let o = Model::parse(&t.bytes).unwrap();
+    let w = &m.inner().preprocess().window;
+    assert_eq!(w.signals(), ["az1", "az2"]);
+    assert_eq!(
+        (w.signals_of(0), w.signals_of(5)),
+        (&["az2".to_string()][..], w.signals())
+    );
+    let masks: Vec<u32> = (0..6).map(|c| o.signal_mask(c)).collect();
+    assert_eq!(masks, [2, 2, 2, 3, 3, 3]);
 }
 
 #[test]

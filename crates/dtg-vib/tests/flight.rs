@@ -301,6 +301,17 @@ fn first_10_s(dir: &Path) -> std::path::PathBuf {
     cut
 }
 
+/// A fit of the multi-IMU unit on `data` of 5 centres, raw windows and no
+/// smoother (seconds on 10 s of flight), written to `model`, with `more`
+/// arguments.
+fn small_fit(data: &Path, model: &Path, more: &[&str]) -> Output {
+    let mut args = vec!["fit", "--unit", UNIT, "--data", data.to_str().unwrap()];
+    args.extend(["--max-centres", "5", "--input", "raw", "--smoother", "none"]);
+    args.extend(more);
+    args.extend(["--out", model.to_str().unwrap()]);
+    dtg_vib(&args)
+}
+
 /// A window may read any IMU's accelerometers (issue 34 §3: each gyro's
 /// own IMU's are its operating signals), not only the first IMU's that
 /// place the operating point; a gyro output is still refused, naming
@@ -349,23 +360,7 @@ fn each_gyros_window_reads_its_own_imus_accelerometers_by_default() {
     let dir = tempfile::tempdir().unwrap();
     let cut = first_10_s(dir.path());
     let model = dir.path().join("m.json");
-    let o = dtg_vib(&[
-        "fit",
-        "--unit",
-        UNIT,
-        "--data",
-        cut.to_str().unwrap(),
-        "--max-centres",
-        "5",
-        "--input",
-        "raw",
-        "--smoother",
-        "none",
-        "--json",
-        "--out",
-        model.to_str().unwrap(),
-    ]);
-    let fitted = json(&o);
+    let fitted = json(&small_fit(&cut, &model, &["--json"]));
     let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
     let window = &m["model"]["preprocess"]["window"];
     let own = |imu: usize| match imu {
@@ -416,6 +411,58 @@ fn each_gyros_window_reads_its_own_imus_accelerometers_by_default() {
     let t = text(&o);
     assert!(o.status.success(), "{t}");
     assert!(t.contains("## Window of g2x, g2y, g2z\n"), "{t}");
+}
+
+/// An IMU whose accelerometers are constant (a still IMU, a dead triad)
+/// does not fail a fit with `--window-signals auto` (the default): its
+/// gyros' windows are chosen among every accelerometer, one note naming
+/// the IMU, and the other IMUs' choices stand.
+#[test]
+fn an_imu_of_constant_accelerometers_falls_back_with_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = first_10_s(dir.path());
+    let csv = std::fs::read_to_string(&cut).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let dead: Vec<usize> = ["a2x", "a2y", "a2z"]
+        .iter()
+        .map(|a| header.iter().position(|h| h == a).unwrap())
+        .collect();
+    let mut still = header.join(",") + "\n";
+    for line in lines {
+        let mut row: Vec<&str> = line.split(',').collect();
+        dead.iter().for_each(|&k| row[k] = "0.5");
+        still += &(row.join(",") + "\n");
+    }
+    let data = dir.path().join("still-imu2.csv");
+    std::fs::write(&data, still).unwrap();
+    let model = dir.path().join("m.json");
+    let o = small_fit(&data, &model, &[]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    let notes: Vec<&str> = t
+        .lines()
+        .filter(|l| l.starts_with("note:") && l.contains("constant in every record"))
+        .collect();
+    assert_eq!(notes.len(), 1, "{t}");
+    assert!(
+        notes[0].starts_with("note: IMU imu2's accelerometers (a2x, a2y, a2z) are constant in every record (a still IMU or a dead triad): the windows of g2x, g2y, g2z read "),
+        "{t}"
+    );
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+    let lists: Vec<Vec<String>> =
+        serde_json::from_value(m["model"]["preprocess"]["window"]["channels"].clone()).unwrap();
+    assert!(
+        lists[3..6].iter().flatten().all(|s| !s.starts_with("a2")),
+        "{lists:?}"
+    );
+    assert!(
+        lists[0]
+            .iter()
+            .all(|s| ["ax", "ay", "az"].contains(&s.as_str())),
+        "{lists:?}"
+    );
+    assert!(lists[6].iter().all(|s| s.starts_with("a3")), "{lists:?}");
 }
 
 /// `explain` and `report` work in parity too (issue 34 §1), on the first

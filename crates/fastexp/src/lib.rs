@@ -157,4 +157,57 @@ mod tests {
             assert!(f(f64::NAN).is_nan(), "{name}");
         }
     }
+
+    /// Units in the last place between two positive doubles (bit patterns of
+    /// positive doubles are ordered as the numbers are).
+    fn ulps(a: f64, b: f64) -> u64 {
+        a.to_bits().abs_diff(b.to_bits())
+    }
+
+    /// A dense sweep: every 2⁻¹² of −708 … 0 (2.9 million arguments) and as
+    /// many drawn from a fixed-seed LCG (uniform on the range, then one
+    /// within ±ln 2/2 of a multiple of ln 2, where the reduction's |r| is
+    /// largest), against `f64::exp` (glibc's, itself within about half an
+    /// ulp). Measured: both at most 2 ulps (exp_neg at x = −0.3794, exp_neg11
+    /// at x = −4.4163): the polynomials' error, 10⁻¹⁷ and 3·10⁻¹⁸ relative, is
+    /// well under an ulp; the rest is the rounding of the reduction and of
+    /// the last additions. The bound asserted is that, tighter than the 4 ulps
+    /// of the coarse test: constants or an evaluation order that cost a bit
+    /// fail here.
+    #[test]
+    fn dense_sweep_is_within_two_ulps_of_libm() {
+        for (name, f) in [
+            ("exp_neg", exp_neg as fn(f64) -> f64),
+            ("exp_neg11", exp_neg11),
+        ] {
+            let (mut worst, mut at) = (0u64, 0.0f64);
+            let mut check = |x: f64| {
+                let u = ulps(f(x), x.exp());
+                if u > worst {
+                    (worst, at) = (u, x);
+                }
+            };
+            let steps = 708 * 4096;
+            for i in 0..=steps {
+                check(-(i as f64) / 4096.0);
+            }
+            let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+            let mut uniform = || {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (seed >> 11) as f64 / (1u64 << 53) as f64
+            };
+            for _ in 0..steps / 2 {
+                check(-708.0 * uniform());
+                let n = (1020.0 * uniform()).floor();
+                let x = -n * core::f64::consts::LN_2 + (uniform() - 0.5) * core::f64::consts::LN_2;
+                if (-708.0..=0.0).contains(&x) {
+                    check(x);
+                }
+            }
+            std::println!("{name}: at most {worst} ulp of f64::exp (at x = {at})");
+            assert!(worst <= 2, "{name}: {worst} ulps at x = {at}");
+        }
+    }
 }

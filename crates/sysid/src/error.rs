@@ -119,6 +119,22 @@ pub enum SysidError {
     /// Windows cannot be formed.
     #[error(transparent)]
     Window(#[from] crate::window::WindowError),
+    /// The sensor has no channel: nothing to fit, predict or diagnose.
+    #[error(
+        "the sensor has no channel (no output to model): describe at least one (an inertial unit: one gyro)"
+    )]
+    NoChannels,
+    /// The window names each channel's signals, for another number of
+    /// channels than the sensor's.
+    #[error(
+        "the window names the signals of {lists} channels, not of each of the sensor's {channels}: give one list per channel (preprocess.window.channels), or one list for every channel (preprocess.window.signals)"
+    )]
+    WindowChannels {
+        /// The window's per-channel lists.
+        lists: usize,
+        /// The sensor's channels.
+        channels: usize,
+    },
     /// A windowed signal is not one a window may read: not a column of the
     /// record, or not an operating signal (an output, say).
     #[error("window signal '{name}' cannot be windowed: a window reads the sensor's operating signals ({}) or an extra column of the record ({})", operating.join(", "), if available.is_empty() { "it has none".to_string() } else { available.join(", ") })]

@@ -7,7 +7,7 @@
 
 use crate::error::SysidError;
 use crate::preprocess::Preprocess;
-use crate::sensor::Sensor;
+use crate::sensor::{Sensor, every_operating_signal};
 use crate::signals::Signals;
 use crate::window::signal_choice::{ChannelSignals, WindowSignalsChoice, choose_per_channel};
 use crate::window::{WindowSpec, Windows};
@@ -635,6 +635,7 @@ fn choose_on_calibrated<S: Sensor>(
     let names: Vec<String> = sensor.channels().iter().map(|c| c.to_string()).collect();
     Ok(choose_per_channel(
         &window_candidates(sensor),
+        &sensor.signal_order(),
         &names,
         calibrated,
         sensor.operating_scale(),
@@ -643,12 +644,15 @@ fn choose_on_calibrated<S: Sensor>(
 }
 
 /// `pre` with its window's signals named: as it is when it names them, else
-/// chosen from the calibrated records (with the choices).
+/// chosen from the calibrated records (with the choices). Every
+/// preparation starts here, so the sensor's channels and the window's
+/// lists of them are checked here ([`check_channels`]).
 fn chosen_window<S: Sensor>(
     sensor: &S,
     pre: &Preprocess,
     calibrated: &[(String, &Signals)],
 ) -> Result<(Preprocess, Vec<WindowSignalsChoice>), SysidError> {
+    check_channels(sensor.channels().len(), &pre.window)?;
     if !pre.window.is_auto() {
         return Ok((pre.clone(), Vec::new()));
     }
@@ -656,6 +660,18 @@ fn chosen_window<S: Sensor>(
     let mut named = pre.clone();
     named.window = chosen.window(pre.window.length())?;
     Ok((named, chosen.choices))
+}
+
+/// A sensor of `channels` channels, at least one, and a window that names
+/// either one list of signals for all of them or one list for each.
+fn check_channels(channels: usize, window: &WindowSpec) -> Result<(), SysidError> {
+    if channels == 0 {
+        return Err(SysidError::NoChannels);
+    }
+    match window.channel_lists() {
+        Some(lists) if lists != channels => Err(SysidError::WindowChannels { lists, channels }),
+        _ => Ok(()),
+    }
 }
 
 /// The network's inputs of one calibrated record: for each group of
@@ -671,7 +687,7 @@ fn inputs<S: Sensor>(
         .input_filter
         .map(|f| LowPass::butterworth(f.order, f.cutoff_hz, 1.0 / calibrated.dt()))
         .transpose()?;
-    let groups = pre.window.groups(sensor.channels().len().max(1));
+    let groups = pre.window.groups(sensor.channels().len());
     let mut group_of = vec![0; sensor.channels().len()];
     let mut windows = Vec::with_capacity(groups.len());
     for (g, (members, spec)) in groups.iter().enumerate() {
@@ -732,14 +748,7 @@ pub fn signal<'r, S: Sensor>(
     record: &'r Signals,
     name: &str,
 ) -> Result<&'r [f64], SysidError> {
-    let mut operating = sensor.operating_signals();
-    for k in 0..sensor.channels().len() {
-        for s in sensor.operating_signals_of(k) {
-            if !operating.contains(&s) {
-                operating.push(s);
-            }
-        }
-    }
+    let operating = every_operating_signal(sensor);
     let extras = sensor.extra_columns(record);
     let known = operating.iter().chain(&extras).any(|n| n == name);
     match record.column(name) {

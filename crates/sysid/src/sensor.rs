@@ -278,6 +278,14 @@ pub trait Sensor: Clone + Send + Sync {
         self.operating_signals()
     }
 
+    /// Every signal a window may read ([`every_operating_signal`]) in the
+    /// sensor's order: when channels read different signals, the window's
+    /// list of them all follows it (an inertial unit: the order of its
+    /// accelerometers in its file). [`every_operating_signal`] by default.
+    fn signal_order(&self) -> Vec<String> {
+        every_operating_signal(self)
+    }
+
     /// The smallest spread an operating point's coordinate is divided by,
     /// in the operating signals' unit: a coordinate the training windows
     /// held constant measures a change of this size as one unit, not as
@@ -371,4 +379,15 @@ pub trait Sensor: Clone + Send + Sync {
     fn observable(&self) -> Vec<String> {
         Vec::new()
     }
+}
+
+/// Every operating signal of `sensor`, once each: the shared ones
+/// ([`Sensor::operating_signals`]), then each channel's others
+/// ([`Sensor::operating_signals_of`]) in channel order: what a window may
+/// read besides a record's extra columns.
+pub fn every_operating_signal<S: Sensor>(sensor: &S) -> Vec<String> {
+    let lists: Vec<Vec<String>> = std::iter::once(sensor.operating_signals())
+        .chain((0..sensor.channels().len()).map(|k| sensor.operating_signals_of(k)))
+        .collect();
+    crate::window::union(&lists)
 }

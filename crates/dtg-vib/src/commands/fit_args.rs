@@ -180,6 +180,7 @@ impl FitRecipe {
         let window = match window_auto(a)? {
             true => {
                 let c = sensor.choose_window_signals(&read.borrowed())?;
+                read.notes.extend(sensor.constant_imu_notes(&c));
                 let w = &mut options.recipe.preprocess.window;
                 *w = c.window(w.length())?;
                 c.choices

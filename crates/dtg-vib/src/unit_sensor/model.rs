@@ -275,10 +275,11 @@ impl UnitModel {
 }
 
 /// The median sample interval as the file stores it: only where it is not
-/// the mean `dt_s` (a record with dropped samples), so that the file of an
+/// the mean `dt_s` (a record with dropped samples; the fit takes the mean
+/// as the median of an evenly sampled record), so that the file of an
 /// evenly sampled record reads as one written before the key existed.
 fn stored_median(dt_s: f64, median_dt_s: f64) -> Option<f64> {
-    ((median_dt_s - dt_s).abs() > 1e-9 * dt_s).then_some(median_dt_s)
+    (median_dt_s != dt_s).then_some(median_dt_s)
 }
 
 /// How a unit read from JSON names its file in messages

@@ -337,6 +337,16 @@ impl sysid::Sensor for UnitSensor {
         .collect()
     }
 
+    /// The unit's accelerometers in its file's order (`[[accel]]`), the
+    /// order an exported model's list of window signals keeps.
+    fn signal_order(&self) -> Vec<String> {
+        self.unit
+            .accel_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect()
+    }
+
     fn operating_scale(&self) -> f64 {
         MIN_SCALE_G
     }

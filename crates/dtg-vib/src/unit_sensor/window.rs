@@ -39,12 +39,7 @@ impl UnitSensor {
         // The accelerometers each gyro's window may read: its own IMU's, or
         // the loop's operating signals when every gyro's are alike.
         let candidates = sysid::window_candidates(self);
-        let mut names: Vec<String> = Vec::new();
-        for s in candidates.iter().flatten() {
-            if !names.contains(s) {
-                names.push(s.clone());
-            }
-        }
+        let names = sysid::window::union(&candidates);
         let accels = records
             .iter()
             .map(|(n, r)| {
@@ -71,9 +66,34 @@ impl UnitSensor {
             accels.iter().map(|(n, s)| (n.clone(), s)).collect();
         let gyros: Vec<String> = self.unit.gyros().iter().map(|g| g.name.clone()).collect();
         Ok(
-            choose_per_channel(&candidates, &gyros, &borrowed, MIN_SCALE_G, "g")
+            choose_per_channel(&candidates, &all, &gyros, &borrowed, MIN_SCALE_G, "g")
                 .map_err(sysid::SysidError::from)?,
         )
+    }
+}
+
+impl UnitSensor {
+    /// One line per IMU whose accelerometers were constant in every record
+    /// (a still IMU, a dead triad), so that its gyros' windows were chosen
+    /// among every accelerometer ([`ChannelSignals::constant`]).
+    pub fn constant_imu_notes(&self, chosen: &ChannelSignals) -> Vec<String> {
+        chosen
+            .constant
+            .iter()
+            .map(|&i| {
+                let c = &chosen.choices[i];
+                let first = c.channels.first().and_then(|g| self.unit.gyro_index(g));
+                let imu = first.and_then(|k| self.unit.gyros()[k].imu.clone());
+                let own = first.map(|k| self.unit.imu_accel_names(k).join(", "));
+                format!(
+                    "note: IMU {}'s accelerometers ({}) are constant in every record (a still IMU or a dead triad): the windows of {} read {}, chosen among every accelerometer",
+                    imu.unwrap_or_default(),
+                    own.unwrap_or_default(),
+                    c.channels.join(", "),
+                    c.taken.join(", ")
+                )
+            })
+            .collect()
     }
 }
 

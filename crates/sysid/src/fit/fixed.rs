@@ -143,7 +143,7 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
         sensor: prepared.sensor().clone(),
         preprocess: recipe.preprocess.clone(),
         dt_s: prepared.calibrated().dt(),
-        median_dt_s: Some(prepared.calibrated().median_dt()),
+        median_dt_s: Some(median_interval(prepared.calibrated())),
         split: recipe.split,
         channels: fitted,
         settings: settings.clone(),
@@ -197,5 +197,18 @@ fn fit_group<'a, S: Sensor>(
             .into_par_iter()
             .map(|f| refit_weights(prepared, x, train, f, settings))
             .collect(),
+    }
+}
+
+/// The records' median sample interval, s, or their mean where the two
+/// agree within 1e-9 (an evenly sampled record, whose median steps differ
+/// from the span's mean in the last bits only): a model file then stores
+/// the one interval, and reads back equal.
+fn median_interval(calibrated: &crate::Signals) -> f64 {
+    let (mean, median) = (calibrated.dt(), calibrated.median_dt());
+    if (median - mean).abs() <= 1e-9 * mean {
+        mean
+    } else {
+        median
     }
 }

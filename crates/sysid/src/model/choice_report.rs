@@ -100,17 +100,14 @@ pub struct ChoiceReport {
 }
 
 /// The window-signal choices as a file holds them: one as an object (every
-/// file written before channels chose apart), several as a list.
+/// file written before channels chose apart), several as a list. Any other
+/// shape is refused naming the key and both shapes, and an error inside a
+/// choice is that choice's, said with the key.
 mod one_or_many {
     use crate::window::signal_choice::WindowSignalsChoice;
+    use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+    use serde::de::{Error, MapAccess, SeqAccess, Visitor};
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum InFile {
-        One(Box<WindowSignalsChoice>),
-        Many(Vec<WindowSignalsChoice>),
-    }
 
     pub fn serialize<S: Serializer>(v: &[WindowSignalsChoice], s: S) -> Result<S::Ok, S::Error> {
         match v {
@@ -122,10 +119,31 @@ mod one_or_many {
     pub fn deserialize<'de, D: Deserializer<'de>>(
         d: D,
     ) -> Result<Vec<WindowSignalsChoice>, D::Error> {
-        Ok(match InFile::deserialize(d)? {
-            InFile::One(one) => vec![*one],
-            InFile::Many(many) => many,
-        })
+        d.deserialize_any(OneOrMany)
+    }
+
+    struct OneOrMany;
+
+    /// What the key holds, as an error says it.
+    const SHAPES: &str = "`window_signals` to hold one window-signal choice (an object with unit, vibrates_at, records, signals, taken, rule) or a list of them, one per group of channels choosing among their own signals";
+
+    impl<'de> Visitor<'de> for OneOrMany {
+        type Value = Vec<WindowSignalsChoice>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str(SHAPES)
+        }
+
+        fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
+            WindowSignalsChoice::deserialize(MapAccessDeserializer::new(map))
+                .map(|one| vec![one])
+                .map_err(|e| A::Error::custom(format!("window_signals: {e}")))
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
+            Vec::deserialize(SeqAccessDeserializer::new(seq))
+                .map_err(|e| A::Error::custom(format!("window_signals: {e}")))
+        }
     }
 }
 

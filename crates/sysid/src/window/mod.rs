@@ -36,6 +36,43 @@ pub enum WindowError {
     TooShort { samples: usize, length: usize },
 }
 
+/// Every name of `lists`, once, in the order first read (list by list,
+/// each in its order): the signals some channel reads.
+///
+/// ```
+/// let lists = [vec!["bx".to_string(), "az".into()], vec!["az".into(), "ax".into()]];
+/// assert_eq!(sysid::window::union(&lists), ["bx", "az", "ax"]);
+/// ```
+pub fn union(lists: &[Vec<String>]) -> Vec<String> {
+    let mut union: Vec<String> = Vec::new();
+    for s in lists.iter().flatten() {
+        if !union.contains(s) {
+            union.push(s.clone());
+        }
+    }
+    union
+}
+
+/// `names` in `order` (a sensor's order of its signals,
+/// [`crate::Sensor::signal_order`]): those it holds in its order, then the
+/// others as they come.
+///
+/// ```
+/// let names = ["bz", "x", "az"].map(String::from).to_vec();
+/// let order = ["ax", "az", "bx", "bz"].map(String::from);
+/// assert_eq!(sysid::window::ordered(names, &order), ["az", "bz", "x"]);
+/// ```
+pub fn ordered(names: Vec<String>, order: &[String]) -> Vec<String> {
+    let (known, other): (Vec<String>, Vec<String>) =
+        names.into_iter().partition(|n| order.contains(n));
+    order
+        .iter()
+        .filter(|o| known.contains(o))
+        .cloned()
+        .chain(other)
+        .collect()
+}
+
 /// The signals a window reads: named, or chosen from the training records
 /// ([`signal_choice`]) when the records are prepared.
 ///
@@ -114,12 +151,13 @@ impl From<WindowSignals> for SignalsInFile {
 ///
 /// ```
 /// use sysid::window::WindowSpec;
-/// let lists = vec![vec!["ax".into()], vec!["bx".into(), "by".into()], vec!["ax".into()]];
-/// let w = WindowSpec::per_channel(lists, 10).unwrap();
-/// assert_eq!((w.signals(), w.signals_of(1)), (&["ax".to_string(), "bx".into(), "by".into()][..], &["bx".to_string(), "by".into()][..]));
+/// let order = ["ax", "bx", "by"].map(String::from);
+/// let lists = vec![vec!["bx".into(), "by".into()], vec!["ax".into()], vec!["bx".into(), "by".into()]];
+/// let w = WindowSpec::per_channel(lists, &order, 10).unwrap();
+/// assert_eq!((w.signals(), w.signals_of(1)), (&order[..], &["ax".to_string()][..]));
 /// assert_eq!(w.groups(3).iter().map(|(c, _)| c.clone()).collect::<Vec<_>>(), [vec![0, 2], vec![1]]);
 /// // Every channel alike: the one shared list, as a window of named signals.
-/// let same = WindowSpec::per_channel(vec![vec!["az".into()]; 3], 10).unwrap();
+/// let same = WindowSpec::per_channel(vec![vec!["az".into()]; 3], &[], 10).unwrap();
 /// assert_eq!(same, WindowSpec::new(vec!["az".into()], 10).unwrap());
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -152,8 +190,17 @@ impl WindowSpec {
     /// A window of `length` samples over each channel's own signals
     /// (`lists[k]`: channel k's). Every channel alike gives
     /// [`WindowSpec::new`] of their one list; otherwise
-    /// [`WindowSpec::signals`] is every signal read, in first-read order.
-    pub fn per_channel(lists: Vec<Vec<String>>, length: usize) -> Result<Self, WindowError> {
+    /// [`WindowSpec::signals`] is every signal read, in `order` (the
+    /// sensor's, [`crate::Sensor::signal_order`]; those it does not name
+    /// after, in first-read order): each channel's list, itself in the
+    /// sensor's order, is then in the order of the window's, as an onboard
+    /// evaluator that feeds a channel its signals by a mask of the
+    /// window's needs.
+    pub fn per_channel(
+        lists: Vec<Vec<String>>,
+        order: &[String],
+        length: usize,
+    ) -> Result<Self, WindowError> {
         let Some(first) = lists.first() else {
             return Err(WindowError::NoSignals);
         };
@@ -163,13 +210,7 @@ impl WindowSpec {
         if lists.iter().any(Vec::is_empty) {
             return Err(WindowError::NoSignals);
         }
-        let mut union: Vec<String> = Vec::new();
-        for s in lists.iter().flatten() {
-            if !union.contains(s) {
-                union.push(s.clone());
-            }
-        }
-        let mut spec = Self::new(union, length)?;
+        let mut spec = Self::new(ordered(union(&lists), order), length)?;
         spec.channels = lists;
         Ok(spec)
     }

@@ -39,6 +39,9 @@
 //! When no record vibrates, the one signal of the largest dynamic rms is
 //! windowed (the report says so); when no signal varies at all, or the
 //! sensor names none, the choice is refused ([`WindowSignalsError`]).
+//! Channels that choose among their own signals ([`choose_per_channel`])
+//! and find every one constant (a still IMU, a dead accelerometer triad)
+//! choose among every channel's instead, the report saying so.
 
 use crate::signals::Signals;
 use serde::{Deserialize, Serialize};
@@ -119,7 +122,9 @@ pub struct WindowSignalsChoice {
     pub taken: Vec<String>,
     /// The rule, in a sentence.
     pub rule: String,
-    /// Set when no record vibrates: what was taken instead, and why.
+    /// Set when the rule took none of the channels' own signals: what was
+    /// taken instead, and why (no record vibrates, or their own signals
+    /// are constant in every record).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fallback: Option<String>,
     /// The channels whose windows this choice is for, when channels choose
@@ -257,8 +262,12 @@ pub fn choose_among(
 /// of candidates: channel k's signals and the choices, each naming its
 /// channels (`names`) when there are several. Channels that share their
 /// candidates (every channel of a sensor of one list) make one choice.
+/// `order` is the sensor's order of its signals
+/// ([`crate::Sensor::signal_order`]), the window's list's
+/// ([`ChannelSignals::window`]).
 pub fn choose_per_channel(
     candidates: &[Vec<String>],
+    order: &[String],
     names: &[String],
     records: &[(String, &Signals)],
     scale: f64,
@@ -270,9 +279,23 @@ pub fn choose_per_channel(
             lists.push(c);
         }
     }
+    let every = super::ordered(super::union(candidates), order);
     let mut choices = Vec::with_capacity(lists.len());
+    let mut constant = Vec::new();
     for list in &lists {
-        let mut choice = choose_among(list, records, scale, unit)?;
+        let mut choice = match choose_among(list, records, scale, unit) {
+            // Channels whose own signals are constant in every record (a
+            // still IMU, a dead accelerometer triad) choose among every
+            // candidate, as channels sharing one list do, not fail the
+            // others' choice.
+            Err(WindowSignalsError::Constant { signals })
+                if every.iter().any(|s| !list.contains(s)) =>
+            {
+                constant.push(choices.len());
+                among_every(&every, &signals, records, scale, unit)?
+            }
+            chosen => chosen?,
+        };
         if lists.len() > 1 {
             choice.channels = (0..candidates.len())
                 .filter(|&k| candidates[k] == **list)
@@ -291,7 +314,33 @@ pub fn choose_per_channel(
             choices[g].taken.clone()
         })
         .collect();
-    Ok(ChannelSignals { signals, choices })
+    Ok(ChannelSignals {
+        signals,
+        choices,
+        order: order.to_vec(),
+        constant,
+    })
+}
+
+/// [`choose_among`] `every` candidate for channels whose own signals
+/// (`own`) are constant in every record, the fallback saying so.
+fn among_every(
+    every: &[String],
+    own: &[String],
+    records: &[(String, &Signals)],
+    scale: f64,
+    unit: &str,
+) -> Result<WindowSignalsChoice, WindowSignalsError> {
+    let mut choice = choose_among(every, records, scale, unit)?;
+    let why = format!(
+        "their own {} constant in every record: chosen among every candidate",
+        own.join(", ")
+    );
+    choice.fallback = Some(match choice.fallback {
+        Some(also) => format!("{why}; {also}"),
+        None => why,
+    });
+    Ok(choice)
 }
 
 /// Each channel's window signals as [`choose_per_channel`] chose them.
@@ -301,19 +350,30 @@ pub struct ChannelSignals {
     pub signals: Vec<Vec<String>>,
     /// The choices made, one per distinct list of candidates.
     pub choices: Vec<WindowSignalsChoice>,
+    /// The sensor's order of its signals ([`crate::Sensor::signal_order`]).
+    pub order: Vec<String>,
+    /// The choices (indices into `choices`) of channels whose own signals
+    /// were constant in every record (a still IMU, a dead accelerometer
+    /// triad), made among every candidate instead.
+    pub constant: Vec<usize>,
 }
 
 impl ChannelSignals {
-    /// The window of `length` samples over each channel's signals.
+    /// The window of `length` samples over each channel's signals, the
+    /// window's list of them in the sensor's order
+    /// ([`super::WindowSpec::per_channel`]).
     pub fn window(&self, length: usize) -> Result<super::WindowSpec, super::WindowError> {
-        super::WindowSpec::per_channel(self.signals.clone(), length)
+        super::WindowSpec::per_channel(self.signals.clone(), &self.order, length)
     }
 }
 
 /// Root mean square about the mean (0 for an empty or non-finite column,
-/// which then counts as not varying).
+/// which then counts as not varying). Exactly 0 for a column of one value
+/// (a still or dead accelerometer), whose mean can differ from that value
+/// by a rounding: the fit refuses windows that repeat one point, so a
+/// column that never changes must not count as one that varies a little.
 fn dynamic_rms(x: &[f64]) -> f64 {
-    if x.is_empty() {
+    if x.iter().all(|v| *v == x[0]) {
         return 0.0;
     }
     let n = x.len() as f64;
@@ -409,6 +469,16 @@ mod tests {
             err.to_string().contains("names no vibration-input signal"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_column_of_one_value_does_not_vary() {
+        // 0.5 m/s² in g: its mean over 1200 samples is not exactly itself.
+        let v = 0.5 / 9.80665;
+        let column = vec![v; 1200];
+        assert_ne!(column.iter().sum::<f64>() / 1200.0, v);
+        assert_eq!(dynamic_rms(&column), 0.0);
+        assert!(dynamic_rms(&[v, v, v + 1e-9]) > 0.0);
     }
 
     #[test]
