@@ -321,7 +321,8 @@ fn the_library_and_the_command_line_default_to_one_window() {
 
 /// The seeds where the hidden `gg_xy` explains least (11, 13, 20: ERR
 /// 0.156–0.169 at p below 10⁻¹²; left unnamed, its refit's validation rms
-/// is 1.107, 1.082 and 1.095× the clean twin's): named exactly, with the
+/// is 1.107, 1.082 and 1.095× the clean twin's; figures of the three-mean
+/// within-interval covariance, before the seven-mean one): named exactly, with the
 /// refit within 1.1× the twin, and the twins silent. A gate of a 10% cut
 /// of the residual rms left it unnamed on all three; the short run of the
 /// statistical test above, a minute.
