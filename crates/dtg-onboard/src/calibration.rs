@@ -10,9 +10,10 @@
 //! at the least-squares rate), so a sample takes the g² regressors once
 //! rather than twice per gyro.
 
+use crate::interval::FACTORS;
 use crate::lanes::row;
 use crate::layout::{ACCEL_CAL, MAX_CHANNELS, gyro};
-use crate::maths::{abs, dot, rd};
+use crate::maths::{abs, rd};
 use crate::model::Model;
 
 /// Newton's iterations (the calibration's inverses) stop once the next
@@ -21,29 +22,6 @@ use crate::model::Model;
 /// steps would move only the last bits, so the two agree to a few ulps, and
 /// an inverse takes one division where the batch takes four.
 pub(crate) const NEWTON_SETTLED: f64 = 4.0 * f64::EPSILON;
-
-/// √(1/12) and √(1/180): the within-interval covariance
-/// c₁c₁ᵀ/12 + c₂c₂ᵀ/180 as e₁e₁ᵀ + e₂e₂ᵀ.
-const ROOT_TWELFTH: f64 = 0.288_675_134_594_812_87;
-const ROOT_180TH: f64 = 0.074_535_599_249_992_99;
-
-/// The within-interval covariance of the middle of three consecutive means
-/// (nav_sensors::dtg::within_interval_covariance), as its two factors
-/// e₁, e₂ (C = e₁e₁ᵀ + e₂e₂ᵀ, g²): pᵀCq is then (p·e₁)(q·e₁) + (p·e₂)(q·e₂).
-pub(crate) fn covariance(m0: &[f64; 3], m1: &[f64; 3], m2: &[f64; 3]) -> [[f64; 3]; 2] {
-    let mut e = [[0.0; 3]; 2];
-    for k in 0..3 {
-        e[0][k] = ((m2[k] - m0[k]) / 2.0) * ROOT_TWELFTH;
-        e[1][k] = ((m2[k] + m0[k] - 2.0 * m1[k]) / 2.0) * ROOT_180TH;
-    }
-    e
-}
-
-/// `pᵀCq` of the covariance's factors `e`.
-#[inline(always)]
-pub(crate) fn quad(p: &[f64; 3], e: &[[f64; 3]; 2], q: &[f64; 3]) -> f64 {
-    dot(p, &e[0]) * dot(q, &e[0]) + dot(p, &e[1]) * dot(q, &e[1])
-}
 
 /// The calibrated specific force (unit frame, g) of one sample's raw
 /// accelerations, and its calibrated accelerometers in `cal`: the triad's
@@ -117,12 +95,20 @@ const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 
 /// Each gyro's drift at zero rate less its DTG rate terms (the bias, the g
 /// and the g² terms, with the covariance's factors `e`), term by term with
 /// the gyros side by side (`lanes`: the calibration lanes).
-fn drift_at_rest(lanes: &[f64], n: usize, f: &[f64; 3], e: &[[f64; 3]; 2]) -> [f64; MAX_CHANNELS] {
+fn drift_at_rest(
+    lanes: &[f64],
+    n: usize,
+    f: &[f64; 3],
+    e: &[[f64; 3]; FACTORS],
+) -> [f64; MAX_CHANNELS] {
     let r = |row: usize| &lanes[row * n..][..n];
     // The specific force and the covariance's factors along each gyro's
     // three regressor axes.
-    let mut p = [[[0.0; MAX_CHANNELS]; 3]; 3];
-    for (v, pv) in [f, &e[0], &e[1]].into_iter().zip(p.iter_mut()) {
+    let mut p = [[[0.0; MAX_CHANNELS]; 3]; 1 + FACTORS];
+    for (v, pv) in [f, &e[0], &e[1], &e[2], &e[3]]
+        .into_iter()
+        .zip(p.iter_mut())
+    {
         for (a, pa) in pv.iter_mut().enumerate() {
             let (x, y, z) = (r(3 * a), r(3 * a + 1), r(3 * a + 2));
             for (((p, x), y), z) in pa.iter_mut().zip(x).zip(y).zip(z) {
@@ -140,7 +126,7 @@ fn drift_at_rest(lanes: &[f64], n: usize, f: &[f64; 3], e: &[[f64; 3]; 2]) -> [f
     for (t, &(a, b)) in PAIRS.iter().enumerate() {
         let c = r(row::GG + t);
         for k in 0..n {
-            let z = p[0][a][k] * p[0][b][k] + p[1][a][k] * p[1][b][k] + p[2][a][k] * p[2][b][k];
+            let z = p.iter().fold(0.0, |z, pv| z + pv[a][k] * pv[b][k]);
             g[k] += z * c[k];
         }
     }
@@ -158,7 +144,7 @@ pub(crate) fn compensate_gyros(
     lanes: &[f64],
     gyro: &mut [f64],
     f: &[f64; 3],
-    e: &[[f64; 3]; 2],
+    e: &[[f64; 3]; FACTORS],
 ) {
     // (n ≤ MAX_CHANNELS said so that the arrays' indices need no checks.)
     let n = gyro.len().min(MAX_CHANNELS);
@@ -210,22 +196,4 @@ fn newton(mut wi: f64, (a0, b, nl): (f64, f64, f64), measured: f64) -> f64 {
         wi -= fx / df;
     }
     wi
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_covariance_factors_give_the_covariance() {
-        assert!((ROOT_TWELFTH - (1.0f64 / 12.0).sqrt()).abs() <= f64::EPSILON * ROOT_TWELFTH);
-        assert!((ROOT_180TH - (1.0f64 / 180.0).sqrt()).abs() <= f64::EPSILON * ROOT_180TH);
-        let (m0, m1, m2) = ([0.1, -0.3, 1.0], [0.2, 0.1, 0.9], [-0.4, 0.5, 1.3]);
-        let e = covariance(&m0, &m1, &m2);
-        let (p, q) = ([0.6, 0.0, 0.8], [0.0, 1.0, 0.0]);
-        let c1: [f64; 3] = core::array::from_fn(|k| (m2[k] - m0[k]) / 2.0);
-        let c2: [f64; 3] = core::array::from_fn(|k| (m2[k] + m0[k] - 2.0 * m1[k]) / 2.0);
-        let want = dot(&p, &c1) * dot(&q, &c1) / 12.0 + dot(&p, &c2) * dot(&q, &c2) / 180.0;
-        assert!((quad(&p, &e, &q) - want).abs() <= 4.0 * f64::EPSILON * want.abs());
-    }
 }

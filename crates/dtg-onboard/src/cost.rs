@@ -14,13 +14,14 @@ impl Model<'_> {
     /// centres costs two per centre (its weight's multiply-add).
     pub fn flops_per_step(&self) -> usize {
         let (nc, na) = (self.n_channels, self.n_accels);
-        let mut f = self.calibration_flops() + 24; // the covariance's factors
+        // The covariance's factors: 4 × 3 sums of 7 multiply-adds.
+        let mut f = self.calibration_flops() + 4 * 3 * 7 * 2;
         for (c, ch) in self.channels[..nc].iter().enumerate() {
             for e in 0..ch.n_effects {
                 f += match self.effect(c, e).0 {
                     kind::COLUMN => 0,
                     kind::LINEAR_G => 5,
-                    kind::QUADRATIC_G => 31,
+                    kind::QUADRATIC_G => 55,
                     _ => 4 * nc + 1,
                 } + 9 * self.n_sections
                     + 2;
@@ -68,11 +69,11 @@ impl Model<'_> {
             // 3 sweeps × 3 axes × 4 Newton steps of ~25 flops.
             f += 3 * 3 * 4 * 25 + 3;
         }
-        // Once: the force and the covariance's factors along each gyro's
-        // three axes (45), the g terms (6), the g² terms (42); per pass:
+        // Once: the force and the covariance's four factors along each
+        // gyro's three axes (75), the g terms (6), the g² terms (66); per pass:
         // the least-squares rate, each gyro's two rates (10), a0 and b (8),
         // the division (2) and one Newton check (9).
-        f + n * 93 + 2 * (6 * n + n * 29)
+        f + n * 147 + 2 * (6 * n + n * 29)
     }
 
     /// Exponentials of one step: one per lane of each centre set's blocks

@@ -2,9 +2,10 @@
 //! effects, the windows, the kernels, the fade and the smoother, one
 //! output period at a time.
 
-use crate::calibration::{calibrated_force, compensate_gyros, covariance, quad};
+use crate::calibration::{calibrated_force, compensate_gyros};
 use crate::error::Error;
 use crate::fade::fade_weight;
+use crate::interval::{FACTORS, LOOKAHEAD, covariance, quad};
 use crate::layout::{MAX_ACCELS, MAX_CHANNELS, input, kind, kind_params_of};
 use crate::maths::{cascade, dot, sqrt};
 use crate::model::Model;
@@ -59,26 +60,30 @@ impl Output {
 
 /// The compensator's state over a model.
 ///
-/// One period of latency: the call with sample n returns the output of
-/// sample n − 1, because the g² terms' within-interval covariance of a
-/// sample is estimated from its two neighbours. [`Evaluator::flush`] gives
-/// the last sample's output at the end of a record.
+/// [`LOOKAHEAD`] periods of latency (60 ms at 50 Hz): the call with sample
+/// n returns the output of sample n − 3, because the g² terms'
+/// within-interval covariance of a sample is estimated from the specific
+/// forces of samples n − 3 … n + 3. [`Evaluator::flush`] gives the last
+/// three samples' outputs at the end of a record.
 #[derive(Debug)]
 pub struct Evaluator<'m, 's> {
     model: Model<'m>,
     state: &'s mut [f64],
     /// Samples received since rest.
     steps: u64,
-    /// Samples processed (one fewer than received, once running).
+    /// Samples processed (three fewer than received, once running).
     processed: u64,
     ring_pos: usize,
 }
 
-/// State slots: the calibrated specific force (unit frame, g) of the
-/// pending sample and of the one before it; the other slots are the
-/// model's (`Model::st`).
-const PENDING_FORCE: usize = 0;
-const EARLIER_FORCE: usize = 3;
+/// State slots 0..18: the calibrated specific forces (unit frame, g) of
+/// the six samples before the newest, oldest first (the oldest pending
+/// sample's covariance reads them and the newest); the other slots are the
+/// model's (`Model::st`), the pending samples' among them, oldest first.
+const FORCES: usize = 0;
+const FORCE_SLOTS: usize = 2 * LOOKAHEAD;
+/// Where the oldest pending sample's force is.
+const PENDING_FORCE: usize = FORCES + 3 * LOOKAHEAD;
 
 /// The pending sample calibrated: its specific force, accelerometers and
 /// gyro outputs.
@@ -129,9 +134,9 @@ impl<'m, 's> Evaluator<'m, 's> {
     /// in layout 2 X, X1, Y, Y1, Z, Z1), deg/h, raw accelerations (the
     /// unit's accelerometers), g, and the model's extra columns (in the
     /// exporter's order, [`Model::n_extra`] of them) of sample n; returns
-    /// the output of sample n − 1, or `None` while the windows fill (the
-    /// first output, of sample [`Model::window_len`] − 1, comes with sample
-    /// `window_len`). A non-finite input makes every later output
+    /// the output of sample n − 3 ([`LOOKAHEAD`]), or `None` while the
+    /// windows fill (the first output, of sample [`Model::window_len`] − 1,
+    /// comes with sample `window_len` + 2). A non-finite input makes every later output
     /// non-finite (the filters keep it): reset.
     pub fn step(
         &mut self,
@@ -157,49 +162,81 @@ impl<'m, 's> Evaluator<'m, 's> {
         }
         let mut cal = [0.0; MAX_ACCELS];
         let f = calibrated_force(m, accel_g, &mut cal[..na]);
+        let held = (self.steps as usize).min(LOOKAHEAD);
         // Written in place by the step (an output is 400 bytes: moved up
         // through process and step it would be copied twice).
         let mut out = Output::zeros(nc, na);
-        let ready = if self.steps >= 1 {
-            // The pending sample's covariance, centred: n − 2, n − 1, n (zero
-            // for the first sample, which has one neighbour, as in the batch).
-            let e = if self.steps >= 2 {
+        let ready = if held == LOOKAHEAD {
+            // The oldest pending sample's covariance, centred on it: n − 6
+            // … n (zero for the first three samples, which lack three
+            // neighbours before them, as in the batch).
+            let e = if self.steps >= 2 * LOOKAHEAD as u64 {
                 let st = &*self.state;
-                let at = |i: usize| [st[i], st[i + 1], st[i + 2]];
-                covariance(&at(EARLIER_FORCE), &at(PENDING_FORCE), &f)
+                covariance(|j| match j {
+                    FORCE_SLOTS => f,
+                    _ => [st[3 * j], st[3 * j + 1], st[3 * j + 2]],
+                })
             } else {
-                [[0.0; 3]; 2]
+                [[0.0; 3]; FACTORS]
             };
-            self.process(&e, &mut out)
+            let ready = self.process(&e, &mut out);
+            self.shift_pending();
+            ready
         } else {
             false
         };
         let (m, st) = (&self.model, &mut *self.state);
         let at = m.st;
-        st.copy_within(PENDING_FORCE..PENDING_FORCE + 3, EARLIER_FORCE);
-        st[PENDING_FORCE..PENDING_FORCE + 3].copy_from_slice(&f);
-        st[at.accel..at.accel + na].copy_from_slice(&cal[..na]);
-        st[at.gyro..at.gyro + nc].copy_from_slice(gyro_deg_h);
-        st[at.extra..at.extra + m.n_extra].copy_from_slice(extra);
+        st.copy_within(FORCES + 3..FORCES + 3 * FORCE_SLOTS, FORCES);
+        st[FORCES + 3 * (FORCE_SLOTS - 1)..FORCES + 3 * FORCE_SLOTS].copy_from_slice(&f);
+        let slot = held.min(LOOKAHEAD - 1);
+        let put = |st: &mut [f64], at: usize, v: &[f64]| {
+            st[at + slot * v.len()..at + (slot + 1) * v.len()].copy_from_slice(v)
+        };
+        put(st, at.accel, &cal[..na]);
+        put(st, at.gyro, gyro_deg_h);
+        put(st, at.extra, extra);
         self.steps += 1;
         Ok(ready.then_some(out))
     }
 
-    /// The end of a record: the output of the last sample received (its
-    /// covariance is zero, as the batch's at a record's end), then back to
-    /// rest. `None` if nothing is pending or the windows are not full.
-    pub fn flush(&mut self) -> Option<Output> {
-        let m = &self.model;
-        let mut out = Output::zeros(m.n_channels, m.n_accels);
-        let ready = self.steps >= 1 && self.process(&[[0.0; 3]; 2], &mut out);
+    /// The pending samples one on, the oldest (just processed) dropped.
+    fn shift_pending(&mut self) {
+        let (m, st) = (&self.model, &mut *self.state);
+        for (at, len) in [
+            (m.st.accel, m.n_accels),
+            (m.st.gyro, m.n_channels),
+            (m.st.extra, m.n_extra),
+        ] {
+            st.copy_within(at + len..at + LOOKAHEAD * len, at);
+        }
+    }
+
+    /// The end of a record: the outputs of the last [`LOOKAHEAD`] samples
+    /// received, oldest first (entry k is sample N − 3 + k of N received;
+    /// their covariance is zero, as the batch's at a record's end), then
+    /// back to rest. An entry is `None` if the record has no such sample
+    /// or the windows are not full at it.
+    pub fn flush(&mut self) -> [Option<Output>; LOOKAHEAD] {
+        let held = (self.steps as usize).min(LOOKAHEAD);
+        let mut outs = [None; LOOKAHEAD];
+        for slot in outs[LOOKAHEAD - held..].iter_mut() {
+            let m = &self.model;
+            let mut out = Output::zeros(m.n_channels, m.n_accels);
+            *slot = self.process(&[[0.0; 3]; FACTORS], &mut out).then_some(out);
+            self.shift_pending();
+            // The next pending sample's force into the oldest's slot.
+            self.state
+                .copy_within(FORCES + 3..FORCES + 3 * FORCE_SLOTS, FORCES);
+        }
         self.reset();
-        ready.then_some(out)
+        outs
     }
 
     /// The pending sample's specific force, accelerometers and gyro
     /// outputs, the gyros through the ground calibration with the
     /// covariance's factors `e`.
-    fn calibrated(&self, e: &[[f64; 3]; 2]) -> Calibrated {
+    fn calibrated(&self, e: &[[f64; 3]; FACTORS]) -> Calibrated {
         let (m, st) = (&self.model, &*self.state);
         let (nc, na) = (m.n_channels, m.n_accels);
         let mut c = Calibrated {
@@ -222,7 +259,7 @@ impl<'m, 's> Evaluator<'m, 's> {
 
     /// Compensates the pending sample with its covariance's factors `e`.
     /// Into `out` once the windows are full (true then).
-    fn process(&mut self, e: &[[f64; 3]; 2], out: &mut Output) -> bool {
+    fn process(&mut self, e: &[[f64; 3]; FACTORS], out: &mut Output) -> bool {
         let m = &self.model;
         let first = self.processed == 0;
         let c = self.calibrated(e);
@@ -372,7 +409,7 @@ impl<'m, 's> Evaluator<'m, 's> {
 fn linear_parts(
     m: &Model,
     st: &mut [f64],
-    (a, gyro, e): (&[f64; 3], &[f64], &[[f64; 3]; 2]),
+    (a, gyro, e): (&[f64; 3], &[f64], &[[f64; 3]; FACTORS]),
     first: bool,
 ) -> [f64; MAX_CHANNELS] {
     let mut linear = [0.0; MAX_CHANNELS];

@@ -7,14 +7,14 @@
 //! up to [`MAX_CHANNELS`] DTG or rate-gyro channels, each network on its own
 //! window signals, the unit's operators and calibration. [`Model`] reads
 //! them from a byte slice (a file, flash, an `include_bytes!`);
-//! [`Evaluator`] keeps the state (filter states, the last two
-//! accelerations, the input windows, the numbers a step reads in vector
+//! [`Evaluator`] keeps the state (filter states, the last six specific
+//! forces and the three pending samples, the input windows, the numbers a step reads in vector
 //! lanes) in a caller-provided `f64` buffer of [`Model::state_len`]
 //! elements, and [`Evaluator::step`] turns one period's raw gyro outputs
 //! (deg/h), accelerations (g) and extra columns into the compensated rates
-//! (deg/h) of the period before: one period of latency, because the g²
-//! terms' within-interval covariance of a sample is estimated from its two
-//! neighbours. Tables written before ([`LAYOUT_2`], the paper's six DTG
+//! (deg/h) of the period three before: [`LOOKAHEAD`] periods of latency
+//! (60 ms at 50 Hz), because the g² terms' within-interval covariance of a
+//! sample is estimated from the means of the three samples on each side. Tables written before ([`LAYOUT_2`], the paper's six DTG
 //! channels; [`LAYOUT_3`], any unit with one list of window signals) are
 //! read and run as they always were. Channels that share their window
 //! signals, centres and widths (the same numbers in the tables) take each
@@ -27,7 +27,8 @@
 //!    triad's static inverse when the tables hold it), then each gyro's
 //!    inverse model, a DTG's with the other-axis rates from the
 //!    least-squares rate (two passes), the g² terms with the
-//!    within-interval covariance from the sample and its two neighbours;
+//!    within-interval covariance from the sample and the three on each
+//!    side ([`WITHIN_INTERVAL_FACTORS`]);
 //! 2. per channel, the effect regressors from the calibrated specific
 //!    force, rates and extra columns, each through the tables' effect
 //!    low-pass (none in the tables `dtg-vib export` writes: the effects are
@@ -47,10 +48,13 @@
 //! let mut state = [0.0f64; 4096];
 //! let mut ev = Evaluator::new(model, &mut state).unwrap();
 //! for _ in 0..model.window_len() {
-//!     // Outputs lag one sample: the window_len-th sample's comes with the next.
+//!     // Outputs lag three samples: the window_len-th sample's comes with
+//!     // the third after it.
 //!     assert!(ev.step(&[0.0; 6], &[0.0, 0.0, 1.0], &[]).unwrap().is_none());
 //! }
-//! let out = ev.flush().expect("the record's last sample, with a full window");
+//! // The record's last three samples; only the last has a full window.
+//! let [_, _, last] = ev.flush();
+//! let out = last.expect("the record's last sample, with a full window");
 //! assert!(out.rates().iter().all(|w| w.is_finite()));
 //! ```
 
@@ -68,6 +72,7 @@ mod cost;
 mod error;
 mod evaluator;
 mod fade;
+mod interval;
 mod kernels;
 mod lanes;
 mod layout;
@@ -77,6 +82,7 @@ mod vector;
 
 pub use error::Error;
 pub use evaluator::{Evaluator, Output};
+pub use interval::{LOOKAHEAD, WITHIN_INTERVAL_FACTORS};
 pub use model::{Floats, Model, Part};
 
 pub use layout::{

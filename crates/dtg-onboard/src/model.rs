@@ -7,6 +7,7 @@
 //! a layout-4 one whose channels all read every signal.
 
 use crate::error::Error;
+use crate::interval::LOOKAHEAD;
 use crate::lanes::{CAL_ROWS, lane_blocks};
 use crate::layout::{
     ACCEL_CAL, FIXED_HEADER_WORDS, FLAG_ACCEL_TRIAD, FLAG_CALIBRATION, FLAG_FADE, FLAG_FADE_SHAPE,
@@ -47,8 +48,9 @@ pub(crate) struct ChannelAt {
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct StateAt {
     pub(crate) len: usize,
-    /// The pending sample's calibrated accelerometers, raw gyro outputs
-    /// and extra columns (after the two specific forces, 0..6).
+    /// The pending samples' calibrated accelerometers, raw gyro outputs
+    /// and extra columns, [`LOOKAHEAD`] of each, oldest first (after the
+    /// six specific forces, 0..18).
     pub(crate) accel: usize,
     pub(crate) gyro: usize,
     pub(crate) extra: usize,
@@ -466,16 +468,16 @@ impl<'a> Model<'a> {
             self.window_len,
             self.n_signals,
         );
-        let mut at = 6;
+        let mut at = 3 * 2 * LOOKAHEAD;
         let mut take = |n: usize| {
             let here = at;
             at += n;
             here
         };
         let mut st = StateAt {
-            accel: take(na),
-            gyro: take(nc),
-            extra: take(self.n_extra),
+            accel: take(LOOKAHEAD * na),
+            gyro: take(LOOKAHEAD * nc),
+            extra: take(LOOKAHEAD * self.n_extra),
             ..StateAt::default()
         };
         for ch in self.channels[..nc].iter_mut() {

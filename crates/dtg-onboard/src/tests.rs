@@ -139,10 +139,12 @@ fn run(b: &[u8], acc: &[[f64; 3]]) -> [Vec<(usize, Output)>; 2] {
         let mut outs = Vec::new();
         for (i, a) in acc.iter().enumerate() {
             if let Some(o) = ev.step(&[10.0; 6], a, &[]).unwrap() {
-                outs.push((i - 1, o));
+                outs.push((i - LOOKAHEAD, o));
             }
         }
-        outs.extend(ev.flush().map(|o| (acc.len() - 1, o)));
+        for (k, o) in ev.flush().into_iter().enumerate() {
+            outs.extend(o.map(|o| (acc.len() + k - LOOKAHEAD, o)));
+        }
         assert_eq!(ev.steps(), 0, "flush leaves the evaluator at rest");
         outs
     })
@@ -326,8 +328,9 @@ fn the_kernels_at_the_cpus_width_give_the_baseline_bits() {
                     ev.step(&[0.0; 6], a, &[]).unwrap();
                 }
             }
-            // One sample is pending; the windows hold the n − 1 before it.
-            let ring_pos = (n - 1) % m.window_len();
+            // LOOKAHEAD samples are pending; the windows hold the n − 3
+            // before them.
+            let ring_pos = (n - crate::LOOKAHEAD) % m.window_len();
             let mut got = ([0.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
             let mut want = got;
             crate::vector::network_terms(&m, &state, ring_pos, &mut got.0, &mut got.1);

@@ -209,6 +209,21 @@ fn step_against_batch_of(m: &UnitModel, rec: &Record) -> (f64, f64) {
     (worst, lowest)
 }
 
+/// The onboard compensator's within-interval covariance reads the same
+/// factors as the ground calibration's and the regressors' (the C export
+/// prints the onboard table), so all stay one estimator.
+#[test]
+fn the_onboard_covariance_factors_are_nav_sensors() {
+    assert_eq!(
+        dtg_onboard::WITHIN_INTERVAL_FACTORS,
+        nav_sensors::dtg::WITHIN_INTERVAL_FACTORS
+    );
+    assert_eq!(
+        dtg_onboard::LOOKAHEAD,
+        nav_sensors::dtg::WITHIN_INTERVAL_REACH
+    );
+}
+
 #[test]
 fn the_no_std_evaluator_equals_the_batch_pipeline() {
     for m in [plain(), rich(), statistics()] {
@@ -324,8 +339,9 @@ fn the_statistics_model_reads_nine_inputs() {
 #[test]
 fn a_causal_model_never_looks_ahead() {
     // Change the record from sample n on: the batch pipeline's predictions
-    // before n − 1 must not move (they would under the zero-phase filter);
-    // n − 1 may, through the centred covariance: the one sample of latency.
+    // before n − 3 must not move (they would under the zero-phase filter);
+    // n − 3 … n − 1 may, through the centred covariance: the three samples
+    // of latency.
     let model = load(rich());
     let rec = record();
     let n = 3000;
@@ -349,7 +365,12 @@ fn a_causal_model_never_looks_ahead() {
     );
     let first = p0.first_sample();
     for k in 0..6 {
-        assert_eq!(a[k][..n - 1 - first], b[k][..n - 1 - first], "channel {k}");
+        let lookahead = dtg_onboard::LOOKAHEAD;
+        assert_eq!(
+            a[k][..n - lookahead - first],
+            b[k][..n - lookahead - first],
+            "channel {k}"
+        );
         assert_ne!(
             a[k][n - first + 5],
             b[k][n - first + 5],
@@ -1290,7 +1311,12 @@ fn c_exported_before_compiles_and_runs_as_it_did() {
             std::fs::copy(legacy(dir).join("onboard").join(f), out.join(f)).unwrap();
         }
         let c = compile_and_run(&cc, &out, &[], &legacy(dir).join("record.csv"));
-        let worst = largest_difference(&read_csv(&c), &compensated_then(dir), &|_| 1.0);
+        // The C of then carries then's within-interval covariance (a
+        // quadratic through three means): it gives then's numbers.
+        let then = read_csv(
+            &std::fs::read_to_string(legacy(dir).join("compensated-causal-5b6a72d.csv")).unwrap(),
+        );
+        let worst = largest_difference(&read_csv(&c), &then, &|_| 1.0);
         eprintln!("{dir}: the C of then, largest |C − compensate then| = {worst:e}");
         assert!(worst <= EQUAL_DEG_H, "{dir}: {worst:e}");
     }

@@ -64,6 +64,9 @@ struct Rates {
     covered: usize,
     refit_within: usize,
     seeds: usize,
+    /// Each seed's (estimate − truth)/(half-width/1.96) of its 95%
+    /// interval, rounded: spread 1 for an interval of the right width.
+    z: Vec<f64>,
 }
 
 /// The clean twins of `seeds` on `unit`: each one's validation rms, and how
@@ -90,10 +93,12 @@ fn rates(unit: &Unit, h: Hidden, seeds: std::ops::Range<u64>, twin_rms: &[Vec<f6
         let f = run(unit, &triaxial(SECONDS, seed, &[h]));
         let id = (h.0.to_string(), h.1.to_string());
         let exact = f.added == [id.clone()];
-        let covered = f
-            .intervals
-            .get(&id)
-            .is_some_and(|[lo, hi]| *lo <= h.2 && h.2 <= *hi);
+        let interval = f.intervals.get(&id);
+        let covered = interval.is_some_and(|[lo, hi]| *lo <= h.2 && h.2 <= *hi);
+        if let Some([lo, hi]) = interval {
+            let z = ((lo + hi) / 2.0 - h.2) / ((hi - lo) / 2.0 / 1.96);
+            r.z.push((z * 1000.0).round() / 1000.0);
+        }
         let worst = f
             .val_rms
             .iter()
@@ -128,7 +133,8 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
     let mut failed = Vec::new();
     for &h in cases {
         let r = rates(&unit, h, 1..21, &twin_rms);
-        eprintln!("{h:?}: {r:?}");
+        let rms = (r.z.iter().map(|z| z * z).sum::<f64>() / r.z.len().max(1) as f64).sqrt();
+        eprintln!("{h:?}: {r:?}, z rms {rms:.3}");
         if r.exact < 19 || r.covered < 18 || r.refit_within < 19 {
             failed.push((h, r));
         }
@@ -141,17 +147,21 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
 /// Hidden g_x, g_y, g_z and one gg_xy on tetra's rate gyro g2, each below
 /// what the network left in its residual before the screen (g_x at 0.15
 /// deg/h/g went unnamed in 3 of 3 seeds with the window reading ax, ay, az).
-/// Measured (seeds 1–20, 2026-11-29, 965 s with the DTG test alongside):
-/// g_x 20/20 exact, 20/20 covered; g_y 20, 19; g_z 20, 20 (each 20/20
-/// refits within 1.1× the twin); clean twins 0/20; gg_xy at 0.05
-/// deg/h/g² 20/20 exact, 20/20 refits within, but 16/20 covered. Named
-/// where it explains least (ERR 0.156 on seed 11) since the worth gate is
-/// a 6% cut of the residual rms (a 10% gate left seeds 11, 13 and 20
-/// unnamed: `gg_xy_named_where_it_explains_least`). The four intervals
-/// that miss (seeds 2, 4, 7, 12) lie above the truth (lower ends
-/// 0.0500–0.0558), because its regressor is not what the gyro felt
-/// (`the_g2_regressor_is_what_the_gyro_felt`). This test fails on gg_xy's
-/// coverage until that is fixed.
+/// Measured (seeds 1–20, 2026-11-29, the seven-mean within-interval
+/// covariance and the 6% worth gate; 1766 s at load 5.6 → 16, the DTG
+/// test alongside): g_x 20/20 exact, 20/20 covered; g_y 20, 19; g_z 20, 20 (each 20/20 refits within 1.1× the
+/// twin); clean twins 0/20; gg_xy at 0.05 deg/h/g² 20/20 exact, 20/20
+/// refits within, 17/20 covered. Its regressor is now what the gyro felt
+/// (`the_g2_regressor_is_what_the_gyro_felt`; the three-mean quadratic
+/// gave 16/20 covered, all four misses above the truth) and the three
+/// misses fall on both sides, just outside: seed 2 above (0.0513–0.0661),
+/// seeds 11 and 20 below (upper ends 0.0492, 0.0489). Over the 20 seeds
+/// gg_xy's z (printed per term) has mean 0.10 and rms 1.13 (g_x, g_y,
+/// g_z: rms 0.90, 0.95, 0.92): unbiased, and a spread a
+/// 95% interval gives with probability about 0.19 (χ² on 20); 17 of 20
+/// or fewer happens to such an interval with probability 7.5%. This test
+/// fails on gg_xy's coverage (17 < 18): a miss no estimator fix is left
+/// to remove, and no honest widening found yet.
 #[test]
 #[ignore = "statistical: 100 loops, minutes"]
 fn rate_gyro_g_terms_named_over_seeds() {
@@ -167,9 +177,9 @@ fn rate_gyro_g_terms_named_over_seeds() {
 }
 
 /// Hidden g_S on X and g_O on Y1 of the paper's DTG unit. Measured (seeds
-/// 1–20, again 2026-11-29 with the 6% worth gate): g_S 20/20 exact, 18/20
-/// covered, 20/20 refits within 1.1× the twin; g_O 20, 19, 20; clean twins
-/// 0/20.
+/// 1–20, 2026-11-29, the seven-mean within-interval covariance and the 6%
+/// worth gate; 1298 s, load 5.6 → 16): g_S 20/20 exact, 19/20 covered, 20/20 refits
+/// within 1.1× the twin; g_O 20, 20, 20; clean twins 0/20.
 #[test]
 #[ignore = "statistical: 60 loops, minutes"]
 fn dtg_g_terms_named_over_seeds() {
@@ -231,21 +241,22 @@ fn regressor_slope(unit: &Unit, term: &'static str, seed: u64) -> f64 {
     dot(&d, &r) / dot(&r, &r)
 }
 
-/// Why a hidden `gg_xy`'s intervals miss the truth (issue 35 §1): its
-/// regressor, the record's estimate of each 50-Hz interval's mean of
-/// f_x·f_y (the product of the interval means plus the within-interval
-/// covariance fitted through three neighbouring means,
-/// `nav_sensors::dtg::within_interval_covariance`), tracks the slow part of
-/// a 3–20 Hz product, what the 5-Hz low-pass keeps, only to 1/1.09: the
-/// drift regressed on it has slope 1.091, 1.099 and 1.088 on seeds 1–3
-/// (g_x: 1.000). The loop's estimate is then high before any network, and
-/// its intervals sit above the truth (`rate_gyro_g_terms_named_over_seeds`
-/// prints those that miss). Not an interval too narrow: a regressor that is
-/// not what the gyro felt. The estimate is shared with the ground
-/// calibration and the onboard compensator, so its fix changes them too.
-/// Fails until then.
+/// A hidden term's regressor is what the gyro felt (issue 35 §1): the
+/// drift a hidden `g_x` or `gg_xy` (coefficient 1) adds to g2's record,
+/// regressed on the regressor the loop states it with, both low-passed as
+/// the loop's targets are, has slope 1 within 0.02 on seeds 1–3. For
+/// `gg_xy` the regressor is the record's estimate of each 50-Hz interval's
+/// mean of f_x·f_y: the product of the interval means plus the
+/// within-interval covariance (`nav_sensors::dtg::within_interval_covariance`,
+/// seven means, shared with the ground calibration and the onboard
+/// compensator). Measured: g_x 1.0001, 0.9999, 0.9998; gg_xy 0.9997,
+/// 0.9978, 0.9994 (a quadratic through three means gave 1.091, 1.099,
+/// 1.088: an estimate high before any network, and intervals above the
+/// truth). The spread over seeds (standard deviation 0.001) is the
+/// regressor's own scale error on a record: 0.00005 deg/h/g² at 0.05,
+/// about 1% of gg_xy's standard error (0.004), so an errors-in-variables
+/// term would not move its intervals.
 #[test]
-#[ignore = "fails until the within-interval estimate resolves 3–20 Hz (issue 35 §1)"]
 fn the_g2_regressor_is_what_the_gyro_felt() {
     let unit = Unit::builtin("tetra").unwrap();
     for seed in 1..4 {
@@ -310,7 +321,8 @@ fn the_library_and_the_command_line_default_to_one_window() {
 
 /// The seeds where the hidden `gg_xy` explains least (11, 13, 20: ERR
 /// 0.156–0.169 at p below 10⁻¹²; left unnamed, its refit's validation rms
-/// is 1.107, 1.082 and 1.095× the clean twin's): named exactly, with the
+/// is 1.107, 1.082 and 1.095× the clean twin's; figures of the three-mean
+/// within-interval covariance, before the seven-mean one): named exactly, with the
 /// refit within 1.1× the twin, and the twins silent. A gate of a 10% cut
 /// of the residual rms left it unnamed on all three; the short run of the
 /// statistical test above, a minute.

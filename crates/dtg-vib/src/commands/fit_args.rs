@@ -135,8 +135,8 @@ pub struct FitArgs {
     /// Seed of the candidate subsample and k-means.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
-    /// Causal mode: causal low-passes, so the model runs on-line with one
-    /// period of latency (`dtg-vib export`) and `compensate` runs sample by sample.
+    /// Causal mode: causal low-passes, so the model runs on-line with three
+    /// periods of latency (`dtg-vib export`) and `compensate` runs sample by sample.
     #[arg(long)]
     pub causal: bool,
     /// Model file to write.

@@ -113,11 +113,12 @@ fn header_h(m: &Model, extra: &[String], unit: &Unit, precision: Precision) -> S
  * period ({dt:e} s) with sample n: the raw gyro outputs (deg/h) and
  * accelerations (g) in the unit's order (DTG_GYRO_NAMES, DTG_ACCEL_NAMES)
  * and the extra columns below; out come the compensated rates (deg/h) and
- * calibrated accelerations (g) of sample n - 1 (one period of latency: the
- * g² terms' within-interval covariance of a sample needs its two
- * neighbours). The first {l} calls return 0 (the windows fill); every later
- * call returns 1. At the end of a record, dtg_flush gives the last sample's
- * output. The log's columns are in the units below (main.c converts). */
+ * calibrated accelerations (g) of sample n - 3 (DTG_LOOKAHEAD periods of
+ * latency, 60 ms at 50 Hz: the g² terms' within-interval covariance of a
+ * sample needs the three samples on each side). The first {l} + 2 calls
+ * return 0 (the windows fill); every later call returns 1. At the end of a
+ * record, dtg_flush gives the last three samples' outputs. The log's
+ * columns are in the units below (main.c converts). */
 #ifndef DTG_MODEL_H
 #define DTG_MODEL_H
 
@@ -132,6 +133,8 @@ typedef {real} dtg_real;
 #define DTG_N_SECTIONS {n_sections}
 #define DTG_N_IN_SECTIONS {n_in_sections}
 #define DTG_N_EFFECTS {n_effects}
+/* Samples after the one compensated that its covariance reads. */
+#define DTG_LOOKAHEAD 3
 /* 1: outside the training range the network part holds (docs/formats.md). */
 #define DTG_FADE {fades}
 /* 1: the fade also judges each window's vibration shape (its spectrum). */
@@ -157,10 +160,12 @@ typedef struct {{
     long steps;     /* samples received */
     long processed; /* samples compensated */
     int ring_pos;
-    dtg_real force[6]; /* calibrated specific force of the pending sample and the one before, g */
-    dtg_real pending_accel[DTG_N_ACCELS]; /* the pending sample's calibrated accelerations, g */
-    dtg_real pending_gyro[DTG_N_GYROS];   /* the pending sample's raw outputs, deg/h */
-    dtg_real pending_extra[DTG_N_EXTRA + 1];
+    dtg_real force[6 * DTG_LOOKAHEAD]; /* calibrated specific forces of the 6 samples before the newest, oldest first, g */
+    /* The pending samples, oldest first: calibrated accelerations (g), raw
+     * outputs (deg/h), extra columns. */
+    dtg_real pending_accel[DTG_LOOKAHEAD][DTG_N_ACCELS];
+    dtg_real pending_gyro[DTG_LOOKAHEAD][DTG_N_GYROS];
+    dtg_real pending_extra[DTG_LOOKAHEAD][DTG_N_EXTRA + 1];
     dtg_real out_z[2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1];
     dtg_real in_z[2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1];
     dtg_real ring[DTG_N_SIGNALS][2 * DTG_WINDOW_LEN];
@@ -175,8 +180,12 @@ typedef struct {{
 void dtg_init(dtg_state *s);
 int dtg_step(dtg_state *s, const double gyro_deg_h[DTG_N_GYROS], const double accel_g[DTG_N_ACCELS],
              const double *extra, double rate_deg_h[DTG_N_GYROS], double accel_out_g[DTG_N_ACCELS]);
-/* The last sample's output (returns 1) or nothing (0); leaves s at rest. */
-int dtg_flush(dtg_state *s, double rate_deg_h[DTG_N_GYROS], double accel_out_g[DTG_N_ACCELS]);
+/* The last DTG_LOOKAHEAD samples' outputs, row k for sample N - 3 + k of N
+ * received; returns a mask whose bit k says row k holds one (a record
+ * shorter than 3 samples, or windows not full, leave rows out); leaves s
+ * at rest. */
+int dtg_flush(dtg_state *s, double rate_deg_h[DTG_LOOKAHEAD][DTG_N_GYROS],
+              double accel_out_g[DTG_LOOKAHEAD][DTG_N_ACCELS]);
 
 #endif
 "#,

@@ -110,8 +110,9 @@ int main(void) {
     for (i = 0; i < n_other; i++) printf(",%s", names[other[i]]);
     printf("\n");
     dtg_init(&s);
-    /* Outputs lag one row: pv holds the previous row, whose output comes next. */
-    static double v[MAX_COLS], pv[MAX_COLS];
+    /* Outputs lag DTG_LOOKAHEAD rows: pv holds the last ones, oldest first,
+     * whose outputs come next. */
+    static double v[MAX_COLS], pv[DTG_LOOKAHEAD][MAX_COLS];
     double rate[DTG_N_GYROS], acc_out[DTG_N_ACCELS];
     while (fgets(line, sizeof line, stdin)) {
         double gyro[DTG_N_GYROS], acc[DTG_N_ACCELS], extra[DTG_N_EXTRA + 1];
@@ -132,10 +133,18 @@ int main(void) {
         for (k = 0; k < DTG_N_ACCELS; k++) acc[k] = v[accel_col[k]] * DTG_FORCE_TO_G;
         for (k = 0; k < DTG_N_EXTRA; k++) extra[k] = v[extra_col[k]];
         if (dtg_step(&s, gyro, acc, extra, rate, acc_out))
-            print_row(pv, time_col, rate, acc_out, other, n_other);
-        for (i = 0; i < ncols; i++) pv[i] = v[i];
+            print_row(pv[0], time_col, rate, acc_out, other, n_other);
+        for (k = 0; k + 1 < DTG_LOOKAHEAD; k++)
+            for (i = 0; i < ncols; i++) pv[k][i] = pv[k + 1][i];
+        for (i = 0; i < ncols; i++) pv[DTG_LOOKAHEAD - 1][i] = v[i];
     }
-    if (dtg_flush(&s, rate, acc_out)) print_row(pv, time_col, rate, acc_out, other, n_other);
+    {
+        /* Row k of the flush is the k-th of the last DTG_LOOKAHEAD rows. */
+        double rates[DTG_LOOKAHEAD][DTG_N_GYROS], accs[DTG_LOOKAHEAD][DTG_N_ACCELS];
+        int got = dtg_flush(&s, rates, accs);
+        for (k = 0; k < DTG_LOOKAHEAD; k++)
+            if (got & (1 << k)) print_row(pv[k], time_col, rates[k], accs[k], other, n_other);
+    }
     return 0;
 }
 "#;

@@ -13,6 +13,7 @@ pub(super) fn step_c(precision: Precision) -> String {
         INIT_C,
         FADE_C,
         HELPERS_C,
+        &interval_c(),
         CALIBRATION_C,
         &super::c_kernels::kernels(precision),
         PROCESS_C,
@@ -29,10 +30,12 @@ void dtg_init(dtg_state *s) {
     s->steps = 0;
     s->processed = 0;
     s->ring_pos = 0;
-    for (i = 0; i < 6; i++) s->force[i] = R(0);
-    for (i = 0; i < NA; i++) s->pending_accel[i] = R(0);
-    for (i = 0; i < N; i++) s->pending_gyro[i] = R(0);
-    for (i = 0; i < DTG_N_EXTRA + 1; i++) s->pending_extra[i] = R(0);
+    for (i = 0; i < 6 * DTG_LOOKAHEAD; i++) s->force[i] = R(0);
+    for (j = 0; j < DTG_LOOKAHEAD; j++) {
+        for (i = 0; i < NA; i++) s->pending_accel[j][i] = R(0);
+        for (i = 0; i < N; i++) s->pending_gyro[j][i] = R(0);
+        for (i = 0; i < DTG_N_EXTRA + 1; i++) s->pending_extra[j][i] = R(0);
+    }
     for (i = 0; i < 2 * DTG_N_SECTIONS * DTG_N_EFFECTS + 1; i++) s->out_z[i] = R(0);
     for (i = 0; i < 2 * DTG_N_IN_SECTIONS * DTG_N_SIGNALS + 1; i++) s->in_z[i] = R(0);
     for (i = 0; i < DTG_N_SIGNALS; i++)
@@ -144,12 +147,48 @@ static dtg_real dot3(const dtg_real *a, const dtg_real *b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* p'Cq of the within-interval covariance C = e1 e1' + e2 e2'. */
-static dtg_real quad(const dtg_real *p, dtg_real e[2][3], const dtg_real *q) {
-    return dot3(p, e[0]) * dot3(q, e[0]) + dot3(p, e[1]) * dot3(q, e[1]);
+/* p'Cq of the within-interval covariance C = sum of e_r e_r'. */
+static dtg_real quad(const dtg_real *p, dtg_real e[4][3], const dtg_real *q) {
+    return dot3(p, e[0]) * dot3(q, e[0]) + dot3(p, e[1]) * dot3(q, e[1]) + dot3(p, e[2]) * dot3(q, e[2])
+           + dot3(p, e[3]) * dot3(q, e[3]);
 }
 
 "#;
+
+/// The within-interval covariance's factors (dtg_onboard's table, which is
+/// nav_sensors') and their sums over a sample's seven neighbouring forces.
+fn interval_c() -> String {
+    let rows: Vec<String> = dtg_onboard::WITHIN_INTERVAL_FACTORS
+        .iter()
+        .map(|row| {
+            let r: Vec<String> = row.iter().map(|w| format!("R({w:?})")).collect();
+            format!("    {{{}}}", r.join(", "))
+        })
+        .collect();
+    format!(
+        r#"/* The within-interval covariance's factors over the specific forces of
+ * samples n-3 ... n+3 (nav_sensors::dtg::WITHIN_INTERVAL_FACTORS). */
+static const dtg_real WITHIN_INTERVAL[4][7] = {{
+{}
+}};
+
+/* The factors e_r = sum_j F_rj m_j of the oldest pending sample's
+ * covariance: the forces of samples n-6 ... n-1 in s->force and the
+ * newest's f. */
+static void covariance(const dtg_real *forces, const dtg_real *f, dtg_real e[4][3]) {{
+    int r, j, k;
+    for (r = 0; r < 4; r++)
+        for (k = 0; k < 3; k++) {{
+            dtg_real v = R(0);
+            for (j = 0; j < 7; j++) v += WITHIN_INTERVAL[r][j] * (j < 6 ? forces[3 * j + k] : f[k]);
+            e[r][k] = v;
+        }}
+}}
+
+"#,
+        rows.join(",\n")
+    )
+}
 
 /// The triad's inverse and each gyro's, with the gyros side by side.
 const CALIBRATION_C: &str = r#"#if DTG_CALIBRATED
@@ -206,15 +245,14 @@ static dtg_real newton(dtg_real wi, dtg_real a0, dtg_real b, dtg_real nl, dtg_re
  * drift at rest (bias, g and g^2 terms along each gyro's axes, with the
  * covariance's factors e) once, then per pass a DTG's rate terms, the
  * division, a DTG's Newton steps. */
-static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real e[2][3], dtg_real *out) {
+static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real e[4][3], dtg_real *out) {
     static const int PAIR_A[6] = {0, 1, 2, 0, 0, 1}, PAIR_B[6] = {0, 1, 2, 1, 2, 2};
-    dtg_real p[3][3][N], g[N], cur[N], a0[N], b[N], next[N], rate[3];
-    const dtg_real *v[3];
+    dtg_real p[5][3][N], g[N], cur[N], a0[N], b[N], next[N], rate[3];
+    const dtg_real *v[5];
     int i, a, t, k, pass;
     v[0] = f;
-    v[1] = e[0];
-    v[2] = e[1];
-    for (i = 0; i < 3; i++)
+    for (i = 0; i < 4; i++) v[1 + i] = e[i];
+    for (i = 0; i < 5; i++)
         for (a = 0; a < 3; a++) {
             const dtg_real *x = CL(3 * a), *y = CL(3 * a + 1), *z = CL(3 * a + 2);
             for (k = 0; k < N; k++) p[i][a][k] = x[k] * v[i][0] + y[k] * v[i][1] + z[k] * v[i][2];
@@ -226,7 +264,8 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real e[
         const int pa = PAIR_A[t], pb = PAIR_B[t];
         const dtg_real *c = CL(13 + t);
         for (k = 0; k < N; k++)
-            g[k] += (p[0][pa][k] * p[0][pb][k] + p[1][pa][k] * p[1][pb][k] + p[2][pa][k] * p[2][pb][k]) * c[k];
+            g[k] += (p[0][pa][k] * p[0][pb][k] + p[1][pa][k] * p[1][pb][k] + p[2][pa][k] * p[2][pb][k]
+                     + p[3][pa][k] * p[3][pb][k] + p[4][pa][k] * p[4][pb][k]) * c[k];
     }
     for (k = 0; k < N; k++) cur[k] = raw[k];
     for (pass = 0; pass < 2; pass++) {
@@ -256,17 +295,17 @@ static void compensate_gyros(const dtg_real *raw, const dtg_real *f, dtg_real e[
 /// the kernels.
 const PROCESS_C: &str = r#"/* Compensates the pending sample with its within-interval covariance's
  * factors e. */
-static int process(dtg_state *s, dtg_real e[2][3], double rate_deg_h[N], double accel_out_g[NA]) {
+static int process(dtg_state *s, dtg_real e[4][3], double rate_deg_h[N], double accel_out_g[NA]) {
     dtg_real f[3], a[NA], g[N], linear[N], ys[N], nets[N], w = R(1);
     int first = s->processed == 0;
     int k, c, ei, sig;
     const int l = DTG_WINDOW_LEN;
-    for (k = 0; k < 3; k++) f[k] = s->force[k];
-    for (k = 0; k < NA; k++) a[k] = s->pending_accel[k];
+    for (k = 0; k < 3; k++) f[k] = s->force[3 * DTG_LOOKAHEAD + k];
+    for (k = 0; k < NA; k++) a[k] = s->pending_accel[0][k];
 #if DTG_CALIBRATED
-    compensate_gyros(s->pending_gyro, f, e, g);
+    compensate_gyros(s->pending_gyro[0], f, e, g);
 #else
-    for (k = 0; k < N; k++) g[k] = s->pending_gyro[k];
+    for (k = 0; k < N; k++) g[k] = s->pending_gyro[0][k];
 #endif
     for (c = 0; c < N; c++) {
         dtg_real sum = R(0);
@@ -275,7 +314,7 @@ static int process(dtg_state *s, dtg_real e[2][3], double rate_deg_h[N], double 
             const dtg_real *p = PARAMS + PARAM_OFFSET[idx];
             dtg_real z;
             switch (EFFECT_KIND[idx]) {
-            case 0: z = s->pending_extra[EFFECT_INDEX[idx]]; break;
+            case 0: z = s->pending_extra[0][EFFECT_INDEX[idx]]; break;
             case 1: z = dot3(p, f); break;
             case 2: z = dot3(p, f) * dot3(p + 3, f) + quad(p, e, p + 3); break;
             default: {
@@ -292,7 +331,7 @@ static int process(dtg_state *s, dtg_real e[2][3], double rate_deg_h[N], double 
     }
     for (sig = 0; sig < DTG_N_SIGNALS; sig++) {
         int code = SIGNAL_CODE[sig];
-        dtg_real v = code < NA ? a[code] : s->pending_extra[code - NA];
+        dtg_real v = code < NA ? a[code] : s->pending_extra[0][code - NA];
         v = cascade(IN_SOS, DTG_N_IN_SECTIONS, s->in_z + 2 * DTG_N_IN_SECTIONS * sig, v, first);
         {
             /* Running sums: the sample L steps back (0 while the window
@@ -372,10 +411,20 @@ const OUTPUTS_C: &str = r#"    for (c = 0; c < N; c++) {
 /// `dtg_step`: the specific force from the accelerometers, the triad
 /// calibrated on it, the pending sample's covariance, `process`, the state
 /// moved on one sample.
-const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
+const STEP_C: &str = r#"/* The pending samples one on, the oldest (just processed) dropped. */
+static void shift_pending(dtg_state *s) {
+    int j, k;
+    for (j = 0; j + 1 < DTG_LOOKAHEAD; j++) {
+        for (k = 0; k < NA; k++) s->pending_accel[j][k] = s->pending_accel[j + 1][k];
+        for (k = 0; k < N; k++) s->pending_gyro[j][k] = s->pending_gyro[j + 1][k];
+        for (k = 0; k < DTG_N_EXTRA + 1; k++) s->pending_extra[j][k] = s->pending_extra[j + 1][k];
+    }
+}
+
+int dtg_step(dtg_state *s, const double gyro_deg_h[N], const double accel_g[NA],
              const double *extra, double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real raw_a[NA], f[3], cal[NA], e[2][3];
-    int i, k, out = 0;
+    dtg_real raw_a[NA], f[3], cal[NA], e[4][3];
+    int i, k, slot, out = 0;
     for (k = 0; k < NA; k++) raw_a[k] = (dtg_real)accel_g[k];
     for (i = 0; i < 3; i++) {
         dtg_real v = R(0);
@@ -398,40 +447,41 @@ const STEP_C: &str = r#"int dtg_step(dtg_state *s, const double gyro_deg_h[N], c
 #else
     for (k = 0; k < NA; k++) cal[k] = raw_a[k];
 #endif
-    if (s->steps >= 1) {
-        /* The pending sample's covariance, centred on it (n-2, n-1, n), as
-         * its two factors; zero for the first sample, which has one
-         * neighbour. */
-        for (i = 0; i < 2; i++)
+    if (s->steps >= DTG_LOOKAHEAD) {
+        /* The oldest pending sample's covariance, centred on it (n-6 ... n),
+         * as its factors; zero for the first three samples, which lack
+         * three neighbours before them. */
+        for (i = 0; i < 4; i++)
             for (k = 0; k < 3; k++) e[i][k] = R(0);
-        if (s->steps >= 2) {
-            for (k = 0; k < 3; k++) {
-                e[0][k] = ((f[k] - s->force[3 + k]) / R(2)) * R(0.28867513459481287);
-                e[1][k] = ((f[k] + s->force[3 + k] - R(2) * s->force[k]) / R(2)) * R(0.07453559924999299);
-            }
-        }
+        if (s->steps >= 2 * DTG_LOOKAHEAD) covariance(s->force, f, e);
         out = process(s, e, rate_deg_h, accel_out_g);
+        shift_pending(s);
     }
-    for (k = 0; k < 3; k++) {
-        s->force[3 + k] = s->force[k];
-        s->force[k] = f[k];
-    }
-    for (k = 0; k < NA; k++) s->pending_accel[k] = cal[k];
-    for (k = 0; k < N; k++) s->pending_gyro[k] = (dtg_real)gyro_deg_h[k];
-    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[k] = (dtg_real)extra[k];
+    for (k = 0; k < 3 * (2 * DTG_LOOKAHEAD - 1); k++) s->force[k] = s->force[k + 3];
+    for (k = 0; k < 3; k++) s->force[3 * (2 * DTG_LOOKAHEAD - 1) + k] = f[k];
+    slot = s->steps < DTG_LOOKAHEAD ? (int)s->steps : DTG_LOOKAHEAD - 1;
+    for (k = 0; k < NA; k++) s->pending_accel[slot][k] = cal[k];
+    for (k = 0; k < N; k++) s->pending_gyro[slot][k] = (dtg_real)gyro_deg_h[k];
+    for (k = 0; k < DTG_N_EXTRA; k++) s->pending_extra[slot][k] = (dtg_real)extra[k];
     s->steps += 1;
     return out;
 }
 
 "#;
 
-const FLUSH_C: &str = r#"int dtg_flush(dtg_state *s, double rate_deg_h[N], double accel_out_g[NA]) {
-    dtg_real e[2][3];
-    int i, k, out = 0;
-    for (i = 0; i < 2; i++)
+const FLUSH_C: &str = r#"int dtg_flush(dtg_state *s, double rate_deg_h[DTG_LOOKAHEAD][N], double accel_out_g[DTG_LOOKAHEAD][NA]) {
+    dtg_real e[4][3];
+    int i, k, row, got = 0;
+    int held = s->steps < DTG_LOOKAHEAD ? (int)s->steps : DTG_LOOKAHEAD;
+    for (i = 0; i < 4; i++)
         for (k = 0; k < 3; k++) e[i][k] = R(0);
-    if (s->steps >= 1) out = process(s, e, rate_deg_h, accel_out_g);
+    for (row = DTG_LOOKAHEAD - held; row < DTG_LOOKAHEAD; row++) {
+        if (process(s, e, rate_deg_h[row], accel_out_g[row])) got |= 1 << row;
+        shift_pending(s);
+        /* The next pending sample's force into the oldest's slot. */
+        for (k = 0; k < 3 * (2 * DTG_LOOKAHEAD - 1); k++) s->force[k] = s->force[k + 3];
+    }
     dtg_init(s);
-    return out;
+    return got;
 }
 "#;

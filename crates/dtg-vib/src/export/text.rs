@@ -214,9 +214,9 @@ fn calibration_text(w: &mut String, model: &UnitModel) {
         w,
         "gyros (a rate gyro: (output − Σ coefficient·term at zero rate)/(1 + scale factor·1e-6); a DTG: inverse of output = ω_I + Σ coefficient·term, Newton on the scale-factor nonlinearity, the rate from the least-squares rate of all gyros, two passes; g² terms with the {} within-interval covariance):",
         if model.inner().preprocess().causal {
-            "previous interval's"
+            "centred (samples n − 3 … n + 3, so 3 periods late on line)"
         } else {
-            "centred"
+            "centred (samples n − 3 … n + 3)"
         }
     );
     for (name, c) in &cal.gyros {

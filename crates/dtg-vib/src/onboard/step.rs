@@ -73,7 +73,7 @@ pub fn step_tables(t: &Tables, record: &Record) -> Result<Stepped, DtgVibError> 
             push(o);
         }
     }
-    if let Some(o) = ev.flush() {
+    for o in ev.flush().into_iter().flatten() {
         push(o);
     }
     Ok(out)

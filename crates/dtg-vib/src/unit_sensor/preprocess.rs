@@ -151,16 +151,15 @@ pub struct StoredPreprocess {
     pub window: WindowSpec,
     /// Known true rate.
     pub rate_reference: RateReference,
-    /// Causal mode: the model runs on-line with one output period of
-    /// latency (the `dtg-onboard` evaluator, the exported C): the correction
-    /// of sample n uses samples up to n + 1. The low-passes are one forward
-    /// pass started in the steady state of the first sample instead of
-    /// forward–backward; the g² terms' within-interval covariance (ground
-    /// calibration and effects) keeps its centred estimate from samples
-    /// n − 1, n, n + 1, hence the latency (a causal estimate from n − 2,
-    /// n − 1, n cost 33–40% in residual error on the triaxial test,
-    /// docs/dtg-vib.md). Absent in model files written before it:
-    /// zero-phase.
+    /// Causal mode: the model runs on-line with three output periods of
+    /// latency (60 ms at 50 Hz; the `dtg-onboard` evaluator, the exported
+    /// C): the correction of sample n uses samples up to n + 3. The
+    /// low-passes are one forward pass started in the steady state of the
+    /// first sample instead of forward–backward; the g² terms'
+    /// within-interval covariance (ground calibration and effects) keeps
+    /// its centred estimate from samples n − 3 … n + 3
+    /// (`nav_sensors::dtg::within_interval_covariance`), hence the latency.
+    /// Absent in model files written before it: zero-phase.
     #[serde(default)]
     pub causal: bool,
     /// What the networks read of the windows (`raw`: the window;

@@ -12,7 +12,10 @@ mod term;
 
 pub use coefficients::DtgCoefficients;
 pub use input::DtgInput;
-pub use interval::{resolve_covariance, within_interval_covariance};
+pub use interval::{
+    WITHIN_INTERVAL_FACTORS, WITHIN_INTERVAL_REACH, resolve_covariance, within_interval_covariance,
+    within_interval_factors,
+};
 pub use noise::DtgNoise;
 pub use rect2n::Rect2nDetector;
 pub use term::DtgTerm;
