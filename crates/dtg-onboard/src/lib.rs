@@ -16,7 +16,8 @@
 //! (60 ms at 50 Hz), because the g² terms' within-interval covariance of a
 //! sample is estimated from the means of the three samples on each side. Tables written before ([`LAYOUT_2`], the paper's six DTG
 //! channels; [`LAYOUT_3`], any unit with one list of window signals) are
-//! read and run as they always were. Channels that share their window
+//! read as they always were and run as today's `compensate` runs them
+//! (the seven-mean covariance, three periods late). Channels that share their window
 //! signals, centres and widths (the same numbers in the tables) take each
 //! kernel value computed once.
 //!

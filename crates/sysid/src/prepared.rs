@@ -384,7 +384,18 @@ impl<S: Sensor> Prepared<S> {
         Ok(out)
     }
 
-    /// The calibrated (not filtered) records, end to end.
+    /// The records' median sample interval, s: the first record's, which
+    /// [`Prepared::new_many`] checks the others' against (the records laid
+    /// end to end are restamped on an even grid, whose median is its mean).
+    pub fn median_dt(&self) -> f64 {
+        self.parts
+            .first()
+            .map_or(&self.calibrated, |p| &p.calibrated)
+            .median_dt()
+    }
+
+    /// The calibrated (not filtered) records, end to end (restamped on the
+    /// first one's grid).
     pub fn calibrated(&self) -> &Signals {
         &self.calibrated
     }

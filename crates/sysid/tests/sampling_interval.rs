@@ -90,6 +90,17 @@ fn a_model_checks_a_record_of_its_nominal_rate_and_refuses_another() {
     }
 }
 
+/// `r` without every 60th sample.
+fn dropping(r: Signals) -> Signals {
+    let keep: Vec<usize> = (0..r.len()).filter(|i| i % 60 != 59).collect();
+    let columns = r
+        .columns()
+        .iter()
+        .map(|(n, c)| (n.clone(), keep.iter().map(|&i| c[i]).collect()))
+        .collect();
+    Signals::new(keep.iter().map(|&i| r.t()[i]).collect(), columns).unwrap()
+}
+
 /// A record with dropped samples: every 60th sample missing lengthens its
 /// mean interval by 1.7 % but leaves the median. The model keeps the
 /// median and compares by it, so a record without drops at the same rate
@@ -97,14 +108,7 @@ fn a_model_checks_a_record_of_its_nominal_rate_and_refuses_another() {
 /// written before it was stored) read the mean as the median.
 #[test]
 fn a_model_fitted_on_a_record_with_dropped_samples_compares_by_its_median() {
-    let full = record(1, 0.0, 0.0);
-    let keep: Vec<usize> = (0..full.len()).filter(|i| i % 60 != 59).collect();
-    let columns = full
-        .columns()
-        .iter()
-        .map(|(n, c)| (n.clone(), keep.iter().map(|&i| c[i]).collect()))
-        .collect();
-    let dropped = Signals::new(keep.iter().map(|&i| full.t()[i]).collect(), columns).unwrap();
+    let dropped = dropping(record(1, 0.0, 0.0));
     assert!(dropped.dt() / dropped.median_dt() - 1.0 > 0.01);
     let (model, _) =
         fit_records(&Line, &[("d".to_string(), &dropped)], &options(), &|_| {}).unwrap();
@@ -124,4 +128,24 @@ fn a_model_fitted_on_a_record_with_dropped_samples_compares_by_its_median() {
     assert_eq!(old.median_dt_s(), old.dt_s());
     let err = old.prepare(&record(3, 0.0, 0.0)).unwrap_err();
     assert!(matches!(err, SysidError::SampleInterval { .. }), "{err}");
+}
+
+/// Several records fitted together keep the first one's median interval,
+/// not that of the records laid end to end (restamped on an even grid at
+/// the first one's mean, so its median is that mean): a model of two logs
+/// with dropped samples still checks a third log of their rate.
+#[test]
+fn a_model_of_several_records_keeps_the_first_ones_median() {
+    let (a, b) = (
+        dropping(record(1, 0.0, 0.0)),
+        dropping(record(2, 0.0, 40.0)),
+    );
+    let records = [("a".to_string(), &a), ("b".to_string(), &b)];
+    let (model, _) = fit_records(&Line, &records, &options(), &|_| {}).unwrap();
+    assert!(
+        (model.median_dt_s() - 0.02).abs() < 1e-12,
+        "{}",
+        model.median_dt_s()
+    );
+    model.prepare(&record(3, 0.0, 0.0)).unwrap();
 }

@@ -143,7 +143,7 @@ pub(super) fn fit_rows_predicting<S: Sensor>(
         sensor: prepared.sensor().clone(),
         preprocess: recipe.preprocess.clone(),
         dt_s: prepared.calibrated().dt(),
-        median_dt_s: Some(median_interval(prepared.calibrated())),
+        median_dt_s: Some(median_interval(prepared)),
         split: recipe.split,
         channels: fitted,
         settings: settings.clone(),
@@ -204,8 +204,8 @@ fn fit_group<'a, S: Sensor>(
 /// agree within 1e-9 (an evenly sampled record, whose median steps differ
 /// from the span's mean in the last bits only): a model file then stores
 /// the one interval, and reads back equal.
-fn median_interval(calibrated: &crate::Signals) -> f64 {
-    let (mean, median) = (calibrated.dt(), calibrated.median_dt());
+fn median_interval<S: Sensor>(prepared: &Prepared<S>) -> f64 {
+    let (mean, median) = (prepared.calibrated().dt(), prepared.median_dt());
     if (median - mean).abs() <= 1e-9 * mean {
         mean
     } else {
