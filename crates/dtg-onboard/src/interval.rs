@@ -11,9 +11,9 @@ use crate::maths::dot;
 pub const LOOKAHEAD: usize = 3;
 
 /// The within-interval covariance's factors over the seven means
-/// n − 3 … n + 3, the numbers of nav_sensors::dtg::WITHIN_INTERVAL_FACTORS
-/// (how they were derived is said there; dtg-vib's tests check the two
-/// tables are one).
+/// n − 3 … n + 3: the one table, which nav_sensors::dtg::WITHIN_INTERVAL_FACTORS
+/// names for the desktop (how they were derived is said there, and its test
+/// `the_factors_are_their_derivation` derives them again).
 pub const WITHIN_INTERVAL_FACTORS: [[f64; 2 * LOOKAHEAD + 1]; FACTORS] = [
     [
         -0.03641163955917553,

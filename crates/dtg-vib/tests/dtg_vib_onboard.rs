@@ -209,21 +209,6 @@ fn step_against_batch_of(m: &UnitModel, rec: &Record) -> (f64, f64) {
     (worst, lowest)
 }
 
-/// The onboard compensator's within-interval covariance reads the same
-/// factors as the ground calibration's and the regressors' (the C export
-/// prints the onboard table), so all stay one estimator.
-#[test]
-fn the_onboard_covariance_factors_are_nav_sensors() {
-    assert_eq!(
-        dtg_onboard::WITHIN_INTERVAL_FACTORS,
-        nav_sensors::dtg::WITHIN_INTERVAL_FACTORS
-    );
-    assert_eq!(
-        dtg_onboard::LOOKAHEAD,
-        nav_sensors::dtg::WITHIN_INTERVAL_REACH
-    );
-}
-
 #[test]
 fn the_no_std_evaluator_equals_the_batch_pipeline() {
     for m in [plain(), rich(), statistics()] {

@@ -38,7 +38,7 @@ use crate::geometry::{ChannelFrame, DtgAxes};
 /// Means on each side of an interval that its covariance reads: the
 /// estimate at interval n needs means n − 3 … n + 3 (so an onboard
 /// compensator outputs a sample 3 periods late, 60 ms at 50 Hz).
-pub const WITHIN_INTERVAL_REACH: usize = 3;
+pub const WITHIN_INTERVAL_REACH: usize = dtg_onboard::LOOKAHEAD;
 
 /// The four leading factors `F` of the within-interval covariance's
 /// weights `W` (see the module's documentation), `W ≈ FᵀF`, over the seven
@@ -57,44 +57,11 @@ pub const WITHIN_INTERVAL_REACH: usize = 3;
 /// eigenvalues (below 4·10⁻¹⁰) are left out, and the first row is scaled
 /// by 1 + 5.3·10⁻⁸ so that the four factors keep a linear trend's variance
 /// (slope²/12) exact: `FᵀF` is within 10⁻⁸ of `W`.
-pub const WITHIN_INTERVAL_FACTORS: [[f64; 2 * WITHIN_INTERVAL_REACH + 1]; 4] = [
-    [
-        -0.03641163955917553,
-        0.12253545567917867,
-        -0.2800109800506244,
-        0.0,
-        0.2800109800506244,
-        -0.12253545567917867,
-        0.03641163955917553,
-    ],
-    [
-        -0.004015306888144132,
-        0.017861172937713325,
-        -0.07970322600350409,
-        0.1317147199078698,
-        -0.07970322600350409,
-        0.017861172937713325,
-        -0.004015306888144132,
-    ],
-    [
-        -0.0018746642026273908,
-        0.0050168163288551205,
-        0.002439181035086846,
-        0.0,
-        -0.002439181035086846,
-        -0.0050168163288551205,
-        0.0018746642026273908,
-    ],
-    [
-        -0.00020138523908803826,
-        0.0007231192274360948,
-        -0.0002601277046901288,
-        -0.0005232125673158554,
-        -0.0002601277046901288,
-        0.0007231192274360948,
-        -0.00020138523908803826,
-    ],
-];
+///
+/// The numbers are `dtg_onboard`'s (no_std), which the onboard compensator
+/// and the exported C read: one table for the desktop and onboard.
+pub const WITHIN_INTERVAL_FACTORS: [[f64; 2 * WITHIN_INTERVAL_REACH + 1]; 4] =
+    dtg_onboard::WITHIN_INTERVAL_FACTORS;
 
 /// The factors `eᵣ = Σⱼ Fᵣⱼ·m[n+j]` of one interval's within-interval
 /// covariance (`C = Σᵣ eᵣeᵣᵀ`) from the seven means around it (`window`:
