@@ -25,12 +25,7 @@ fn load(path: &Path) -> UnitModel {
 }
 
 fn dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-onboard-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    })
+    cli_support::testing::scratch_dir("dtg-vib-onboard")
 }
 
 /// A simulated test with a hidden gg_IS on Y1 and a temperature effect on Z
