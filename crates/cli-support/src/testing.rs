@@ -26,21 +26,49 @@ pub const HOSTILE: &[&str] = &["1e308", "-1e308", "1e-308", "NaN", "inf", "-inf"
 /// a second; a hang (NaN scores that never retire) would run forever.
 pub const LIMIT: Duration = Duration::from_secs(20);
 
+/// The process's scratch directory, once made.
+static SCRATCH: OnceLock<PathBuf> = OnceLock::new();
+
 /// A scratch directory for this test process, made once (the first call's
-/// `prefix` names it, with the process id).
+/// `prefix` names it, with the process id) and removed when the process
+/// exits.
 ///
 /// ```
 /// let d = cli_support::testing::scratch_dir("cli-support-doc");
 /// assert!(d.is_dir());
 /// ```
 pub fn scratch_dir(prefix: &str) -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
+    SCRATCH.get_or_init(|| {
         let d = std::env::temp_dir().join(format!("{prefix}-{}", std::process::id()));
         std::fs::create_dir_all(&d).expect("a scratch directory in the temporary directory");
+        remove_at_exit();
         d
     })
 }
+
+/// Removes the scratch directory when the process exits. A static is never
+/// dropped, and the test harness ends by returning from `main` or calling
+/// `exit`, both of which run `atexit` handlers: without this every test run
+/// left its simulations and models in the temporary directory (tens of
+/// MB a test binary, until the disk filled).
+#[cfg(unix)]
+fn remove_at_exit() {
+    extern "C" fn remove() {
+        if let Some(d) = SCRATCH.get() {
+            // Nothing is left to report to at exit; a failure leaves the
+            // folder as it was before this handler existed.
+            let _ = std::fs::remove_dir_all(d);
+        }
+    }
+    // SAFETY: `atexit` stores a pointer to a plain function that reads a
+    // static; it is called once, by the C runtime, after `main`.
+    unsafe {
+        libc::atexit(remove);
+    }
+}
+
+#[cfg(not(unix))]
+fn remove_at_exit() {}
 
 /// A path as an argument (the tests' paths are UTF-8).
 ///

@@ -219,6 +219,12 @@ impl<'m, 's> Evaluator<'m, 's> {
     /// or the windows are not full at it.
     pub fn flush(&mut self) -> [Option<Output>; LOOKAHEAD] {
         let held = (self.steps as usize).min(LOOKAHEAD);
+        // Fewer samples than the lookahead received: their forces sit in
+        // the newest slots; the oldest held one goes where `process` reads
+        // the pending sample's.
+        let lag = LOOKAHEAD - held;
+        self.state
+            .copy_within(FORCES + 3 * lag..FORCES + 3 * FORCE_SLOTS, FORCES);
         let mut outs = [None; LOOKAHEAD];
         for slot in outs[LOOKAHEAD - held..].iter_mut() {
             let m = &self.model;

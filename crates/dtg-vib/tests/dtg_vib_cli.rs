@@ -11,12 +11,7 @@ fn bin() -> Command {
 }
 
 fn dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-cli-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    })
+    cli_support::testing::scratch_dir("dtg-vib-cli")
 }
 
 fn run(args: &[&str]) -> Output {

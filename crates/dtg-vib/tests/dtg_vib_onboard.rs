@@ -25,12 +25,7 @@ fn load(path: &Path) -> UnitModel {
 }
 
 fn dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-onboard-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    })
+    cli_support::testing::scratch_dir("dtg-vib-onboard")
 }
 
 /// A simulated test with a hidden gg_IS on Y1 and a temperature effect on Z
@@ -215,6 +210,66 @@ fn the_no_std_evaluator_equals_the_batch_pipeline() {
         let worst = step_against_batch(m);
         eprintln!("{}: largest |step − batch| = {worst:e} deg/h", m.display());
         assert!(worst <= EQUAL_DEG_H, "{}: {worst:e} deg/h", m.display());
+    }
+}
+
+/// A record about as short as the evaluator's lookahead (2 to 4 samples,
+/// the lookahead being 3; a record has at least 2) runs as the batch runs
+/// it: the flush gives each
+/// held sample its own specific force (the calibrated gyros' g-terms read
+/// it), with windows of 1 and 2 samples, where the first output needs the
+/// flush; and so does the exported C.
+#[test]
+fn records_shorter_than_the_lookahead_step_as_the_batch() {
+    let full = record();
+    for window in ["1", "2"] {
+        let path = fit(
+            &format!("short-window-{window}.json"),
+            &[
+                "--window",
+                window,
+                "--window-signals",
+                "az",
+                "--effects",
+                "g_S",
+            ],
+        );
+        let m = load(&path);
+        for n in 2..=4 {
+            let short = full.slice(0..n);
+            let (worst, _) = step_against_batch_of(&m, &short);
+            eprintln!("window {window}, {n} samples: largest |step − batch| = {worst:e}");
+            assert!(
+                worst <= EQUAL_DEG_H,
+                "window {window}, {n} samples: {worst:e}"
+            );
+            let csv = dir().join(format!("short-{window}-{n}.csv"));
+            short.write_csv(&csv).unwrap();
+            if n < 2 * window.parse::<usize>().unwrap() {
+                // `compensate` needs two windows; its refusal says so and
+                // offers no other unit (the model's is the log's).
+                let o = bin()
+                    .args(["compensate", "--model"])
+                    .arg(&path)
+                    .arg("--data")
+                    .arg(&csv)
+                    .arg("--out")
+                    .arg(dir().join("refused.csv"))
+                    .output()
+                    .unwrap();
+                let e = String::from_utf8_lossy(&o.stderr);
+                assert!(!o.status.success() && e.contains("shorten --window"), "{e}");
+                assert!(!e.contains("--unit"), "{e}");
+                continue;
+            }
+            if let Some(worst) = c_against_compensate_on(&path, "f64", &csv) {
+                eprintln!("window {window}, {n} samples: largest |C − compensate| = {worst:e}");
+                assert!(
+                    worst <= EQUAL_DEG_H,
+                    "window {window}, {n} samples: C {worst:e}"
+                );
+            }
+        }
     }
 }
 

@@ -30,8 +30,7 @@ fn ok(cmd: &mut Command) -> (String, String) {
 fn dir() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-range-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
+        let d = cli_support::testing::scratch_dir("dtg-vib-range").to_path_buf();
         for run in ["x-axis", "z-axis"] {
             ok(bin()
                 .args(["simulate", "--builtin", run, "--out"])

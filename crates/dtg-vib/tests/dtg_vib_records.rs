@@ -160,8 +160,7 @@ fn bin() -> Command {
 fn dir() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dtg-vib-records-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
+        let d = cli_support::testing::scratch_dir("dtg-vib-records").to_path_buf();
         for (name, seed) in [("a", 31), ("b", 32)] {
             z_test(seed).write_dir(d.join(name)).unwrap();
         }

@@ -85,20 +85,30 @@ fn twins(unit: &Unit, seeds: std::ops::Range<u64>) -> (Vec<Vec<f64>>, usize) {
     (rms, suggesting)
 }
 
+/// Whether the loop's outcome `f` named exactly `h` on exactly its channel,
+/// whether its 95 % interval covers the truth, and its z: (estimate −
+/// truth)/(half-width/1.96), rounded to 0.001 (spread 1 for an interval of
+/// the right width).
+fn judged(f: &Found, h: Hidden) -> (bool, bool, Option<f64>) {
+    let id = (h.0.to_string(), h.1.to_string());
+    let exact = f.added == [id.clone()];
+    let interval = f.intervals.get(&id);
+    let covered = interval.is_some_and(|[lo, hi]| *lo <= h.2 && h.2 <= *hi);
+    let z = interval.map(|[lo, hi]| {
+        let z = ((lo + hi) / 2.0 - h.2) / ((hi - lo) / 2.0 / 1.96);
+        (z * 1000.0).round() / 1000.0
+    });
+    (exact, covered, z)
+}
+
 /// Exactly `h` named on exactly its channel, its interval covering the
 /// truth, the refit within 1.1× its clean twin's validation rms, per seed.
 fn rates(unit: &Unit, h: Hidden, seeds: std::ops::Range<u64>, twin_rms: &[Vec<f64>]) -> Rates {
     let mut r = Rates::default();
     for (k, seed) in seeds.enumerate() {
         let f = run(unit, &triaxial(SECONDS, seed, &[h]));
-        let id = (h.0.to_string(), h.1.to_string());
-        let exact = f.added == [id.clone()];
-        let interval = f.intervals.get(&id);
-        let covered = interval.is_some_and(|[lo, hi]| *lo <= h.2 && h.2 <= *hi);
-        if let Some([lo, hi]) = interval {
-            let z = ((lo + hi) / 2.0 - h.2) / ((hi - lo) / 2.0 / 1.96);
-            r.z.push((z * 1000.0).round() / 1000.0);
-        }
+        let (exact, covered, z) = judged(&f, h);
+        r.z.extend(z);
         let worst = f
             .val_rms
             .iter()
@@ -160,8 +170,11 @@ fn acceptance(unit: &str, cases: &[Hidden]) {
 /// g_z: rms 0.90, 0.95, 0.92): unbiased, and a spread a
 /// 95% interval gives with probability about 0.19 (χ² on 20); 17 of 20
 /// or fewer happens to such an interval with probability 7.5%. This test
-/// fails on gg_xy's coverage (17 < 18): a miss no estimator fix is left
-/// to remove, and no honest widening found yet.
+/// fails on gg_xy's coverage (17 < 18). Over 100 further seeds
+/// (`gg_xy_interval_coverage_over_100_seeds`, 2026-11-30, quiet, 179 s)
+/// the same interval covers 94 of 100 with z rms 1.021 and mean 0.111, and
+/// names gg_xy exactly in 100: the interval is the right width, and seeds
+/// 1–20's 17 is the 7.5 % draw, not a bias left to remove.
 #[test]
 #[ignore = "statistical: 100 loops, minutes"]
 fn rate_gyro_g_terms_named_over_seeds() {
@@ -336,4 +349,35 @@ fn gg_xy_named_where_it_explains_least() {
         let r = rates(&unit, ("g2", "gg_xy", 0.05), seed..seed + 1, &twin_rms);
         assert_eq!((r.exact, r.refit_within), (1, 1), "seed {seed}: {r:?}");
     }
+}
+
+/// The coverage of gg_xy's 95 % interval, measured where 20 seeds cannot
+/// tell a right interval from a narrow one (17 of 20 or fewer happens to a
+/// right one with probability 7.5 %): seeds 21–120, none of them the
+/// acceptance's. Asserts ≥ 90 of 100 covered (a binomial(100, 0.95) falls
+/// below 90 with probability 1.1 %) and the hidden term named exactly in
+/// ≥ 95 of 100.
+#[test]
+#[ignore = "statistical: 100 loops, two minutes"]
+fn gg_xy_interval_coverage_over_100_seeds() {
+    let unit = Unit::builtin("tetra").unwrap();
+    let h = ("g2", "gg_xy", 0.05);
+    let (mut exact, mut covered, mut zs) = (0, 0, Vec::new());
+    for seed in 21..121 {
+        let (e, c, z) = judged(&run(&unit, &triaxial(SECONDS, seed, &[h])), h);
+        if !c {
+            eprintln!("seed {seed}: not covered, z {z:?}");
+        }
+        exact += usize::from(e);
+        covered += usize::from(c);
+        zs.extend(z);
+    }
+    let n = zs.len().max(1) as f64;
+    let mean = zs.iter().sum::<f64>() / n;
+    let rms = (zs.iter().map(|z| z * z).sum::<f64>() / n).sqrt();
+    eprintln!(
+        "gg_xy over seeds 21-120: exact {exact}, covered {covered}, z mean {mean:.3}, rms {rms:.3}"
+    );
+    assert!(covered >= 90, "covered {covered} of 100");
+    assert!(exact >= 95, "exact {exact} of 100");
 }

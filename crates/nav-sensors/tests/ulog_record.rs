@@ -119,9 +119,14 @@ fn a_ulog_is_told_by_its_bytes_and_a_unit_without_a_table_is_refused() {
     let Some(path) = ulg("sample_log_small.ulg") else {
         return;
     };
-    let renamed = std::env::temp_dir().join("nav-sensors-test-ulog-named.csv");
+    let renamed = std::env::temp_dir().join(format!(
+        "nav-sensors-test-ulog-named-{}.csv",
+        std::process::id()
+    ));
     std::fs::copy(&path, &renamed).unwrap();
-    assert_eq!(read(&renamed).records, read(&path).records);
+    let named = read(&renamed);
+    std::fs::remove_file(&renamed).unwrap();
+    assert_eq!(named.records, read(&path).records);
     let err = Record::read_with_unit(&path, &Unit::builtin("tetra").unwrap()).unwrap_err();
     assert!(matches!(err, RecordError::NoUlogTable { .. }), "{err}");
     assert!(err.to_string().contains("[ulog]"), "{err}");

@@ -105,8 +105,13 @@ pub fn read_records(data: &[PathBuf], unit: &Unit, min_samples: usize) -> Result
     let mut notes = Vec::new();
     for d in data {
         let read = read_unit_records(d, unit, min_samples).map_err(|e| {
-            let suggestion = builtin_suggestion(d, unit).unwrap_or_default();
-            anyhow!("{e}{suggestion}")
+            // A log too short for the model reads with its unit: another
+            // unit would not lengthen it.
+            let suggestion = match e {
+                UnitSensorError::TooShort { .. } => None,
+                _ => builtin_suggestion(d, unit),
+            };
+            anyhow!("{e}{}", suggestion.unwrap_or_default())
         })?;
         notes.extend(read.gaps_notice(&d.display().to_string()));
         notes.extend(declared_unit_notes(d, unit, &read.segments));
@@ -173,11 +178,11 @@ fn builtin_suggestion(path: &Path, unit: &Unit) -> Option<String> {
         .next()?
         .ok()?;
     let header: Vec<&str> = first.split(',').map(str::trim).collect();
-    // A unit's name is its description ("paper: three skewed …"); a
-    // built-in's file is units/NAME.toml.
+    // The built-in itself, read from its file or stored in a model file,
+    // needs no other unit.
     let name = Unit::builtins_matching(&header)
         .into_iter()
-        .find(|n| format!("units/{n}.toml") != unit.file())?;
+        .find(|n| Unit::builtin(n).ok().as_ref() != Some(unit))?;
     Some(format!(
         "; the log has the columns of built-in unit {name}: add --unit {name}"
     ))

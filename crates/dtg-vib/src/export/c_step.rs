@@ -475,6 +475,10 @@ const FLUSH_C: &str = r#"int dtg_flush(dtg_state *s, double rate_deg_h[DTG_LOOKA
     int held = s->steps < DTG_LOOKAHEAD ? (int)s->steps : DTG_LOOKAHEAD;
     for (i = 0; i < 4; i++)
         for (k = 0; k < 3; k++) e[i][k] = R(0);
+    /* Fewer samples than the lookahead received: their forces sit in the
+     * newest slots; the oldest held one goes to the pending sample's. */
+    for (k = 0; k < 3 * (DTG_LOOKAHEAD + held); k++)
+        s->force[k] = s->force[k + 3 * (DTG_LOOKAHEAD - held)];
     for (row = DTG_LOOKAHEAD - held; row < DTG_LOOKAHEAD; row++) {
         if (process(s, e, rate_deg_h[row], accel_out_g[row])) got |= 1 << row;
         shift_pending(s);
