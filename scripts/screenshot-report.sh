@@ -107,9 +107,27 @@ f.addEventListener("load", async () => {
 });
 JS
 
+# A profile of its own for each run: two renderings at once (two test runs
+# on one machine) otherwise share Chromium's default profile, and one of
+# them was seen to wait on it without end.
+profile=$(mktemp -d)
+trap 'rm -rf "$probe" "$probe_js" "$profile"' EXIT
 flags=(--headless=new --no-sandbox --disable-gpu --hide-scrollbars --disable-dev-shm-usage
        --allow-file-access-from-files --run-all-compositor-stages-before-draw
-       --virtual-time-budget=20000)
+       --virtual-time-budget=20000 --user-data-dir="$profile")
+# Chromium under a time limit (BROWSER_LIMIT_S, 120 s by default; a
+# rendering takes a few seconds), tried twice: a stalled browser is a
+# failed check, not a hung test run.
+browser_run() {
+    local limit=${BROWSER_LIMIT_S:-120} try
+    for try in 1 2; do
+        if timeout --kill-after=10 "$limit" "$browser" "${flags[@]}" "$@" 2>/dev/null; then
+            return 0
+        fi
+        echo "chromium did not finish within ${limit} s (try $try of 2)" >&2
+    done
+    return 1
+}
 broken_images=0
 for width in 390 1440; do
     cat > "$probe" <<HTML
@@ -117,15 +135,15 @@ for width in 390 1440; do
 <body><iframe id="f" src="$name" style="width:${width}px;height:${height}px"></iframe>
 <script src="$(basename "$probe_js")"></script></body></html>
 HTML
-    dom=$("$browser" "${flags[@]}" --window-size="$(( width < 500 ? 500 : width )),$height" --dump-dom "file://$probe" 2>/dev/null || true)
+    dom=$(browser_run --window-size="$(( width < 500 ? 500 : width )),$height" --dump-dom "file://$probe" || true)
     result=$(grep -o 'data-check="[^"]*"' <<<"$dom" | sed -e 's/^data-check="//' -e 's/"$//' || true)
     echo "width=$width ${result:-check=missing}"
     if [[ $result =~ broken=([0-9]+) ]] && (( BASH_REMATCH[1] > 0 )); then
         broken_images=1
     fi
     # The top $height px of the page at this width.
-    "$browser" "${flags[@]}" --window-size="$width,$height" \
-        --screenshot="$out/report-$width.png" "file://$probe" >/dev/null 2>&1 || true
+    browser_run --window-size="$width,$height" \
+        --screenshot="$out/report-$width.png" "file://$probe" >/dev/null || true
 done
 echo "screenshots: $out/report-390.png $out/report-1440.png"
 if (( broken_images )); then
