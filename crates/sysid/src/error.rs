@@ -210,10 +210,10 @@ pub enum SysidError {
         source: rbf::RbfError,
     },
     /// The record's median sample interval differs from that of the records
-    /// the model was fitted on by more than [`crate::INTERVAL_TOLERANCE`].
+    /// the model was fitted on by more than [`crate::signals::INTERVAL_TOLERANCE`].
     #[error(
         "the record is sampled every {record_dt_s} s (median interval) but the model was fitted at {model_dt_s} s, more than {pct} % apart: its filters and windows assume that interval; refit on data at this rate",
-        pct = 100.0 * crate::INTERVAL_TOLERANCE
+        pct = 100.0 * crate::signals::INTERVAL_TOLERANCE
     )]
     SampleInterval {
         /// The record's median, s.

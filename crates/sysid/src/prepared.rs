@@ -8,21 +8,11 @@
 use crate::error::SysidError;
 use crate::preprocess::Preprocess;
 use crate::sensor::{Sensor, every_operating_signal};
-use crate::signals::Signals;
+use crate::signals::{INTERVAL_TOLERANCE, Signals};
 use crate::window::signal_choice::{ChannelSignals, WindowSignalsChoice, choose_per_channel};
 use crate::window::{WindowSpec, Windows};
 use faer::{Mat, MatRef};
 use iir::LowPass;
-
-/// Relative tolerance on sampling intervals: records (or the segments of a
-/// log split at its gaps) fitted together, and a record against the model's
-/// interval, are accepted when their median sampling intervals agree within
-/// 0.5 %. Two logs of one nominal rate differ by more than their jitter (a
-/// real 250 Hz PX4 log's two halves by 0.3 %: the autopilot's clock and
-/// dropped samples), and a 0.5 % time-scale error moves a 50-sample
-/// window's span by a quarter of a sample; two nominal rates (200 and 250
-/// Hz) differ by 20 %. docs/formats.md states it.
-pub const INTERVAL_TOLERANCE: f64 = 5e-3;
 
 /// Records prepared for fitting, prediction or diagnosis, with the sensor
 /// (its calibration) and pre-processing they were prepared with: a fit on
@@ -174,7 +164,7 @@ impl<S: Sensor> Prepared<S> {
     /// with each later record's warm-up (the samples before its first full
     /// window) left out and its time restamped to continue the first
     /// record's. The records must share their sample interval (median steps
-    /// within [`crate::INTERVAL_TOLERANCE`]) and their extra columns. One record gives exactly [`Prepared::new`].
+    /// within [`INTERVAL_TOLERANCE`]) and their extra columns. One record gives exactly [`Prepared::new`].
     pub fn new_many(
         sensor: &S,
         records: &[(String, &Signals)],

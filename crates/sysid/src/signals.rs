@@ -2,6 +2,16 @@
 //! length. What the columns mean (which are outputs, which are inputs, in
 //! which units) is the plug-in's knowledge, not the loop's.
 
+/// Relative tolerance on sampling intervals: records (or the segments of a
+/// log split at its gaps) fitted together, and a record against the model's
+/// interval, are accepted when their median sampling intervals agree within
+/// 0.5 %. Two logs of one nominal rate differ by more than their jitter (a
+/// real 250 Hz PX4 log's two halves by 0.3 %: the autopilot's clock and
+/// dropped samples), and a 0.5 % time-scale error moves a 50-sample
+/// window's span by a quarter of a sample; two nominal rates (200 and 250
+/// Hz) differ by 20 %. docs/formats.md states it.
+pub const INTERVAL_TOLERANCE: f64 = 5e-3;
+
 /// Why columns cannot form a record.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SignalsError {
